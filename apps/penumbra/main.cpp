@@ -1,0 +1,54 @@
+// penumbra: the command-line front end. Errors from user input end as one line,
+// `error: <subject>: <what>`, and a non-zero exit code; nothing partial is left behind.
+#include "commands.h"
+#include "penumbra/error.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+
+int main(int argc, char** argv) {
+    using namespace penumbra;
+    CLI::App app{"Penumbra: a real-time shadow renderer and shadow-technique lab (Vulkan 1.3)",
+                 "penumbra"};
+    app.set_version_flag("--version", PENUMBRA_VERSION);
+    app.require_subcommand(1);
+    app.fallthrough();
+    cli::GlobalOptions global;
+    const char* env = std::getenv("PENUMBRA_VALIDATION");
+    global.validation = env && std::strcmp(env, "0") != 0 && *env;
+    app.add_option("--device", global.device,
+                   "Vulkan device index from `penumbra info` (default: a GPU if any, else the "
+                   "software rasterizer)");
+    app.add_flag("--validation", global.validation,
+                 "enable the Khronos validation layer; any validation error fails the command");
+
+    const cli::Action render = cli::addRenderCommand(app, global);
+    const cli::Action info = cli::addInfoCommand(app, global);
+    const cli::Action techniques = cli::addTechniquesCommand(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    }
+    try {
+        if (app.got_subcommand("render")) return render();
+        if (app.got_subcommand("info")) return info();
+        if (app.got_subcommand("techniques")) return techniques();
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 3;
+    }
+    return 2;
+}

@@ -1,0 +1,102 @@
+#include "commands.h"
+#include "core/image_io.h"
+#include "core/output_dir.h"
+#include "penumbra/error.h"
+#include "penumbra/renderer.h"
+#include "report/stats.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <memory>
+
+namespace penumbra::cli {
+namespace {
+
+struct RenderArgs {
+    std::string scene, output, technique = "hard";
+    std::vector<std::string> sets;
+    RenderOptions options;
+};
+
+void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& run) {
+    out.write("image.png", encodePng(r.width, r.height, 4, r.image));
+    for (size_t i = 0; i < r.visibility.size(); ++i)
+        out.write(visibilityFileName(i), encodePfm(r.width, r.height, 1, r.visibility[i]));
+    out.write("position.pfm", encodePfm(r.width, r.height, 3, r.position));
+    out.write("normal.pfm", encodePfm(r.width, r.height, 3, r.normal));
+    const std::string stats = renderStats(run).dump(2) + "\n";
+    out.write("stats.json", std::span(reinterpret_cast<const uint8_t*>(stats.data()), stats.size()));
+}
+
+int runRender(const RenderArgs& args, const GlobalOptions& global) {
+    RenderOptions options = args.options;
+    options.technique = findTechnique(args.technique).id;
+    for (const std::string& set : args.sets) options.parameters.assign(set);
+    validate(options);
+    const Scene scene = loadScene(args.scene);
+    // Created before the long work so an unwritable path fails fast; removed again on error.
+    StagedOutputDir out(args.output);
+
+    Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
+    const DeviceInfo& device = renderer.device();
+    std::fprintf(stderr, "penumbra: %s on %s (%s), %ux%u, shadow map %u, technique %s\n",
+                 scene.name.c_str(), device.name.c_str(), device.driverName.c_str(), options.width,
+                 options.height, options.shadowMapSize, args.technique.c_str());
+    for (const Light& l : scene.lights)
+        if (l.type == LightType::Point && l.castsShadow)
+            std::fprintf(stderr, "penumbra: note: point light '%s' lights the scene but casts no "
+                                 "shadow (point-light shadows are not in this build)\n",
+                         l.name.c_str());
+    const RenderResult result = renderer.render(scene, options, [](const std::string& stage) {
+        std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
+    });
+    writeOutputs(out, result, {args.scene, scene, options, device, result});
+    if (renderer.validationErrors() > 0)
+        throw std::runtime_error(fmt::format("vulkan validation: {} error(s), see messages above; "
+                                             "no output written",
+                                             renderer.validationErrors()));
+    out.commit();
+
+    std::string files;
+    for (const std::string& f : out.staged()) files += (files.empty() ? "" : ", ") + f;
+    std::printf("wrote %s/{%s}\n", out.path().c_str(), files.c_str());
+    std::printf("GPU ms per pass (median of %u frames after 1 warm-up):", options.frames);
+    double total = 0;
+    for (const PassTime& p : result.passes) {
+        std::printf("  %s %.3f", p.pass.c_str(), p.medianMs);
+        total += p.medianMs;
+    }
+    std::printf("  | total %.3f\n", total);
+    return 0;
+}
+
+} // namespace
+
+Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
+    auto args = std::make_shared<RenderArgs>();
+    CLI::App* cmd = app.add_subcommand("render", "render SCENE with one shadow technique into DIR");
+    cmd->add_option("scene", args->scene, "builtin:NAME (showcase, grazing, spot) or a glTF file")
+        ->required();
+    cmd->add_option("-o,--output", args->output, "output directory")->required();
+    cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
+        ->capture_default_str();
+    auto& o = args->options;
+    cmd->add_option("--width", o.width, "image width in pixels")->capture_default_str();
+    cmd->add_option("--height", o.height, "image height in pixels")->capture_default_str();
+    cmd->add_option("--shadow-map-size", o.shadowMapSize, "shadow map side in texels")
+        ->capture_default_str();
+    cmd->add_option("--light-radius", o.lightRadiusOverride,
+                    "spot/point light radius in world units (overrides the scene)")
+        ->check(CLI::NonNegativeNumber);
+    cmd->add_option("--light-angle", o.lightAngleOverride,
+                    "directional light angular diameter in degrees (overrides the scene)")
+        ->check(CLI::Range(0.0, 30.0));
+    cmd->add_option("--camera", o.camera, "glTF camera name (default: the first, else automatic)");
+    cmd->add_option("--set", args->sets, "technique parameter family.name=value (repeatable)");
+    cmd->add_option("--frames", o.frames, "timed frames after one warm-up frame")
+        ->capture_default_str();
+    return [args, &global] { return runRender(*args, global); };
+}
+
+} // namespace penumbra::cli

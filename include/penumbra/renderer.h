@@ -1,0 +1,82 @@
+#pragma once
+// Renderer: owns a Vulkan device and renders a Scene with one shadow technique, returning the lit
+// image, per-light visibility and the G-buffer's world position and normal, plus GPU time per
+// pass. Headless; the same frame (design.md §2) serves the CLI, the tests and the viewer.
+#include "penumbra/scene.h"
+#include "penumbra/settings.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct DeviceOptions {
+    int deviceIndex = -1;    // -1: a GPU when there is one, else the software rasterizer
+    bool validation = false; // Khronos validation layer + debug messenger that counts errors
+};
+
+struct DeviceInfo {
+    uint32_t index = 0;
+    std::string name, type, driverName, driverInfo, apiVersion;
+    uint32_t maxImageDimension2D = 0;
+    uint32_t maxComputeWorkGroupInvocations = 0;
+    uint64_t deviceLocalBytes = 0;
+    float timestampPeriodNs = 0.0f;
+    bool depthLinearFilter = false; // D32_SFLOAT linear (and hardware 2x2 PCF) filtering
+    bool suitable = false; // has everything Penumbra needs
+    std::string unsuitableReason;
+};
+
+struct PassTime {
+    std::string pass;          // "shadow", "gbuffer", "visibility", "composite"
+    double medianMs = 0.0;
+    std::vector<double> frameMs; // every timed frame
+};
+
+struct LightShadow {
+    uint32_t sceneLight = 0;   // index into Scene::lights
+    int visibilityIndex = -1;  // index into RenderResult::visibility; -1: casts no shadow
+    std::string projection;    // "orthographic" / "perspective" / "none"
+    float nearPlane = 0.0f, farPlane = 0.0f;
+    float texelWorldSize = 0.0f; // at unit distance for perspective
+};
+
+struct RenderResult {
+    uint32_t width = 0, height = 0;
+    std::vector<uint8_t> image;                 // RGBA8, sRGB-encoded, rows top to bottom
+    std::vector<std::vector<float>> visibility; // per shadow-casting light; NaN = background
+    std::vector<float> position;                // xyz per pixel, world space; NaN = background
+    std::vector<float> normal;                  // xyz per pixel, unit; NaN = background
+    std::vector<PassTime> passes;
+    std::vector<LightShadow> lights;
+};
+
+using ProgressFn = std::function<void(const std::string& stage)>;
+
+class Renderer {
+public:
+    // Throws InputError("--device", ...) for a bad index or a device lacking what we need.
+    explicit Renderer(const DeviceOptions& options);
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    const DeviceInfo& device() const;
+    // Throws InputError on options the device cannot honour (sizes past its limits, memory).
+    RenderResult render(const Scene& scene, const RenderOptions& options,
+                        const ProgressFn& progress = {});
+    // Validation-layer messages of severity error so far (0 when validation is off).
+    uint32_t validationErrors() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+// Every physical device the Vulkan loader reports, with the reason any one is unsuitable.
+std::vector<DeviceInfo> listDevices();
+
+} // namespace penumbra

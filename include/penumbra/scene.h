@@ -1,0 +1,82 @@
+#pragma once
+// The scene model every part of Penumbra consumes: world-space triangles (already flattened
+// through the node hierarchy), materials, lights and cameras. Loaders (built-in generators,
+// glTF) produce it; the renderer and the ground-truth reference read the same triangles.
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra {
+
+struct Vertex {
+    glm::vec3 position;
+    glm::vec3 normal;   // unit length
+    uint32_t material;  // index into Scene::materials
+};
+
+struct Material {
+    std::string name;
+    glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f}; // linear RGB
+};
+
+enum class LightType { Directional, Spot, Point };
+
+struct Light {
+    std::string name;
+    LightType type = LightType::Directional;
+    glm::vec3 position{0.0f};            // spot and point
+    glm::vec3 direction{0.0f, -1.0f, 0.0f}; // unit, the direction light travels (spot, directional)
+    glm::vec3 color{1.0f};               // linear RGB
+    float intensity = 1.0f;              // directional: irradiance; spot/point: per sr at 1 unit
+    float range = 0.0f;                  // spot/point; 0 = unlimited
+    float innerConeAngle = 0.0f;         // radians, spot
+    float outerConeAngle = 0.7853982f;   // radians, spot (glTF default pi/4)
+    float radius = 0.0f;                 // world units, spot/point area light size (0 = point)
+    float angularDiameter = 0.0f;        // degrees, directional light size (0 = parallel)
+    bool castsShadow = true;
+};
+
+struct Camera {
+    std::string name;
+    glm::vec3 position{0.0f, 2.0f, 8.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float yfov = 0.8f;   // radians (perspective)
+    float znear = 0.05f;
+    float zfar = 200.0f;
+};
+
+struct Bounds {
+    glm::vec3 min{std::numeric_limits<float>::max()};
+    glm::vec3 max{-std::numeric_limits<float>::max()};
+    void grow(const glm::vec3& p) { min = glm::min(min, p), max = glm::max(max, p); }
+    glm::vec3 center() const { return 0.5f * (min + max); }
+    glm::vec3 extent() const { return max - min; }
+    bool empty() const { return min.x > max.x; }
+};
+
+struct Scene {
+    std::string name;
+    std::vector<Vertex> vertices;  // world space
+    std::vector<uint32_t> indices; // triangle list
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    std::vector<Camera> cameras;
+
+    size_t triangleCount() const { return indices.size() / 3; }
+    Bounds bounds() const;
+    // The camera named `name`; empty name: the first camera, else an automatic framing.
+    // Throws InputError when a named camera does not exist.
+    Camera camera(std::string_view cameraName) const;
+};
+
+// Loads `spec`: "builtin:NAME" or a glTF file. Throws InputError on anything malformed.
+Scene loadScene(std::string_view spec);
+std::vector<std::string_view> builtinSceneNames();
+
+} // namespace penumbra

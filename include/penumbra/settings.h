@@ -1,0 +1,73 @@
+#pragma once
+// Techniques, their tunable parameters (`--set family.name=value`), and the render options.
+// Every parameter has a default and a valid range; `penumbra techniques` prints this table.
+#include <cstdint>
+#include <map>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra {
+
+enum class Technique : uint32_t { Hard = 0 };
+
+struct TechniqueInfo {
+    Technique id;
+    std::string_view name;        // CLI name, e.g. "hard"
+    std::string_view summary;     // one line
+    std::string_view reference;   // the paper or text it implements
+    std::vector<std::string_view> families; // parameter families it reads, e.g. {"bias"}
+};
+
+std::span<const TechniqueInfo> allTechniques();
+// Throws InputError("--technique", ...) listing the valid names when `name` is unknown.
+const TechniqueInfo& findTechnique(std::string_view name);
+
+enum class ParameterType { Float, Int, Bool, Choice };
+
+struct ParameterInfo {
+    std::string_view key; // "family.name"
+    ParameterType type;
+    double defaultValue;  // Choice: index into choices; Bool: 0 or 1
+    double min, max;      // inclusive range for Float and Int
+    std::vector<std::string_view> choices;
+    std::string_view unit;
+    std::string_view description;
+};
+
+std::span<const ParameterInfo> allParameters();
+
+// The values in effect for one render: every registered parameter, default unless set.
+class ParameterValues {
+public:
+    ParameterValues(); // all defaults
+    // Parses and range-checks `value` for `key`; throws InputError("--set", ...) on an unknown
+    // key, a malformed value or one outside the valid range.
+    void set(std::string_view key, std::string_view value);
+    // Parses "key=value".
+    void assign(std::string_view keyEqualsValue);
+    double number(std::string_view key) const; // programmer error if key is unknown
+    std::string text(std::string_view key) const; // value as the user would write it
+    const std::map<std::string, double, std::less<>>& all() const { return mValues; }
+
+private:
+    std::map<std::string, double, std::less<>> mValues;
+};
+
+struct RenderOptions {
+    uint32_t width = 1280;
+    uint32_t height = 720;
+    uint32_t shadowMapSize = 2048;
+    uint32_t frames = 5;   // timed frames after one warm-up frame
+    std::string camera;    // glTF camera name; empty = first camera or automatic framing
+    Technique technique = Technique::Hard;
+    ParameterValues parameters;
+    float lightRadiusOverride = -1.0f; // world units; < 0 = from the scene
+    float lightAngleOverride = -1.0f;  // degrees;     < 0 = from the scene
+};
+
+// Checks ranges that need no device (sizes > 0, frames >= 1, ...); throws InputError.
+void validate(const RenderOptions& options);
+
+} // namespace penumbra

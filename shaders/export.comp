@@ -1,0 +1,27 @@
+#version 460
+// Readback helper (not part of the timed frame): world position and unit normal per pixel,
+// NaN where there is no geometry, for position.pfm / normal.pfm and the ground truth.
+#include "gpu_types.h"
+#include "gbuffer.glsl"
+
+layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
+
+layout(set = 0, binding = 0, std140) uniform CameraBlock { CameraData camera; };
+layout(set = 0, binding = 1) uniform sampler2D gDepth;
+layout(set = 0, binding = 2) uniform sampler2D gNormal;
+layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D outPosition;
+layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D outNormal;
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    uvec2 size = camera.imageSize.xy;
+    if (any(greaterThanEqual(uvec2(p), size))) return;
+    float depth = texelFetch(gDepth, p, 0).r;
+    vec4 position = vec4(nanValue()), normal = vec4(nanValue());
+    if (!isBackground(depth)) {
+        position = vec4(worldPosition(camera.invViewProj, p, size, depth), 1.0);
+        normal = vec4(normalize(texelFetch(gNormal, p, 0).xyz), 0.0);
+    }
+    imageStore(outPosition, p, position);
+    imageStore(outNormal, p, normal);
+}

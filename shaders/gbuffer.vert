@@ -1,0 +1,19 @@
+#version 460
+#include "gpu_types.h"
+
+layout(location = 0) in vec3 inPosition;
+layout(location = 1) in vec3 inNormal;
+layout(location = 2) in uint inMaterial;
+
+layout(set = 0, binding = 0, std140) uniform CameraBlock { CameraData camera; };
+
+layout(location = 0) out vec3 outNormal;
+layout(location = 1) out vec3 outWorld;
+layout(location = 2) flat out uint outMaterial;
+
+void main() {
+    gl_Position = camera.viewProj * vec4(inPosition, 1.0);
+    outNormal = inNormal;
+    outWorld = inPosition;
+    outMaterial = inMaterial;
+}

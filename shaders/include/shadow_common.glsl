@@ -1,0 +1,40 @@
+// Per-pixel shadow lookup set-up shared by every technique: normal offset, projection into the
+// shadow map, and the frustum test.
+#ifndef PENUMBRA_SHADOW_COMMON_GLSL
+#define PENUMBRA_SHADOW_COMMON_GLSL
+#include "gpu_types.h"
+
+struct ShadowCoord {
+    vec2 uv;       // shadow-map texture coordinates, [0,1]^2 inside the map
+    float depth;   // d(p), the receiver's light depth in [0,1]
+    bool inside;   // false: outside the light's frustum, which nothing in the map can shadow
+};
+
+vec3 directionToLight(LightData light, vec3 world) {
+    return light.positionType.w == float(LIGHT_DIRECTIONAL)
+               ? -light.directionRange.xyz
+               : normalize(light.positionType.xyz - world);
+}
+
+// Normal offset [Holbert 2010 'Normal offset shadows']: move the receiver along its normal by
+// bias.z texels, scaled by 1 - N.L (none where the light is head-on, most at grazing angles).
+vec3 offsetReceiver(LightData light, vec3 world, vec3 normal) {
+    float nDotL = max(dot(normal, directionToLight(light, world)), 0.0);
+    float texelWorld = light.cone.z;
+    if (light.bias.w > 0.5) // perspective: texels grow with distance along the light axis
+        texelWorld *= max(dot(world - light.positionType.xyz, light.directionRange.xyz), 0.0);
+    return world + normal * (light.bias.z * texelWorld * (1.0 - nDotL));
+}
+
+ShadowCoord projectToShadowMap(LightData light, vec3 world) {
+    vec4 s = light.shadowMatrix * vec4(world, 1.0);
+    ShadowCoord c;
+    c.inside = s.w > 0.0;
+    c.uv = s.xy / s.w;
+    c.depth = s.z / s.w;
+    c.inside = c.inside && all(greaterThanEqual(c.uv, vec2(0.0))) &&
+               all(lessThanEqual(c.uv, vec2(1.0))) && c.depth <= 1.0;
+    return c;
+}
+
+#endif

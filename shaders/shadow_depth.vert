@@ -1,0 +1,13 @@
+#version 460
+// Shadow pass: depth only, from the light. The constant bias moves casters away from the light
+// by a fixed amount of the [0,1] depth range; the slope-scaled part is the rasterizer's.
+#include "gpu_types.h"
+
+layout(location = 0) in vec3 inPosition;
+layout(push_constant) uniform Push { ShadowPush push; };
+
+void main() {
+    vec4 clip = push.viewProj * vec4(inPosition, 1.0);
+    clip.z += push.bias.x * clip.w;
+    gl_Position = clip;
+}

@@ -1,0 +1,85 @@
+#include "core/light_space.h"
+
+#include "core/projection.h"
+#include "penumbra/error.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+std::array<glm::vec3, 8> corners(const Bounds& b) {
+    std::array<glm::vec3, 8> c;
+    for (int i = 0; i < 8; ++i)
+        c[i] = {i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y, i & 4 ? b.max.z : b.min.z};
+    return c;
+}
+
+// Any vector not parallel to `dir`, preferring world up so shadow maps stay upright.
+glm::vec3 upFor(const glm::vec3& dir) {
+    return std::abs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+}
+
+} // namespace
+
+LightProjection fitDirectional(const Light& light, const Bounds& scene, uint32_t mapSize) {
+    const glm::vec3 dir = glm::normalize(light.direction);
+    const glm::vec3 center = scene.center();
+    const float radius = std::max(0.5f * glm::length(scene.extent()), 1e-3f);
+    LightProjection p;
+    p.view = lookAt(center - dir * (2.0f * radius), center, upFor(dir));
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    for (const glm::vec3& c : corners(scene)) {
+        const glm::vec3 v = glm::vec3(p.view * glm::vec4(c, 1.0f));
+        lo = glm::min(lo, v), hi = glm::max(hi, v);
+    }
+    // A sliver of padding keeps surfaces on the bounds inside the box after rounding.
+    const float pad = 1e-4f * radius;
+    p.window = {lo.x - pad, hi.x + pad, lo.y - pad, hi.y + pad};
+    p.nearPlane = -hi.z - pad; // view looks down -z: distance = -z
+    p.farPlane = -lo.z + pad;
+    p.projection = orthographic(p.window.x, p.window.y, p.window.z, p.window.w, p.nearPlane,
+                                p.farPlane);
+    p.viewProj = p.projection * p.view;
+    p.texelWorldSize = std::max(p.window.y - p.window.x, p.window.w - p.window.z) /
+                       static_cast<float>(mapSize);
+    return p;
+}
+
+LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSize) {
+    const glm::vec3 dir = glm::normalize(light.direction);
+    LightProjection p;
+    p.perspective = true;
+    p.view = lookAt(light.position, light.position + dir, upFor(dir));
+    // The square frustum's half-angle covers the cone; past ~80 degrees one perspective map
+    // degenerates, so wider cones are clamped (their rim then falls outside the map: lit).
+    const float half = std::clamp(light.outerConeAngle, 0.01f, glm::radians(80.0f));
+    p.yfov = 2.0f * half;
+    float nearest = std::numeric_limits<float>::max(), farthest = 0.0f;
+    for (const glm::vec3& c : corners(scene)) {
+        const float depth = -(p.view * glm::vec4(c, 1.0f)).z;
+        nearest = std::min(nearest, depth), farthest = std::max(farthest, depth);
+    }
+    if (light.range > 0.0f) farthest = std::min(farthest, light.range);
+    p.farPlane = std::max(farthest * 1.001f, 1e-3f);
+    // A light inside the scene bounds sees geometry at any distance: keep depth precision
+    // bounded (far/near <= 1e4) rather than put the near plane at zero.
+    p.nearPlane = std::clamp(nearest * 0.999f, p.farPlane * 1e-4f, p.farPlane * 0.5f);
+    p.projection = perspectiveLight(p.yfov, 1.0f, p.nearPlane, p.farPlane);
+    p.viewProj = p.projection * p.view;
+    p.texelWorldSize = 2.0f * std::tan(half) / static_cast<float>(mapSize);
+    return p;
+}
+
+LightProjection fitLight(const Light& light, const Bounds& scene, uint32_t mapSize) {
+    switch (light.type) {
+    case LightType::Directional: return fitDirectional(light, scene, mapSize);
+    case LightType::Spot: return fitSpot(light, scene, mapSize);
+    case LightType::Point: break;
+    }
+    fatal(__FILE__, __LINE__, "fitLight: point lights have no single shadow projection");
+}
+
+} // namespace penumbra

@@ -1,0 +1,192 @@
+#include "render/frame.h"
+
+#include "vk/sync.h"
+
+#include <span>
+
+namespace penumbra::render {
+namespace {
+
+uint32_t groups(uint32_t n) { return (n + GROUP_SIZE - 1) / GROUP_SIZE; }
+
+void setViewport(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
+    const VkViewport viewport{.x = 0, .y = 0, .width = static_cast<float>(width),
+                              .height = static_cast<float>(height), .minDepth = 0, .maxDepth = 1};
+    const VkRect2D scissor{.offset = {0, 0}, .extent = {width, height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+VkRenderingAttachmentInfo attachment(const vk::Image& image, VkClearValue clear) {
+    return {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
+            .imageView = image.view.get(),
+            .imageLayout = image.aspect == VK_IMAGE_ASPECT_DEPTH_BIT
+                               ? VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL
+                               : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+            .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
+            .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
+            .clearValue = clear};
+}
+
+void bindGeometry(VkCommandBuffer cmd, const GpuScene& scene) {
+    const VkDeviceSize offset = 0;
+    const VkBuffer vertices = scene.vertices.get();
+    vkCmdBindVertexBuffers(cmd, 0, 1, &vertices, &offset);
+    vkCmdBindIndexBuffer(cmd, scene.indices.get(), 0, VK_INDEX_TYPE_UINT32);
+}
+
+void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
+                        FrameTargets& t, const FrameSettings& s) {
+    for (ShadowView& view : t.shadows) {
+        vk::imageBarrier(cmd, view.map, vk::kUndefined, vk::kDepthWrite);
+        const VkRenderingAttachmentInfo depth = attachment(view.map, {.depthStencil = {1.0f, 0}});
+        const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+                                   .renderArea = {{0, 0}, {view.map.width, view.map.height}},
+                                   .layerCount = 1,
+                                   .pDepthAttachment = &depth};
+        vkCmdBeginRendering(cmd, &info);
+        setViewport(cmd, view.map.width, view.map.height);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
+                          view.projection.perspective ? p.shadowPerspective.get() : p.shadowOrtho.get());
+        vkCmdSetDepthBias(cmd, 0.0f, 0.0f, s.slopeBias);
+        const gpu::ShadowPush push{.viewProj = view.projection.viewProj,
+                                   .bias = {s.constantBias, 0, 0, 0}};
+        vkCmdPushConstants(cmd, p.shadowLayout.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
+        bindGeometry(cmd, scene);
+        vkCmdDrawIndexed(cmd, scene.indexCount, 1, 0, 0, 0);
+        vkCmdEndRendering(cmd);
+        vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kComputeSampled);
+    }
+}
+
+void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene, FrameTargets& t) {
+    vk::imageBarrier(cmd, t.depth, vk::kUndefined, vk::kDepthWrite);
+    vk::imageBarrier(cmd, t.normal, vk::kUndefined, vk::kColorWrite);
+    vk::imageBarrier(cmd, t.albedo, vk::kUndefined, vk::kColorWrite);
+    const VkRenderingAttachmentInfo colors[] = {attachment(t.normal, {.color = {{0, 0, 0, 0}}}),
+                                                attachment(t.albedo, {.color = {{0, 0, 0, 0}}})};
+    const VkRenderingAttachmentInfo depth = attachment(t.depth, {.depthStencil = {0.0f, 0}});
+    const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+                               .renderArea = {{0, 0}, {t.width, t.height}},
+                               .layerCount = 1,
+                               .colorAttachmentCount = 2,
+                               .pColorAttachments = colors,
+                               .pDepthAttachment = &depth};
+    vkCmdBeginRendering(cmd, &info);
+    setViewport(cmd, t.width, t.height);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbuffer.get());
+    vk::PushDescriptors()
+        .uniformBuffer(0, t.camera.get())
+        .storageBuffer(1, scene.materials.get())
+        .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbufferLayout);
+    bindGeometry(cmd, scene);
+    vkCmdDrawIndexed(cmd, scene.indexCount, 1, 0, 0, 0);
+    vkCmdEndRendering(cmd);
+    vk::imageBarrier(cmd, t.depth, vk::kDepthWrite, vk::kComputeSampled);
+    vk::imageBarrier(cmd, t.normal, vk::kColorWrite, vk::kComputeSampled);
+    vk::imageBarrier(cmd, t.albedo, vk::kColorWrite, vk::kComputeSampled);
+}
+
+void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
+                      const FrameSettings& s) {
+    vk::imageBarrier(cmd, t.visibility, vk::kUndefined, vk::kComputeWrite);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(s.technique));
+    for (uint32_t layer = 0; layer < t.shadows.size(); ++layer) {
+        const ShadowView& view = t.shadows[layer];
+        vk::PushDescriptors()
+            .uniformBuffer(0, t.camera.get())
+            .storageBuffer(1, t.lights.get())
+            .sampled(2, t.depth.view.get(), t.nearest.get())
+            .sampled(3, t.normal.view.get(), t.nearest.get())
+            .sampled(4, view.map.view.get(), t.nearest.get())
+            .sampled(5, view.map.view.get(), t.compare.get())
+            .storageImage(6, t.visibility.view.get())
+            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
+        const gpu::VisibilityPush push{.light = {view.light, layer, s.shadowMapSize, 0}};
+        vkCmdPushConstants(cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           sizeof push, &push);
+        vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
+    }
+    vk::imageBarrier(cmd, t.visibility, vk::kComputeWrite, vk::kComputeSampled);
+}
+
+void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
+    vk::imageBarrier(cmd, t.color, vk::kUndefined, vk::kComputeWrite);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.composite.get());
+    vk::PushDescriptors()
+        .uniformBuffer(0, t.camera.get())
+        .storageBuffer(1, t.lights.get())
+        .sampled(2, t.depth.view.get(), t.nearest.get())
+        .sampled(3, t.normal.view.get(), t.nearest.get())
+        .sampled(4, t.albedo.view.get(), t.nearest.get())
+        .sampled(5, t.visibility.view.get(), t.nearest.get())
+        .storageImage(6, t.color.view.get())
+        .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.compositeLayout);
+    vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
+}
+
+} // namespace
+
+void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene& scene,
+                 FrameTargets& targets, const FrameSettings& settings, vk::GpuTimer& timer) {
+    timer.reset(cmd);
+    timer.begin(cmd, "shadow");
+    recordShadowPasses(cmd, pipelines, scene, targets, settings);
+    timer.end(cmd);
+    timer.begin(cmd, "gbuffer");
+    recordGBuffer(cmd, pipelines, scene, targets);
+    timer.end(cmd);
+    timer.begin(cmd, "visibility");
+    recordVisibility(cmd, pipelines, targets, settings);
+    timer.end(cmd);
+    timer.begin(cmd, "composite");
+    recordComposite(cmd, pipelines, targets);
+    timer.end(cmd);
+}
+
+void recordReadback(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, VkBuffer readback) {
+    vk::imageBarrier(cmd, t.position, vk::kUndefined, vk::kComputeWrite);
+    vk::imageBarrier(cmd, t.exportNormal, vk::kUndefined, vk::kComputeWrite);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.exportGBuffer.get());
+    vk::PushDescriptors()
+        .uniformBuffer(0, t.camera.get())
+        .sampled(1, t.depth.view.get(), t.nearest.get())
+        .sampled(2, t.normal.view.get(), t.nearest.get())
+        .storageImage(3, t.position.view.get())
+        .storageImage(4, t.exportNormal.view.get())
+        .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.exportLayout);
+    vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
+
+    VkDeviceSize offset = 0;
+    const std::pair<vk::Image*, vk::ImageState> sources[] = {{&t.color, vk::kComputeWrite},
+                                                             {&t.visibility, vk::kComputeSampled},
+                                                             {&t.position, vk::kComputeWrite},
+                                                             {&t.exportNormal, vk::kComputeWrite}};
+    for (const auto& [image, state] : sources) {
+        vk::imageBarrier(cmd, *image, state, vk::kTransferRead);
+        const VkBufferImageCopy region{
+            .bufferOffset = offset,
+            .imageSubresource = {.aspectMask = image->aspect, .mipLevel = 0,
+                                 .baseArrayLayer = 0, .layerCount = image->layers},
+            .imageExtent = {image->width, image->height, 1}};
+        vkCmdCopyImageToBuffer(cmd, image->get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback, 1,
+                               &region);
+        offset += VkDeviceSize{image->width} * image->height * image->layers *
+                  vk::formatBytes(image->format);
+    }
+}
+
+GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
+    std::vector<glm::vec4> colors;
+    for (const Material& m : scene.materials) colors.push_back(m.baseColor);
+    if (colors.empty()) colors.emplace_back(0.8f, 0.8f, 0.8f, 1.0f);
+    return {.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.vertices)),
+                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex buffer"),
+            .indices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.indices)),
+                                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index buffer"),
+            .materials = vk::uploadBuffer(ctx, std::as_bytes(std::span(colors)),
+                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "material buffer"),
+            .indexCount = static_cast<uint32_t>(scene.indices.size())};
+}
+
+} // namespace penumbra::render

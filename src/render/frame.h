@@ -1,0 +1,53 @@
+#pragma once
+// The images one render needs, sized for its options, and the recording of one frame:
+// shadow passes -> G-buffer -> visibility (compute) -> composite (compute), design.md §2.
+#include "core/light_space.h"
+#include "gpu_types.h"
+#include "render/pipelines.h"
+#include "vk/resources.h"
+#include "vk/timestamps.h"
+
+#include <vector>
+
+namespace penumbra::render {
+
+struct GpuScene {
+    vk::Buffer vertices, indices, materials;
+    uint32_t indexCount = 0;
+};
+GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
+
+struct ShadowView {
+    uint32_t light;             // index into the scene's lights
+    LightProjection projection;
+    vk::Image map;              // D32_SFLOAT, the seeds' depth (near 0, far 1)
+};
+
+struct FrameTargets {
+    uint32_t width = 0, height = 0;
+    vk::Image depth, normal, albedo;  // G-buffer; depth is reverse-Z
+    vk::Image visibility;             // R32F array, one layer per shadow-casting light
+    vk::Image color;                  // RGBA8, sRGB-encoded values
+    vk::Image position, exportNormal; // RGBA32F, filled for readback only
+    std::vector<ShadowView> shadows;
+    vk::Buffer camera, lights;        // CameraData, LightData[]
+    vk::SamplerHandle nearest, compare;
+};
+
+struct FrameSettings {
+    Technique technique;
+    float slopeBias;
+    float constantBias;
+    uint32_t shadowMapSize;
+    uint32_t lightCount;
+};
+
+void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene& scene,
+                 FrameTargets& targets, const FrameSettings& settings, vk::GpuTimer& timer);
+
+// Fills position/exportNormal and copies colour, visibility, position and normal into
+// `readback` (one host-visible buffer, in that order, tightly packed).
+void recordReadback(VkCommandBuffer cmd, FramePipelines& pipelines, FrameTargets& targets,
+                    VkBuffer readback);
+
+} // namespace penumbra::render

@@ -1,0 +1,76 @@
+#include "render/pipelines.h"
+
+#include "gpu_types.h"
+#include "penumbra/scene.h"
+
+#include <cstddef>
+
+namespace penumbra::render {
+namespace {
+
+constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+constexpr VkDescriptorType kImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+
+vk::GraphicsPipelineDesc shadowDesc(bool depthClamp) {
+    return {.vertexShader = "shadow_depth.vert",
+            .vertexStride = sizeof(Vertex),
+            .attributes = {{.location = 0, .binding = 0, .format = VK_FORMAT_R32G32B32_SFLOAT,
+                            .offset = offsetof(Vertex, position)}},
+            .depthFormat = kDepthFormat,
+            .depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL,
+            .depthClamp = depthClamp,
+            .depthBias = true};
+}
+
+} // namespace
+
+FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
+    static_assert(static_cast<uint32_t>(Technique::Hard) == TECHNIQUE_HARD);
+    shadowLayout = vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
+    gbufferLayout = vk::createPipelineLayout(ctx, {{0, kUniform}, {1, kStorage}},
+                                             VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0);
+    visibilityLayout = vk::createPipelineLayout(
+        ctx, {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled}, {6, kImage}},
+        VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
+    compositeLayout = vk::createPipelineLayout(
+        ctx, {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled}, {6, kImage}},
+        VK_SHADER_STAGE_COMPUTE_BIT, 0);
+    exportLayout = vk::createPipelineLayout(
+        ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kImage}, {4, kImage}},
+        VK_SHADER_STAGE_COMPUTE_BIT, 0);
+
+    shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(true));
+    shadowPerspective = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(false));
+    gbuffer = vk::createGraphicsPipeline(
+        ctx, gbufferLayout,
+        {.vertexShader = "gbuffer.vert",
+         .fragmentShader = "gbuffer.frag",
+         .vertexStride = sizeof(Vertex),
+         .attributes = {{.location = 0, .binding = 0, .format = VK_FORMAT_R32G32B32_SFLOAT,
+                         .offset = offsetof(Vertex, position)},
+                        {.location = 1, .binding = 0, .format = VK_FORMAT_R32G32B32_SFLOAT,
+                         .offset = offsetof(Vertex, normal)},
+                        {.location = 2, .binding = 0, .format = VK_FORMAT_R32_UINT,
+                         .offset = offsetof(Vertex, material)}},
+         .colorFormats = {kNormalFormat, kAlbedoFormat},
+         .depthFormat = kDepthFormat,
+         .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL}); // reverse-Z
+    composite = vk::createComputePipeline(ctx, compositeLayout, "composite.comp");
+    exportGBuffer = vk::createComputePipeline(ctx, exportLayout, "export.comp");
+}
+
+VkPipeline FramePipelines::visibility(Technique technique) {
+    auto it = mVisibility.find(technique);
+    if (it == mVisibility.end()) {
+        const vk::SpecConstant constants[] = {{/* TECHNIQUE= */ 0, static_cast<uint32_t>(technique)}};
+        it = mVisibility
+                 .emplace(technique, vk::createComputePipeline(ctx, visibilityLayout,
+                                                               "visibility.comp", constants))
+                 .first;
+    }
+    return it->second.get();
+}
+
+} // namespace penumbra::render

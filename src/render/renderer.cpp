@@ -1,0 +1,235 @@
+#include "penumbra/renderer.h"
+
+#include "core/projection.h"
+#include "penumbra/error.h"
+#include "render/frame.h"
+#include "vk/context.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace penumbra {
+
+struct Renderer::Impl {
+    explicit Impl(const DeviceOptions& options) : ctx(options), pipelines(ctx) {}
+    vk::Context ctx;
+    render::FramePipelines pipelines;
+};
+
+namespace {
+
+void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, size_t shadowLights) {
+    const uint32_t limit = ctx.limits().maxImageDimension2D;
+    auto tooBig = [&](const char* option, uint32_t value) {
+        if (value > limit)
+            throw InputError(option, fmt::format("{} exceeds this device's maxImageDimension2D ({})",
+                                                 value, limit));
+    };
+    tooBig("--width", o.width);
+    tooBig("--height", o.height);
+    tooBig("--shadow-map-size", o.shadowMapSize);
+    // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
+    const double pixels = double(o.width) * double(o.height);
+    const double shadowBytes = double(o.shadowMapSize) * o.shadowMapSize * 4.0 * double(shadowLights);
+    const double need = pixels * (16 + 36 + 2 * 4.0 * double(std::max<size_t>(shadowLights, 1)) + 36) +
+                        shadowBytes;
+    const double have = static_cast<double>(ctx.deviceLocalHeapBytes());
+    if (need > 0.8 * have)
+        throw InputError(shadowBytes > pixels * 100 ? "--shadow-map-size" : "--width",
+                         fmt::format("this render needs {:.1f} GiB of device memory; the device "
+                                     "has {:.1f} GiB",
+                                     need / (1 << 30), have / (1 << 30)));
+}
+
+gpu::CameraData cameraData(const Camera& camera, const RenderOptions& o, uint32_t lightCount,
+                           const ParameterValues& params) {
+    const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
+    const glm::mat4 view = lookAt(camera.position, camera.target, camera.up);
+    const glm::mat4 proj = perspectiveCameraReverseZ(camera.yfov, aspect, camera.znear, camera.zfar);
+    // Inverting in double keeps reconstructed positions accurate far from the origin.
+    const glm::dmat4 inv = glm::inverse(glm::dmat4(proj) * glm::dmat4(view));
+    return {.viewProj = proj * view,
+            .invViewProj = glm::mat4(inv),
+            .position = glm::vec4(camera.position, 1.0f),
+            .imageSize = {o.width, o.height, lightCount, 0},
+            .composite = {static_cast<float>(params.number("composite.ambient")),
+                          static_cast<float>(params.number("composite.shadowIntensity")), 0, 0},
+            .background = {0.55f, 0.65f, 0.8f, 1.0f}};
+}
+
+gpu::LightData lightData(const Light& light, const LightProjection* shadow, int layer,
+                         const ParameterValues& params) {
+    const float type = light.type == LightType::Directional ? LIGHT_DIRECTIONAL
+                       : light.type == LightType::Spot      ? LIGHT_SPOT
+                                                            : LIGHT_POINT;
+    return {.shadowMatrix = shadow ? textureMatrix() * shadow->viewProj : glm::mat4(1.0f),
+            .positionType = glm::vec4(light.position, type),
+            .directionRange = glm::vec4(glm::normalize(light.direction), light.range),
+            .colorIntensity = glm::vec4(light.color, light.intensity),
+            .cone = {std::cos(light.outerConeAngle), std::cos(light.innerConeAngle),
+                     shadow ? shadow->texelWorldSize : 0.0f, static_cast<float>(layer)},
+            .bias = {static_cast<float>(params.number("bias.constant")),
+                     static_cast<float>(params.number("bias.slope")),
+                     static_cast<float>(params.number("bias.normal")),
+                     shadow && shadow->perspective ? 1.0f : 0.0f}};
+}
+
+vk::Buffer hostBuffer(const vk::Context& ctx, std::span<const std::byte> bytes,
+                      VkBufferUsageFlags usage, const char* name) {
+    vk::Buffer buffer = vk::createBuffer(ctx, bytes.size(), usage, vk::MemoryUse::Upload, name);
+    std::memcpy(buffer.mapped, bytes.data(), bytes.size());
+    return buffer;
+}
+
+vk::Image targetImage(const vk::Context& ctx, const char* name, VkFormat format, uint32_t w,
+                      uint32_t h, VkImageUsageFlags usage, uint32_t layers = 0) {
+    // layers = 0: a plain 2D image; >= 1: an array image with an array view.
+    return vk::createImage(ctx, {.name = name, .format = format, .width = w, .height = h,
+                                 .layers = std::max(layers, 1u), .usage = usage,
+                                 .arrayView = layers > 0});
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+} // namespace
+
+Renderer::Renderer(const DeviceOptions& options) : mImpl(std::make_unique<Impl>(options)) {}
+Renderer::~Renderer() = default;
+
+const DeviceInfo& Renderer::device() const { return mImpl->ctx.info(); }
+uint32_t Renderer::validationErrors() const { return mImpl->ctx.validationErrors(); }
+
+RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
+                              const ProgressFn& progress) {
+    validate(o);
+    const vk::Context& ctx = mImpl->ctx;
+    if (sceneIn.triangleCount() == 0) throw InputError(sceneIn.name, "the scene has no triangles");
+    Scene scene = sceneIn;
+    for (Light& light : scene.lights) {
+        if (o.lightRadiusOverride >= 0.0f && light.type != LightType::Directional)
+            light.radius = o.lightRadiusOverride;
+        if (o.lightAngleOverride >= 0.0f && light.type == LightType::Directional)
+            light.angularDiameter = o.lightAngleOverride;
+    }
+    const Camera camera = scene.camera(o.camera);
+    const Bounds bounds = scene.bounds();
+
+    RenderResult result{.width = o.width, .height = o.height};
+    render::FrameTargets t{.width = o.width, .height = o.height};
+    std::vector<gpu::LightData> lights;
+    for (uint32_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = scene.lights[i];
+        LightShadow info{.sceneLight = i, .projection = "none"};
+        const bool casts = light.castsShadow && light.type != LightType::Point;
+        if (casts) {
+            info.visibilityIndex = static_cast<int>(t.shadows.size());
+            t.shadows.push_back({.light = i, .projection = fitLight(light, bounds, o.shadowMapSize)});
+            const LightProjection& p = t.shadows.back().projection;
+            info.projection = p.perspective ? "perspective" : "orthographic";
+            info.nearPlane = p.nearPlane, info.farPlane = p.farPlane;
+            info.texelWorldSize = p.texelWorldSize;
+        }
+        lights.push_back(lightData(light, casts ? &t.shadows.back().projection : nullptr,
+                                   info.visibilityIndex, o.parameters));
+        result.lights.push_back(info);
+    }
+    checkDeviceLimits(ctx, o, t.shadows.size());
+
+    if (progress) progress("uploading scene");
+    const render::GpuScene gpuScene = render::uploadScene(ctx, scene);
+    const gpu::CameraData cameraBlock =
+        cameraData(camera, o, static_cast<uint32_t>(lights.size()), o.parameters);
+    t.camera = hostBuffer(ctx, std::as_bytes(std::span(&cameraBlock, 1)),
+                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "camera buffer");
+    if (lights.empty()) lights.push_back({}); // storage buffers cannot be empty; count is 0
+    t.lights = hostBuffer(ctx, std::as_bytes(std::span(lights)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                          "light buffer");
+    t.nearest = vk::createSampler(ctx, {.filter = VK_FILTER_NEAREST});
+    t.compare = vk::createSampler(
+        ctx, {.filter = ctx.info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST,
+              .compare = true});
+    constexpr VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT;
+    constexpr VkImageUsageFlags storageOut = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    for (render::ShadowView& view : t.shadows)
+        view.map = targetImage(ctx, "--shadow-map-size", render::kDepthFormat, o.shadowMapSize,
+                               o.shadowMapSize, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);
+    const uint32_t w = o.width, h = o.height;
+    t.depth = targetImage(ctx, "G-buffer depth", render::kDepthFormat, w, h,
+                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);
+    t.normal = targetImage(ctx, "G-buffer normal", render::kNormalFormat, w, h,
+                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | sampled);
+    t.albedo = targetImage(ctx, "G-buffer albedo", render::kAlbedoFormat, w, h,
+                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | sampled);
+    const uint32_t layers = std::max<uint32_t>(1, static_cast<uint32_t>(t.shadows.size()));
+    t.visibility = targetImage(ctx, "visibility", VK_FORMAT_R32_SFLOAT, w, h, storageOut | sampled, layers);
+    t.color = targetImage(ctx, "colour", VK_FORMAT_R8G8B8A8_UNORM, w, h, storageOut);
+    t.position = targetImage(ctx, "position", VK_FORMAT_R32G32B32A32_SFLOAT, w, h, storageOut);
+    t.exportNormal = targetImage(ctx, "normal", VK_FORMAT_R32G32B32A32_SFLOAT, w, h, storageOut);
+
+    const render::FrameSettings settings{
+        .technique = o.technique,
+        .slopeBias = static_cast<float>(o.parameters.number("bias.slope")),
+        .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
+        .shadowMapSize = o.shadowMapSize,
+        .lightCount = static_cast<uint32_t>(scene.lights.size())};
+    vk::GpuTimer timer(ctx, 8);
+    for (uint32_t frame = 0; frame <= o.frames; ++frame) {
+        if (progress)
+            progress(frame == 0 ? std::string("warm-up frame")
+                                : fmt::format("frame {}/{}", frame, o.frames));
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            render::recordFrame(cmd, mImpl->pipelines, gpuScene, t, settings, timer);
+        });
+        if (frame == 0) continue; // the warm-up frame pays for first-use costs
+        for (const auto& [pass, ms] : timer.read()) {
+            auto it = std::find_if(result.passes.begin(), result.passes.end(),
+                                   [&](const PassTime& p) { return p.pass == pass; });
+            if (it == result.passes.end()) it = result.passes.insert(result.passes.end(), {.pass = pass});
+            it->frameMs.push_back(ms);
+        }
+    }
+    for (PassTime& p : result.passes) p.medianMs = median(p.frameMs);
+
+    if (progress) progress("reading back");
+    const size_t pixels = size_t{w} * h;
+    const size_t bytes = pixels * (4 + 4 * layers + 16 + 16);
+    vk::Buffer readback = vk::createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           vk::MemoryUse::Readback, "readback buffer");
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        render::recordReadback(cmd, mImpl->pipelines, t, readback.get());
+    });
+    const auto* src = static_cast<const std::byte*>(readback.mapped);
+    result.image.resize(pixels * 4);
+    std::memcpy(result.image.data(), src, pixels * 4);
+    src += pixels * 4;
+    for (size_t l = 0; l < t.shadows.size(); ++l) {
+        std::vector<float>& v = result.visibility.emplace_back(pixels);
+        std::memcpy(v.data(), src + l * pixels * 4, pixels * 4);
+    }
+    src += pixels * 4 * layers;
+    for (std::vector<float>* out : {&result.position, &result.normal}) {
+        out->resize(pixels * 3);
+        const auto* rgba = reinterpret_cast<const float*>(src);
+        for (size_t i = 0; i < pixels; ++i)
+            for (int c = 0; c < 3; ++c) (*out)[3 * i + c] = rgba[4 * i + c];
+        src += pixels * 16;
+    }
+    return result;
+}
+
+std::vector<DeviceInfo> listDevices() {
+    vk::Instance instance(false);
+    std::vector<DeviceInfo> infos;
+    const auto devices = instance.physicalDevices();
+    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(instance.describe(devices[i], i));
+    return infos;
+}
+
+} // namespace penumbra

@@ -1,0 +1,93 @@
+#include "report/stats.h"
+
+#include <fmt/format.h>
+
+namespace penumbra {
+namespace {
+
+nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+const char* typeName(LightType type) {
+    switch (type) {
+    case LightType::Directional: return "directional";
+    case LightType::Spot: return "spot";
+    case LightType::Point: return "point";
+    }
+    return "unknown";
+}
+
+} // namespace
+
+std::string visibilityFileName(size_t index) {
+    return index == 0 ? "visibility.pfm" : fmt::format("visibility_{}.pfm", index);
+}
+
+nlohmann::json renderStats(const RenderRun& run) {
+    const RenderOptions& o = run.options;
+    const Bounds bounds = run.scene.bounds();
+    const Camera camera = run.scene.camera(o.camera);
+    nlohmann::json j;
+    j["device"] = {{"index", run.device.index},
+                   {"name", run.device.name},
+                   {"type", run.device.type},
+                   {"driver", run.device.driverName},
+                   {"driver_info", run.device.driverInfo},
+                   {"vulkan", run.device.apiVersion}};
+    j["scene"] = {{"source", run.sceneSpec},
+                  {"name", run.scene.name},
+                  {"triangles", run.scene.triangleCount()},
+                  {"vertices", run.scene.vertices.size()},
+                  {"lights", run.scene.lights.size()},
+                  {"bounds", {{"min", vec(bounds.min)}, {"max", vec(bounds.max)}}}};
+    j["camera"] = {{"name", camera.name},
+                   {"position", vec(camera.position)},
+                   {"target", vec(camera.target)},
+                   {"yfov_degrees", glm::degrees(camera.yfov)}};
+    j["image"] = {{"width", o.width}, {"height", o.height}};
+    j["shadow_map_size"] = o.shadowMapSize;
+    for (const TechniqueInfo& t : allTechniques())
+        if (t.id == o.technique) j["technique"] = t.name;
+    nlohmann::json params = nlohmann::json::object();
+    for (const ParameterInfo& p : allParameters()) {
+        if (p.type == ParameterType::Choice || p.type == ParameterType::Bool)
+            params[std::string(p.key)] = o.parameters.text(p.key);
+        else
+            params[std::string(p.key)] = o.parameters.number(p.key);
+    }
+    j["parameters"] = params;
+    nlohmann::json lights = nlohmann::json::array();
+    for (const LightShadow& s : run.result.lights) {
+        const Light& l = run.scene.lights[s.sceneLight];
+        nlohmann::json light = {{"name", l.name},
+                                {"type", typeName(l.type)},
+                                {"casts_shadow", s.visibilityIndex >= 0},
+                                {"projection", s.projection}};
+        if (l.type == LightType::Directional)
+            light["angular_diameter_degrees"] = o.lightAngleOverride >= 0 ? o.lightAngleOverride
+                                                                          : l.angularDiameter;
+        else
+            light["radius"] = o.lightRadiusOverride >= 0 ? o.lightRadiusOverride : l.radius;
+        if (s.visibilityIndex >= 0) {
+            light["visibility_file"] = visibilityFileName(static_cast<size_t>(s.visibilityIndex));
+            light["near"] = s.nearPlane;
+            light["far"] = s.farPlane;
+            light["texel_world_size"] = s.texelWorldSize;
+        }
+        lights.push_back(light);
+    }
+    j["lights"] = lights;
+    j["frames"] = {{"timed", o.frames}, {"warm_up", 1}};
+    nlohmann::json gpu = nlohmann::json::object(), perFrame = nlohmann::json::object();
+    double total = 0.0;
+    for (const PassTime& p : run.result.passes) {
+        gpu[p.pass] = p.medianMs;
+        perFrame[p.pass] = p.frameMs;
+        total += p.medianMs;
+    }
+    gpu["total"] = total;
+    j["gpu_ms"] = gpu;
+    j["gpu_ms_per_frame"] = perFrame;
+    return j;
+}
+
+} // namespace penumbra

@@ -1,0 +1,168 @@
+// The technique and parameter tables behind `--technique`, `--set` and `penumbra techniques`.
+// A parameter is registered once here with its default, range and meaning; the renderer reads
+// values by key, so a new technique family adds rows, not plumbing.
+#include "penumbra/error.h"
+#include "penumbra/settings.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+const std::vector<TechniqueInfo>& techniqueTable() {
+    static const std::vector<TechniqueInfo> table{
+        {.id = Technique::Hard,
+         .name = "hard",
+         .summary = "one shadow-map sample per pixel: lit when d(p) <= s(p)",
+         .reference = "Williams 1978, 'Casting curved shadows on curved surfaces'",
+         .families = {"bias", "composite"}},
+    };
+    return table;
+}
+
+const std::vector<ParameterInfo>& parameterTable() {
+    static const std::vector<ParameterInfo> table{
+        {.key = "bias.constant",
+         .type = ParameterType::Float,
+         .defaultValue = 0.0005,
+         .min = 0.0,
+         .max = 0.1,
+         .unit = "light depth (fraction of the shadow map's [0,1] depth range)",
+         .description = "constant depth offset added to every caster in the shadow pass"},
+        {.key = "bias.slope",
+         .type = ParameterType::Float,
+         .defaultValue = 2.0,
+         .min = 0.0,
+         .max = 50.0,
+         .unit = "rasterizer slope factor",
+         .description = "slope-scaled depth bias: multiplies the caster's max depth slope per "
+                        "texel (hardware depth bias)"},
+        {.key = "bias.normal",
+         .type = ParameterType::Float,
+         .defaultValue = 1.0,
+         .min = 0.0,
+         .max = 20.0,
+         .unit = "shadow-map texels",
+         .description = "normal offset: the receiver moves along its normal by this many texels, "
+                        "scaled by 1 - N.L, before the lookup"},
+        {.key = "composite.shadowIntensity",
+         .type = ParameterType::Float,
+         .defaultValue = 1.0,
+         .min = 0.0,
+         .max = 1.0,
+         .unit = "",
+         .description = "how dark shadows are: direct light x (1 - intensity x (1 - visibility))"},
+        {.key = "composite.ambient",
+         .type = ParameterType::Float,
+         .defaultValue = 0.12,
+         .min = 0.0,
+         .max = 1.0,
+         .unit = "fraction of base colour",
+         .description = "constant ambient term added to every lit pixel"},
+    };
+    return table;
+}
+
+const ParameterInfo* findParameter(std::string_view key) {
+    for (const ParameterInfo& p : parameterTable())
+        if (p.key == key) return &p;
+    return nullptr;
+}
+
+std::string knownKeys() {
+    std::string keys;
+    for (const ParameterInfo& p : parameterTable())
+        keys += (keys.empty() ? "" : ", ") + std::string(p.key);
+    return keys;
+}
+
+double parseValue(const ParameterInfo& p, std::string_view text) {
+    auto bad = [&](const std::string& why) {
+        return InputError("--set", fmt::format("{}={}: {}", p.key, text, why));
+    };
+    if (p.type == ParameterType::Bool) {
+        if (text == "true" || text == "1" || text == "on") return 1.0;
+        if (text == "false" || text == "0" || text == "off") return 0.0;
+        throw bad("expected true or false");
+    }
+    if (p.type == ParameterType::Choice) {
+        for (size_t i = 0; i < p.choices.size(); ++i)
+            if (p.choices[i] == text) return static_cast<double>(i);
+        throw bad(fmt::format("expected one of {}", fmt::join(p.choices, ", ")));
+    }
+    double value = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+        throw bad("not a finite number");
+    if (p.type == ParameterType::Int && value != std::floor(value)) throw bad("expected an integer");
+    if (value < p.min || value > p.max)
+        throw bad(fmt::format("out of range [{}, {}]", p.min, p.max));
+    return value;
+}
+
+} // namespace
+
+std::span<const TechniqueInfo> allTechniques() { return techniqueTable(); }
+
+const TechniqueInfo& findTechnique(std::string_view name) {
+    for (const TechniqueInfo& t : techniqueTable())
+        if (t.name == name) return t;
+    std::string names;
+    for (const TechniqueInfo& t : techniqueTable())
+        names += (names.empty() ? "" : ", ") + std::string(t.name);
+    throw InputError("--technique", fmt::format("unknown technique '{}' (available: {})", name, names));
+}
+
+std::span<const ParameterInfo> allParameters() { return parameterTable(); }
+
+ParameterValues::ParameterValues() {
+    for (const ParameterInfo& p : parameterTable()) mValues.emplace(p.key, p.defaultValue);
+}
+
+void ParameterValues::set(std::string_view key, std::string_view value) {
+    const ParameterInfo* p = findParameter(key);
+    if (!p)
+        throw InputError("--set", fmt::format("unknown parameter '{}' (known: {})", key, knownKeys()));
+    mValues.find(key)->second = parseValue(*p, value);
+}
+
+void ParameterValues::assign(std::string_view keyEqualsValue) {
+    const size_t eq = keyEqualsValue.find('=');
+    if (eq == std::string_view::npos || eq == 0)
+        throw InputError("--set", fmt::format("'{}': expected key=value", keyEqualsValue));
+    set(keyEqualsValue.substr(0, eq), keyEqualsValue.substr(eq + 1));
+}
+
+double ParameterValues::number(std::string_view key) const {
+    const auto it = mValues.find(key);
+    PENUMBRA_CHECK(it != mValues.end(), "unregistered parameter " + std::string(key));
+    return it->second;
+}
+
+std::string ParameterValues::text(std::string_view key) const {
+    const ParameterInfo* p = findParameter(key);
+    PENUMBRA_CHECK(p != nullptr, "unregistered parameter " + std::string(key));
+    const double v = number(key);
+    if (p->type == ParameterType::Bool) return v != 0.0 ? "true" : "false";
+    if (p->type == ParameterType::Choice) return std::string(p->choices[static_cast<size_t>(v)]);
+    return fmt::format("{}", v);
+}
+
+void validate(const RenderOptions& o) {
+    if (o.width == 0) throw InputError("--width", "must be at least 1");
+    if (o.height == 0) throw InputError("--height", "must be at least 1");
+    if (o.shadowMapSize < 16)
+        throw InputError("--shadow-map-size", fmt::format("{} is too small (minimum 16)",
+                                                          o.shadowMapSize));
+    if (o.frames == 0) throw InputError("--frames", "must be at least 1");
+    if (o.frames > 10000) throw InputError("--frames", "at most 10000");
+    if (o.lightRadiusOverride >= 0.0f && !std::isfinite(o.lightRadiusOverride))
+        throw InputError("--light-radius", "not a finite number");
+    if (o.lightAngleOverride > 30.0f)
+        throw InputError("--light-angle", "at most 30 degrees");
+}
+
+} // namespace penumbra

@@ -1,0 +1,81 @@
+#pragma once
+// Context: the Vulkan instance (with the validation layer and a debug messenger that counts its
+// messages when asked), the chosen physical device, one graphics+compute queue, and one-shot
+// command submission. Everything else in src/vk borrows the VkDevice from here.
+#include "penumbra/renderer.h"
+#include "vk/handles.h"
+
+#include <vulkan/vulkan.h>
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <vector>
+
+namespace penumbra::vk {
+
+// Counts validation-layer messages; owned by Instance, read by tests and the CLI.
+struct ValidationCounters {
+    std::atomic<uint32_t> errors{0};
+    std::atomic<uint32_t> warnings{0};
+};
+
+class Instance {
+public:
+    explicit Instance(bool validation);
+    ~Instance();
+    Instance(const Instance&) = delete;
+    Instance& operator=(const Instance&) = delete;
+
+    VkInstance get() const { return mInstance; }
+    bool validation() const { return mMessenger != VK_NULL_HANDLE; }
+    const ValidationCounters& counters() const { return *mCounters; }
+    std::vector<VkPhysicalDevice> physicalDevices() const;
+    DeviceInfo describe(VkPhysicalDevice device, uint32_t index) const;
+
+private:
+    VkInstance mInstance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT mMessenger = VK_NULL_HANDLE;
+    std::unique_ptr<ValidationCounters> mCounters = std::make_unique<ValidationCounters>();
+};
+
+class Context {
+public:
+    // Throws InputError("--device", ...) when the requested device is missing or unsuitable.
+    explicit Context(const DeviceOptions& options);
+    ~Context();
+    Context(const Context&) = delete;
+    Context& operator=(const Context&) = delete;
+
+    VkDevice device() const { return mDevice; }
+    VkPhysicalDevice physicalDevice() const { return mPhysical; }
+    VkQueue queue() const { return mQueue; }
+    uint32_t queueFamily() const { return mQueueFamily; }
+    const VkPhysicalDeviceLimits& limits() const { return mProperties.limits; }
+    const DeviceInfo& info() const { return mInfo; }
+    uint32_t validationErrors() const { return mInstance.counters().errors.load(); }
+    uint32_t validationWarnings() const { return mInstance.counters().warnings.load(); }
+
+    // A memory type in `typeBits` with all `required` flags, preferring `preferred` ones.
+    uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
+                        VkMemoryPropertyFlags preferred = 0) const;
+    uint64_t deviceLocalHeapBytes() const;
+
+    // Records into a fresh primary command buffer, submits it and waits for completion.
+    void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+
+    PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+
+private:
+    Instance mInstance;
+    VkPhysicalDevice mPhysical = VK_NULL_HANDLE;
+    VkPhysicalDeviceProperties mProperties{};
+    VkPhysicalDeviceMemoryProperties mMemory{};
+    DeviceInfo mInfo;
+    VkDevice mDevice = VK_NULL_HANDLE;
+    VkQueue mQueue = VK_NULL_HANDLE;
+    uint32_t mQueueFamily = 0;
+    CommandPoolHandle mCommandPool;
+};
+
+} // namespace penumbra::vk

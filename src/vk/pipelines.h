@@ -1,0 +1,72 @@
+#pragma once
+// Pipelines and their layouts. Every pipeline uses one push-descriptor set (no pools, and no
+// binding can be left unwritten, which lavapipe punishes) plus a push-constant block.
+// Variants are specialization constants named at the call site: {{/* TECHNIQUE= */ 0, id}}.
+#include "vk/context.h"
+#include "vk/handles.h"
+
+#include <array>
+#include <initializer_list>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace penumbra::vk {
+
+struct Binding {
+    uint32_t binding;
+    VkDescriptorType type;
+};
+
+struct PipelineLayout {
+    DescriptorSetLayoutHandle set;
+    PipelineLayoutHandle layout;
+    VkPipelineLayout get() const { return layout.get(); }
+};
+
+PipelineLayout createPipelineLayout(const Context& ctx, std::initializer_list<Binding> bindings,
+                                    VkShaderStageFlags stages, uint32_t pushConstantBytes);
+
+struct SpecConstant {
+    uint32_t id;
+    uint32_t value;
+};
+
+PipelineHandle createComputePipeline(const Context& ctx, const PipelineLayout& layout,
+                                     std::string_view shader,
+                                     std::span<const SpecConstant> constants = {});
+
+struct GraphicsPipelineDesc {
+    std::string_view vertexShader;
+    std::string_view fragmentShader; // empty: depth-only
+    uint32_t vertexStride = 0;
+    std::vector<VkVertexInputAttributeDescription> attributes;
+    std::vector<VkFormat> colorFormats;
+    VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
+    VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
+    bool depthClamp = false;
+    bool depthBias = false; // values set per draw with vkCmdSetDepthBias
+};
+
+PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& layout,
+                                      const GraphicsPipelineDesc& desc);
+
+// Collects descriptor writes for one vkCmdPushDescriptorSetKHR call.
+class PushDescriptors {
+public:
+    PushDescriptors& sampled(uint32_t binding, VkImageView view, VkSampler sampler);
+    PushDescriptors& storageImage(uint32_t binding, VkImageView view);
+    PushDescriptors& uniformBuffer(uint32_t binding, VkBuffer buffer);
+    PushDescriptors& storageBuffer(uint32_t binding, VkBuffer buffer);
+    void push(const Context& ctx, VkCommandBuffer cmd, VkPipelineBindPoint point,
+              const PipelineLayout& layout);
+
+private:
+    static constexpr size_t kMax = 16;
+    std::array<VkDescriptorImageInfo, kMax> mImages{};
+    std::array<VkDescriptorBufferInfo, kMax> mBuffers{};
+    std::vector<VkWriteDescriptorSet> mWrites;
+    size_t mImageCount = 0, mBufferCount = 0;
+};
+
+} // namespace penumbra::vk

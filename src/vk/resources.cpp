@@ -1,0 +1,164 @@
+#include "vk/resources.h"
+
+#include "penumbra/error.h"
+#include "vk/check.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+
+namespace penumbra::vk {
+namespace {
+
+MemoryHandle allocate(const Context& ctx, const VkMemoryRequirements& req, MemoryUse use,
+                      const std::string& name) {
+    VkMemoryPropertyFlags required = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, preferred = 0;
+    if (use == MemoryUse::Upload)
+        required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    if (use == MemoryUse::Readback) {
+        required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        preferred = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
+    }
+    const VkMemoryAllocateInfo info{.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                    .allocationSize = req.size,
+                                    .memoryTypeIndex =
+                                        ctx.memoryType(req.memoryTypeBits, required, preferred)};
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    const VkResult result = vkAllocateMemory(ctx.device(), &info, nullptr, &memory);
+    if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
+        throw InputError(name, fmt::format("out of memory allocating {:.1f} MiB ({})",
+                                           static_cast<double>(req.size) / (1 << 20),
+                                           resultName(result)));
+    VK_CHECK(result);
+    return MemoryHandle(ctx.device(), memory);
+}
+
+VkImageAspectFlags aspectOf(VkFormat format) {
+    return format == VK_FORMAT_D32_SFLOAT || format == VK_FORMAT_D16_UNORM
+               ? VK_IMAGE_ASPECT_DEPTH_BIT
+               : VK_IMAGE_ASPECT_COLOR_BIT;
+}
+
+ImageViewHandle createView(const Context& ctx, const Image& image, VkImageViewType type,
+                           uint32_t baseLayer, uint32_t layerCount) {
+    const VkImageViewCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+        .image = image.get(),
+        .viewType = type,
+        .format = image.format,
+        .subresourceRange = {.aspectMask = image.aspect,
+                             .baseMipLevel = 0,
+                             .levelCount = 1,
+                             .baseArrayLayer = baseLayer,
+                             .layerCount = layerCount}};
+    VkImageView view = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateImageView(ctx.device(), &info, nullptr, &view));
+    return ImageViewHandle(ctx.device(), view);
+}
+
+} // namespace
+
+size_t formatBytes(VkFormat format) {
+    switch (format) {
+    case VK_FORMAT_R8G8B8A8_UNORM:
+    case VK_FORMAT_R8G8B8A8_SRGB:
+    case VK_FORMAT_R32_SFLOAT:
+    case VK_FORMAT_D32_SFLOAT: return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
+    default: fatal(__FILE__, __LINE__, fmt::format("formatBytes: unhandled format {}", int(format)));
+    }
+}
+
+Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
+                    const std::string& name) {
+    PENUMBRA_CHECK(size > 0, "empty buffer " + name);
+    const VkBufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
+                                  .size = size,
+                                  .usage = usage,
+                                  .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
+    VkBuffer raw = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateBuffer(ctx.device(), &info, nullptr, &raw));
+    Buffer buffer{.buffer = BufferHandle(ctx.device(), raw), .size = size};
+    VkMemoryRequirements req{};
+    vkGetBufferMemoryRequirements(ctx.device(), raw, &req);
+    buffer.memory = allocate(ctx, req, use, name);
+    VK_CHECK(vkBindBufferMemory(ctx.device(), raw, buffer.memory.get(), 0));
+    if (use != MemoryUse::DeviceLocal)
+        VK_CHECK(vkMapMemory(ctx.device(), buffer.memory.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
+    return buffer;
+}
+
+Image createImage(const Context& ctx, const ImageDesc& desc) {
+    // lavapipe creates images past maxImageDimension2D without complaint: check here.
+    const uint32_t limit = ctx.limits().maxImageDimension2D;
+    if (desc.width == 0 || desc.height == 0 || desc.width > limit || desc.height > limit)
+        throw InputError(desc.name, fmt::format("{}x{} is outside this device's image size range "
+                                                "1..{}",
+                                                desc.width, desc.height, limit));
+    Image image{.format = desc.format,
+                .width = desc.width,
+                .height = desc.height,
+                .layers = desc.layers,
+                .aspect = aspectOf(desc.format)};
+    const VkImageCreateInfo info{.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+                                 .imageType = VK_IMAGE_TYPE_2D,
+                                 .format = desc.format,
+                                 .extent = {desc.width, desc.height, 1},
+                                 .mipLevels = 1,
+                                 .arrayLayers = desc.layers,
+                                 .samples = VK_SAMPLE_COUNT_1_BIT,
+                                 .tiling = VK_IMAGE_TILING_OPTIMAL,
+                                 .usage = desc.usage,
+                                 .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+                                 .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+    VkImage raw = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateImage(ctx.device(), &info, nullptr, &raw));
+    image.image = ImageHandle(ctx.device(), raw);
+    VkMemoryRequirements req{};
+    vkGetImageMemoryRequirements(ctx.device(), raw, &req);
+    image.memory = allocate(ctx, req, MemoryUse::DeviceLocal, desc.name);
+    VK_CHECK(vkBindImageMemory(ctx.device(), raw, image.memory.get(), 0));
+    image.view = createView(ctx, image,
+                            desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
+                            0, desc.layers);
+    return image;
+}
+
+ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer) {
+    PENUMBRA_CHECK(layer < image.layers, "layer out of range");
+    return createView(ctx, image, VK_IMAGE_VIEW_TYPE_2D, layer, 1);
+}
+
+SamplerHandle createSampler(const Context& ctx, const SamplerDesc& desc) {
+    const VkSamplerCreateInfo info{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
+                                   .magFilter = desc.filter,
+                                   .minFilter = desc.filter,
+                                   .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
+                                   .addressModeU = desc.address,
+                                   .addressModeV = desc.address,
+                                   .addressModeW = desc.address,
+                                   .compareEnable = desc.compare ? VK_TRUE : VK_FALSE,
+                                   .compareOp = VK_COMPARE_OP_LESS_OR_EQUAL,
+                                   .maxLod = 0.0f,
+                                   .borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE};
+    VkSampler sampler = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
+    return SamplerHandle(ctx.device(), sampler);
+}
+
+Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage,
+                    const std::string& name) {
+    Buffer staging = createBuffer(ctx, bytes.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                  MemoryUse::Upload, name + " (staging)");
+    std::memcpy(staging.mapped, bytes.data(), bytes.size());
+    Buffer buffer = createBuffer(ctx, bytes.size(), usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                 MemoryUse::DeviceLocal, name);
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy region{.size = bytes.size()};
+        vkCmdCopyBuffer(cmd, staging.get(), buffer.get(), 1, &region);
+    });
+    return buffer;
+}
+
+} // namespace penumbra::vk

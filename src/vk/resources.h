@@ -1,0 +1,61 @@
+#pragma once
+// Buffers, images and samplers with their memory. Each resource gets its own dedicated
+// allocation: Penumbra holds a few dozen large resources per frame, where sub-allocation buys
+// nothing. Allocation failures caused by the requested sizes are user errors (InputError).
+#include "vk/context.h"
+#include "vk/handles.h"
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+namespace penumbra::vk {
+
+enum class MemoryUse { DeviceLocal, Upload, Readback };
+
+struct Buffer {
+    BufferHandle buffer;
+    MemoryHandle memory;
+    void* mapped = nullptr; // host-visible buffers stay mapped
+    VkDeviceSize size = 0;
+    VkBuffer get() const { return buffer.get(); }
+};
+
+struct ImageDesc {
+    std::string name; // for error messages
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    uint32_t width = 0, height = 0, layers = 1;
+    VkImageUsageFlags usage = 0;
+    bool arrayView = false; // a 2D-array view even for one layer (image2DArray in shaders)
+};
+
+struct Image {
+    ImageHandle image;
+    MemoryHandle memory;
+    ImageViewHandle view; // 2D, or 2D array for several layers or ImageDesc::arrayView
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    uint32_t width = 0, height = 0, layers = 1;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
+    VkImage get() const { return image.get(); }
+};
+
+Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
+                    const std::string& name);
+Image createImage(const Context& ctx, const ImageDesc& desc);
+// A view of one layer of an array image (for rendering into it or sampling it as 2D).
+ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer);
+
+struct SamplerDesc {
+    VkFilter filter = VK_FILTER_NEAREST;
+    bool compare = false; // depth comparison (sampler2DShadow), VK_COMPARE_OP_LESS_OR_EQUAL
+    VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+};
+SamplerHandle createSampler(const Context& ctx, const SamplerDesc& desc);
+
+// Copies `bytes` into a device-local buffer through a staging buffer (blocking).
+Buffer uploadBuffer(const Context& ctx, std::span<const std::byte> bytes, VkBufferUsageFlags usage,
+                    const std::string& name);
+
+size_t formatBytes(VkFormat format);
+
+} // namespace penumbra::vk

@@ -1,0 +1,45 @@
+#pragma once
+// sync2 barriers through a few named states. A barrier names where the image comes from and
+// where it goes: `imageBarrier(cmd, shadowMap, kDepthWrite, kComputeSampled)`.
+#include "vk/resources.h"
+
+#include <vulkan/vulkan.h>
+
+namespace penumbra::vk {
+
+struct ImageState {
+    VkPipelineStageFlags2 stage;
+    VkAccessFlags2 access;
+    VkImageLayout layout;
+};
+
+inline constexpr ImageState kUndefined{VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
+                                       VK_IMAGE_LAYOUT_UNDEFINED};
+inline constexpr ImageState kDepthWrite{VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
+                                            VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+                                        VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL};
+inline constexpr ImageState kColorWrite{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                                        VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
+                                        VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+inline constexpr ImageState kComputeSampled{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                            VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                                            VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+inline constexpr ImageState kComputeWrite{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                          VK_IMAGE_LAYOUT_GENERAL};
+inline constexpr ImageState kTransferRead{VK_PIPELINE_STAGE_2_COPY_BIT,
+                                          VK_ACCESS_2_TRANSFER_READ_BIT,
+                                          VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
+
+void imageBarrier(VkCommandBuffer cmd, const Image& image, const ImageState& from,
+                  const ImageState& to);
+void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStage,
+                   VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
+                   VkAccessFlags2 dstAccess);
+
+// Copies every layer of `image` (in kTransferRead) into `buffer`, tightly packed, layer-major.
+void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, VkBuffer buffer);
+
+} // namespace penumbra::vk

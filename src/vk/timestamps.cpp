@@ -1,0 +1,67 @@
+#include "vk/timestamps.h"
+
+#include "penumbra/error.h"
+#include "vk/check.h"
+
+#include <algorithm>
+
+namespace penumbra::vk {
+
+GpuTimer::GpuTimer(const Context& ctx, uint32_t maxScopes)
+    : mDevice(ctx.device()), mPeriodNs(ctx.limits().timestampPeriod), mMaxScopes(maxScopes) {
+    uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(ctx.physicalDevice(), &count, families.data());
+    const uint32_t bits = families[ctx.queueFamily()].timestampValidBits;
+    mValidMask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
+    const VkQueryPoolCreateInfo info{.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+                                     .queryType = VK_QUERY_TYPE_TIMESTAMP,
+                                     .queryCount = 2 * maxScopes};
+    VkQueryPool pool = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateQueryPool(mDevice, &info, nullptr, &pool));
+    mPool = QueryPoolHandle(mDevice, pool);
+}
+
+void GpuTimer::reset(VkCommandBuffer cmd) {
+    vkCmdResetQueryPool(cmd, mPool.get(), 0, 2 * mMaxScopes);
+    mScopes.clear();
+}
+
+void GpuTimer::begin(VkCommandBuffer cmd, std::string pass) {
+    PENUMBRA_CHECK(!mOpen && mScopes.size() < mMaxScopes, "GpuTimer scopes misnested or full");
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, mPool.get(),
+                         static_cast<uint32_t>(2 * mScopes.size()));
+    mScopes.push_back(std::move(pass));
+    mOpen = true;
+}
+
+void GpuTimer::end(VkCommandBuffer cmd) {
+    PENUMBRA_CHECK(mOpen, "GpuTimer::end without begin");
+    vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, mPool.get(),
+                         static_cast<uint32_t>(2 * mScopes.size() - 1));
+    mOpen = false;
+}
+
+std::vector<std::pair<std::string, double>> GpuTimer::read() const {
+    std::vector<std::pair<std::string, double>> result;
+    if (mScopes.empty()) return result;
+    std::vector<uint64_t> ticks(2 * mScopes.size());
+    VK_CHECK(vkGetQueryPoolResults(mDevice, mPool.get(), 0, static_cast<uint32_t>(ticks.size()),
+                                   ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    for (size_t i = 0; i < mScopes.size(); ++i) {
+        const uint64_t elapsed = ((ticks[2 * i + 1] & mValidMask) - (ticks[2 * i] & mValidMask)) &
+                                 mValidMask;
+        const double ms = static_cast<double>(elapsed) * mPeriodNs * 1e-6;
+        auto it = std::find_if(result.begin(), result.end(),
+                               [&](const auto& entry) { return entry.first == mScopes[i]; });
+        if (it == result.end())
+            result.emplace_back(mScopes[i], ms);
+        else
+            it->second += ms;
+    }
+    return result;
+}
+
+} // namespace penumbra::vk

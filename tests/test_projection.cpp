@@ -1,0 +1,119 @@
+// The conventions of src/core/projection.h, tested by where points of each view volume land.
+#include "core/light_space.h"
+#include "core/projection.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace penumbra;
+
+namespace {
+
+glm::vec3 project(const glm::mat4& m, const glm::vec3& p) {
+    const glm::vec4 c = m * glm::vec4(p, 1.0f);
+    return glm::vec3(c) / c.w;
+}
+
+void expectNear(const glm::vec3& a, const glm::vec3& b, float tol = 1e-5f) {
+    EXPECT_NEAR(a.x, b.x, tol);
+    EXPECT_NEAR(a.y, b.y, tol);
+    EXPECT_NEAR(a.z, b.z, tol);
+}
+
+} // namespace
+
+TEST(Projection, OrthographicMapsTheSeedsBoxOntoNdc) {
+    // [-w/2, w/2] x [-h/2, h/2] x [n, f] (distance along -z) -> [-1,1]^2 x [0,1]
+    const float w = 6, h = 4, n = 2, f = 12;
+    const glm::mat4 m = orthographic(-w / 2, w / 2, -h / 2, h / 2, n, f);
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 corner(i & 1 ? w / 2 : -w / 2, i & 2 ? h / 2 : -h / 2, i & 4 ? -f : -n);
+        expectNear(project(m, corner), {i & 1 ? 1.f : -1.f, i & 2 ? 1.f : -1.f, i & 4 ? 1.f : 0.f});
+    }
+    // Depth is linear: the seeds' z' = z/(f-n) + n/(n-f) with the typo'd row corrected.
+    EXPECT_NEAR(project(m, {0, 0, -7}).z, (7.0f - n) / (f - n), 1e-6f);
+    // Row-vector form of the seeds: the last row is [0, 0, n/(n-f), 1], no 2/h in it.
+    EXPECT_FLOAT_EQ(m[3][1], 0.0f);
+    EXPECT_FLOAT_EQ(m[3][2], n / (n - f));
+}
+
+TEST(Projection, PerspectiveLightNearIsZeroFarIsOneNoFlip) {
+    const float fov = 1.2f, n = 0.5f, f = 40.0f;
+    const glm::mat4 m = perspectiveLight(fov, 1.0f, n, f);
+    EXPECT_NEAR(project(m, {0, 0, -n}).z, 0.0f, 1e-6f);
+    EXPECT_NEAR(project(m, {0, 0, -f}).z, 1.0f, 1e-6f);
+    const float d = 10.0f, edge = d * std::tan(fov / 2);
+    expectNear(project(m, {edge, edge, -d}), {1.0f, 1.0f, project(m, {0, 0, -d}).z});
+    // Depth grows monotonically with distance.
+    EXPECT_LT(project(m, {0, 0, -3}).z, project(m, {0, 0, -4}).z);
+}
+
+TEST(Projection, CameraIsReverseZAndUpIsTheTopRow) {
+    const float fov = 0.8f, n = 0.1f, f = 100.0f;
+    const glm::mat4 m = perspectiveCameraReverseZ(fov, 2.0f, n, f);
+    EXPECT_NEAR(project(m, {0, 0, -n}).z, 1.0f, 1e-6f);
+    EXPECT_NEAR(project(m, {0, 0, -f}).z, 0.0f, 1e-6f);
+    const float d = 5.0f, top = d * std::tan(fov / 2);
+    // Vulkan NDC y = -1 is the framebuffer's first row: world-up must land there.
+    EXPECT_NEAR(project(m, {0, top, -d}).y, -1.0f, 1e-5f);
+    EXPECT_NEAR(project(m, {2.0f * top, 0, -d}).x, 1.0f, 1e-5f);
+}
+
+TEST(Projection, TextureMatrixMapsNdcCornersToTextureCorners) {
+    const glm::mat4 t = textureMatrix();
+    expectNear(project(t, {-1, -1, 0.25f}), {0, 0, 0.25f});
+    expectNear(project(t, {1, 1, 0.75f}), {1, 1, 0.75f});
+    expectNear(project(t, {0, 0, 0}), {0.5f, 0.5f, 0});
+}
+
+TEST(Projection, LookAtPutsEyeAtOriginAndTargetDownMinusZ) {
+    const glm::vec3 eye(3, 4, 5), target(-1, 0, 2);
+    const glm::mat4 v = lookAt(eye, target, {0, 1, 0});
+    expectNear(project(v, eye), {0, 0, 0});
+    expectNear(project(v, target), {0, 0, -glm::length(target - eye)}, 1e-5f);
+    EXPECT_GT(project(v, eye + glm::vec3(0, 1, 0)).y, 0.0f); // world up stays up
+}
+
+TEST(LightSpace, DirectionalBoxFitsTheSceneTightly) {
+    Bounds b;
+    b.grow({-5, 0, -3});
+    b.grow({4, 2, 6});
+    const Light sun{.type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.5f))};
+    const LightProjection p = fitDirectional(sun, b, 1024);
+    const glm::mat4 st = textureMatrix() * p.viewProj;
+    glm::vec3 lo(1e9f), hi(-1e9f);
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 c(i & 1 ? b.max.x : b.min.x, i & 2 ? b.max.y : b.min.y,
+                          i & 4 ? b.max.z : b.min.z);
+        const glm::vec3 s = project(st, c);
+        lo = glm::min(lo, s), hi = glm::max(hi, s);
+    }
+    // Every corner inside [0,1]^3, and the box touches each face (tight fit).
+    expectNear(lo, {0, 0, 0}, 1e-3f);
+    expectNear(hi, {1, 1, 1}, 1e-3f);
+    // Moving along the light direction increases depth.
+    EXPECT_GT(project(st, b.center() + sun.direction).z, project(st, b.center()).z);
+    EXPECT_NEAR(p.texelWorldSize * 1024.0f,
+                std::max(p.window.y - p.window.x, p.window.w - p.window.z), 1e-4f);
+}
+
+TEST(LightSpace, SpotFrustumCoversTheConeAndTheScene) {
+    Bounds b;
+    b.grow({-4, 0, -4});
+    b.grow({4, 1, 4});
+    Light spot{.type = LightType::Spot, .position = {0, 10, 0}, .direction = {0, -1, 0},
+               .outerConeAngle = 0.5f};
+    const LightProjection p = fitSpot(spot, b, 512);
+    const glm::mat4 st = textureMatrix() * p.viewProj;
+    // The cone's rim lands on the edge of the map.
+    const glm::vec3 rim = spot.position + 8.0f * glm::vec3(std::sin(0.5f), -std::cos(0.5f), 0);
+    const glm::vec3 s = project(st, rim);
+    EXPECT_NEAR(std::max(std::abs(s.x - 0.5f), std::abs(s.y - 0.5f)), 0.5f, 1e-4f);
+    // Scene depths fall inside [0,1].
+    EXPECT_GE(project(st, {0, 1, 0}).z, 0.0f);
+    EXPECT_LE(project(st, {4, 0, 4}).z, 1.0f);
+    EXPECT_LT(p.nearPlane, 9.0f + 1e-3f);
+    EXPECT_GE(p.farPlane, 10.0f); // axial depth of the ground, not Euclidean distance
+}
