@@ -39,6 +39,7 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     StagedOutputDir out(args.output);
 
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
+    renderer.check(scene, options);
     const DeviceInfo& device = renderer.device();
     std::fprintf(stderr, "penumbra: %s on %s (%s), %ux%u, shadow map %u, technique %s\n",
                  scene.name.c_str(), device.name.c_str(), device.driverName.c_str(), options.width,

@@ -65,7 +65,9 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     const DeviceInfo& device() const;
-    // Throws InputError on options the device cannot honour (sizes past its limits, memory).
+    // Throws InputError on options this device cannot honour (sizes past its limits, memory)
+    // or a scene it cannot draw. render() calls it first; callers may call it earlier.
+    void check(const Scene& scene, const RenderOptions& options) const;
     RenderResult render(const Scene& scene, const RenderOptions& options,
                         const ProgressFn& progress = {});
     // Validation-layer messages of severity error so far (0 when validation is off).

@@ -21,6 +21,12 @@ struct Renderer::Impl {
 
 namespace {
 
+size_t shadowCasterCount(const Scene& scene) {
+    size_t n = 0;
+    for (const Light& l : scene.lights) n += l.castsShadow && l.type != LightType::Point;
+    return n;
+}
+
 void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, size_t shadowLights) {
     const uint32_t limit = ctx.limits().maxImageDimension2D;
     auto tooBig = [&](const char* option, uint32_t value) {
@@ -106,11 +112,17 @@ Renderer::~Renderer() = default;
 const DeviceInfo& Renderer::device() const { return mImpl->ctx.info(); }
 uint32_t Renderer::validationErrors() const { return mImpl->ctx.validationErrors(); }
 
+void Renderer::check(const Scene& scene, const RenderOptions& o) const {
+    validate(o);
+    if (scene.triangleCount() == 0) throw InputError(scene.name, "the scene has no triangles");
+    (void)scene.camera(o.camera); // throws for an unknown camera name
+    checkDeviceLimits(mImpl->ctx, o, shadowCasterCount(scene));
+}
+
 RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
                               const ProgressFn& progress) {
-    validate(o);
+    check(sceneIn, o);
     const vk::Context& ctx = mImpl->ctx;
-    if (sceneIn.triangleCount() == 0) throw InputError(sceneIn.name, "the scene has no triangles");
     Scene scene = sceneIn;
     for (Light& light : scene.lights) {
         if (o.lightRadiusOverride >= 0.0f && light.type != LightType::Directional)
@@ -140,7 +152,6 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
                                    info.visibilityIndex, o.parameters));
         result.lights.push_back(info);
     }
-    checkDeviceLimits(ctx, o, t.shadows.size());
 
     if (progress) progress("uploading scene");
     const render::GpuScene gpuScene = render::uploadScene(ctx, scene);

@@ -47,7 +47,7 @@ Scene showcase() {
                             .type = LightType::Directional,
                             .direction = glm::normalize(kSunDirection),
                             .color = {1.0f, 0.97f, 0.92f},
-                            .intensity = 2.5f,
+                            .intensity = 1.8f,
                             .angularDiameter = 0.53f});
     return scene;
 }
@@ -60,7 +60,7 @@ Scene spot() {
                             .position = kSpotPosition,
                             .direction = glm::normalize(kSpotTarget - kSpotPosition),
                             .color = {1.0f, 0.95f, 0.85f},
-                            .intensity = 2.5f * distance * distance, // ~2.5 at the target
+                            .intensity = 1.8f * distance * distance, // ~1.8 at the target
                             .innerConeAngle = 0.42f,
                             .outerConeAngle = 0.52f,
                             .radius = 0.2f});

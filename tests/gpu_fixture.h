@@ -1,0 +1,68 @@
+#pragma once
+// GPU tests share one Renderer with the Khronos validation layer on and a persistent debug
+// messenger; every test fails if it caused any validation error.
+#include "penumbra/renderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+namespace penumbra::test {
+
+inline Renderer& sharedRenderer() {
+    static Renderer renderer({.deviceIndex = -1, .validation = true});
+    return renderer;
+}
+
+class GpuTest : public ::testing::Test {
+protected:
+    void SetUp() override { mErrorsBefore = sharedRenderer().validationErrors(); }
+    void TearDown() override {
+        EXPECT_EQ(sharedRenderer().validationErrors(), mErrorsBefore)
+            << "Vulkan validation errors during this test (messages on stderr)";
+    }
+    RenderResult render(const Scene& scene, RenderOptions options) {
+        options.frames = 1;
+        return sharedRenderer().render(scene, options);
+    }
+
+private:
+    uint32_t mErrorsBefore = 0;
+};
+
+inline glm::vec3 pixelVec(const std::vector<float>& v, size_t i) {
+    return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+}
+
+// Pixels of the ground plane y = 0 facing up.
+inline bool onGround(const RenderResult& r, size_t i) {
+    const glm::vec3 p = pixelVec(r.position, i), n = pixelVec(r.normal, i);
+    return std::isfinite(p.x) && std::abs(p.y) < 1e-3f && n.y > 0.999f;
+}
+
+// Distance from `center` to the ray origin + t dir, t >= 0 (dir unit length).
+inline float rayPointDistance(const glm::vec3& origin, const glm::vec3& dir,
+                              const glm::vec3& center) {
+    const float t = std::max(glm::dot(center - origin, dir), 0.0f);
+    return glm::length(origin + t * dir - center);
+}
+
+// Whether the ray origin + t dir (t > 0) hits the axis-aligned box [lo, hi] (slab test).
+inline bool rayHitsBox(const glm::vec3& origin, const glm::vec3& dir, const glm::vec3& lo,
+                       const glm::vec3& hi) {
+    float tNear = 0.0f, tFar = 1e30f;
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(dir[a]) < 1e-12f) {
+            if (origin[a] < lo[a] || origin[a] > hi[a]) return false;
+            continue;
+        }
+        float t0 = (lo[a] - origin[a]) / dir[a], t1 = (hi[a] - origin[a]) / dir[a];
+        if (t0 > t1) std::swap(t0, t1);
+        tNear = std::max(tNear, t0), tFar = std::min(tFar, t1);
+        if (tNear > tFar) return false;
+    }
+    return true;
+}
+
+} // namespace penumbra::test

@@ -1,0 +1,58 @@
+#pragma once
+// Runs the penumbra CLI as a child process (posix_spawn, no shell) and captures its output.
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace penumbra::test {
+
+struct ProcessResult {
+    int exitCode = -1; // -1: killed by a signal (a crash)
+    std::string out, err;
+};
+
+inline std::string slurp(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+inline ProcessResult runCli(const std::vector<std::string>& args) {
+    const auto dir = std::filesystem::temp_directory_path() /
+                     ("penumbra-cli-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string outPath = (dir / "stdout").string(), errPath = (dir / "stderr").string();
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> full{PENUMBRA_CLI_PATH, "--validation"};
+    full.insert(full.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& a : full) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = 0;
+    ProcessResult result;
+    if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ) == 0) {
+        int status = 0;
+        waitpid(pid, &status, 0);
+        result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
+    posix_spawn_file_actions_destroy(&actions);
+    result.out = slurp(outPath);
+    result.err = slurp(errPath);
+    std::filesystem::remove_all(dir);
+    return result;
+}
+
+} // namespace penumbra::test

@@ -1,0 +1,174 @@
+// End-to-end GPU tests of the `hard` technique on the built-in scenes (lavapipe + validation).
+#include "gpu_fixture.h"
+#include "penumbra/error.h"
+#include "scene/builtin_scenes.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdio>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+// Fraction of the grazing plane's pixels that nothing can shadow, yet have visibility < 1.
+// "Nothing can shadow": the ray toward the light misses the box grown by a safety margin
+// (a few shadow-map texels), so hard-shadow aliasing at the true boundary is not counted.
+double grazingAcneFraction(const RenderResult& r, const Scene& scene, size_t* counted) {
+    const glm::vec3 toLight = -glm::normalize(scene.lights[0].direction);
+    const glm::vec3 margin(0.15f);
+    const glm::vec3 lo = builtin::kGrazingBoxCenter - 0.5f * builtin::kGrazingBoxSize - margin;
+    const glm::vec3 hi = builtin::kGrazingBoxCenter + 0.5f * builtin::kGrazingBoxSize + margin;
+    size_t lit = 0, acne = 0;
+    for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
+        if (!onGround(r, i) || rayHitsBox(pixelVec(r.position, i), toLight, lo, hi)) continue;
+        ++lit;
+        acne += r.visibility[0][i] < 1.0f;
+    }
+    *counted = lit;
+    return lit ? static_cast<double>(acne) / static_cast<double>(lit) : 1.0;
+}
+
+struct Centroids {
+    glm::dvec2 expected{0.0}, rendered{0.0};
+    size_t expectedCount = 0, renderedCount = 0;
+};
+
+// The sphere's shadow on the ground, twice: analytically (the ray from each ground pixel toward
+// the light hits the sphere) and as rendered (visibility < 0.5), restricted to ground pixels
+// whose light ray passes near the sphere so other casters' shadows stay out.
+Centroids sphereShadowCentroids(const RenderResult& r, const Light& light) {
+    Centroids c;
+    const glm::vec3 center = builtin::kSphereCenter;
+    for (uint32_t y = 0; y < r.height; ++y)
+        for (uint32_t x = 0; x < r.width; ++x) {
+            const size_t i = size_t{y} * r.width + x;
+            if (!onGround(r, i)) continue;
+            const glm::vec3 p = pixelVec(r.position, i);
+            const glm::vec3 toLight = light.type == LightType::Directional
+                                          ? -glm::normalize(light.direction)
+                                          : glm::normalize(light.position - p);
+            const float d = rayPointDistance(p, toLight, center);
+            if (d > builtin::kSphereRadius + 0.5f) continue;
+            const glm::dvec2 pixel(x + 0.5, y + 0.5);
+            if (d < builtin::kSphereRadius) c.expected += pixel, ++c.expectedCount;
+            if (r.visibility[0][i] < 0.5f) c.rendered += pixel, ++c.renderedCount;
+        }
+    if (c.expectedCount) c.expected /= static_cast<double>(c.expectedCount);
+    if (c.renderedCount) c.rendered /= static_cast<double>(c.renderedCount);
+    return c;
+}
+
+} // namespace
+
+TEST_F(GpuTest, GrazingPlaneIsAcneFreeWithDefaultBias) {
+    const Scene scene = loadScene("builtin:grazing");
+    const RenderResult r = render(scene, {.width = 640, .height = 360});
+    size_t lit = 0;
+    const double acne = grazingAcneFraction(r, scene, &lit);
+    std::printf("grazing, default bias: %zu lit plane pixels, acne fraction %.5f\n", lit, acne);
+    EXPECT_GT(lit, 640u * 360u / 4) << "the plane should fill much of the view";
+    EXPECT_LT(acne, 0.001) << "acne fraction with default bias";
+}
+
+TEST_F(GpuTest, GrazingPlaneShowsAcneWithoutBias) {
+    const Scene scene = loadScene("builtin:grazing");
+    RenderOptions o{.width = 640, .height = 360};
+    o.parameters.assign("bias.constant=0");
+    o.parameters.assign("bias.slope=0");
+    o.parameters.assign("bias.normal=0");
+    const RenderResult r = render(scene, o);
+    size_t lit = 0;
+    const double acne = grazingAcneFraction(r, scene, &lit);
+    std::printf("grazing, zero bias: acne fraction %.4f\n", acne);
+    EXPECT_GT(acne, 0.05) << "zero bias must show acne";
+}
+
+TEST_F(GpuTest, SphereShadowSitsWhereTheDirectionalLightProjectsIt) {
+    const Scene scene = loadScene("builtin:showcase");
+    const RenderResult r = render(scene, {});
+    const Centroids c = sphereShadowCentroids(r, scene.lights[0]);
+    std::printf("sphere shadow: %zu expected / %zu rendered pixels, centroid error %.3f px\n",
+                c.expectedCount, c.renderedCount, glm::length(c.rendered - c.expected));
+    ASSERT_GT(c.expectedCount, 2000u);
+    EXPECT_NEAR(static_cast<double>(c.renderedCount), static_cast<double>(c.expectedCount),
+                0.05 * static_cast<double>(c.expectedCount));
+    EXPECT_LT(glm::length(c.rendered - c.expected), 2.0)
+        << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected ("
+        << c.expected.x << ", " << c.expected.y << ")";
+}
+
+TEST_F(GpuTest, SphereShadowSitsWhereTheSpotLightProjectsIt) {
+    const Scene scene = loadScene("builtin:spot");
+    const RenderResult r = render(scene, {});
+    const Centroids c = sphereShadowCentroids(r, scene.lights[0]);
+    std::printf("sphere shadow: %zu expected / %zu rendered pixels, centroid error %.3f px\n",
+                c.expectedCount, c.renderedCount, glm::length(c.rendered - c.expected));
+    ASSERT_GT(c.expectedCount, 2000u);
+    EXPECT_NEAR(static_cast<double>(c.renderedCount), static_cast<double>(c.expectedCount),
+                0.05 * static_cast<double>(c.expectedCount));
+    EXPECT_LT(glm::length(c.rendered - c.expected), 2.0)
+        << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected ("
+        << c.expected.x << ", " << c.expected.y << ")";
+}
+
+TEST_F(GpuTest, PoleShadowStaysAttachedAtItsBase) {
+    // Peter-panning check: ground pixels just beyond the pole's foot, on the side away from the
+    // light, must be in shadow with the default bias.
+    const Scene scene = loadScene("builtin:showcase");
+    const RenderResult r = render(scene, {});
+    const glm::vec3 toLight = -glm::normalize(scene.lights[0].direction);
+    const glm::vec3 axis = glm::normalize(builtin::kPoleTip - builtin::kPoleBase);
+    size_t near = 0, shadowed = 0;
+    for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
+        if (!onGround(r, i)) continue;
+        const glm::vec3 p = pixelVec(r.position, i);
+        // Ground points whose light ray passes through the pole's core, 0.1 to 0.3 units up
+        // the pole from its foot: n is the normal of the plane holding the axis and the ray.
+        const glm::vec3 w = p - builtin::kPoleBase;
+        const glm::vec3 n = glm::normalize(glm::cross(axis, toLight));
+        const float across = std::abs(glm::dot(w, n));
+        // In that plane, p + t toLight = base + s axis; dotting with perp removes t.
+        const glm::vec3 perp = glm::cross(n, toLight);
+        const float s = glm::dot(w, perp) / glm::dot(axis, perp);
+        if (across > 0.25f * builtin::kPoleThickness || s < 0.1f || s > 0.3f) continue;
+        ++near;
+        shadowed += r.visibility[0][i] < 0.5f;
+    }
+    std::printf("pole foot: %zu of %zu ground pixels shadowed\n", shadowed, near);
+    ASSERT_GT(near, 3u);
+    EXPECT_EQ(shadowed, near);
+}
+
+TEST_F(GpuTest, BackgroundIsNaNAndGeometryIsBinaryVisibility) {
+    const Scene scene = loadScene("builtin:showcase");
+    const RenderResult r = render(scene, {.width = 160, .height = 90, .shadowMapSize = 512});
+    ASSERT_EQ(r.visibility.size(), 1u);
+    size_t background = 0;
+    for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
+        const float v = r.visibility[0][i];
+        if (std::isnan(v)) {
+            ++background;
+            EXPECT_TRUE(std::isnan(r.position[3 * i]));
+            EXPECT_TRUE(std::isnan(r.normal[3 * i]));
+        } else {
+            EXPECT_TRUE(v == 0.0f || v == 1.0f) << v;
+            EXPECT_NEAR(glm::length(pixelVec(r.normal, i)), 1.0f, 1e-3f);
+        }
+    }
+    EXPECT_GT(background, 0u);        // the sky in the top rows
+    EXPECT_TRUE(std::isnan(r.visibility[0][0]));
+    EXPECT_FALSE(std::isnan(r.visibility[0][size_t{r.width} * (r.height - 1)])); // ground below
+}
+
+TEST_F(GpuTest, RefusesSizesPastTheDeviceLimit) {
+    const Scene scene = loadScene("builtin:showcase");
+    const uint32_t limit = sharedRenderer().device().maxImageDimension2D;
+    RenderOptions o{.shadowMapSize = limit + 1};
+    EXPECT_THROW(sharedRenderer().check(scene, o), InputError);
+    o = {.width = limit + 1};
+    EXPECT_THROW(sharedRenderer().check(scene, o), InputError);
+    o = {.camera = "no such camera"};
+    EXPECT_THROW(sharedRenderer().check(scene, o), InputError);
+}
