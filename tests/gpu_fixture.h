@@ -54,13 +54,16 @@ inline bool rayHitsBox(const glm::vec3& origin, const glm::vec3& dir, const glm:
     float tNear = 0.0f, tFar = 1e30f;
     for (int a = 0; a < 3; ++a) {
         if (std::abs(dir[a]) < 1e-12f) {
-            if (origin[a] < lo[a] || origin[a] > hi[a]) return false;
+            if (origin[a] < lo[a] || origin[a] > hi[a])
+                return false;
             continue;
         }
         float t0 = (lo[a] - origin[a]) / dir[a], t1 = (hi[a] - origin[a]) / dir[a];
-        if (t0 > t1) std::swap(t0, t1);
+        if (t0 > t1)
+            std::swap(t0, t1);
         tNear = std::max(tNear, t0), tFar = std::min(tFar, t1);
-        if (tNear > tFar) return false;
+        if (tNear > tFar)
+            return false;
     }
     return true;
 }

@@ -28,18 +28,21 @@ inline std::string slurp(const std::filesystem::path& p) {
 }
 
 inline ProcessResult runCli(const std::vector<std::string>& args) {
-    const auto dir = std::filesystem::temp_directory_path() /
-                     ("penumbra-cli-" + std::to_string(::getpid()));
+    const auto dir =
+        std::filesystem::temp_directory_path() / ("penumbra-cli-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     const std::string outPath = (dir / "stdout").string(), errPath = (dir / "stderr").string();
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
+    posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                     0644);
     std::vector<std::string> full{PENUMBRA_CLI_PATH, "--validation"};
     full.insert(full.end(), args.begin(), args.end());
     std::vector<char*> argv;
-    for (std::string& a : full) argv.push_back(a.data());
+    for (std::string& a : full)
+        argv.push_back(a.data());
     argv.push_back(nullptr);
     pid_t pid = 0;
     ProcessResult result;

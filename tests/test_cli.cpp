@@ -15,7 +15,8 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path scratch(const std::string& name) {
-    const fs::path p = fs::temp_directory_path() / ("penumbra-test-" + std::to_string(::getpid())) / name;
+    const fs::path p =
+        fs::temp_directory_path() / ("penumbra-test-" + std::to_string(::getpid())) / name;
     fs::remove_all(p);
     fs::create_directories(p.parent_path());
     return p;
@@ -35,7 +36,8 @@ TEST_P(CliRefuses, WithOneErrorLineAndNoOutput) {
     const BadInput& bad = GetParam();
     const fs::path out = scratch(std::string("out-") + bad.name);
     std::vector<std::string> args;
-    for (const std::string& a : bad.args) args.push_back(a == "{out}" ? out.string() : a);
+    for (const std::string& a : bad.args)
+        args.push_back(a == "{out}" ? out.string() : a);
     const ProcessResult r = runCli(args);
     EXPECT_GT(r.exitCode, 0) << "must fail cleanly (exit code -1 means it crashed)";
     // Exactly one line on stderr, and it is the error.
@@ -49,35 +51,68 @@ TEST_P(CliRefuses, WithOneErrorLineAndNoOutput) {
 INSTANTIATE_TEST_SUITE_P(
     BadInputs, CliRefuses,
     ::testing::Values(
-        BadInput{"unknown_technique", {"render", "builtin:showcase", "-o", "{out}", "--technique", "blurry"}, "--technique: unknown technique 'blurry'"},
-        BadInput{"unknown_set_key", {"render", "builtin:showcase", "-o", "{out}", "--set", "pcf.colour=3"}, "unknown parameter 'pcf.colour'"},
-        BadInput{"set_not_a_number", {"render", "builtin:showcase", "-o", "{out}", "--set", "bias.slope=steep"}, "bias.slope=steep: not a finite number"},
-        BadInput{"set_out_of_range", {"render", "builtin:showcase", "-o", "{out}", "--set", "bias.normal=-2"}, "out of range"},
-        BadInput{"set_without_value", {"render", "builtin:showcase", "-o", "{out}", "--set", "bias.slope"}, "expected key=value"},
-        BadInput{"shadow_map_zero", {"render", "builtin:showcase", "-o", "{out}", "--shadow-map-size", "0"}, "--shadow-map-size"},
-        BadInput{"shadow_map_past_limit", {"render", "builtin:showcase", "-o", "{out}", "--shadow-map-size", "99999"}, "exceeds this device's maxImageDimension2D"},
-        BadInput{"width_zero", {"render", "builtin:showcase", "-o", "{out}", "--width", "0"}, "--width"},
-        BadInput{"height_zero", {"render", "builtin:showcase", "-o", "{out}", "--height", "0"}, "--height"},
-        BadInput{"width_negative", {"render", "builtin:showcase", "-o", "{out}", "--width", "-4"}, "--width"},
-        BadInput{"unknown_scene", {"render", "builtin:nowhere", "-o", "{out}"}, "builtin:nowhere: no such built-in scene"},
-        BadInput{"unknown_camera", {"render", "builtin:showcase", "-o", "{out}", "--camera", "drone"}, "--camera"},
-        BadInput{"frames_zero", {"render", "builtin:showcase", "-o", "{out}", "--frames", "0"}, "--frames"},
-        BadInput{"device_out_of_range", {"render", "builtin:showcase", "-o", "{out}", "--device", "57"}, "--device: 57 is out of range"},
-        BadInput{"output_unwritable", {"render", "builtin:showcase", "-o", "/proc/penumbra-cannot-write"}, "/proc/penumbra-cannot-write"},
-        BadInput{"output_under_a_file", {"render", "builtin:showcase", "-o", "/etc/hostname/sub"}, "/etc/hostname"},
+        BadInput{"unknown_technique",
+                 {"render", "builtin:showcase", "-o", "{out}", "--technique", "blurry"},
+                 "--technique: unknown technique 'blurry'"},
+        BadInput{"unknown_set_key",
+                 {"render", "builtin:showcase", "-o", "{out}", "--set", "pcf.colour=3"},
+                 "unknown parameter 'pcf.colour'"},
+        BadInput{"set_not_a_number",
+                 {"render", "builtin:showcase", "-o", "{out}", "--set", "bias.slope=steep"},
+                 "bias.slope=steep: not a finite number"},
+        BadInput{"set_out_of_range",
+                 {"render", "builtin:showcase", "-o", "{out}", "--set", "bias.normal=-2"},
+                 "out of range"},
+        BadInput{"set_without_value",
+                 {"render", "builtin:showcase", "-o", "{out}", "--set", "bias.slope"},
+                 "expected key=value"},
+        BadInput{"shadow_map_zero",
+                 {"render", "builtin:showcase", "-o", "{out}", "--shadow-map-size", "0"},
+                 "--shadow-map-size"},
+        BadInput{"shadow_map_past_limit",
+                 {"render", "builtin:showcase", "-o", "{out}", "--shadow-map-size", "99999"},
+                 "exceeds this device's maxImageDimension2D"},
+        BadInput{
+            "width_zero", {"render", "builtin:showcase", "-o", "{out}", "--width", "0"}, "--width"},
+        BadInput{"height_zero",
+                 {"render", "builtin:showcase", "-o", "{out}", "--height", "0"},
+                 "--height"},
+        BadInput{"width_negative",
+                 {"render", "builtin:showcase", "-o", "{out}", "--width", "-4"},
+                 "--width"},
+        BadInput{"unknown_scene",
+                 {"render", "builtin:nowhere", "-o", "{out}"},
+                 "builtin:nowhere: no such built-in scene"},
+        BadInput{"unknown_camera",
+                 {"render", "builtin:showcase", "-o", "{out}", "--camera", "drone"},
+                 "--camera"},
+        BadInput{"frames_zero",
+                 {"render", "builtin:showcase", "-o", "{out}", "--frames", "0"},
+                 "--frames"},
+        BadInput{"device_out_of_range",
+                 {"render", "builtin:showcase", "-o", "{out}", "--device", "57"},
+                 "--device: 57 is out of range"},
+        BadInput{"output_unwritable",
+                 {"render", "builtin:showcase", "-o", "/proc/penumbra-cannot-write"},
+                 "/proc/penumbra-cannot-write"},
+        BadInput{"output_under_a_file",
+                 {"render", "builtin:showcase", "-o", "/etc/hostname/sub"},
+                 "/etc/hostname"},
         BadInput{"no_output_option", {"render", "builtin:showcase"}, "--output"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(Cli, RenderWritesTheContractFiles) {
     const fs::path out = scratch("render-ok");
-    const ProcessResult r = runCli({"render", "builtin:showcase", "-o", out.string(), "--width",
-                                    "96", "--height", "64", "--shadow-map-size", "256",
-                                    "--frames", "2", "--set", "bias.slope=1.5"});
+    const ProcessResult r =
+        runCli({"render", "builtin:showcase", "-o", out.string(), "--width", "96", "--height", "64",
+                "--shadow-map-size", "256", "--frames", "2", "--set", "bias.slope=1.5"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    for (const char* f : {"image.png", "visibility.pfm", "position.pfm", "normal.pfm", "stats.json"})
+    for (const char* f :
+         {"image.png", "visibility.pfm", "position.pfm", "normal.pfm", "stats.json"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     size_t entries = 0;
-    for ([[maybe_unused]] const auto& e : fs::directory_iterator(out)) ++entries;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(out))
+        ++entries;
     EXPECT_EQ(entries, 5u) << "no staging leftovers";
 
     const PfmImage vis = readPfm(out / "visibility.pfm");

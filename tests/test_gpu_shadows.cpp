@@ -22,7 +22,8 @@ double grazingAcneFraction(const RenderResult& r, const Scene& scene, size_t* co
     const glm::vec3 hi = builtin::kGrazingBoxCenter + 0.5f * builtin::kGrazingBoxSize + margin;
     size_t lit = 0, acne = 0;
     for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
-        if (!onGround(r, i) || rayHitsBox(pixelVec(r.position, i), toLight, lo, hi)) continue;
+        if (!onGround(r, i) || rayHitsBox(pixelVec(r.position, i), toLight, lo, hi))
+            continue;
         ++lit;
         acne += r.visibility[0][i] < 1.0f;
     }
@@ -44,19 +45,25 @@ Centroids sphereShadowCentroids(const RenderResult& r, const Light& light) {
     for (uint32_t y = 0; y < r.height; ++y)
         for (uint32_t x = 0; x < r.width; ++x) {
             const size_t i = size_t{y} * r.width + x;
-            if (!onGround(r, i)) continue;
+            if (!onGround(r, i))
+                continue;
             const glm::vec3 p = pixelVec(r.position, i);
             const glm::vec3 toLight = light.type == LightType::Directional
                                           ? -glm::normalize(light.direction)
                                           : glm::normalize(light.position - p);
             const float d = rayPointDistance(p, toLight, center);
-            if (d > builtin::kSphereRadius + 0.5f) continue;
+            if (d > builtin::kSphereRadius + 0.5f)
+                continue;
             const glm::dvec2 pixel(x + 0.5, y + 0.5);
-            if (d < builtin::kSphereRadius) c.expected += pixel, ++c.expectedCount;
-            if (r.visibility[0][i] < 0.5f) c.rendered += pixel, ++c.renderedCount;
+            if (d < builtin::kSphereRadius)
+                c.expected += pixel, ++c.expectedCount;
+            if (r.visibility[0][i] < 0.5f)
+                c.rendered += pixel, ++c.renderedCount;
         }
-    if (c.expectedCount) c.expected /= static_cast<double>(c.expectedCount);
-    if (c.renderedCount) c.rendered /= static_cast<double>(c.renderedCount);
+    if (c.expectedCount)
+        c.expected /= static_cast<double>(c.expectedCount);
+    if (c.renderedCount)
+        c.rendered /= static_cast<double>(c.renderedCount);
     return c;
 }
 
@@ -95,8 +102,8 @@ TEST_F(GpuTest, SphereShadowSitsWhereTheDirectionalLightProjectsIt) {
     EXPECT_NEAR(static_cast<double>(c.renderedCount), static_cast<double>(c.expectedCount),
                 0.05 * static_cast<double>(c.expectedCount));
     EXPECT_LT(glm::length(c.rendered - c.expected), 2.0)
-        << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected ("
-        << c.expected.x << ", " << c.expected.y << ")";
+        << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected (" << c.expected.x
+        << ", " << c.expected.y << ")";
 }
 
 TEST_F(GpuTest, SphereShadowSitsWhereTheSpotLightProjectsIt) {
@@ -109,8 +116,8 @@ TEST_F(GpuTest, SphereShadowSitsWhereTheSpotLightProjectsIt) {
     EXPECT_NEAR(static_cast<double>(c.renderedCount), static_cast<double>(c.expectedCount),
                 0.05 * static_cast<double>(c.expectedCount));
     EXPECT_LT(glm::length(c.rendered - c.expected), 2.0)
-        << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected ("
-        << c.expected.x << ", " << c.expected.y << ")";
+        << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected (" << c.expected.x
+        << ", " << c.expected.y << ")";
 }
 
 TEST_F(GpuTest, PoleShadowStaysAttachedAtItsBase) {
@@ -122,7 +129,8 @@ TEST_F(GpuTest, PoleShadowStaysAttachedAtItsBase) {
     const glm::vec3 axis = glm::normalize(builtin::kPoleTip - builtin::kPoleBase);
     size_t near = 0, shadowed = 0;
     for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
-        if (!onGround(r, i)) continue;
+        if (!onGround(r, i))
+            continue;
         const glm::vec3 p = pixelVec(r.position, i);
         // Ground points whose light ray passes through the pole's core, 0.1 to 0.3 units up
         // the pole from its foot: n is the normal of the plane holding the axis and the ray.
@@ -132,7 +140,8 @@ TEST_F(GpuTest, PoleShadowStaysAttachedAtItsBase) {
         // In that plane, p + t toLight = base + s axis; dotting with perp removes t.
         const glm::vec3 perp = glm::cross(n, toLight);
         const float s = glm::dot(w, perp) / glm::dot(axis, perp);
-        if (across > 0.25f * builtin::kPoleThickness || s < 0.1f || s > 0.3f) continue;
+        if (across > 0.25f * builtin::kPoleThickness || s < 0.1f || s > 0.3f)
+            continue;
         ++near;
         shadowed += r.visibility[0][i] < 0.5f;
     }
@@ -157,7 +166,7 @@ TEST_F(GpuTest, BackgroundIsNaNAndGeometryIsBinaryVisibility) {
             EXPECT_NEAR(glm::length(pixelVec(r.normal, i)), 1.0f, 1e-3f);
         }
     }
-    EXPECT_GT(background, 0u);        // the sky in the top rows
+    EXPECT_GT(background, 0u); // the sky in the top rows
     EXPECT_TRUE(std::isnan(r.visibility[0][0]));
     EXPECT_FALSE(std::isnan(r.visibility[0][size_t{r.width} * (r.height - 1)])); // ground below
 }

@@ -7,22 +7,23 @@ using namespace penumbra;
 
 TEST(Parameters, DefaultsComeFromTheTable) {
     const ParameterValues v;
-    for (const ParameterInfo& p : allParameters()) EXPECT_EQ(v.number(p.key), p.defaultValue);
+    for (const ParameterInfo& p : allParameters())
+        EXPECT_EQ(v.number(p.key), p.defaultValue);
 }
 
 TEST(Parameters, SetParsesAndRangeChecks) {
     ParameterValues v;
     v.assign("bias.slope=1.5");
     EXPECT_DOUBLE_EQ(v.number("bias.slope"), 1.5);
-    EXPECT_THROW(v.assign("bias.slope=-1"), InputError);     // below range
-    EXPECT_THROW(v.assign("bias.slope=1e9"), InputError);    // above range
-    EXPECT_THROW(v.assign("bias.slope=abc"), InputError);    // not a number
-    EXPECT_THROW(v.assign("bias.slope=1.5x"), InputError);   // trailing junk
-    EXPECT_THROW(v.assign("bias.slope=nan"), InputError);    // not finite
-    EXPECT_THROW(v.assign("bias.slope="), InputError);       // empty
-    EXPECT_THROW(v.assign("bias.slope"), InputError);        // no '='
-    EXPECT_THROW(v.assign("pcf.nonsense=3"), InputError);    // unknown key
-    EXPECT_DOUBLE_EQ(v.number("bias.slope"), 1.5);           // failures change nothing
+    EXPECT_THROW(v.assign("bias.slope=-1"), InputError);   // below range
+    EXPECT_THROW(v.assign("bias.slope=1e9"), InputError);  // above range
+    EXPECT_THROW(v.assign("bias.slope=abc"), InputError);  // not a number
+    EXPECT_THROW(v.assign("bias.slope=1.5x"), InputError); // trailing junk
+    EXPECT_THROW(v.assign("bias.slope=nan"), InputError);  // not finite
+    EXPECT_THROW(v.assign("bias.slope="), InputError);     // empty
+    EXPECT_THROW(v.assign("bias.slope"), InputError);      // no '='
+    EXPECT_THROW(v.assign("pcf.nonsense=3"), InputError);  // unknown key
+    EXPECT_DOUBLE_EQ(v.number("bias.slope"), 1.5);         // failures change nothing
 }
 
 TEST(Parameters, ErrorsNameTheOptionAndTheKey) {

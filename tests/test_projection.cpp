@@ -103,7 +103,9 @@ TEST(LightSpace, SpotFrustumCoversTheConeAndTheScene) {
     Bounds b;
     b.grow({-4, 0, -4});
     b.grow({4, 1, 4});
-    Light spot{.type = LightType::Spot, .position = {0, 10, 0}, .direction = {0, -1, 0},
+    Light spot{.type = LightType::Spot,
+               .position = {0, 10, 0},
+               .direction = {0, -1, 0},
                .outerConeAngle = 0.5f};
     const LightProjection p = fitSpot(spot, b, 512);
     const glm::mat4 st = textureMatrix() * p.viewProj;

@@ -11,10 +11,12 @@ Action addInfoCommand(CLI::App& app, const GlobalOptions&) {
     app.add_subcommand("info", "Vulkan devices, drivers and the limits Penumbra relies on");
     return [] {
         const std::vector<DeviceInfo> devices = listDevices();
-        if (devices.empty()) fmt::print("no Vulkan device found\n");
+        if (devices.empty())
+            fmt::print("no Vulkan device found\n");
         int best = -1;
         for (const DeviceInfo& d : devices)
-            if (d.suitable && (best < 0 || d.type == "discrete GPU")) best = static_cast<int>(d.index);
+            if (d.suitable && (best < 0 || d.type == "discrete GPU"))
+                best = static_cast<int>(d.index);
         for (const DeviceInfo& d : devices) {
             fmt::print("device {}{}: {} ({})\n", d.index,
                        static_cast<int>(d.index) == best ? " [default]" : "", d.name, d.type);
@@ -22,7 +24,8 @@ Action addInfoCommand(CLI::App& app, const GlobalOptions&) {
             fmt::print("  Vulkan:                {}\n", d.apiVersion);
             fmt::print("  maxImageDimension2D:   {}  (largest shadow map and image side)\n",
                        d.maxImageDimension2D);
-            fmt::print("  compute invocations:   {} per workgroup\n", d.maxComputeWorkGroupInvocations);
+            fmt::print("  compute invocations:   {} per workgroup\n",
+                       d.maxComputeWorkGroupInvocations);
             fmt::print("  device-local memory:   {:.1f} GiB\n",
                        static_cast<double>(d.deviceLocalBytes) / (1 << 30));
             fmt::print("  timestamp period:      {} ns\n", d.timestampPeriodNs);
@@ -42,16 +45,22 @@ Action addTechniquesCommand(CLI::App& app) {
     return [json] {
         auto typeName = [](ParameterType t) {
             switch (t) {
-            case ParameterType::Float: return "float";
-            case ParameterType::Int: return "int";
-            case ParameterType::Bool: return "bool";
-            case ParameterType::Choice: return "choice";
+            case ParameterType::Float:
+                return "float";
+            case ParameterType::Int:
+                return "int";
+            case ParameterType::Bool:
+                return "bool";
+            case ParameterType::Choice:
+                return "choice";
             }
             return "?";
         };
         auto describe = [&](const ParameterInfo& p) {
-            nlohmann::json j = {{"key", p.key}, {"type", typeName(p.type)},
-                                {"description", p.description}, {"unit", p.unit}};
+            nlohmann::json j = {{"key", p.key},
+                                {"type", typeName(p.type)},
+                                {"description", p.description},
+                                {"unit", p.unit}};
             if (p.type == ParameterType::Choice) {
                 j["choices"] = p.choices;
                 j["default"] = p.choices[static_cast<size_t>(p.defaultValue)];
@@ -69,8 +78,11 @@ Action addTechniquesCommand(CLI::App& app) {
             nlohmann::json params = nlohmann::json::array();
             for (const ParameterInfo& p : allParameters())
                 for (std::string_view family : t.families)
-                    if (p.key.substr(0, p.key.find('.')) == family) params.push_back(describe(p));
-            out.push_back({{"name", t.name}, {"summary", t.summary}, {"reference", t.reference},
+                    if (p.key.substr(0, p.key.find('.')) == family)
+                        params.push_back(describe(p));
+            out.push_back({{"name", t.name},
+                           {"summary", t.summary},
+                           {"reference", t.reference},
                            {"parameters", params}});
         }
         if (*json) {
@@ -81,8 +93,8 @@ Action addTechniquesCommand(CLI::App& app) {
             fmt::print("{}  {}\n  [{}]\n", t["name"].get<std::string>(),
                        t["summary"].get<std::string>(), t["reference"].get<std::string>());
             for (const auto& p : t["parameters"]) {
-                std::string range = p.contains("min") ? fmt::format("[{}, {}]", p["min"].dump(),
-                                                                    p["max"].dump())
+                std::string range = p.contains("min")
+                                        ? fmt::format("[{}, {}]", p["min"].dump(), p["max"].dump())
                                     : p.contains("choices") ? p["choices"].dump()
                                                             : "true|false";
                 fmt::print("    --set {}={}  {} {}\n        {}{}\n", p["key"].get<std::string>(),

@@ -40,9 +40,12 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        if (app.got_subcommand("render")) return render();
-        if (app.got_subcommand("info")) return info();
-        if (app.got_subcommand("techniques")) return techniques();
+        if (app.got_subcommand("render"))
+            return render();
+        if (app.got_subcommand("info"))
+            return info();
+        if (app.got_subcommand("techniques"))
+            return techniques();
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;

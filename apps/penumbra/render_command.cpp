@@ -26,13 +26,15 @@ void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& 
     out.write("position.pfm", encodePfm(r.width, r.height, 3, r.position));
     out.write("normal.pfm", encodePfm(r.width, r.height, 3, r.normal));
     const std::string stats = renderStats(run).dump(2) + "\n";
-    out.write("stats.json", std::span(reinterpret_cast<const uint8_t*>(stats.data()), stats.size()));
+    out.write("stats.json",
+              std::span(reinterpret_cast<const uint8_t*>(stats.data()), stats.size()));
 }
 
 int runRender(const RenderArgs& args, const GlobalOptions& global) {
     RenderOptions options = args.options;
     options.technique = findTechnique(args.technique).id;
-    for (const std::string& set : args.sets) options.parameters.assign(set);
+    for (const std::string& set : args.sets)
+        options.parameters.assign(set);
     validate(options);
     const Scene scene = loadScene(args.scene);
     // Created before the long work so an unwritable path fails fast; removed again on error.
@@ -46,8 +48,9 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
                  options.height, options.shadowMapSize, args.technique.c_str());
     for (const Light& l : scene.lights)
         if (l.type == LightType::Point && l.castsShadow)
-            std::fprintf(stderr, "penumbra: note: point light '%s' lights the scene but casts no "
-                                 "shadow (point-light shadows are not in this build)\n",
+            std::fprintf(stderr,
+                         "penumbra: note: point light '%s' lights the scene but casts no "
+                         "shadow (point-light shadows are not in this build)\n",
                          l.name.c_str());
     const RenderResult result = renderer.render(scene, options, [](const std::string& stage) {
         std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
@@ -60,7 +63,8 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     out.commit();
 
     std::string files;
-    for (const std::string& f : out.staged()) files += (files.empty() ? "" : ", ") + f;
+    for (const std::string& f : out.staged())
+        files += (files.empty() ? "" : ", ") + f;
     std::printf("wrote %s/{%s}\n", out.path().c_str(), files.c_str());
     std::printf("GPU ms per pass (median of %u frames after 1 warm-up):", options.frames);
     double total = 0;

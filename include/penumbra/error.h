@@ -26,5 +26,6 @@ private:
 
 #define PENUMBRA_CHECK(cond, msg)                                                                  \
     do {                                                                                           \
-        if (!(cond)) ::penumbra::fatal(__FILE__, __LINE__, std::string("check failed: ") + (msg));  \
+        if (!(cond))                                                                               \
+            ::penumbra::fatal(__FILE__, __LINE__, std::string("check failed: ") + (msg));          \
     } while (0)

@@ -26,20 +26,20 @@ struct DeviceInfo {
     uint64_t deviceLocalBytes = 0;
     float timestampPeriodNs = 0.0f;
     bool depthLinearFilter = false; // D32_SFLOAT linear (and hardware 2x2 PCF) filtering
-    bool suitable = false; // has everything Penumbra needs
+    bool suitable = false;          // has everything Penumbra needs
     std::string unsuitableReason;
 };
 
 struct PassTime {
-    std::string pass;          // "shadow", "gbuffer", "visibility", "composite"
+    std::string pass; // "shadow", "gbuffer", "visibility", "composite"
     double medianMs = 0.0;
     std::vector<double> frameMs; // every timed frame
 };
 
 struct LightShadow {
-    uint32_t sceneLight = 0;   // index into Scene::lights
-    int visibilityIndex = -1;  // index into RenderResult::visibility; -1: casts no shadow
-    std::string projection;    // "orthographic" / "perspective" / "none"
+    uint32_t sceneLight = 0;  // index into Scene::lights
+    int visibilityIndex = -1; // index into RenderResult::visibility; -1: casts no shadow
+    std::string projection;   // "orthographic" / "perspective" / "none"
     float nearPlane = 0.0f, farPlane = 0.0f;
     float texelWorldSize = 0.0f; // at unit distance for perspective
 };

@@ -15,8 +15,8 @@ namespace penumbra {
 
 struct Vertex {
     glm::vec3 position;
-    glm::vec3 normal;   // unit length
-    uint32_t material;  // index into Scene::materials
+    glm::vec3 normal;  // unit length
+    uint32_t material; // index into Scene::materials
 };
 
 struct Material {
@@ -29,15 +29,15 @@ enum class LightType { Directional, Spot, Point };
 struct Light {
     std::string name;
     LightType type = LightType::Directional;
-    glm::vec3 position{0.0f};            // spot and point
+    glm::vec3 position{0.0f};               // spot and point
     glm::vec3 direction{0.0f, -1.0f, 0.0f}; // unit, the direction light travels (spot, directional)
-    glm::vec3 color{1.0f};               // linear RGB
-    float intensity = 1.0f;              // directional: irradiance; spot/point: per sr at 1 unit
-    float range = 0.0f;                  // spot/point; 0 = unlimited
-    float innerConeAngle = 0.0f;         // radians, spot
-    float outerConeAngle = 0.7853982f;   // radians, spot (glTF default pi/4)
-    float radius = 0.0f;                 // world units, spot/point area light size (0 = point)
-    float angularDiameter = 0.0f;        // degrees, directional light size (0 = parallel)
+    glm::vec3 color{1.0f};                  // linear RGB
+    float intensity = 1.0f;                 // directional: irradiance; spot/point: per sr at 1 unit
+    float range = 0.0f;                     // spot/point; 0 = unlimited
+    float innerConeAngle = 0.0f;            // radians, spot
+    float outerConeAngle = 0.7853982f;      // radians, spot (glTF default pi/4)
+    float radius = 0.0f;                    // world units, spot/point area light size (0 = point)
+    float angularDiameter = 0.0f;           // degrees, directional light size (0 = parallel)
     bool castsShadow = true;
 };
 
@@ -46,7 +46,7 @@ struct Camera {
     glm::vec3 position{0.0f, 2.0f, 8.0f};
     glm::vec3 target{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
-    float yfov = 0.8f;   // radians (perspective)
+    float yfov = 0.8f; // radians (perspective)
     float znear = 0.05f;
     float zfar = 200.0f;
 };

@@ -14,9 +14,9 @@ enum class Technique : uint32_t { Hard = 0 };
 
 struct TechniqueInfo {
     Technique id;
-    std::string_view name;        // CLI name, e.g. "hard"
-    std::string_view summary;     // one line
-    std::string_view reference;   // the paper or text it implements
+    std::string_view name;                  // CLI name, e.g. "hard"
+    std::string_view summary;               // one line
+    std::string_view reference;             // the paper or text it implements
     std::vector<std::string_view> families; // parameter families it reads, e.g. {"bias"}
 };
 
@@ -29,8 +29,8 @@ enum class ParameterType { Float, Int, Bool, Choice };
 struct ParameterInfo {
     std::string_view key; // "family.name"
     ParameterType type;
-    double defaultValue;  // Choice: index into choices; Bool: 0 or 1
-    double min, max;      // inclusive range for Float and Int
+    double defaultValue; // Choice: index into choices; Bool: 0 or 1
+    double min, max;     // inclusive range for Float and Int
     std::vector<std::string_view> choices;
     std::string_view unit;
     std::string_view description;
@@ -47,7 +47,7 @@ public:
     void set(std::string_view key, std::string_view value);
     // Parses "key=value".
     void assign(std::string_view keyEqualsValue);
-    double number(std::string_view key) const; // programmer error if key is unknown
+    double number(std::string_view key) const;    // programmer error if key is unknown
     std::string text(std::string_view key) const; // value as the user would write it
     const std::map<std::string, double, std::less<>>& all() const { return mValues; }
 
@@ -59,8 +59,8 @@ struct RenderOptions {
     uint32_t width = 1280;
     uint32_t height = 720;
     uint32_t shadowMapSize = 2048;
-    uint32_t frames = 5;   // timed frames after one warm-up frame
-    std::string camera;    // glTF camera name; empty = first camera or automatic framing
+    uint32_t frames = 5; // timed frames after one warm-up frame
+    std::string camera;  // glTF camera name; empty = first camera or automatic framing
     Technique technique = Technique::Hard;
     ParameterValues parameters;
     float lightRadiusOverride = -1.0f; // world units; < 0 = from the scene

@@ -24,27 +24,27 @@ using uint = uint32_t;
 
 #define GROUP_SIZE 8u
 
-struct CameraData {     // std140 uniform block
-    mat4 viewProj;      // world -> clip (reverse-Z, y flipped)
-    mat4 invViewProj;   // clip -> world
-    vec4 position;      // xyz: camera position
-    uvec4 imageSize;    // x width, y height, z light count
-    vec4 composite;     // x ambient, y shadow intensity
-    vec4 background;    // rgb: colour of pixels with no geometry
+struct CameraData {   // std140 uniform block
+    mat4 viewProj;    // world -> clip (reverse-Z, y flipped)
+    mat4 invViewProj; // clip -> world
+    vec4 position;    // xyz: camera position
+    uvec4 imageSize;  // x width, y height, z light count
+    vec4 composite;   // x ambient, y shadow intensity
+    vec4 background;  // rgb: colour of pixels with no geometry
 };
 
-struct LightData {      // std430 storage buffer, one per scene light
-    mat4 shadowMatrix;  // world -> (u, v, depth) * w: T x light view-projection
-    vec4 positionType;  // xyz position (spot, point), w: LIGHT_* type
-    vec4 directionRange;// xyz direction the light travels, w range (0 = unlimited)
-    vec4 colorIntensity;// rgb linear colour, a intensity
-    vec4 cone;          // x cos(outer), y cos(inner), z texel world size, w shadow layer (-1 none)
-    vec4 bias;          // x constant, y slope, z normal offset (texels), w 1 if perspective
+struct LightData {       // std430 storage buffer, one per scene light
+    mat4 shadowMatrix;   // world -> (u, v, depth) * w: T x light view-projection
+    vec4 positionType;   // xyz position (spot, point), w: LIGHT_* type
+    vec4 directionRange; // xyz direction the light travels, w range (0 = unlimited)
+    vec4 colorIntensity; // rgb linear colour, a intensity
+    vec4 cone;           // x cos(outer), y cos(inner), z texel world size, w shadow layer (-1 none)
+    vec4 bias;           // x constant, y slope, z normal offset (texels), w 1 if perspective
 };
 
-struct ShadowPush {     // push constants of shadow_depth.vert
+struct ShadowPush { // push constants of shadow_depth.vert
     mat4 viewProj;
-    vec4 bias;          // x: constant depth offset
+    vec4 bias; // x: constant depth offset
 };
 
 struct VisibilityPush { // push constants of visibility.comp

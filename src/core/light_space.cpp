@@ -40,11 +40,11 @@ LightProjection fitDirectional(const Light& light, const Bounds& scene, uint32_t
     p.window = {lo.x - pad, hi.x + pad, lo.y - pad, hi.y + pad};
     p.nearPlane = -hi.z - pad; // view looks down -z: distance = -z
     p.farPlane = -lo.z + pad;
-    p.projection = orthographic(p.window.x, p.window.y, p.window.z, p.window.w, p.nearPlane,
-                                p.farPlane);
+    p.projection =
+        orthographic(p.window.x, p.window.y, p.window.z, p.window.w, p.nearPlane, p.farPlane);
     p.viewProj = p.projection * p.view;
-    p.texelWorldSize = std::max(p.window.y - p.window.x, p.window.w - p.window.z) /
-                       static_cast<float>(mapSize);
+    p.texelWorldSize =
+        std::max(p.window.y - p.window.x, p.window.w - p.window.z) / static_cast<float>(mapSize);
     return p;
 }
 
@@ -62,7 +62,8 @@ LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSiz
         const float depth = -(p.view * glm::vec4(c, 1.0f)).z;
         nearest = std::min(nearest, depth), farthest = std::max(farthest, depth);
     }
-    if (light.range > 0.0f) farthest = std::min(farthest, light.range);
+    if (light.range > 0.0f)
+        farthest = std::min(farthest, light.range);
     p.farPlane = std::max(farthest * 1.001f, 1e-3f);
     // A light inside the scene bounds sees geometry at any distance: keep depth precision
     // bounded (far/near <= 1e4) rather than put the near plane at zero.
@@ -75,9 +76,12 @@ LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSiz
 
 LightProjection fitLight(const Light& light, const Bounds& scene, uint32_t mapSize) {
     switch (light.type) {
-    case LightType::Directional: return fitDirectional(light, scene, mapSize);
-    case LightType::Spot: return fitSpot(light, scene, mapSize);
-    case LightType::Point: break;
+    case LightType::Directional:
+        return fitDirectional(light, scene, mapSize);
+    case LightType::Spot:
+        return fitSpot(light, scene, mapSize);
+    case LightType::Point:
+        break;
     }
     fatal(__FILE__, __LINE__, "fitLight: point lights have no single shadow projection");
 }

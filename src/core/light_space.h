@@ -16,8 +16,8 @@ struct LightProjection {
     glm::mat4 projection{1.0f}; // light view -> clip
     glm::mat4 viewProj{1.0f};   // world -> clip
     float nearPlane = 0.0f, farPlane = 0.0f;
-    glm::vec4 window{0.0f};     // orthographic l, r, b, t (view units)
-    float yfov = 0.0f;          // perspective
+    glm::vec4 window{0.0f}; // orthographic l, r, b, t (view units)
+    float yfov = 0.0f;      // perspective
     // World size of one shadow-map texel: constant for orthographic; for perspective, the size
     // at unit distance along the light axis (multiply by the distance).
     float texelWorldSize = 0.0f;

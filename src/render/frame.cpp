@@ -7,11 +7,17 @@
 namespace penumbra::render {
 namespace {
 
-uint32_t groups(uint32_t n) { return (n + GROUP_SIZE - 1) / GROUP_SIZE; }
+uint32_t groups(uint32_t n) {
+    return (n + GROUP_SIZE - 1) / GROUP_SIZE;
+}
 
 void setViewport(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
-    const VkViewport viewport{.x = 0, .y = 0, .width = static_cast<float>(width),
-                              .height = static_cast<float>(height), .minDepth = 0, .maxDepth = 1};
+    const VkViewport viewport{.x = 0,
+                              .y = 0,
+                              .width = static_cast<float>(width),
+                              .height = static_cast<float>(height),
+                              .minDepth = 0,
+                              .maxDepth = 1};
     const VkRect2D scissor{.offset = {0, 0}, .extent = {width, height}};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &scissor);
@@ -47,11 +53,13 @@ void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& 
         vkCmdBeginRendering(cmd, &info);
         setViewport(cmd, view.map.width, view.map.height);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                          view.projection.perspective ? p.shadowPerspective.get() : p.shadowOrtho.get());
+                          view.projection.perspective ? p.shadowPerspective.get()
+                                                      : p.shadowOrtho.get());
         vkCmdSetDepthBias(cmd, 0.0f, 0.0f, s.slopeBias);
         const gpu::ShadowPush push{.viewProj = view.projection.viewProj,
                                    .bias = {s.constantBias, 0, 0, 0}};
-        vkCmdPushConstants(cmd, p.shadowLayout.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
+        vkCmdPushConstants(cmd, p.shadowLayout.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push,
+                           &push);
         bindGeometry(cmd, scene);
         vkCmdDrawIndexed(cmd, scene.indexCount, 1, 0, 0, 0);
         vkCmdEndRendering(cmd);
@@ -164,11 +172,12 @@ void recordReadback(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, VkB
                                                              {&t.exportNormal, vk::kComputeWrite}};
     for (const auto& [image, state] : sources) {
         vk::imageBarrier(cmd, *image, state, vk::kTransferRead);
-        const VkBufferImageCopy region{
-            .bufferOffset = offset,
-            .imageSubresource = {.aspectMask = image->aspect, .mipLevel = 0,
-                                 .baseArrayLayer = 0, .layerCount = image->layers},
-            .imageExtent = {image->width, image->height, 1}};
+        const VkBufferImageCopy region{.bufferOffset = offset,
+                                       .imageSubresource = {.aspectMask = image->aspect,
+                                                            .mipLevel = 0,
+                                                            .baseArrayLayer = 0,
+                                                            .layerCount = image->layers},
+                                       .imageExtent = {image->width, image->height, 1}};
         vkCmdCopyImageToBuffer(cmd, image->get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback, 1,
                                &region);
         offset += VkDeviceSize{image->width} * image->height * image->layers *
@@ -178,8 +187,10 @@ void recordReadback(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, VkB
 
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
     std::vector<glm::vec4> colors;
-    for (const Material& m : scene.materials) colors.push_back(m.baseColor);
-    if (colors.empty()) colors.emplace_back(0.8f, 0.8f, 0.8f, 1.0f);
+    for (const Material& m : scene.materials)
+        colors.push_back(m.baseColor);
+    if (colors.empty())
+        colors.emplace_back(0.8f, 0.8f, 0.8f, 1.0f);
     return {.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.vertices)),
                                          VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex buffer"),
             .indices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.indices)),

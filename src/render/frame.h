@@ -18,9 +18,9 @@ struct GpuScene {
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
 
 struct ShadowView {
-    uint32_t light;             // index into the scene's lights
+    uint32_t light; // index into the scene's lights
     LightProjection projection;
-    vk::Image map;              // D32_SFLOAT, the seeds' depth (near 0, far 1)
+    vk::Image map; // D32_SFLOAT, the seeds' depth (near 0, far 1)
 };
 
 struct FrameTargets {
@@ -30,7 +30,7 @@ struct FrameTargets {
     vk::Image color;                  // RGBA8, sRGB-encoded values
     vk::Image position, exportNormal; // RGBA32F, filled for readback only
     std::vector<ShadowView> shadows;
-    vk::Buffer camera, lights;        // CameraData, LightData[]
+    vk::Buffer camera, lights; // CameraData, LightData[]
     vk::SamplerHandle nearest, compare;
 };
 

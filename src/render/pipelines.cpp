@@ -16,7 +16,9 @@ constexpr VkDescriptorType kImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 vk::GraphicsPipelineDesc shadowDesc(bool depthClamp) {
     return {.vertexShader = "shadow_depth.vert",
             .vertexStride = sizeof(Vertex),
-            .attributes = {{.location = 0, .binding = 0, .format = VK_FORMAT_R32G32B32_SFLOAT,
+            .attributes = {{.location = 0,
+                            .binding = 0,
+                            .format = VK_FORMAT_R32G32B32_SFLOAT,
                             .offset = offsetof(Vertex, position)}},
             .depthFormat = kDepthFormat,
             .depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL,
@@ -28,35 +30,56 @@ vk::GraphicsPipelineDesc shadowDesc(bool depthClamp) {
 
 FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     static_assert(static_cast<uint32_t>(Technique::Hard) == TECHNIQUE_HARD);
-    shadowLayout = vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
-    gbufferLayout = vk::createPipelineLayout(ctx, {{0, kUniform}, {1, kStorage}},
-                                             VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0);
-    visibilityLayout = vk::createPipelineLayout(
-        ctx, {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled}, {6, kImage}},
-        VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
-    compositeLayout = vk::createPipelineLayout(
-        ctx, {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kSampled}, {5, kSampled}, {6, kImage}},
-        VK_SHADER_STAGE_COMPUTE_BIT, 0);
+    shadowLayout =
+        vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
+    gbufferLayout =
+        vk::createPipelineLayout(ctx, {{0, kUniform}, {1, kStorage}},
+                                 VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0);
+    visibilityLayout =
+        vk::createPipelineLayout(ctx,
+                                 {{0, kUniform},
+                                  {1, kStorage},
+                                  {2, kSampled},
+                                  {3, kSampled},
+                                  {4, kSampled},
+                                  {5, kSampled},
+                                  {6, kImage}},
+                                 VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
+    compositeLayout = vk::createPipelineLayout(ctx,
+                                               {{0, kUniform},
+                                                {1, kStorage},
+                                                {2, kSampled},
+                                                {3, kSampled},
+                                                {4, kSampled},
+                                                {5, kSampled},
+                                                {6, kImage}},
+                                               VK_SHADER_STAGE_COMPUTE_BIT, 0);
     exportLayout = vk::createPipelineLayout(
         ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kImage}, {4, kImage}},
         VK_SHADER_STAGE_COMPUTE_BIT, 0);
 
     shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(true));
     shadowPerspective = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(false));
-    gbuffer = vk::createGraphicsPipeline(
-        ctx, gbufferLayout,
-        {.vertexShader = "gbuffer.vert",
-         .fragmentShader = "gbuffer.frag",
-         .vertexStride = sizeof(Vertex),
-         .attributes = {{.location = 0, .binding = 0, .format = VK_FORMAT_R32G32B32_SFLOAT,
-                         .offset = offsetof(Vertex, position)},
-                        {.location = 1, .binding = 0, .format = VK_FORMAT_R32G32B32_SFLOAT,
-                         .offset = offsetof(Vertex, normal)},
-                        {.location = 2, .binding = 0, .format = VK_FORMAT_R32_UINT,
-                         .offset = offsetof(Vertex, material)}},
-         .colorFormats = {kNormalFormat, kAlbedoFormat},
-         .depthFormat = kDepthFormat,
-         .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL}); // reverse-Z
+    gbuffer =
+        vk::createGraphicsPipeline(ctx, gbufferLayout,
+                                   {.vertexShader = "gbuffer.vert",
+                                    .fragmentShader = "gbuffer.frag",
+                                    .vertexStride = sizeof(Vertex),
+                                    .attributes = {{.location = 0,
+                                                    .binding = 0,
+                                                    .format = VK_FORMAT_R32G32B32_SFLOAT,
+                                                    .offset = offsetof(Vertex, position)},
+                                                   {.location = 1,
+                                                    .binding = 0,
+                                                    .format = VK_FORMAT_R32G32B32_SFLOAT,
+                                                    .offset = offsetof(Vertex, normal)},
+                                                   {.location = 2,
+                                                    .binding = 0,
+                                                    .format = VK_FORMAT_R32_UINT,
+                                                    .offset = offsetof(Vertex, material)}},
+                                    .colorFormats = {kNormalFormat, kAlbedoFormat},
+                                    .depthFormat = kDepthFormat,
+                                    .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL}); // reverse-Z
     composite = vk::createComputePipeline(ctx, compositeLayout, "composite.comp");
     exportGBuffer = vk::createComputePipeline(ctx, exportLayout, "export.comp");
 }
@@ -64,7 +87,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
 VkPipeline FramePipelines::visibility(Technique technique) {
     auto it = mVisibility.find(technique);
     if (it == mVisibility.end()) {
-        const vk::SpecConstant constants[] = {{/* TECHNIQUE= */ 0, static_cast<uint32_t>(technique)}};
+        const vk::SpecConstant constants[] = {
+            {/* TECHNIQUE= */ 0, static_cast<uint32_t>(technique)}};
         it = mVisibility
                  .emplace(technique, vk::createComputePipeline(ctx, visibilityLayout,
                                                                "visibility.comp", constants))

@@ -23,7 +23,8 @@ namespace {
 
 size_t shadowCasterCount(const Scene& scene) {
     size_t n = 0;
-    for (const Light& l : scene.lights) n += l.castsShadow && l.type != LightType::Point;
+    for (const Light& l : scene.lights)
+        n += l.castsShadow && l.type != LightType::Point;
     return n;
 }
 
@@ -31,17 +32,19 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, size_t sh
     const uint32_t limit = ctx.limits().maxImageDimension2D;
     auto tooBig = [&](const char* option, uint32_t value) {
         if (value > limit)
-            throw InputError(option, fmt::format("{} exceeds this device's maxImageDimension2D ({})",
-                                                 value, limit));
+            throw InputError(
+                option,
+                fmt::format("{} exceeds this device's maxImageDimension2D ({})", value, limit));
     };
     tooBig("--width", o.width);
     tooBig("--height", o.height);
     tooBig("--shadow-map-size", o.shadowMapSize);
     // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
     const double pixels = double(o.width) * double(o.height);
-    const double shadowBytes = double(o.shadowMapSize) * o.shadowMapSize * 4.0 * double(shadowLights);
-    const double need = pixels * (16 + 36 + 2 * 4.0 * double(std::max<size_t>(shadowLights, 1)) + 36) +
-                        shadowBytes;
+    const double shadowBytes =
+        double(o.shadowMapSize) * o.shadowMapSize * 4.0 * double(shadowLights);
+    const double need =
+        pixels * (16 + 36 + 2 * 4.0 * double(std::max<size_t>(shadowLights, 1)) + 36) + shadowBytes;
     const double have = static_cast<double>(ctx.deviceLocalHeapBytes());
     if (need > 0.8 * have)
         throw InputError(shadowBytes > pixels * 100 ? "--shadow-map-size" : "--width",
@@ -54,7 +57,8 @@ gpu::CameraData cameraData(const Camera& camera, const RenderOptions& o, uint32_
                            const ParameterValues& params) {
     const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
     const glm::mat4 view = lookAt(camera.position, camera.target, camera.up);
-    const glm::mat4 proj = perspectiveCameraReverseZ(camera.yfov, aspect, camera.znear, camera.zfar);
+    const glm::mat4 proj =
+        perspectiveCameraReverseZ(camera.yfov, aspect, camera.znear, camera.zfar);
     // Inverting in double keeps reconstructed positions accurate far from the origin.
     const glm::dmat4 inv = glm::inverse(glm::dmat4(proj) * glm::dmat4(view));
     return {.viewProj = proj * view,
@@ -93,8 +97,12 @@ vk::Buffer hostBuffer(const vk::Context& ctx, std::span<const std::byte> bytes,
 vk::Image targetImage(const vk::Context& ctx, const char* name, VkFormat format, uint32_t w,
                       uint32_t h, VkImageUsageFlags usage, uint32_t layers = 0) {
     // layers = 0: a plain 2D image; >= 1: an array image with an array view.
-    return vk::createImage(ctx, {.name = name, .format = format, .width = w, .height = h,
-                                 .layers = std::max(layers, 1u), .usage = usage,
+    return vk::createImage(ctx, {.name = name,
+                                 .format = format,
+                                 .width = w,
+                                 .height = h,
+                                 .layers = std::max(layers, 1u),
+                                 .usage = usage,
                                  .arrayView = layers > 0});
 }
 
@@ -109,12 +117,17 @@ double median(std::vector<double> values) {
 Renderer::Renderer(const DeviceOptions& options) : mImpl(std::make_unique<Impl>(options)) {}
 Renderer::~Renderer() = default;
 
-const DeviceInfo& Renderer::device() const { return mImpl->ctx.info(); }
-uint32_t Renderer::validationErrors() const { return mImpl->ctx.validationErrors(); }
+const DeviceInfo& Renderer::device() const {
+    return mImpl->ctx.info();
+}
+uint32_t Renderer::validationErrors() const {
+    return mImpl->ctx.validationErrors();
+}
 
 void Renderer::check(const Scene& scene, const RenderOptions& o) const {
     validate(o);
-    if (scene.triangleCount() == 0) throw InputError(scene.name, "the scene has no triangles");
+    if (scene.triangleCount() == 0)
+        throw InputError(scene.name, "the scene has no triangles");
     (void)scene.camera(o.camera); // throws for an unknown camera name
     checkDeviceLimits(mImpl->ctx, o, shadowCasterCount(scene));
 }
@@ -142,7 +155,8 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
         const bool casts = light.castsShadow && light.type != LightType::Point;
         if (casts) {
             info.visibilityIndex = static_cast<int>(t.shadows.size());
-            t.shadows.push_back({.light = i, .projection = fitLight(light, bounds, o.shadowMapSize)});
+            t.shadows.push_back(
+                {.light = i, .projection = fitLight(light, bounds, o.shadowMapSize)});
             const LightProjection& p = t.shadows.back().projection;
             info.projection = p.perspective ? "perspective" : "orthographic";
             info.nearPlane = p.nearPlane, info.farPlane = p.farPlane;
@@ -153,13 +167,15 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
         result.lights.push_back(info);
     }
 
-    if (progress) progress("uploading scene");
+    if (progress)
+        progress("uploading scene");
     const render::GpuScene gpuScene = render::uploadScene(ctx, scene);
     const gpu::CameraData cameraBlock =
         cameraData(camera, o, static_cast<uint32_t>(lights.size()), o.parameters);
     t.camera = hostBuffer(ctx, std::as_bytes(std::span(&cameraBlock, 1)),
                           VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "camera buffer");
-    if (lights.empty()) lights.push_back({}); // storage buffers cannot be empty; count is 0
+    if (lights.empty())
+        lights.push_back({}); // storage buffers cannot be empty; count is 0
     t.lights = hostBuffer(ctx, std::as_bytes(std::span(lights)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                           "light buffer");
     t.nearest = vk::createSampler(ctx, {.filter = VK_FILTER_NEAREST});
@@ -167,10 +183,12 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
         ctx, {.filter = ctx.info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST,
               .compare = true});
     constexpr VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT;
-    constexpr VkImageUsageFlags storageOut = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    constexpr VkImageUsageFlags storageOut =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     for (render::ShadowView& view : t.shadows)
-        view.map = targetImage(ctx, "--shadow-map-size", render::kDepthFormat, o.shadowMapSize,
-                               o.shadowMapSize, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);
+        view.map =
+            targetImage(ctx, "--shadow-map-size", render::kDepthFormat, o.shadowMapSize,
+                        o.shadowMapSize, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);
     const uint32_t w = o.width, h = o.height;
     t.depth = targetImage(ctx, "G-buffer depth", render::kDepthFormat, w, h,
                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);
@@ -179,7 +197,8 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
     t.albedo = targetImage(ctx, "G-buffer albedo", render::kAlbedoFormat, w, h,
                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | sampled);
     const uint32_t layers = std::max<uint32_t>(1, static_cast<uint32_t>(t.shadows.size()));
-    t.visibility = targetImage(ctx, "visibility", VK_FORMAT_R32_SFLOAT, w, h, storageOut | sampled, layers);
+    t.visibility =
+        targetImage(ctx, "visibility", VK_FORMAT_R32_SFLOAT, w, h, storageOut | sampled, layers);
     t.color = targetImage(ctx, "colour", VK_FORMAT_R8G8B8A8_UNORM, w, h, storageOut);
     t.position = targetImage(ctx, "position", VK_FORMAT_R32G32B32A32_SFLOAT, w, h, storageOut);
     t.exportNormal = targetImage(ctx, "normal", VK_FORMAT_R32G32B32A32_SFLOAT, w, h, storageOut);
@@ -198,17 +217,21 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
         ctx.submitAndWait([&](VkCommandBuffer cmd) {
             render::recordFrame(cmd, mImpl->pipelines, gpuScene, t, settings, timer);
         });
-        if (frame == 0) continue; // the warm-up frame pays for first-use costs
+        if (frame == 0)
+            continue; // the warm-up frame pays for first-use costs
         for (const auto& [pass, ms] : timer.read()) {
             auto it = std::find_if(result.passes.begin(), result.passes.end(),
                                    [&](const PassTime& p) { return p.pass == pass; });
-            if (it == result.passes.end()) it = result.passes.insert(result.passes.end(), {.pass = pass});
+            if (it == result.passes.end())
+                it = result.passes.insert(result.passes.end(), {.pass = pass});
             it->frameMs.push_back(ms);
         }
     }
-    for (PassTime& p : result.passes) p.medianMs = median(p.frameMs);
+    for (PassTime& p : result.passes)
+        p.medianMs = median(p.frameMs);
 
-    if (progress) progress("reading back");
+    if (progress)
+        progress("reading back");
     const size_t pixels = size_t{w} * h;
     const size_t bytes = pixels * (4 + 4 * layers + 16 + 16);
     vk::Buffer readback = vk::createBuffer(ctx, bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -229,7 +252,8 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
         out->resize(pixels * 3);
         const auto* rgba = reinterpret_cast<const float*>(src);
         for (size_t i = 0; i < pixels; ++i)
-            for (int c = 0; c < 3; ++c) (*out)[3 * i + c] = rgba[4 * i + c];
+            for (int c = 0; c < 3; ++c)
+                (*out)[3 * i + c] = rgba[4 * i + c];
         src += pixels * 16;
     }
     return result;
@@ -239,7 +263,8 @@ std::vector<DeviceInfo> listDevices() {
     vk::Instance instance(false);
     std::vector<DeviceInfo> infos;
     const auto devices = instance.physicalDevices();
-    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(instance.describe(devices[i], i));
+    for (uint32_t i = 0; i < devices.size(); ++i)
+        infos.push_back(instance.describe(devices[i], i));
     return infos;
 }
 

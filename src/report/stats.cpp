@@ -5,13 +5,18 @@
 namespace penumbra {
 namespace {
 
-nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+nlohmann::json vec(const glm::vec3& v) {
+    return {v.x, v.y, v.z};
+}
 
 const char* typeName(LightType type) {
     switch (type) {
-    case LightType::Directional: return "directional";
-    case LightType::Spot: return "spot";
-    case LightType::Point: return "point";
+    case LightType::Directional:
+        return "directional";
+    case LightType::Spot:
+        return "spot";
+    case LightType::Point:
+        return "point";
     }
     return "unknown";
 }
@@ -46,7 +51,8 @@ nlohmann::json renderStats(const RenderRun& run) {
     j["image"] = {{"width", o.width}, {"height", o.height}};
     j["shadow_map_size"] = o.shadowMapSize;
     for (const TechniqueInfo& t : allTechniques())
-        if (t.id == o.technique) j["technique"] = t.name;
+        if (t.id == o.technique)
+            j["technique"] = t.name;
     nlohmann::json params = nlohmann::json::object();
     for (const ParameterInfo& p : allParameters()) {
         if (p.type == ParameterType::Choice || p.type == ParameterType::Bool)
@@ -63,8 +69,8 @@ nlohmann::json renderStats(const RenderRun& run) {
                                 {"casts_shadow", s.visibilityIndex >= 0},
                                 {"projection", s.projection}};
         if (l.type == LightType::Directional)
-            light["angular_diameter_degrees"] = o.lightAngleOverride >= 0 ? o.lightAngleOverride
-                                                                          : l.angularDiameter;
+            light["angular_diameter_degrees"] =
+                o.lightAngleOverride >= 0 ? o.lightAngleOverride : l.angularDiameter;
         else
             light["radius"] = o.lightRadiusOverride >= 0 ? o.lightRadiusOverride : l.radius;
         if (s.visibilityIndex >= 0) {

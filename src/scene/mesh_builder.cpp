@@ -67,8 +67,10 @@ void MeshBuilder::sphere(const glm::vec3& center, float radius, uint32_t materia
     for (uint32_t i = 0; i < stacks; ++i)
         for (uint32_t j = 0; j < slices; ++j) {
             const uint32_t a = base + i * (slices + 1) + j, b = a + slices + 1;
-            if (i != 0) mScene.indices.insert(mScene.indices.end(), {a, b, a + 1});
-            if (i + 1 != stacks) mScene.indices.insert(mScene.indices.end(), {a + 1, b, b + 1});
+            if (i != 0)
+                mScene.indices.insert(mScene.indices.end(), {a, b, a + 1});
+            if (i + 1 != stacks)
+                mScene.indices.insert(mScene.indices.end(), {a + 1, b, b + 1});
         }
 }
 

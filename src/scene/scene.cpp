@@ -1,5 +1,5 @@
-#include "penumbra/error.h"
 #include "penumbra/scene.h"
+#include "penumbra/error.h"
 #include "scene/builtin_scenes.h"
 
 #include <fmt/format.h>
@@ -13,28 +13,32 @@ struct BuiltinEntry {
     std::string_view name;
     Scene (*make)();
 };
-constexpr BuiltinEntry kBuiltins[] = {{"showcase", builtin::showcase},
-                                      {"grazing", builtin::grazing},
-                                      {"spot", builtin::spot}};
+constexpr BuiltinEntry kBuiltins[] = {
+    {"showcase", builtin::showcase}, {"grazing", builtin::grazing}, {"spot", builtin::spot}};
 
 } // namespace
 
 Bounds Scene::bounds() const {
     Bounds b;
-    for (const Vertex& v : vertices) b.grow(v.position);
+    for (const Vertex& v : vertices)
+        b.grow(v.position);
     return b;
 }
 
 Camera Scene::camera(std::string_view cameraName) const {
     if (!cameraName.empty()) {
         for (const Camera& c : cameras)
-            if (c.name == cameraName) return c;
+            if (c.name == cameraName)
+                return c;
         std::string names;
-        for (const Camera& c : cameras) names += (names.empty() ? "" : ", ") + c.name;
-        throw InputError("--camera", fmt::format("scene '{}' has no camera named '{}' (cameras: {})",
-                                                 name, cameraName, names.empty() ? "none" : names));
+        for (const Camera& c : cameras)
+            names += (names.empty() ? "" : ", ") + c.name;
+        throw InputError("--camera",
+                         fmt::format("scene '{}' has no camera named '{}' (cameras: {})", name,
+                                     cameraName, names.empty() ? "none" : names));
     }
-    if (!cameras.empty()) return cameras.front();
+    if (!cameras.empty())
+        return cameras.front();
     // Automatic framing: look at the bounds' centre from above and in front, far enough for
     // the bounding sphere to fit the vertical field of view.
     const Bounds b = bounds();
@@ -50,7 +54,8 @@ Camera Scene::camera(std::string_view cameraName) const {
 
 std::vector<std::string_view> builtinSceneNames() {
     std::vector<std::string_view> names;
-    for (const auto& b : kBuiltins) names.push_back(b.name);
+    for (const auto& b : kBuiltins)
+        names.push_back(b.name);
     return names;
 }
 
@@ -59,9 +64,11 @@ Scene loadScene(std::string_view spec) {
     if (spec.starts_with(prefix)) {
         const std::string_view name = spec.substr(prefix.size());
         for (const auto& b : kBuiltins)
-            if (b.name == name) return b.make();
+            if (b.name == name)
+                return b.make();
         std::string names;
-        for (const auto& b : kBuiltins) names += (names.empty() ? "" : ", ") + std::string(b.name);
+        for (const auto& b : kBuiltins)
+            names += (names.empty() ? "" : ", ") + std::string(b.name);
         throw InputError(std::string(spec), "no such built-in scene (built-in: " + names + ")");
     }
     // glTF arrives with issue 4; until then the refusal names what is accepted.

@@ -68,7 +68,8 @@ const std::vector<ParameterInfo>& parameterTable() {
 
 const ParameterInfo* findParameter(std::string_view key) {
     for (const ParameterInfo& p : parameterTable())
-        if (p.key == key) return &p;
+        if (p.key == key)
+            return &p;
     return nullptr;
 }
 
@@ -84,20 +85,25 @@ double parseValue(const ParameterInfo& p, std::string_view text) {
         return InputError("--set", fmt::format("{}={}: {}", p.key, text, why));
     };
     if (p.type == ParameterType::Bool) {
-        if (text == "true" || text == "1" || text == "on") return 1.0;
-        if (text == "false" || text == "0" || text == "off") return 0.0;
+        if (text == "true" || text == "1" || text == "on")
+            return 1.0;
+        if (text == "false" || text == "0" || text == "off")
+            return 0.0;
         throw bad("expected true or false");
     }
     if (p.type == ParameterType::Choice) {
         for (size_t i = 0; i < p.choices.size(); ++i)
-            if (p.choices[i] == text) return static_cast<double>(i);
+            if (p.choices[i] == text)
+                return static_cast<double>(i);
         throw bad(fmt::format("expected one of {}", fmt::join(p.choices, ", ")));
     }
     double value = 0.0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (text.empty() || ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size() ||
+        !std::isfinite(value))
         throw bad("not a finite number");
-    if (p.type == ParameterType::Int && value != std::floor(value)) throw bad("expected an integer");
+    if (p.type == ParameterType::Int && value != std::floor(value))
+        throw bad("expected an integer");
     if (value < p.min || value > p.max)
         throw bad(fmt::format("out of range [{}, {}]", p.min, p.max));
     return value;
@@ -105,27 +111,35 @@ double parseValue(const ParameterInfo& p, std::string_view text) {
 
 } // namespace
 
-std::span<const TechniqueInfo> allTechniques() { return techniqueTable(); }
+std::span<const TechniqueInfo> allTechniques() {
+    return techniqueTable();
+}
 
 const TechniqueInfo& findTechnique(std::string_view name) {
     for (const TechniqueInfo& t : techniqueTable())
-        if (t.name == name) return t;
+        if (t.name == name)
+            return t;
     std::string names;
     for (const TechniqueInfo& t : techniqueTable())
         names += (names.empty() ? "" : ", ") + std::string(t.name);
-    throw InputError("--technique", fmt::format("unknown technique '{}' (available: {})", name, names));
+    throw InputError("--technique",
+                     fmt::format("unknown technique '{}' (available: {})", name, names));
 }
 
-std::span<const ParameterInfo> allParameters() { return parameterTable(); }
+std::span<const ParameterInfo> allParameters() {
+    return parameterTable();
+}
 
 ParameterValues::ParameterValues() {
-    for (const ParameterInfo& p : parameterTable()) mValues.emplace(p.key, p.defaultValue);
+    for (const ParameterInfo& p : parameterTable())
+        mValues.emplace(p.key, p.defaultValue);
 }
 
 void ParameterValues::set(std::string_view key, std::string_view value) {
     const ParameterInfo* p = findParameter(key);
     if (!p)
-        throw InputError("--set", fmt::format("unknown parameter '{}' (known: {})", key, knownKeys()));
+        throw InputError("--set",
+                         fmt::format("unknown parameter '{}' (known: {})", key, knownKeys()));
     mValues.find(key)->second = parseValue(*p, value);
 }
 
@@ -146,19 +160,25 @@ std::string ParameterValues::text(std::string_view key) const {
     const ParameterInfo* p = findParameter(key);
     PENUMBRA_CHECK(p != nullptr, "unregistered parameter " + std::string(key));
     const double v = number(key);
-    if (p->type == ParameterType::Bool) return v != 0.0 ? "true" : "false";
-    if (p->type == ParameterType::Choice) return std::string(p->choices[static_cast<size_t>(v)]);
+    if (p->type == ParameterType::Bool)
+        return v != 0.0 ? "true" : "false";
+    if (p->type == ParameterType::Choice)
+        return std::string(p->choices[static_cast<size_t>(v)]);
     return fmt::format("{}", v);
 }
 
 void validate(const RenderOptions& o) {
-    if (o.width == 0) throw InputError("--width", "must be at least 1");
-    if (o.height == 0) throw InputError("--height", "must be at least 1");
+    if (o.width == 0)
+        throw InputError("--width", "must be at least 1");
+    if (o.height == 0)
+        throw InputError("--height", "must be at least 1");
     if (o.shadowMapSize < 16)
-        throw InputError("--shadow-map-size", fmt::format("{} is too small (minimum 16)",
-                                                          o.shadowMapSize));
-    if (o.frames == 0) throw InputError("--frames", "must be at least 1");
-    if (o.frames > 10000) throw InputError("--frames", "at most 10000");
+        throw InputError("--shadow-map-size",
+                         fmt::format("{} is too small (minimum 16)", o.shadowMapSize));
+    if (o.frames == 0)
+        throw InputError("--frames", "must be at least 1");
+    if (o.frames > 10000)
+        throw InputError("--frames", "at most 10000");
     if (o.lightRadiusOverride >= 0.0f && !std::isfinite(o.lightRadiusOverride))
         throw InputError("--light-radius", "not a finite number");
     if (o.lightAngleOverride > 30.0f)

@@ -8,7 +8,8 @@ namespace penumbra::vk {
 const char* resultName(VkResult result) {
     switch (result) {
 #define PENUMBRA_RESULT(r)                                                                         \
-    case r: return #r;
+    case r:                                                                                        \
+        return #r;
         PENUMBRA_RESULT(VK_SUCCESS)
         PENUMBRA_RESULT(VK_NOT_READY)
         PENUMBRA_RESULT(VK_TIMEOUT)
@@ -27,7 +28,8 @@ const char* resultName(VkResult result) {
         PENUMBRA_RESULT(VK_ERROR_FRAGMENTED_POOL)
         PENUMBRA_RESULT(VK_ERROR_OUT_OF_POOL_MEMORY)
 #undef PENUMBRA_RESULT
-    default: return "VkResult(unknown)";
+    default:
+        return "VkResult(unknown)";
     }
 }
 

@@ -36,8 +36,9 @@ bool hasLayer(const char* name) {
     vkEnumerateInstanceLayerProperties(&count, nullptr);
     std::vector<VkLayerProperties> layers(count);
     vkEnumerateInstanceLayerProperties(&count, layers.data());
-    return std::any_of(layers.begin(), layers.end(),
-                       [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+    return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+        return std::strcmp(l.layerName, name) == 0;
+    });
 }
 
 bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
@@ -66,18 +67,25 @@ uint32_t findQueueFamily(VkPhysicalDevice device) {
 
 const char* typeName(VkPhysicalDeviceType type) {
     switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU (software)";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+        return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+        return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+        return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+        return "CPU (software)";
+    default:
+        return "other";
     }
 }
 
 int typeRank(const std::string& type) {
-    static const char* order[] = {"discrete GPU", "integrated GPU", "virtual GPU", "CPU (software)"};
+    static const char* order[] = {"discrete GPU", "integrated GPU", "virtual GPU",
+                                  "CPU (software)"};
     for (int i = 0; i < 4; ++i)
-        if (type == order[i]) return i;
+        if (type == order[i])
+            return i;
     return 4;
 }
 
@@ -113,14 +121,14 @@ Instance::Instance(bool validation) {
                                            .pNext = &messengerInfo,
                                            .enabledValidationFeatureCount = 1,
                                            .pEnabledValidationFeatures = enables};
-    const VkInstanceCreateInfo info{
-        .sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
-        .pNext = validation ? &features : nullptr,
-        .pApplicationInfo = &app,
-        .enabledLayerCount = static_cast<uint32_t>(layers.size()),
-        .ppEnabledLayerNames = layers.data(),
-        .enabledExtensionCount = static_cast<uint32_t>(extensions.size()),
-        .ppEnabledExtensionNames = extensions.data()};
+    const VkInstanceCreateInfo info{.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO,
+                                    .pNext = validation ? &features : nullptr,
+                                    .pApplicationInfo = &app,
+                                    .enabledLayerCount = static_cast<uint32_t>(layers.size()),
+                                    .ppEnabledLayerNames = layers.data(),
+                                    .enabledExtensionCount =
+                                        static_cast<uint32_t>(extensions.size()),
+                                    .ppEnabledExtensionNames = extensions.data()};
     VkResult result = vkCreateInstance(&info, nullptr, &mInstance);
     if (result == VK_ERROR_INCOMPATIBLE_DRIVER || result == VK_ERROR_INITIALIZATION_FAILED)
         throw InputError("vulkan", fmt::format("no Vulkan 1.3 driver found ({}); install "
@@ -153,7 +161,8 @@ std::vector<VkPhysicalDevice> Instance::physicalDevices() const {
 }
 
 DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index) const {
-    VkPhysicalDeviceDriverProperties driver{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceDriverProperties driver{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     VkPhysicalDeviceProperties2 props{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
                                       .pNext = &driver};
     vkGetPhysicalDeviceProperties2(device, &props);
@@ -173,16 +182,18 @@ DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index) const {
     vkGetPhysicalDeviceMemoryProperties(device, &memory);
     for (uint32_t i = 0; i < memory.memoryHeapCount; ++i)
         if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            info.deviceLocalBytes = std::max<uint64_t>(info.deviceLocalBytes, memory.memoryHeaps[i].size);
+            info.deviceLocalBytes =
+                std::max<uint64_t>(info.deviceLocalBytes, memory.memoryHeaps[i].size);
 
-    VkPhysicalDeviceVulkan13Features f13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan13Features f13{.sType =
+                                             VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
                                        .pNext = &f13};
     vkGetPhysicalDeviceFeatures2(device, &features);
     VkFormatProperties depth{};
     vkGetPhysicalDeviceFormatProperties(device, VK_FORMAT_D32_SFLOAT, &depth);
-    const VkFormatFeatureFlags depthNeeds = VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT |
-                                            VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
+    const VkFormatFeatureFlags depthNeeds =
+        VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
     // Optional: lavapipe 22.3 advertises linear filtering for no depth format.
     info.depthLinearFilter =
         (depth.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
@@ -204,17 +215,20 @@ DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index) const {
 
 Context::Context(const DeviceOptions& options) : mInstance(options.validation) {
     const auto devices = mInstance.physicalDevices();
-    if (devices.empty()) throw InputError("vulkan", "no Vulkan device found");
+    if (devices.empty())
+        throw InputError("vulkan", "no Vulkan device found");
     int chosen = -1;
     if (options.deviceIndex >= 0) {
         if (static_cast<size_t>(options.deviceIndex) >= devices.size())
             throw InputError("--device", fmt::format("{} is out of range: {} device(s) found (see "
                                                      "`penumbra info`)",
                                                      options.deviceIndex, devices.size()));
-        const DeviceInfo info = mInstance.describe(devices[options.deviceIndex], options.deviceIndex);
+        const DeviceInfo info =
+            mInstance.describe(devices[options.deviceIndex], options.deviceIndex);
         if (!info.suitable)
-            throw InputError("--device", fmt::format("{} ({}) cannot be used: {}", options.deviceIndex,
-                                                     info.name, info.unsuitableReason));
+            throw InputError("--device",
+                             fmt::format("{} ({}) cannot be used: {}", options.deviceIndex,
+                                         info.name, info.unsuitableReason));
         chosen = options.deviceIndex;
     } else {
         int bestRank = 1 << 30;
@@ -238,11 +252,13 @@ Context::Context(const DeviceOptions& options) : mInstance(options.validation) {
                                             .queueFamilyIndex = mQueueFamily,
                                             .queueCount = 1,
                                             .pQueuePriorities = &priority};
-    VkPhysicalDeviceVulkan13Features f13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
+    VkPhysicalDeviceVulkan13Features f13{.sType =
+                                             VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
                                          .synchronization2 = VK_TRUE,
                                          .dynamicRendering = VK_TRUE,
                                          .maintenance4 = VK_TRUE}; // glslc's LocalSizeId
-    VkPhysicalDeviceVulkan12Features f12{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+    VkPhysicalDeviceVulkan12Features f12{.sType =
+                                             VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
                                          .pNext = &f13,
                                          .hostQueryReset = VK_TRUE};
     const VkPhysicalDeviceFeatures2 features{
@@ -271,7 +287,8 @@ Context::Context(const DeviceOptions& options) : mInstance(options.validation) {
 }
 
 Context::~Context() {
-    if (mDevice == VK_NULL_HANDLE) return;
+    if (mDevice == VK_NULL_HANDLE)
+        return;
     vkDeviceWaitIdle(mDevice);
     mCommandPool.reset(); // owned objects go before the device they came from
     vkDestroyDevice(mDevice, nullptr);
@@ -286,10 +303,13 @@ uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
     fatal(__FILE__, __LINE__, "no suitable Vulkan memory type");
 }
 
-uint64_t Context::deviceLocalHeapBytes() const { return mInfo.deviceLocalBytes; }
+uint64_t Context::deviceLocalHeapBytes() const {
+    return mInfo.deviceLocalBytes;
+}
 
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
-    const VkCommandBufferAllocateInfo allocInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
+    const VkCommandBufferAllocateInfo allocInfo{.sType =
+                                                    VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
                                                 .commandPool = mCommandPool.get(),
                                                 .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
                                                 .commandBufferCount = 1};

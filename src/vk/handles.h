@@ -29,7 +29,8 @@ public:
     T get() const { return mHandle; }
     explicit operator bool() const { return mHandle != VK_NULL_HANDLE; }
     void reset() {
-        if (mHandle != VK_NULL_HANDLE) Destroy(mDevice, std::exchange(mHandle, VK_NULL_HANDLE), nullptr);
+        if (mHandle != VK_NULL_HANDLE)
+            Destroy(mDevice, std::exchange(mHandle, VK_NULL_HANDLE), nullptr);
     }
 
 private:

@@ -107,9 +107,8 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
                           .module = fragment.get(),
                           .pName = "main"});
     }
-    const VkVertexInputBindingDescription binding{.binding = 0,
-                                                  .stride = desc.vertexStride,
-                                                  .inputRate = VK_VERTEX_INPUT_RATE_VERTEX};
+    const VkVertexInputBindingDescription binding{
+        .binding = 0, .stride = desc.vertexStride, .inputRate = VK_VERTEX_INPUT_RATE_VERTEX};
     const VkPipelineVertexInputStateCreateInfo vertexInput{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
         .vertexBindingDescriptionCount = 1,
@@ -142,16 +141,16 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
         .depthCompareOp = desc.depthCompare};
     std::vector<VkPipelineColorBlendAttachmentState> blends(
         desc.colorFormats.size(),
-        {.blendEnable = VK_FALSE, .colorWriteMask = VK_COLOR_COMPONENT_R_BIT |
-                                                    VK_COLOR_COMPONENT_G_BIT |
-                                                    VK_COLOR_COMPONENT_B_BIT |
-                                                    VK_COLOR_COMPONENT_A_BIT});
+        {.blendEnable = VK_FALSE,
+         .colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                           VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT});
     const VkPipelineColorBlendStateCreateInfo blend{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO,
         .attachmentCount = static_cast<uint32_t>(blends.size()),
         .pAttachments = blends.data()};
     std::vector<VkDynamicState> dynamic{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    if (desc.depthBias) dynamic.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
+    if (desc.depthBias)
+        dynamic.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
     const VkPipelineDynamicStateCreateInfo dynamicState{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
         .dynamicStateCount = static_cast<uint32_t>(dynamic.size()),
@@ -161,20 +160,20 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
         .colorAttachmentCount = static_cast<uint32_t>(desc.colorFormats.size()),
         .pColorAttachmentFormats = desc.colorFormats.data(),
         .depthAttachmentFormat = desc.depthFormat};
-    const VkGraphicsPipelineCreateInfo info{
-        .sType = VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
-        .pNext = &rendering,
-        .stageCount = static_cast<uint32_t>(stages.size()),
-        .pStages = stages.data(),
-        .pVertexInputState = &vertexInput,
-        .pInputAssemblyState = &assembly,
-        .pViewportState = &viewport,
-        .pRasterizationState = &raster,
-        .pMultisampleState = &multisample,
-        .pDepthStencilState = &depth,
-        .pColorBlendState = &blend,
-        .pDynamicState = &dynamicState,
-        .layout = layout.get()};
+    const VkGraphicsPipelineCreateInfo info{.sType =
+                                                VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO,
+                                            .pNext = &rendering,
+                                            .stageCount = static_cast<uint32_t>(stages.size()),
+                                            .pStages = stages.data(),
+                                            .pVertexInputState = &vertexInput,
+                                            .pInputAssemblyState = &assembly,
+                                            .pViewportState = &viewport,
+                                            .pRasterizationState = &raster,
+                                            .pMultisampleState = &multisample,
+                                            .pDepthStencilState = &depth,
+                                            .pColorBlendState = &blend,
+                                            .pDynamicState = &dynamicState,
+                                            .layout = layout.get()};
     VkPipeline pipeline = VK_NULL_HANDLE;
     VK_CHECK(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
     return PipelineHandle(ctx.device(), pipeline);

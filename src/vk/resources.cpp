@@ -41,16 +41,15 @@ VkImageAspectFlags aspectOf(VkFormat format) {
 
 ImageViewHandle createView(const Context& ctx, const Image& image, VkImageViewType type,
                            uint32_t baseLayer, uint32_t layerCount) {
-    const VkImageViewCreateInfo info{
-        .sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
-        .image = image.get(),
-        .viewType = type,
-        .format = image.format,
-        .subresourceRange = {.aspectMask = image.aspect,
-                             .baseMipLevel = 0,
-                             .levelCount = 1,
-                             .baseArrayLayer = baseLayer,
-                             .layerCount = layerCount}};
+    const VkImageViewCreateInfo info{.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
+                                     .image = image.get(),
+                                     .viewType = type,
+                                     .format = image.format,
+                                     .subresourceRange = {.aspectMask = image.aspect,
+                                                          .baseMipLevel = 0,
+                                                          .levelCount = 1,
+                                                          .baseArrayLayer = baseLayer,
+                                                          .layerCount = layerCount}};
     VkImageView view = VK_NULL_HANDLE;
     VK_CHECK(vkCreateImageView(ctx.device(), &info, nullptr, &view));
     return ImageViewHandle(ctx.device(), view);
@@ -63,10 +62,14 @@ size_t formatBytes(VkFormat format) {
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB:
     case VK_FORMAT_R32_SFLOAT:
-    case VK_FORMAT_D32_SFLOAT: return 4;
-    case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
-    default: fatal(__FILE__, __LINE__, fmt::format("formatBytes: unhandled format {}", int(format)));
+    case VK_FORMAT_D32_SFLOAT:
+        return 4;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+        return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+        return 16;
+    default:
+        fatal(__FILE__, __LINE__, fmt::format("formatBytes: unhandled format {}", int(format)));
     }
 }
 
@@ -85,7 +88,8 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
     buffer.memory = allocate(ctx, req, use, name);
     VK_CHECK(vkBindBufferMemory(ctx.device(), raw, buffer.memory.get(), 0));
     if (use != MemoryUse::DeviceLocal)
-        VK_CHECK(vkMapMemory(ctx.device(), buffer.memory.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
+        VK_CHECK(
+            vkMapMemory(ctx.device(), buffer.memory.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped));
     return buffer;
 }
 
@@ -120,7 +124,8 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
     image.memory = allocate(ctx, req, MemoryUse::DeviceLocal, desc.name);
     VK_CHECK(vkBindImageMemory(ctx.device(), raw, image.memory.get(), 0));
     image.view = createView(ctx, image,
-                            desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D,
+                            desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                                              : VK_IMAGE_VIEW_TYPE_2D,
                             0, desc.layers);
     return image;
 }

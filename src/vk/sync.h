@@ -15,11 +15,10 @@ struct ImageState {
 
 inline constexpr ImageState kUndefined{VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE,
                                        VK_IMAGE_LAYOUT_UNDEFINED};
-inline constexpr ImageState kDepthWrite{VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT |
-                                            VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-                                            VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
-                                        VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL};
+inline constexpr ImageState kDepthWrite{
+    VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+    VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT,
+    VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL};
 inline constexpr ImageState kColorWrite{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
                                         VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT,
                                         VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};

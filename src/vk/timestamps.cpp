@@ -45,14 +45,15 @@ void GpuTimer::end(VkCommandBuffer cmd) {
 
 std::vector<std::pair<std::string, double>> GpuTimer::read() const {
     std::vector<std::pair<std::string, double>> result;
-    if (mScopes.empty()) return result;
+    if (mScopes.empty())
+        return result;
     std::vector<uint64_t> ticks(2 * mScopes.size());
     VK_CHECK(vkGetQueryPoolResults(mDevice, mPool.get(), 0, static_cast<uint32_t>(ticks.size()),
                                    ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     for (size_t i = 0; i < mScopes.size(); ++i) {
-        const uint64_t elapsed = ((ticks[2 * i + 1] & mValidMask) - (ticks[2 * i] & mValidMask)) &
-                                 mValidMask;
+        const uint64_t elapsed =
+            ((ticks[2 * i + 1] & mValidMask) - (ticks[2 * i] & mValidMask)) & mValidMask;
         const double ms = static_cast<double>(elapsed) * mPeriodNs * 1e-6;
         auto it = std::find_if(result.begin(), result.end(),
                                [&](const auto& entry) { return entry.first == mScopes[i]; });
