@@ -3,7 +3,14 @@
 // and returns the action to run when it was chosen.
 #include <CLI/CLI.hpp>
 
+#include "core/output_dir.h"
+#include "penumbra/renderer.h"
+#include "penumbra/settings.h"
+
 #include <functional>
+#include <span>
+#include <string>
+#include <vector>
 
 namespace penumbra::cli {
 
@@ -14,7 +21,17 @@ struct GlobalOptions {
 
 using Action = std::function<int()>;
 
+// Options that fix what is seen: image size, camera, light sizes (render, reference, compare).
+void addViewOptions(CLI::App& cmd, RenderOptions& options);
+// visibility.pfm / visibility_<i>.pfm, position.pfm and normal.pfm (design.md §1).
+void writeViewFiles(StagedOutputDir& out, const RenderResult& gbuffer,
+                    const std::vector<std::vector<float>>& visibility);
+// Raw text of a file's bytes for StagedOutputDir::write.
+std::span<const uint8_t> bytesOf(const std::string& text);
+
 Action addRenderCommand(CLI::App& app, const GlobalOptions& global);
+Action addReferenceCommand(CLI::App& app, const GlobalOptions& global);
+Action addCompareCommand(CLI::App& app, const GlobalOptions& global);
 Action addInfoCommand(CLI::App& app, const GlobalOptions& global);
 Action addTechniquesCommand(CLI::App& app);
 

@@ -24,9 +24,11 @@ int main(int argc, char** argv) {
     app.add_flag("--validation", global.validation,
                  "enable the Khronos validation layer; any validation error fails the command");
 
-    const cli::Action render = cli::addRenderCommand(app, global);
-    const cli::Action info = cli::addInfoCommand(app, global);
-    const cli::Action techniques = cli::addTechniquesCommand(app);
+    const std::pair<const char*, cli::Action> commands[] = {
+        {"render", cli::addRenderCommand(app, global)},
+        {"reference", cli::addReferenceCommand(app, global)},
+        {"info", cli::addInfoCommand(app, global)},
+        {"techniques", cli::addTechniquesCommand(app)}};
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -40,12 +42,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     try {
-        if (app.got_subcommand("render"))
-            return render();
-        if (app.got_subcommand("info"))
-            return info();
-        if (app.got_subcommand("techniques"))
-            return techniques();
+        for (const auto& [name, action] : commands)
+            if (app.got_subcommand(name)) return action();
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;

@@ -21,10 +21,7 @@ struct RenderArgs {
 
 void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& run) {
     out.write("image.png", encodePng(r.width, r.height, 4, r.image));
-    for (size_t i = 0; i < r.visibility.size(); ++i)
-        out.write(visibilityFileName(i), encodePfm(r.width, r.height, 1, r.visibility[i]));
-    out.write("position.pfm", encodePfm(r.width, r.height, 3, r.position));
-    out.write("normal.pfm", encodePfm(r.width, r.height, 3, r.normal));
+    writeViewFiles(out, r, r.visibility);
     const std::string stats = renderStats(run).dump(2) + "\n";
     out.write("stats.json",
               std::span(reinterpret_cast<const uint8_t*>(stats.data()), stats.size()));
@@ -78,6 +75,30 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
 
 } // namespace
 
+void addViewOptions(CLI::App& cmd, RenderOptions& o) {
+    cmd.add_option("--width", o.width, "image width in pixels")->capture_default_str();
+    cmd.add_option("--height", o.height, "image height in pixels")->capture_default_str();
+    cmd.add_option("--camera", o.camera, "glTF camera name (default: the first, else automatic)");
+    cmd.add_option("--light-radius", o.lightRadiusOverride,
+                   "spot/point light radius in world units (overrides the scene)")
+        ->check(CLI::NonNegativeNumber);
+    cmd.add_option("--light-angle", o.lightAngleOverride,
+                   "directional light angular diameter in degrees (overrides the scene)")
+        ->check(CLI::Range(0.0, 30.0));
+}
+
+void writeViewFiles(StagedOutputDir& out, const RenderResult& g,
+                    const std::vector<std::vector<float>>& visibility) {
+    for (size_t i = 0; i < visibility.size(); ++i)
+        out.write(visibilityFileName(i), encodePfm(g.width, g.height, 1, visibility[i]));
+    out.write("position.pfm", encodePfm(g.width, g.height, 3, g.position));
+    out.write("normal.pfm", encodePfm(g.width, g.height, 3, g.normal));
+}
+
+std::span<const uint8_t> bytesOf(const std::string& text) {
+    return {reinterpret_cast<const uint8_t*>(text.data()), text.size()};
+}
+
 Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "render SCENE with one shadow technique into DIR");
@@ -86,18 +107,10 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("-o,--output", args->output, "output directory")->required();
     cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
         ->capture_default_str();
+    addViewOptions(*cmd, args->options);
     auto& o = args->options;
-    cmd->add_option("--width", o.width, "image width in pixels")->capture_default_str();
-    cmd->add_option("--height", o.height, "image height in pixels")->capture_default_str();
     cmd->add_option("--shadow-map-size", o.shadowMapSize, "shadow map side in texels")
         ->capture_default_str();
-    cmd->add_option("--light-radius", o.lightRadiusOverride,
-                    "spot/point light radius in world units (overrides the scene)")
-        ->check(CLI::NonNegativeNumber);
-    cmd->add_option("--light-angle", o.lightAngleOverride,
-                    "directional light angular diameter in degrees (overrides the scene)")
-        ->check(CLI::Range(0.0, 30.0));
-    cmd->add_option("--camera", o.camera, "glTF camera name (default: the first, else automatic)");
     cmd->add_option("--set", args->sets, "technique parameter family.name=value (repeatable)");
     cmd->add_option("--frames", o.frames, "timed frames after one warm-up frame")
         ->capture_default_str();

@@ -75,8 +75,19 @@ struct Scene {
     Camera camera(std::string_view cameraName) const;
 };
 
-// Loads `spec`: "builtin:NAME" or a glTF file. Throws InputError on anything malformed.
+// Loads `spec`: "builtin:NAME" or a glTF file, with invalid triangles already dropped.
+// Throws InputError on anything malformed.
 Scene loadScene(std::string_view spec);
+
+// The one rule that decides which triangles exist, applied before the rasterizer and the
+// ground truth see a scene: drops triangles with an index out of range, a non-finite vertex,
+// a coordinate past kMaxCoordinate, or no area. Non-finite normals become the face normal.
+// Returns how many triangles were dropped.
+inline constexpr float kMaxCoordinate = 1e15f;
+size_t dropInvalidTriangles(Scene& scene);
+
+// --light-radius / --light-angle: negative values leave the scene's sizes alone.
+void applyLightSizeOverrides(Scene& scene, float radius, float angleDegrees);
 std::vector<std::string_view> builtinSceneNames();
 
 } // namespace penumbra

@@ -137,12 +137,10 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
     check(sceneIn, o);
     const vk::Context& ctx = mImpl->ctx;
     Scene scene = sceneIn;
-    for (Light& light : scene.lights) {
-        if (o.lightRadiusOverride >= 0.0f && light.type != LightType::Directional)
-            light.radius = o.lightRadiusOverride;
-        if (o.lightAngleOverride >= 0.0f && light.type == LightType::Directional)
-            light.angularDiameter = o.lightAngleOverride;
-    }
+    dropInvalidTriangles(scene); // the same rule the ground truth applies
+    applyLightSizeOverrides(scene, o.lightRadiusOverride, o.lightAngleOverride);
+    if (scene.triangleCount() == 0)
+        throw InputError(scene.name, "the scene has no valid triangles");
     const Camera camera = scene.camera(o.camera);
     const Bounds bounds = scene.bounds();
 

@@ -1,0 +1,78 @@
+#include "commands.h"
+#include "penumbra/error.h"
+#include "penumbra/reference.h"
+#include "penumbra/renderer.h"
+#include "report/stats.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <memory>
+
+namespace penumbra::cli {
+namespace {
+
+struct ReferenceArgs {
+    std::string scene, output;
+    RenderOptions options;
+    ReferenceOptions reference{.progress = true};
+};
+
+int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
+    RenderOptions options = args.options;
+    options.frames = 1;
+    options.shadowMapSize = 64; // only the G-buffer is used; keep the shadow pass cheap
+    validate(options);
+    if (args.reference.samples == 0 || args.reference.samples > 65536)
+        throw InputError("--samples", fmt::format("{} is out of range [1, 65536]",
+                                                  args.reference.samples));
+    Scene scene = loadScene(args.scene);
+    StagedOutputDir out(args.output);
+    Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
+    renderer.check(scene, options);
+    std::fprintf(stderr, "penumbra: reference for %s, %ux%u, %u samples per pixel and light\n",
+                 scene.name.c_str(), options.width, options.height, args.reference.samples);
+    const RenderResult gbuffer = renderer.render(scene, options);
+    applyLightSizeOverrides(scene, options.lightRadiusOverride, options.lightAngleOverride);
+    const ReferenceResult truth = computeReference(scene, gbuffer, args.reference);
+    writeViewFiles(out, gbuffer, truth.visibility);
+    const double raysPerSecond = truth.seconds > 0 ? static_cast<double>(truth.rays) / truth.seconds : 0;
+    const nlohmann::json info = {{"scene", args.scene},
+                                 {"width", options.width},
+                                 {"height", options.height},
+                                 {"samples", args.reference.samples},
+                                 {"rays", truth.rays},
+                                 {"seconds", truth.seconds},
+                                 {"rays_per_second", raysPerSecond},
+                                 {"triangles", truth.triangles},
+                                 {"embree", embreeVersion()}};
+    out.write("reference.json", bytesOf(info.dump(2) + "\n"));
+    if (renderer.validationErrors() > 0)
+        throw std::runtime_error(fmt::format("vulkan validation: {} error(s); no output written",
+                                             renderer.validationErrors()));
+    out.commit();
+    std::printf("wrote %s: %zu light(s), %.3g rays in %.2f s (%.2f Mrays/s)\n", out.path().c_str(),
+                truth.visibility.size(), static_cast<double>(truth.rays), truth.seconds,
+                raysPerSecond * 1e-6);
+    return 0;
+}
+
+} // namespace
+
+Action addReferenceCommand(CLI::App& app, const GlobalOptions& global) {
+    auto args = std::make_shared<ReferenceArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "reference", "ray-traced ground-truth visibility (Embree) for the same view as render");
+    cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
+    cmd->add_option("-o,--output", args->output, "output directory")->required();
+    addViewOptions(*cmd, args->options);
+    cmd->add_option("--samples", args->reference.samples,
+                    "rays per pixel and light for lights with a size (1..65536)")
+        ->capture_default_str();
+    cmd->add_option("--embree-config", args->reference.embreeConfig,
+                    "Embree device configuration, e.g. threads=2");
+    return [args, &global] { return runReference(*args, global); };
+}
+
+} // namespace penumbra::cli

@@ -1,0 +1,41 @@
+#pragma once
+// Ground truth: the fraction of each light's solid angle that no geometry blocks, seen from
+// every pixel of a rendered G-buffer, by ray tracing the scene's triangles with Embree.
+//  - Spot and point lights of radius R are spheres of uniform radiance: directions are sampled
+//    uniformly over the cone the sphere subtends; a ray ends where it reaches the sphere.
+//  - A directional light of angular diameter A is the cone of that full angle around the
+//    direction the light comes from.
+//  - R = 0 or A = 0: one exact ray per pixel, the truth for hard shadows.
+#include "penumbra/renderer.h"
+#include "penumbra/scene.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct ReferenceOptions {
+    uint32_t samples = 256; // rays per pixel and light for lights with a size (1 .. 65536)
+    std::string embreeConfig; // rtcNewDevice configuration, e.g. "threads=2"
+    bool progress = false;    // a progress bar on stderr when the work runs past a second
+};
+
+struct ReferenceResult {
+    uint32_t width = 0, height = 0;
+    std::vector<std::vector<float>> visibility; // per shadow-casting light, as RenderResult
+    uint64_t rays = 0;
+    double seconds = 0.0;
+    size_t triangles = 0; // what Embree was given (the rasterizer draws the same)
+};
+
+// Traces from the world positions of `gbuffer` (its position and normal images). The scene
+// must be the one the G-buffer was rendered from, with the same light-size overrides applied.
+// Throws std::runtime_error("embree: ...") on an Embree failure.
+ReferenceResult computeReference(const Scene& scene, const RenderResult& gbuffer,
+                                 const ReferenceOptions& options);
+
+// The Embree version this build links, e.g. "3.13.5".
+std::string embreeVersion();
+
+} // namespace penumbra

@@ -1,0 +1,44 @@
+#pragma once
+// report.html and metrics.json of `penumbra compare` (design.md §1): every technique's error
+// against the ray-traced reference, its GPU cost, and its images, in one offline file.
+#include "report/metrics.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace penumbra {
+
+// One technique's results, as shown in one table row and one figure of the report.
+struct ReportRow {
+    std::string name;                                            // e.g. "hard", "pcf[box7]"
+    std::string technique;                                       // CLI technique name
+    std::vector<std::pair<std::string, std::string>> parameters; // non-default, for display
+    ErrorMetrics metrics;
+    std::vector<std::pair<std::string, double>> gpuMs;        // pass -> median ms, frame order
+    std::vector<uint8_t> imagePng, visibilityPng, heatmapPng; // encoded PNG files; may be empty
+};
+
+// Everything a report shows: the run's context, the reference, and one row per technique.
+struct ReportData {
+    std::string scene, device, driver; // e.g. "builtin:showcase", "llvmpipe (...)"
+    uint32_t width = 0, height = 0, shadowMapSize = 0;
+    uint32_t samples = 0; // reference rays per pixel and light
+    double referenceSeconds = 0, raysPerSecond = 0;
+    std::vector<std::string> lights; // one description per shadow-casting light
+    std::vector<uint8_t> referenceVisibilityPng;
+    std::vector<ReportRow> rows;
+};
+
+// A self-contained HTML5 page (inline CSS and SVG, PNGs as data: URIs, no scripts, no network
+// references); every string from data is HTML-escaped.
+std::string renderHtmlReport(const ReportData& data);
+
+// metrics.json: {"reference": {...}, "techniques": {"<row name>": {..., "gpu_ms": {...}}}}.
+// Row names are keys, so duplicates are a programmer error.
+nlohmann::json metricsJson(const ReportData& data);
+
+} // namespace penumbra

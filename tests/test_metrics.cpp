@@ -1,0 +1,235 @@
+#include "report/metrics.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace penumbra {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// One light's synthetic images; every pixel counted unless a test clears its mask.
+struct Images {
+    uint32_t width, height;
+    std::vector<float> visibility, truth;
+    std::vector<uint8_t> mask;
+
+    Images(uint32_t w, uint32_t h, float v = 0, float t = 0)
+        : width(w), height(h), visibility(size_t{w} * h, v), truth(size_t{w} * h, t),
+          mask(size_t{w} * h, 1) {}
+    size_t at(uint32_t x, uint32_t y) const { return size_t{y} * width + x; }
+    MetricLayer layer() const { return {visibility, truth, mask}; }
+    ErrorMetrics metrics(int edgeBand = 2) const {
+        MetricLayer l = layer();
+        return computeMetrics(width, height, std::span(&l, 1), edgeBand);
+    }
+};
+
+// 8x8, truth 0 in columns 0-3 and 1 in columns 4-7, visibility equal to truth.
+Images halfAndHalf() {
+    Images im(8, 8);
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 4; x < 8; ++x)
+            im.truth[im.at(x, y)] = im.visibility[im.at(x, y)] = 1;
+    return im;
+}
+
+TEST(Metrics, ExactMatchIsAllZero) {
+    ErrorMetrics m = halfAndHalf().metrics();
+    EXPECT_EQ(m.rmse, 0);
+    EXPECT_EQ(m.mae, 0);
+    EXPECT_EQ(m.max, 0);
+    EXPECT_EQ(m.misclassified, 0);
+    EXPECT_EQ(m.misclassifiedOutsideEdges, 0);
+    EXPECT_EQ(m.acne, 0);
+    EXPECT_EQ(m.leak, 0);
+    EXPECT_EQ(m.pixels, 64u);
+    EXPECT_EQ(m.truthLit, 32u);
+    EXPECT_EQ(m.truthShadowed, 32u);
+    // Boundary columns 3 and 4, band 1..6: only columns 0 and 7 lie outside.
+    EXPECT_EQ(m.pixelsOutsideEdges, 16u);
+}
+
+TEST(Metrics, FlippedPixelsGiveExactFractions) {
+    Images im = halfAndHalf();
+    im.visibility[im.at(0, 0)] = 1; // shadowed -> lit, outside the band: leak
+    im.visibility[im.at(7, 7)] = 0; // lit -> shadowed, outside the band: acne
+    im.visibility[im.at(4, 2)] = 0; // lit -> shadowed, inside the band: acne
+    ErrorMetrics m = im.metrics();
+    EXPECT_DOUBLE_EQ(m.misclassified, 3.0 / 64);
+    EXPECT_DOUBLE_EQ(m.misclassifiedOutsideEdges, 2.0 / 16);
+    EXPECT_DOUBLE_EQ(m.acne, 2.0 / 32);
+    EXPECT_DOUBLE_EQ(m.leak, 1.0 / 32);
+    EXPECT_DOUBLE_EQ(m.rmse, std::sqrt(3.0 / 64));
+    EXPECT_DOUBLE_EQ(m.mae, 3.0 / 64);
+    EXPECT_DOUBLE_EQ(m.max, 1.0);
+}
+
+TEST(Metrics, ConstantOffset) {
+    Images im(8, 8, 0.5f, 0.25f);
+    ErrorMetrics m = im.metrics();
+    EXPECT_DOUBLE_EQ(m.rmse, 0.25);
+    EXPECT_DOUBLE_EQ(m.mae, 0.25);
+    EXPECT_DOUBLE_EQ(m.max, 0.25);
+    EXPECT_EQ(m.misclassified, 0);
+    // Truth is neither fully lit nor fully shadowed: empty denominators give 0.
+    EXPECT_EQ(m.truthLit, 0u);
+    EXPECT_EQ(m.truthShadowed, 0u);
+    EXPECT_EQ(m.acne, 0);
+    EXPECT_EQ(m.leak, 0);
+    // No boundary at all: every pixel lies outside the edge band.
+    EXPECT_EQ(m.pixelsOutsideEdges, 64u);
+}
+
+TEST(Metrics, NegativeOffsetUsesAbsoluteMax) {
+    Images im(4, 4, 0.25f, 0.5f);
+    ErrorMetrics m = im.metrics();
+    EXPECT_DOUBLE_EQ(m.max, 0.25);
+    EXPECT_DOUBLE_EQ(m.mae, 0.25);
+}
+
+TEST(Metrics, AcneAndLeakThresholds) {
+    // Row 0: truth counted as 1 (one just below 1 within the tolerance); row 1: truth counted as
+    // 0; row 2: in-between truth that is neither, whatever its visibility.
+    Images im(5, 3);
+    const float lit[5] = {1, 1, 1, 1, 1 - 1e-7f};
+    const float litV[5] = {0.89f, 0.9f, 0.95f, 1.0f, 0.5f};    // acne: 0.89 and 0.5
+    const float shadowV[5] = {0.1f, 0.11f, 0.0f, 0.05f, 0.6f}; // leak: 0.11 and 0.6
+    const float mid[5] = {0.99f, 0.99f, 0.01f, 0.01f, 0.5f};
+    const float midV[5] = {0.0f, 0.5f, 1.0f, 0.5f, 0.0f};
+    for (uint32_t x = 0; x < 5; ++x) {
+        im.truth[im.at(x, 0)] = lit[x], im.visibility[im.at(x, 0)] = litV[x];
+        im.truth[im.at(x, 1)] = x == 4 ? 1e-7f : 0.0f, im.visibility[im.at(x, 1)] = shadowV[x];
+        im.truth[im.at(x, 2)] = mid[x], im.visibility[im.at(x, 2)] = midV[x];
+    }
+    ErrorMetrics m = im.metrics();
+    EXPECT_EQ(m.pixels, 15u);
+    EXPECT_EQ(m.truthLit, 5u);
+    EXPECT_EQ(m.truthShadowed, 5u);
+    EXPECT_DOUBLE_EQ(m.acne, 2.0 / 5);
+    EXPECT_DOUBLE_EQ(m.leak, 2.0 / 5);
+}
+
+TEST(Metrics, EdgeBandAroundVerticalBoundary) {
+    // 16x5, truth boundary between columns 6 and 7.
+    Images im(16, 5);
+    for (uint32_t y = 0; y < 5; ++y)
+        for (uint32_t x = 7; x < 16; ++x)
+            im.truth[im.at(x, y)] = im.visibility[im.at(x, y)] = 1;
+    EXPECT_EQ(im.metrics(2).pixelsOutsideEdges, 10u * 5); // band: columns 4..9
+    EXPECT_EQ(im.metrics(1).pixelsOutsideEdges, 12u * 5); // band: columns 5..8
+    EXPECT_EQ(im.metrics(0).pixelsOutsideEdges, 14u * 5); // band: columns 6 and 7
+    EXPECT_EQ(im.metrics(20).pixelsOutsideEdges, 0u);
+}
+
+TEST(Metrics, NaNNeighboursMakeNoBoundary) {
+    Images im(9, 4);
+    for (uint32_t y = 0; y < 4; ++y)
+        im.truth[im.at(4, y)] = kNaN; // background column between two shadowed regions
+    for (uint32_t y = 0; y < 4; ++y)
+        for (uint32_t x = 5; x < 9; ++x)
+            im.truth[im.at(x, y)] = 1; // lit, but only ever next to NaN
+    ErrorMetrics m = im.metrics();
+    EXPECT_EQ(m.pixels, 32u);
+    EXPECT_EQ(m.pixelsOutsideEdges, 32u);
+}
+
+// Brute-force Chebyshev band, to check the separable O(pixels) version on random images.
+uint64_t bruteForceOutside(const Images& im, int band) {
+    auto cls = [&](int64_t x, int64_t y) { return im.truth[im.at(uint32_t(x), uint32_t(y))]; };
+    auto boundary = [&](int64_t x, int64_t y) {
+        const float t = cls(x, y);
+        if (!std::isfinite(t))
+            return false;
+        const int64_t d[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+        for (const auto& o : d) {
+            int64_t nx = x + o[0], ny = y + o[1];
+            if (nx < 0 || ny < 0 || nx >= im.width || ny >= im.height)
+                continue;
+            const float n = cls(nx, ny);
+            if (std::isfinite(n) && (n >= 0.5f) != (t >= 0.5f))
+                return true;
+        }
+        return false;
+    };
+    uint64_t outside = 0;
+    for (int64_t y = 0; y < im.height; ++y)
+        for (int64_t x = 0; x < im.width; ++x) {
+            const size_t i = im.at(uint32_t(x), uint32_t(y));
+            if (!std::isfinite(im.truth[i]) || !std::isfinite(im.visibility[i]) || !im.mask[i])
+                continue;
+            bool inBand = false;
+            for (int64_t dy = -band; dy <= band && !inBand; ++dy)
+                for (int64_t dx = -band; dx <= band && !inBand; ++dx) {
+                    int64_t nx = x + dx, ny = y + dy;
+                    inBand =
+                        nx >= 0 && ny >= 0 && nx < im.width && ny < im.height && boundary(nx, ny);
+                }
+            outside += !inBand;
+        }
+    return outside;
+}
+
+TEST(Metrics, EdgeBandMatchesBruteForce) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> uniform(0, 1);
+    for (int trial = 0; trial < 6; ++trial) {
+        Images im(23 + uint32_t(trial), 17);
+        for (size_t i = 0; i < im.truth.size(); ++i) {
+            const float r = uniform(rng);
+            // Sparse boundaries, so the band is neither empty nor everything.
+            im.truth[i] = r < 0.03f ? 1.0f : r < 0.05f ? kNaN : 0.0f;
+            im.mask[i] = uniform(rng) < 0.9f;
+        }
+        for (int band : {0, 1, 2, 3})
+            EXPECT_EQ(im.metrics(band).pixelsOutsideEdges, bruteForceOutside(im, band))
+                << "trial " << trial << " band " << band;
+    }
+}
+
+TEST(Metrics, MaskedAndNonFinitePixelsAreSkipped) {
+    Images im(4, 4, 0.0f, 0.0f);
+    im.mask[0] = 0, im.visibility[0] = 1;                      // masked out
+    im.visibility[1] = kNaN;                                   // no technique value
+    im.truth[2] = kNaN, im.visibility[2] = 1;                  // background
+    im.visibility[3] = std::numeric_limits<float>::infinity(); // broken value
+    ErrorMetrics m = im.metrics();
+    EXPECT_EQ(m.pixels, 12u);
+    EXPECT_EQ(m.truthShadowed, 12u);
+    EXPECT_EQ(m.rmse, 0);
+    EXPECT_EQ(m.max, 0);
+    EXPECT_EQ(m.leak, 0);
+}
+
+TEST(Metrics, LayersArePooled) {
+    Images exact(4, 4, 0.0f, 0.0f), wrong(4, 4, 1.0f, 0.0f);
+    const MetricLayer layers[2] = {exact.layer(), wrong.layer()};
+    ErrorMetrics m = computeMetrics(4, 4, layers);
+    EXPECT_EQ(m.pixels, 32u);
+    EXPECT_EQ(m.truthShadowed, 32u);
+    EXPECT_DOUBLE_EQ(m.misclassified, 0.5);
+    EXPECT_DOUBLE_EQ(m.leak, 0.5);
+    EXPECT_DOUBLE_EQ(m.rmse, std::sqrt(0.5));
+    EXPECT_DOUBLE_EQ(m.mae, 0.5);
+    EXPECT_DOUBLE_EQ(m.max, 1.0);
+}
+
+TEST(Metrics, NoLayersIsAllZero) {
+    ErrorMetrics m = computeMetrics(4, 4, {});
+    EXPECT_EQ(m.pixels, 0u);
+    EXPECT_EQ(m.rmse, 0);
+    EXPECT_EQ(m.misclassifiedOutsideEdges, 0);
+}
+
+TEST(MetricsDeathTest, SizeMismatchIsAProgrammerError) {
+    Images im(4, 4);
+    im.mask.pop_back();
+    EXPECT_DEATH(im.metrics(), "mask size");
+}
+
+} // namespace
+} // namespace penumbra

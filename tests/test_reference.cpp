@@ -1,0 +1,222 @@
+// The ground truth against closed-form answers (a sphere above a plane), the sampling maths,
+// and its handling of hostile geometry. CPU only: the G-buffer is a synthetic grid.
+#include "penumbra/reference.h"
+#include "reference/analytic.h"
+#include "reference/sampling.h"
+#include "scene/mesh_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+
+using namespace penumbra;
+
+namespace {
+
+constexpr glm::vec3 kCenter{0.0f, 2.0f, 0.0f};
+constexpr float kRadius = 1.0f;
+constexpr uint32_t kGrid = 128;
+
+Scene sphereOverPlane(const Light& light) {
+    Scene scene;
+    MeshBuilder mb(scene);
+    const uint32_t m = mb.material("grey", glm::vec3(0.5f));
+    mb.quad({-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, {-20, 0, -20}, m);
+    mb.sphere(kCenter, kRadius, m, 512, 256); // fine: the inscribed mesh stays within 2e-5 of it
+    scene.lights.push_back(light);
+    return scene;
+}
+
+// A G-buffer whose pixels are a grid on the plane y = 0 around (cx, cz), `extent` wide.
+RenderResult planeGrid(float cx, float cz, float extent) {
+    RenderResult g{.width = kGrid, .height = kGrid};
+    g.position.resize(3 * kGrid * kGrid);
+    g.normal.resize(3 * kGrid * kGrid);
+    for (uint32_t y = 0; y < kGrid; ++y)
+        for (uint32_t x = 0; x < kGrid; ++x) {
+            const size_t i = size_t{y} * kGrid + x;
+            g.position[3 * i] = cx + extent * ((static_cast<float>(x) + 0.5f) / kGrid - 0.5f);
+            g.position[3 * i + 1] = 0.0f;
+            g.position[3 * i + 2] = cz + extent * ((static_cast<float>(y) + 0.5f) / kGrid - 0.5f);
+            g.normal[3 * i + 1] = 1.0f;
+        }
+    return g;
+}
+
+glm::dvec3 at(const RenderResult& g, size_t i) {
+    return {g.position[3 * i], g.position[3 * i + 1], g.position[3 * i + 2]};
+}
+
+// Analytic visibility of every grid pixel, for the light's sampled cone.
+std::vector<double> analyticVisibility(const RenderResult& g, const Light& light) {
+    std::vector<double> v(size_t{g.width} * g.height);
+    for (size_t i = 0; i < v.size(); ++i) {
+        const LightCone cone = coneTowards(light, at(g, i));
+        const double alpha = cone.single ? 0.0 : std::acos(1.0 - cone.oneMinusCosAlpha);
+        v[i] = analytic::coneVisibilityPastSphere(at(g, i), cone.axis, alpha, glm::dvec3(kCenter),
+                                                  kRadius);
+    }
+    return v;
+}
+
+} // namespace
+
+TEST(Analytic, CapIntersectionMatchesMonteCarlo) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const double a1 = 0.3, a2 = 0.2, gamma = 0.35;
+    const glm::dvec3 c1(0, 0, 1), c2(std::sin(gamma), 0, std::cos(gamma));
+    int inside = 0, both = 0;
+    for (int i = 0; i < 400000; ++i) { // uniform directions in cap 1
+        const double z = 1.0 - u(rng) * (1.0 - std::cos(a1)), phi = 6.283185307179586 * u(rng);
+        const double s = std::sqrt(1.0 - z * z);
+        const glm::dvec3 d(s * std::cos(phi), s * std::sin(phi), z);
+        ++inside;
+        both += glm::dot(d, c2) >= std::cos(a2);
+    }
+    const double expected = analytic::capIntersection(a1, a2, gamma) / analytic::capArea(a1);
+    EXPECT_NEAR(static_cast<double>(both) / inside, expected, 3e-3);
+    EXPECT_DOUBLE_EQ(analytic::capIntersection(a1, a2, 0.6), 0.0);             // disjoint
+    EXPECT_NEAR(analytic::capIntersection(a1, a2, 0.05), analytic::capArea(a2), 1e-12); // nested
+}
+
+TEST(Sampling, ConeSamplesStayInsideTheConeAndCoverItUniformly) {
+    Light light{.type = LightType::Directional, .direction = glm::normalize(glm::vec3(0.2f, -1, 0.1f)),
+                .angularDiameter = 20.0f};
+    const LightCone cone = coneTowards(light, {0, 0, 0});
+    const double cosAlpha = 1.0 - cone.oneMinusCosAlpha;
+    EXPECT_NEAR(std::acos(cosAlpha), glm::radians(10.0), 1e-9);
+    double meanCos = 0;
+    const uint32_t n = 4096;
+    for (uint32_t i = 0; i < n; ++i) {
+        const glm::dvec3 d = sampleDirection(cone, hammersley(i, n, {0.3, 0.7}));
+        EXPECT_GE(glm::dot(d, cone.axis), cosAlpha - 1e-12);
+        meanCos += glm::dot(d, cone.axis) / n;
+    }
+    EXPECT_NEAR(meanCos, 1.0 - 0.5 * cone.oneMinusCosAlpha, 1e-5); // uniform in solid angle
+    // A tiny sun keeps its exact size: no float cancellation in 1 - cos.
+    light.angularDiameter = 0.01f;
+    EXPECT_NEAR(coneTowards(light, {0, 0, 0}).oneMinusCosAlpha,
+                1.0 - std::cos(glm::radians(0.005)), 1e-15);
+}
+
+TEST(Reference, HardShadowMatchesTheAnalyticOneOutsideAOnePixelBand) {
+    const Light sun{.type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f))};
+    const Scene scene = sphereOverPlane(sun);
+    const RenderResult g = planeGrid(0.6f, 0.4f, 3.0f);
+    const ReferenceResult r = computeReference(scene, g, {.samples = 64});
+    const std::vector<double> truth = analyticVisibility(g, sun);
+    size_t compared = 0, shadowed = 0;
+    for (uint32_t y = 1; y + 1 < kGrid; ++y)
+        for (uint32_t x = 1; x + 1 < kGrid; ++x) {
+            const size_t i = size_t{y} * kGrid + x;
+            bool band = false; // a neighbour of another class: the 1-pixel boundary band
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx)
+                    band |= truth[i + dy * int(kGrid) + dx] != truth[i];
+            if (band) continue;
+            ++compared;
+            shadowed += truth[i] == 0.0;
+            ASSERT_EQ(r.visibility[0][i], static_cast<float>(truth[i])) << "pixel " << x << "," << y;
+        }
+    EXPECT_GT(shadowed, kGrid * kGrid / 8) << "the shadow must be in view";
+    EXPECT_GT(compared - shadowed, kGrid * kGrid / 8);
+    EXPECT_EQ(r.rays, uint64_t{kGrid} * kGrid) << "radius 0: one exact ray per pixel";
+}
+
+namespace {
+
+// Mean reference visibility over 8x8 patches lying wholly in the penumbra, against the mean of
+// the analytic solid-angle overlap: the worst patch difference.
+double worstPenumbraPatchError(const Light& light, float cx, float cz, float extent, size_t* patches) {
+    const Scene scene = sphereOverPlane(light);
+    const RenderResult g = planeGrid(cx, cz, extent);
+    const ReferenceResult r = computeReference(scene, g, {.samples = 256});
+    const std::vector<double> truth = analyticVisibility(g, light);
+    double worst = 0.0;
+    *patches = 0;
+    for (uint32_t py = 0; py < kGrid; py += 8)
+        for (uint32_t px = 0; px < kGrid; px += 8) {
+            double sumRef = 0, sumTruth = 0;
+            bool penumbra = true;
+            for (uint32_t y = py; y < py + 8; ++y)
+                for (uint32_t x = px; x < px + 8; ++x) {
+                    const size_t i = size_t{y} * kGrid + x;
+                    penumbra &= truth[i] > 0.02 && truth[i] < 0.98;
+                    sumRef += r.visibility[0][i], sumTruth += truth[i];
+                }
+            if (!penumbra) continue;
+            ++*patches;
+            worst = std::max(worst, std::abs(sumRef - sumTruth) / 64.0);
+        }
+    return worst;
+}
+
+} // namespace
+
+TEST(Reference, SphereLightPenumbraMatchesTheSolidAngleOverlap) {
+    const Light lamp{.type = LightType::Point, .position = {1.0f, 7.0f, 0.5f}, .radius = 1.2f,
+                     .castsShadow = true};
+    Light spot = lamp;
+    spot.type = LightType::Spot; // point lights have no visibility image yet; spots do
+    spot.direction = {0, -1, 0};
+    size_t patches = 0;
+    const double worst = worstPenumbraPatchError(spot, -0.4f, -0.2f, 4.5f, &patches);
+    std::printf("sphere light: %zu penumbra patches, worst mean error %.4f\n", patches, worst);
+    EXPECT_GT(patches, 20u);
+    EXPECT_LT(worst, 0.01);
+}
+
+TEST(Reference, DirectionalLightWithAnAngularDiameterMatchesTheOverlap) {
+    const Light sun{.type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)),
+                    .angularDiameter = 12.0f};
+    size_t patches = 0;
+    const double worst = worstPenumbraPatchError(sun, 0.6f, 0.4f, 3.5f, &patches);
+    std::printf("sun cone: %zu penumbra patches, worst mean error %.4f\n", patches, worst);
+    EXPECT_GT(patches, 20u);
+    EXPECT_LT(worst, 0.01);
+}
+
+TEST(Reference, DropsTheSameInvalidTrianglesAsTheRasterizer) {
+    const Light sun{.type = LightType::Directional, .direction = {0, -1, 0}};
+    Scene clean = sphereOverPlane(sun);
+    Scene hostile = clean;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const uint32_t base = static_cast<uint32_t>(hostile.vertices.size());
+    auto add = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+        for (const glm::vec3& p : {a, b, c}) hostile.vertices.push_back({p, {0, 1, 0}, 0});
+    };
+    add({0, 5, 0}, {nan, 5, 0}, {0, 5, 1});         // NaN vertex
+    add({0, 5, 0}, {1e30f, 5, 0}, {0, 5, 1});       // past kMaxCoordinate
+    add({0, 5, 0}, {1, 5, 0}, {2, 5, 0});           // no area
+    hostile.indices.insert(hostile.indices.end(), {base, base + 1, base + 2, base + 3, base + 4,
+                                                   base + 5, base + 6, base + 7, base + 8,
+                                                   base, base + 1, 999999}); // index out of range
+    Scene sanitized = hostile;
+    EXPECT_EQ(dropInvalidTriangles(sanitized), 4u);
+    EXPECT_EQ(sanitized.triangleCount(), clean.triangleCount());
+    EXPECT_TRUE(std::isfinite(sanitized.bounds().max.x));
+
+    const RenderResult g = planeGrid(0.0f, 0.0f, 4.0f);
+    const ReferenceResult a = computeReference(clean, g, {.samples = 4});
+    const ReferenceResult b = computeReference(hostile, g, {.samples = 4});
+    EXPECT_EQ(b.triangles, clean.triangleCount());
+    EXPECT_EQ(a.visibility, b.visibility);
+}
+
+TEST(Reference, EmbreeFailuresAreClearErrorsNotCrashes) {
+    const Light sun{.type = LightType::Directional, .direction = {0, -1, 0}};
+    const Scene scene = sphereOverPlane(sun);
+    try {
+        computeReference(scene, planeGrid(0, 0, 1), {.embreeConfig = "threads=abc"});
+        FAIL() << "expected an error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("embree: ", 0), 0u) << e.what();
+        EXPECT_NE(std::string(e.what()).find("threads=abc"), std::string::npos);
+    }
+}

@@ -1,0 +1,303 @@
+#include "report/heatmap.h"
+#include "report/html_report.h"
+
+#include <gtest/gtest.h>
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+
+namespace penumbra {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+using Rgba = std::array<int, 4>;
+
+Rgba pixel(const RgbaImage& im, uint32_t x, uint32_t y) {
+    const uint8_t* p = im.pixels.data() + (size_t{y} * im.width + x) * 4;
+    return {p[0], p[1], p[2], p[3]};
+}
+
+void expectNear(Rgba actual, Rgba expected, int tolerance) {
+    for (size_t i = 0; i < 4; ++i)
+        EXPECT_NEAR(actual[i], expected[i], tolerance) << "channel " << i;
+}
+
+// Errors -1, 0 and +1 in one 3x1 image.
+RgbaImage threeErrors(float range = 1.0f, uint8_t maskValue = 1) {
+    const std::vector<float> v = {0.0f, 0.5f, 1.0f}, t = {1.0f, 0.5f, 0.0f};
+    const std::vector<uint8_t> mask(3, maskValue);
+    return signedErrorHeatmap(3, 1, v, t, mask, range);
+}
+
+TEST(Heatmap, DivergingColoursAtTheEndsAndCentre) {
+    RgbaImage im = threeErrors();
+    Rgba low = pixel(im, 0, 0), zero = pixel(im, 1, 0), high = pixel(im, 2, 0);
+    EXPECT_GT(low[2], low[0] + 60); // blue-ish: too dark
+    EXPECT_GT(low[2], low[1] + 60);
+    EXPECT_GT(high[0], high[2] + 60); // red-ish: too bright
+    EXPECT_GT(high[0], high[1] + 60);
+    for (size_t c = 0; c < 3; ++c)
+        EXPECT_GT(zero[c], 200) << c; // near-white and neutral
+    EXPECT_LE(std::max({zero[0], zero[1], zero[2]}) - std::min({zero[0], zero[1], zero[2]}), 4);
+    // Moreland's published cool-warm end points and midpoint.
+    expectNear(low, {59, 76, 192, 255}, 2);
+    expectNear(zero, {221, 221, 221, 255}, 2);
+    expectNear(high, {180, 4, 38, 255}, 2);
+}
+
+TEST(Heatmap, ErrorIsClampedToRange) {
+    RgbaImage wide = threeErrors(1.0f), narrow = threeErrors(0.25f);
+    EXPECT_EQ(pixel(narrow, 0, 0), pixel(wide, 0, 0));
+    EXPECT_EQ(pixel(narrow, 2, 0), pixel(wide, 2, 0));
+    // With range 4, an error of 1 is only a quarter of the way to the end colour.
+    RgbaImage faint = threeErrors(4.0f);
+    EXPECT_GT(pixel(faint, 2, 0)[1], pixel(wide, 2, 0)[1] + 60);
+}
+
+TEST(Heatmap, UncountedPixelsAreBlendedTowardsGrey) {
+    RgbaImage counted = threeErrors(), uncounted = threeErrors(1.0f, 0);
+    for (uint32_t x = 0; x < 3; ++x) {
+        Rgba c = pixel(counted, x, 0), u = pixel(uncounted, x, 0);
+        for (size_t k = 0; k < 3; ++k)
+            EXPECT_NEAR(u[k], (c[k] + 128) / 2, 1) << x << " " << k;
+    }
+}
+
+TEST(Heatmap, LegendStripBelowTheImage) {
+    const uint32_t w = 400, h = 50;
+    std::vector<float> v(w * h, 0.5f), t(w * h, 0.5f);
+    std::vector<uint8_t> mask(w * h, 1);
+    RgbaImage im = signedErrorHeatmap(w, h, v, t, mask);
+    ASSERT_EQ(im.width, w);
+    ASSERT_GE(im.height, h + 28);
+    ASSERT_EQ(im.pixels.size(), size_t{im.width} * im.height * 4);
+    int blue = 0, red = 0, ink = 0;
+    for (uint32_t y = h; y < im.height; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            Rgba p = pixel(im, x, y);
+            EXPECT_EQ(p[3], 255);
+            blue += p[2] > p[0] + 60;
+            red += p[0] > p[2] + 60;
+            ink += p[0] < 60 && p[1] < 60 && p[2] < 60;
+        }
+    EXPECT_GT(blue, 100); // the gradient's cool half
+    EXPECT_GT(red, 100);  // and its warm half
+    EXPECT_GT(ink, 50);   // tick marks and labels
+    // A legend fits narrow images too, without drawing outside them.
+    RgbaImage tiny = threeErrors();
+    EXPECT_GE(tiny.height, 1u + 28);
+    EXPECT_EQ(tiny.pixels.size(), size_t{tiny.width} * tiny.height * 4);
+}
+
+TEST(Heatmap, BackgroundIsADarkChecker) {
+    std::vector<float> v(32 * 32, 0.0f), t(32 * 32, kNaN);
+    std::vector<uint8_t> mask(32 * 32, 0);
+    RgbaImage im = signedErrorHeatmap(32, 32, v, t, mask);
+    Rgba a = pixel(im, 0, 0), b = pixel(im, 8, 0);
+    EXPECT_NE(a, b);
+    EXPECT_EQ(pixel(im, 7, 7), a);
+    EXPECT_EQ(pixel(im, 8, 8), a);
+    EXPECT_EQ(pixel(im, 0, 8), b);
+    EXPECT_EQ(pixel(im, 31, 31), a);
+    for (Rgba p : {a, b}) {
+        EXPECT_LT(p[0], 0x60);
+        EXPECT_EQ(p[0], p[1]);
+        EXPECT_EQ(p[1], p[2]);
+    }
+}
+
+TEST(Heatmap, VisibilityImage) {
+    const std::vector<float> v = {0.0f, 1.0f, 0.5f, kNaN, -2.0f, 3.0f};
+    RgbaImage im = visibilityImage(3, 2, v);
+    EXPECT_EQ(pixel(im, 0, 0), (Rgba{0, 0, 0, 255}));
+    EXPECT_EQ(pixel(im, 1, 0), (Rgba{255, 255, 255, 255}));
+    EXPECT_EQ(pixel(im, 2, 0), (Rgba{128, 128, 128, 255}));
+    EXPECT_EQ(pixel(im, 0, 1), (Rgba{0x8c, 0xa6, 0xcc, 255}));
+    EXPECT_EQ(pixel(im, 1, 1), (Rgba{0, 0, 0, 255}));
+    EXPECT_EQ(pixel(im, 2, 1), (Rgba{255, 255, 255, 255}));
+}
+
+TEST(Heatmap, EncodePngRoundTrips) {
+    RgbaImage im = threeErrors();
+    std::vector<uint8_t> png = encodePng(im);
+    int w = 0, h = 0, n = 0;
+    uint8_t* decoded =
+        stbi_load_from_memory(png.data(), static_cast<int>(png.size()), &w, &h, &n, 4);
+    ASSERT_NE(decoded, nullptr);
+    EXPECT_EQ(uint32_t(w), im.width);
+    EXPECT_EQ(uint32_t(h), im.height);
+    EXPECT_TRUE(std::equal(im.pixels.begin(), im.pixels.end(), decoded));
+    stbi_image_free(decoded);
+}
+
+ReportRow makeRow(std::string name, double rmse, std::vector<std::pair<std::string, double>> gpu) {
+    ReportRow row;
+    row.name = std::move(name);
+    row.technique = "pcf";
+    row.parameters = {{"kernel", "box7"}};
+    row.metrics.rmse = rmse;
+    row.metrics.mae = rmse / 2;
+    row.metrics.max = 1;
+    row.metrics.misclassified = 0.125;
+    row.metrics.misclassifiedOutsideEdges = 0.0625;
+    row.metrics.acne = 0.25;
+    row.metrics.leak = 0.5;
+    row.metrics.pixels = 1234;
+    row.gpuMs = std::move(gpu);
+    row.imagePng = encodePng(visibilityImage(2, 2, std::vector<float>{0, 1, 0.5f, kNaN}));
+    row.visibilityPng = {1, 2, 3, 4}; // not a PNG: exercises base64 with one byte left over
+    row.heatmapPng = encodePng(threeErrors());
+    return row;
+}
+
+ReportData makeReport() {
+    ReportData d;
+    d.scene = "builtin:showcase";
+    d.device = "llvmpipe (LLVM 15.0.7, 256 bits)";
+    d.driver = "Mesa 23.0";
+    d.width = 640, d.height = 360, d.shadowMapSize = 2048, d.samples = 64;
+    d.referenceSeconds = 12.5, d.raysPerSecond = 1.25e6;
+    d.lights = {"sun: directional, angular diameter 0.53 deg", "lamp: spot, radius 0.1"};
+    d.referenceVisibilityPng = {9, 8, 7, 6, 5}; // two bytes left over
+    d.rows.push_back(makeRow("hard", 0.2, {{"shadow", 0.5}, {"main", 1.25}}));
+    d.rows.push_back(makeRow("a<b&\"c\"", 0.1, {{"shadow", 0.75}, {"blur", 0.25}, {"main", 1}}));
+    return d;
+}
+
+std::set<std::string> keysOf(const nlohmann::json& j) {
+    std::set<std::string> keys;
+    for (const auto& [key, value] : j.items())
+        keys.insert(key);
+    return keys;
+}
+
+TEST(MetricsJson, HasExactlyTheContractKeys) {
+    const ReportData d = makeReport();
+    const nlohmann::json j = metricsJson(d);
+    EXPECT_EQ(keysOf(j), (std::set<std::string>{"reference", "techniques"}));
+    const nlohmann::json& ref = j["reference"];
+    EXPECT_EQ(keysOf(ref), (std::set<std::string>{"samples", "seconds", "rays_per_second", "lights",
+                                                  "scene", "width", "height", "device"}));
+    EXPECT_EQ(ref["samples"], 64);
+    EXPECT_EQ(ref["seconds"], 12.5);
+    EXPECT_EQ(ref["rays_per_second"], 1.25e6);
+    EXPECT_EQ(ref["lights"], nlohmann::json(d.lights));
+    EXPECT_EQ(ref["scene"], "builtin:showcase");
+    EXPECT_EQ(ref["width"], 640);
+    EXPECT_EQ(ref["height"], 360);
+    EXPECT_EQ(ref["device"], d.device);
+    EXPECT_EQ(keysOf(j["techniques"]), (std::set<std::string>{"hard", "a<b&\"c\""}));
+    const nlohmann::json& t = j["techniques"]["a<b&\"c\""];
+    EXPECT_EQ(keysOf(t), (std::set<std::string>{"rmse", "mae", "max", "misclassified",
+                                                "misclassified_outside_edges", "acne", "leak",
+                                                "pixels", "gpu_ms"}));
+    EXPECT_EQ(t["rmse"], 0.1);
+    EXPECT_EQ(t["mae"], 0.05);
+    EXPECT_EQ(t["max"], 1.0);
+    EXPECT_EQ(t["misclassified"], 0.125);
+    EXPECT_EQ(t["misclassified_outside_edges"], 0.0625);
+    EXPECT_EQ(t["acne"], 0.25);
+    EXPECT_EQ(t["leak"], 0.5);
+    EXPECT_EQ(t["pixels"], 1234);
+    EXPECT_EQ(keysOf(t["gpu_ms"]), (std::set<std::string>{"shadow", "blur", "main", "total"}));
+    EXPECT_EQ(t["gpu_ms"]["blur"], 0.25);
+    EXPECT_DOUBLE_EQ(t["gpu_ms"]["total"].get<double>(), 2.0);
+    EXPECT_DOUBLE_EQ(j["techniques"]["hard"]["gpu_ms"]["total"].get<double>(), 1.75);
+}
+
+size_t countOf(const std::string& text, const std::string& needle) {
+    size_t count = 0;
+    for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1))
+        ++count;
+    return count;
+}
+
+std::vector<uint8_t> decodeBase64(const std::string& text) {
+    const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::vector<uint8_t> out;
+    uint32_t bits = 0;
+    int count = 0;
+    for (char c : text) {
+        if (c == '=')
+            break;
+        size_t value = alphabet.find(c);
+        EXPECT_NE(value, std::string::npos) << c;
+        bits = (bits << 6) | uint32_t(value);
+        count += 6;
+        if (count >= 8) {
+            count -= 8;
+            out.push_back(uint8_t(bits >> count));
+        }
+    }
+    EXPECT_EQ(text.size() % 4, 0u);
+    return out;
+}
+
+// Every data:image/png;base64 payload in the page, decoded.
+std::vector<std::vector<uint8_t>> embeddedImages(const std::string& html) {
+    const std::string prefix = "src=\"data:image/png;base64,";
+    std::vector<std::vector<uint8_t>> images;
+    for (size_t at = html.find(prefix); at != std::string::npos; at = html.find(prefix, at)) {
+        at += prefix.size();
+        const size_t end = html.find('"', at);
+        images.push_back(decodeBase64(html.substr(at, end - at)));
+    }
+    return images;
+}
+
+TEST(HtmlReport, IsSelfContainedAndEscaped) {
+    const ReportData d = makeReport();
+    const std::string html = renderHtmlReport(d);
+    EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
+    EXPECT_NE(html.find("<meta charset=\"utf-8\">"), std::string::npos);
+    EXPECT_EQ(countOf(html, "<tr class=\"technique-row\""), 2u);
+    EXPECT_EQ(countOf(html, "<img class=\"heatmap\""), 2u);
+    EXPECT_EQ(countOf(html, "<figure class=\"card technique\" data-technique="), 2u);
+    EXPECT_EQ(countOf(html, "class=\"error-vs-cost\""), 1u);
+    for (const char* banned : {"http:", "https:", "src=\"//", "href=\"//", "<script", "url("})
+        EXPECT_EQ(html.find(banned), std::string::npos) << banned;
+    EXPECT_EQ(html.find("a<b&\"c\""), std::string::npos);
+    EXPECT_NE(html.find("data-technique=\"a&lt;b&amp;&quot;c&quot;\""), std::string::npos);
+    EXPECT_NE(html.find("LLVM 15.0.7"), std::string::npos);
+    EXPECT_NE(html.find("sun: directional"), std::string::npos);
+}
+
+TEST(HtmlReport, EmbeddedImagesDecode) {
+    const ReportData d = makeReport();
+    const std::vector<std::vector<uint8_t>> images = embeddedImages(renderHtmlReport(d));
+    ASSERT_EQ(images.size(), 1u + 3 * d.rows.size());
+    EXPECT_EQ(images[0], d.referenceVisibilityPng);
+    EXPECT_EQ(images[1], d.rows[0].imagePng);
+    EXPECT_EQ(images[2], d.rows[0].visibilityPng);
+    EXPECT_EQ(images[3], d.rows[0].heatmapPng);
+    int w = 0, h = 0, n = 0;
+    uint8_t* decoded =
+        stbi_load_from_memory(images[3].data(), static_cast<int>(images[3].size()), &w, &h, &n, 4);
+    ASSERT_NE(decoded, nullptr);
+    EXPECT_EQ(w, 3);
+    EXPECT_GE(h, 29);
+    stbi_image_free(decoded);
+}
+
+TEST(HtmlReport, PlotHandlesASingleZeroRow) {
+    ReportData d;
+    d.rows.push_back(ReportRow{.name = "none"});
+    const std::string html = renderHtmlReport(d);
+    const size_t begin = html.find("<svg"), end = html.find("</svg>");
+    ASSERT_NE(begin, std::string::npos);
+    ASSERT_NE(end, std::string::npos);
+    const std::string svg = html.substr(begin, end - begin);
+    EXPECT_EQ(countOf(svg, "<circle"), 1u);
+    EXPECT_EQ(svg.find("nan"), std::string::npos);
+    EXPECT_EQ(svg.find("inf"), std::string::npos);
+    EXPECT_NE(html.find("no image"), std::string::npos);
+}
+
+} // namespace
+} // namespace penumbra
