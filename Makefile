@@ -30,7 +30,7 @@ test: build
 	ctest --preset $(PRESET) -j $(JOBS)
 
 demo: build
-	$(BUILDDIR)/apps/penumbra/penumbra render builtin:showcase -o out/showcase
+	$(BUILDDIR)/apps/penumbra/penumbra compare builtin:showcase -o out/showcase
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i

@@ -27,7 +27,8 @@ inline std::string slurp(const std::filesystem::path& p) {
     return ss.str();
 }
 
-inline ProcessResult runCli(const std::vector<std::string>& args) {
+// Runs argv[0] (a path, not looked up in PATH) with the given arguments.
+inline ProcessResult runProcess(std::vector<std::string> full) {
     const auto dir =
         std::filesystem::temp_directory_path() / ("penumbra-cli-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
@@ -38,8 +39,6 @@ inline ProcessResult runCli(const std::vector<std::string>& args) {
                                      0644);
     posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
                                      0644);
-    std::vector<std::string> full{PENUMBRA_CLI_PATH, "--validation"};
-    full.insert(full.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& a : full)
         argv.push_back(a.data());
@@ -56,6 +55,13 @@ inline ProcessResult runCli(const std::vector<std::string>& args) {
     result.err = slurp(errPath);
     std::filesystem::remove_all(dir);
     return result;
+}
+
+// The penumbra CLI, always with the validation layer on.
+inline ProcessResult runCli(const std::vector<std::string>& args) {
+    std::vector<std::string> full{PENUMBRA_CLI_PATH, "--validation"};
+    full.insert(full.end(), args.begin(), args.end());
+    return runProcess(std::move(full));
 }
 
 } // namespace penumbra::test

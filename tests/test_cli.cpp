@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <sstream>
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -40,10 +41,15 @@ TEST_P(CliRefuses, WithOneErrorLineAndNoOutput) {
         args.push_back(a == "{out}" ? out.string() : a);
     const ProcessResult r = runCli(args);
     EXPECT_GT(r.exitCode, 0) << "must fail cleanly (exit code -1 means it crashed)";
-    // Exactly one line on stderr, and it is the error.
+    // The error is the last line and the only error line; anything before it is progress.
     ASSERT_FALSE(r.err.empty());
-    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "stderr:\n" << r.err;
-    EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+    ASSERT_EQ(r.err.back(), '\n') << r.err;
+    const size_t lastStart = r.err.rfind('\n', r.err.size() - 2) + 1; // npos + 1 == 0
+    EXPECT_EQ(r.err.compare(lastStart, 7, "error: "), 0) << r.err;
+    EXPECT_EQ(r.err.find("error: "), lastStart) << "one error line:\n" << r.err;
+    std::istringstream lines(r.err.substr(0, lastStart));
+    for (std::string line; std::getline(lines, line);)
+        EXPECT_EQ(line.rfind("penumbra: ", 0), 0u) << "unexpected stderr line: " << line;
     EXPECT_NE(r.err.find(bad.expected), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out)) << "partial output left at " << out;
 }
@@ -98,7 +104,20 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"output_under_a_file",
                  {"render", "builtin:showcase", "-o", "/etc/hostname/sub"},
                  "/etc/hostname"},
-        BadInput{"no_output_option", {"render", "builtin:showcase"}, "--output"}),
+        BadInput{"no_output_option", {"render", "builtin:showcase"}, "--output"},
+        BadInput{"reference_zero_samples",
+                 {"reference", "builtin:showcase", "-o", "{out}", "--samples", "0"},
+                 "--samples"},
+        BadInput{"reference_embree_failure",
+                 {"reference", "builtin:showcase", "-o", "{out}", "--width", "32", "--height", "32",
+                  "--embree-config", "threads=abc"},
+                 "embree: cannot create a device"},
+        BadInput{"compare_unknown_technique",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--techniques", "hard,fuzzy"},
+                 "--techniques: unknown technique or variant 'fuzzy'"},
+        BadInput{"compare_bad_set",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--set", "bias.slope=x"},
+                 "bias.slope=x"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(Cli, RenderWritesTheContractFiles) {
@@ -159,4 +178,77 @@ TEST(Cli, InfoNamesTheDevice) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("maxImageDimension2D"), std::string::npos);
     EXPECT_NE(r.out.find("[default]"), std::string::npos);
+}
+
+namespace {
+
+// Renders a small comparison once for the tests below.
+const fs::path& smallComparison() {
+    static const fs::path out = [] {
+        const fs::path dir = scratch("compare-ok");
+        const ProcessResult r =
+            runCli({"compare", "builtin:showcase", "-o", dir.string(), "--width", "120", "--height",
+                    "80", "--shadow-map-size", "512", "--frames", "1", "--samples", "4"});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return dir;
+    }();
+    return out;
+}
+
+} // namespace
+
+TEST(Cli, CompareWritesMetricsForEveryTechnique) {
+    const fs::path& out = smallComparison();
+    const auto metrics = nlohmann::json::parse(slurp(out / "metrics.json"));
+    ASSERT_TRUE(metrics.contains("reference") && metrics.contains("techniques"));
+    EXPECT_EQ(metrics["reference"]["samples"], 4);
+    ASSERT_FALSE(metrics["techniques"].empty());
+    for (const auto& [name, m] : metrics["techniques"].items()) {
+        for (const char* key : {"rmse", "mae", "max", "misclassified",
+                                "misclassified_outside_edges", "acne", "leak", "gpu_ms"})
+            EXPECT_TRUE(m.contains(key)) << name << " lacks " << key;
+        EXPECT_TRUE(m["gpu_ms"].contains("visibility"));
+        EXPECT_TRUE(fs::exists(out / (name + ".image.png"))) << name;
+        EXPECT_TRUE(fs::exists(out / (name + ".heatmap.png"))) << name;
+    }
+    for (const char* f : {"report.html", "visibility.pfm", "position.pfm", "normal.pfm"})
+        EXPECT_TRUE(fs::exists(out / f)) << f;
+}
+
+// report.html in headless Chromium (Debian's package, installed by `make deps`): it loads
+// with no console messages, and its DOM has a row and a heat map for every technique.
+TEST(Cli, ReportLoadsInChromiumWithARowAndHeatmapPerTechnique) {
+    const fs::path chromium = "/usr/bin/chromium";
+    ASSERT_TRUE(fs::exists(chromium)) << "install Debian's chromium package (make deps does)";
+    const fs::path& out = smallComparison();
+    const std::string html = slurp(out / "report.html");
+    for (const char* remote : {"http:", "https:", "src=\"//", "href=\"//"})
+        EXPECT_EQ(html.find(remote), std::string::npos) << "network reference: " << remote;
+    const fs::path profile = scratch("chromium-profile");
+    const ProcessResult r = runProcess(
+        {chromium.string(), "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+         "--no-first-run", "--disable-background-networking", "--disable-component-update",
+         "--disable-sync", "--user-data-dir=" + profile.string(), "--enable-logging=stderr",
+         "--v=0", "--virtual-time-budget=3000", "--dump-dom",
+         "file://" + fs::absolute(out / "report.html").string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // Console messages (script errors, refused or broken resources) are logged as CONSOLE.
+    EXPECT_EQ(r.err.find("CONSOLE"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("Uncaught"), std::string::npos) << r.err;
+    const auto metrics = nlohmann::json::parse(slurp(out / "metrics.json"));
+    auto count = [&](const std::string& needle) {
+        size_t n = 0;
+        for (size_t at = r.out.find(needle); at != std::string::npos;
+             at = r.out.find(needle, at + 1))
+            ++n;
+        return n;
+    };
+    for (const auto& [name, m] : metrics["techniques"].items()) {
+        EXPECT_EQ(count("<tr class=\"technique-row\" data-technique=\"" + name + "\""), 1u) << name;
+        EXPECT_EQ(count("<figure class=\"card technique\" data-technique=\"" + name + "\""), 1u)
+            << name;
+    }
+    EXPECT_EQ(count("class=\"technique-row\""), metrics["techniques"].size());
+    EXPECT_EQ(count("class=\"heatmap\""), metrics["techniques"].size());
+    EXPECT_EQ(count("<img"), count("src=\"data:image/png;base64,"));
 }

@@ -79,12 +79,13 @@ TEST(Analytic, CapIntersectionMatchesMonteCarlo) {
     }
     const double expected = analytic::capIntersection(a1, a2, gamma) / analytic::capArea(a1);
     EXPECT_NEAR(static_cast<double>(both) / inside, expected, 3e-3);
-    EXPECT_DOUBLE_EQ(analytic::capIntersection(a1, a2, 0.6), 0.0);             // disjoint
+    EXPECT_DOUBLE_EQ(analytic::capIntersection(a1, a2, 0.6), 0.0);                      // disjoint
     EXPECT_NEAR(analytic::capIntersection(a1, a2, 0.05), analytic::capArea(a2), 1e-12); // nested
 }
 
 TEST(Sampling, ConeSamplesStayInsideTheConeAndCoverItUniformly) {
-    Light light{.type = LightType::Directional, .direction = glm::normalize(glm::vec3(0.2f, -1, 0.1f)),
+    Light light{.type = LightType::Directional,
+                .direction = glm::normalize(glm::vec3(0.2f, -1, 0.1f)),
                 .angularDiameter = 20.0f};
     const LightCone cone = coneTowards(light, {0, 0, 0});
     const double cosAlpha = 1.0 - cone.oneMinusCosAlpha;
@@ -99,8 +100,8 @@ TEST(Sampling, ConeSamplesStayInsideTheConeAndCoverItUniformly) {
     EXPECT_NEAR(meanCos, 1.0 - 0.5 * cone.oneMinusCosAlpha, 1e-5); // uniform in solid angle
     // A tiny sun keeps its exact size: no float cancellation in 1 - cos.
     light.angularDiameter = 0.01f;
-    EXPECT_NEAR(coneTowards(light, {0, 0, 0}).oneMinusCosAlpha,
-                1.0 - std::cos(glm::radians(0.005)), 1e-15);
+    EXPECT_NEAR(coneTowards(light, {0, 0, 0}).oneMinusCosAlpha, 1.0 - std::cos(glm::radians(0.005)),
+                1e-15);
 }
 
 TEST(Reference, HardShadowMatchesTheAnalyticOneOutsideAOnePixelBand) {
@@ -118,10 +119,12 @@ TEST(Reference, HardShadowMatchesTheAnalyticOneOutsideAOnePixelBand) {
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx)
                     band |= truth[i + dy * int(kGrid) + dx] != truth[i];
-            if (band) continue;
+            if (band)
+                continue;
             ++compared;
             shadowed += truth[i] == 0.0;
-            ASSERT_EQ(r.visibility[0][i], static_cast<float>(truth[i])) << "pixel " << x << "," << y;
+            ASSERT_EQ(r.visibility[0][i], static_cast<float>(truth[i]))
+                << "pixel " << x << "," << y;
         }
     EXPECT_GT(shadowed, kGrid * kGrid / 8) << "the shadow must be in view";
     EXPECT_GT(compared - shadowed, kGrid * kGrid / 8);
@@ -132,7 +135,8 @@ namespace {
 
 // Mean reference visibility over 8x8 patches lying wholly in the penumbra, against the mean of
 // the analytic solid-angle overlap: the worst patch difference.
-double worstPenumbraPatchError(const Light& light, float cx, float cz, float extent, size_t* patches) {
+double worstPenumbraPatchError(const Light& light, float cx, float cz, float extent,
+                               size_t* patches) {
     const Scene scene = sphereOverPlane(light);
     const RenderResult g = planeGrid(cx, cz, extent);
     const ReferenceResult r = computeReference(scene, g, {.samples = 256});
@@ -149,7 +153,8 @@ double worstPenumbraPatchError(const Light& light, float cx, float cz, float ext
                     penumbra &= truth[i] > 0.02 && truth[i] < 0.98;
                     sumRef += r.visibility[0][i], sumTruth += truth[i];
                 }
-            if (!penumbra) continue;
+            if (!penumbra)
+                continue;
             ++*patches;
             worst = std::max(worst, std::abs(sumRef - sumTruth) / 64.0);
         }
@@ -159,7 +164,9 @@ double worstPenumbraPatchError(const Light& light, float cx, float cz, float ext
 } // namespace
 
 TEST(Reference, SphereLightPenumbraMatchesTheSolidAngleOverlap) {
-    const Light lamp{.type = LightType::Point, .position = {1.0f, 7.0f, 0.5f}, .radius = 1.2f,
+    const Light lamp{.type = LightType::Point,
+                     .position = {1.0f, 7.0f, 0.5f},
+                     .radius = 1.2f,
                      .castsShadow = true};
     Light spot = lamp;
     spot.type = LightType::Spot; // point lights have no visibility image yet; spots do
@@ -189,14 +196,15 @@ TEST(Reference, DropsTheSameInvalidTrianglesAsTheRasterizer) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const uint32_t base = static_cast<uint32_t>(hostile.vertices.size());
     auto add = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-        for (const glm::vec3& p : {a, b, c}) hostile.vertices.push_back({p, {0, 1, 0}, 0});
+        for (const glm::vec3& p : {a, b, c})
+            hostile.vertices.push_back({p, {0, 1, 0}, 0});
     };
-    add({0, 5, 0}, {nan, 5, 0}, {0, 5, 1});         // NaN vertex
-    add({0, 5, 0}, {1e30f, 5, 0}, {0, 5, 1});       // past kMaxCoordinate
-    add({0, 5, 0}, {1, 5, 0}, {2, 5, 0});           // no area
-    hostile.indices.insert(hostile.indices.end(), {base, base + 1, base + 2, base + 3, base + 4,
-                                                   base + 5, base + 6, base + 7, base + 8,
-                                                   base, base + 1, 999999}); // index out of range
+    add({0, 5, 0}, {nan, 5, 0}, {0, 5, 1});   // NaN vertex
+    add({0, 5, 0}, {1e30f, 5, 0}, {0, 5, 1}); // past kMaxCoordinate
+    add({0, 5, 0}, {1, 5, 0}, {2, 5, 0});     // no area
+    hostile.indices.insert(hostile.indices.end(),
+                           {base, base + 1, base + 2, base + 3, base + 4, base + 5, base + 6,
+                            base + 7, base + 8, base, base + 1, 999999}); // index out of range
     Scene sanitized = hostile;
     EXPECT_EQ(dropInvalidTriangles(sanitized), 4u);
     EXPECT_EQ(sanitized.triangleCount(), clean.triangleCount());

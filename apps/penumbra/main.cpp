@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
     const std::pair<const char*, cli::Action> commands[] = {
         {"render", cli::addRenderCommand(app, global)},
         {"reference", cli::addReferenceCommand(app, global)},
+        {"compare", cli::addCompareCommand(app, global)},
         {"info", cli::addInfoCommand(app, global)},
         {"techniques", cli::addTechniquesCommand(app)}};
     try {
@@ -43,7 +44,8 @@ int main(int argc, char** argv) {
     }
     try {
         for (const auto& [name, action] : commands)
-            if (app.got_subcommand(name)) return action();
+            if (app.got_subcommand(name))
+                return action();
     } catch (const InputError& e) {
         std::fprintf(stderr, "error: %s\n", e.what());
         return 2;

@@ -25,8 +25,8 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
     options.shadowMapSize = 64; // only the G-buffer is used; keep the shadow pass cheap
     validate(options);
     if (args.reference.samples == 0 || args.reference.samples > 65536)
-        throw InputError("--samples", fmt::format("{} is out of range [1, 65536]",
-                                                  args.reference.samples));
+        throw InputError("--samples",
+                         fmt::format("{} is out of range [1, 65536]", args.reference.samples));
     Scene scene = loadScene(args.scene);
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
@@ -37,7 +37,8 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
     applyLightSizeOverrides(scene, options.lightRadiusOverride, options.lightAngleOverride);
     const ReferenceResult truth = computeReference(scene, gbuffer, args.reference);
     writeViewFiles(out, gbuffer, truth.visibility);
-    const double raysPerSecond = truth.seconds > 0 ? static_cast<double>(truth.rays) / truth.seconds : 0;
+    const double raysPerSecond =
+        truth.traceSeconds > 0 ? static_cast<double>(truth.rays) / truth.traceSeconds : 0;
     const nlohmann::json info = {{"scene", args.scene},
                                  {"width", options.width},
                                  {"height", options.height},

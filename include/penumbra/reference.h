@@ -16,7 +16,7 @@
 namespace penumbra {
 
 struct ReferenceOptions {
-    uint32_t samples = 256; // rays per pixel and light for lights with a size (1 .. 65536)
+    uint32_t samples = 256;   // rays per pixel and light for lights with a size (1 .. 65536)
     std::string embreeConfig; // rtcNewDevice configuration, e.g. "threads=2"
     bool progress = false;    // a progress bar on stderr when the work runs past a second
 };
@@ -25,8 +25,9 @@ struct ReferenceResult {
     uint32_t width = 0, height = 0;
     std::vector<std::vector<float>> visibility; // per shadow-casting light, as RenderResult
     uint64_t rays = 0;
-    double seconds = 0.0;
-    size_t triangles = 0; // what Embree was given (the rasterizer draws the same)
+    double seconds = 0.0;      // everything: scene build and tracing
+    double traceSeconds = 0.0; // tracing alone: rays / traceSeconds is the ray rate
+    size_t triangles = 0;      // what Embree was given (the rasterizer draws the same)
 };
 
 // Traces from the world positions of `gbuffer` (its position and normal images). The scene

@@ -41,7 +41,8 @@ struct LightShadow {
     int visibilityIndex = -1; // index into RenderResult::visibility; -1: casts no shadow
     std::string projection;   // "orthographic" / "perspective" / "none"
     float nearPlane = 0.0f, farPlane = 0.0f;
-    float texelWorldSize = 0.0f; // at unit distance for perspective
+    float texelWorldSize = 0.0f;   // at unit distance for perspective
+    glm::mat4 worldToShadow{1.0f}; // T x light view-projection: world -> (u, v, depth) * w
 };
 
 struct RenderResult {

@@ -12,15 +12,34 @@ namespace penumbra {
 
 enum class Technique : uint32_t { Hard = 0 };
 
+// A parameter setting worth its own row in `compare`, e.g. label "box7" for pcf: pcf[box7].
+struct TechniqueVariant {
+    std::string_view label; // empty: the technique's defaults
+    std::vector<std::pair<std::string_view, std::string_view>> sets;
+};
+
 struct TechniqueInfo {
     Technique id;
     std::string_view name;                  // CLI name, e.g. "hard"
     std::string_view summary;               // one line
     std::string_view reference;             // the paper or text it implements
     std::vector<std::string_view> families; // parameter families it reads, e.g. {"bias"}
+    std::vector<TechniqueVariant> variants; // the rows `compare` shows by default
 };
 
+// One row of a comparison: a technique with its variant's parameters.
+struct TechniqueRow {
+    std::string name; // "hard", "pcf[box7]"
+    Technique technique;
+    std::vector<std::pair<std::string, std::string>> sets;
+};
+
+// Expands `--techniques`: a comma-separated list of technique names (each gives all its
+// variants) or row names; empty gives every variant of every technique. Throws InputError.
+std::vector<TechniqueRow> comparisonRows(std::string_view list);
+
 std::span<const TechniqueInfo> allTechniques();
+std::string_view techniqueName(Technique technique);
 // Throws InputError("--technique", ...) listing the valid names when `name` is unknown.
 const TechniqueInfo& findTechnique(std::string_view name);
 

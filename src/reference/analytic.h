@@ -11,7 +11,9 @@ namespace penumbra::analytic {
 // Solid angle of the intersection of two caps of angular radii a1, a2 (radians, each < pi/2)
 // whose centres are `gamma` apart on the unit sphere.
 double capIntersection(double a1, double a2, double gamma);
-inline double capArea(double a) { return 2.0 * 3.14159265358979323846 * (1.0 - std::cos(a)); }
+inline double capArea(double a) {
+    return 2.0 * 3.14159265358979323846 * (1.0 - std::cos(a));
+}
 
 // Visible fraction of a cone of directions (axis, half-angle alpha; uniform in solid angle)
 // seen from p past a sphere (centre, radius) that lies between p and the light.

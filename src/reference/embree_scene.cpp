@@ -11,20 +11,28 @@ namespace {
 
 const char* errorName(RTCError code) {
     switch (code) {
-    case RTC_ERROR_NONE: return "no error";
-    case RTC_ERROR_UNKNOWN: return "unknown error";
-    case RTC_ERROR_INVALID_ARGUMENT: return "invalid argument";
-    case RTC_ERROR_INVALID_OPERATION: return "invalid operation";
-    case RTC_ERROR_OUT_OF_MEMORY: return "out of memory";
-    case RTC_ERROR_UNSUPPORTED_CPU: return "unsupported CPU";
-    case RTC_ERROR_CANCELLED: return "cancelled";
+    case RTC_ERROR_NONE:
+        return "no error";
+    case RTC_ERROR_UNKNOWN:
+        return "unknown error";
+    case RTC_ERROR_INVALID_ARGUMENT:
+        return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION:
+        return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY:
+        return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+        return "unsupported CPU";
+    case RTC_ERROR_CANCELLED:
+        return "cancelled";
     }
     return "error";
 }
 
 void onEmbreeError(void* user, RTCError code, const char* message) {
     auto* error = static_cast<std::string*>(user);
-    if (error->empty()) *error = fmt::format("{} ({})", message ? message : "", errorName(code));
+    if (error->empty())
+        *error = fmt::format("{} ({})", message ? message : "", errorName(code));
 }
 
 } // namespace
@@ -44,8 +52,9 @@ EmbreeScene::EmbreeScene(const Scene& scene, const std::string& config) {
         auto* positions = static_cast<float*>(
             rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                     3 * sizeof(float), scene.vertices.size()));
-        auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mTriangles));
+        auto* indices = static_cast<uint32_t*>(
+            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                    3 * sizeof(uint32_t), mTriangles));
         throwIfFailed("allocating geometry buffers");
         for (size_t i = 0; i < scene.vertices.size(); ++i)
             std::memcpy(positions + 3 * i, &scene.vertices[i].position, 3 * sizeof(float));
@@ -59,23 +68,35 @@ EmbreeScene::EmbreeScene(const Scene& scene, const std::string& config) {
 }
 
 EmbreeScene::~EmbreeScene() {
-    if (mScene) rtcReleaseScene(mScene);
-    if (mDevice) rtcReleaseDevice(mDevice);
+    if (mScene)
+        rtcReleaseScene(mScene);
+    if (mDevice)
+        rtcReleaseDevice(mDevice);
 }
 
 void EmbreeScene::throwIfFailed(const char* what) const {
     const RTCError code = rtcGetDeviceError(mDevice);
-    if (code == RTC_ERROR_NONE && mError.empty()) return;
-    throw std::runtime_error(fmt::format("embree: {}: {}", what,
-                                         mError.empty() ? errorName(code) : mError));
+    if (code == RTC_ERROR_NONE && mError.empty())
+        return;
+    throw std::runtime_error(
+        fmt::format("embree: {}: {}", what, mError.empty() ? errorName(code) : mError));
 }
 
 bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay ray{.org_x = origin.x, .org_y = origin.y, .org_z = origin.z, .tnear = 0.0f,
-               .dir_x = dir.x, .dir_y = dir.y, .dir_z = dir.z, .time = 0.0f, .tfar = tfar,
-               .mask = std::numeric_limits<unsigned>::max(), .id = 0, .flags = 0};
+    RTCRay ray{.org_x = origin.x,
+               .org_y = origin.y,
+               .org_z = origin.z,
+               .tnear = 0.0f,
+               .dir_x = dir.x,
+               .dir_y = dir.y,
+               .dir_z = dir.z,
+               .time = 0.0f,
+               .tfar = tfar,
+               .mask = std::numeric_limits<unsigned>::max(),
+               .id = 0,
+               .flags = 0};
     rtcOccluded1(mScene, &context, &ray);
     return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
 }

@@ -36,7 +36,8 @@ glm::dvec3 rayOrigin(const glm::dvec3& p, const glm::dvec3& n) {
 class ProgressBar {
 public:
     ProgressBar(bool enabled, uint64_t total) : mTotal(total) {
-        if (enabled) mThread = std::thread([this] { run(); });
+        if (enabled)
+            mThread = std::thread([this] { run(); });
     }
     ~ProgressBar() {
         {
@@ -44,7 +45,8 @@ public:
             mDone = true;
         }
         mWake.notify_all();
-        if (mThread.joinable()) mThread.join();
+        if (mThread.joinable())
+            mThread.join();
     }
     void advance(uint64_t n) { mCount.fetch_add(n, std::memory_order_relaxed); }
 
@@ -57,10 +59,12 @@ private:
         std::unique_lock lock(mMutex);
         while (!mWake.wait_for(lock, std::chrono::milliseconds(250), [this] { return mDone; })) {
             const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-            if (elapsed < 1.0) continue;
+            if (elapsed < 1.0)
+                continue;
             const double f = static_cast<double>(mCount.load()) / static_cast<double>(mTotal);
             const int decile = static_cast<int>(f * 10.0);
-            if (!tty && decile == lastDecile) continue;
+            if (!tty && decile == lastDecile)
+                continue;
             lastDecile = decile;
             const int filled = static_cast<int>(f * 30.0);
             std::fprintf(stderr, "%sreference [%s%s] %3.0f%%  %.1f s", tty ? "\r" : "",
@@ -69,7 +73,8 @@ private:
             std::fprintf(stderr, tty ? "" : "\n");
             printed = true;
         }
-        if (printed && tty) std::fprintf(stderr, "\n");
+        if (printed && tty)
+            std::fprintf(stderr, "\n");
     }
     uint64_t mTotal;
     std::atomic<uint64_t> mCount{0};
@@ -94,7 +99,8 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
 
     std::vector<const Light*> lights; // same order as the renderer's visibility images
     for (const Light& l : scene.lights)
-        if (l.castsShadow && l.type != LightType::Point) lights.push_back(&l);
+        if (l.castsShadow && l.type != LightType::Point)
+            lights.push_back(&l);
 
     const uint32_t w = gbuffer.width, h = gbuffer.height;
     const size_t pixels = size_t{w} * h;
@@ -102,45 +108,51 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
     result.visibility.assign(lights.size(),
                              std::vector<float>(pixels, std::numeric_limits<float>::quiet_NaN()));
     const uint32_t samples = std::max(options.samples, 1u);
+    const auto traceStart = Clock::now();
     std::atomic<uint64_t> rays{0};
     ProgressBar progress(options.progress, h);
 
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, h), [&](const tbb::blocked_range<uint32_t>& rows) {
-        uint64_t localRays = 0;
-        for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
-            for (uint32_t x = 0; x < w; ++x) {
-                const size_t i = size_t{y} * w + x;
-                const glm::dvec3 p(gbuffer.position[3 * i], gbuffer.position[3 * i + 1],
-                                   gbuffer.position[3 * i + 2]);
-                const glm::dvec3 n(gbuffer.normal[3 * i], gbuffer.normal[3 * i + 1],
-                                   gbuffer.normal[3 * i + 2]);
-                if (!std::isfinite(p.x) || !std::isfinite(n.x)) continue;
-                const glm::dvec3 origin = rayOrigin(p, n);
-                for (uint32_t l = 0; l < lights.size(); ++l) {
-                    const LightCone cone = coneTowards(*lights[l], origin);
-                    if (cone.inside) {
-                        result.visibility[l][i] = 1.0f;
+    tbb::parallel_for(
+        tbb::blocked_range<uint32_t>(0, h), [&](const tbb::blocked_range<uint32_t>& rows) {
+            uint64_t localRays = 0;
+            for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
+                for (uint32_t x = 0; x < w; ++x) {
+                    const size_t i = size_t{y} * w + x;
+                    const glm::dvec3 p(gbuffer.position[3 * i], gbuffer.position[3 * i + 1],
+                                       gbuffer.position[3 * i + 2]);
+                    const glm::dvec3 n(gbuffer.normal[3 * i], gbuffer.normal[3 * i + 1],
+                                       gbuffer.normal[3 * i + 2]);
+                    if (!std::isfinite(p.x) || !std::isfinite(n.x))
                         continue;
+                    const glm::dvec3 origin = rayOrigin(p, n);
+                    for (uint32_t l = 0; l < lights.size(); ++l) {
+                        const LightCone cone = coneTowards(*lights[l], origin);
+                        if (cone.inside) {
+                            result.visibility[l][i] = 1.0f;
+                            continue;
+                        }
+                        const uint32_t count = cone.single ? 1 : samples;
+                        const glm::dvec2 shift = pixelShift(x, y, l);
+                        uint32_t visible = 0;
+                        for (uint32_t s = 0; s < count; ++s) {
+                            const glm::dvec3 dir =
+                                sampleDirection(cone, hammersley(s, count, shift));
+                            const double tfar = distanceToLight(cone, origin, dir);
+                            visible += !embree.occluded(glm::vec3(origin), glm::vec3(dir),
+                                                        static_cast<float>(std::min(tfar, 1e30)));
+                        }
+                        localRays += count;
+                        result.visibility[l][i] =
+                            static_cast<float>(visible) / static_cast<float>(count);
                     }
-                    const uint32_t count = cone.single ? 1 : samples;
-                    const glm::dvec2 shift = pixelShift(x, y, l);
-                    uint32_t visible = 0;
-                    for (uint32_t s = 0; s < count; ++s) {
-                        const glm::dvec3 dir = sampleDirection(cone, hammersley(s, count, shift));
-                        const double tfar = distanceToLight(cone, origin, dir);
-                        visible += !embree.occluded(glm::vec3(origin), glm::vec3(dir),
-                                                    static_cast<float>(std::min(tfar, 1e30)));
-                    }
-                    localRays += count;
-                    result.visibility[l][i] = static_cast<float>(visible) / static_cast<float>(count);
                 }
+                progress.advance(1);
             }
-            progress.advance(1);
-        }
-        rays.fetch_add(localRays, std::memory_order_relaxed);
-    });
+            rays.fetch_add(localRays, std::memory_order_relaxed);
+        });
     result.rays = rays.load();
     result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.traceSeconds = std::chrono::duration<double>(Clock::now() - traceStart).count();
     return result;
 }
 

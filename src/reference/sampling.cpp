@@ -65,7 +65,8 @@ glm::dvec2 pixelShift(uint32_t x, uint32_t y, uint32_t light) {
 }
 
 glm::dvec3 sampleDirection(const LightCone& cone, const glm::dvec2& u) {
-    if (cone.single) return cone.axis;
+    if (cone.single)
+        return cone.axis;
     // cos(theta) uniform in [cos a, 1]: 1 - cos(theta) = u.x (1 - cos a).
     const double oneMinusCos = u.x * cone.oneMinusCosAlpha;
     const double cosTheta = 1.0 - oneMinusCos;
@@ -79,7 +80,8 @@ glm::dvec3 sampleDirection(const LightCone& cone, const glm::dvec2& u) {
 }
 
 double distanceToLight(const LightCone& cone, const glm::dvec3& origin, const glm::dvec3& dir) {
-    if (cone.toInfinity) return std::numeric_limits<double>::infinity();
+    if (cone.toInfinity)
+        return std::numeric_limits<double>::infinity();
     // Nearest intersection with the light sphere (radius 0: the centre itself).
     const glm::dvec3 oc = cone.center - origin;
     const double along = glm::dot(oc, dir);

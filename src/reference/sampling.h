@@ -19,7 +19,7 @@ struct LightCone {
     bool toInfinity = true;      // directional: rays never end
     glm::dvec3 center{0.0};      // sphere lights: centre and radius
     double radius = 0;
-    bool inside = false;         // the receiver is inside the light sphere: fully lit
+    bool inside = false; // the receiver is inside the light sphere: fully lit
 };
 
 LightCone coneTowards(const Light& light, const glm::dvec3& receiver);

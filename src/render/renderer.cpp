@@ -159,6 +159,7 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
             info.projection = p.perspective ? "perspective" : "orthographic";
             info.nearPlane = p.nearPlane, info.farPlane = p.farPlane;
             info.texelWorldSize = p.texelWorldSize;
+            info.worldToShadow = textureMatrix() * p.viewProj;
         }
         lights.push_back(lightData(light, casts ? &t.shadows.back().projection : nullptr,
                                    info.visibilityIndex, o.parameters));

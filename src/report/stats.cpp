@@ -50,9 +50,7 @@ nlohmann::json renderStats(const RenderRun& run) {
                    {"yfov_degrees", glm::degrees(camera.yfov)}};
     j["image"] = {{"width", o.width}, {"height", o.height}};
     j["shadow_map_size"] = o.shadowMapSize;
-    for (const TechniqueInfo& t : allTechniques())
-        if (t.id == o.technique)
-            j["technique"] = t.name;
+    j["technique"] = techniqueName(o.technique);
     nlohmann::json params = nlohmann::json::object();
     for (const ParameterInfo& p : allParameters()) {
         if (p.type == ParameterType::Choice || p.type == ParameterType::Bool)

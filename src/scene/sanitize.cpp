@@ -7,7 +7,8 @@ namespace {
 
 bool usable(const glm::vec3& p) {
     for (int i = 0; i < 3; ++i)
-        if (!std::isfinite(p[i]) || std::abs(p[i]) > kMaxCoordinate) return false;
+        if (!std::isfinite(p[i]) || std::abs(p[i]) > kMaxCoordinate)
+            return false;
     return true;
 }
 
@@ -49,7 +50,8 @@ size_t dropInvalidTriangles(Scene& scene) {
 
 void applyLightSizeOverrides(Scene& scene, float radius, float angleDegrees) {
     for (Light& light : scene.lights) {
-        if (radius >= 0.0f && light.type != LightType::Directional) light.radius = radius;
+        if (radius >= 0.0f && light.type != LightType::Directional)
+            light.radius = radius;
         if (angleDegrees >= 0.0f && light.type == LightType::Directional)
             light.angularDiameter = angleDegrees;
     }

@@ -19,9 +19,11 @@ constexpr BuiltinEntry kBuiltins[] = {
 } // namespace
 
 Bounds Scene::bounds() const {
+    // Only vertices that triangles use: dropped triangles may leave non-finite ones behind.
     Bounds b;
-    for (const Vertex& v : vertices)
-        b.grow(v.position);
+    for (uint32_t i : indices)
+        if (i < vertices.size())
+            b.grow(vertices[i].position);
     return b;
 }
 

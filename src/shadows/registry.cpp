@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -18,7 +19,8 @@ const std::vector<TechniqueInfo>& techniqueTable() {
          .name = "hard",
          .summary = "one shadow-map sample per pixel: lit when d(p) <= s(p)",
          .reference = "Williams 1978, 'Casting curved shadows on curved surfaces'",
-         .families = {"bias", "composite"}},
+         .families = {"bias", "composite"},
+         .variants = {{.label = ""}}},
     };
     return table;
 }
@@ -115,6 +117,13 @@ std::span<const TechniqueInfo> allTechniques() {
     return techniqueTable();
 }
 
+std::string_view techniqueName(Technique technique) {
+    for (const TechniqueInfo& t : techniqueTable())
+        if (t.id == technique)
+            return t.name;
+    fatal(__FILE__, __LINE__, "techniqueName: unregistered technique");
+}
+
 const TechniqueInfo& findTechnique(std::string_view name) {
     for (const TechniqueInfo& t : techniqueTable())
         if (t.name == name)
@@ -128,6 +137,47 @@ const TechniqueInfo& findTechnique(std::string_view name) {
 
 std::span<const ParameterInfo> allParameters() {
     return parameterTable();
+}
+
+std::vector<TechniqueRow> comparisonRows(std::string_view list) {
+    std::vector<TechniqueRow> all;
+    for (const TechniqueInfo& t : techniqueTable())
+        for (const TechniqueVariant& v : t.variants) {
+            TechniqueRow row{.name = v.label.empty() ? std::string(t.name)
+                                                     : fmt::format("{}[{}]", t.name, v.label),
+                             .technique = t.id};
+            for (const auto& [key, value] : v.sets)
+                row.sets.emplace_back(key, value);
+            all.push_back(std::move(row));
+        }
+    if (list.empty())
+        return all;
+    std::vector<TechniqueRow> rows;
+    size_t start = 0;
+    while (start <= list.size()) {
+        const size_t comma = std::min(list.find(',', start), list.size());
+        const std::string_view item = list.substr(start, comma - start);
+        start = comma + 1;
+        if (item.empty())
+            continue;
+        bool found = false;
+        for (const TechniqueRow& row : all)
+            if (row.name == item || row.name.starts_with(std::string(item) + "[")) {
+                rows.push_back(row);
+                found = true;
+            }
+        if (!found) {
+            std::string names;
+            for (const TechniqueRow& row : all)
+                names += (names.empty() ? "" : ", ") + row.name;
+            throw InputError("--techniques", fmt::format("unknown technique or variant '{}' "
+                                                         "(available: {})",
+                                                         item, names));
+        }
+    }
+    if (rows.empty())
+        throw InputError("--techniques", "the list is empty");
+    return rows;
 }
 
 ParameterValues::ParameterValues() {

@@ -1,0 +1,188 @@
+// `penumbra compare`: every technique row and the ground truth on the same pixels; writes
+// report.html (self-contained), metrics.json, and each row's images and analysis buffers.
+#include "commands.h"
+#include "core/image_io.h"
+#include "penumbra/error.h"
+#include "penumbra/reference.h"
+#include "penumbra/renderer.h"
+#include "report/heatmap.h"
+#include "report/html_report.h"
+#include "report/light_mask.h"
+#include "report/metrics.h"
+#include "report/stats.h"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <memory>
+
+namespace penumbra::cli {
+namespace {
+
+struct CompareArgs {
+    std::string scene, output, techniques;
+    std::vector<std::string> sets;
+    RenderOptions options;
+    ReferenceOptions reference{.progress = true};
+};
+
+// File-name prefix of a row: "pcf[box7]" -> "pcf-box7".
+std::string filePrefix(const std::string& row) {
+    std::string out;
+    for (char c : row)
+        if (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')
+            out += c;
+        else if (c == '[')
+            out += '-';
+    return out;
+}
+
+std::string describeLight(const Light& l) {
+    switch (l.type) {
+    case LightType::Directional:
+        return fmt::format("{}: directional, angular diameter {} deg", l.name, l.angularDiameter);
+    case LightType::Spot:
+        return fmt::format("{}: spot, radius {}", l.name, l.radius);
+    case LightType::Point:
+        return fmt::format("{}: point, radius {}", l.name, l.radius);
+    }
+    return l.name;
+}
+
+int runCompare(const CompareArgs& args, const GlobalOptions& global) {
+    const std::vector<TechniqueRow> rows = comparisonRows(args.techniques);
+    std::vector<RenderOptions> rowOptions;
+    for (const TechniqueRow& row : rows) {
+        RenderOptions o = args.options;
+        o.technique = row.technique;
+        for (const std::string& set : args.sets)
+            o.parameters.assign(set);
+        for (const auto& [key, value] : row.sets)
+            o.parameters.set(key, value);
+        validate(o);
+        rowOptions.push_back(std::move(o));
+    }
+    if (args.reference.samples == 0 || args.reference.samples > 65536)
+        throw InputError("--samples",
+                         fmt::format("{} is out of range [1, 65536]", args.reference.samples));
+    Scene scene = loadScene(args.scene);
+    StagedOutputDir out(args.output);
+    Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
+    for (const RenderOptions& o : rowOptions)
+        renderer.check(scene, o);
+    const DeviceInfo& device = renderer.device();
+
+    std::vector<RenderResult> results;
+    for (size_t r = 0; r < rows.size(); ++r) {
+        std::fprintf(stderr, "penumbra: rendering %s (%zu/%zu) on %s\n", rows[r].name.c_str(),
+                     r + 1, rows.size(), device.name.c_str());
+        results.push_back(renderer.render(scene, rowOptions[r]));
+    }
+    Scene lit = scene; // the light sizes the reference must use
+    applyLightSizeOverrides(lit, args.options.lightRadiusOverride, args.options.lightAngleOverride);
+    std::fprintf(stderr, "penumbra: ground truth, %u samples per pixel and light\n",
+                 args.reference.samples);
+    const RenderResult& gbuffer = results.front(); // every row sees the same view
+    const ReferenceResult truth = computeReference(lit, gbuffer, args.reference);
+    const uint32_t w = gbuffer.width, h = gbuffer.height;
+
+    ReportData report{.scene = args.scene,
+                      .device = device.name,
+                      .driver = device.driverName + " " + device.driverInfo,
+                      .width = w,
+                      .height = h,
+                      .shadowMapSize = args.options.shadowMapSize,
+                      .samples = args.reference.samples,
+                      .referenceSeconds = truth.seconds,
+                      .raysPerSecond =
+                          truth.traceSeconds > 0 ? double(truth.rays) / truth.traceSeconds : 0};
+    std::vector<std::vector<uint8_t>> masks;
+    for (const LightShadow& s : gbuffer.lights)
+        if (s.visibilityIndex >= 0) {
+            report.lights.push_back(describeLight(lit.lights[s.sceneLight]));
+            masks.push_back(lightMask(lit, gbuffer, s));
+        }
+    if (!truth.visibility.empty())
+        report.referenceVisibilityPng = encodePng(visibilityImage(w, h, truth.visibility[0]));
+    writeViewFiles(out, gbuffer, truth.visibility); // the reference's files at the top level
+
+    for (size_t r = 0; r < rows.size(); ++r) {
+        const RenderResult& result = results[r];
+        std::vector<MetricLayer> layers;
+        for (size_t l = 0; l < truth.visibility.size(); ++l)
+            layers.push_back({result.visibility[l], truth.visibility[l], masks[l]});
+        ReportRow row{.name = rows[r].name,
+                      .technique = std::string(techniqueName(rows[r].technique)),
+                      .metrics = computeMetrics(w, h, layers)};
+        for (const auto& [key, value] : rows[r].sets)
+            row.parameters.emplace_back(key, value);
+        for (const PassTime& p : result.passes)
+            row.gpuMs.emplace_back(p.pass, p.medianMs);
+        row.imagePng = encodePng(w, h, 4, result.image);
+        if (!truth.visibility.empty()) {
+            row.visibilityPng = encodePng(visibilityImage(w, h, result.visibility[0]));
+            row.heatmapPng = encodePng(
+                signedErrorHeatmap(w, h, result.visibility[0], truth.visibility[0], masks[0]));
+        }
+        const std::string prefix = filePrefix(rows[r].name);
+        out.write(prefix + ".image.png", row.imagePng);
+        if (!row.heatmapPng.empty())
+            out.write(prefix + ".heatmap.png", row.heatmapPng);
+        for (size_t l = 0; l < result.visibility.size(); ++l)
+            out.write(prefix + "." + visibilityFileName(l),
+                      encodePfm(w, h, 1, result.visibility[l]));
+        out.write(prefix + ".stats.json",
+                  bytesOf(renderStats({args.scene, scene, rowOptions[r], device, result}).dump(2) +
+                          "\n"));
+        report.rows.push_back(std::move(row));
+    }
+    out.write("metrics.json", bytesOf(metricsJson(report).dump(2) + "\n"));
+    out.write("report.html", bytesOf(renderHtmlReport(report)));
+    if (renderer.validationErrors() > 0)
+        throw std::runtime_error(fmt::format("vulkan validation: {} error(s); no output written",
+                                             renderer.validationErrors()));
+    out.commit();
+
+    std::printf("%-22s %9s %9s %11s %8s %8s %10s\n", "technique", "RMSE", "MAE", "misclass.%",
+                "acne%", "leak%", "GPU ms");
+    for (const ReportRow& row : report.rows) {
+        double total = 0;
+        for (const auto& [pass, ms] : row.gpuMs)
+            total += ms;
+        std::printf("%-22s %9.5f %9.5f %11.3f %8.3f %8.3f %10.3f\n", row.name.c_str(),
+                    row.metrics.rmse, row.metrics.mae, 100 * row.metrics.misclassified,
+                    100 * row.metrics.acne, 100 * row.metrics.leak, total);
+    }
+    std::printf("ground truth: %.3g rays in %.1f s (%.2f Mrays/s)\n", double(truth.rays),
+                truth.seconds, report.raysPerSecond * 1e-6);
+    std::printf("report: %s\n", (out.path() / "report.html").c_str());
+    return 0;
+}
+
+} // namespace
+
+Action addCompareCommand(CLI::App& app, const GlobalOptions& global) {
+    auto args = std::make_shared<CompareArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "compare",
+        "render each technique and the ground truth; write report.html and metrics.json");
+    cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
+    cmd->add_option("-o,--output", args->output, "output directory")->required();
+    cmd->add_option("--techniques", args->techniques,
+                    "comma-separated techniques or variants, e.g. hard,pcf[box7] (default: all)");
+    addViewOptions(*cmd, args->options);
+    auto& o = args->options;
+    cmd->add_option("--shadow-map-size", o.shadowMapSize, "shadow map side in texels")
+        ->capture_default_str();
+    cmd->add_option("--set", args->sets, "parameter for every row, family.name=value (repeatable)");
+    cmd->add_option("--frames", o.frames, "timed frames per technique after one warm-up frame")
+        ->capture_default_str();
+    cmd->add_option("--samples", args->reference.samples,
+                    "ground-truth rays per pixel and light for lights with a size (1..65536)")
+        ->capture_default_str();
+    cmd->add_option("--embree-config", args->reference.embreeConfig,
+                    "Embree device configuration, e.g. threads=2");
+    return [args, &global] { return runCompare(*args, global); };
+}
+
+} // namespace penumbra::cli
