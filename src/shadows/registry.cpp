@@ -44,7 +44,7 @@ const std::vector<ParameterInfo>& parameterTable() {
                         "texel (hardware depth bias)"},
         {.key = "bias.normal",
          .type = ParameterType::Float,
-         .defaultValue = 1.0,
+         .defaultValue = 0.3,
          .min = 0.0,
          .max = 20.0,
          .unit = "shadow-map texels",
