@@ -72,6 +72,19 @@ Centroids sphereShadowCentroids(const RenderResult& r, const Light& light) {
     return c;
 }
 
+// The rendered shadow has the analytic one's size (within 5%) and centroid (within 2 pixels).
+void expectSphereShadowWhereProjected(const RenderResult& r, const Light& light) {
+    const Centroids c = sphereShadowCentroids(r, light);
+    std::printf("sphere shadow: %zu expected / %zu rendered pixels, centroid error %.3f px\n",
+                c.expectedCount, c.renderedCount, glm::length(c.rendered - c.expected));
+    ASSERT_GT(c.expectedCount, 2000u);
+    EXPECT_NEAR(static_cast<double>(c.renderedCount), static_cast<double>(c.expectedCount),
+                0.05 * static_cast<double>(c.expectedCount));
+    EXPECT_LT(glm::length(c.rendered - c.expected), 2.0)
+        << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected (" << c.expected.x
+        << ", " << c.expected.y << ")";
+}
+
 } // namespace
 
 TEST_F(GpuTest, GrazingPlaneIsAcneFreeWithDefaultBias) {
@@ -98,31 +111,13 @@ TEST_F(GpuTest, GrazingPlaneShowsAcneWithoutBias) {
 }
 
 TEST_F(GpuTest, SphereShadowSitsWhereTheDirectionalLightProjectsIt) {
-    const Scene scene = loadScene("builtin:showcase");
-    const RenderResult r = render(scene, {});
-    const Centroids c = sphereShadowCentroids(r, scene.lights[0]);
-    std::printf("sphere shadow: %zu expected / %zu rendered pixels, centroid error %.3f px\n",
-                c.expectedCount, c.renderedCount, glm::length(c.rendered - c.expected));
-    ASSERT_GT(c.expectedCount, 2000u);
-    EXPECT_NEAR(static_cast<double>(c.renderedCount), static_cast<double>(c.expectedCount),
-                0.05 * static_cast<double>(c.expectedCount));
-    EXPECT_LT(glm::length(c.rendered - c.expected), 2.0)
-        << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected (" << c.expected.x
-        << ", " << c.expected.y << ")";
+    expectSphereShadowWhereProjected(render(loadScene("builtin:showcase"), {}),
+                                     loadScene("builtin:showcase").lights[0]);
 }
 
 TEST_F(GpuTest, SphereShadowSitsWhereTheSpotLightProjectsIt) {
-    const Scene scene = loadScene("builtin:spot");
-    const RenderResult r = render(scene, {});
-    const Centroids c = sphereShadowCentroids(r, scene.lights[0]);
-    std::printf("sphere shadow: %zu expected / %zu rendered pixels, centroid error %.3f px\n",
-                c.expectedCount, c.renderedCount, glm::length(c.rendered - c.expected));
-    ASSERT_GT(c.expectedCount, 2000u);
-    EXPECT_NEAR(static_cast<double>(c.renderedCount), static_cast<double>(c.expectedCount),
-                0.05 * static_cast<double>(c.expectedCount));
-    EXPECT_LT(glm::length(c.rendered - c.expected), 2.0)
-        << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected (" << c.expected.x
-        << ", " << c.expected.y << ")";
+    expectSphereShadowWhereProjected(render(loadScene("builtin:spot"), {}),
+                                     loadScene("builtin:spot").lights[0]);
 }
 
 TEST_F(GpuTest, PoleShadowStaysAttachedAtItsBase) {

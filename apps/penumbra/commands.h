@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/output_dir.h"
+#include "penumbra/reference.h"
 #include "penumbra/renderer.h"
 #include "penumbra/settings.h"
 
@@ -23,6 +24,10 @@ using Action = std::function<int()>;
 
 // Options that fix what is seen: image size, camera, light sizes (render, reference, compare).
 void addViewOptions(CLI::App& cmd, RenderOptions& options);
+// --shadow-map-size, --frames and --set (render, compare).
+void addTechniqueOptions(CLI::App& cmd, RenderOptions& options, std::vector<std::string>& sets);
+// --samples and --embree-config (reference, compare).
+void addReferenceOptions(CLI::App& cmd, ReferenceOptions& options);
 // visibility.pfm / visibility_<i>.pfm, position.pfm and normal.pfm (design.md §1).
 void writeViewFiles(StagedOutputDir& out, const RenderResult& gbuffer,
                     const std::vector<std::vector<float>>& visibility);

@@ -62,9 +62,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         validate(o);
         rowOptions.push_back(std::move(o));
     }
-    if (args.reference.samples == 0 || args.reference.samples > 65536)
-        throw InputError("--samples",
-                         fmt::format("{} is out of range [1, 65536]", args.reference.samples));
+    validate(args.reference);
     Scene scene = loadScene(args.scene);
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
@@ -171,17 +169,8 @@ Action addCompareCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("--techniques", args->techniques,
                     "comma-separated techniques or variants, e.g. hard,pcf[box7] (default: all)");
     addViewOptions(*cmd, args->options);
-    auto& o = args->options;
-    cmd->add_option("--shadow-map-size", o.shadowMapSize, "shadow map side in texels")
-        ->capture_default_str();
-    cmd->add_option("--set", args->sets, "parameter for every row, family.name=value (repeatable)");
-    cmd->add_option("--frames", o.frames, "timed frames per technique after one warm-up frame")
-        ->capture_default_str();
-    cmd->add_option("--samples", args->reference.samples,
-                    "ground-truth rays per pixel and light for lights with a size (1..65536)")
-        ->capture_default_str();
-    cmd->add_option("--embree-config", args->reference.embreeConfig,
-                    "Embree device configuration, e.g. threads=2");
+    addTechniqueOptions(*cmd, args->options, args->sets);
+    addReferenceOptions(*cmd, args->reference);
     return [args, &global] { return runCompare(*args, global); };
 }
 

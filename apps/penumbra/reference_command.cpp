@@ -24,9 +24,7 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
     options.frames = 1;
     options.shadowMapSize = 64; // only the G-buffer is used; keep the shadow pass cheap
     validate(options);
-    if (args.reference.samples == 0 || args.reference.samples > 65536)
-        throw InputError("--samples",
-                         fmt::format("{} is out of range [1, 65536]", args.reference.samples));
+    validate(args.reference);
     Scene scene = loadScene(args.scene);
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
@@ -68,11 +66,7 @@ Action addReferenceCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
     cmd->add_option("-o,--output", args->output, "output directory")->required();
     addViewOptions(*cmd, args->options);
-    cmd->add_option("--samples", args->reference.samples,
-                    "rays per pixel and light for lights with a size (1..65536)")
-        ->capture_default_str();
-    cmd->add_option("--embree-config", args->reference.embreeConfig,
-                    "Embree device configuration, e.g. threads=2");
+    addReferenceOptions(*cmd, args->reference);
     return [args, &global] { return runReference(*args, global); };
 }
 

@@ -95,6 +95,22 @@ void writeViewFiles(StagedOutputDir& out, const RenderResult& g,
     out.write("normal.pfm", encodePfm(g.width, g.height, 3, g.normal));
 }
 
+void addTechniqueOptions(CLI::App& cmd, RenderOptions& o, std::vector<std::string>& sets) {
+    cmd.add_option("--shadow-map-size", o.shadowMapSize, "shadow map side in texels")
+        ->capture_default_str();
+    cmd.add_option("--set", sets, "technique parameter family.name=value (repeatable)");
+    cmd.add_option("--frames", o.frames, "timed frames after one warm-up frame")
+        ->capture_default_str();
+}
+
+void addReferenceOptions(CLI::App& cmd, ReferenceOptions& options) {
+    cmd.add_option("--samples", options.samples,
+                   "ground-truth rays per pixel and light for lights with a size (1..65536)")
+        ->capture_default_str();
+    cmd.add_option("--embree-config", options.embreeConfig,
+                   "Embree device configuration, e.g. threads=2");
+}
+
 std::span<const uint8_t> bytesOf(const std::string& text) {
     return {reinterpret_cast<const uint8_t*>(text.data()), text.size()};
 }
@@ -108,12 +124,7 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
         ->capture_default_str();
     addViewOptions(*cmd, args->options);
-    auto& o = args->options;
-    cmd->add_option("--shadow-map-size", o.shadowMapSize, "shadow map side in texels")
-        ->capture_default_str();
-    cmd->add_option("--set", args->sets, "technique parameter family.name=value (repeatable)");
-    cmd->add_option("--frames", o.frames, "timed frames after one warm-up frame")
-        ->capture_default_str();
+    addTechniqueOptions(*cmd, args->options, args->sets);
     return [args, &global] { return runRender(*args, global); };
 }
 

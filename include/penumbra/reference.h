@@ -30,6 +30,9 @@ struct ReferenceResult {
     size_t triangles = 0;      // what Embree was given (the rasterizer draws the same)
 };
 
+// Throws InputError("--samples", ...) outside 1..65536.
+void validate(const ReferenceOptions& options);
+
 // Traces from the world positions of `gbuffer` (its position and normal images). The scene
 // must be the one the G-buffer was rendered from, with the same light-size overrides applied.
 // Throws std::runtime_error("embree: ...") on an Embree failure.

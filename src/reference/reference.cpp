@@ -2,6 +2,7 @@
 // pixel towards every shadow-casting light, parallel over rows with TBB.
 #include "penumbra/reference.h"
 
+#include "penumbra/error.h"
 #include "reference/embree_scene.h"
 #include "reference/sampling.h"
 
@@ -85,6 +86,12 @@ private:
 };
 
 } // namespace
+
+void validate(const ReferenceOptions& options) {
+    if (options.samples == 0 || options.samples > 65536)
+        throw InputError("--samples",
+                         fmt::format("{} is out of range [1, 65536]", options.samples));
+}
 
 std::string embreeVersion() {
     return fmt::format("{}.{}.{}", RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH);

@@ -109,10 +109,10 @@ void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
             .sampled(4, view.map.view.get(), t.nearest.get())
             .sampled(5, view.map.view.get(), t.compare.get())
             .storageImage(6, t.visibility.view.get())
-            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
+            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.screenLayout);
         const gpu::VisibilityPush push{.light = {view.light, layer, s.shadowMapSize, 0}};
-        vkCmdPushConstants(cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                           sizeof push, &push);
+        vkCmdPushConstants(cmd, p.screenLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                           &push);
         vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
     }
     vk::imageBarrier(cmd, t.visibility, vk::kComputeWrite, vk::kComputeSampled);
@@ -129,7 +129,7 @@ void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
         .sampled(4, t.albedo.view.get(), t.nearest.get())
         .sampled(5, t.visibility.view.get(), t.nearest.get())
         .storageImage(6, t.color.view.get())
-        .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.compositeLayout);
+        .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.screenLayout);
     vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
 }
 

@@ -35,7 +35,9 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     gbufferLayout =
         vk::createPipelineLayout(ctx, {{0, kUniform}, {1, kStorage}},
                                  VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0);
-    visibilityLayout =
+    // Visibility and composite read the same inputs (camera, lights, four textures, one image
+    // out), so they share one layout; only visibility uses the push constants.
+    screenLayout =
         vk::createPipelineLayout(ctx,
                                  {{0, kUniform},
                                   {1, kStorage},
@@ -45,15 +47,6 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {5, kSampled},
                                   {6, kImage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
-    compositeLayout = vk::createPipelineLayout(ctx,
-                                               {{0, kUniform},
-                                                {1, kStorage},
-                                                {2, kSampled},
-                                                {3, kSampled},
-                                                {4, kSampled},
-                                                {5, kSampled},
-                                                {6, kImage}},
-                                               VK_SHADER_STAGE_COMPUTE_BIT, 0);
     exportLayout = vk::createPipelineLayout(
         ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kImage}, {4, kImage}},
         VK_SHADER_STAGE_COMPUTE_BIT, 0);
@@ -80,7 +73,7 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                     .colorFormats = {kNormalFormat, kAlbedoFormat},
                                     .depthFormat = kDepthFormat,
                                     .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL}); // reverse-Z
-    composite = vk::createComputePipeline(ctx, compositeLayout, "composite.comp");
+    composite = vk::createComputePipeline(ctx, screenLayout, "composite.comp");
     exportGBuffer = vk::createComputePipeline(ctx, exportLayout, "export.comp");
 }
 
@@ -90,8 +83,8 @@ VkPipeline FramePipelines::visibility(Technique technique) {
         const vk::SpecConstant constants[] = {
             {/* TECHNIQUE= */ 0, static_cast<uint32_t>(technique)}};
         it = mVisibility
-                 .emplace(technique, vk::createComputePipeline(ctx, visibilityLayout,
-                                                               "visibility.comp", constants))
+                 .emplace(technique, vk::createComputePipeline(ctx, screenLayout, "visibility.comp",
+                                                               constants))
                  .first;
     }
     return it->second.get();

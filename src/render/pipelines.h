@@ -14,7 +14,7 @@ public:
     explicit FramePipelines(const vk::Context& ctx);
 
     const vk::Context& ctx;
-    vk::PipelineLayout shadowLayout, gbufferLayout, visibilityLayout, compositeLayout, exportLayout;
+    vk::PipelineLayout shadowLayout, gbufferLayout, screenLayout, exportLayout;
     vk::PipelineHandle shadowOrtho;       // depth clamp on: casters before the near plane clamp
     vk::PipelineHandle shadowPerspective; // depth clamp off
     vk::PipelineHandle gbuffer, composite, exportGBuffer;
