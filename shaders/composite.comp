@@ -7,7 +7,7 @@
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
-layout(set = 0, binding = 0, std140) uniform CameraBlock { CameraData camera; };
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
 layout(set = 0, binding = 1, std430) readonly buffer Lights { LightData lights[]; };
 layout(set = 0, binding = 2) uniform sampler2D gDepth;
 layout(set = 0, binding = 3) uniform sampler2D gNormal;
@@ -41,19 +41,19 @@ vec3 srgbEncode(vec3 c) {
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    uvec2 size = camera.imageSize.xy;
+    uvec2 size = frame.imageSize.xy;
     if (any(greaterThanEqual(uvec2(p), size))) return;
     float depth = texelFetch(gDepth, p, 0).r;
-    vec3 color = camera.background.rgb;
+    vec3 color = frame.background.rgb;
     if (!isBackground(depth)) {
-        vec3 world = worldPosition(camera.invViewProj, p, size, depth);
+        vec3 world = worldPosition(frame.invViewProj, p, size, depth);
         vec3 normal = normalize(texelFetch(gNormal, p, 0).xyz);
         vec3 albedo = texelFetch(gAlbedo, p, 0).rgb;
-        vec3 light = vec3(camera.composite.x);
-        for (uint i = 0u; i < camera.imageSize.z; ++i) {
+        vec3 light = vec3(frame.composite.x);
+        for (uint i = 0u; i < frame.imageSize.z; ++i) {
             float layer = lights[i].cone.w;
             float v = layer >= 0.0 ? texelFetch(visibility, ivec3(p, int(layer)), 0).r : 1.0;
-            light += directLight(lights[i], world, normal) * (1.0 - camera.composite.y * (1.0 - v));
+            light += directLight(lights[i], world, normal) * (1.0 - frame.composite.y * (1.0 - v));
         }
         color = 1.0 - exp(-albedo * light); // exponential tone curve: no hard clipping
     }

@@ -6,7 +6,7 @@
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
-layout(set = 0, binding = 0, std140) uniform CameraBlock { CameraData camera; };
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
 layout(set = 0, binding = 1) uniform sampler2D gDepth;
 layout(set = 0, binding = 2) uniform sampler2D gNormal;
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D outPosition;
@@ -14,12 +14,12 @@ layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D outNormal;
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    uvec2 size = camera.imageSize.xy;
+    uvec2 size = frame.imageSize.xy;
     if (any(greaterThanEqual(uvec2(p), size))) return;
     float depth = texelFetch(gDepth, p, 0).r;
     vec4 position = vec4(nanValue()), normal = vec4(nanValue());
     if (!isBackground(depth)) {
-        position = vec4(worldPosition(camera.invViewProj, p, size, depth), 1.0);
+        position = vec4(worldPosition(frame.invViewProj, p, size, depth), 1.0);
         normal = vec4(normalize(texelFetch(gNormal, p, 0).xyz), 0.0);
     }
     imageStore(outPosition, p, position);

@@ -5,14 +5,14 @@ layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;
 layout(location = 2) in uint inMaterial;
 
-layout(set = 0, binding = 0, std140) uniform CameraBlock { CameraData camera; };
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
 
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec3 outWorld;
 layout(location = 2) flat out uint outMaterial;
 
 void main() {
-    gl_Position = camera.viewProj * vec4(inPosition, 1.0);
+    gl_Position = frame.viewProj * vec4(inPosition, 1.0);
     outNormal = inNormal;
     outWorld = inPosition;
     outMaterial = inMaterial;

@@ -2,41 +2,78 @@
 // Visibility pass: per pixel, reconstruct the world position from the G-buffer and evaluate the
 // technique chosen by TECHNIQUE for one light, into that light's layer of the visibility image.
 #include "gpu_types.h"
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
+layout(constant_id = 0) const uint TECHNIQUE = TECHNIQUE_HARD;
+layout(constant_id = 1) const uint FILTER = FILTER_BOX;
+layout(constant_id = 2) const uint RECEIVER = RECEIVER_OFF;
 #include "gbuffer.glsl"
+#include "receiver_plane.glsl"
 #include "shadow_common.glsl"
-#include "shadow_hard.glsl"
+#include "techniques.glsl"
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
-layout(constant_id = 0) const uint TECHNIQUE = TECHNIQUE_HARD;
 
-layout(set = 0, binding = 0, std140) uniform CameraBlock { CameraData camera; };
 layout(set = 0, binding = 1, std430) readonly buffer Lights { LightData lights[]; };
 layout(set = 0, binding = 2) uniform sampler2D gDepth;
 layout(set = 0, binding = 3) uniform sampler2D gNormal;
 layout(set = 0, binding = 4) uniform sampler2D shadowMap;           // nearest, raw depths
-layout(set = 0, binding = 5) uniform sampler2DShadow shadowMapCmp;  // linear, hardware compare
+layout(set = 0, binding = 5) uniform sampler2DShadow shadowMapCmp;  // hardware compare
 layout(set = 0, binding = 6, r32f) uniform writeonly image2DArray visibility;
 layout(push_constant) uniform Push { VisibilityPush push; };
 
-float evaluate(LightData light, vec3 world, vec3 normal) {
-    ShadowCoord c = projectToShadowMap(light, offsetReceiver(light, world, normal));
-    if (!c.inside) return 1.0;
-    switch (TECHNIQUE) {
-    case TECHNIQUE_HARD:
-    default: return shadowHard(shadowMap, c, push.light.z);
+// Light-space (u, v, depth) offset to the neighbour at p + step along one axis, taking the side
+// whose depth is closer (the neighbour most likely on the same surface); zero if none exists.
+vec3 neighbourOffset(mat4 S, ivec2 p, ivec2 step, vec3 centre, float depth) {
+    uvec2 size = frame.imageSize.xy;
+    vec3 best = vec3(0.0);
+    float bestGap = 1e30;
+    for (int side = -1; side <= 1; side += 2) {
+        ivec2 q = p + side * step;
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), size))) continue;
+        float d = texelFetch(gDepth, q, 0).r;
+        if (isBackground(d) || abs(d - depth) >= bestGap) continue;
+        bestGap = abs(d - depth);
+        vec4 s = S * vec4(worldPosition(frame.invViewProj, q, size, d), 1.0);
+        best = float(side) * (s.xyz / s.w - centre);
     }
+    return best;
+}
+
+Receiver makeReceiver(LightData light, ivec2 p, vec3 world, vec3 normal, float depth,
+                      out bool inside) {
+    ShadowCoord c = projectToShadowMap(light, offsetReceiver(light, world, normal));
+    inside = c.inside;
+    Receiver r;
+    r.uv = c.uv;
+    r.depth = c.depth;
+    r.gradient = vec2(0.0);
+    if (RECEIVER == RECEIVER_LIGHT) {
+        r.gradient = receiverGradientFromNormal(light.shadowMatrix, world, normal);
+    } else if (RECEIVER == RECEIVER_SCREEN) {
+        vec4 s = light.shadowMatrix * vec4(world, 1.0);
+        vec3 centre = s.xyz / s.w;
+        r.gradient = receiverGradientFromOffsets(
+            neighbourOffset(light.shadowMatrix, p, ivec2(1, 0), centre, depth),
+            neighbourOffset(light.shadowMatrix, p, ivec2(0, 1), centre, depth));
+    }
+    return r;
 }
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-    uvec2 size = camera.imageSize.xy;
+    uvec2 size = frame.imageSize.xy;
     if (any(greaterThanEqual(uvec2(p), size))) return;
     float depth = texelFetch(gDepth, p, 0).r;
     float v = nanValue();
     if (!isBackground(depth)) {
-        vec3 world = worldPosition(camera.invViewProj, p, size, depth);
+        vec3 world = worldPosition(frame.invViewProj, p, size, depth);
         vec3 normal = normalize(texelFetch(gNormal, p, 0).xyz);
-        v = evaluate(lights[push.light.x], world, normal);
+        LightData light = lights[push.light.x];
+        bool inside;
+        Receiver r = makeReceiver(light, p, world, normal, depth, inside);
+        v = inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, push.light.z,
+                                       uvec2(p))
+                   : 1.0;
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));
 }

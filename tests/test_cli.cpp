@@ -208,8 +208,11 @@ TEST(Cli, CompareWritesMetricsForEveryTechnique) {
                                 "misclassified_outside_edges", "acne", "leak", "gpu_ms"})
             EXPECT_TRUE(m.contains(key)) << name << " lacks " << key;
         EXPECT_TRUE(m["gpu_ms"].contains("visibility"));
-        EXPECT_TRUE(fs::exists(out / (name + ".image.png"))) << name;
-        EXPECT_TRUE(fs::exists(out / (name + ".heatmap.png"))) << name;
+        std::string prefix; // "pcf[box7]" is written "pcf-box7"
+        for (char c : name)
+            prefix += c == '[' ? "-" : c == ']' ? "" : std::string(1, c);
+        EXPECT_TRUE(fs::exists(out / (prefix + ".image.png"))) << name;
+        EXPECT_TRUE(fs::exists(out / (prefix + ".heatmap.png"))) << name;
     }
     for (const char* f : {"report.html", "visibility.pfm", "position.pfm", "normal.pfm"})
         EXPECT_TRUE(fs::exists(out / f)) << f;

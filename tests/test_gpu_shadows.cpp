@@ -103,6 +103,7 @@ TEST_F(GpuTest, GrazingPlaneShowsAcneWithoutBias) {
     o.parameters.assign("bias.constant=0");
     o.parameters.assign("bias.slope=0");
     o.parameters.assign("bias.normal=0");
+    o.parameters.assign("bias.receiver=off");
     const RenderResult r = render(scene, o);
     size_t lit = 0;
     const double acne = grazingAcneFraction(r, scene, &lit);

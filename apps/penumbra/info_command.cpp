@@ -99,8 +99,9 @@ Action addTechniquesCommand(CLI::App& app) {
                                     : p.contains("choices") ? p["choices"].dump()
                                                             : "true|false";
                 fmt::print("    --set {}={}  {} {}\n        {}{}\n", p["key"].get<std::string>(),
-                           p["default"].dump(), p["type"].get<std::string>(), range,
-                           p["description"].get<std::string>(),
+                           (p["default"].is_string() ? p["default"].get<std::string>()
+                                                     : p["default"].dump()),
+                           p["type"].get<std::string>(), range, p["description"].get<std::string>(),
                            p["unit"].get<std::string>().empty()
                                ? ""
                                : " (" + p["unit"].get<std::string>() + ")");

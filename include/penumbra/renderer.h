@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,15 @@ struct RenderResult {
 
 using ProgressFn = std::function<void(const std::string& stage)>;
 
+// A receiver for Renderer::probeTechnique: where it reads the shadow map, its light depth, its
+// receiver-plane gradient (d depth / d uv; zero for none) and its pixel (rotations use it).
+struct FilterProbe {
+    glm::vec2 uv{0.0f};
+    float depth = 0.0f;
+    glm::vec2 gradient{0.0f};
+    glm::uvec2 pixel{0u};
+};
+
 class Renderer {
 public:
     // Throws InputError("--device", ...) for a bad index or a device lacking what we need.
@@ -71,6 +81,12 @@ public:
     void check(const Scene& scene, const RenderOptions& options) const;
     RenderResult render(const Scene& scene, const RenderOptions& options,
                         const ProgressFn& progress = {});
+    // Evaluates `technique` with `parameters` at each probe on the square shadow map `depths`
+    // (size x size, rows top to bottom) with the visibility pass's own shader code: how the
+    // CPU references in src/reference are checked against the GPU.
+    std::vector<float> probeTechnique(Technique technique, const ParameterValues& parameters,
+                                      std::span<const float> depths, uint32_t size,
+                                      std::span<const FilterProbe> probes);
     // Validation-layer messages of severity error so far (0 when validation is off).
     uint32_t validationErrors() const;
 

@@ -10,7 +10,7 @@
 
 namespace penumbra {
 
-enum class Technique : uint32_t { Hard = 0 };
+enum class Technique : uint32_t { Hard = 0, Pcf = 1 };
 
 // A parameter setting worth its own row in `compare`, e.g. label "box7" for pcf: pcf[box7].
 struct TechniqueVariant {
@@ -53,6 +53,7 @@ struct ParameterInfo {
     std::vector<std::string_view> choices;
     std::string_view unit;
     std::string_view description;
+    bool oddOnly = false; // Int parameters that must be odd (kernel sizes)
 };
 
 std::span<const ParameterInfo> allParameters();

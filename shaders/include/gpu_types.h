@@ -1,5 +1,6 @@
 // Host/shader structs, compiled both as GLSL (glslc) and as C++ (with static_asserts on the
 // std140/std430 layout), so the two sides cannot drift apart.
+// clang-format off
 #ifndef PENUMBRA_GPU_TYPES_H
 #define PENUMBRA_GPU_TYPES_H
 
@@ -21,16 +22,36 @@ using uint = uint32_t;
 
 // Specialization constant TECHNIQUE of visibility.comp; equals penumbra::Technique.
 #define TECHNIQUE_HARD 0u
+#define TECHNIQUE_PCF 1u
 
+// pcf.filter, pcf.rotation and bias.receiver: indices of their choices in the registry.
+#define FILTER_BILINEAR 0u
+#define FILTER_HARDWARE 1u
+#define FILTER_BOX 2u
+#define FILTER_GAUSSIAN 3u
+#define FILTER_POISSON 4u
+#define ROTATION_NONE 0u
+#define ROTATION_RANDOM 1u
+#define ROTATION_IGN 2u
+#define RECEIVER_OFF 0u
+#define RECEIVER_SCREEN 1u
+#define RECEIVER_LIGHT 2u
+
+#define POISSON_MAX_SAMPLES 64u
 #define GROUP_SIZE 8u
 
-struct CameraData {   // std140 uniform block
-    mat4 viewProj;    // world -> clip (reverse-Z, y flipped)
-    mat4 invViewProj; // clip -> world
-    vec4 position;    // xyz: camera position
-    uvec4 imageSize;  // x width, y height, z light count
-    vec4 composite;   // x ambient, y shadow intensity
-    vec4 background;  // rgb: colour of pixels with no geometry
+struct FrameData {       // std140 uniform block: the camera and every technique setting
+    mat4 viewProj;       // world -> clip (reverse-Z, y flipped)
+    mat4 invViewProj;    // clip -> world
+    vec4 position;       // xyz: camera position
+    uvec4 imageSize;     // x width, y height, z light count
+    vec4 composite;      // x ambient, y shadow intensity
+    vec4 background;     // rgb: colour of pixels with no geometry
+    uvec4 filterMode;    // x pcf.filter, y pcf.size, z pcf.samples, w pcf.rotation
+    vec4 filterParams;   // x pcf.radius (texels), y Gaussian sigma (texels), z pcf.adaptive
+    uvec4 biasMode;      // x bias.receiver, y 1: hardware linear depth compare, z sub-texel bits
+    vec4 biasParams;     // x bias.receiverClamp (light depth units)
+    vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
 };
 
 struct LightData {       // std430 storage buffer, one per scene light
@@ -42,18 +63,20 @@ struct LightData {       // std430 storage buffer, one per scene light
     vec4 bias;           // x constant, y slope, z normal offset (texels), w 1 if perspective
 };
 
-struct ShadowPush { // push constants of shadow_depth.vert
+struct ShadowPush {      // push constants of shadow_depth.vert
     mat4 viewProj;
-    vec4 bias; // x: constant depth offset
+    vec4 bias;           // x: constant depth offset
 };
 
-struct VisibilityPush { // push constants of visibility.comp
-    uvec4 light;        // x light index, y shadow layer, z shadow-map size
+struct VisibilityPush {  // push constants of visibility.comp
+    uvec4 light;         // x light index, y shadow layer, z shadow-map size
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(CameraData) == 192 && offsetof(CameraData, position) == 128 &&
-              offsetof(CameraData, imageSize) == 144 && offsetof(CameraData, background) == 176);
+static_assert(sizeof(FrameData) == 768 && offsetof(FrameData, position) == 128 &&
+              offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
+              offsetof(FrameData, filterMode) == 192 && offsetof(FrameData, biasParams) == 240 &&
+              offsetof(FrameData, poisson) == 256);
 static_assert(sizeof(LightData) == 144 && offsetof(LightData, positionType) == 64 &&
               offsetof(LightData, cone) == 112 && offsetof(LightData, bias) == 128);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16);
@@ -61,3 +84,4 @@ static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16);
 #endif
 
 #endif
+// clang-format on

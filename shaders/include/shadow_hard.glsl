@@ -1,11 +1,13 @@
-// Technique `hard` [Williams 1978]: one nearest-texel sample; lit when d(p) <= s(p).
+// Technique `hard` [Williams 1978]: one nearest-texel sample; lit when d(p) <= s(p), the depth
+// taken at the texel's centre when receiver-plane bias is on.
 #ifndef PENUMBRA_SHADOW_HARD_GLSL
 #define PENUMBRA_SHADOW_HARD_GLSL
+#include "shadow_pcf.glsl"
 
-float shadowHard(sampler2D shadowMap, ShadowCoord c, uint mapSize) {
-    ivec2 texel = clamp(ivec2(floor(c.uv * float(mapSize))), ivec2(0), ivec2(int(mapSize) - 1));
-    float s = texelFetch(shadowMap, texel, 0).r;
-    return c.depth <= s ? 1.0 : 0.0;
+float shadowHard(sampler2D shadowMap, Receiver r, uint mapSize, float clampMax) {
+    ivec2 texel = clamp(ivec2(floor(r.uv * float(mapSize))), ivec2(0), ivec2(int(mapSize) - 1));
+    vec2 centre = (vec2(texel) + 0.5) / float(mapSize);
+    return texelTest(r, texelFetch(shadowMap, texel, 0).r, centre, clampMax);
 }
 
 #endif

@@ -84,7 +84,7 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
     setViewport(cmd, t.width, t.height);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbuffer.get());
     vk::PushDescriptors()
-        .uniformBuffer(0, t.camera.get())
+        .uniformBuffer(0, t.frame.get())
         .storageBuffer(1, scene.materials.get())
         .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbufferLayout);
     bindGeometry(cmd, scene);
@@ -98,11 +98,12 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
 void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
                       const FrameSettings& s) {
     vk::imageBarrier(cmd, t.visibility, vk::kUndefined, vk::kComputeWrite);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(s.technique));
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                      p.visibility(s.technique, s.filter, s.receiver));
     for (uint32_t layer = 0; layer < t.shadows.size(); ++layer) {
         const ShadowView& view = t.shadows[layer];
         vk::PushDescriptors()
-            .uniformBuffer(0, t.camera.get())
+            .uniformBuffer(0, t.frame.get())
             .storageBuffer(1, t.lights.get())
             .sampled(2, t.depth.view.get(), t.nearest.get())
             .sampled(3, t.normal.view.get(), t.nearest.get())
@@ -122,7 +123,7 @@ void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
     vk::imageBarrier(cmd, t.color, vk::kUndefined, vk::kComputeWrite);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.composite.get());
     vk::PushDescriptors()
-        .uniformBuffer(0, t.camera.get())
+        .uniformBuffer(0, t.frame.get())
         .storageBuffer(1, t.lights.get())
         .sampled(2, t.depth.view.get(), t.nearest.get())
         .sampled(3, t.normal.view.get(), t.nearest.get())
@@ -157,7 +158,7 @@ void recordReadback(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, VkB
     vk::imageBarrier(cmd, t.exportNormal, vk::kUndefined, vk::kComputeWrite);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.exportGBuffer.get());
     vk::PushDescriptors()
-        .uniformBuffer(0, t.camera.get())
+        .uniformBuffer(0, t.frame.get())
         .sampled(1, t.depth.view.get(), t.nearest.get())
         .sampled(2, t.normal.view.get(), t.nearest.get())
         .storageImage(3, t.position.view.get())

@@ -30,12 +30,14 @@ struct FrameTargets {
     vk::Image color;                  // RGBA8, sRGB-encoded values
     vk::Image position, exportNormal; // RGBA32F, filled for readback only
     std::vector<ShadowView> shadows;
-    vk::Buffer camera, lights; // CameraData, LightData[]
+    vk::Buffer frame, lights; // FrameData, LightData[]
     vk::SamplerHandle nearest, compare;
 };
 
 struct FrameSettings {
     Technique technique;
+    uint32_t filter;   // pcf.filter choice index (a specialization constant)
+    uint32_t receiver; // bias.receiver choice index (a specialization constant)
     float slopeBias;
     float constantBias;
     uint32_t shadowMapSize;

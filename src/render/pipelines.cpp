@@ -29,7 +29,8 @@ vk::GraphicsPipelineDesc shadowDesc(bool depthClamp) {
 } // namespace
 
 FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
-    static_assert(static_cast<uint32_t>(Technique::Hard) == TECHNIQUE_HARD);
+    static_assert(static_cast<uint32_t>(Technique::Hard) == TECHNIQUE_HARD &&
+                  static_cast<uint32_t>(Technique::Pcf) == TECHNIQUE_PCF);
     shadowLayout =
         vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
     gbufferLayout =
@@ -50,6 +51,10 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     exportLayout = vk::createPipelineLayout(
         ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kImage}, {4, kImage}},
         VK_SHADER_STAGE_COMPUTE_BIT, 0);
+
+    probeLayout = vk::createPipelineLayout(
+        ctx, {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kStorage}},
+        VK_SHADER_STAGE_COMPUTE_BIT, sizeof(glm::uvec4));
 
     shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(true));
     shadowPerspective = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(false));
@@ -77,17 +82,27 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     exportGBuffer = vk::createComputePipeline(ctx, exportLayout, "export.comp");
 }
 
-VkPipeline FramePipelines::visibility(Technique technique) {
-    auto it = mVisibility.find(technique);
-    if (it == mVisibility.end()) {
+VkPipeline FramePipelines::specialized(std::map<Key, vk::PipelineHandle>& cache,
+                                       const vk::PipelineLayout& layout, std::string_view shader,
+                                       const Key& key) {
+    auto it = cache.find(key);
+    if (it == cache.end()) {
+        const auto [technique, filter, receiver] = key;
         const vk::SpecConstant constants[] = {
-            {/* TECHNIQUE= */ 0, static_cast<uint32_t>(technique)}};
-        it = mVisibility
-                 .emplace(technique, vk::createComputePipeline(ctx, screenLayout, "visibility.comp",
-                                                               constants))
-                 .first;
+            {/* TECHNIQUE= */ 0, static_cast<uint32_t>(technique)},
+            {/* FILTER= */ 1, filter},
+            {/* RECEIVER= */ 2, receiver}};
+        it = cache.emplace(key, vk::createComputePipeline(ctx, layout, shader, constants)).first;
     }
     return it->second.get();
+}
+
+VkPipeline FramePipelines::visibility(Technique technique, uint32_t filter, uint32_t receiver) {
+    return specialized(mVisibility, screenLayout, "visibility.comp", {technique, filter, receiver});
+}
+
+VkPipeline FramePipelines::probe(Technique technique, uint32_t filter) {
+    return specialized(mProbe, probeLayout, "filter_probe.comp", {technique, filter, 0});
 }
 
 } // namespace penumbra::render

@@ -6,6 +6,8 @@
 #include "vk/pipelines.h"
 
 #include <map>
+#include <string_view>
+#include <tuple>
 
 namespace penumbra::render {
 
@@ -14,15 +16,21 @@ public:
     explicit FramePipelines(const vk::Context& ctx);
 
     const vk::Context& ctx;
-    vk::PipelineLayout shadowLayout, gbufferLayout, screenLayout, exportLayout;
+    vk::PipelineLayout shadowLayout, gbufferLayout, screenLayout, exportLayout, probeLayout;
     vk::PipelineHandle shadowOrtho;       // depth clamp on: casters before the near plane clamp
     vk::PipelineHandle shadowPerspective; // depth clamp off
     vk::PipelineHandle gbuffer, composite, exportGBuffer;
 
-    VkPipeline visibility(Technique technique);
+    // Pipelines per specialization: technique, pcf.filter and bias.receiver (choice indices).
+    VkPipeline visibility(Technique technique, uint32_t filter, uint32_t receiver);
+    VkPipeline probe(Technique technique, uint32_t filter); // filter_probe.comp (parity tests)
 
 private:
-    std::map<Technique, vk::PipelineHandle> mVisibility;
+    using Key = std::tuple<Technique, uint32_t, uint32_t>;
+    VkPipeline specialized(std::map<Key, vk::PipelineHandle>& cache,
+                           const vk::PipelineLayout& layout, std::string_view shader,
+                           const Key& key);
+    std::map<Key, vk::PipelineHandle> mVisibility, mProbe;
 };
 
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;

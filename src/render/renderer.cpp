@@ -3,6 +3,8 @@
 #include "core/projection.h"
 #include "penumbra/error.h"
 #include "render/frame.h"
+#include "render/frame_data.h"
+#include "render/renderer_impl.h"
 #include "vk/context.h"
 
 #include <fmt/format.h>
@@ -12,12 +14,6 @@
 #include <cstring>
 
 namespace penumbra {
-
-struct Renderer::Impl {
-    explicit Impl(const DeviceOptions& options) : ctx(options), pipelines(ctx) {}
-    vk::Context ctx;
-    render::FramePipelines pipelines;
-};
 
 namespace {
 
@@ -51,23 +47,6 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, size_t sh
                          fmt::format("this render needs {:.1f} GiB of device memory; the device "
                                      "has {:.1f} GiB",
                                      need / (1 << 30), have / (1 << 30)));
-}
-
-gpu::CameraData cameraData(const Camera& camera, const RenderOptions& o, uint32_t lightCount,
-                           const ParameterValues& params) {
-    const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
-    const glm::mat4 view = lookAt(camera.position, camera.target, camera.up);
-    const glm::mat4 proj =
-        perspectiveCameraReverseZ(camera.yfov, aspect, camera.znear, camera.zfar);
-    // Inverting in double keeps reconstructed positions accurate far from the origin.
-    const glm::dmat4 inv = glm::inverse(glm::dmat4(proj) * glm::dmat4(view));
-    return {.viewProj = proj * view,
-            .invViewProj = glm::mat4(inv),
-            .position = glm::vec4(camera.position, 1.0f),
-            .imageSize = {o.width, o.height, lightCount, 0},
-            .composite = {static_cast<float>(params.number("composite.ambient")),
-                          static_cast<float>(params.number("composite.shadowIntensity")), 0, 0},
-            .background = {0.55f, 0.65f, 0.8f, 1.0f}};
 }
 
 gpu::LightData lightData(const Light& light, const LightProjection* shadow, int layer,
@@ -169,10 +148,10 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
     if (progress)
         progress("uploading scene");
     const render::GpuScene gpuScene = render::uploadScene(ctx, scene);
-    const gpu::CameraData cameraBlock =
-        cameraData(camera, o, static_cast<uint32_t>(lights.size()), o.parameters);
-    t.camera = hostBuffer(ctx, std::as_bytes(std::span(&cameraBlock, 1)),
-                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "camera buffer");
+    const gpu::FrameData frameBlock =
+        render::frameData(camera, o, static_cast<uint32_t>(lights.size()), ctx);
+    t.frame = hostBuffer(ctx, std::as_bytes(std::span(&frameBlock, 1)),
+                         VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "frame buffer");
     if (lights.empty())
         lights.push_back({}); // storage buffers cannot be empty; count is 0
     t.lights = hostBuffer(ctx, std::as_bytes(std::span(lights)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -204,6 +183,8 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
 
     const render::FrameSettings settings{
         .technique = o.technique,
+        .filter = static_cast<uint32_t>(o.parameters.number("pcf.filter")),
+        .receiver = static_cast<uint32_t>(o.parameters.number("bias.receiver")),
         .slopeBias = static_cast<float>(o.parameters.number("bias.slope")),
         .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
         .shadowMapSize = o.shadowMapSize,

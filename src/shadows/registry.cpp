@@ -21,6 +21,23 @@ const std::vector<TechniqueInfo>& techniqueTable() {
          .reference = "Williams 1978, 'Casting curved shadows on curved surfaces'",
          .families = {"bias", "composite"},
          .variants = {{.label = ""}}},
+        {.id = Technique::Pcf,
+         .name = "pcf",
+         .summary = "percentage-closer filtering: the fraction of shadow-map tests a kernel passes",
+         .reference = "Reeves, Salesin, Cook 1987, 'Rendering antialiased shadows with depth "
+                      "maps'; Isidoro 2006 (edge-only PCF); Tuft 2010 (receiver-plane bias)",
+         .families = {"bias", "pcf", "composite"},
+         .variants =
+             {{.label = "bilinear", .sets = {{"pcf.filter", "bilinear"}}},
+              {.label = "hardware", .sets = {{"pcf.filter", "hardware"}}},
+              {.label = "box3", .sets = {{"pcf.filter", "box"}, {"pcf.size", "3"}}},
+              {.label = "box7", .sets = {{"pcf.filter", "box"}, {"pcf.size", "7"}}},
+              {.label = "box15", .sets = {{"pcf.filter", "box"}, {"pcf.size", "15"}}},
+              {.label = "gauss7", .sets = {{"pcf.filter", "gaussian"}, {"pcf.size", "7"}}},
+              {.label = "poisson16", .sets = {{"pcf.filter", "poisson"}, {"pcf.samples", "16"}}},
+              {.label = "poisson32", .sets = {{"pcf.filter", "poisson"}, {"pcf.samples", "32"}}},
+              {.label = "adaptive-box7",
+               .sets = {{"pcf.filter", "box"}, {"pcf.size", "7"}, {"pcf.adaptive", "true"}}}}},
     };
     return table;
 }
@@ -50,6 +67,66 @@ const std::vector<ParameterInfo>& parameterTable() {
          .unit = "shadow-map texels",
          .description = "normal offset: the receiver moves along its normal by this many texels, "
                         "scaled by 1 - N.L, before the lookup"},
+        {.key = "bias.receiver",
+         .type = ParameterType::Choice,
+         .defaultValue = 2,
+         .choices = {"off", "screen", "light"},
+         .description = "receiver-plane depth bias [Tuft 2010]: each tap compares against the "
+                        "receiver's depth at that tap, from screen-space neighbours (screen) or "
+                        "from the surface normal in light space (light)"},
+        {.key = "bias.receiverClamp",
+         .type = ParameterType::Float,
+         .defaultValue = 0.05,
+         .min = 0.0,
+         .max = 1.0,
+         .unit = "light depth",
+         .description = "largest receiver-plane correction per tap (guards silhouettes, where "
+                        "the plane is a poor fit)"},
+        {.key = "pcf.filter",
+         .type = ParameterType::Choice,
+         .defaultValue = 2,
+         .choices = {"bilinear", "hardware", "box", "gaussian", "poisson"},
+         .description = "kernel: bilinear 4-tap, one hardware comparison tap, box or Gaussian "
+                        "NxN of bilinear taps, or a rotated Poisson disk of bilinear taps"},
+        {.key = "pcf.size",
+         .type = ParameterType::Int,
+         .defaultValue = 5,
+         .min = 3,
+         .max = 15,
+         .unit = "texels (odd)",
+         .description = "box and Gaussian kernel width N (N x N taps)",
+         .oddOnly = true},
+        {.key = "pcf.sigma",
+         .type = ParameterType::Float,
+         .defaultValue = 0.0,
+         .min = 0.0,
+         .max = 16.0,
+         .unit = "texels",
+         .description = "Gaussian standard deviation; 0 = size / 4"},
+        {.key = "pcf.samples",
+         .type = ParameterType::Int,
+         .defaultValue = 16,
+         .min = 1,
+         .max = 64,
+         .description = "Poisson-disk taps"},
+        {.key = "pcf.radius",
+         .type = ParameterType::Float,
+         .defaultValue = 2.5,
+         .min = 0.5,
+         .max = 32.0,
+         .unit = "texels",
+         .description = "Poisson-disk radius"},
+        {.key = "pcf.rotation",
+         .type = ParameterType::Choice,
+         .defaultValue = 2,
+         .choices = {"none", "random", "ign"},
+         .description = "per-pixel rotation of the Poisson disk: none, a hash, or interleaved "
+                        "gradient noise [Jimenez 2014]"},
+        {.key = "pcf.adaptive",
+         .type = ParameterType::Bool,
+         .defaultValue = 0,
+         .description = "edge-only PCF [Isidoro 2006]: four corner taps decide whether a pixel "
+                        "is near a shadow edge; only then the full kernel runs"},
         {.key = "composite.shadowIntensity",
          .type = ParameterType::Float,
          .defaultValue = 1.0,
@@ -106,6 +183,8 @@ double parseValue(const ParameterInfo& p, std::string_view text) {
         throw bad("not a finite number");
     if (p.type == ParameterType::Int && value != std::floor(value))
         throw bad("expected an integer");
+    if (p.oddOnly && std::fmod(value, 2.0) == 0.0)
+        throw bad("expected an odd number");
     if (value < p.min || value > p.max)
         throw bad(fmt::format("out of range [{}, {}]", p.min, p.max));
     return value;

@@ -1,0 +1,216 @@
+#include "reference/filter_reference.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+struct Receiver {
+    glm::vec2 uv;
+    float depth;
+    glm::vec2 gradient;
+};
+
+// Records how close each comparison comes to a tie, when asked.
+struct MarginTracker {
+    float* margin = nullptr;
+    void see(float a, float b) const {
+        if (margin)
+            *margin = std::min(*margin, std::abs(a - b));
+    }
+};
+
+float texelTest(const Receiver& r, float stored, glm::vec2 texelUv, float clampMax,
+                const MarginTracker& m) {
+    const float dz = std::clamp(glm::dot(r.gradient, texelUv - r.uv), -clampMax, clampMax);
+    m.see(r.depth + dz, stored);
+    return r.depth + dz <= stored ? 1.0f : 0.0f;
+}
+
+// x (i, j+1), y (i+1, j+1), z (i+1, j), w (i, j): textureGather's order.
+glm::vec4 gatherTests(const ShadowMapView& map, glm::ivec2 base, float size, const Receiver& r,
+                      float clampMax, const MarginTracker& m) {
+    const glm::vec2 c = (glm::vec2(base) + 0.5f) / size;
+    const float t = 1.0f / size;
+    return {texelTest(r, map.texel(base.x, base.y + 1), c + glm::vec2(0.0f, t), clampMax, m),
+            texelTest(r, map.texel(base.x + 1, base.y + 1), c + glm::vec2(t, t), clampMax, m),
+            texelTest(r, map.texel(base.x + 1, base.y), c + glm::vec2(t, 0.0f), clampMax, m),
+            texelTest(r, map.texel(base.x, base.y), c, clampMax, m)};
+}
+
+float mix(float a, float b, float t) {
+    return a * (1.0f - t) + b * t;
+}
+
+float bilinearTap(const ShadowMapView& map, glm::vec2 texelPos, float size, const Receiver& r,
+                  float clampMax, const MarginTracker& m, uint32_t subTexelBits = 0) {
+    const glm::vec2 p = texelPos - 0.5f;
+    const glm::vec2 base = glm::floor(p);
+    glm::vec2 f = p - base;
+    if (subTexelBits > 0) { // hardware filtering keeps this many bits of the fraction
+        const float steps = std::ldexp(1.0f, static_cast<int>(subTexelBits));
+        f = glm::round(f * steps) / steps;
+    }
+    const glm::vec4 t = gatherTests(map, glm::ivec2(base), size, r, clampMax, m);
+    return mix(mix(t.w, t.z, f.x), mix(t.x, t.y, f.x), f.y);
+}
+
+constexpr int kMaxSize = 15;
+
+void footprintWeights(uint32_t filterKind, int n, float sigma, float f, float* c) {
+    float g[kMaxSize];
+    const float h = 0.5f * static_cast<float>(n - 1);
+    float sum = 0.0f;
+    for (int i = 0; i < n; ++i) {
+        const float x = static_cast<float>(i) - h;
+        g[i] = filterKind == FILTER_GAUSSIAN ? std::exp(-0.5f * x * x / (sigma * sigma)) : 1.0f;
+        sum += g[i];
+    }
+    for (int k = 0; k <= n; ++k)
+        c[k] = ((k < n ? g[k] : 0.0f) * (1.0f - f) + (k > 0 ? g[k - 1] : 0.0f) * f) / sum;
+}
+
+float pcfGrid(const ShadowMapView& map, const Receiver& r, uint32_t filterKind, int n, float sigma,
+              float clampMax, const MarginTracker& m) {
+    const float size = static_cast<float>(map.size);
+    const glm::vec2 p = r.uv * size - 0.5f;
+    const glm::vec2 base = glm::floor(p);
+    const glm::vec2 f = p - base;
+    float cx[kMaxSize + 1], cy[kMaxSize + 1];
+    footprintWeights(filterKind, n, sigma, f.x, cx);
+    footprintWeights(filterKind, n, sigma, f.y, cy);
+    const glm::ivec2 first = glm::ivec2(base) - (n - 1) / 2;
+    float sum = 0.0f;
+    for (int ky = 0; ky <= n; ky += 2)
+        for (int kx = 0; kx <= n; kx += 2) {
+            const glm::vec4 t = gatherTests(map, first + glm::ivec2(kx, ky), size, r, clampMax, m);
+            sum += (t.w * cx[kx] + t.z * cx[kx + 1]) * cy[ky] +
+                   (t.x * cx[kx] + t.y * cx[kx + 1]) * cy[ky + 1];
+        }
+    return sum;
+}
+
+uint32_t hashU32(uint32_t v) {
+    v ^= v >> 16;
+    v *= 0x7feb352du;
+    v ^= v >> 15;
+    v *= 0x846ca68bu;
+    v ^= v >> 16;
+    return v;
+}
+
+float rotationTurns(uint32_t rotation, glm::uvec2 pixel) {
+    if (rotation == ROTATION_RANDOM)
+        return static_cast<float>(hashU32(pixel.x * 0x9E3779B9u ^ hashU32(pixel.y))) *
+               (1.0f / 4294967296.0f);
+    if (rotation == ROTATION_IGN) {
+        const float inner =
+            0.06711056f * static_cast<float>(pixel.x) + 0.00583715f * static_cast<float>(pixel.y);
+        const float v = 52.9829189f * (inner - std::floor(inner));
+        return v - std::floor(v);
+    }
+    return 0.0f;
+}
+
+glm::vec2 poissonPoint(const gpu::FrameData& f, uint32_t i) {
+    const glm::vec4 pair = f.poisson[i / 2];
+    return i % 2 == 0 ? glm::vec2(pair.x, pair.y) : glm::vec2(pair.z, pair.w);
+}
+
+float pcfPoisson(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
+                 glm::uvec2 pixel, float clampMax, const MarginTracker& m) {
+    const uint32_t n = f.filterMode.z;
+    const float angle = 6.28318530718f * rotationTurns(f.filterMode.w, pixel);
+    const float c = std::cos(angle), s = std::sin(angle), radius = f.filterParams.x;
+    const float size = static_cast<float>(map.size);
+    const glm::vec2 centre = r.uv * size;
+    float sum = 0.0f;
+    for (uint32_t i = 0; i < n; ++i) {
+        const glm::vec2 d = poissonPoint(f, i);
+        const glm::vec2 offset = radius * glm::vec2(c * d.x - s * d.y, s * d.x + c * d.y);
+        sum += bilinearTap(map, centre + offset, size, r, clampMax, m);
+    }
+    return sum / static_cast<float>(n);
+}
+
+bool probeDecides(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
+                  float clampMax, const MarginTracker& m, float& result) {
+    const float reach = f.filterMode.x == FILTER_POISSON
+                            ? f.filterParams.x * 0.70710678f
+                            : 0.5f * static_cast<float>(f.filterMode.y - 1u);
+    const float size = static_cast<float>(map.size);
+    const glm::vec2 centre = r.uv * size;
+    const float sum = bilinearTap(map, centre + glm::vec2(-reach, -reach), size, r, clampMax, m) +
+                      bilinearTap(map, centre + glm::vec2(reach, -reach), size, r, clampMax, m) +
+                      bilinearTap(map, centre + glm::vec2(-reach, reach), size, r, clampMax, m) +
+                      bilinearTap(map, centre + glm::vec2(reach, reach), size, r, clampMax, m);
+    result = sum * 0.25f;
+    return sum == 0.0f || sum == 4.0f;
+}
+
+Receiver receiverOf(const FilterProbe& p) {
+    return {p.uv, p.depth, p.gradient};
+}
+
+float pcf(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
+          const MarginTracker& m) {
+    const Receiver r = receiverOf(probe);
+    const uint32_t filterKind = f.filterMode.x;
+    const float clampMax = f.biasParams.x;
+    const float size = static_cast<float>(map.size);
+    if (filterKind == FILTER_HARDWARE)
+        return bilinearTap(map, r.uv * size, size, Receiver{r.uv, r.depth, glm::vec2(0.0f)},
+                           clampMax, m, f.biasMode.y != 0u ? f.biasMode.z : 0u);
+    float early = 0.0f;
+    if (f.filterParams.z != 0.0f && filterKind != FILTER_BILINEAR &&
+        probeDecides(map, r, f, clampMax, m, early))
+        return early;
+    if (filterKind == FILTER_POISSON)
+        return pcfPoisson(map, r, f, probe.pixel, clampMax, m);
+    const int n = filterKind == FILTER_BILINEAR ? 1 : static_cast<int>(f.filterMode.y);
+    return pcfGrid(map, r, filterKind, n, f.filterParams.y, clampMax, m);
+}
+
+float hard(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
+           const MarginTracker& m) {
+    const int last = static_cast<int>(map.size) - 1;
+    const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(probe.uv * float(map.size))),
+                                        glm::ivec2(0), glm::ivec2(last));
+    const glm::vec2 centre = (glm::vec2(texel) + 0.5f) / static_cast<float>(map.size);
+    return texelTest(receiverOf(probe), map.texel(texel.x, texel.y), centre, f.biasParams.x, m);
+}
+
+} // namespace
+
+float ShadowMapView::texel(int i, int j) const {
+    const int last = static_cast<int>(size) - 1;
+    return depth[static_cast<size_t>(std::clamp(j, 0, last)) * size +
+                 static_cast<size_t>(std::clamp(i, 0, last))];
+}
+
+float hardReference(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f) {
+    return hard(map, probe, f, {});
+}
+
+float pcfReference(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f) {
+    return pcf(map, probe, f, {});
+}
+
+float techniqueReference(Technique technique, const ShadowMapView& map, const FilterProbe& probe,
+                         const gpu::FrameData& f) {
+    return technique == Technique::Pcf ? pcfReference(map, probe, f) : hardReference(map, probe, f);
+}
+
+float smallestComparisonMargin(Technique technique, const ShadowMapView& map,
+                               const FilterProbe& probe, const gpu::FrameData& f) {
+    float margin = 1e30f;
+    const MarginTracker m{&margin};
+    if (technique == Technique::Pcf)
+        pcf(map, probe, f, m);
+    else
+        hard(map, probe, f, m);
+    return margin;
+}
+
+} // namespace penumbra

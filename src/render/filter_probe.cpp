@@ -1,0 +1,94 @@
+// Renderer::probeTechnique: uploads a synthetic shadow map into a D32_SFLOAT image and runs
+// filter_probe.comp, which calls the visibility pass's technique code at the given receivers.
+#include "penumbra/error.h"
+#include "render/frame_data.h"
+#include "render/renderer_impl.h"
+#include "vk/sync.h"
+
+#include <cstring>
+
+namespace penumbra {
+namespace {
+
+struct GpuProbe {
+    glm::vec4 uvDepth;
+    glm::vec4 gradientPixel;
+};
+static_assert(sizeof(GpuProbe) == 32);
+
+} // namespace
+
+std::vector<float> Renderer::probeTechnique(Technique technique, const ParameterValues& params,
+                                            std::span<const float> depths, uint32_t size,
+                                            std::span<const FilterProbe> probes) {
+    const vk::Context& ctx = mImpl->ctx;
+    PENUMBRA_CHECK(depths.size() == size_t{size} * size && !probes.empty(), "probe input sizes");
+    gpu::FrameData frame{};
+    render::setTechniqueSettings(frame, params, ctx.info().depthLinearFilter,
+                                 ctx.limits().subTexelPrecisionBits);
+    std::vector<GpuProbe> gpuProbes;
+    for (const FilterProbe& p : probes)
+        gpuProbes.push_back(
+            {{p.uv, p.depth, 0.0f},
+             {p.gradient, static_cast<float>(p.pixel.x), static_cast<float>(p.pixel.y)}});
+
+    auto upload = [&](std::span<const std::byte> bytes, VkBufferUsageFlags usage,
+                      const char* name) {
+        vk::Buffer b = vk::createBuffer(ctx, bytes.size(), usage, vk::MemoryUse::Upload, name);
+        std::memcpy(b.mapped, bytes.data(), bytes.size());
+        return b;
+    };
+    const vk::Buffer frameBuffer = upload(std::as_bytes(std::span(&frame, 1)),
+                                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "probe frame");
+    const vk::Buffer probeBuffer =
+        upload(std::as_bytes(std::span(gpuProbes)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probes");
+    const vk::Buffer mapBuffer =
+        upload(std::as_bytes(depths), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "probe shadow map");
+    const vk::Buffer results =
+        vk::createBuffer(ctx, probes.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         vk::MemoryUse::Readback, "probe results");
+    const vk::Image map = vk::createImage(
+        ctx, {.name = "probe shadow map",
+              .format = render::kDepthFormat,
+              .width = size,
+              .height = size,
+              .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    const vk::SamplerHandle nearest = vk::createSampler(ctx, {.filter = VK_FILTER_NEAREST});
+    const vk::SamplerHandle compare = vk::createSampler(
+        ctx, {.filter = ctx.info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST,
+              .compare = true});
+
+    render::FramePipelines& p = mImpl->pipelines;
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        constexpr vk::ImageState transferWrite{VK_PIPELINE_STAGE_2_COPY_BIT,
+                                               VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+        vk::imageBarrier(cmd, map, vk::kUndefined, transferWrite);
+        const VkBufferImageCopy region{
+            .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT, .layerCount = 1},
+            .imageExtent = {size, size, 1}};
+        vkCmdCopyBufferToImage(cmd, mapBuffer.get(), map.get(),
+                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        vk::imageBarrier(cmd, map, transferWrite, vk::kComputeSampled);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                          p.probe(technique, frame.filterMode.x));
+        vk::PushDescriptors()
+            .uniformBuffer(0, frameBuffer.get())
+            .storageBuffer(1, probeBuffer.get())
+            .sampled(2, map.view.get(), nearest.get())
+            .sampled(3, map.view.get(), compare.get())
+            .storageBuffer(4, results.get())
+            .push(ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.probeLayout);
+        const glm::uvec4 counts(static_cast<uint32_t>(probes.size()), size, 0, 0);
+        vkCmdPushConstants(cmd, p.probeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof counts,
+                           &counts);
+        vkCmdDispatch(cmd, static_cast<uint32_t>((probes.size() + 63) / 64), 1, 1);
+        vk::bufferBarrier(cmd, results.get(), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
+                          VK_ACCESS_2_HOST_READ_BIT);
+    });
+    const auto* out = static_cast<const float*>(results.mapped);
+    return {out, out + probes.size()};
+}
+
+} // namespace penumbra

@@ -1,0 +1,45 @@
+#include "render/frame_data.h"
+
+#include "core/projection.h"
+#include "shadows/poisson.h"
+
+namespace penumbra::render {
+
+void setTechniqueSettings(gpu::FrameData& f, const ParameterValues& p, bool hardwareDepthFilter,
+                          uint32_t subTexelBits) {
+    auto number = [&](const char* key) { return static_cast<float>(p.number(key)); };
+    auto index = [&](const char* key) { return static_cast<uint32_t>(p.number(key)); };
+    const uint32_t size = index("pcf.size");
+    const float sigma = number("pcf.sigma") > 0.0f ? number("pcf.sigma") : 0.25f * float(size);
+    f.filterMode = {index("pcf.filter"), size, index("pcf.samples"), index("pcf.rotation")};
+    f.filterParams = {number("pcf.radius"), sigma, number("pcf.adaptive"), 0.0f};
+    f.biasMode = {index("bias.receiver"), hardwareDepthFilter ? 1u : 0u, subTexelBits, 0u};
+    f.biasParams = {number("bias.receiverClamp"), 0.0f, 0.0f, 0.0f};
+    const auto& disk = poissonDisk();
+    for (size_t i = 0; i < kPoissonPoints / 2; ++i)
+        f.poisson[i] = {disk[2 * i].x, disk[2 * i].y, disk[2 * i + 1].x, disk[2 * i + 1].y};
+}
+
+gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t lightCount,
+                         const vk::Context& ctx) {
+    const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
+    const glm::mat4 view = lookAt(camera.position, camera.target, camera.up);
+    const glm::mat4 proj =
+        perspectiveCameraReverseZ(camera.yfov, aspect, camera.znear, camera.zfar);
+    // Inverting in double keeps reconstructed positions accurate far from the origin.
+    const glm::dmat4 inv = glm::inverse(glm::dmat4(proj) * glm::dmat4(view));
+    const ParameterValues& params = o.parameters;
+    gpu::FrameData f{.viewProj = proj * view,
+                     .invViewProj = glm::mat4(inv),
+                     .position = glm::vec4(camera.position, 1.0f),
+                     .imageSize = {o.width, o.height, lightCount, 0},
+                     .composite = {static_cast<float>(params.number("composite.ambient")),
+                                   static_cast<float>(params.number("composite.shadowIntensity")),
+                                   0, 0},
+                     .background = {0.55f, 0.65f, 0.8f, 1.0f}};
+    setTechniqueSettings(f, params, ctx.info().depthLinearFilter,
+                         ctx.limits().subTexelPrecisionBits);
+    return f;
+}
+
+} // namespace penumbra::render
