@@ -48,9 +48,10 @@ TEST(Metrics, ExactMatchIsAllZero) {
     EXPECT_EQ(m.acne, 0);
     EXPECT_EQ(m.leak, 0);
     EXPECT_EQ(m.pixels, 64u);
-    EXPECT_EQ(m.truthLit, 32u);
-    EXPECT_EQ(m.truthShadowed, 32u);
-    // Boundary columns 3 and 4, band 1..6: only columns 0 and 7 lie outside.
+    // Boundary columns 3 and 4, band 1..6: only columns 0 and 7 lie outside, and only there
+    // are pixels judged for acne (column 7, lit) and leak (column 0, shadowed).
+    EXPECT_EQ(m.truthLit, 8u);
+    EXPECT_EQ(m.truthShadowed, 8u);
     EXPECT_EQ(m.pixelsOutsideEdges, 16u);
 }
 
@@ -58,12 +59,12 @@ TEST(Metrics, FlippedPixelsGiveExactFractions) {
     Images im = halfAndHalf();
     im.visibility[im.at(0, 0)] = 1; // shadowed -> lit, outside the band: leak
     im.visibility[im.at(7, 7)] = 0; // lit -> shadowed, outside the band: acne
-    im.visibility[im.at(4, 2)] = 0; // lit -> shadowed, inside the band: acne
+    im.visibility[im.at(4, 2)] = 0; // lit -> shadowed, inside the band: an edge error, not acne
     ErrorMetrics m = im.metrics();
     EXPECT_DOUBLE_EQ(m.misclassified, 3.0 / 64);
     EXPECT_DOUBLE_EQ(m.misclassifiedOutsideEdges, 2.0 / 16);
-    EXPECT_DOUBLE_EQ(m.acne, 2.0 / 32);
-    EXPECT_DOUBLE_EQ(m.leak, 1.0 / 32);
+    EXPECT_DOUBLE_EQ(m.acne, 1.0 / 8);
+    EXPECT_DOUBLE_EQ(m.leak, 1.0 / 8);
     EXPECT_DOUBLE_EQ(m.rmse, std::sqrt(3.0 / 64));
     EXPECT_DOUBLE_EQ(m.mae, 3.0 / 64);
     EXPECT_DOUBLE_EQ(m.max, 1.0);
@@ -93,25 +94,27 @@ TEST(Metrics, NegativeOffsetUsesAbsoluteMax) {
 }
 
 TEST(Metrics, AcneAndLeakThresholds) {
-    // Row 0: truth counted as 1 (one just below 1 within the tolerance); row 1: truth counted as
-    // 0; row 2: in-between truth that is neither, whatever its visibility.
-    Images im(5, 3);
-    const float lit[5] = {1, 1, 1, 1, 1 - 1e-7f};
-    const float litV[5] = {0.89f, 0.9f, 0.95f, 1.0f, 0.5f};    // acne: 0.89 and 0.5
+    // Uniform truth, so no edge band: every pixel is judged. Lit truth (one just below 1
+    // within the tolerance) counts acne below 0.9; shadowed truth counts leak above 0.1.
+    Images lit(5, 1);
+    const float litT[5] = {1, 1, 1, 1, 1 - 1e-7f};
+    const float litV[5] = {0.89f, 0.9f, 0.95f, 1.0f, 0.5f}; // acne: 0.89 and 0.5
+    Images shadow(5, 1);
     const float shadowV[5] = {0.1f, 0.11f, 0.0f, 0.05f, 0.6f}; // leak: 0.11 and 0.6
-    const float mid[5] = {0.99f, 0.99f, 0.01f, 0.01f, 0.5f};
-    const float midV[5] = {0.0f, 0.5f, 1.0f, 0.5f, 0.0f};
     for (uint32_t x = 0; x < 5; ++x) {
-        im.truth[im.at(x, 0)] = lit[x], im.visibility[im.at(x, 0)] = litV[x];
-        im.truth[im.at(x, 1)] = x == 4 ? 1e-7f : 0.0f, im.visibility[im.at(x, 1)] = shadowV[x];
-        im.truth[im.at(x, 2)] = mid[x], im.visibility[im.at(x, 2)] = midV[x];
+        lit.truth[x] = litT[x], lit.visibility[x] = litV[x];
+        shadow.truth[x] = x == 4 ? 1e-7f : 0.0f, shadow.visibility[x] = shadowV[x];
     }
-    ErrorMetrics m = im.metrics();
-    EXPECT_EQ(m.pixels, 15u);
-    EXPECT_EQ(m.truthLit, 5u);
-    EXPECT_EQ(m.truthShadowed, 5u);
-    EXPECT_DOUBLE_EQ(m.acne, 2.0 / 5);
-    EXPECT_DOUBLE_EQ(m.leak, 2.0 / 5);
+    const ErrorMetrics a = lit.metrics(), l = shadow.metrics();
+    EXPECT_EQ(a.truthLit, 5u);
+    EXPECT_DOUBLE_EQ(a.acne, 2.0 / 5);
+    EXPECT_EQ(l.truthShadowed, 5u);
+    EXPECT_DOUBLE_EQ(l.leak, 2.0 / 5);
+    // In-between truth is neither, whatever its visibility.
+    Images mid(4, 1, 0.0f, 0.6f);
+    const ErrorMetrics m = mid.metrics();
+    EXPECT_EQ(m.truthLit + m.truthShadowed, 0u);
+    EXPECT_EQ(m.acne + m.leak, 0.0);
 }
 
 TEST(Metrics, EdgeBandAroundVerticalBoundary) {

@@ -50,7 +50,7 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     uvec4 filterMode;    // x pcf.filter, y pcf.size, z pcf.samples, w pcf.rotation
     vec4 filterParams;   // x pcf.radius (texels), y Gaussian sigma (texels), z pcf.adaptive
     uvec4 biasMode;      // x bias.receiver, y 1: hardware linear depth compare, z sub-texel bits
-    vec4 biasParams;     // x bias.receiverClamp (light depth units)
+    vec4 biasParams;     // xy: range of a tap's receiver-plane depth correction (light depth)
     vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
 };
 

@@ -17,29 +17,29 @@ struct Receiver {
     vec2 gradient;  // d depth / d uv on the receiver's plane (zero: no receiver-plane bias)
 };
 
-float texelTest(Receiver r, float stored, vec2 texelUv, float clampMax) {
-    float dz = clamp(dot(r.gradient, texelUv - r.uv), -clampMax, clampMax);
+float texelTest(Receiver r, float stored, vec2 texelUv, vec2 dzRange) {
+    float dz = clamp(dot(r.gradient, texelUv - r.uv), dzRange.x, dzRange.y);
     return r.depth + dz <= stored ? 1.0 : 0.0;
 }
 
 // Tests of the 2x2 texels whose first texel is `base`, in textureGather order:
 // x (i, j+1), y (i+1, j+1), z (i+1, j), w (i, j). One gather fetches all four depths.
-vec4 gatherTests(sampler2D map, ivec2 base, float size, Receiver r, float clampMax) {
+vec4 gatherTests(sampler2D map, ivec2 base, float size, Receiver r, vec2 dzRange) {
     vec4 d = textureGather(map, (vec2(base) + 1.0) / size, 0);
     vec2 c = (vec2(base) + 0.5) / size;
     float t = 1.0 / size;
-    return vec4(texelTest(r, d.x, c + vec2(0.0, t), clampMax),
-                texelTest(r, d.y, c + vec2(t, t), clampMax),
-                texelTest(r, d.z, c + vec2(t, 0.0), clampMax),
-                texelTest(r, d.w, c, clampMax));
+    return vec4(texelTest(r, d.x, c + vec2(0.0, t), dzRange),
+                texelTest(r, d.y, c + vec2(t, t), dzRange),
+                texelTest(r, d.z, c + vec2(t, 0.0), dzRange),
+                texelTest(r, d.w, c, dzRange));
 }
 
 // One bilinear comparison tap at `texelPos` (texel units: the map spans [0, size]).
-float bilinearTap(sampler2D map, vec2 texelPos, float size, Receiver r, float clampMax) {
+float bilinearTap(sampler2D map, vec2 texelPos, float size, Receiver r, vec2 dzRange) {
     vec2 p = texelPos - 0.5;
     vec2 base = floor(p);
     vec2 f = p - base;
-    vec4 t = gatherTests(map, ivec2(base), size, r, clampMax);
+    vec4 t = gatherTests(map, ivec2(base), size, r, dzRange);
     return mix(mix(t.w, t.z, f.x), mix(t.x, t.y, f.x), f.y);
 }
 
@@ -65,7 +65,7 @@ void footprintWeights(uint filterKind, int n, float sigma, float f, out float c[
 // the bilinear variant). All taps share the sub-texel fraction, so the sum is separable over
 // the (n+1) x (n+1) footprint: ((n + 1) / 2)^2 gathers instead of 4 n^2 point fetches.
 float pcfGrid(sampler2D map, Receiver r, uint mapSize, uint filterKind, int n, float sigma,
-              float clampMax) {
+              vec2 dzRange) {
     float size = float(mapSize);
     vec2 p = r.uv * size - 0.5;
     vec2 base = floor(p);
@@ -77,7 +77,7 @@ float pcfGrid(sampler2D map, Receiver r, uint mapSize, uint filterKind, int n, f
     float sum = 0.0;
     for (int ky = 0; ky <= n; ky += 2)
         for (int kx = 0; kx <= n; kx += 2) {
-            vec4 t = gatherTests(map, first + ivec2(kx, ky), size, r, clampMax);
+            vec4 t = gatherTests(map, first + ivec2(kx, ky), size, r, dzRange);
             sum += (t.w * cx[kx] + t.z * cx[kx + 1]) * cy[ky] +
                    (t.x * cx[kx] + t.y * cx[kx + 1]) * cy[ky + 1];
         }
@@ -102,7 +102,7 @@ vec2 poissonPoint(uint i) {
     return (i % 2u) == 0u ? pair.xy : pair.zw;
 }
 
-float pcfPoisson(sampler2D map, Receiver r, uint mapSize, uvec2 pixel, float clampMax) {
+float pcfPoisson(sampler2D map, Receiver r, uint mapSize, uvec2 pixel, vec2 dzRange) {
     uint n = frame.filterMode.z;
     float angle = 6.28318530718 * rotationTurns(frame.filterMode.w, pixel);
     float c = cos(angle), s = sin(angle), radius = frame.filterParams.x;
@@ -111,28 +111,33 @@ float pcfPoisson(sampler2D map, Receiver r, uint mapSize, uvec2 pixel, float cla
     for (uint i = 0u; i < n; ++i) {
         vec2 d = poissonPoint(i);
         vec2 offset = radius * vec2(c * d.x - s * d.y, s * d.x + c * d.y);
-        sum += bilinearTap(map, centre + offset, float(mapSize), r, clampMax);
+        sum += bilinearTap(map, centre + offset, float(mapSize), r, dzRange);
     }
     return sum / float(n);
 }
 
 // [Isidoro 2006] edge-only PCF: four taps at the kernel's corners; when they agree fully
 // (all lit or all shadowed) the pixel is taken to be away from any edge.
-bool pcfProbeDecides(sampler2D map, Receiver r, uint mapSize, float clampMax, out float result) {
+bool pcfProbeDecides(sampler2D map, Receiver r, uint mapSize, vec2 dzRange, out float result) {
     float reach = FILTER == FILTER_POISSON ? frame.filterParams.x * 0.70710678
                                                        : 0.5 * float(frame.filterMode.y - 1u);
     vec2 centre = r.uv * float(mapSize);
-    float sum = bilinearTap(map, centre + vec2(-reach, -reach), float(mapSize), r, clampMax) +
-                bilinearTap(map, centre + vec2(reach, -reach), float(mapSize), r, clampMax) +
-                bilinearTap(map, centre + vec2(-reach, reach), float(mapSize), r, clampMax) +
-                bilinearTap(map, centre + vec2(reach, reach), float(mapSize), r, clampMax);
+    float sum = bilinearTap(map, centre + vec2(-reach, -reach), float(mapSize), r, dzRange) +
+                bilinearTap(map, centre + vec2(reach, -reach), float(mapSize), r, dzRange) +
+                bilinearTap(map, centre + vec2(-reach, reach), float(mapSize), r, dzRange) +
+                bilinearTap(map, centre + vec2(reach, reach), float(mapSize), r, dzRange);
     result = sum * 0.25;
     return sum == 0.0 || sum == 4.0;
 }
 
-float shadowPcf(sampler2D map, sampler2DShadow mapCompare, Receiver r, uint mapSize, uvec2 pixel) {
+// Weighted sums of exact 0/1 tests land within float round-off of 0 or 1 when every test
+// agrees; fully lit must read exactly 1 (and fully shadowed 0), so round-off snaps.
+float snapToExtremes(float v) { return v >= 0.99999 ? 1.0 : (v <= 0.00001 ? 0.0 : v); }
+
+float shadowPcfUnsnapped(sampler2D map, sampler2DShadow mapCompare, Receiver r, uint mapSize,
+                         uvec2 pixel) {
     const uint filterKind = FILTER;
-    float clampMax = frame.biasParams.x;
+    vec2 dzRange = frame.biasParams.xy;
     if (filterKind == FILTER_HARDWARE) {
         // One comparison-sampler tap (SampleCmpLevelZero). Without linear depth filtering
         // (lavapipe) the same bilinear comparison is done by hand.
@@ -141,15 +146,19 @@ float shadowPcf(sampler2D map, sampler2DShadow mapCompare, Receiver r, uint mapS
         if (frame.biasMode.y != 0u) return texture(mapCompare, vec3(r.uv, r.depth));
         Receiver noPlane = r;
         noPlane.gradient = vec2(0.0);
-        return bilinearTap(map, r.uv * float(mapSize), float(mapSize), noPlane, clampMax);
+        return bilinearTap(map, r.uv * float(mapSize), float(mapSize), noPlane, dzRange);
     }
     float early;
     if (frame.filterParams.z != 0.0 && filterKind != FILTER_BILINEAR &&
-        pcfProbeDecides(map, r, mapSize, clampMax, early))
+        pcfProbeDecides(map, r, mapSize, dzRange, early))
         return early;
-    if (filterKind == FILTER_POISSON) return pcfPoisson(map, r, mapSize, pixel, clampMax);
+    if (filterKind == FILTER_POISSON) return pcfPoisson(map, r, mapSize, pixel, dzRange);
     int n = filterKind == FILTER_BILINEAR ? 1 : int(frame.filterMode.y);
-    return pcfGrid(map, r, mapSize, filterKind, n, frame.filterParams.y, clampMax);
+    return pcfGrid(map, r, mapSize, filterKind, n, frame.filterParams.y, dzRange);
+}
+
+float shadowPcf(sampler2D map, sampler2DShadow mapCompare, Receiver r, uint mapSize, uvec2 pixel) {
+    return snapToExtremes(shadowPcfUnsnapped(map, mapCompare, r, mapSize, pixel));
 }
 
 #endif

@@ -10,7 +10,7 @@ float evaluateTechnique(uint technique, sampler2D map, sampler2DShadow mapCompar
     switch (technique) {
     case TECHNIQUE_PCF: return shadowPcf(map, mapCompare, r, mapSize, pixel);
     case TECHNIQUE_HARD:
-    default: return shadowHard(map, r, mapSize, frame.biasParams.x);
+    default: return shadowHard(map, r, mapSize, frame.biasParams.xy);
     }
 }
 

@@ -21,22 +21,22 @@ struct MarginTracker {
     }
 };
 
-float texelTest(const Receiver& r, float stored, glm::vec2 texelUv, float clampMax,
+float texelTest(const Receiver& r, float stored, glm::vec2 texelUv, glm::vec2 dzRange,
                 const MarginTracker& m) {
-    const float dz = std::clamp(glm::dot(r.gradient, texelUv - r.uv), -clampMax, clampMax);
+    const float dz = std::clamp(glm::dot(r.gradient, texelUv - r.uv), dzRange.x, dzRange.y);
     m.see(r.depth + dz, stored);
     return r.depth + dz <= stored ? 1.0f : 0.0f;
 }
 
 // x (i, j+1), y (i+1, j+1), z (i+1, j), w (i, j): textureGather's order.
 glm::vec4 gatherTests(const ShadowMapView& map, glm::ivec2 base, float size, const Receiver& r,
-                      float clampMax, const MarginTracker& m) {
+                      glm::vec2 dzRange, const MarginTracker& m) {
     const glm::vec2 c = (glm::vec2(base) + 0.5f) / size;
     const float t = 1.0f / size;
-    return {texelTest(r, map.texel(base.x, base.y + 1), c + glm::vec2(0.0f, t), clampMax, m),
-            texelTest(r, map.texel(base.x + 1, base.y + 1), c + glm::vec2(t, t), clampMax, m),
-            texelTest(r, map.texel(base.x + 1, base.y), c + glm::vec2(t, 0.0f), clampMax, m),
-            texelTest(r, map.texel(base.x, base.y), c, clampMax, m)};
+    return {texelTest(r, map.texel(base.x, base.y + 1), c + glm::vec2(0.0f, t), dzRange, m),
+            texelTest(r, map.texel(base.x + 1, base.y + 1), c + glm::vec2(t, t), dzRange, m),
+            texelTest(r, map.texel(base.x + 1, base.y), c + glm::vec2(t, 0.0f), dzRange, m),
+            texelTest(r, map.texel(base.x, base.y), c, dzRange, m)};
 }
 
 float mix(float a, float b, float t) {
@@ -44,7 +44,7 @@ float mix(float a, float b, float t) {
 }
 
 float bilinearTap(const ShadowMapView& map, glm::vec2 texelPos, float size, const Receiver& r,
-                  float clampMax, const MarginTracker& m, uint32_t subTexelBits = 0) {
+                  glm::vec2 dzRange, const MarginTracker& m, uint32_t subTexelBits = 0) {
     const glm::vec2 p = texelPos - 0.5f;
     const glm::vec2 base = glm::floor(p);
     glm::vec2 f = p - base;
@@ -52,7 +52,7 @@ float bilinearTap(const ShadowMapView& map, glm::vec2 texelPos, float size, cons
         const float steps = std::ldexp(1.0f, static_cast<int>(subTexelBits));
         f = glm::round(f * steps) / steps;
     }
-    const glm::vec4 t = gatherTests(map, glm::ivec2(base), size, r, clampMax, m);
+    const glm::vec4 t = gatherTests(map, glm::ivec2(base), size, r, dzRange, m);
     return mix(mix(t.w, t.z, f.x), mix(t.x, t.y, f.x), f.y);
 }
 
@@ -72,7 +72,7 @@ void footprintWeights(uint32_t filterKind, int n, float sigma, float f, float* c
 }
 
 float pcfGrid(const ShadowMapView& map, const Receiver& r, uint32_t filterKind, int n, float sigma,
-              float clampMax, const MarginTracker& m) {
+              glm::vec2 dzRange, const MarginTracker& m) {
     const float size = static_cast<float>(map.size);
     const glm::vec2 p = r.uv * size - 0.5f;
     const glm::vec2 base = glm::floor(p);
@@ -84,7 +84,7 @@ float pcfGrid(const ShadowMapView& map, const Receiver& r, uint32_t filterKind, 
     float sum = 0.0f;
     for (int ky = 0; ky <= n; ky += 2)
         for (int kx = 0; kx <= n; kx += 2) {
-            const glm::vec4 t = gatherTests(map, first + glm::ivec2(kx, ky), size, r, clampMax, m);
+            const glm::vec4 t = gatherTests(map, first + glm::ivec2(kx, ky), size, r, dzRange, m);
             sum += (t.w * cx[kx] + t.z * cx[kx + 1]) * cy[ky] +
                    (t.x * cx[kx] + t.y * cx[kx + 1]) * cy[ky + 1];
         }
@@ -119,7 +119,7 @@ glm::vec2 poissonPoint(const gpu::FrameData& f, uint32_t i) {
 }
 
 float pcfPoisson(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
-                 glm::uvec2 pixel, float clampMax, const MarginTracker& m) {
+                 glm::uvec2 pixel, glm::vec2 dzRange, const MarginTracker& m) {
     const uint32_t n = f.filterMode.z;
     const float angle = 6.28318530718f * rotationTurns(f.filterMode.w, pixel);
     const float c = std::cos(angle), s = std::sin(angle), radius = f.filterParams.x;
@@ -129,22 +129,22 @@ float pcfPoisson(const ShadowMapView& map, const Receiver& r, const gpu::FrameDa
     for (uint32_t i = 0; i < n; ++i) {
         const glm::vec2 d = poissonPoint(f, i);
         const glm::vec2 offset = radius * glm::vec2(c * d.x - s * d.y, s * d.x + c * d.y);
-        sum += bilinearTap(map, centre + offset, size, r, clampMax, m);
+        sum += bilinearTap(map, centre + offset, size, r, dzRange, m);
     }
     return sum / static_cast<float>(n);
 }
 
 bool probeDecides(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
-                  float clampMax, const MarginTracker& m, float& result) {
+                  glm::vec2 dzRange, const MarginTracker& m, float& result) {
     const float reach = f.filterMode.x == FILTER_POISSON
                             ? f.filterParams.x * 0.70710678f
                             : 0.5f * static_cast<float>(f.filterMode.y - 1u);
     const float size = static_cast<float>(map.size);
     const glm::vec2 centre = r.uv * size;
-    const float sum = bilinearTap(map, centre + glm::vec2(-reach, -reach), size, r, clampMax, m) +
-                      bilinearTap(map, centre + glm::vec2(reach, -reach), size, r, clampMax, m) +
-                      bilinearTap(map, centre + glm::vec2(-reach, reach), size, r, clampMax, m) +
-                      bilinearTap(map, centre + glm::vec2(reach, reach), size, r, clampMax, m);
+    const float sum = bilinearTap(map, centre + glm::vec2(-reach, -reach), size, r, dzRange, m) +
+                      bilinearTap(map, centre + glm::vec2(reach, -reach), size, r, dzRange, m) +
+                      bilinearTap(map, centre + glm::vec2(-reach, reach), size, r, dzRange, m) +
+                      bilinearTap(map, centre + glm::vec2(reach, reach), size, r, dzRange, m);
     result = sum * 0.25f;
     return sum == 0.0f || sum == 4.0f;
 }
@@ -153,23 +153,32 @@ Receiver receiverOf(const FilterProbe& p) {
     return {p.uv, p.depth, p.gradient};
 }
 
-float pcf(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
-          const MarginTracker& m) {
+float snapToExtremes(float v) {
+    return v >= 0.99999f ? 1.0f : (v <= 0.00001f ? 0.0f : v);
+}
+
+float pcfUnsnapped(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
+                   const MarginTracker& m) {
     const Receiver r = receiverOf(probe);
     const uint32_t filterKind = f.filterMode.x;
-    const float clampMax = f.biasParams.x;
+    const glm::vec2 dzRange(f.biasParams.x, f.biasParams.y);
     const float size = static_cast<float>(map.size);
     if (filterKind == FILTER_HARDWARE)
         return bilinearTap(map, r.uv * size, size, Receiver{r.uv, r.depth, glm::vec2(0.0f)},
-                           clampMax, m, f.biasMode.y != 0u ? f.biasMode.z : 0u);
+                           dzRange, m, f.biasMode.y != 0u ? f.biasMode.z : 0u);
     float early = 0.0f;
     if (f.filterParams.z != 0.0f && filterKind != FILTER_BILINEAR &&
-        probeDecides(map, r, f, clampMax, m, early))
+        probeDecides(map, r, f, dzRange, m, early))
         return early;
     if (filterKind == FILTER_POISSON)
-        return pcfPoisson(map, r, f, probe.pixel, clampMax, m);
+        return pcfPoisson(map, r, f, probe.pixel, dzRange, m);
     const int n = filterKind == FILTER_BILINEAR ? 1 : static_cast<int>(f.filterMode.y);
-    return pcfGrid(map, r, filterKind, n, f.filterParams.y, clampMax, m);
+    return pcfGrid(map, r, filterKind, n, f.filterParams.y, dzRange, m);
+}
+
+float pcf(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
+          const MarginTracker& m) {
+    return snapToExtremes(pcfUnsnapped(map, probe, f, m));
 }
 
 float hard(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
@@ -178,7 +187,8 @@ float hard(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameD
     const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(probe.uv * float(map.size))),
                                         glm::ivec2(0), glm::ivec2(last));
     const glm::vec2 centre = (glm::vec2(texel) + 0.5f) / static_cast<float>(map.size);
-    return texelTest(receiverOf(probe), map.texel(texel.x, texel.y), centre, f.biasParams.x, m);
+    return texelTest(receiverOf(probe), map.texel(texel.x, texel.y), centre,
+                     glm::vec2(f.biasParams.x, f.biasParams.y), m);
 }
 
 } // namespace

@@ -14,7 +14,10 @@ void setTechniqueSettings(gpu::FrameData& f, const ParameterValues& p, bool hard
     f.filterMode = {index("pcf.filter"), size, index("pcf.samples"), index("pcf.rotation")};
     f.filterParams = {number("pcf.radius"), sigma, number("pcf.adaptive"), 0.0f};
     f.biasMode = {index("bias.receiver"), hardwareDepthFilter ? 1u : 0u, subTexelBits, 0u};
-    f.biasParams = {number("bias.receiverClamp"), 0.0f, 0.0f, 0.0f};
+    // Corrections bring a tap's reference depth nearer the light (negative) up to the clamp;
+    // with bias.receiverSides=near none may push it away (see docs/techniques.md).
+    const float limit = number("bias.receiverClamp");
+    f.biasParams = {-limit, index("bias.receiverSides") == 0 ? limit : 0.0f, 0.0f, 0.0f};
     const auto& disk = poissonDisk();
     for (size_t i = 0; i < kPoissonPoints / 2; ++i)
         f.poisson[i] = {disk[2 * i].x, disk[2 * i].y, disk[2 * i + 1].x, disk[2 * i + 1].y};

@@ -123,7 +123,11 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
                 ++m.pixelsOutsideEdges;
                 misclassifiedOutside += wrongClass;
             }
+            // Acne and leak are errors away from shadow edges (self-shadowing, missing
+            // shadow): on an edge, a filter's blur or a hard map's aliasing would swamp them.
             // Tolerances absorb float round-off in "fully lit" / "fully shadowed" truth.
+            if (bits[i] & kBand)
+                continue;
             if (t >= 1.0f - 1e-6f) {
                 ++m.truthLit;
                 acne += v < 0.9f;

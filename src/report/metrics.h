@@ -11,6 +11,7 @@ struct ErrorMetrics {
     double rmse = 0, mae = 0, max = 0;    // of v - truth over counted pixels (max: of |v - truth|)
     double misclassified = 0;             // fraction with |v - truth| > 0.5
     double misclassifiedOutsideEdges = 0; // same, over counted pixels outside the edge band
+    // Both outside the edge band, where filtering and aliasing cannot explain them:
     double acne = 0; // among counted pixels with truth == 1: fraction with v < 0.9
     double leak = 0; // among counted pixels with truth == 0: fraction with v > 0.1
     uint64_t pixels = 0, pixelsOutsideEdges = 0, truthLit = 0, truthShadowed = 0;

@@ -32,7 +32,7 @@ const std::vector<TechniqueInfo>& techniqueTable() {
               {.label = "hardware", .sets = {{"pcf.filter", "hardware"}}},
               {.label = "box3", .sets = {{"pcf.filter", "box"}, {"pcf.size", "3"}}},
               {.label = "box7", .sets = {{"pcf.filter", "box"}, {"pcf.size", "7"}}},
-              {.label = "box15", .sets = {{"pcf.filter", "box"}, {"pcf.size", "15"}}},
+              {.label = "box11", .sets = {{"pcf.filter", "box"}, {"pcf.size", "11"}}},
               {.label = "gauss7", .sets = {{"pcf.filter", "gaussian"}, {"pcf.size", "7"}}},
               {.label = "poisson16", .sets = {{"pcf.filter", "poisson"}, {"pcf.samples", "16"}}},
               {.label = "poisson32", .sets = {{"pcf.filter", "poisson"}, {"pcf.samples", "32"}}},
@@ -82,6 +82,13 @@ const std::vector<ParameterInfo>& parameterTable() {
          .unit = "light depth",
          .description = "largest receiver-plane correction per tap (guards silhouettes, where "
                         "the plane is a poor fit)"},
+        {.key = "bias.receiverSides",
+         .type = ParameterType::Choice,
+         .defaultValue = 1,
+         .choices = {"both", "near"},
+         .description = "which receiver-plane corrections apply: both signs, or only those that "
+                        "bring a tap's depth nearer the light (near: the plane cannot extrapolate "
+                        "beneath a neighbouring surface at a concave crease)"},
         {.key = "pcf.filter",
          .type = ParameterType::Choice,
          .defaultValue = 2,

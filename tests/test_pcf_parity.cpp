@@ -1,0 +1,143 @@
+// CPU reference vs GPU for every shadow-map filter, on synthetic shadow maps: the visibility
+// pass's own filter code (Renderer::probeTechnique) against src/reference/filter_reference.cpp.
+#include "gpu_fixture.h"
+#include "reference/filter_reference.h"
+#include "render/frame_data.h"
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+constexpr uint32_t kMapSize = 96;
+
+// Depth that varies smoothly, with box-shaped occluders closer to the light on top.
+std::vector<float> syntheticMap(uint32_t seed) {
+    std::mt19937 engine(seed);
+    auto rng = [&] { return static_cast<uint32_t>(engine()); };
+    std::vector<float> depth(kMapSize * kMapSize);
+    for (uint32_t j = 0; j < kMapSize; ++j)
+        for (uint32_t i = 0; i < kMapSize; ++i)
+            depth[j * kMapSize + i] =
+                0.55f + 0.15f * std::sin(0.21f * float(i)) * std::cos(0.17f * float(j));
+    for (int b = 0; b < 24; ++b) {
+        const uint32_t x0 = rng() % kMapSize, y0 = rng() % kMapSize, w = 2 + rng() % 12,
+                       h = 2 + rng() % 12;
+        const float d = 0.2f + 0.25f * float(rng() % 1000) / 1000.0f;
+        for (uint32_t y = y0; y < std::min(y0 + h, kMapSize); ++y)
+            for (uint32_t x = x0; x < std::min(x0 + w, kMapSize); ++x)
+                depth[y * kMapSize + x] = d;
+    }
+    return depth;
+}
+
+std::vector<FilterProbe> syntheticProbes(uint32_t seed, bool withGradient) {
+    std::mt19937 engine(seed);
+    auto rng = [&] { return static_cast<uint32_t>(engine()); };
+    auto unit = [&] { return float(rng() >> 8) / 16777216.0f; };
+    std::vector<FilterProbe> probes(3000);
+    for (FilterProbe& p : probes) {
+        p.uv = {0.02f + 0.96f * unit(), 0.02f + 0.96f * unit()};
+        p.depth = 0.25f + 0.5f * unit();
+        // Gradients up to 0.5 depth per uv unit: a few texels give corrections of ~1e-2.
+        if (withGradient)
+            p.gradient = {unit() - 0.5f, unit() - 0.5f};
+        p.pixel = {rng() % 1920, rng() % 1080};
+    }
+    return probes;
+}
+
+struct Variant {
+    std::string name;
+    Technique technique;
+    std::vector<std::string> sets;
+};
+
+std::vector<Variant> everyVariant() {
+    std::vector<Variant> v{{"hard", Technique::Hard, {}},
+                           {"bilinear", Technique::Pcf, {"pcf.filter=bilinear"}},
+                           {"hardware", Technique::Pcf, {"pcf.filter=hardware"}}};
+    for (int n = 3; n <= 15; n += 2) {
+        v.push_back({"box" + std::to_string(n),
+                     Technique::Pcf,
+                     {"pcf.filter=box", "pcf.size=" + std::to_string(n)}});
+        v.push_back({"gauss" + std::to_string(n),
+                     Technique::Pcf,
+                     {"pcf.filter=gaussian", "pcf.size=" + std::to_string(n)}});
+    }
+    v.push_back(
+        {"gauss9-sigma1", Technique::Pcf, {"pcf.filter=gaussian", "pcf.size=9", "pcf.sigma=1"}});
+    for (const char* rotation : {"none", "random", "ign"})
+        for (int samples : {1, 7, 16, 32, 64})
+            v.push_back({std::string("poisson") + std::to_string(samples) + "-" + rotation,
+                         Technique::Pcf,
+                         {"pcf.filter=poisson", "pcf.samples=" + std::to_string(samples),
+                          std::string("pcf.rotation=") + rotation, "pcf.radius=3.5"}});
+    v.push_back(
+        {"adaptive-box7", Technique::Pcf, {"pcf.filter=box", "pcf.size=7", "pcf.adaptive=true"}});
+    v.push_back({"adaptive-gauss5",
+                 Technique::Pcf,
+                 {"pcf.filter=gaussian", "pcf.size=5", "pcf.adaptive=true"}});
+    v.push_back(
+        {"adaptive-poisson16", Technique::Pcf, {"pcf.filter=poisson", "pcf.adaptive=true"}});
+    return v;
+}
+
+} // namespace
+
+TEST_F(GpuTest, EveryFilterMatchesItsCpuReference) {
+    const DeviceInfo& device = sharedRenderer().device();
+    const std::vector<float> depth = syntheticMap(11);
+    const ShadowMapView map{depth, kMapSize};
+    for (bool gradient : {false, true}) {
+        const std::vector<FilterProbe> probes = syntheticProbes(gradient ? 5 : 3, gradient);
+        for (const Variant& variant : everyVariant()) {
+            ParameterValues params;
+            for (const std::string& set : variant.sets)
+                params.assign(set);
+            const std::vector<float> gpu =
+                sharedRenderer().probeTechnique(variant.technique, params, depth, kMapSize, probes);
+            gpu::FrameData frame{};
+            // The subTexelPrecisionBits the CPU emulates only matter with hardware filtering.
+            render::setTechniqueSettings(frame, params, device.depthLinearFilter, 8);
+            const bool hardwareTap = variant.name == "hardware" && device.depthLinearFilter;
+            const float tolerance = hardwareTap ? 1e-3f + 1.0f / 256.0f : 1e-3f;
+            float worst = 0.0f;
+            size_t compared = 0;
+            for (size_t i = 0; i < probes.size(); ++i) {
+                // A tie within float rounding may flip one comparison on either side.
+                if (smallestComparisonMargin(variant.technique, map, probes[i], frame) < 1e-5f)
+                    continue;
+                ++compared;
+                const float cpu = techniqueReference(variant.technique, map, probes[i], frame);
+                worst = std::max(worst, std::abs(cpu - gpu[i]));
+            }
+            EXPECT_GT(compared, probes.size() * 9 / 10) << variant.name;
+            EXPECT_LE(worst, tolerance)
+                << variant.name << (gradient ? " with" : " without") << " receiver-plane gradient";
+        }
+    }
+}
+
+TEST_F(GpuTest, FiltersAreFractionalAndReachBothExtremes) {
+    // A kernel over a real edge must produce in-between values (it filters) and still report
+    // fully lit and fully shadowed receivers exactly.
+    const std::vector<float> depth = syntheticMap(11);
+    const std::vector<FilterProbe> probes = syntheticProbes(3, false);
+    ParameterValues params;
+    params.assign("pcf.filter=box");
+    params.assign("pcf.size=7");
+    const std::vector<float> v =
+        sharedRenderer().probeTechnique(Technique::Pcf, params, depth, kMapSize, probes);
+    size_t zero = 0, one = 0, between = 0;
+    for (float x : v)
+        (x == 0.0f ? zero : x == 1.0f ? one : between) += 1;
+    EXPECT_GT(zero, 50u);
+    EXPECT_GT(one, 50u);
+    EXPECT_GT(between, 200u);
+}
