@@ -37,7 +37,9 @@ nlohmann::json renderStats(const RenderRun& run) {
                    {"type", run.device.type},
                    {"driver", run.device.driverName},
                    {"driver_info", run.device.driverInfo},
-                   {"vulkan", run.device.apiVersion}};
+                   {"vulkan", run.device.apiVersion},
+                   // pcf.filter=hardware runs by hand (same maths) without linear depth filtering.
+                   {"hardware_depth_filter", run.device.depthLinearFilter}};
     j["scene"] = {{"source", run.sceneSpec},
                   {"name", run.scene.name},
                   {"triangles", run.scene.triangleCount()},
