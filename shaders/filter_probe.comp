@@ -17,7 +17,8 @@ struct Probe {
 layout(set = 0, binding = 1, std430) readonly buffer Probes { Probe probes[]; };
 layout(set = 0, binding = 2) uniform sampler2D shadowMap;
 layout(set = 0, binding = 3) uniform sampler2DShadow shadowMapCmp;
-layout(set = 0, binding = 4, std430) writeonly buffer Results { float results[]; };
+layout(set = 0, binding = 4, std430) writeonly buffer Results { vec4 results[]; };
+layout(set = 0, binding = 5, std430) readonly buffer Lights { LightData light; };
 layout(push_constant) uniform Push { uvec4 counts; }; // x probes, y map size
 
 void main() {
@@ -28,6 +29,6 @@ void main() {
     r.uv = probe.uvDepth.xy;
     r.depth = probe.uvDepth.z;
     r.gradient = probe.gradientPixel.xy;
-    results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, counts.y,
+    results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, counts.y, light,
                                    uvec2(probe.gradientPixel.zw));
 }

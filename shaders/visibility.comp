@@ -72,7 +72,7 @@ void main() {
         bool inside;
         Receiver r = makeReceiver(light, p, world, normal, depth, inside);
         v = inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, push.light.z,
-                                       uvec2(p))
+                                       light, uvec2(p)).x
                    : 1.0;
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));

@@ -100,8 +100,9 @@ TEST_F(GpuTest, EveryFilterMatchesItsCpuReference) {
             ParameterValues params;
             for (const std::string& set : variant.sets)
                 params.assign(set);
-            const std::vector<float> gpu =
+            const std::vector<glm::vec4> gpu =
                 sharedRenderer().probeTechnique(variant.technique, params, depth, kMapSize, probes);
+            const gpu::LightData light = render::probeLightData({});
             gpu::FrameData frame{};
             // The subTexelPrecisionBits the CPU emulates only matter with hardware filtering.
             render::setTechniqueSettings(frame, params, device.depthLinearFilter, 8);
@@ -111,11 +112,13 @@ TEST_F(GpuTest, EveryFilterMatchesItsCpuReference) {
             size_t compared = 0;
             for (size_t i = 0; i < probes.size(); ++i) {
                 // A tie within float rounding may flip one comparison on either side.
-                if (smallestComparisonMargin(variant.technique, map, probes[i], frame) < 1e-5f)
+                if (smallestComparisonMargin(variant.technique, map, probes[i], frame, light) <
+                    1e-5f)
                     continue;
                 ++compared;
-                const float cpu = techniqueReference(variant.technique, map, probes[i], frame);
-                worst = std::max(worst, std::abs(cpu - gpu[i]));
+                const float cpu =
+                    techniqueReference(variant.technique, map, probes[i], frame, light).x;
+                worst = std::max(worst, std::abs(cpu - gpu[i].x));
             }
             EXPECT_GT(compared, probes.size() * 9 / 10) << variant.name;
             EXPECT_LE(worst, tolerance)
@@ -132,12 +135,63 @@ TEST_F(GpuTest, FiltersAreFractionalAndReachBothExtremes) {
     ParameterValues params;
     params.assign("pcf.filter=box");
     params.assign("pcf.size=7");
-    const std::vector<float> v =
+    const std::vector<glm::vec4> v =
         sharedRenderer().probeTechnique(Technique::Pcf, params, depth, kMapSize, probes);
     size_t zero = 0, one = 0, between = 0;
-    for (float x : v)
-        (x == 0.0f ? zero : x == 1.0f ? one : between) += 1;
+    for (const glm::vec4& x : v)
+        (x.x == 0.0f ? zero : x.x == 1.0f ? one : between) += 1;
     EXPECT_GT(zero, 50u);
     EXPECT_GT(one, 50u);
     EXPECT_GT(between, 200u);
+}
+
+TEST_F(GpuTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
+    // Both light models, both sizes of light, with and without rotation: the average blocker
+    // depth, the number of blocking texels and the filter radius agree, not only the result.
+    const std::vector<float> depth = syntheticMap(17);
+    const ShadowMapView map{depth, kMapSize};
+    const ProbeLight lights[] = {{.perspective = false,
+                                  .size = std::tan(0.5f * 0.2f),
+                                  .nearPlane = 1.0f,
+                                  .farPlane = 21.0f,
+                                  .worldPerUv = {12.0f, 12.0f}},
+                                 {.perspective = true,
+                                  .size = 0.8f,
+                                  .nearPlane = 2.0f,
+                                  .farPlane = 30.0f,
+                                  .worldPerUv = {1.2f, 1.2f}}};
+    for (const ProbeLight& probeLight : lights)
+        for (const char* rotation : {"none", "ign"}) {
+            ParameterValues params;
+            params.set("pcss.rotation", rotation);
+            params.assign("pcss.maxRadius=24");
+            const std::vector<FilterProbe> probes = syntheticProbes(23, true);
+            const std::vector<glm::vec4> gpuResult = sharedRenderer().probeTechnique(
+                Technique::Pcss, params, depth, kMapSize, probes, probeLight);
+            gpu::FrameData frame{};
+            render::setTechniqueSettings(frame, params, false, 8);
+            const gpu::LightData light = render::probeLightData(probeLight);
+            glm::vec4 worst(0.0f);
+            size_t compared = 0, searched = 0;
+            for (size_t i = 0; i < probes.size(); ++i) {
+                if (smallestComparisonMargin(Technique::Pcss, map, probes[i], frame, light) < 1e-5f)
+                    continue;
+                ++compared;
+                const glm::vec4 cpu =
+                    techniqueReference(Technique::Pcss, map, probes[i], frame, light);
+                searched += cpu.z > 0.0f;
+                // Depths and radii relative to their size; counts exactly.
+                worst = glm::max(worst, glm::abs(cpu - gpuResult[i]) /
+                                            glm::max(glm::vec4(1.0f, 1.0f, 1.0f, std::abs(cpu.w)),
+                                                     glm::vec4(1.0f)));
+            }
+            const std::string what = std::string(probeLight.perspective ? "perspective" : "ortho") +
+                                     ", rotation " + rotation;
+            EXPECT_GT(compared, probes.size() * 8 / 10) << what;
+            EXPECT_GT(searched, probes.size() / 4) << what << ": blockers must be found";
+            EXPECT_LE(worst.x, 1e-3f) << what << ": visibility";
+            EXPECT_LE(worst.y, 1e-5f) << what << ": average blocker depth";
+            EXPECT_EQ(worst.z, 0.0f) << what << ": blocking texel count";
+            EXPECT_LE(worst.w, 1e-4f) << what << ": filter radius (relative)";
+        }
 }

@@ -67,6 +67,14 @@ struct FilterProbe {
     glm::uvec2 pixel{0u};
 };
 
+// The light behind a probed shadow map, for techniques that need its geometry (PCSS).
+struct ProbeLight {
+    bool perspective = false;
+    float size = 0.0f;                       // radius (perspective) or tan(half angular diameter)
+    float nearPlane = 0.0f, farPlane = 1.0f; // light view distances of depth 0 and 1
+    glm::vec2 worldPerUv{1.0f}; // world size of one uv unit (at unit distance if perspective)
+};
+
 class Renderer {
 public:
     // Throws InputError("--device", ...) for a bad index or a device lacking what we need.
@@ -83,10 +91,13 @@ public:
                         const ProgressFn& progress = {});
     // Evaluates `technique` with `parameters` at each probe on the square shadow map `depths`
     // (size x size, rows top to bottom) with the visibility pass's own shader code: how the
-    // CPU references in src/reference are checked against the GPU.
-    std::vector<float> probeTechnique(Technique technique, const ParameterValues& parameters,
-                                      std::span<const float> depths, uint32_t size,
-                                      std::span<const FilterProbe> probes);
+    // CPU references in src/reference are checked against the GPU. x: visibility; yzw: the
+    // technique's intermediate results (PCSS: average blocker depth, blocking texels, filter
+    // radius in texels).
+    std::vector<glm::vec4> probeTechnique(Technique technique, const ParameterValues& parameters,
+                                          std::span<const float> depths, uint32_t size,
+                                          std::span<const FilterProbe> probes,
+                                          const ProbeLight& light = {});
     // Validation-layer messages of severity error so far (0 when validation is off).
     uint32_t validationErrors() const;
 

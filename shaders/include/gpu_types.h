@@ -23,6 +23,7 @@ using uint = uint32_t;
 // Specialization constant TECHNIQUE of visibility.comp; equals penumbra::Technique.
 #define TECHNIQUE_HARD 0u
 #define TECHNIQUE_PCF 1u
+#define TECHNIQUE_PCSS 2u
 
 // pcf.filter, pcf.rotation and bias.receiver: indices of their choices in the registry.
 #define FILTER_BILINEAR 0u
@@ -51,6 +52,8 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     vec4 filterParams;   // x pcf.radius (texels), y Gaussian sigma (texels), z pcf.adaptive
     uvec4 biasMode;      // x bias.receiver, y 1: hardware linear depth compare, z sub-texel bits
     vec4 biasParams;     // xy: range of a tap's receiver-plane depth correction (light depth)
+    uvec4 pcssMode;      // x pcss.blockerSamples, y pcss.filterSamples, z pcss.rotation
+    vec4 pcssParams;     // x pcss.maxRadius (texels)
     vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
 };
 
@@ -61,6 +64,9 @@ struct LightData {       // std430 storage buffer, one per scene light
     vec4 colorIntensity; // rgb linear colour, a intensity
     vec4 cone;           // x cos(outer), y cos(inner), z texel world size, w shadow layer (-1 none)
     vec4 bias;           // x constant, y slope, z normal offset (texels), w 1 if perspective
+    vec4 frustum;        // x near, y far (light view distance), zw world size of one uv unit
+                         // (orthographic) or of one uv unit at unit distance (perspective)
+    vec4 shape;          // x light size: radius (spot, point) or tan(half angular diameter)
 };
 
 struct ShadowPush {      // push constants of shadow_depth.vert
@@ -73,12 +79,13 @@ struct VisibilityPush {  // push constants of visibility.comp
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(FrameData) == 768 && offsetof(FrameData, position) == 128 &&
+static_assert(sizeof(FrameData) == 800 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, filterMode) == 192 && offsetof(FrameData, biasParams) == 240 &&
-              offsetof(FrameData, poisson) == 256);
-static_assert(sizeof(LightData) == 144 && offsetof(LightData, positionType) == 64 &&
-              offsetof(LightData, cone) == 112 && offsetof(LightData, bias) == 128);
+              offsetof(FrameData, pcssMode) == 256 && offsetof(FrameData, poisson) == 288);
+static_assert(sizeof(LightData) == 176 && offsetof(LightData, positionType) == 64 &&
+              offsetof(LightData, cone) == 112 && offsetof(LightData, bias) == 128 &&
+              offsetof(LightData, frustum) == 144 && offsetof(LightData, shape) == 160);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16);
 } // namespace penumbra::gpu
 #endif

@@ -102,10 +102,11 @@ vec2 poissonPoint(uint i) {
     return (i % 2u) == 0u ? pair.xy : pair.zw;
 }
 
-float pcfPoisson(sampler2D map, Receiver r, uint mapSize, uvec2 pixel, vec2 dzRange) {
-    uint n = frame.filterMode.z;
-    float angle = 6.28318530718 * rotationTurns(frame.filterMode.w, pixel);
-    float c = cos(angle), s = sin(angle), radius = frame.filterParams.x;
+// n bilinear taps on the Poisson disk scaled to `radius` texels, rotated by `turns`.
+float poissonTaps(sampler2D map, Receiver r, uint mapSize, uint n, float radius, float turns,
+                  vec2 dzRange) {
+    float angle = 6.28318530718 * turns;
+    float c = cos(angle), s = sin(angle);
     vec2 centre = r.uv * float(mapSize);
     float sum = 0.0;
     for (uint i = 0u; i < n; ++i) {
@@ -114,6 +115,11 @@ float pcfPoisson(sampler2D map, Receiver r, uint mapSize, uvec2 pixel, vec2 dzRa
         sum += bilinearTap(map, centre + offset, float(mapSize), r, dzRange);
     }
     return sum / float(n);
+}
+
+float pcfPoisson(sampler2D map, Receiver r, uint mapSize, uvec2 pixel, vec2 dzRange) {
+    return poissonTaps(map, r, mapSize, frame.filterMode.z, frame.filterParams.x,
+                       rotationTurns(frame.filterMode.w, pixel), dzRange);
 }
 
 // [Isidoro 2006] edge-only PCF: four taps at the kernel's corners; when they agree fully

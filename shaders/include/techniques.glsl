@@ -4,13 +4,17 @@
 #define PENUMBRA_TECHNIQUES_GLSL
 #include "shadow_hard.glsl"
 #include "shadow_pcf.glsl"
+#include "shadow_pcss.glsl"
 
-float evaluateTechnique(uint technique, sampler2D map, sampler2DShadow mapCompare, Receiver r,
-                        uint mapSize, uvec2 pixel) {
+// x: visibility; yzw: intermediate results the parity tests check (PCSS: average blocker depth,
+// blocking texels found, filter radius in texels; zero for the others).
+vec4 evaluateTechnique(uint technique, sampler2D map, sampler2DShadow mapCompare, Receiver r,
+                       uint mapSize, LightData light, uvec2 pixel) {
     switch (technique) {
-    case TECHNIQUE_PCF: return shadowPcf(map, mapCompare, r, mapSize, pixel);
+    case TECHNIQUE_PCSS: return shadowPcssDetail(map, r, mapSize, light, pixel);
+    case TECHNIQUE_PCF: return vec4(shadowPcf(map, mapCompare, r, mapSize, pixel), vec3(0.0));
     case TECHNIQUE_HARD:
-    default: return shadowHard(map, r, mapSize, frame.biasParams.xy);
+    default: return vec4(shadowHard(map, r, mapSize, frame.biasParams.xy), vec3(0.0));
     }
 }
 

@@ -118,11 +118,10 @@ glm::vec2 poissonPoint(const gpu::FrameData& f, uint32_t i) {
     return i % 2 == 0 ? glm::vec2(pair.x, pair.y) : glm::vec2(pair.z, pair.w);
 }
 
-float pcfPoisson(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
-                 glm::uvec2 pixel, glm::vec2 dzRange, const MarginTracker& m) {
-    const uint32_t n = f.filterMode.z;
-    const float angle = 6.28318530718f * rotationTurns(f.filterMode.w, pixel);
-    const float c = std::cos(angle), s = std::sin(angle), radius = f.filterParams.x;
+float poissonTaps(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f, uint32_t n,
+                  float radius, float turns, glm::vec2 dzRange, const MarginTracker& m) {
+    const float angle = 6.28318530718f * turns;
+    const float c = std::cos(angle), s = std::sin(angle);
     const float size = static_cast<float>(map.size);
     const glm::vec2 centre = r.uv * size;
     float sum = 0.0f;
@@ -132,6 +131,12 @@ float pcfPoisson(const ShadowMapView& map, const Receiver& r, const gpu::FrameDa
         sum += bilinearTap(map, centre + offset, size, r, dzRange, m);
     }
     return sum / static_cast<float>(n);
+}
+
+float pcfPoisson(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
+                 glm::uvec2 pixel, glm::vec2 dzRange, const MarginTracker& m) {
+    return poissonTaps(map, r, f, f.filterMode.z, f.filterParams.x,
+                       rotationTurns(f.filterMode.w, pixel), dzRange, m);
 }
 
 bool probeDecides(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
@@ -191,6 +196,89 @@ float hard(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameD
                      glm::vec2(f.biasParams.x, f.biasParams.y), m);
 }
 
+// shadow_pcss.glsl, transcribed.
+float viewDistance(const gpu::LightData& l, float depth) {
+    const float n = l.frustum.x, far = l.frustum.y;
+    return l.bias.w > 0.5f ? n * far / (far - depth * (far - n)) : n + depth * (far - n);
+}
+
+float texelsPerWorld(const gpu::LightData& l, float z, uint32_t mapSize) {
+    const float worldPerUv = l.frustum.z * (l.bias.w > 0.5f ? z : 1.0f);
+    return static_cast<float>(mapSize) / worldPerUv;
+}
+
+float blockerSearchRadius(const gpu::LightData& l, float zReceiver, uint32_t mapSize) {
+    const float n = l.frustum.x, size = l.shape.x;
+    const float world =
+        l.bias.w > 0.5f ? size * (zReceiver - n) / zReceiver : (zReceiver - n) * size;
+    return world * texelsPerWorld(l, l.bias.w > 0.5f ? n : 1.0f, mapSize);
+}
+
+float penumbraRadius(const gpu::LightData& l, float zReceiver, float zBlocker, uint32_t mapSize) {
+    const float size = l.shape.x;
+    const float world =
+        l.bias.w > 0.5f ? (zReceiver - zBlocker) * size / zBlocker : (zReceiver - zBlocker) * size;
+    return world * texelsPerWorld(l, zReceiver, mapSize);
+}
+
+float searchBlockers(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
+                     uint32_t n, float radius, float turns, glm::vec2 dzRange,
+                     const MarginTracker& m, float& averageDepth) {
+    const float angle = 6.28318530718f * turns;
+    const float c = std::cos(angle), s = std::sin(angle), size = static_cast<float>(map.size);
+    const glm::vec2 centre = r.uv * size;
+    float sum = 0.0f, count = 0.0f;
+    for (uint32_t i = 0; i < n; ++i) {
+        const glm::vec2 d = poissonPoint(f, i);
+        const glm::vec2 p =
+            centre + radius * glm::vec2(c * d.x - s * d.y, s * d.x + c * d.y) - 0.5f;
+        const glm::ivec2 base = glm::ivec2(glm::floor(p));
+        const glm::vec4 depths(map.texel(base.x, base.y + 1), map.texel(base.x + 1, base.y + 1),
+                               map.texel(base.x + 1, base.y), map.texel(base.x, base.y));
+        const glm::vec4 blocks = glm::vec4(1.0f) - gatherTests(map, base, size, r, dzRange, m);
+        sum += glm::dot(blocks, depths);
+        count += blocks.x + blocks.y + blocks.z + blocks.w;
+    }
+    averageDepth = count > 0.0f ? sum / count : 1.0f;
+    return count;
+}
+
+glm::vec4 pcss(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
+               const gpu::LightData& light, const MarginTracker& m) {
+    const Receiver r = receiverOf(probe);
+    const glm::vec2 dzRange(f.biasParams.x, f.biasParams.y);
+    const float turns = rotationTurns(f.pcssMode.z, probe.pixel);
+    const float maxRadius = f.pcssParams.x;
+    const float zReceiver = viewDistance(light, r.depth);
+    const float search = std::min(blockerSearchRadius(light, zReceiver, map.size), maxRadius);
+    float blockerDepth = 1.0f;
+    const uint32_t searchTaps = f.pcssMode.x;
+    const float blockers = searchBlockers(map, r, f, searchTaps, std::max(search, 0.5f), turns,
+                                          dzRange, m, blockerDepth);
+    if (blockers == 0.0f)
+        return {1.0f, blockerDepth, 0.0f, 0.0f};
+    const float zBlocker = viewDistance(light, blockerDepth);
+    const float radius =
+        std::clamp(penumbraRadius(light, zReceiver, zBlocker, map.size), 0.5f, maxRadius);
+    if (blockers == 4.0f * static_cast<float>(searchTaps) && radius <= 1.0f)
+        return {0.0f, blockerDepth, blockers, radius};
+    const float v = poissonTaps(map, r, f, f.pcssMode.y, radius, turns, dzRange, m);
+    return {snapToExtremes(v), blockerDepth, blockers, radius};
+}
+
+glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterProbe& probe,
+                   const gpu::FrameData& f, const gpu::LightData& light, const MarginTracker& m) {
+    switch (technique) {
+    case Technique::Pcss:
+        return pcss(map, probe, f, light, m);
+    case Technique::Pcf:
+        return {pcf(map, probe, f, m), 0.0f, 0.0f, 0.0f};
+    case Technique::Hard:
+        break;
+    }
+    return {hard(map, probe, f, m), 0.0f, 0.0f, 0.0f};
+}
+
 } // namespace
 
 float ShadowMapView::texel(int i, int j) const {
@@ -207,19 +295,17 @@ float pcfReference(const ShadowMapView& map, const FilterProbe& probe, const gpu
     return pcf(map, probe, f, {});
 }
 
-float techniqueReference(Technique technique, const ShadowMapView& map, const FilterProbe& probe,
-                         const gpu::FrameData& f) {
-    return technique == Technique::Pcf ? pcfReference(map, probe, f) : hardReference(map, probe, f);
+glm::vec4 techniqueReference(Technique technique, const ShadowMapView& map,
+                             const FilterProbe& probe, const gpu::FrameData& f,
+                             const gpu::LightData& light) {
+    return evaluate(technique, map, probe, f, light, {});
 }
 
 float smallestComparisonMargin(Technique technique, const ShadowMapView& map,
-                               const FilterProbe& probe, const gpu::FrameData& f) {
+                               const FilterProbe& probe, const gpu::FrameData& f,
+                               const gpu::LightData& light) {
     float margin = 1e30f;
-    const MarginTracker m{&margin};
-    if (technique == Technique::Pcf)
-        pcf(map, probe, f, m);
-    else
-        hard(map, probe, f, m);
+    evaluate(technique, map, probe, f, light, MarginTracker{&margin});
     return margin;
 }
 

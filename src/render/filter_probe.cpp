@@ -18,9 +18,10 @@ static_assert(sizeof(GpuProbe) == 32);
 
 } // namespace
 
-std::vector<float> Renderer::probeTechnique(Technique technique, const ParameterValues& params,
-                                            std::span<const float> depths, uint32_t size,
-                                            std::span<const FilterProbe> probes) {
+std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const ParameterValues& params,
+                                                std::span<const float> depths, uint32_t size,
+                                                std::span<const FilterProbe> probes,
+                                                const ProbeLight& probeLight) {
     const vk::Context& ctx = mImpl->ctx;
     PENUMBRA_CHECK(depths.size() == size_t{size} * size && !probes.empty(), "probe input sizes");
     gpu::FrameData frame{};
@@ -44,8 +45,11 @@ std::vector<float> Renderer::probeTechnique(Technique technique, const Parameter
         upload(std::as_bytes(std::span(gpuProbes)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probes");
     const vk::Buffer mapBuffer =
         upload(std::as_bytes(depths), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "probe shadow map");
+    const gpu::LightData light = render::probeLightData(probeLight);
+    const vk::Buffer lightBuffer = upload(std::as_bytes(std::span(&light, 1)),
+                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe light");
     const vk::Buffer results =
-        vk::createBuffer(ctx, probes.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+        vk::createBuffer(ctx, probes.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          vk::MemoryUse::Readback, "probe results");
     const vk::Image map = vk::createImage(
         ctx, {.name = "probe shadow map",
@@ -78,6 +82,7 @@ std::vector<float> Renderer::probeTechnique(Technique technique, const Parameter
             .sampled(2, map.view.get(), nearest.get())
             .sampled(3, map.view.get(), compare.get())
             .storageBuffer(4, results.get())
+            .storageBuffer(5, lightBuffer.get())
             .push(ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.probeLayout);
         const glm::uvec4 counts(static_cast<uint32_t>(probes.size()), size, 0, 0);
         vkCmdPushConstants(cmd, p.probeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof counts,
@@ -87,7 +92,7 @@ std::vector<float> Renderer::probeTechnique(Technique technique, const Parameter
                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
                           VK_ACCESS_2_HOST_READ_BIT);
     });
-    const auto* out = static_cast<const float*>(results.mapped);
+    const auto* out = static_cast<const glm::vec4*>(results.mapped);
     return {out, out + probes.size()};
 }
 

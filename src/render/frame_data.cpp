@@ -18,6 +18,9 @@ void setTechniqueSettings(gpu::FrameData& f, const ParameterValues& p, bool hard
     // with bias.receiverSides=near none may push it away (see docs/techniques.md).
     const float limit = number("bias.receiverClamp");
     f.biasParams = {-limit, index("bias.receiverSides") == 0 ? limit : 0.0f, 0.0f, 0.0f};
+    f.pcssMode = {index("pcss.blockerSamples"), index("pcss.filterSamples"), index("pcss.rotation"),
+                  0u};
+    f.pcssParams = {number("pcss.maxRadius"), 0.0f, 0.0f, 0.0f};
     const auto& disk = poissonDisk();
     for (size_t i = 0; i < kPoissonPoints / 2; ++i)
         f.poisson[i] = {disk[2 * i].x, disk[2 * i].y, disk[2 * i + 1].x, disk[2 * i + 1].y};
@@ -43,6 +46,13 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
     setTechniqueSettings(f, params, ctx.info().depthLinearFilter,
                          ctx.limits().subTexelPrecisionBits);
     return f;
+}
+
+gpu::LightData probeLightData(const ProbeLight& light) {
+    return {.shadowMatrix = glm::mat4(1.0f),
+            .bias = {0.0f, 0.0f, 0.0f, light.perspective ? 1.0f : 0.0f},
+            .frustum = {light.nearPlane, light.farPlane, light.worldPerUv.x, light.worldPerUv.y},
+            .shape = {light.size, 0.0f, 0.0f, 0.0f}};
 }
 
 } // namespace penumbra::render

@@ -2,6 +2,7 @@
 // Fills the FrameData uniform block: the camera, the composite knobs, and every technique
 // setting the visibility pass reads (the same block feeds the filter probe of the tests).
 #include "gpu_types.h"
+#include "penumbra/renderer.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
 #include "vk/context.h"
@@ -14,5 +15,8 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& options, uin
 // filters depth comparisons in hardware (with how many sub-texel bits).
 void setTechniqueSettings(gpu::FrameData& frame, const ParameterValues& params,
                           bool hardwareDepthFilter, uint32_t subTexelBits);
+
+// The LightData block for a probed shadow map (only what the filters read is filled).
+gpu::LightData probeLightData(const ProbeLight& light);
 
 } // namespace penumbra::render

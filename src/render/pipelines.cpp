@@ -30,7 +30,8 @@ vk::GraphicsPipelineDesc shadowDesc(bool depthClamp) {
 
 FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     static_assert(static_cast<uint32_t>(Technique::Hard) == TECHNIQUE_HARD &&
-                  static_cast<uint32_t>(Technique::Pcf) == TECHNIQUE_PCF);
+                  static_cast<uint32_t>(Technique::Pcf) == TECHNIQUE_PCF &&
+                  static_cast<uint32_t>(Technique::Pcss) == TECHNIQUE_PCSS);
     shadowLayout =
         vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
     gbufferLayout =
@@ -53,7 +54,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
         VK_SHADER_STAGE_COMPUTE_BIT, 0);
 
     probeLayout = vk::createPipelineLayout(
-        ctx, {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kStorage}},
+        ctx,
+        {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kStorage}, {5, kStorage}},
         VK_SHADER_STAGE_COMPUTE_BIT, sizeof(glm::uvec4));
 
     shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(true));

@@ -49,6 +49,18 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, size_t sh
                                      need / (1 << 30), have / (1 << 30)));
 }
 
+// Near, far and the world size of one uv unit (perspective: at unit distance), for the
+// techniques that reason in light-space distances (PCSS).
+glm::vec4 lightFrustum(const LightProjection* shadow) {
+    if (!shadow)
+        return glm::vec4(0.0f, 1.0f, 1.0f, 1.0f);
+    const glm::vec2 worldPerUv =
+        shadow->perspective
+            ? glm::vec2(2.0f * std::tan(0.5f * shadow->yfov))
+            : glm::vec2(shadow->window.y - shadow->window.x, shadow->window.w - shadow->window.z);
+    return {shadow->nearPlane, shadow->farPlane, worldPerUv};
+}
+
 gpu::LightData lightData(const Light& light, const LightProjection* shadow, int layer,
                          const ParameterValues& params) {
     const float type = light.type == LightType::Directional ? LIGHT_DIRECTIONAL
@@ -63,7 +75,12 @@ gpu::LightData lightData(const Light& light, const LightProjection* shadow, int 
             .bias = {static_cast<float>(params.number("bias.constant")),
                      static_cast<float>(params.number("bias.slope")),
                      static_cast<float>(params.number("bias.normal")),
-                     shadow && shadow->perspective ? 1.0f : 0.0f}};
+                     shadow && shadow->perspective ? 1.0f : 0.0f},
+            .frustum = lightFrustum(shadow),
+            .shape = {light.type == LightType::Directional
+                          ? std::tan(0.5f * glm::radians(light.angularDiameter))
+                          : light.radius,
+                      0.0f, 0.0f, 0.0f}};
 }
 
 vk::Buffer hostBuffer(const vk::Context& ctx, std::span<const std::byte> bytes,
