@@ -4,10 +4,13 @@
 #include "gpu_types.h"
 
 layout(location = 0) in vec3 inPosition;
+// The depth peel of second-depth shadow maps redraws the scene and must reproduce the first
+// pass's depths: `precise` forbids reassociation. (`invariant gl_Position` would say so too,
+// but glslang decorates a block member with it, which the SPIR-V validator flags.)
 layout(push_constant) uniform Push { ShadowPush push; };
 
 void main() {
-    vec4 clip = push.viewProj * vec4(inPosition, 1.0);
+    precise vec4 clip = push.viewProj * vec4(inPosition, 1.0);
     clip.z += push.bias.x * clip.w;
     gl_Position = clip;
 }

@@ -60,6 +60,7 @@ struct Variant {
 
 std::vector<Variant> everyVariant() {
     std::vector<Variant> v{{"hard", Technique::Hard, {}},
+                           {"second-depth", Technique::SecondDepth, {}},
                            {"bilinear", Technique::Pcf, {"pcf.filter=bilinear"}},
                            {"hardware", Technique::Pcf, {"pcf.filter=hardware"}}};
     for (int n = 3; n <= 15; n += 2) {

@@ -24,6 +24,7 @@ using uint = uint32_t;
 #define TECHNIQUE_HARD 0u
 #define TECHNIQUE_PCF 1u
 #define TECHNIQUE_PCSS 2u
+#define TECHNIQUE_SECOND_DEPTH 3u
 
 // pcf.filter, pcf.rotation and bias.receiver: indices of their choices in the registry.
 #define FILTER_BILINEAR 0u

@@ -12,6 +12,9 @@ vec4 evaluateTechnique(uint technique, sampler2D map, sampler2DShadow mapCompare
                        uint mapSize, LightData light, uvec2 pixel) {
     switch (technique) {
     case TECHNIQUE_PCSS: return shadowPcssDetail(map, r, mapSize, light, pixel);
+    // Second-depth [Wang and Molnar 1994]: `map` holds the midpoint of the nearest and second
+    // nearest depths, so a surface never shadows itself and needs no bias.
+    case TECHNIQUE_SECOND_DEPTH: return vec4(shadowHard(map, r, mapSize, vec2(0.0)), vec3(0.0));
     case TECHNIQUE_PCF: return vec4(shadowPcf(map, mapCompare, r, mapSize, pixel), vec3(0.0));
     case TECHNIQUE_HARD:
     default: return vec4(shadowHard(map, r, mapSize, frame.biasParams.xy), vec3(0.0));

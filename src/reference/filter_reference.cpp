@@ -186,14 +186,13 @@ float pcf(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameDa
     return snapToExtremes(pcfUnsnapped(map, probe, f, m));
 }
 
-float hard(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
-           const MarginTracker& m) {
+float hard(const ShadowMapView& map, const FilterProbe& probe, const MarginTracker& m,
+           glm::vec2 dzRange) {
     const int last = static_cast<int>(map.size) - 1;
     const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(probe.uv * float(map.size))),
                                         glm::ivec2(0), glm::ivec2(last));
     const glm::vec2 centre = (glm::vec2(texel) + 0.5f) / static_cast<float>(map.size);
-    return texelTest(receiverOf(probe), map.texel(texel.x, texel.y), centre,
-                     glm::vec2(f.biasParams.x, f.biasParams.y), m);
+    return texelTest(receiverOf(probe), map.texel(texel.x, texel.y), centre, dzRange, m);
 }
 
 // shadow_pcss.glsl, transcribed.
@@ -273,10 +272,12 @@ glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterPr
         return pcss(map, probe, f, light, m);
     case Technique::Pcf:
         return {pcf(map, probe, f, m), 0.0f, 0.0f, 0.0f};
+    case Technique::SecondDepth: // `map` holds the midpoints; no receiver-plane correction
+        return {hard(map, probe, m, glm::vec2(0.0f)), 0.0f, 0.0f, 0.0f};
     case Technique::Hard:
         break;
     }
-    return {hard(map, probe, f, m), 0.0f, 0.0f, 0.0f};
+    return {hard(map, probe, m, glm::vec2(f.biasParams.x, f.biasParams.y)), 0.0f, 0.0f, 0.0f};
 }
 
 } // namespace
@@ -288,7 +289,7 @@ float ShadowMapView::texel(int i, int j) const {
 }
 
 float hardReference(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f) {
-    return hard(map, probe, f, {});
+    return hard(map, probe, {}, glm::vec2(f.biasParams.x, f.biasParams.y));
 }
 
 float pcfReference(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f) {

@@ -41,29 +41,70 @@ void bindGeometry(VkCommandBuffer cmd, const GpuScene& scene) {
     vkCmdBindIndexBuffer(cmd, scene.indices.get(), 0, VK_INDEX_TYPE_UINT32);
 }
 
+// One depth-only pass of the scene from a light into `target` (cleared to the far plane), with
+// the hardware slope bias and the constant bias of the vertex shader.
+void renderLightDepth(VkCommandBuffer cmd, const GpuScene& scene, const vk::Image& target,
+                      VkPipeline pipeline, const vk::PipelineLayout& layout,
+                      VkShaderStageFlags pushStages, const ShadowView& view,
+                      const FrameSettings& s) {
+    vk::imageBarrier(cmd, target, vk::kUndefined, vk::kDepthWrite);
+    const VkRenderingAttachmentInfo depth = attachment(target, {.depthStencil = {1.0f, 0}});
+    const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
+                               .renderArea = {{0, 0}, {target.width, target.height}},
+                               .layerCount = 1,
+                               .pDepthAttachment = &depth};
+    vkCmdBeginRendering(cmd, &info);
+    setViewport(cmd, target.width, target.height);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdSetDepthBias(cmd, 0.0f, 0.0f, s.slopeBias);
+    const gpu::ShadowPush push{.viewProj = view.projection.viewProj,
+                               .bias = {s.constantBias, 0, 0, 0}};
+    vkCmdPushConstants(cmd, layout.get(), pushStages, 0, sizeof push, &push);
+    bindGeometry(cmd, scene);
+    vkCmdDrawIndexed(cmd, scene.indexCount, 1, 0, 0, 0);
+    vkCmdEndRendering(cmd);
+}
+
 void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                         FrameTargets& t, const FrameSettings& s) {
     for (ShadowView& view : t.shadows) {
-        vk::imageBarrier(cmd, view.map, vk::kUndefined, vk::kDepthWrite);
-        const VkRenderingAttachmentInfo depth = attachment(view.map, {.depthStencil = {1.0f, 0}});
-        const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-                                   .renderArea = {{0, 0}, {view.map.width, view.map.height}},
-                                   .layerCount = 1,
-                                   .pDepthAttachment = &depth};
-        vkCmdBeginRendering(cmd, &info);
-        setViewport(cmd, view.map.width, view.map.height);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                          view.projection.perspective ? p.shadowPerspective.get()
-                                                      : p.shadowOrtho.get());
-        vkCmdSetDepthBias(cmd, 0.0f, 0.0f, s.slopeBias);
-        const gpu::ShadowPush push{.viewProj = view.projection.viewProj,
-                                   .bias = {s.constantBias, 0, 0, 0}};
-        vkCmdPushConstants(cmd, p.shadowLayout.get(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push,
-                           &push);
-        bindGeometry(cmd, scene);
-        vkCmdDrawIndexed(cmd, scene.indexCount, 1, 0, 0, 0);
-        vkCmdEndRendering(cmd);
-        vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kComputeSampled);
+        const bool perspective = view.projection.perspective;
+        renderLightDepth(cmd, scene, view.map,
+                         perspective ? p.shadowPerspective.get() : p.shadowOrtho.get(),
+                         p.shadowLayout, VK_SHADER_STAGE_VERTEX_BIT, view, s);
+        if (!view.second) {
+            vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kComputeSampled);
+            continue;
+        }
+        // Second-depth: peel the layer behind the first, reading the first in the fragment
+        // shader (same pipeline state, so the first layer reproduces its depths exactly).
+        vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kFragmentSampled);
+        vk::PushDescriptors()
+            .sampled(0, view.map.view.get(), t.nearest.get())
+            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.peelLayout);
+        renderLightDepth(cmd, scene, view.second,
+                         perspective ? p.peelPerspective.get() : p.peelOrtho.get(), p.peelLayout,
+                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, view, s);
+        vk::imageBarrier(cmd, view.map, vk::kFragmentSampled, vk::kComputeSampled);
+        vk::imageBarrier(cmd, view.second, vk::kDepthWrite, vk::kComputeSampled);
+    }
+}
+
+// Shadow-map post passes (compute): the second-depth midpoints.
+void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.midpoint.get());
+    for (ShadowView& view : t.shadows) {
+        vk::imageBarrier(cmd, view.midpoint, vk::kUndefined, vk::kComputeWrite);
+        vk::PushDescriptors()
+            .sampled(0, view.map.view.get(), t.nearest.get())
+            .sampled(1, view.second.view.get(), t.nearest.get())
+            .storageImage(2, view.midpoint.view.get())
+            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.midpointLayout);
+        const glm::uvec4 size(view.map.width, view.map.height, 0, 0);
+        vkCmdPushConstants(cmd, p.midpointLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof size,
+                           &size);
+        vkCmdDispatch(cmd, groups(view.map.width), groups(view.map.height), 1);
+        vk::imageBarrier(cmd, view.midpoint, vk::kComputeWrite, vk::kComputeSampled);
     }
 }
 
@@ -107,7 +148,7 @@ void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
             .storageBuffer(1, t.lights.get())
             .sampled(2, t.depth.view.get(), t.nearest.get())
             .sampled(3, t.normal.view.get(), t.nearest.get())
-            .sampled(4, view.map.view.get(), t.nearest.get())
+            .sampled(4, (view.midpoint ? &view.midpoint : &view.map)->view.get(), t.nearest.get())
             .sampled(5, view.map.view.get(), t.compare.get())
             .storageImage(6, t.visibility.view.get())
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.screenLayout);
@@ -142,6 +183,11 @@ void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene&
     timer.begin(cmd, "shadow");
     recordShadowPasses(cmd, pipelines, scene, targets, settings);
     timer.end(cmd);
+    if (!targets.shadows.empty() && targets.shadows.front().midpoint) {
+        timer.begin(cmd, "shadow-post");
+        recordShadowPost(cmd, pipelines, targets);
+        timer.end(cmd);
+    }
     timer.begin(cmd, "gbuffer");
     recordGBuffer(cmd, pipelines, scene, targets);
     timer.end(cmd);

@@ -21,6 +21,9 @@ struct ShadowView {
     uint32_t light; // index into the scene's lights
     LightProjection projection;
     vk::Image map; // D32_SFLOAT, the seeds' depth (near 0, far 1)
+    // Second-depth only: the peeled second layer (D32) and the midpoint the visibility pass
+    // tests against (R32F).
+    vk::Image second, midpoint;
 };
 
 struct FrameTargets {

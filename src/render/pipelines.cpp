@@ -13,8 +13,9 @@ constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 
-vk::GraphicsPipelineDesc shadowDesc(bool depthClamp) {
+vk::GraphicsPipelineDesc shadowDesc(bool depthClamp, std::string_view fragment = {}) {
     return {.vertexShader = "shadow_depth.vert",
+            .fragmentShader = fragment,
             .vertexStride = sizeof(Vertex),
             .attributes = {{.location = 0,
                             .binding = 0,
@@ -31,7 +32,8 @@ vk::GraphicsPipelineDesc shadowDesc(bool depthClamp) {
 FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     static_assert(static_cast<uint32_t>(Technique::Hard) == TECHNIQUE_HARD &&
                   static_cast<uint32_t>(Technique::Pcf) == TECHNIQUE_PCF &&
-                  static_cast<uint32_t>(Technique::Pcss) == TECHNIQUE_PCSS);
+                  static_cast<uint32_t>(Technique::Pcss) == TECHNIQUE_PCSS &&
+                  static_cast<uint32_t>(Technique::SecondDepth) == TECHNIQUE_SECOND_DEPTH);
     shadowLayout =
         vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
     gbufferLayout =
@@ -58,6 +60,15 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
         {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kStorage}, {5, kStorage}},
         VK_SHADER_STAGE_COMPUTE_BIT, sizeof(glm::uvec4));
 
+    peelLayout = vk::createPipelineLayout(ctx, {{0, kSampled}},
+                                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                          sizeof(gpu::ShadowPush));
+    midpointLayout = vk::createPipelineLayout(ctx, {{0, kSampled}, {1, kSampled}, {2, kImage}},
+                                              VK_SHADER_STAGE_COMPUTE_BIT, sizeof(glm::uvec4));
+    peelOrtho = vk::createGraphicsPipeline(ctx, peelLayout, shadowDesc(true, "shadow_peel.frag"));
+    peelPerspective =
+        vk::createGraphicsPipeline(ctx, peelLayout, shadowDesc(false, "shadow_peel.frag"));
+    midpoint = vk::createComputePipeline(ctx, midpointLayout, "second_depth_mid.comp");
     shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(true));
     shadowPerspective = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(false));
     gbuffer =

@@ -17,8 +17,10 @@ public:
 
     const vk::Context& ctx;
     vk::PipelineLayout shadowLayout, gbufferLayout, screenLayout, exportLayout, probeLayout;
+    vk::PipelineLayout peelLayout, midpointLayout; // second-depth shadow maps
     vk::PipelineHandle shadowOrtho;       // depth clamp on: casters before the near plane clamp
     vk::PipelineHandle shadowPerspective; // depth clamp off
+    vk::PipelineHandle peelOrtho, peelPerspective, midpoint;
     vk::PipelineHandle gbuffer, composite, exportGBuffer;
 
     // Pipelines per specialization: technique, pcf.filter and bias.receiver (choice indices).

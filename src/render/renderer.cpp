@@ -37,8 +37,9 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, size_t sh
     tooBig("--shadow-map-size", o.shadowMapSize);
     // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
     const double pixels = double(o.width) * double(o.height);
-    const double shadowBytes =
-        double(o.shadowMapSize) * o.shadowMapSize * 4.0 * double(shadowLights);
+    const double shadowBytes = double(o.shadowMapSize) * o.shadowMapSize * 4.0 *
+                               double(shadowLights) *
+                               (o.technique == Technique::SecondDepth ? 3.0 : 1.0);
     const double need =
         pixels * (16 + 36 + 2 * 4.0 * double(std::max<size_t>(shadowLights, 1)) + 36) + shadowBytes;
     const double have = static_cast<double>(ctx.deviceLocalHeapBytes());
@@ -184,6 +185,15 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
         view.map =
             targetImage(ctx, "--shadow-map-size", render::kDepthFormat, o.shadowMapSize,
                         o.shadowMapSize, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);
+    if (o.technique == Technique::SecondDepth)
+        for (render::ShadowView& view : t.shadows) {
+            view.second =
+                targetImage(ctx, "--shadow-map-size", render::kDepthFormat, o.shadowMapSize,
+                            o.shadowMapSize, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);
+            view.midpoint =
+                targetImage(ctx, "--shadow-map-size", VK_FORMAT_R32_SFLOAT, o.shadowMapSize,
+                            o.shadowMapSize, VK_IMAGE_USAGE_STORAGE_BIT | sampled);
+        }
     const uint32_t w = o.width, h = o.height;
     t.depth = targetImage(ctx, "G-buffer depth", render::kDepthFormat, w, h,
                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled);

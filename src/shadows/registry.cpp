@@ -47,6 +47,18 @@ const std::vector<TechniqueInfo>& techniqueTable() {
          .variants = {{.label = ""},
                       {.label = "fast",
                        .sets = {{"pcss.blockerSamples", "8"}, {"pcss.filterSamples", "16"}}}}},
+        {.id = Technique::SecondDepth,
+         .name = "second-depth",
+         .summary = "one sample against the midpoint of the nearest and second-nearest depths: "
+                    "no self-shadowing without bias, for watertight geometry",
+         .reference = "Wang and Molnar 1994, 'Second-depth shadow mapping'",
+         .families = {"bias", "composite"},
+         .variants = {{.label = ""},
+                      {.label = "nobias",
+                       .sets = {{"bias.constant", "0"},
+                                {"bias.slope", "0"},
+                                {"bias.normal", "0"},
+                                {"bias.receiver", "off"}}}}},
     };
     return table;
 }

@@ -37,6 +37,7 @@ struct Image {
     uint32_t width = 0, height = 0, layers = 1;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     VkImage get() const { return image.get(); }
+    explicit operator bool() const { return static_cast<bool>(image); }
 };
 
 Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
