@@ -2,6 +2,7 @@
 // GPU tests share one Renderer with the Khronos validation layer on and a persistent debug
 // messenger; every test fails if it caused any validation error.
 #include "penumbra/renderer.h"
+#include "scene/builtin_scenes.h"
 
 #include <gtest/gtest.h>
 
@@ -66,6 +67,25 @@ inline bool rayHitsBox(const glm::vec3& origin, const glm::vec3& dir, const glm:
             return false;
     }
     return true;
+}
+
+// Fraction of builtin:grazing's plane pixels that nothing can shadow, yet have visibility < 1:
+// acne. "Nothing can shadow": the ray toward the light misses the box grown by `margin` (beyond
+// a filter's reach, and past hard-shadow aliasing at the true boundary).
+inline double grazingAcneFraction(const RenderResult& r, const Scene& scene, float margin,
+                                  size_t* counted) {
+    const glm::vec3 toLight = -glm::normalize(scene.lights[0].direction);
+    const glm::vec3 lo = builtin::kGrazingBoxCenter - 0.5f * builtin::kGrazingBoxSize - margin;
+    const glm::vec3 hi = builtin::kGrazingBoxCenter + 0.5f * builtin::kGrazingBoxSize + margin;
+    size_t lit = 0, acne = 0;
+    for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
+        if (!onGround(r, i) || rayHitsBox(pixelVec(r.position, i), toLight, lo, hi))
+            continue;
+        ++lit;
+        acne += r.visibility[0][i] < 1.0f;
+    }
+    *counted = lit;
+    return lit ? static_cast<double>(acne) / static_cast<double>(lit) : 1.0;
 }
 
 } // namespace penumbra::test

@@ -69,24 +69,14 @@ TEST_F(GpuTest, EveryPcfVariantIsAcneFreeAndRightAwayFromEdges) {
 TEST_F(GpuTest, ReceiverPlaneBiasLetsA9x9KernelGoWithoutConstantBias) {
     // builtin:grazing, the plane's pixels that nothing can shadow: any visibility < 1 is acne.
     const Scene scene = loadScene("builtin:grazing");
-    const glm::vec3 toLight = -glm::normalize(scene.lights[0].direction);
-    const glm::vec3 margin(0.3f); // beyond the 9x9 kernel's reach of the box's shadow
-    const glm::vec3 lo = builtin::kGrazingBoxCenter - 0.5f * builtin::kGrazingBoxSize - margin;
-    const glm::vec3 hi = builtin::kGrazingBoxCenter + 0.5f * builtin::kGrazingBoxSize + margin;
     auto acne = [&](const char* receiver) {
         RenderOptions o{.width = 640, .height = 360, .frames = 1, .technique = Technique::Pcf};
         for (const char* s : {"pcf.filter=box", "pcf.size=9", "bias.constant=0"})
             o.parameters.assign(s);
         o.parameters.set("bias.receiver", receiver);
         const RenderResult r = sharedRenderer().render(scene, o);
-        size_t lit = 0, dark = 0;
-        for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
-            if (!onGround(r, i) || rayHitsBox(pixelVec(r.position, i), toLight, lo, hi))
-                continue;
-            ++lit;
-            dark += r.visibility[0][i] < 1.0f;
-        }
-        const double fraction = double(dark) / double(lit);
+        size_t lit = 0; // margin 0.3: beyond the 9x9 kernel's reach of the box's shadow
+        const double fraction = grazingAcneFraction(r, scene, 0.3f, &lit);
         std::printf("grazing, pcf box9, bias.constant=0, bias.receiver=%s: acne %.4f%%\n", receiver,
                     100 * fraction);
         return fraction;

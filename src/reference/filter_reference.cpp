@@ -1,5 +1,7 @@
 #include "reference/filter_reference.h"
 
+#include "reference/sampling.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -89,15 +91,6 @@ float pcfGrid(const ShadowMapView& map, const Receiver& r, uint32_t filterKind, 
                    (t.x * cx[kx] + t.y * cx[kx + 1]) * cy[ky + 1];
         }
     return sum;
-}
-
-uint32_t hashU32(uint32_t v) {
-    v ^= v >> 16;
-    v *= 0x7feb352du;
-    v ^= v >> 15;
-    v *= 0x846ca68bu;
-    v ^= v >> 16;
-    return v;
 }
 
 float rotationTurns(uint32_t rotation, glm::uvec2 pixel) {

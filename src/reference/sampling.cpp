@@ -8,15 +8,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-uint32_t hash(uint32_t v) { // lowbias32 integer hash (public domain construction)
-    v ^= v >> 16;
-    v *= 0x7feb352du;
-    v ^= v >> 15;
-    v *= 0x846ca68bu;
-    v ^= v >> 16;
-    return v;
-}
-
 double radicalInverse2(uint32_t i) {
     i = (i << 16) | (i >> 16);
     i = ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
@@ -27,6 +18,15 @@ double radicalInverse2(uint32_t i) {
 }
 
 } // namespace
+
+uint32_t hashU32(uint32_t v) { // lowbias32 (a public-domain integer hash); GLSL has a twin
+    v ^= v >> 16;
+    v *= 0x7feb352du;
+    v ^= v >> 15;
+    v *= 0x846ca68bu;
+    v ^= v >> 16;
+    return v;
+}
 
 LightCone coneTowards(const Light& light, const glm::dvec3& p) {
     LightCone cone;
@@ -59,8 +59,8 @@ glm::dvec2 hammersley(uint32_t i, uint32_t n, const glm::dvec2& shift) {
 }
 
 glm::dvec2 pixelShift(uint32_t x, uint32_t y, uint32_t light) {
-    const uint32_t h1 = hash(x * 0x9E3779B9u ^ hash(y ^ hash(light + 0x68E31DA4u)));
-    const uint32_t h2 = hash(h1 ^ 0xB5297A4Du);
+    const uint32_t h1 = hashU32(x * 0x9E3779B9u ^ hashU32(y ^ hashU32(light + 0x68E31DA4u)));
+    const uint32_t h2 = hashU32(h1 ^ 0xB5297A4Du);
     return {static_cast<double>(h1) * 0x1p-32, static_cast<double>(h2) * 0x1p-32};
 }
 

@@ -24,6 +24,9 @@ struct LightCone {
 
 LightCone coneTowards(const Light& light, const glm::dvec3& receiver);
 
+// An integer hash with good avalanche (lowbias32); shaders/include/shadow_pcf.glsl has its twin.
+uint32_t hashU32(uint32_t v);
+
 // The i-th of n points of the unit square, rotated by `shift` (each coordinate mod 1).
 glm::dvec2 hammersley(uint32_t i, uint32_t n, const glm::dvec2& shift);
 // A per-pixel, per-light shift, from an integer hash: deterministic across runs and threads.
