@@ -276,7 +276,9 @@ void writeTable(std::string& s, const ReportData& d) {
     }
     s += "</tbody></table></section>\n<p class=\"note\">Percentages are fractions of counted "
          "pixels (facing a light, inside its frustum). Acne: fully lit in the reference but "
-         "visibility &lt; 0.9. Leak: fully shadowed but visibility &gt; 0.1.</p>\n";
+         "visibility &lt; 0.9; leak: fully shadowed but visibility &gt; 0.1; both, like "
+         "misclassified outside edges, more than 2 pixels from the reference's shadow "
+         "edges.</p>\n";
 }
 
 void writeImages(std::string& s, const ReportData& d) {
