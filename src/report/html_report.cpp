@@ -49,7 +49,7 @@ std::string base64(std::span<const uint8_t> bytes) {
     return out;
 }
 
-// An <img> with the PNG inlined, or a placeholder when the image was not produced.
+// An <img> with the PNG inlined, or a stand-in when the image was not produced.
 std::string imageTag(const std::vector<uint8_t>& png, std::string_view cls, std::string_view alt) {
     if (png.empty())
         return fmt::format("<div class=\"missing {}\">no image</div>", cls);
