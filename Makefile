@@ -8,7 +8,7 @@ export XDG_RUNTIME_DIR ?= /tmp/penumbra-xdg-$(shell id -u)
 # Debian 12 packages the build, the tests and the tools need (design.md §3).
 PACKAGES := cmake g++ make pkg-config glslc libvulkan-dev mesa-vulkan-drivers \
     vulkan-validationlayers libglm-dev libstb-dev libcli11-dev nlohmann-json3-dev libfmt-dev \
-    libgtest-dev libbenchmark-dev libembree-dev libtbb-dev chromium
+    libgtest-dev libbenchmark-dev libembree-dev libtbb-dev libtinygltf-dev chromium
 
 .PHONY: deps build test demo clean format
 

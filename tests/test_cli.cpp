@@ -1,6 +1,7 @@
 // The CLI contract of design.md §1: bad input gives one `error:` line, a non-zero exit code, no
 // crash and no output; good input writes exactly the files the contract lists.
 #include "core/image_io.h"
+#include "gltf_builder.h"
 #include "process.h"
 
 #include <gtest/gtest.h>
@@ -254,4 +255,64 @@ TEST(Cli, ReportLoadsInChromiumWithARowAndHeatmapPerTechnique) {
     EXPECT_EQ(count("class=\"technique-row\""), metrics["techniques"].size());
     EXPECT_EQ(count("class=\"heatmap\""), metrics["techniques"].size());
     EXPECT_EQ(count("<img"), count("src=\"data:image/png;base64,"));
+}
+
+namespace {
+
+// A ground with a box on it under a sun, a spot and a point light.
+fs::path threeLightAsset(const fs::path& where) {
+    GltfBuilder b;
+    b.ground();
+    const int p = b.positions(
+        {-1, 0, -1, 1, 0, -1, 1, 2, -1, -1, 2, -1, -1, 0, 1, 1, 0, 1, 1, 2, 1, -1, 2, 1});
+    const int i = b.accessor(
+        b.view(std::vector<uint16_t>{0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 3, 7, 0, 7, 4,
+                                     1, 5, 6, 1, 6, 2, 3, 2, 6, 3, 6, 7, 0, 4, 5, 0, 5, 1}),
+        5123, 36, "SCALAR");
+    b.node({{"mesh", b.mesh(p, i)}});
+    const auto light = [&](int index, nlohmann::json node) {
+        node["extensions"] = {{"KHR_lights_punctual", {{"light", index}}}};
+        b.node(std::move(node));
+    };
+    light(0, {{"rotation", {-0.6, 0.2, 0.1, 0.77}}});
+    light(1, {{"translation", {3, 6, 3}}, {"rotation", {-0.38, 0.2, 0.08, 0.9}}});
+    light(2, {{"translation", {-2, 3, 1}}});
+    b.j["extensions"] = {
+        {"KHR_lights_punctual",
+         {{"lights",
+           {{{"type", "directional"}, {"intensity", 1.5}},
+            {{"type", "spot"}, {"intensity", 40}, {"spot", {{"outerConeAngle", 0.7}}}},
+            {{"type", "point"}, {"name", "bulb"}, {"intensity", 5}}}}}}};
+    fs::create_directories(where);
+    return b.writeGltf(where / "lights.gltf");
+}
+
+} // namespace
+
+TEST(Cli, RendersAGltfWithAVisibilityImagePerShadowingLight) {
+    const fs::path asset = threeLightAsset(scratch("gltf-assets"));
+    const fs::path out = scratch("gltf-render");
+    const ProcessResult r = runCli({"render", asset.string(), "-o", out.string(), "--width", "96",
+                                    "--height", "64", "--shadow-map-size", "256", "--frames", "1"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(out / "visibility.pfm"));
+    EXPECT_TRUE(fs::exists(out / "visibility_1.pfm")) << "the spot light's visibility";
+    EXPECT_FALSE(fs::exists(out / "visibility_2.pfm")) << "point lights cast no shadow yet";
+    EXPECT_NE(r.err.find("point light 'bulb' lights the scene but casts no shadow"),
+              std::string::npos)
+        << r.err;
+    const auto stats = nlohmann::json::parse(slurp(out / "stats.json"));
+    EXPECT_EQ(stats["lights"].size(), 3u);
+}
+
+TEST(Cli, RefusesAMalformedGltfWithOneLineAndNoOutput) {
+    const fs::path where = scratch("gltf-bad");
+    fs::create_directories(where);
+    std::ofstream(where / "bad.gltf") << R"({"asset":{"version":"2.0"},"nodes":[{"mesh":7}]})";
+    const fs::path out = scratch("gltf-bad-out");
+    const ProcessResult r = runCli({"render", (where / "bad.gltf").string(), "-o", out.string()});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "error: " + (where / "bad.gltf").string() +
+                         ": nodes[0].mesh: index 7 is out of range (0 meshes)\n");
+    EXPECT_FALSE(fs::exists(out));
 }

@@ -18,7 +18,11 @@ namespace penumbra::cli {
 struct GlobalOptions {
     int device = -1;
     bool validation = false; // also PENUMBRA_VALIDATION=1
+    uint64_t maxFileSize = uint64_t{1} << 30;
 };
+
+// loadScene with the global options; loader warnings go to stderr as `penumbra: warning:`.
+Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global);
 
 using Action = std::function<int()>;
 

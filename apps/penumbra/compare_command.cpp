@@ -63,7 +63,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         rowOptions.push_back(std::move(o));
     }
     validate(args.reference);
-    Scene scene = loadScene(args.scene);
+    Scene scene = loadSceneReporting(args.scene, global);
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     for (const RenderOptions& o : rowOptions)

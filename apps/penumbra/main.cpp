@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
     app.add_option("--device", global.device,
                    "Vulkan device index from `penumbra info` (default: a GPU if any, else the "
                    "software rasterizer)");
+    app.add_option("--max-file-size", global.maxFileSize,
+                   "largest glTF file (and file it references) to read, in bytes (default 1 GiB)")
+        ->check(CLI::PositiveNumber);
     app.add_flag("--validation", global.validation,
                  "enable the Khronos validation layer; any validation error fails the command");
 

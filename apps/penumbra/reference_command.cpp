@@ -25,7 +25,7 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
     options.shadowMapSize = 64; // only the G-buffer is used; keep the shadow pass cheap
     validate(options);
     validate(args.reference);
-    Scene scene = loadScene(args.scene);
+    Scene scene = loadSceneReporting(args.scene, global);
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     renderer.check(scene, options);

@@ -33,7 +33,7 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     for (const std::string& set : args.sets)
         options.parameters.assign(set);
     validate(options);
-    const Scene scene = loadScene(args.scene);
+    const Scene scene = loadSceneReporting(args.scene, global);
     // Created before the long work so an unwritable path fails fast; removed again on error.
     StagedOutputDir out(args.output);
 
@@ -109,6 +109,14 @@ void addReferenceOptions(CLI::App& cmd, ReferenceOptions& options) {
         ->capture_default_str();
     cmd.add_option("--embree-config", options.embreeConfig,
                    "Embree device configuration, e.g. threads=2");
+}
+
+Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global) {
+    std::vector<std::string> warnings;
+    Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize, .warnings = &warnings});
+    for (const std::string& w : warnings)
+        std::fprintf(stderr, "penumbra: warning: %s\n", w.c_str());
+    return scene;
 }
 
 std::span<const uint8_t> bytesOf(const std::string& text) {

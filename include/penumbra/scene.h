@@ -47,6 +47,8 @@ struct Camera {
     glm::vec3 target{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float yfov = 0.8f; // radians (perspective)
+    bool orthographic = false;
+    float ymag = 1.0f; // orthographic: half the view's height (glTF's ymag); x follows the image
     float znear = 0.05f;
     float zfar = 200.0f;
 };
@@ -75,9 +77,14 @@ struct Scene {
     Camera camera(std::string_view cameraName) const;
 };
 
-// Loads `spec`: "builtin:NAME" or a glTF file, with invalid triangles already dropped.
-// Throws InputError on anything malformed.
-Scene loadScene(std::string_view spec);
+struct SceneLoadOptions {
+    uint64_t maxFileSize = uint64_t{1} << 30;     // cap for a glTF file and each file it uses
+    std::vector<std::string>* warnings = nullptr; // content skipped while loading
+};
+
+// Loads `spec`: "builtin:NAME", or a glTF 2.0 file (.gltf, .glb), with invalid triangles
+// already dropped. Throws InputError on anything malformed.
+Scene loadScene(std::string_view spec, const SceneLoadOptions& options = {});
 
 // The one rule that decides which triangles exist, applied before the rasterizer and the
 // ground truth see a scene: drops triangles with an index out of range, a non-finite vertex,

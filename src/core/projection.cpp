@@ -59,6 +59,17 @@ glm::mat4 perspectiveCameraReverseZ(float yfov, float aspect, float n, float f) 
     return m;
 }
 
+// depth(t) = (f - t) / (f - n) for distance t = -z: 1 at n, 0 at f.
+glm::mat4 orthographicCameraReverseZ(float ymag, float aspect, float n, float f) {
+    glm::mat4 m(0.0f);
+    m[0][0] = 1.0f / (ymag * aspect);
+    m[1][1] = -1.0f / ymag;
+    m[2][2] = 1.0f / (f - n);
+    m[3][2] = f / (f - n);
+    m[3][3] = 1.0f;
+    return m;
+}
+
 glm::mat4 textureMatrix() {
     glm::mat4 m(1.0f);
     m[0][0] = 0.5f;

@@ -27,6 +27,10 @@ glm::mat4 perspectiveLight(float yfov, float aspect, float n, float f);
 // Perspective for the camera: reverse-Z (n -> 1, f -> 0) and y flipped.
 glm::mat4 perspectiveCameraReverseZ(float yfov, float aspect, float n, float f);
 
+// Orthographic camera, reverse-Z and y flipped like the perspective one: view-space
+// [-ymag aspect, ymag aspect] x [-ymag, ymag] x (distance in [n, f]) -> NDC, depth 1 at n.
+glm::mat4 orthographicCameraReverseZ(float ymag, float aspect, float n, float f);
+
 // T: NDC -> shadow-map texture space, (x, y, z) -> (x/2 + 1/2, y/2 + 1/2, z).
 glm::mat4 textureMatrix();
 

@@ -31,7 +31,9 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
     const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
     const glm::mat4 view = lookAt(camera.position, camera.target, camera.up);
     const glm::mat4 proj =
-        perspectiveCameraReverseZ(camera.yfov, aspect, camera.znear, camera.zfar);
+        camera.orthographic
+            ? orthographicCameraReverseZ(camera.ymag, aspect, camera.znear, camera.zfar)
+            : perspectiveCameraReverseZ(camera.yfov, aspect, camera.znear, camera.zfar);
     // Inverting in double keeps reconstructed positions accurate far from the origin.
     const glm::dmat4 inv = glm::inverse(glm::dmat4(proj) * glm::dmat4(view));
     const ParameterValues& params = o.parameters;

@@ -1,6 +1,7 @@
 #include "penumbra/scene.h"
 #include "penumbra/error.h"
 #include "scene/builtin_scenes.h"
+#include "scene/gltf_loader.h"
 
 #include <fmt/format.h>
 
@@ -61,7 +62,7 @@ std::vector<std::string_view> builtinSceneNames() {
     return names;
 }
 
-Scene loadScene(std::string_view spec) {
+Scene loadScene(std::string_view spec, const SceneLoadOptions& options) {
     constexpr std::string_view prefix = "builtin:";
     if (spec.starts_with(prefix)) {
         const std::string_view name = spec.substr(prefix.size());
@@ -73,9 +74,12 @@ Scene loadScene(std::string_view spec) {
             names += (names.empty() ? "" : ", ") + std::string(b.name);
         throw InputError(std::string(spec), "no such built-in scene (built-in: " + names + ")");
     }
-    // glTF arrives with issue 4; until then the refusal names what is accepted.
-    throw InputError(std::string(spec), "this build reads only built-in scenes (builtin:NAME); "
-                                        "glTF loading is scheduled work");
+    const std::filesystem::path path(spec);
+    const std::string ext = path.extension().string();
+    if (ext == ".gltf" || ext == ".glb" || ext == ".GLTF" || ext == ".GLB")
+        return loadGltf(path, {.maxFileSize = options.maxFileSize, .warnings = options.warnings});
+    throw InputError(std::string(spec),
+                     "not a scene: expected builtin:NAME, a .gltf or a .glb file");
 }
 
 } // namespace penumbra

@@ -1,0 +1,268 @@
+#include "scene/gltf_container.h"
+
+#include "penumbra/error.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cstring>
+#include <fstream>
+
+namespace penumbra::gltf {
+namespace {
+
+constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
+constexpr uint32_t kChunkJson = 0x4E4F534A; // "JSON"
+constexpr uint32_t kChunkBin = 0x004E4942;  // "BIN\0"
+constexpr std::array<std::string_view, 4> kSupportedRequired = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
+    "KHR_materials_unlit"};
+
+uint32_t readU32(const std::vector<uint8_t>& b, size_t at) {
+    uint32_t v = 0;
+    std::memcpy(&v, b.data() + at, 4); // GLB is little-endian, as is every target we build for
+    return v;
+}
+
+[[noreturn]] void refuse(const std::filesystem::path& file, const std::string& what) {
+    throw InputError(file.string(), what);
+}
+
+void checkUri(const std::filesystem::path& file, const std::string& path, const std::string& uri) {
+    if (uri.rfind("data:", 0) == 0) {
+        const size_t comma = uri.find(',');
+        if (comma == std::string::npos || uri.find(";base64", 0) > comma)
+            refuse(file, path + ": data URI is not base64");
+        std::vector<uint8_t> ignored;
+        if (!decodeBase64(std::string_view(uri).substr(comma + 1), ignored))
+            refuse(file, path + ": data URI has malformed base64");
+        return;
+    }
+    if (uri.empty())
+        refuse(file, path + ": empty URI");
+    const std::filesystem::path p(uri);
+    if (p.is_absolute() || uri.find(':') != std::string::npos || uri[0] == '\\')
+        refuse(file, path + ": absolute URIs are refused ('" + uri + "')");
+    for (const auto& part : p)
+        if (part == "..")
+            refuse(file, path + ": URIs may not leave the asset's folder ('" + uri + "')");
+    for (char c : uri)
+        if (c == '\0' || c == '$' || c == '`' || c == '~' || c == '%' || c == '\\')
+            refuse(file, path + fmt::format(": refused character '{}' in URI (no expansion is "
+                                            "done; percent-encoding is not supported)",
+                                            c));
+}
+
+// An index field: must be an integer naming an element of `target` (the JSON path says where).
+void checkIndex(const std::filesystem::path& file, const nlohmann::json& j, const std::string& path,
+                const nlohmann::json& value, const char* target) {
+    if (!value.is_number_integer())
+        refuse(file, path + ": wrong JSON type (an integer index is expected)");
+    const size_t size = j.contains(target) && j[target].is_array() ? j[target].size() : 0;
+    const long long i = value.get<long long>();
+    if (i < 0 || static_cast<unsigned long long>(i) >= size)
+        refuse(file, fmt::format("{}: index {} is out of range ({} {})", path, i, size, target));
+}
+
+// Before any parser follows them: every cross-reference and byteStride, by JSON path.
+void checkReferences(const std::filesystem::path& file, const nlohmann::json& j) {
+    auto each = [&](const char* array, auto visit) {
+        if (!j.contains(array))
+            return;
+        if (!j[array].is_array())
+            refuse(file, std::string(array) + ": wrong JSON type (array expected)");
+        for (size_t i = 0; i < j[array].size(); ++i) {
+            if (!j[array][i].is_object())
+                refuse(file, fmt::format("{}[{}]: wrong JSON type (object expected)", array, i));
+            visit(fmt::format("{}[{}]", array, i), j[array][i]);
+        }
+    };
+    if (j.contains("scene"))
+        checkIndex(file, j, "scene", j["scene"], "scenes");
+    each("scenes", [&](const std::string& path, const nlohmann::json& s) {
+        if (s.contains("nodes"))
+            for (size_t k = 0; k < s["nodes"].size(); ++k)
+                checkIndex(file, j, fmt::format("{}.nodes[{}]", path, k), s["nodes"][k], "nodes");
+    });
+    each("nodes", [&](const std::string& path, const nlohmann::json& n) {
+        if (n.contains("mesh"))
+            checkIndex(file, j, path + ".mesh", n["mesh"], "meshes");
+        if (n.contains("camera"))
+            checkIndex(file, j, path + ".camera", n["camera"], "cameras");
+        if (n.contains("children")) {
+            if (!n["children"].is_array())
+                refuse(file, path + ".children: wrong JSON type");
+            for (size_t k = 0; k < n["children"].size(); ++k)
+                checkIndex(file, j, fmt::format("{}.children[{}]", path, k), n["children"][k],
+                           "nodes");
+        }
+    });
+    each("meshes", [&](const std::string& path, const nlohmann::json& m) {
+        if (!m.contains("primitives") || !m["primitives"].is_array())
+            refuse(file, path + ".primitives: missing or not an array");
+        for (size_t k = 0; k < m["primitives"].size(); ++k) {
+            const auto& p = m["primitives"][k];
+            const std::string pp = fmt::format("{}.primitives[{}]", path, k);
+            if (!p.is_object() || !p.contains("attributes") || !p["attributes"].is_object())
+                refuse(file, pp + ".attributes: missing or not an object");
+            for (const auto& [name, a] : p["attributes"].items())
+                checkIndex(file, j, pp + ".attributes." + name, a, "accessors");
+            if (p.contains("indices"))
+                checkIndex(file, j, pp + ".indices", p["indices"], "accessors");
+            if (p.contains("material"))
+                checkIndex(file, j, pp + ".material", p["material"], "materials");
+        }
+    });
+    each("accessors", [&](const std::string& path, const nlohmann::json& a) {
+        if (a.contains("bufferView"))
+            checkIndex(file, j, path + ".bufferView", a["bufferView"], "bufferViews");
+    });
+    each("bufferViews", [&](const std::string& path, const nlohmann::json& v) {
+        if (!v.contains("buffer"))
+            refuse(file, path + ".buffer: missing");
+        checkIndex(file, j, path + ".buffer", v["buffer"], "buffers");
+        if (v.contains("byteStride")) {
+            if (!v["byteStride"].is_number_integer())
+                refuse(file, path + ".byteStride: wrong JSON type");
+            const long long s = v["byteStride"].get<long long>();
+            if (s < 4 || s > 252 || s % 4)
+                refuse(file, fmt::format("{}.byteStride: {} is not a multiple of 4 in [4, 252]",
+                                         path, s));
+        }
+    });
+}
+
+} // namespace
+
+bool decodeBase64(std::string_view text, std::vector<uint8_t>& out) {
+    auto value = [](char c) -> int {
+        if (c >= 'A' && c <= 'Z')
+            return c - 'A';
+        if (c >= 'a' && c <= 'z')
+            return c - 'a' + 26;
+        if (c >= '0' && c <= '9')
+            return c - '0' + 52;
+        if (c == '+')
+            return 62;
+        if (c == '/')
+            return 63;
+        return -1;
+    };
+    if (text.size() % 4 != 0)
+        return false;
+    out.clear();
+    out.reserve(text.size() / 4 * 3);
+    for (size_t i = 0; i < text.size(); i += 4) {
+        int v[4];
+        int padding = 0;
+        for (int k = 0; k < 4; ++k) {
+            const char c = text[i + k];
+            if (c == '=' && i + 4 == text.size() && k >= 2) {
+                v[k] = 0, ++padding;
+            } else {
+                if (padding)
+                    return false; // data after '='
+                v[k] = value(c);
+                if (v[k] < 0)
+                    return false;
+            }
+        }
+        const uint32_t n = (uint32_t(v[0]) << 18) | (uint32_t(v[1]) << 12) | (uint32_t(v[2]) << 6) |
+                           uint32_t(v[3]);
+        out.push_back(static_cast<uint8_t>(n >> 16));
+        if (padding < 2)
+            out.push_back(static_cast<uint8_t>(n >> 8));
+        if (padding < 1)
+            out.push_back(static_cast<uint8_t>(n));
+    }
+    return true;
+}
+
+Container readContainer(const std::filesystem::path& file, uint64_t maxFileSize) {
+    std::error_code ec;
+    const uint64_t size = std::filesystem::file_size(file, ec);
+    if (ec)
+        refuse(file, "cannot read: " + ec.message());
+    if (size > maxFileSize)
+        refuse(file, fmt::format("{} bytes is past the size cap of {} (--max-file-size)", size,
+                                 maxFileSize));
+    Container c;
+    c.bytes.resize(size);
+    std::ifstream in(file, std::ios::binary);
+    if (!in.read(reinterpret_cast<char*>(c.bytes.data()), static_cast<std::streamsize>(size)))
+        refuse(file, "cannot read the file");
+    if (size >= 4 && readU32(c.bytes, 0) == kGlbMagic) {
+        c.binary = true;
+        if (size < 20)
+            refuse(file, "GLB: truncated header");
+        if (readU32(c.bytes, 4) != 2)
+            refuse(file,
+                   fmt::format("GLB: version {} is not supported (2 is)", readU32(c.bytes, 4)));
+        if (readU32(c.bytes, 8) != size)
+            refuse(file, fmt::format("GLB: header length {} but the file has {} bytes",
+                                     readU32(c.bytes, 8), size));
+        const uint64_t jsonLength = readU32(c.bytes, 12);
+        if (readU32(c.bytes, 16) != kChunkJson)
+            refuse(file, "GLB: the first chunk is not JSON");
+        if (jsonLength == 0 || 20 + jsonLength > size || jsonLength % 4 != 0)
+            refuse(file, fmt::format("GLB: JSON chunk length {} is invalid", jsonLength));
+        c.json.assign(reinterpret_cast<const char*>(c.bytes.data()) + 20, jsonLength);
+        uint64_t at = 20 + jsonLength;
+        if (at < size) {
+            if (at + 8 > size)
+                refuse(file, "GLB: truncated chunk header");
+            c.binChunkLength = readU32(c.bytes, at);
+            if (readU32(c.bytes, at + 4) != kChunkBin)
+                refuse(file, "GLB: the second chunk is not BIN");
+            if (at + 8 + c.binChunkLength > size)
+                refuse(file, fmt::format("GLB: BIN chunk length {} runs past the file",
+                                         c.binChunkLength));
+        }
+    } else {
+        c.json.assign(reinterpret_cast<const char*>(c.bytes.data()), size);
+    }
+    return c;
+}
+
+nlohmann::json checkJson(const std::filesystem::path& file, const std::string& text) {
+    nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_discarded() || !j.is_object())
+        refuse(file, "not valid JSON");
+    if (!j.contains("asset") || !j["asset"].is_object() || !j["asset"].contains("version") ||
+        !j["asset"]["version"].is_string())
+        refuse(file, "asset.version: missing");
+    const std::string version = j["asset"]["version"];
+    if (version.rfind("2.", 0) != 0)
+        refuse(file, "asset.version: '" + version + "' is not supported (glTF 2.x is)");
+    if (j.contains("extensionsRequired")) {
+        if (!j["extensionsRequired"].is_array())
+            refuse(file, "extensionsRequired: not an array");
+        for (const auto& e : j["extensionsRequired"]) {
+            if (!e.is_string())
+                refuse(file, "extensionsRequired: not a string");
+            const std::string name = e;
+            if (std::find(kSupportedRequired.begin(), kSupportedRequired.end(), name) ==
+                kSupportedRequired.end())
+                refuse(file, "extensionsRequired: '" + name + "' is not supported");
+        }
+    }
+    checkReferences(file, j);
+    for (const char* array : {"buffers", "images"}) {
+        if (!j.contains(array))
+            continue;
+        if (!j[array].is_array())
+            refuse(file, std::string(array) + ": not an array");
+        for (size_t i = 0; i < j[array].size(); ++i) {
+            const auto& item = j[array][i];
+            const std::string path = fmt::format("{}[{}].uri", array, i);
+            if (item.is_object() && item.contains("uri")) {
+                if (!item["uri"].is_string())
+                    refuse(file, path + ": not a string");
+                checkUri(file, path, item["uri"]);
+            }
+        }
+    }
+    return j;
+}
+
+} // namespace penumbra::gltf

@@ -1,0 +1,327 @@
+// glTF 2.0 to Scene: the checked container and JSON (gltf_container), tinygltf under a locked
+// file-system policy, the model validator (gltf_validate), then an iterative walk of the node
+// hierarchy that flattens every triangle primitive into world space.
+#include "scene/gltf_loader.h"
+
+#include "penumbra/error.h"
+#include "scene/gltf_accessors.h"
+#include "scene/gltf_container.h"
+#include "scene/gltf_validate.h"
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace penumbra {
+namespace {
+
+using gltf::readFloats;
+using gltf::readIndices;
+
+struct FsPolicy {
+    std::filesystem::path folder;
+    uint64_t maxFileSize;
+};
+
+// No tilde or variable expansion, ever: a URI names a file in the asset's folder or nothing.
+std::string noExpansion(const std::string& path, void*) {
+    return path;
+}
+
+bool insideFolder(const std::string& path, const FsPolicy& policy) {
+    const auto rel = std::filesystem::path(path).lexically_normal().lexically_relative(
+        policy.folder.lexically_normal());
+    return !rel.empty() && *rel.begin() != ".." && !rel.is_absolute();
+}
+
+bool fileExists(const std::string& path, void* user) {
+    const auto& policy = *static_cast<const FsPolicy*>(user);
+    return insideFolder(path, policy) && std::filesystem::is_regular_file(path);
+}
+
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                   void* user) {
+    const auto& policy = *static_cast<const FsPolicy*>(user);
+    std::error_code ec;
+    const uint64_t size = std::filesystem::file_size(path, ec);
+    if (!insideFolder(path, policy) || ec) {
+        *err = "cannot read '" + path + "'";
+        return false;
+    }
+    if (size > policy.maxFileSize) {
+        *err = fmt::format("'{}' is past the size cap of {} bytes", path, policy.maxFileSize);
+        return false;
+    }
+    out->resize(size);
+    std::ifstream in(path, std::ios::binary);
+    return static_cast<bool>(
+        in.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size)));
+}
+
+bool writeNothing(std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
+    return false;
+}
+
+// Textures are not used yet: images are not decoded (no decoder sees hostile image bytes).
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+               const unsigned char*, int, void*) {
+    return true;
+}
+
+glm::mat4 localTransform(const tinygltf::Node& n) {
+    if (n.matrix.size() == 16) {
+        glm::mat4 m;
+        for (int i = 0; i < 16; ++i)
+            m[i / 4][i % 4] = static_cast<float>(n.matrix[i]);
+        return m;
+    }
+    glm::mat4 m(1.0f);
+    if (n.translation.size() == 3)
+        m = glm::translate(m, glm::vec3(n.translation[0], n.translation[1], n.translation[2]));
+    if (n.rotation.size() == 4)
+        m *= glm::mat4_cast(
+            glm::quat(static_cast<float>(n.rotation[3]), static_cast<float>(n.rotation[0]),
+                      static_cast<float>(n.rotation[1]), static_cast<float>(n.rotation[2])));
+    if (n.scale.size() == 3)
+        m = glm::scale(m, glm::vec3(n.scale[0], n.scale[1], n.scale[2]));
+    return m;
+}
+
+// Triangle-list indices for a primitive's mode; empty for points and lines.
+std::vector<uint32_t> triangles(int mode, const std::vector<uint32_t>& idx) {
+    std::vector<uint32_t> out;
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        out.assign(idx.begin(), idx.begin() + static_cast<long>(idx.size() / 3 * 3));
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (size_t i = 2; i < idx.size(); ++i) // alternate winding keeps faces consistent
+            out.insert(out.end(),
+                       i % 2 ? std::initializer_list<uint32_t>{idx[i - 1], idx[i - 2], idx[i]}
+                             : std::initializer_list<uint32_t>{idx[i - 2], idx[i - 1], idx[i]});
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        for (size_t i = 2; i < idx.size(); ++i)
+            out.insert(out.end(), {idx[0], idx[i - 1], idx[i]});
+    }
+    return out;
+}
+
+double extraNumber(const tinygltf::Value& extras, const char* key, double fallback) {
+    if (!extras.IsObject() || !extras.Has(key) || !extras.Get(key).IsNumber())
+        return fallback;
+    return extras.Get(key).GetNumberAsDouble();
+}
+
+struct Flattener {
+    const std::filesystem::path& file;
+    const tinygltf::Model& m;
+    Scene& scene;
+    const GltfOptions& options;
+
+    void warn(const std::string& w) const {
+        if (options.warnings)
+            options.warnings->push_back(file.string() + ": " + w);
+    }
+
+    void primitive(const tinygltf::Primitive& p, const glm::mat4& world, size_t meshIndex) {
+        if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+            warn(fmt::format("meshes[{}]: a primitive of points or lines is skipped", meshIndex));
+            return;
+        }
+        const std::vector<float> pos = readFloats(m, p.attributes.at("POSITION"));
+        const size_t count = pos.size() / 3;
+        for (float v : pos)
+            if (!std::isfinite(v))
+                throw InputError(file.string(), fmt::format("meshes[{}]: POSITION contains NaN or "
+                                                            "infinity",
+                                                            meshIndex));
+        std::vector<uint32_t> idx;
+        if (p.indices >= 0) {
+            idx = readIndices(m, p.indices);
+            for (uint32_t i : idx)
+                if (i >= count)
+                    throw InputError(file.string(),
+                                     fmt::format("meshes[{}]: index {} is past the {} "
+                                                 "vertices",
+                                                 meshIndex, i, count));
+        } else {
+            idx.resize(count);
+            for (uint32_t i = 0; i < count; ++i)
+                idx[i] = i;
+        }
+        const std::vector<uint32_t> tri = triangles(p.mode, idx);
+        std::vector<float> normals;
+        if (const auto n = p.attributes.find("NORMAL"); n != p.attributes.end()) {
+            normals = readFloats(m, n->second);
+            if (normals.size() != pos.size())
+                normals.clear();
+        }
+        const uint32_t material = p.material >= 0 ? static_cast<uint32_t>(p.material) : 0;
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
+        const uint32_t base = static_cast<uint32_t>(scene.vertices.size());
+        for (size_t v = 0; v < count; ++v) {
+            const glm::vec3 local(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+            glm::vec3 n = normals.empty()
+                              ? glm::vec3(0.0f)
+                              : glm::vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+            if (!normals.empty())
+                n = normalMatrix * n;
+            scene.vertices.push_back({glm::vec3(world * glm::vec4(local, 1.0f)), n, material});
+        }
+        if (normals.empty()) { // missing normals: area-weighted smooth normals of the primitive
+            for (size_t t = 0; t + 2 < tri.size(); t += 3) {
+                const glm::vec3 a = scene.vertices[base + tri[t]].position,
+                                b = scene.vertices[base + tri[t + 1]].position,
+                                c = scene.vertices[base + tri[t + 2]].position;
+                const glm::vec3 face = glm::cross(b - a, c - a);
+                for (int k = 0; k < 3; ++k)
+                    scene.vertices[base + tri[t + k]].normal += face;
+            }
+        }
+        for (size_t v = base; v < scene.vertices.size(); ++v) {
+            const glm::vec3 n = scene.vertices[v].normal;
+            scene.vertices[v].normal =
+                glm::dot(n, n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 1, 0);
+        }
+        for (uint32_t i : tri)
+            scene.indices.push_back(base + i);
+    }
+
+    void node(const tinygltf::Node& n, const glm::mat4& world) {
+        if (n.mesh >= 0)
+            for (const auto& p : m.meshes[n.mesh].primitives)
+                primitive(p, world, static_cast<size_t>(n.mesh));
+        if (n.camera >= 0)
+            camera(m.cameras[n.camera], world);
+        if (const auto e = n.extensions.find("KHR_lights_punctual"); e != n.extensions.end())
+            if (e->second.Has("light") && e->second.Get("light").IsInt())
+                light(e->second.Get("light").GetNumberAsInt(), world);
+    }
+
+    void camera(const tinygltf::Camera& c, const glm::mat4& world) {
+        Camera cam{.name = c.name.empty() ? fmt::format("camera{}", scene.cameras.size()) : c.name};
+        cam.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
+        cam.target = cam.position + glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
+        cam.up = glm::normalize(glm::vec3(world * glm::vec4(0, 1, 0, 0)));
+        if (c.type == "orthographic") {
+            cam.orthographic = true;
+            cam.ymag = static_cast<float>(c.orthographic.ymag);
+            cam.znear = static_cast<float>(c.orthographic.znear);
+            cam.zfar = static_cast<float>(c.orthographic.zfar);
+        } else {
+            cam.yfov = static_cast<float>(c.perspective.yfov);
+            cam.znear = static_cast<float>(c.perspective.znear);
+            cam.zfar =
+                c.perspective.zfar > 0 ? static_cast<float>(c.perspective.zfar) : cam.znear * 1e4f;
+        }
+        if (!(cam.znear > 0.0f) || !(cam.zfar > cam.znear) ||
+            (!cam.orthographic && !(cam.yfov > 0.0f && cam.yfov < 3.1f)) ||
+            (cam.orthographic && !(cam.ymag > 0.0f)))
+            throw InputError(file.string(),
+                             fmt::format("cameras: '{}' has invalid parameters", cam.name));
+        scene.cameras.push_back(cam);
+    }
+
+    void light(int index, const glm::mat4& world) {
+        if (index < 0 || static_cast<size_t>(index) >= m.lights.size())
+            throw InputError(file.string(),
+                             fmt::format("KHR_lights_punctual: light {} is out of range", index));
+        const tinygltf::Light& l = m.lights[index];
+        Light out{.name = l.name.empty() ? fmt::format("light{}", index) : l.name};
+        out.type = l.type == "directional" ? LightType::Directional
+                   : l.type == "spot"      ? LightType::Spot
+                                           : LightType::Point;
+        if (l.type != "directional" && l.type != "spot" && l.type != "point")
+            throw InputError(file.string(), fmt::format("KHR_lights_punctual.lights[{}].type: '{}'",
+                                                        index, l.type));
+        out.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
+        out.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
+        if (l.color.size() == 3)
+            out.color = glm::vec3(l.color[0], l.color[1], l.color[2]);
+        out.intensity = static_cast<float>(l.intensity);
+        out.range = static_cast<float>(l.range);
+        out.innerConeAngle = static_cast<float>(l.spot.innerConeAngle);
+        out.outerConeAngle = static_cast<float>(l.spot.outerConeAngle);
+        out.radius = static_cast<float>(extraNumber(l.extras, "radius", 0.0));
+        out.angularDiameter = static_cast<float>(extraNumber(l.extras, "angularDiameter", 0.0));
+        if (!std::isfinite(out.intensity) || out.intensity < 0 || out.radius < 0 ||
+            out.angularDiameter < 0 || out.angularDiameter > 30)
+            throw InputError(file.string(),
+                             fmt::format("KHR_lights_punctual.lights[{}]: invalid intensity "
+                                         "or size",
+                                         index));
+        scene.lights.push_back(out);
+    }
+
+    void walk(const std::vector<int>& roots) {
+        std::vector<std::pair<int, glm::mat4>> stack; // iterative: no recursion depth limit
+        for (auto it = roots.rbegin(); it != roots.rend(); ++it)
+            stack.emplace_back(*it, glm::mat4(1.0f));
+        while (!stack.empty()) {
+            const auto [index, parent] = stack.back();
+            stack.pop_back();
+            const tinygltf::Node& n = m.nodes[index];
+            const glm::mat4 world = parent * localTransform(n);
+            node(n, world);
+            for (auto c = n.children.rbegin(); c != n.children.rend(); ++c)
+                stack.emplace_back(*c, world);
+        }
+    }
+};
+
+} // namespace
+
+Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
+    const gltf::Container container = gltf::readContainer(file, options.maxFileSize);
+    gltf::checkJson(file, container.json);
+    FsPolicy policy{.folder = std::filesystem::absolute(file).parent_path(),
+                    .maxFileSize = options.maxFileSize};
+    tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{.FileExists = &fileExists,
+                                                .ExpandFilePath = &noExpansion,
+                                                .ReadWholeFile = &readWholeFile,
+                                                .WriteWholeFile = &writeNothing,
+                                                .user_data = &policy});
+    loader.SetImageLoader(&skipImage, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    const std::string base = policy.folder.string();
+    const bool ok =
+        container.binary
+            ? loader.LoadBinaryFromMemory(&model, &err, &warn, container.bytes.data(),
+                                          static_cast<unsigned>(container.bytes.size()), base)
+            : loader.LoadASCIIFromString(&model, &err, &warn, container.json.data(),
+                                         static_cast<unsigned>(container.json.size()), base);
+    if (!ok) {
+        const std::string first = err.substr(0, err.find('\n'));
+        throw InputError(file.string(), first.empty() ? "cannot parse the asset" : first);
+    }
+    gltf::validateModel(file, model);
+
+    Scene scene;
+    scene.name = file.stem().string();
+    for (const auto& mat : model.materials) {
+        const auto& f = mat.pbrMetallicRoughness.baseColorFactor;
+        scene.materials.push_back(
+            {.name = mat.name, .baseColor = glm::vec4(f[0], f[1], f[2], f[3])});
+    }
+    if (scene.materials.empty())
+        scene.materials.push_back({.name = "default"});
+    Flattener flat{file, model, scene, options};
+    if (!model.scenes.empty())
+        flat.walk(model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes);
+    if (scene.lights.empty()) // no light: a default sun, from above and slightly behind
+        scene.lights.push_back({.name = "default sun",
+                                .type = LightType::Directional,
+                                .direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f)),
+                                .intensity = 2.0f});
+    dropInvalidTriangles(scene);
+    if (scene.triangleCount() == 0)
+        throw InputError(file.string(), "the default scene has no triangles");
+    return scene;
+}
+
+} // namespace penumbra

@@ -1,0 +1,22 @@
+#pragma once
+// glTF 2.0 in: .gltf (external or data-URI buffers) and .glb. Assets are hostile until proven
+// otherwise: the container, the JSON and every index, count and byte range are checked (64-bit
+// arithmetic) before anything reaches the GPU or Embree, and a refusal names the file and the
+// JSON path: InputError("scene.gltf", "meshes[0].primitives[0].indices: ...").
+#include "penumbra/scene.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct GltfOptions {
+    uint64_t maxFileSize = uint64_t{1} << 30;     // the asset and each file it references
+    std::vector<std::string>* warnings = nullptr; // skipped content (points, lines, ...)
+};
+
+Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options = {});
+
+} // namespace penumbra

@@ -1,0 +1,229 @@
+#include "scene/gltf_validate.h"
+
+#include "penumbra/error.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+namespace penumbra::gltf {
+namespace {
+
+struct Checker {
+    const std::filesystem::path& file;
+    const tinygltf::Model& m;
+
+    [[noreturn]] void fail(const std::string& path, const std::string& what) const {
+        throw InputError(file.string(), path + ": " + what);
+    }
+    void index(const std::string& path, int i, size_t count, const char* what) const {
+        if (i < 0 || static_cast<size_t>(i) >= count)
+            fail(path, fmt::format("{} index {} is out of range ({} {}s)", what, i, count, what));
+    }
+    // a + b, refusing overflow past 64 bits.
+    uint64_t add(const std::string& path, uint64_t a, uint64_t b) const {
+        if (a > std::numeric_limits<uint64_t>::max() - b)
+            fail(path, "byte range overflows");
+        return a + b;
+    }
+    uint64_t mul(const std::string& path, uint64_t a, uint64_t b) const {
+        if (b != 0 && a > std::numeric_limits<uint64_t>::max() / b)
+            fail(path, "byte range overflows");
+        return a * b;
+    }
+    void finite(const std::string& path, const std::vector<double>& v) const {
+        for (double x : v)
+            if (!std::isfinite(x))
+                fail(path, "contains NaN or infinity");
+    }
+
+    void bufferViews() const {
+        for (size_t i = 0; i < m.bufferViews.size(); ++i) {
+            const auto& v = m.bufferViews[i];
+            const std::string path = fmt::format("bufferViews[{}]", i);
+            index(path + ".buffer", v.buffer, m.buffers.size(), "buffer");
+            if (v.byteLength == 0)
+                fail(path + ".byteLength", "must be at least 1");
+            const uint64_t end = add(path, v.byteOffset, v.byteLength);
+            if (end > m.buffers[v.buffer].data.size())
+                fail(path, fmt::format("bytes {}..{} run past buffer {} ({} bytes)", v.byteOffset,
+                                       end, v.buffer, m.buffers[v.buffer].data.size()));
+            if (v.byteStride != 0 && (v.byteStride < 4 || v.byteStride > 252 || v.byteStride % 4))
+                fail(path + ".byteStride",
+                     fmt::format("{} is not a multiple of 4 in [4, 252]", v.byteStride));
+        }
+    }
+
+    // `count` elements of `bytes` each, `stride` apart, from `offset` inside view `viewIndex`.
+    void range(const std::string& path, int viewIndex, uint64_t offset, uint64_t count,
+               uint64_t bytes, uint64_t stride) const {
+        index(path + ".bufferView", viewIndex, m.bufferViews.size(), "bufferView");
+        const auto& view = m.bufferViews[viewIndex];
+        const uint64_t last = add(path, mul(path, count - 1, stride), bytes);
+        const uint64_t end = add(path, offset, last);
+        if (end > view.byteLength)
+            fail(path, fmt::format("{} elements need bytes {}..{} but bufferView {} has {}", count,
+                                   offset, end, viewIndex, view.byteLength));
+    }
+
+    void accessors() const {
+        for (size_t i = 0; i < m.accessors.size(); ++i) {
+            const auto& a = m.accessors[i];
+            const std::string path = fmt::format("accessors[{}]", i);
+            const uint64_t bytes = elementBytes(a.componentType, a.type);
+            if (bytes == 0)
+                fail(path, "invalid componentType or type");
+            if (a.count == 0)
+                fail(path + ".count", "must be at least 1");
+            const uint64_t component =
+                tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
+            if (a.byteOffset % component)
+                fail(path + ".byteOffset", "not a multiple of the component size");
+            if (a.bufferView >= 0) {
+                index(path + ".bufferView", a.bufferView, m.bufferViews.size(), "bufferView");
+                const uint64_t stride = m.bufferViews[a.bufferView].byteStride
+                                            ? m.bufferViews[a.bufferView].byteStride
+                                            : bytes;
+                if (stride < bytes)
+                    fail(path, "byteStride is smaller than one element");
+                if (stride % component)
+                    fail(path, "byteStride is not a multiple of the component size");
+                range(path, a.bufferView, a.byteOffset, a.count, bytes, stride);
+            }
+            if (a.sparse.isSparse)
+                sparse(path + ".sparse", a);
+        }
+    }
+
+    void sparse(const std::string& path, const tinygltf::Accessor& a) const {
+        const auto& s = a.sparse;
+        if (s.count <= 0 || static_cast<size_t>(s.count) > a.count)
+            fail(path + ".count", fmt::format("{} is outside 1..{}", s.count, a.count));
+        const uint64_t indexBytes = elementBytes(s.indices.componentType, TINYGLTF_TYPE_SCALAR);
+        if (indexBytes == 0 || s.indices.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
+            fail(path + ".indices.componentType", "must be an unsigned integer type");
+        range(path + ".indices", s.indices.bufferView, s.indices.byteOffset, s.count, indexBytes,
+              indexBytes);
+        range(path + ".values", s.values.bufferView, s.values.byteOffset, s.count,
+              elementBytes(a.componentType, a.type), elementBytes(a.componentType, a.type));
+        const auto& view = m.bufferViews[s.indices.bufferView];
+        const uint8_t* data =
+            m.buffers[view.buffer].data.data() + view.byteOffset + s.indices.byteOffset;
+        for (int k = 0; k < s.count; ++k) {
+            uint64_t value = 0;
+            std::memcpy(&value, data + k * indexBytes, indexBytes);
+            if (value >= a.count)
+                fail(fmt::format("{}.indices[{}]", path, k),
+                     fmt::format("{} is out of range ({} elements)", value, a.count));
+        }
+    }
+
+    void accessorOfType(const std::string& path, int i, int type, bool floatOnly) const {
+        index(path, i, m.accessors.size(), "accessor");
+        const auto& a = m.accessors[i];
+        if (a.type != type || (floatOnly && a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT))
+            fail(path, "wrong accessor type or componentType");
+    }
+
+    void meshes() const {
+        for (size_t i = 0; i < m.meshes.size(); ++i)
+            for (size_t p = 0; p < m.meshes[i].primitives.size(); ++p) {
+                const auto& prim = m.meshes[i].primitives[p];
+                const std::string path = fmt::format("meshes[{}].primitives[{}]", i, p);
+                const auto pos = prim.attributes.find("POSITION");
+                if (pos == prim.attributes.end())
+                    fail(path + ".attributes", "POSITION is missing");
+                accessorOfType(path + ".attributes.POSITION", pos->second, TINYGLTF_TYPE_VEC3,
+                               true);
+                if (const auto n = prim.attributes.find("NORMAL"); n != prim.attributes.end())
+                    accessorOfType(path + ".attributes.NORMAL", n->second, TINYGLTF_TYPE_VEC3,
+                                   true);
+                for (const auto& [name, accessor] : prim.attributes)
+                    index(path + ".attributes." + name, accessor, m.accessors.size(), "accessor");
+                if (prim.indices >= 0) {
+                    accessorOfType(path + ".indices", prim.indices, TINYGLTF_TYPE_SCALAR, false);
+                    const int ct = m.accessors[prim.indices].componentType;
+                    if (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                        ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+                        fail(path + ".indices", "must be unsigned byte, short or int");
+                }
+                if (prim.material >= 0)
+                    index(path + ".material", prim.material, m.materials.size(), "material");
+                if (prim.mode < 0 || prim.mode > 6)
+                    fail(path + ".mode", "not a glTF mode");
+            }
+    }
+
+    void nodes() const {
+        std::vector<int> parent(m.nodes.size(), -1);
+        for (size_t i = 0; i < m.nodes.size(); ++i) {
+            const auto& n = m.nodes[i];
+            const std::string path = fmt::format("nodes[{}]", i);
+            if (n.mesh >= 0)
+                index(path + ".mesh", n.mesh, m.meshes.size(), "mesh");
+            if (n.camera >= 0)
+                index(path + ".camera", n.camera, m.cameras.size(), "camera");
+            if (!n.matrix.empty() && n.matrix.size() != 16)
+                fail(path + ".matrix", "needs 16 numbers");
+            finite(path + ".matrix", n.matrix);
+            finite(path + ".translation", n.translation);
+            finite(path + ".rotation", n.rotation);
+            finite(path + ".scale", n.scale);
+            for (size_t c = 0; c < n.children.size(); ++c) {
+                const std::string childPath = fmt::format("{}.children[{}]", path, c);
+                index(childPath, n.children[c], m.nodes.size(), "node");
+                if (parent[n.children[c]] >= 0)
+                    fail(childPath, fmt::format("node {} already has parent {}", n.children[c],
+                                                parent[n.children[c]]));
+                parent[n.children[c]] = static_cast<int>(i);
+            }
+        }
+        // With one parent each, a cycle is a walk up the parents that comes back: mark each
+        // chain once (iterative; deep hierarchies are fine).
+        std::vector<uint8_t> state(m.nodes.size(), 0); // 0 new, 1 on this walk, 2 done
+        std::vector<size_t> walk;
+        for (size_t start = 0; start < m.nodes.size(); ++start) {
+            walk.clear();
+            for (size_t at = start; state[at] != 2;) {
+                if (state[at] == 1)
+                    fail(fmt::format("nodes[{}]", at), "is its own ancestor (a cycle)");
+                state[at] = 1;
+                walk.push_back(at);
+                if (parent[at] < 0)
+                    break;
+                at = static_cast<size_t>(parent[at]);
+            }
+            for (size_t w : walk)
+                state[w] = 2;
+        }
+        for (size_t s = 0; s < m.scenes.size(); ++s)
+            for (size_t k = 0; k < m.scenes[s].nodes.size(); ++k)
+                index(fmt::format("scenes[{}].nodes[{}]", s, k), m.scenes[s].nodes[k],
+                      m.nodes.size(), "node");
+        if (m.defaultScene >= 0)
+            index("scene", m.defaultScene, m.scenes.size(), "scene");
+    }
+};
+
+} // namespace
+
+uint64_t elementBytes(int componentType, int type) {
+    const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(componentType));
+    const int count = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type));
+    return size > 0 && count > 0 ? uint64_t(size) * uint64_t(count) : 0;
+}
+
+void validateModel(const std::filesystem::path& file, const tinygltf::Model& model) {
+    const Checker c{file, model};
+    c.bufferViews();
+    c.accessors();
+    c.meshes();
+    c.nodes();
+}
+
+} // namespace penumbra::gltf
