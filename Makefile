@@ -10,7 +10,7 @@ PACKAGES := cmake g++ make pkg-config glslc libvulkan-dev mesa-vulkan-drivers \
     vulkan-validationlayers libglm-dev libstb-dev libcli11-dev nlohmann-json3-dev libfmt-dev \
     libgtest-dev libbenchmark-dev libembree-dev libtbb-dev libtinygltf-dev chromium
 
-.PHONY: deps build test demo clean format
+.PHONY: deps build test demo bench clean format
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -31,6 +31,9 @@ test: build
 
 demo: build
 	$(BUILDDIR)/apps/penumbra/penumbra compare builtin:showcase -o out/showcase
+
+bench: build
+	$(BUILDDIR)/bench/penumbra_bench_gltf
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i
