@@ -336,6 +336,11 @@ std::vector<Malformed> malformedAssets() {
              v[20 + json + 1] = 0x7F;
          }),
          "GLB: BIN chunk length"},
+        {"light_type", edit([](GltfBuilder& b) {
+             b.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+             b.j["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "laser"}}}}}}};
+         }),
+         "lights[0].type: 'laser' is not a light type"},
         {"missing_file", [](GltfBuilder&, const fs::path& d) { return d / "nowhere.gltf"; },
          "cannot read"},
     };

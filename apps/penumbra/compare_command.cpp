@@ -38,15 +38,9 @@ std::string filePrefix(const std::string& row) {
 }
 
 std::string describeLight(const Light& l) {
-    switch (l.type) {
-    case LightType::Directional:
-        return fmt::format("{}: directional, angular diameter {} deg", l.name, l.angularDiameter);
-    case LightType::Spot:
-        return fmt::format("{}: spot, radius {}", l.name, l.radius);
-    case LightType::Point:
-        return fmt::format("{}: point, radius {}", l.name, l.radius);
-    }
-    return l.name;
+    return l.type == LightType::Directional
+               ? fmt::format("{}: directional, angular diameter {} deg", l.name, l.angularDiameter)
+               : fmt::format("{}: {}, radius {}", l.name, lightTypeName(l.type), l.radius);
 }
 
 int runCompare(const CompareArgs& args, const GlobalOptions& global) {

@@ -26,6 +26,11 @@ struct Material {
 
 enum class LightType { Directional, Spot, Point };
 
+// "directional", "spot", "point": glTF's KHR_lights_punctual names, used everywhere.
+std::string_view lightTypeName(LightType type);
+// The type with that name; false if there is none.
+bool lightTypeFromName(std::string_view name, LightType& type);
+
 struct Light {
     std::string name;
     LightType type = LightType::Directional;

@@ -9,18 +9,6 @@ nlohmann::json vec(const glm::vec3& v) {
     return {v.x, v.y, v.z};
 }
 
-const char* typeName(LightType type) {
-    switch (type) {
-    case LightType::Directional:
-        return "directional";
-    case LightType::Spot:
-        return "spot";
-    case LightType::Point:
-        return "point";
-    }
-    return "unknown";
-}
-
 } // namespace
 
 std::string visibilityFileName(size_t index) {
@@ -65,7 +53,7 @@ nlohmann::json renderStats(const RenderRun& run) {
     for (const LightShadow& s : run.result.lights) {
         const Light& l = run.scene.lights[s.sceneLight];
         nlohmann::json light = {{"name", l.name},
-                                {"type", typeName(l.type)},
+                                {"type", lightTypeName(l.type)},
                                 {"casts_shadow", s.visibilityIndex >= 0},
                                 {"projection", s.projection}};
         if (l.type == LightType::Directional)

@@ -231,12 +231,11 @@ struct Flattener {
                              fmt::format("KHR_lights_punctual: light {} is out of range", index));
         const tinygltf::Light& l = m.lights[index];
         Light out{.name = l.name.empty() ? fmt::format("light{}", index) : l.name};
-        out.type = l.type == "directional" ? LightType::Directional
-                   : l.type == "spot"      ? LightType::Spot
-                                           : LightType::Point;
-        if (l.type != "directional" && l.type != "spot" && l.type != "point")
-            throw InputError(file.string(), fmt::format("KHR_lights_punctual.lights[{}].type: '{}'",
-                                                        index, l.type));
+        if (!lightTypeFromName(l.type, out.type))
+            throw InputError(
+                file.string(),
+                fmt::format("KHR_lights_punctual.lights[{}].type: '{}' is not a light type", index,
+                            l.type));
         out.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
         out.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
         if (l.color.size() == 3)

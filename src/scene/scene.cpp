@@ -19,6 +19,27 @@ constexpr BuiltinEntry kBuiltins[] = {
 
 } // namespace
 
+namespace {
+constexpr std::pair<LightType, std::string_view> kLightTypeNames[] = {
+    {LightType::Directional, "directional"},
+    {LightType::Spot, "spot"},
+    {LightType::Point, "point"}};
+} // namespace
+
+std::string_view lightTypeName(LightType type) {
+    for (const auto& [t, name] : kLightTypeNames)
+        if (t == type)
+            return name;
+    return "unknown";
+}
+
+bool lightTypeFromName(std::string_view name, LightType& type) {
+    for (const auto& [t, n] : kLightTypeNames)
+        if (n == name)
+            return type = t, true;
+    return false;
+}
+
 Bounds Scene::bounds() const {
     // Only vertices that triangles use: dropped triangles may leave non-finite ones behind.
     Bounds b;
