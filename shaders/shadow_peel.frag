@@ -1,9 +1,18 @@
 #version 460
 // Depth peel for second-depth shadow maps [Wang and Molnar 1994]: keeps, per texel, the nearest
-// surface behind the one the first shadow pass stored.
+// surface behind the one the first shadow pass stored. Alpha-tested casters keep their holes.
+#include "gpu_types.h"
+#include "alpha_test.glsl"
+
+layout(location = 0) in vec2 inUv;
+layout(location = 1) in float inAlpha;
+
 layout(set = 0, binding = 0) uniform sampler2D firstDepth;
+layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
+layout(push_constant) uniform Push { ShadowPush push; MaterialPush material; };
 
 void main() {
+    if (coverageHole(material, baseColorTexture, inUv, inAlpha)) discard;
     float first = texelFetch(firstDepth, ivec2(gl_FragCoord.xy), 0).r;
     // The first layer itself: the same depth, up to a few ulps should another pipeline round
     // differently.

@@ -15,13 +15,42 @@ namespace penumbra {
 
 struct Vertex {
     glm::vec3 position;
-    glm::vec3 normal;  // unit length
-    uint32_t material; // index into Scene::materials
+    glm::vec3 normal;      // unit length
+    uint32_t material;     // index into Scene::materials
+    glm::vec2 uv{0.0f};    // the coordinates of the material's base-colour texture
+    glm::vec4 color{1.0f}; // linear RGBA vertex colour (glTF COLOR_0), multiplies baseColor
 };
+
+// Decoded image pixels: RGBA8, sRGB-encoded colour, linear alpha (glTF's convention), rows top
+// to bottom.
+struct TextureImage {
+    std::string name;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> rgba;
+};
+
+enum class TextureWrap { Repeat, ClampToEdge, MirroredRepeat };
+
+// An image with the way it is sampled (glTF texture + sampler).
+struct Texture {
+    uint32_t image = 0; // index into Scene::images
+    TextureWrap wrapS = TextureWrap::Repeat;
+    TextureWrap wrapT = TextureWrap::Repeat;
+    bool nearest = false; // magnification filter NEAREST (else linear)
+};
+
+// glTF alpha modes. Blend has no transparency here: it renders and casts shadows as Opaque.
+enum class AlphaMode { Opaque, Mask, Blend };
 
 struct Material {
     std::string name;
-    glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f}; // linear RGB
+    glm::vec4 baseColor{0.8f, 0.8f, 0.8f, 1.0f}; // linear RGBA
+    int32_t baseColorTexture = -1;               // index into Scene::textures, -1 for none
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f; // Mask: coverage below it is a hole (in the image and the shadow)
+    bool doubleSided = true;  // false: back faces are culled in the camera's view
+    bool alphaTested() const { return alphaMode == AlphaMode::Mask; }
 };
 
 enum class LightType { Directional, Spot, Point };
@@ -72,10 +101,17 @@ struct Scene {
     std::vector<Vertex> vertices;  // world space
     std::vector<uint32_t> indices; // triangle list
     std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<TextureImage> images;
     std::vector<Light> lights;
     std::vector<Camera> cameras;
 
     size_t triangleCount() const { return indices.size() / 3; }
+    // The coverage (alpha) of `material` at a texture coordinate and vertex alpha, as the
+    // shadow pass and the ground truth test it: bilinear at full resolution, wrap as sampled.
+    float coverage(uint32_t material, glm::vec2 uv, float vertexAlpha) const;
+    // Whether a surface point of `material` exists (Mask: coverage >= cutoff).
+    bool covers(uint32_t material, glm::vec2 uv, float vertexAlpha) const;
     Bounds bounds() const;
     // The camera named `name`; empty name: the first camera, else an automatic framing.
     // Throws InputError when a named camera does not exist.

@@ -75,6 +75,16 @@ struct ShadowPush {      // push constants of shadow_depth.vert
     vec4 bias;           // x: constant depth offset
 };
 
+// A material as one draw sees it: push constants of gbuffer.frag and, after ShadowPush, of the
+// alpha-tested shadow and peel passes.
+struct MaterialPush {
+    vec4 baseColor;      // linear RGBA factor
+    float alphaCutoff;
+    uint alphaTest;      // 1: coverage below alphaCutoff is a hole
+    uint hasTexture;     // 0: the bound texture is a white placeholder
+    uint pad;
+};
+
 struct VisibilityPush {  // push constants of visibility.comp
     uvec4 light;         // x light index, y shadow layer, z shadow-map size
 };
@@ -88,6 +98,7 @@ static_assert(sizeof(LightData) == 176 && offsetof(LightData, positionType) == 6
               offsetof(LightData, cone) == 112 && offsetof(LightData, bias) == 128 &&
               offsetof(LightData, frustum) == 144 && offsetof(LightData, shape) == 160);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16);
+static_assert(sizeof(MaterialPush) == 32 && offsetof(MaterialPush, alphaCutoff) == 16);
 } // namespace penumbra::gpu
 #endif
 

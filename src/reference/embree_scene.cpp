@@ -35,7 +35,62 @@ void onEmbreeError(void* user, RTCError code, const char* message) {
         *error = fmt::format("{} ({})", message ? message : "", errorName(code));
 }
 
+// Rejects a hit in a hole of an alpha-tested triangle (Embree's barycentrics u, v weight the
+// second and third vertices).
+void skipHoles(const RTCFilterFunctionNArguments* args) {
+    const auto& data = *static_cast<const EmbreeScene::FilterData*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1)
+            continue;
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+        const EmbreeScene::TestedTriangle& t = data.triangles[prim];
+        const float w = 1.0f - u - v;
+        const glm::vec2 uv = w * t.uv[0] + u * t.uv[1] + v * t.uv[2];
+        const float alpha = w * t.alpha[0] + u * t.alpha[1] + v * t.alpha[2];
+        if (!data.scene->covers(t.material, uv, alpha))
+            args->valid[i] = 0;
+    }
+}
+
 } // namespace
+
+void EmbreeScene::addGeometry(const Scene& scene, const std::vector<uint32_t>& triangles,
+                              bool alphaTested) {
+    if (triangles.empty())
+        return;
+    RTCGeometry geometry = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* positions = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), scene.vertices.size()));
+    auto* indices = static_cast<uint32_t*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(uint32_t), triangles.size()));
+    throwIfFailed("allocating geometry buffers");
+    for (size_t i = 0; i < scene.vertices.size(); ++i)
+        std::memcpy(positions + 3 * i, &scene.vertices[i].position, 3 * sizeof(float));
+    for (size_t k = 0; k < triangles.size(); ++k)
+        std::memcpy(indices + 3 * k, scene.indices.data() + 3 * size_t{triangles[k]},
+                    3 * sizeof(uint32_t));
+    if (alphaTested) {
+        mFilter.scene = &scene;
+        for (uint32_t t : triangles) {
+            TestedTriangle tested{.material = scene.vertices[scene.indices[3 * t]].material};
+            for (int c = 0; c < 3; ++c) {
+                const Vertex& v = scene.vertices[scene.indices[3 * size_t{t} + c]];
+                tested.uv[c] = v.uv;
+                tested.alpha[c] = v.color.w;
+            }
+            mFilter.triangles.push_back(tested);
+        }
+        rtcSetGeometryUserData(geometry, &mFilter);
+        rtcSetGeometryOccludedFilterFunction(geometry, skipHoles);
+        rtcSetGeometryIntersectFilterFunction(geometry, skipHoles);
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(mScene, geometry);
+    rtcReleaseGeometry(geometry);
+}
 
 EmbreeScene::EmbreeScene(const Scene& scene, const std::string& config) {
     mDevice = rtcNewDevice(config.c_str());
@@ -47,22 +102,14 @@ EmbreeScene::EmbreeScene(const Scene& scene, const std::string& config) {
     mScene = rtcNewScene(mDevice);
     rtcSetSceneBuildQuality(mScene, RTC_BUILD_QUALITY_HIGH);
     mTriangles = scene.triangleCount();
-    if (mTriangles > 0) {
-        RTCGeometry geometry = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* positions = static_cast<float*>(
-            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                    3 * sizeof(float), scene.vertices.size()));
-        auto* indices = static_cast<uint32_t*>(
-            rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                    3 * sizeof(uint32_t), mTriangles));
-        throwIfFailed("allocating geometry buffers");
-        for (size_t i = 0; i < scene.vertices.size(); ++i)
-            std::memcpy(positions + 3 * i, &scene.vertices[i].position, 3 * sizeof(float));
-        std::memcpy(indices, scene.indices.data(), mTriangles * 3 * sizeof(uint32_t));
-        rtcCommitGeometry(geometry);
-        rtcAttachGeometry(mScene, geometry);
-        rtcReleaseGeometry(geometry);
+    std::vector<uint32_t> opaque, tested;
+    for (size_t t = 0; t < mTriangles; ++t) {
+        const uint32_t m = scene.vertices[scene.indices[3 * t]].material;
+        (m < scene.materials.size() && scene.materials[m].alphaTested() ? tested : opaque)
+            .push_back(static_cast<uint32_t>(t));
     }
+    addGeometry(scene, opaque, false);
+    addGeometry(scene, tested, true);
     rtcCommitScene(mScene);
     throwIfFailed("building the scene");
 }

@@ -1,13 +1,16 @@
 #pragma once
 // An Embree device and scene built from exactly the triangles the rasterizer draws. Embree
 // reports errors through a callback; they surface here as std::runtime_error("embree: ..."),
-// never as a crash or a silent wrong answer.
+// never as a crash or a silent wrong answer. Alpha-tested triangles (glTF MASK) sit in a second
+// geometry whose occlusion filter rejects hits in their holes, with the test the GPU makes.
+// The Scene must outlive the EmbreeScene.
 #include "penumbra/scene.h"
 
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 
 #include <string>
+#include <vector>
 
 namespace penumbra {
 
@@ -24,10 +27,26 @@ public:
 
 private:
     void throwIfFailed(const char* what) const;
+    // One Embree geometry of the scene's triangles `triangles` (indices into Scene::indices / 3).
+    void addGeometry(const Scene& scene, const std::vector<uint32_t>& triangles, bool alphaTested);
     RTCDevice mDevice = nullptr;
     RTCScene mScene = nullptr;
     size_t mTriangles = 0;
     std::string mError; // first message from Embree's error callback
+public:
+    // A triangle of the alpha-tested geometry: what its occlusion filter needs.
+    struct TestedTriangle {
+        uint32_t material;
+        glm::vec2 uv[3];
+        float alpha[3];
+    };
+    struct FilterData {
+        const Scene* scene = nullptr;
+        std::vector<TestedTriangle> triangles;
+    };
+
+private:
+    FilterData mFilter;
 };
 
 } // namespace penumbra

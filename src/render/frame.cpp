@@ -41,12 +41,18 @@ void bindGeometry(VkCommandBuffer cmd, const GpuScene& scene) {
     vkCmdBindIndexBuffer(cmd, scene.indices.get(), 0, VK_INDEX_TYPE_UINT32);
 }
 
-// One depth-only pass of the scene from a light into `target` (cleared to the far plane), with
-// the hardware slope bias and the constant bias of the vertex shader.
-void renderLightDepth(VkCommandBuffer cmd, const GpuScene& scene, const vk::Image& target,
-                      VkPipeline pipeline, const vk::PipelineLayout& layout,
-                      VkShaderStageFlags pushStages, const ShadowView& view,
-                      const FrameSettings& s) {
+struct CasterPush {
+    gpu::ShadowPush shadow;
+    gpu::MaterialPush material;
+};
+
+// One depth pass of the scene from a light into `target` (cleared to the far plane), with the
+// hardware slope bias and the constant bias of the vertex shader. Opaque casters go in one draw;
+// alpha-tested ones per material with their texture. `firstDepth` set: the second-depth peel,
+// which draws everything with the peel pipeline.
+void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
+                      const vk::Image& target, const ShadowView& view, const FrameSettings& s,
+                      const vk::Image* firstDepth, VkSampler nearest) {
     vk::imageBarrier(cmd, target, vk::kUndefined, vk::kDepthWrite);
     const VkRenderingAttachmentInfo depth = attachment(target, {.depthStencil = {1.0f, 0}});
     const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
@@ -55,36 +61,74 @@ void renderLightDepth(VkCommandBuffer cmd, const GpuScene& scene, const vk::Imag
                                .pDepthAttachment = &depth};
     vkCmdBeginRendering(cmd, &info);
     setViewport(cmd, target.width, target.height);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-    vkCmdSetDepthBias(cmd, 0.0f, 0.0f, s.slopeBias);
-    const gpu::ShadowPush push{.viewProj = view.projection.viewProj,
-                               .bias = {s.constantBias, 0, 0, 0}};
-    vkCmdPushConstants(cmd, layout.get(), pushStages, 0, sizeof push, &push);
     bindGeometry(cmd, scene);
-    vkCmdDrawIndexed(cmd, scene.indexCount, 1, 0, 0, 0);
+    const bool perspective = view.projection.perspective;
+    CasterPush push{
+        .shadow = {.viewProj = view.projection.viewProj, .bias = {s.constantBias, 0, 0, 0}}};
+    const GpuTextures::Binding white = scene.textures.placeholder();
+    auto bind = [&](VkPipeline pipeline) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+        vkCmdSetDepthBias(cmd, 0.0f, 0.0f, s.slopeBias);
+    };
+    auto draw = [&](uint32_t first, uint32_t count) {
+        vkCmdDrawIndexed(cmd, count, 1, first, 0, 0);
+    };
+    constexpr VkShaderStageFlags kStages =
+        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+    if (firstDepth) {
+        bind(perspective ? p.peelPerspective.get() : p.peelOrtho.get());
+        auto pushFor = [&](const GpuTextures::Binding& texture) {
+            vk::PushDescriptors()
+                .sampled(0, firstDepth->view.get(), nearest)
+                .sampled(1, texture.view, texture.sampler)
+                .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.peelLayout);
+            vkCmdPushConstants(cmd, p.peelLayout.get(), kStages, 0, sizeof push, &push);
+        };
+        if (scene.opaqueIndexCount > 0) {
+            pushFor(white);
+            draw(0, scene.opaqueIndexCount);
+        }
+        for (const DrawBatch& batch : scene.batches)
+            if (batch.firstIndex >= scene.opaqueIndexCount) {
+                push.material = scene.materials[batch.material];
+                pushFor(scene.materialTextures[batch.material]);
+                draw(batch.firstIndex, batch.indexCount);
+            }
+    } else {
+        if (scene.opaqueIndexCount > 0) {
+            bind(perspective ? p.shadowPerspective.get() : p.shadowOrtho.get());
+            vkCmdPushConstants(cmd, p.shadowLayout.get(), VK_SHADER_STAGE_VERTEX_BIT, 0,
+                               sizeof push.shadow, &push.shadow);
+            draw(0, scene.opaqueIndexCount);
+        }
+        if (scene.indexCount > scene.opaqueIndexCount)
+            bind(perspective ? p.shadowMaskPerspective.get() : p.shadowMaskOrtho.get());
+        for (const DrawBatch& batch : scene.batches)
+            if (batch.firstIndex >= scene.opaqueIndexCount) {
+                const GpuTextures::Binding& texture = scene.materialTextures[batch.material];
+                vk::PushDescriptors()
+                    .sampled(0, texture.view, texture.sampler)
+                    .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.shadowMaskLayout);
+                push.material = scene.materials[batch.material];
+                vkCmdPushConstants(cmd, p.shadowMaskLayout.get(), kStages, 0, sizeof push, &push);
+                draw(batch.firstIndex, batch.indexCount);
+            }
+    }
     vkCmdEndRendering(cmd);
 }
 
 void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                         FrameTargets& t, const FrameSettings& s) {
     for (ShadowView& view : t.shadows) {
-        const bool perspective = view.projection.perspective;
-        renderLightDepth(cmd, scene, view.map,
-                         perspective ? p.shadowPerspective.get() : p.shadowOrtho.get(),
-                         p.shadowLayout, VK_SHADER_STAGE_VERTEX_BIT, view, s);
+        renderLightDepth(cmd, p, scene, view.map, view, s, nullptr, t.nearest.get());
         if (!view.second) {
             vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kComputeSampled);
             continue;
         }
         // Second-depth: peel the layer behind the first, reading the first in the fragment
-        // shader (same pipeline state, so the first layer reproduces its depths exactly).
+        // shader (same vertex shader and state, so the first layer reproduces its depths).
         vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kFragmentSampled);
-        vk::PushDescriptors()
-            .sampled(0, view.map.view.get(), t.nearest.get())
-            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.peelLayout);
-        renderLightDepth(cmd, scene, view.second,
-                         perspective ? p.peelPerspective.get() : p.peelOrtho.get(), p.peelLayout,
-                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, view, s);
+        renderLightDepth(cmd, p, scene, view.second, view, s, &view.map, t.nearest.get());
         vk::imageBarrier(cmd, view.map, vk::kFragmentSampled, vk::kComputeSampled);
         vk::imageBarrier(cmd, view.second, vk::kDepthWrite, vk::kComputeSampled);
     }
@@ -124,12 +168,20 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
     vkCmdBeginRendering(cmd, &info);
     setViewport(cmd, t.width, t.height);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbuffer.get());
-    vk::PushDescriptors()
-        .uniformBuffer(0, t.frame.get())
-        .storageBuffer(1, scene.materials.get())
-        .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbufferLayout);
     bindGeometry(cmd, scene);
-    vkCmdDrawIndexed(cmd, scene.indexCount, 1, 0, 0, 0);
+    for (const DrawBatch& batch : scene.batches) {
+        const GpuTextures::Binding& texture = scene.materialTextures[batch.material];
+        vk::PushDescriptors()
+            .uniformBuffer(0, t.frame.get())
+            .sampled(1, texture.view, texture.sampler)
+            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbufferLayout);
+        vkCmdPushConstants(cmd, p.gbufferLayout.get(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof(gpu::MaterialPush), &scene.materials[batch.material]);
+        vkCmdSetCullMode(cmd, scene.doubleSided[batch.material] ? VK_CULL_MODE_NONE
+                                                                : VK_CULL_MODE_BACK_BIT);
+        vkCmdDrawIndexed(cmd, batch.indexCount, 1, batch.firstIndex, 0, 0);
+    }
     vkCmdEndRendering(cmd);
     vk::imageBarrier(cmd, t.depth, vk::kDepthWrite, vk::kComputeSampled);
     vk::imageBarrier(cmd, t.normal, vk::kColorWrite, vk::kComputeSampled);
@@ -233,18 +285,47 @@ void recordReadback(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, VkB
 }
 
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
-    std::vector<glm::vec4> colors;
-    for (const Material& m : scene.materials)
-        colors.push_back(m.baseColor);
-    if (colors.empty())
-        colors.emplace_back(0.8f, 0.8f, 0.8f, 1.0f);
-    return {.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.vertices)),
-                                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex buffer"),
-            .indices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.indices)),
-                                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index buffer"),
-            .materials = vk::uploadBuffer(ctx, std::as_bytes(std::span(colors)),
-                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "material buffer"),
-            .indexCount = static_cast<uint32_t>(scene.indices.size())};
+    GpuScene out;
+    const size_t materialCount = std::max<size_t>(scene.materials.size(), 1);
+    std::vector<std::vector<uint32_t>> byMaterial(materialCount);
+    for (size_t t = 0; t < scene.triangleCount(); ++t) {
+        const uint32_t m = scene.vertices[scene.indices[3 * t]].material;
+        auto& list = byMaterial[m < materialCount ? m : 0];
+        list.insert(list.end(), scene.indices.begin() + static_cast<long>(3 * t),
+                    scene.indices.begin() + static_cast<long>(3 * t + 3));
+    }
+    auto alphaTested = [&](size_t m) {
+        return m < scene.materials.size() && scene.materials[m].alphaTested();
+    };
+    std::vector<uint32_t> indices;
+    indices.reserve(scene.indices.size());
+    for (const bool tested : {false, true})
+        for (size_t m = 0; m < materialCount; ++m) {
+            if (alphaTested(m) != tested || byMaterial[m].empty())
+                continue;
+            out.batches.push_back({.material = static_cast<uint32_t>(m),
+                                   .firstIndex = static_cast<uint32_t>(indices.size()),
+                                   .indexCount = static_cast<uint32_t>(byMaterial[m].size())});
+            indices.insert(indices.end(), byMaterial[m].begin(), byMaterial[m].end());
+            if (!tested)
+                out.opaqueIndexCount = static_cast<uint32_t>(indices.size());
+        }
+    out.textures = uploadTextures(ctx, scene);
+    for (size_t m = 0; m < materialCount; ++m) {
+        const Material material = m < scene.materials.size() ? scene.materials[m] : Material{};
+        out.materials.push_back({.baseColor = material.baseColor,
+                                 .alphaCutoff = material.alphaCutoff,
+                                 .alphaTest = material.alphaTested() ? 1u : 0u,
+                                 .hasTexture = material.baseColorTexture >= 0 ? 1u : 0u});
+        out.materialTextures.push_back(out.textures.of(scene, static_cast<uint32_t>(m)));
+        out.doubleSided.push_back(material.doubleSided);
+    }
+    out.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.vertices)),
+                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex buffer");
+    out.indices = vk::uploadBuffer(ctx, std::as_bytes(std::span(indices)),
+                                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index buffer");
+    out.indexCount = static_cast<uint32_t>(indices.size());
+    return out;
 }
 
 } // namespace penumbra::render

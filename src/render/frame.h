@@ -4,6 +4,7 @@
 #include "core/light_space.h"
 #include "gpu_types.h"
 #include "render/pipelines.h"
+#include "render/textures.h"
 #include "vk/resources.h"
 #include "vk/timestamps.h"
 
@@ -11,9 +12,23 @@
 
 namespace penumbra::render {
 
+// The triangles of one material, contiguous in the index buffer.
+struct DrawBatch {
+    uint32_t material;
+    uint32_t firstIndex, indexCount;
+};
+
+// Indices are grouped by material, the alpha-tested materials last, so that the shadow pass
+// draws every opaque caster in one call and only the alpha-tested ones per material.
 struct GpuScene {
-    vk::Buffer vertices, indices, materials;
+    vk::Buffer vertices, indices;
     uint32_t indexCount = 0;
+    uint32_t opaqueIndexCount = 0; // indices [0, opaqueIndexCount) have no alpha test
+    std::vector<DrawBatch> batches;
+    std::vector<gpu::MaterialPush> materials; // per Scene::materials
+    GpuTextures textures;
+    std::vector<GpuTextures::Binding> materialTextures; // per Scene::materials
+    std::vector<bool> doubleSided;                      // per Scene::materials
 };
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
 

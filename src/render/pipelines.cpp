@@ -13,14 +13,20 @@ constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
 constexpr VkDescriptorType kImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
 
+constexpr VkShaderStageFlags kGraphicsStages =
+    VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+
+VkVertexInputAttributeDescription attribute(uint32_t location, VkFormat format, uint32_t offset) {
+    return {.location = location, .binding = 0, .format = format, .offset = offset};
+}
+
 vk::GraphicsPipelineDesc shadowDesc(bool depthClamp, std::string_view fragment = {}) {
     return {.vertexShader = "shadow_depth.vert",
             .fragmentShader = fragment,
             .vertexStride = sizeof(Vertex),
-            .attributes = {{.location = 0,
-                            .binding = 0,
-                            .format = VK_FORMAT_R32G32B32_SFLOAT,
-                            .offset = offsetof(Vertex, position)}},
+            .attributes = {attribute(0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)),
+                           attribute(1, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)),
+                           attribute(2, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color))},
             .depthFormat = kDepthFormat,
             .depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL,
             .depthClamp = depthClamp,
@@ -36,9 +42,10 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                   static_cast<uint32_t>(Technique::SecondDepth) == TECHNIQUE_SECOND_DEPTH);
     shadowLayout =
         vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
-    gbufferLayout =
-        vk::createPipelineLayout(ctx, {{0, kUniform}, {1, kStorage}},
-                                 VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0);
+    shadowMaskLayout = vk::createPipelineLayout(
+        ctx, {{0, kSampled}}, kGraphicsStages, sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
+    gbufferLayout = vk::createPipelineLayout(ctx, {{0, kUniform}, {1, kSampled}}, kGraphicsStages,
+                                             sizeof(gpu::MaterialPush));
     // Visibility and composite read the same inputs (camera, lights, four textures, one image
     // out), so they share one layout; only visibility uses the push constants.
     screenLayout =
@@ -60,9 +67,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
         {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kStorage}, {5, kStorage}},
         VK_SHADER_STAGE_COMPUTE_BIT, sizeof(glm::uvec4));
 
-    peelLayout = vk::createPipelineLayout(ctx, {{0, kSampled}},
-                                          VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-                                          sizeof(gpu::ShadowPush));
+    peelLayout = vk::createPipelineLayout(ctx, {{0, kSampled}, {1, kSampled}}, kGraphicsStages,
+                                          sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
     midpointLayout = vk::createPipelineLayout(ctx, {{0, kSampled}, {1, kSampled}, {2, kImage}},
                                               VK_SHADER_STAGE_COMPUTE_BIT, sizeof(glm::uvec4));
     peelOrtho = vk::createGraphicsPipeline(ctx, peelLayout, shadowDesc(true, "shadow_peel.frag"));
@@ -71,26 +77,23 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     midpoint = vk::createComputePipeline(ctx, midpointLayout, "second_depth_mid.comp");
     shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(true));
     shadowPerspective = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(false));
-    gbuffer =
-        vk::createGraphicsPipeline(ctx, gbufferLayout,
-                                   {.vertexShader = "gbuffer.vert",
-                                    .fragmentShader = "gbuffer.frag",
-                                    .vertexStride = sizeof(Vertex),
-                                    .attributes = {{.location = 0,
-                                                    .binding = 0,
-                                                    .format = VK_FORMAT_R32G32B32_SFLOAT,
-                                                    .offset = offsetof(Vertex, position)},
-                                                   {.location = 1,
-                                                    .binding = 0,
-                                                    .format = VK_FORMAT_R32G32B32_SFLOAT,
-                                                    .offset = offsetof(Vertex, normal)},
-                                                   {.location = 2,
-                                                    .binding = 0,
-                                                    .format = VK_FORMAT_R32_UINT,
-                                                    .offset = offsetof(Vertex, material)}},
-                                    .colorFormats = {kNormalFormat, kAlbedoFormat},
-                                    .depthFormat = kDepthFormat,
-                                    .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL}); // reverse-Z
+    shadowMaskOrtho =
+        vk::createGraphicsPipeline(ctx, shadowMaskLayout, shadowDesc(true, "shadow_mask.frag"));
+    shadowMaskPerspective =
+        vk::createGraphicsPipeline(ctx, shadowMaskLayout, shadowDesc(false, "shadow_mask.frag"));
+    gbuffer = vk::createGraphicsPipeline(
+        ctx, gbufferLayout,
+        {.vertexShader = "gbuffer.vert",
+         .fragmentShader = "gbuffer.frag",
+         .vertexStride = sizeof(Vertex),
+         .attributes = {attribute(0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)),
+                        attribute(1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)),
+                        attribute(2, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)),
+                        attribute(3, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color))},
+         .colorFormats = {kNormalFormat, kAlbedoFormat},
+         .depthFormat = kDepthFormat,
+         .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL, // reverse-Z
+         .dynamicCullMode = true});
     composite = vk::createComputePipeline(ctx, screenLayout, "composite.comp");
     exportGBuffer = vk::createComputePipeline(ctx, exportLayout, "export.comp");
 }

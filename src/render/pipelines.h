@@ -18,8 +18,10 @@ public:
     const vk::Context& ctx;
     vk::PipelineLayout shadowLayout, gbufferLayout, screenLayout, exportLayout, probeLayout;
     vk::PipelineLayout peelLayout, midpointLayout; // second-depth shadow maps
+    vk::PipelineLayout shadowMaskLayout;           // alpha-tested casters
     vk::PipelineHandle shadowOrtho;       // depth clamp on: casters before the near plane clamp
     vk::PipelineHandle shadowPerspective; // depth clamp off
+    vk::PipelineHandle shadowMaskOrtho, shadowMaskPerspective; // alpha-tested casters
     vk::PipelineHandle peelOrtho, peelPerspective, midpoint;
     vk::PipelineHandle gbuffer, composite, exportGBuffer;
 

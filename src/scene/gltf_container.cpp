@@ -113,6 +113,44 @@ void checkReferences(const std::filesystem::path& file, const nlohmann::json& j)
                 checkIndex(file, j, pp + ".material", p["material"], "materials");
         }
     });
+    each("materials", [&](const std::string& path, const nlohmann::json& m) {
+        auto textureInfo = [&](const std::string& at, const nlohmann::json& owner,
+                               const char* key) {
+            if (!owner.contains(key))
+                return;
+            const auto& info = owner[key];
+            if (!info.is_object() || !info.contains("index"))
+                refuse(file, at + "." + key + ": an object with an index is expected");
+            checkIndex(file, j, at + "." + key + ".index", info["index"], "textures");
+            if (info.contains("texCoord") &&
+                (!info["texCoord"].is_number_integer() || info["texCoord"].get<long long>() < 0))
+                refuse(file, at + "." + key + ".texCoord: not a non-negative integer");
+        };
+        for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"})
+            textureInfo(path, m, key);
+        if (m.contains("pbrMetallicRoughness")) {
+            const auto& pbr = m["pbrMetallicRoughness"];
+            if (!pbr.is_object())
+                refuse(file, path + ".pbrMetallicRoughness: wrong JSON type (object expected)");
+            for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
+                textureInfo(path + ".pbrMetallicRoughness", pbr, key);
+        }
+    });
+    each("textures", [&](const std::string& path, const nlohmann::json& t) {
+        if (t.contains("source"))
+            checkIndex(file, j, path + ".source", t["source"], "images");
+        if (t.contains("sampler"))
+            checkIndex(file, j, path + ".sampler", t["sampler"], "samplers");
+    });
+    each("images", [&](const std::string& path, const nlohmann::json& i) {
+        if (i.contains("bufferView")) {
+            checkIndex(file, j, path + ".bufferView", i["bufferView"], "bufferViews");
+            if (!i.contains("mimeType"))
+                refuse(file, path + ".mimeType: required with a bufferView");
+        } else if (!i.contains("uri")) {
+            refuse(file, path + ": neither uri nor bufferView");
+        }
+    });
     each("accessors", [&](const std::string& path, const nlohmann::json& a) {
         if (a.contains("bufferView"))
             checkIndex(file, j, path + ".bufferView", a["bufferView"], "bufferViews");

@@ -6,6 +6,7 @@
 #include "penumbra/error.h"
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_container.h"
+#include "scene/gltf_images.h"
 #include "scene/gltf_validate.h"
 
 #include <fmt/format.h>
@@ -66,12 +67,6 @@ bool writeNothing(std::string*, const std::string&, const std::vector<unsigned c
     return false;
 }
 
-// Textures are not used yet: images are not decoded (no decoder sees hostile image bytes).
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
-    return true;
-}
-
 glm::mat4 localTransform(const tinygltf::Node& n) {
     if (n.matrix.size() == 16) {
         glm::mat4 m;
@@ -119,6 +114,8 @@ struct Flattener {
     const tinygltf::Model& m;
     Scene& scene;
     const GltfOptions& options;
+    std::vector<int> texCoordSet; // per material: the TEXCOORD_n its base-colour texture reads
+    uint32_t defaultMaterial = 0; // for primitives without one
 
     void warn(const std::string& w) const {
         if (options.warnings)
@@ -152,14 +149,25 @@ struct Flattener {
             for (uint32_t i = 0; i < count; ++i)
                 idx[i] = i;
         }
-        const std::vector<uint32_t> tri = triangles(p.mode, idx);
+        std::vector<uint32_t> tri = triangles(p.mode, idx);
+        if (glm::determinant(glm::mat3(world)) < 0.0f) // a mirroring transform flips the winding
+            for (size_t t = 0; t + 2 < tri.size(); t += 3)
+                std::swap(tri[t + 1], tri[t + 2]);
         std::vector<float> normals;
         if (const auto n = p.attributes.find("NORMAL"); n != p.attributes.end()) {
             normals = readFloats(m, n->second);
             if (normals.size() != pos.size())
                 normals.clear();
         }
-        const uint32_t material = p.material >= 0 ? static_cast<uint32_t>(p.material) : 0;
+        const uint32_t material =
+            p.material >= 0 ? static_cast<uint32_t>(p.material) : defaultMaterial;
+        const std::vector<float> uv =
+            attribute(p, fmt::format("TEXCOORD_{}", texCoordSet[material]), count, 2);
+        const int colorAccessor =
+            p.attributes.contains("COLOR_0") ? p.attributes.at("COLOR_0") : -1;
+        const size_t colorSize =
+            colorAccessor >= 0 && m.accessors[colorAccessor].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+        const std::vector<float> color = attribute(p, "COLOR_0", count, colorSize);
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
         const uint32_t base = static_cast<uint32_t>(scene.vertices.size());
         for (size_t v = 0; v < count; ++v) {
@@ -169,7 +177,14 @@ struct Flattener {
                               : glm::vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
             if (!normals.empty())
                 n = normalMatrix * n;
-            scene.vertices.push_back({glm::vec3(world * glm::vec4(local, 1.0f)), n, material});
+            Vertex out{glm::vec3(world * glm::vec4(local, 1.0f)), n, material};
+            if (!uv.empty())
+                out.uv = glm::vec2(uv[2 * v], uv[2 * v + 1]);
+            if (!color.empty())
+                out.color = glm::vec4(color[colorSize * v], color[colorSize * v + 1],
+                                      color[colorSize * v + 2],
+                                      colorSize == 4 ? color[colorSize * v + 3] : 1.0f);
+            scene.vertices.push_back(out);
         }
         if (normals.empty()) { // missing normals: area-weighted smooth normals of the primitive
             for (size_t t = 0; t + 2 < tri.size(); t += 3) {
@@ -188,6 +203,21 @@ struct Flattener {
         }
         for (uint32_t i : tri)
             scene.indices.push_back(base + i);
+    }
+
+    // A vertex attribute as count x size floats; empty when the primitive lacks it.
+    std::vector<float> attribute(const tinygltf::Primitive& p, const std::string& name,
+                                 size_t count, size_t size) const {
+        const auto a = p.attributes.find(name);
+        if (a == p.attributes.end())
+            return {};
+        std::vector<float> values = readFloats(m, a->second);
+        if (values.size() != count * size)
+            return {};
+        for (float& v : values)
+            if (!std::isfinite(v))
+                v = 0.0f;
+        return values;
     }
 
     void node(const tinygltf::Node& n, const glm::mat4& world) {
@@ -275,7 +305,8 @@ struct Flattener {
 
 Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
     const gltf::Container container = gltf::readContainer(file, options.maxFileSize);
-    gltf::checkJson(file, container.json);
+    const nlohmann::json json = gltf::checkJson(file, container.json);
+    gltf::ImageDecodePolicy images = gltf::baseColorImages(json);
     FsPolicy policy{.folder = std::filesystem::absolute(file).parent_path(),
                     .maxFileSize = options.maxFileSize};
     tinygltf::TinyGLTF loader;
@@ -284,7 +315,7 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
                                                 .ReadWholeFile = &readWholeFile,
                                                 .WriteWholeFile = &writeNothing,
                                                 .user_data = &policy});
-    loader.SetImageLoader(&skipImage, nullptr);
+    loader.SetImageLoader(&gltf::decodeImage, &images);
     tinygltf::Model model;
     std::string err, warn;
     const std::string base = policy.folder.string();
@@ -302,14 +333,32 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
 
     Scene scene;
     scene.name = file.stem().string();
+    const std::vector<int32_t> textureOf =
+        gltf::readTextures(file, model, images, scene, options.warnings);
+    Flattener flat{file, model, scene, options};
     for (const auto& mat : model.materials) {
         const auto& f = mat.pbrMetallicRoughness.baseColorFactor;
+        const auto& texture = mat.pbrMetallicRoughness.baseColorTexture;
+        const AlphaMode mode = mat.alphaMode == "MASK"    ? AlphaMode::Mask
+                               : mat.alphaMode == "BLEND" ? AlphaMode::Blend
+                                                          : AlphaMode::Opaque;
+        if (mode == AlphaMode::Blend)
+            flat.warn(fmt::format("materials[{}]: alphaMode BLEND is drawn opaque",
+                                  scene.materials.size()));
         scene.materials.push_back(
-            {.name = mat.name, .baseColor = glm::vec4(f[0], f[1], f[2], f[3])});
+            {.name = mat.name,
+             .baseColor = glm::vec4(f[0], f[1], f[2], f[3]),
+             .baseColorTexture = texture.index >= 0 ? textureOf[texture.index] : -1,
+             .alphaMode = mode,
+             .alphaCutoff = static_cast<float>(mat.alphaCutoff),
+             .doubleSided = mat.doubleSided});
+        flat.texCoordSet.push_back(texture.texCoord);
     }
-    if (scene.materials.empty())
-        scene.materials.push_back({.name = "default"});
-    Flattener flat{file, model, scene, options};
+    // glTF's default material: white, opaque, single-sided.
+    flat.defaultMaterial = static_cast<uint32_t>(scene.materials.size());
+    scene.materials.push_back(
+        {.name = "default", .baseColor = glm::vec4(1.0f), .doubleSided = false});
+    flat.texCoordSet.push_back(0);
     if (!model.scenes.empty())
         flat.walk(model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes);
     if (scene.lights.empty()) // no light: a default sun, from above and slightly behind

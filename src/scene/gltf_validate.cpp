@@ -142,8 +142,18 @@ struct Checker {
                 if (const auto n = prim.attributes.find("NORMAL"); n != prim.attributes.end())
                     accessorOfType(path + ".attributes.NORMAL", n->second, TINYGLTF_TYPE_VEC3,
                                    true);
-                for (const auto& [name, accessor] : prim.attributes)
-                    index(path + ".attributes." + name, accessor, m.accessors.size(), "accessor");
+                for (const auto& [name, accessor] : prim.attributes) {
+                    const std::string at = path + ".attributes." + name;
+                    index(at, accessor, m.accessors.size(), "accessor");
+                    if (name.rfind("TEXCOORD_", 0) == 0)
+                        attributeOf(at, accessor, {TINYGLTF_TYPE_VEC2});
+                    else if (name.rfind("COLOR_", 0) == 0)
+                        attributeOf(at, accessor, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4});
+                    if (m.accessors[accessor].count != m.accessors[pos->second].count)
+                        fail(at, fmt::format("has {} elements but POSITION has {}",
+                                             m.accessors[accessor].count,
+                                             m.accessors[pos->second].count));
+                }
                 if (prim.indices >= 0) {
                     accessorOfType(path + ".indices", prim.indices, TINYGLTF_TYPE_SCALAR, false);
                     const int ct = m.accessors[prim.indices].componentType;
@@ -157,6 +167,37 @@ struct Checker {
                 if (prim.mode < 0 || prim.mode > 6)
                     fail(path + ".mode", "not a glTF mode");
             }
+    }
+
+    // TEXCOORD_n and COLOR_n: float, or normalized unsigned byte / short.
+    void attributeOf(const std::string& path, int i, std::initializer_list<int> types) const {
+        const auto& a = m.accessors[i];
+        const bool typeOk = std::find(types.begin(), types.end(), a.type) != types.end();
+        const bool componentOk =
+            a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+            (a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                              a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+        if (!typeOk || !componentOk)
+            fail(path, "wrong accessor type or componentType");
+    }
+
+    void materials() const {
+        for (size_t i = 0; i < m.materials.size(); ++i) {
+            const auto& mat = m.materials[i];
+            const std::string path = fmt::format("materials[{}]", i);
+            const auto& factor = mat.pbrMetallicRoughness.baseColorFactor;
+            if (factor.size() != 4)
+                fail(path + ".pbrMetallicRoughness.baseColorFactor", "needs 4 numbers");
+            for (double f : factor)
+                if (!(f >= 0.0 && f <= 1.0))
+                    fail(path + ".pbrMetallicRoughness.baseColorFactor",
+                         "values must be in [0, 1]");
+            if (mat.alphaMode != "OPAQUE" && mat.alphaMode != "MASK" && mat.alphaMode != "BLEND")
+                fail(path + ".alphaMode",
+                     fmt::format("'{}' is not OPAQUE, MASK or BLEND", mat.alphaMode));
+            if (!(mat.alphaCutoff >= 0.0) || !std::isfinite(mat.alphaCutoff))
+                fail(path + ".alphaCutoff", "must be a finite number >= 0");
+        }
     }
 
     void nodes() const {
@@ -224,6 +265,7 @@ void validateModel(const std::filesystem::path& file, const tinygltf::Model& mod
     c.accessors();
     c.meshes();
     c.nodes();
+    c.materials();
 }
 
 } // namespace penumbra::gltf

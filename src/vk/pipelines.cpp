@@ -122,7 +122,8 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
         .sType = VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO,
         .viewportCount = 1,
         .scissorCount = 1};
-    // No culling: open geometry (planes, fence slats) casts and receives from both sides.
+    // No culling unless set per draw: open geometry (planes, fence slats) casts and receives
+    // from both sides; the camera's view culls the back of single-sided materials.
     const VkPipelineRasterizationStateCreateInfo raster{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO,
         .depthClampEnable = desc.depthClamp ? VK_TRUE : VK_FALSE,
@@ -151,6 +152,8 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
     std::vector<VkDynamicState> dynamic{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     if (desc.depthBias)
         dynamic.push_back(VK_DYNAMIC_STATE_DEPTH_BIAS);
+    if (desc.dynamicCullMode)
+        dynamic.push_back(VK_DYNAMIC_STATE_CULL_MODE);
     const VkPipelineDynamicStateCreateInfo dynamicState{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO,
         .dynamicStateCount = static_cast<uint32_t>(dynamic.size()),

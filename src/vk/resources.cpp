@@ -47,7 +47,7 @@ ImageViewHandle createView(const Context& ctx, const Image& image, VkImageViewTy
                                      .format = image.format,
                                      .subresourceRange = {.aspectMask = image.aspect,
                                                           .baseMipLevel = 0,
-                                                          .levelCount = 1,
+                                                          .levelCount = image.mipLevels,
                                                           .baseArrayLayer = baseLayer,
                                                           .layerCount = layerCount}};
     VkImageView view = VK_NULL_HANDLE;
@@ -104,12 +104,13 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
                 .width = desc.width,
                 .height = desc.height,
                 .layers = desc.layers,
+                .mipLevels = desc.mipLevels,
                 .aspect = aspectOf(desc.format)};
     const VkImageCreateInfo info{.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
                                  .imageType = VK_IMAGE_TYPE_2D,
                                  .format = desc.format,
                                  .extent = {desc.width, desc.height, 1},
-                                 .mipLevels = 1,
+                                 .mipLevels = desc.mipLevels,
                                  .arrayLayers = desc.layers,
                                  .samples = VK_SAMPLE_COUNT_1_BIT,
                                  .tiling = VK_IMAGE_TILING_OPTIMAL,

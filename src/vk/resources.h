@@ -27,6 +27,7 @@ struct ImageDesc {
     uint32_t width = 0, height = 0, layers = 1;
     VkImageUsageFlags usage = 0;
     bool arrayView = false; // a 2D-array view even for one layer (image2DArray in shaders)
+    uint32_t mipLevels = 1; // the view covers them all
 };
 
 struct Image {
@@ -34,7 +35,7 @@ struct Image {
     MemoryHandle memory;
     ImageViewHandle view; // 2D, or 2D array for several layers or ImageDesc::arrayView
     VkFormat format = VK_FORMAT_UNDEFINED;
-    uint32_t width = 0, height = 0, layers = 1;
+    uint32_t width = 0, height = 0, layers = 1, mipLevels = 1;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     VkImage get() const { return image.get(); }
     explicit operator bool() const { return static_cast<bool>(image); }

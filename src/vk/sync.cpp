@@ -3,22 +3,23 @@
 namespace penumbra::vk {
 
 void imageBarrier(VkCommandBuffer cmd, const Image& image, const ImageState& from,
-                  const ImageState& to) {
-    const VkImageMemoryBarrier2 barrier{.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-                                        .srcStageMask = from.stage,
-                                        .srcAccessMask = from.access,
-                                        .dstStageMask = to.stage,
-                                        .dstAccessMask = to.access,
-                                        .oldLayout = from.layout,
-                                        .newLayout = to.layout,
-                                        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-                                        .image = image.get(),
-                                        .subresourceRange = {.aspectMask = image.aspect,
-                                                             .baseMipLevel = 0,
-                                                             .levelCount = 1,
-                                                             .baseArrayLayer = 0,
-                                                             .layerCount = image.layers}};
+                  const ImageState& to, uint32_t baseMip, uint32_t mipCount) {
+    const VkImageMemoryBarrier2 barrier{
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+        .srcStageMask = from.stage,
+        .srcAccessMask = from.access,
+        .dstStageMask = to.stage,
+        .dstAccessMask = to.access,
+        .oldLayout = from.layout,
+        .newLayout = to.layout,
+        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+        .image = image.get(),
+        .subresourceRange = {.aspectMask = image.aspect,
+                             .baseMipLevel = baseMip,
+                             .levelCount = mipCount ? mipCount : image.mipLevels - baseMip,
+                             .baseArrayLayer = 0,
+                             .layerCount = image.layers}};
     const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
                                       .imageMemoryBarrierCount = 1,
                                       .pImageMemoryBarriers = &barrier};

@@ -35,8 +35,16 @@ inline constexpr ImageState kTransferRead{VK_PIPELINE_STAGE_2_COPY_BIT,
                                           VK_ACCESS_2_TRANSFER_READ_BIT,
                                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
 
+inline constexpr ImageState kCopyWrite{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+inline constexpr ImageState kBlitRead{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
+inline constexpr ImageState kBlitWrite{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
+
+// Mip levels [baseMip, baseMip + mipCount) of every layer; mipCount 0: all from baseMip.
 void imageBarrier(VkCommandBuffer cmd, const Image& image, const ImageState& from,
-                  const ImageState& to);
+                  const ImageState& to, uint32_t baseMip = 0, uint32_t mipCount = 0);
 void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStage,
                    VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
                    VkAccessFlags2 dstAccess);

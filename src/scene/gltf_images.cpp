@@ -1,0 +1,139 @@
+#include "scene/gltf_images.h"
+
+#include "penumbra/error.h"
+
+#include <fmt/format.h>
+#include <stb/stb_image.h>
+
+#include <cstring>
+#include <map>
+
+namespace penumbra::gltf {
+namespace {
+
+bool isPng(const unsigned char* b, int size) {
+    static constexpr unsigned char kMagic[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    return size >= 8 && std::memcmp(b, kMagic, 8) == 0;
+}
+
+bool isJpeg(const unsigned char* b, int size) {
+    return size >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff;
+}
+
+TextureWrap wrapOf(int mode) {
+    if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
+        return TextureWrap::ClampToEdge;
+    if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
+        return TextureWrap::MirroredRepeat;
+    return TextureWrap::Repeat;
+}
+
+} // namespace
+
+ImageDecodePolicy baseColorImages(const nlohmann::json& j) {
+    ImageDecodePolicy policy;
+    if (!j.contains("materials") || !j.contains("textures"))
+        return policy;
+    const auto& textures = j["textures"];
+    for (const auto& m : j["materials"]) {
+        if (!m.contains("pbrMetallicRoughness"))
+            continue;
+        const auto& pbr = m["pbrMetallicRoughness"];
+        if (!pbr.contains("baseColorTexture"))
+            continue;
+        const auto& t = textures[pbr["baseColorTexture"]["index"].get<size_t>()];
+        if (t.contains("source"))
+            policy.wanted.insert(t["source"].get<int>());
+    }
+    return policy;
+}
+
+bool decodeImage(tinygltf::Image* image, int index, std::string* err, std::string*, int, int,
+                 const unsigned char* bytes, int size, void* user) {
+    auto& policy = *static_cast<ImageDecodePolicy*>(user);
+    if (!policy.wanted.contains(index))
+        return true;
+    auto refuse = [&](const std::string& why) {
+        if (err)
+            *err += fmt::format("images[{}]: {}\n", index, why);
+        return false;
+    };
+    if (!bytes || size <= 0)
+        return refuse("no image bytes");
+    if (!isPng(bytes, size) && !isJpeg(bytes, size))
+        return refuse("not a PNG or JPEG image");
+    int width = 0, height = 0, channels = 0;
+    if (!stbi_info_from_memory(bytes, size, &width, &height, &channels))
+        return refuse(fmt::format("cannot read the image header ({})", stbi_failure_reason()));
+    if (width < 1 || height < 1 || width > static_cast<int>(kMaxImageSide) ||
+        height > static_cast<int>(kMaxImageSide))
+        return refuse(
+            fmt::format("{}x{} pixels is outside 1..{} per side", width, height, kMaxImageSide));
+    const uint64_t bytesNeeded = uint64_t(width) * uint64_t(height) * 4;
+    if (policy.decodedBytes + bytesNeeded > policy.maxDecodedBytes)
+        return refuse(
+            fmt::format("the images need more than {} bytes decoded", policy.maxDecodedBytes));
+    policy.decodedBytes += bytesNeeded;
+    int w = 0, h = 0;
+    unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &channels, 4);
+    if (!pixels)
+        return refuse(fmt::format("cannot decode the image ({})", stbi_failure_reason()));
+    if (w != width || h != height) {
+        stbi_image_free(pixels);
+        return refuse("the decoded size differs from the header's");
+    }
+    image->width = w;
+    image->height = h;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image.assign(pixels, pixels + static_cast<size_t>(w) * static_cast<size_t>(h) * 4);
+    stbi_image_free(pixels);
+    return true;
+}
+
+std::vector<int32_t> readTextures(const std::filesystem::path& file, tinygltf::Model& model,
+                                  const ImageDecodePolicy& policy, Scene& scene,
+                                  std::vector<std::string>* warnings) {
+    std::vector<int32_t> textureOf(model.textures.size(), -1);
+    std::map<int, uint32_t> sceneImage;
+    for (int i : policy.wanted) {
+        tinygltf::Image& image = model.images[static_cast<size_t>(i)];
+        const size_t expected = static_cast<size_t>(image.width) * image.height * 4;
+        if (image.image.empty() || image.width <= 0 || image.height <= 0 ||
+            image.image.size() != expected)
+            throw InputError(file.string(),
+                             fmt::format("images[{}]: cannot read the image{}", i,
+                                         image.uri.empty() || image.uri.starts_with("data:")
+                                             ? std::string()
+                                             : " '" + image.uri + "'"));
+        sceneImage[i] = static_cast<uint32_t>(scene.images.size());
+        scene.images.push_back({.name = image.name.empty() ? fmt::format("image{}", i) : image.name,
+                                .width = static_cast<uint32_t>(image.width),
+                                .height = static_cast<uint32_t>(image.height),
+                                .rgba = std::move(image.image)});
+    }
+    for (size_t t = 0; t < model.textures.size(); ++t) {
+        const tinygltf::Texture& texture = model.textures[t];
+        const auto image = sceneImage.find(texture.source);
+        if (image == sceneImage.end()) {
+            if (texture.source < 0 && warnings)
+                warnings->push_back(fmt::format("{}: textures[{}] has no PNG or JPEG source; "
+                                                "its materials use their colour factor",
+                                                file.string(), t));
+            continue;
+        }
+        Texture out{.image = image->second};
+        if (texture.sampler >= 0) {
+            const tinygltf::Sampler& s = model.samplers[static_cast<size_t>(texture.sampler)];
+            out.wrapS = wrapOf(s.wrapS);
+            out.wrapT = wrapOf(s.wrapT);
+            out.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+        }
+        textureOf[t] = static_cast<int32_t>(scene.textures.size());
+        scene.textures.push_back(out);
+    }
+    return textureOf;
+}
+
+} // namespace penumbra::gltf
