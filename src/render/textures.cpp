@@ -44,7 +44,9 @@ vk::SamplerHandle createTextureSampler(const vk::Context& ctx, const Texture& t)
 // level ready for fragment shaders.
 void recordUpload(VkCommandBuffer cmd, const vk::Image& image, VkBuffer staging,
                   VkDeviceSize offset) {
-    vk::imageBarrier(cmd, image, vk::kUndefined, vk::kCopyWrite);
+    vk::imageBarrier(cmd, image, vk::kUndefined, vk::kCopyWrite, 0, 1);
+    if (image.mipLevels > 1)
+        vk::imageBarrier(cmd, image, vk::kUndefined, vk::kBlitWrite, 1);
     const VkBufferImageCopy region{
         .bufferOffset = offset,
         .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT, .layerCount = 1},

@@ -25,8 +25,20 @@ inline constexpr glm::vec3 kGrazingBoxCenter{-4.0f, 0.15f, 0.0f};
 inline constexpr glm::vec3 kGrazingBoxSize{1.0f, 0.3f, 1.0f};
 inline constexpr float kGrazingHalfSize = 20.0f;
 
+// Foliage: alpha-tested casters (a pergola roof of tiled leaves, bushes, a lattice trellis).
+inline constexpr uint32_t kLeafTextureSize = 256;
+inline constexpr uint32_t kLatticeTextureSize = 64;
+inline constexpr uint32_t kLatticePeriod = 16, kLatticeBar = 5; // texels
+inline constexpr float kFoliageAlphaCutoff = 0.5f;
+inline constexpr glm::vec3 kCanopyMin{-4.5f, 3.0f, -3.5f}; // the roof lies at y = kCanopyMin.y
+inline constexpr glm::vec3 kCanopyMax{1.5f, 3.0f, 0.5f};
+inline constexpr glm::vec2 kCanopyTiles{3.0f, 2.0f};
+inline constexpr glm::vec3 kTrellisMin{2.5f, 0.0f, -3.0f}; // a vertical quad at z = kTrellisMin.z
+inline constexpr glm::vec3 kTrellisMax{5.5f, 2.4f, -3.0f};
+
 Scene showcase();
 Scene grazing();
 Scene spot();
+Scene foliage();
 
 } // namespace penumbra::builtin

@@ -11,16 +11,34 @@ uint32_t MeshBuilder::material(const std::string& name, const glm::vec3& linearC
     return static_cast<uint32_t>(mScene.materials.size() - 1);
 }
 
-uint32_t MeshBuilder::vertex(const glm::vec3& p, const glm::vec3& n, uint32_t material) {
-    mScene.vertices.push_back({.position = p, .normal = glm::normalize(n), .material = material});
+uint32_t MeshBuilder::texturedMaterial(const std::string& name, TextureImage image,
+                                       const Texture& sampling, AlphaMode mode, float alphaCutoff) {
+    Texture texture = sampling;
+    texture.image = static_cast<uint32_t>(mScene.images.size());
+    mScene.images.push_back(std::move(image));
+    mScene.materials.push_back({.name = name,
+                                .baseColor = glm::vec4(1.0f),
+                                .baseColorTexture = static_cast<int32_t>(mScene.textures.size()),
+                                .alphaMode = mode,
+                                .alphaCutoff = alphaCutoff});
+    mScene.textures.push_back(texture);
+    return static_cast<uint32_t>(mScene.materials.size() - 1);
+}
+
+uint32_t MeshBuilder::vertex(const glm::vec3& p, const glm::vec3& n, uint32_t material,
+                             glm::vec2 uv) {
+    mScene.vertices.push_back(
+        {.position = p, .normal = glm::normalize(n), .material = material, .uv = uv});
     return static_cast<uint32_t>(mScene.vertices.size() - 1);
 }
 
 void MeshBuilder::quad(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
-                       const glm::vec3& d, uint32_t material) {
+                       const glm::vec3& d, uint32_t material, glm::vec2 uvScale) {
     const glm::vec3 n = glm::normalize(glm::cross(b - a, d - a));
-    const uint32_t i0 = vertex(a, n, material), i1 = vertex(b, n, material);
-    const uint32_t i2 = vertex(c, n, material), i3 = vertex(d, n, material);
+    const uint32_t i0 = vertex(a, n, material, {0.0f, uvScale.y});
+    const uint32_t i1 = vertex(b, n, material, uvScale);
+    const uint32_t i2 = vertex(c, n, material, {uvScale.x, 0.0f});
+    const uint32_t i3 = vertex(d, n, material, {0.0f, 0.0f});
     mScene.indices.insert(mScene.indices.end(), {i0, i1, i2, i0, i2, i3});
 }
 

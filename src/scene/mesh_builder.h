@@ -12,9 +12,13 @@ public:
     explicit MeshBuilder(Scene& scene) : mScene(scene) {}
 
     uint32_t material(const std::string& name, const glm::vec3& linearColor);
-    // Quad through four corners in counter-clockwise order seen from its front.
+    // A material with a base-colour texture (its image is added to the scene).
+    uint32_t texturedMaterial(const std::string& name, TextureImage image, const Texture& sampling,
+                              AlphaMode mode, float alphaCutoff = 0.5f);
+    // Quad through four corners in counter-clockwise order seen from its front; texture
+    // coordinates run from (0, uvScale.y) at `a` to (uvScale.x, 0) at `c`.
     void quad(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& d,
-              uint32_t material);
+              uint32_t material, glm::vec2 uvScale = glm::vec2(1.0f));
     // The unit cube [-1/2, 1/2]^3 under `transform` (flat-shaded, 12 triangles).
     void box(const glm::mat4& transform, uint32_t material);
     // A box of square cross-section `thickness` from `from` to `to`.
@@ -23,7 +27,8 @@ public:
                 uint32_t stacks = 32);
 
 private:
-    uint32_t vertex(const glm::vec3& p, const glm::vec3& n, uint32_t material);
+    uint32_t vertex(const glm::vec3& p, const glm::vec3& n, uint32_t material,
+                    glm::vec2 uv = glm::vec2(0.0f));
     Scene& mScene;
 };
 

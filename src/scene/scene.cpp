@@ -14,8 +14,10 @@ struct BuiltinEntry {
     std::string_view name;
     Scene (*make)();
 };
-constexpr BuiltinEntry kBuiltins[] = {
-    {"showcase", builtin::showcase}, {"grazing", builtin::grazing}, {"spot", builtin::spot}};
+constexpr BuiltinEntry kBuiltins[] = {{"showcase", builtin::showcase},
+                                      {"grazing", builtin::grazing},
+                                      {"spot", builtin::spot},
+                                      {"foliage", builtin::foliage}};
 
 } // namespace
 
