@@ -278,3 +278,36 @@ TEST_P(GltfMaterialRefuses, WithTheFileAndThePath) {
 
 INSTANTIATE_TEST_SUITE_P(Assets, GltfMaterialRefuses, ::testing::ValuesIn(badMaterials()),
                          [](const auto& p) { return std::string(p.param.name); });
+
+TEST(GltfUris, PercentEncodedNamesAreDecodedAndStillChecked) {
+    const fs::path d = dir("percent");
+    GltfBuilder b = texturedQuad();
+    const std::vector<uint8_t> image = png();
+    b.j["images"][0] = {{"uri", "my%20leaf%2Bnew.png"}};
+    std::ofstream(d / "my leaf+new.png", std::ios::binary)
+        .write(reinterpret_cast<const char*>(image.data()), std::streamsize(image.size()));
+    const Scene s = load(b.writeGltf(d / "a.gltf"));
+    ASSERT_EQ(s.images.size(), 1u);
+    EXPECT_EQ(s.images[0].rgba, kPixels);
+
+    const std::pair<const char*, const char*> refused[] = {
+        {"%2e%2e/secret.png", "URIs may not leave the asset's folder"},
+        {"%2Fetc%2Fpasswd", "absolute URIs are refused"},
+        {"leaf%zz.png", "malformed percent-encoding"},
+        {"leaf%2", "malformed percent-encoding"},
+        {"leaf+new.png", "'+' in a URI is ambiguous"},
+        {"%24HOME.png", "refused character '$'"},
+    };
+    for (const auto& [uri, expected] : refused) {
+        GltfBuilder bad = texturedQuad();
+        bad.j["images"][0] = {{"uri", uri}};
+        const fs::path f = bad.writeGltf(d / "bad.gltf");
+        try {
+            load(f);
+            ADD_FAILURE() << "accepted " << uri;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("images[0].uri"), std::string::npos) << e.what();
+        }
+    }
+}

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include <optional>
+
 #include <array>
 #include <cstring>
 #include <fstream>
@@ -40,17 +42,26 @@ void checkUri(const std::filesystem::path& file, const std::string& path, const 
     }
     if (uri.empty())
         refuse(file, path + ": empty URI");
-    const std::filesystem::path p(uri);
-    if (p.is_absolute() || uri.find(':') != std::string::npos || uri[0] == '\\')
+    // The parser percent-decodes relative URIs once (and reads '+' as a space), so the checks
+    // below apply to the name it will open.
+    if (uri.find('+') != std::string::npos)
+        refuse(file,
+               path + ": '+' in a URI is ambiguous; percent-encode it as %2B ('" + uri + "')");
+    const std::optional<std::string> decoded = percentDecode(uri);
+    if (!decoded)
+        refuse(file, path + ": malformed percent-encoding ('" + uri + "')");
+    const std::string& name = *decoded;
+    const std::filesystem::path p(name);
+    if (p.is_absolute() || name.find(':') != std::string::npos || name[0] == '\\')
         refuse(file, path + ": absolute URIs are refused ('" + uri + "')");
     for (const auto& part : p)
         if (part == "..")
             refuse(file, path + ": URIs may not leave the asset's folder ('" + uri + "')");
-    for (char c : uri)
-        if (c == '\0' || c == '$' || c == '`' || c == '~' || c == '%' || c == '\\')
+    for (char c : name)
+        if (c == '\0' || c == '$' || c == '`' || c == '~' || c == '\\')
             refuse(file, path + fmt::format(": refused character '{}' in URI (no expansion is "
-                                            "done; percent-encoding is not supported)",
-                                            c));
+                                            "done)",
+                                            c == '\0' ? std::string("\\0") : std::string(1, c)));
 }
 
 // An index field: must be an integer naming an element of `target` (the JSON path says where).
@@ -171,6 +182,33 @@ void checkReferences(const std::filesystem::path& file, const nlohmann::json& j)
 }
 
 } // namespace
+
+std::optional<std::string> percentDecode(std::string_view text) {
+    auto hex = [](char c) -> int {
+        if (c >= '0' && c <= '9')
+            return c - '0';
+        if (c >= 'a' && c <= 'f')
+            return c - 'a' + 10;
+        if (c >= 'A' && c <= 'F')
+            return c - 'A' + 10;
+        return -1;
+    };
+    std::string out;
+    for (size_t i = 0; i < text.size(); ++i) {
+        if (text[i] != '%') {
+            out += text[i];
+            continue;
+        }
+        if (i + 2 >= text.size())
+            return std::nullopt;
+        const int hi = hex(text[i + 1]), lo = hex(text[i + 2]);
+        if (hi < 0 || lo < 0)
+            return std::nullopt;
+        out += static_cast<char>(hi * 16 + lo);
+        i += 2;
+    }
+    return out;
+}
 
 bool decodeBase64(std::string_view text, std::vector<uint8_t>& out) {
     auto value = [](char c) -> int {

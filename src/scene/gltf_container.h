@@ -5,6 +5,9 @@
 // folder, no shell syntax, data URIs with strict base64 of the declared length).
 #include <nlohmann/json.hpp>
 
+#include <optional>
+#include <string_view>
+
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -24,6 +27,9 @@ struct Container {
 Container readContainer(const std::filesystem::path& file, uint64_t maxFileSize);
 
 // Checks asset.version, extensionsRequired and URIs; returns the parsed JSON.
+// RFC 3986 percent-decoding; nullopt when a '%' is not followed by two hex digits.
+std::optional<std::string> percentDecode(std::string_view text);
+
 nlohmann::json checkJson(const std::filesystem::path& file, const std::string& json);
 
 // Decodes a data URI's base64 payload strictly (alphabet, padding, length); false if malformed.
