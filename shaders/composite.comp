@@ -53,7 +53,8 @@ void main() {
         for (uint i = 0u; i < frame.imageSize.z; ++i) {
             float layer = lights[i].cone.w;
             float v = layer >= 0.0 ? texelFetch(visibility, ivec3(p, int(layer)), 0).r : 1.0;
-            light += directLight(lights[i], world, normal) * (1.0 - frame.composite.y * (1.0 - v));
+            light += frame.composite.z * directLight(lights[i], world, normal) *
+                     (1.0 - frame.composite.y * (1.0 - v));
         }
         color = 1.0 - exp(-albedo * light); // exponential tone curve: no hard clipping
     }

@@ -197,3 +197,21 @@ TEST_F(GpuTest, BaseColourTextureAndVertexColoursReachTheImage) {
     EXPECT_LT(br.z, br.x - 50);
     EXPECT_LT(bl.z, tl.x - 50); // the tint dims the blue too
 }
+
+TEST_F(GpuTest, ExposureScalesTheDirectLightOnly) {
+    const Scene scene = builtin::showcase();
+    int spread[2] = {0, 0};
+    for (const int ev : {0, -30}) {
+        RenderOptions o{.width = 160, .height = 90};
+        o.parameters.assign("composite.exposure=" + std::to_string(ev));
+        const RenderResult r = render(scene, o);
+        int lo = 255, hi = 0; // red channel of ground pixels, lit and shadowed
+        for (size_t i = 0; i < size_t{r.width} * r.height; ++i)
+            if (onGround(r, i))
+                lo = std::min<int>(lo, r.image[4 * i]), hi = std::max<int>(hi, r.image[4 * i]);
+        spread[ev != 0] = hi - lo;
+    }
+    std::printf("ground red spread: EV 0 %d, EV -30 %d\n", spread[0], spread[1]);
+    EXPECT_GT(spread[0], 60); // sunlit against shadowed
+    EXPECT_LE(spread[1], 1);  // the ambient term alone: shadows vanish with the light
+}

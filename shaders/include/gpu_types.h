@@ -47,7 +47,7 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     mat4 invViewProj;    // clip -> world
     vec4 position;       // xyz: camera position
     uvec4 imageSize;     // x width, y height, z light count
-    vec4 composite;      // x ambient, y shadow intensity
+    vec4 composite;      // x ambient, y shadow intensity, z exposure scale 2^EV
     vec4 background;     // rgb: colour of pixels with no geometry
     uvec4 filterMode;    // x pcf.filter, y pcf.size, z pcf.samples, w pcf.rotation
     vec4 filterParams;   // x pcf.radius (texels), y Gaussian sigma (texels), z pcf.adaptive

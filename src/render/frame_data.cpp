@@ -3,6 +3,8 @@
 #include "core/projection.h"
 #include "shadows/poisson.h"
 
+#include <cmath>
+
 namespace penumbra::render {
 
 void setTechniqueSettings(gpu::FrameData& f, const ParameterValues& p, bool hardwareDepthFilter,
@@ -37,14 +39,15 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
     // Inverting in double keeps reconstructed positions accurate far from the origin.
     const glm::dmat4 inv = glm::inverse(glm::dmat4(proj) * glm::dmat4(view));
     const ParameterValues& params = o.parameters;
-    gpu::FrameData f{.viewProj = proj * view,
-                     .invViewProj = glm::mat4(inv),
-                     .position = glm::vec4(camera.position, 1.0f),
-                     .imageSize = {o.width, o.height, lightCount, 0},
-                     .composite = {static_cast<float>(params.number("composite.ambient")),
-                                   static_cast<float>(params.number("composite.shadowIntensity")),
-                                   0, 0},
-                     .background = {0.55f, 0.65f, 0.8f, 1.0f}};
+    gpu::FrameData f{
+        .viewProj = proj * view,
+        .invViewProj = glm::mat4(inv),
+        .position = glm::vec4(camera.position, 1.0f),
+        .imageSize = {o.width, o.height, lightCount, 0},
+        .composite = {static_cast<float>(params.number("composite.ambient")),
+                      static_cast<float>(params.number("composite.shadowIntensity")),
+                      std::exp2(static_cast<float>(params.number("composite.exposure"))), 0},
+        .background = {0.55f, 0.65f, 0.8f, 1.0f}};
     setTechniqueSettings(f, params, ctx.info().depthLinearFilter,
                          ctx.limits().subTexelPrecisionBits);
     return f;

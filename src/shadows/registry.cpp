@@ -194,6 +194,15 @@ const std::vector<ParameterInfo>& parameterTable() {
          .max = 1.0,
          .unit = "fraction of base colour",
          .description = "constant ambient term added to every lit pixel"},
+        {.key = "composite.exposure",
+         .type = ParameterType::Float,
+         .defaultValue = 0.0,
+         .min = -30.0,
+         .max = 30.0,
+         .unit = "EV (stops)",
+         .description = "scales every light by 2^EV before the tone curve; glTF intensities "
+                        "in lux or candela need negative values (about -16 for a 100000-lux "
+                        "sun)"},
     };
     return table;
 }
