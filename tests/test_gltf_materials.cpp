@@ -311,3 +311,28 @@ TEST(GltfUris, PercentEncodedNamesAreDecodedAndStillChecked) {
         }
     }
 }
+
+TEST(GltfLimits, InstancingAndImageBytesAreCapped) {
+    GltfBuilder b;
+    b.ground(); // 2 triangles, then 9 more nodes using the same mesh: 20 after instancing
+    for (int i = 0; i < 9; ++i)
+        b.node({{"mesh", 0}, {"translation", {0.0, double(i + 1), 0.0}}});
+    const fs::path f = b.writeGltf(dir("limits") / "instanced.gltf");
+    EXPECT_EQ(loadScene(f.string(), {.maxTriangles = 20}).triangleCount(), 20u);
+    try {
+        loadScene(f.string(), {.maxTriangles = 19});
+        ADD_FAILURE() << "instancing past the cap accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("more than 19 triangles"), std::string::npos);
+    }
+    const fs::path t = texturedQuad().writeGltf(dir("limits") / "textured.gltf");
+    EXPECT_EQ(loadScene(t.string(), {.maxImageBytes = 16}).images.size(), 1u); // 2x2x4 bytes
+    try {
+        loadScene(t.string(), {.maxImageBytes = 15});
+        ADD_FAILURE() << "image bytes past the cap accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("images[0]: the images need more than 15 bytes"),
+                  std::string::npos)
+            << e.what();
+    }
+}

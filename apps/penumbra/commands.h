@@ -19,6 +19,7 @@ struct GlobalOptions {
     int device = -1;
     bool validation = false; // also PENUMBRA_VALIDATION=1
     uint64_t maxFileSize = uint64_t{1} << 30;
+    uint64_t maxTriangles = 100'000'000;
 };
 
 // loadScene with the global options; loader warnings go to stderr as `penumbra: warning:`.

@@ -24,6 +24,10 @@ int main(int argc, char** argv) {
     app.add_option("--max-file-size", global.maxFileSize,
                    "largest glTF file (and file it references) to read, in bytes (default 1 GiB)")
         ->check(CLI::PositiveNumber);
+    app.add_option("--max-triangles", global.maxTriangles,
+                   "most triangles a glTF scene may have once instanced meshes are copied per "
+                   "node (default 100000000)")
+        ->check(CLI::PositiveNumber);
     app.add_flag("--validation", global.validation,
                  "enable the Khronos validation layer; any validation error fails the command");
 

@@ -113,7 +113,9 @@ void addReferenceOptions(CLI::App& cmd, ReferenceOptions& options) {
 
 Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global) {
     std::vector<std::string> warnings;
-    Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize, .warnings = &warnings});
+    Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
+                                   .maxTriangles = global.maxTriangles,
+                                   .warnings = &warnings});
     for (const std::string& w : warnings)
         std::fprintf(stderr, "penumbra: warning: %s\n", w.c_str());
     return scene;

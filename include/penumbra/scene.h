@@ -119,7 +119,12 @@ struct Scene {
 };
 
 struct SceneLoadOptions {
-    uint64_t maxFileSize = uint64_t{1} << 30;     // cap for a glTF file and each file it uses
+    uint64_t maxFileSize = uint64_t{1} << 30; // cap for a glTF file and each file it uses
+    // Caps on what a small file can ask for: triangles after instancing (a mesh used by many
+    // nodes is copied per node) and decoded image bytes (a PNG inflates ~1000:1). Defaults:
+    // 100M triangles; 4 x maxFileSize of pixels, at least 64 MiB.
+    uint64_t maxTriangles = 100'000'000;
+    uint64_t maxImageBytes = 0;                   // 0: the default above
     std::vector<std::string>* warnings = nullptr; // content skipped while loading
 };
 

@@ -150,6 +150,12 @@ struct Flattener {
                 idx[i] = i;
         }
         std::vector<uint32_t> tri = triangles(p.mode, idx);
+        if (scene.indices.size() / 3 + tri.size() / 3 > options.maxTriangles ||
+            scene.vertices.size() + count > 3 * options.maxTriangles)
+            throw InputError(file.string(),
+                             fmt::format("meshes[{}]: the scene would have more than {} triangles "
+                                         "after instancing (--max-triangles raises the cap)",
+                                         meshIndex, options.maxTriangles));
         if (glm::determinant(glm::mat3(world)) < 0.0f) // a mirroring transform flips the winding
             for (size_t t = 0; t + 2 < tri.size(); t += 3)
                 std::swap(tri[t + 1], tri[t + 2]);
@@ -307,6 +313,7 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
     const gltf::Container container = gltf::readContainer(file, options.maxFileSize);
     const nlohmann::json json = gltf::checkJson(file, container.json);
     gltf::ImageDecodePolicy images = gltf::baseColorImages(json);
+    images.maxDecodedBytes = options.maxImageBytes;
     FsPolicy policy{.folder = std::filesystem::absolute(file).parent_path(),
                     .maxFileSize = options.maxFileSize};
     tinygltf::TinyGLTF loader;

@@ -14,6 +14,8 @@ namespace penumbra {
 
 struct GltfOptions {
     uint64_t maxFileSize = uint64_t{1} << 30;     // the asset and each file it references
+    uint64_t maxTriangles = 100'000'000;          // after flattening instanced meshes
+    uint64_t maxImageBytes = uint64_t{4} << 30;   // decoded RGBA8 bytes of all images
     std::vector<std::string>* warnings = nullptr; // skipped content (points, lines, ...)
 };
 

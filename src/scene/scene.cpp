@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra {
@@ -99,8 +100,18 @@ Scene loadScene(std::string_view spec, const SceneLoadOptions& options) {
     }
     const std::filesystem::path path(spec);
     const std::string ext = path.extension().string();
-    if (ext == ".gltf" || ext == ".glb" || ext == ".GLTF" || ext == ".GLB")
-        return loadGltf(path, {.maxFileSize = options.maxFileSize, .warnings = options.warnings});
+    if (ext == ".gltf" || ext == ".glb" || ext == ".GLTF" || ext == ".GLB") {
+        const uint64_t imageBytes =
+            options.maxImageBytes
+                ? options.maxImageBytes
+                : std::max<uint64_t>(uint64_t{64} << 20, options.maxFileSize > (uint64_t{1} << 60)
+                                                             ? options.maxFileSize
+                                                             : 4 * options.maxFileSize);
+        return loadGltf(path, {.maxFileSize = options.maxFileSize,
+                               .maxTriangles = options.maxTriangles,
+                               .maxImageBytes = imageBytes,
+                               .warnings = options.warnings});
+    }
     throw InputError(std::string(spec),
                      "not a scene: expected builtin:NAME, a .gltf or a .glb file");
 }
