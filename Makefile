@@ -8,9 +8,21 @@ export XDG_RUNTIME_DIR ?= /tmp/penumbra-xdg-$(shell id -u)
 # Debian 12 packages the build, the tests and the tools need (design.md §3).
 PACKAGES := cmake g++ make pkg-config glslc libvulkan-dev mesa-vulkan-drivers \
     vulkan-validationlayers libglm-dev libstb-dev libcli11-dev nlohmann-json3-dev libfmt-dev \
-    libgtest-dev libbenchmark-dev libembree-dev libtbb-dev libtinygltf-dev chromium
+    libgtest-dev libbenchmark-dev libembree-dev libtbb-dev libtinygltf-dev chromium \
+    clang libclang-rt-14-dev
 
-.PHONY: deps build test demo bench clean format
+# The glTF loader's libFuzzer target (clang, ASan + UBSan: the asan preset). `make fuzz` runs it
+# for FUZZ_SECONDS (0: until interrupted); `make test` runs it for 60 s. New inputs accumulate in
+# fuzz-work; findings (crash, leak, timeout, out-of-memory, sanitizer report) go to fuzz-crashes
+# and fail the run. Replay one: build/asan/fuzz/penumbra_fuzz_gltf build/asan/fuzz-crashes/FILE
+FUZZ_SECONDS ?= 600
+FUZZ_DIR     := build/asan
+FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
+                UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
+                -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
+
+.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -28,6 +40,26 @@ build: deps
 
 test: build
 	ctest --preset $(PRESET) -j $(JOBS)
+	$(MAKE) --no-print-directory fuzz-smoke
+
+fuzz-build: deps
+	cmake --preset asan >/dev/null
+	cmake --build --preset asan -j $(JOBS) --target penumbra_fuzz_gltf penumbra_make_seed_corpus
+	rm -rf $(FUZZ_DIR)/fuzz-corpus
+	$(FUZZ_DIR)/fuzz/penumbra_make_seed_corpus $(FUZZ_DIR)/fuzz-corpus
+	mkdir -p $(FUZZ_DIR)/fuzz-work $(FUZZ_DIR)/fuzz-crashes
+
+fuzz: fuzz-build
+	$(FUZZ_ENV) $(FUZZ_DIR)/fuzz/penumbra_fuzz_gltf $(FUZZ_FLAGS) -max_total_time=$(FUZZ_SECONDS) \
+	    $(FUZZ_DIR)/fuzz-work $(FUZZ_DIR)/fuzz-corpus
+
+# The 60 s run of `make test`, quiet unless it fails (the whole log stays in fuzz-smoke.log).
+fuzz-smoke:
+	@mkdir -p $(FUZZ_DIR) && echo "fuzz-smoke: the glTF loader for 60 s ($(FUZZ_DIR)/fuzz-smoke.log)"
+	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=60 >$(FUZZ_DIR)/fuzz-smoke.log 2>&1 \
+	    && grep -E '^#[0-9]+.*DONE|^stat::' $(FUZZ_DIR)/fuzz-smoke.log \
+	    || { tail -n 100 $(FUZZ_DIR)/fuzz-smoke.log; \
+	         echo "fuzz-smoke: FAILED; inputs in $(FUZZ_DIR)/fuzz-crashes/"; exit 1; }
 
 demo: build
 	$(BUILDDIR)/apps/penumbra/penumbra compare builtin:showcase -o out/showcase

@@ -93,6 +93,21 @@ public:
         return file;
     }
 
+    // Standard base64 with padding, as data URIs carry it.
+    static std::string base64(const std::vector<uint8_t>& bytes) {
+        static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        std::string s;
+        for (size_t i = 0; i < bytes.size(); i += 3) {
+            const uint32_t n = (uint32_t(bytes[i]) << 16) |
+                               (i + 1 < bytes.size() ? uint32_t(bytes[i + 1]) << 8 : 0) |
+                               (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+            s += k[(n >> 18) & 63], s += k[(n >> 12) & 63];
+            s += i + 1 < bytes.size() ? k[(n >> 6) & 63] : '=';
+            s += i + 2 < bytes.size() ? k[n & 63] : '=';
+        }
+        return s;
+    }
+
 private:
     int push(const char* array, nlohmann::json item) {
         if (!j.contains(array))
@@ -107,19 +122,7 @@ private:
         if (!uri.empty())
             j["buffers"][0]["uri"] = uri;
     }
-    std::string dataUri() const {
-        static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-        std::string s = "data:application/octet-stream;base64,";
-        for (size_t i = 0; i < bin.size(); i += 3) {
-            const uint32_t n = (uint32_t(bin[i]) << 16) |
-                               (i + 1 < bin.size() ? uint32_t(bin[i + 1]) << 8 : 0) |
-                               (i + 2 < bin.size() ? bin[i + 2] : 0);
-            s += k[(n >> 18) & 63], s += k[(n >> 12) & 63];
-            s += i + 1 < bin.size() ? k[(n >> 6) & 63] : '=';
-            s += i + 2 < bin.size() ? k[n & 63] : '=';
-        }
-        return s;
-    }
+    std::string dataUri() const { return "data:application/octet-stream;base64," + base64(bin); }
     template <typename Bytes>
     static void write(const std::filesystem::path& file, const Bytes& bytes) {
         std::ofstream out(file, std::ios::binary);

@@ -68,7 +68,7 @@ TEST(Analytic, CapIntersectionMatchesMonteCarlo) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     const double a1 = 0.3, a2 = 0.2, gamma = 0.35;
-    const glm::dvec3 c1(0, 0, 1), c2(std::sin(gamma), 0, std::cos(gamma));
+    const glm::dvec3 c2(std::sin(gamma), 0, std::cos(gamma)); // cap 1 is centred on +z
     int inside = 0, both = 0;
     for (int i = 0; i < 400000; ++i) { // uniform directions in cap 1
         const double z = 1.0 - u(rng) * (1.0 - std::cos(a1)), phi = 6.283185307179586 * u(rng);
