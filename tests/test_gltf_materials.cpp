@@ -204,11 +204,20 @@ std::vector<BadMaterial> badMaterials() {
     huge[16] = 0, huge[17] = 0, huge[18] = 0x4e, huge[19] = 0x20;
     std::vector<uint8_t> truncated = png();
     truncated.resize(40);
+    std::vector<uint8_t> lyingChunk = png(); // the chunk after IHDR claims 1.7 GB (fuzz finding)
+    lyingChunk[33] = 0x68, lyingChunk[34] = 0, lyingChunk[35] = 0, lyingChunk[36] = 0x26;
+    std::vector<uint8_t> badData = png(); // chunks intact, the compressed pixels garbage
+    for (size_t k = 41; k < 45; ++k)
+        badData[k] ^= 0xff;
     return {
         {"not_png_or_jpeg", replaceImage({'G', 'I', 'F', '8', '9', 'a', 0, 0}),
          "images[0]: not a PNG or JPEG image"},
         {"huge_image", replaceImage(huge), "images[0]: 20000x2 pixels is outside 1..16384"},
-        {"truncated_png", replaceImage(truncated), "images[0]: cannot decode the image"},
+        {"truncated_png", replaceImage(truncated),
+         "images[0]: a PNG chunk runs past the end of the image"},
+        {"png_chunk_length", replaceImage(lyingChunk),
+         "images[0]: a PNG chunk runs past the end of the image"},
+        {"png_not_decodable", replaceImage(badData), "images[0]: cannot decode the image"},
         {"missing_image_file",
          [](GltfBuilder& b) {
              b.j["images"][0] = {{"uri", "gone.png"}};

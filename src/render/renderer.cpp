@@ -228,7 +228,7 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
             continue; // the warm-up frame pays for first-use costs
         for (const auto& [pass, ms] : timer.read()) {
             auto it = std::find_if(result.passes.begin(), result.passes.end(),
-                                   [&](const PassTime& p) { return p.pass == pass; });
+                                   [&, name = pass](const PassTime& p) { return p.pass == name; });
             if (it == result.passes.end())
                 it = result.passes.insert(result.passes.end(), {.pass = pass});
             it->frameMs.push_back(ms);

@@ -32,8 +32,12 @@ TextureImage leafImage() {
         const float cx = random.next() * kSize, cy = random.next() * kSize;
         const float angle = random.next() * glm::pi<float>();
         const float a = 9.0f + 9.0f * random.next(), b = 3.5f + 3.5f * random.next();
-        const glm::vec3 green(0.10f + 0.15f * random.next(), 0.35f + 0.3f * random.next(),
-                              0.06f + 0.08f * random.next());
+        // One statement per draw: argument evaluation order is unspecified (gcc and clang
+        // differ), and the scene must be the same from every compiler.
+        const float blue = 0.06f + 0.08f * random.next();
+        const float green = 0.35f + 0.3f * random.next();
+        const float red = 0.10f + 0.15f * random.next();
+        const glm::vec3 leafColor(red, green, blue);
         const float c = std::cos(angle), s = std::sin(angle);
         const int reach = static_cast<int>(std::ceil(a)) + 1;
         for (int dy = -reach; dy <= reach; ++dy)
@@ -50,9 +54,9 @@ TextureImage leafImage() {
                 const auto alpha = static_cast<uint8_t>(std::lround(coverage * 255.0f));
                 if (alpha <= image.rgba[i + 3])
                     continue;
-                for (int k = 0; k < 3; ++k) // sRGB-encode the linear green
-                    image.rgba[i + k] =
-                        static_cast<uint8_t>(std::lround(255.0f * std::pow(green[k], 1.0f / 2.2f)));
+                for (int k = 0; k < 3; ++k) // sRGB-encode the linear colour
+                    image.rgba[i + k] = static_cast<uint8_t>(
+                        std::lround(255.0f * std::pow(leafColor[k], 1.0f / 2.2f)));
                 image.rgba[i + 3] = alpha;
             }
     }

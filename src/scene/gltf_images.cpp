@@ -16,6 +16,22 @@ bool isPng(const unsigned char* b, int size) {
     return size >= 8 && std::memcmp(b, kMagic, 8) == 0;
 }
 
+// Every chunk's declared length fits in the bytes, up to IEND: stb reserves a chunk's declared
+// length before reading it, so a 95-byte file could otherwise ask for gigabytes.
+bool pngChunksFit(const unsigned char* b, int size) {
+    const auto end = static_cast<uint64_t>(size);
+    for (uint64_t at = 8; at + 12 <= end;) {
+        const uint64_t length = uint64_t{b[at]} << 24 | uint64_t{b[at + 1]} << 16 |
+                                uint64_t{b[at + 2]} << 8 | uint64_t{b[at + 3]};
+        if (length > end - at - 12)
+            return false;
+        if (std::memcmp(b + at + 4, "IEND", 4) == 0)
+            return true;
+        at += 12 + length;
+    }
+    return false; // no IEND: truncated
+}
+
 bool isJpeg(const unsigned char* b, int size) {
     return size >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff;
 }
@@ -62,6 +78,8 @@ bool decodeImage(tinygltf::Image* image, int index, std::string* err, std::strin
         return refuse("no image bytes");
     if (!isPng(bytes, size) && !isJpeg(bytes, size))
         return refuse("not a PNG or JPEG image");
+    if (isPng(bytes, size) && !pngChunksFit(bytes, size))
+        return refuse("a PNG chunk runs past the end of the image (truncated or hostile)");
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, size, &width, &height, &channels))
         return refuse(fmt::format("cannot read the image header ({})", stbi_failure_reason()));
