@@ -261,6 +261,9 @@ std::vector<BadMaterial> badMaterials() {
                  b.accessor(b.view(std::vector<uint8_t>(8, 0)), 5121, 4, "VEC2");
          },
          "attributes.TEXCOORD_0: wrong accessor type"},
+        {"texture_transform_required",
+         [](GltfBuilder& b) { b.j["extensionsRequired"] = {"KHR_texture_transform"}; },
+         "'KHR_texture_transform' is not supported"},
         {"color_count",
          [](GltfBuilder& b) {
              b.j["meshes"][1]["primitives"][0]["attributes"]["COLOR_0"] =

@@ -16,9 +16,10 @@ namespace {
 constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
 constexpr uint32_t kChunkJson = 0x4E4F534A; // "JSON"
 constexpr uint32_t kChunkBin = 0x004E4942;  // "BIN\0"
-constexpr std::array<std::string_view, 4> kSupportedRequired = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
-    "KHR_materials_unlit"};
+// KHR_texture_transform is not here: texture coordinates are used untransformed, so an asset
+// that requires it would render (and cast alpha-tested shadows) wrongly.
+constexpr std::array<std::string_view, 3> kSupportedRequired = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_unlit"};
 
 uint32_t readU32(const std::vector<uint8_t>& b, size_t at) {
     uint32_t v = 0;
