@@ -22,27 +22,6 @@ fs::path dir() {
     return d;
 }
 
-// A floating quad over the ground, by fan, with a directional light and a camera.
-GltfBuilder floatingQuad() {
-    GltfBuilder b;
-    b.ground();
-    const int p = b.positions({-1, 2, -1, 1, 2, -1, 1, 2, 1, -1, 2, 1});
-    const int fan = b.accessor(b.view(std::vector<uint8_t>{0, 1, 2, 3}), 5121, 4, "SCALAR");
-    b.node({{"mesh", b.mesh(p, fan, 6)}});
-    b.node({{"camera", 0}, {"translation", {0, 6, 9}}, {"rotation", {-0.2588, 0, 0, 0.9659}}});
-    b.j["cameras"] = {{{"type", "perspective"},
-                       {"name", "eye"},
-                       {"perspective", {{"yfov", 0.8}, {"znear", 0.1}, {"zfar", 100}}}}};
-    b.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}},
-            {"rotation", {-0.7071, 0, 0, 0.7071}}});
-    b.j["extensions"] = {{"KHR_lights_punctual",
-                          {{"lights",
-                            {{{"type", "directional"},
-                              {"intensity", 2.0},
-                              {"extras", {{"angularDiameter", 2.5}}}}}}}}};
-    return b;
-}
-
 Scene load(const fs::path& f, std::vector<std::string>* warnings = nullptr) {
     return loadScene(f.string(), {.warnings = warnings});
 }
