@@ -17,6 +17,7 @@
 #include <vector>
 
 using namespace penumbra;
+using penumbra::test::componentTypes;
 using penumbra::test::floatingQuad;
 using penumbra::test::GltfBuilder;
 using J = nlohmann::json;
@@ -61,37 +62,6 @@ GltfBuilder primitiveModes() {
     const int strip =
         b.accessor(b.view(std::vector<uint16_t>{0, 1, 2, 3, 4, 5}), 5123, 6, "SCALAR");
     b.node({{"mesh", b.mesh(p, strip, 5)}});
-    return b;
-}
-
-// Every index component type, a sparse POSITION accessor, an interleaved (strided) one, and a
-// sparse accessor with no bufferView (zeros plus the sparse values).
-GltfBuilder componentTypes() {
-    GltfBuilder b;
-    const std::vector<float> xyz = {0, 0, 0, 1, 0, 0, 0, 0, 1, 9, 9, 9};
-    const int p = b.accessor(b.view(xyz), 5126, 4, "VEC3");
-    b.j["accessors"][p]["sparse"] = {
-        {"count", 1},
-        {"indices", {{"bufferView", b.view(std::vector<uint16_t>{3, 0})}, {"componentType", 5123}}},
-        {"values", {{"bufferView", b.view(std::vector<float>{1, 0, 1})}}}};
-    const int u8 = b.accessor(b.view(std::vector<uint8_t>{0, 2, 1, 1, 2, 3}), 5121, 6, "SCALAR");
-    const int u16 = b.accessor(b.view(std::vector<uint16_t>{0, 2, 1, 1, 2, 3}), 5123, 6, "SCALAR");
-    const int u32 = b.accessor(b.view(std::vector<uint32_t>{0, 2, 1, 1, 2, 3}), 5125, 6, "SCALAR");
-    for (int idx : {u8, u16, u32})
-        b.node({{"mesh", b.mesh(p, idx)}});
-    const int strided = b.accessor(
-        b.view(std::vector<float>{0, 0, 3, 7, 1, 0, 3, 7, 0, 1, 3, 7}, 16), 5126, 3, "VEC3");
-    b.node({{"mesh", b.mesh(strided)}});
-    b.j["accessors"].push_back(
-        {{"componentType", 5126},
-         {"count", 3},
-         {"type", "VEC3"},
-         {"sparse",
-          {{"count", 2},
-           {"indices",
-            {{"bufferView", b.view(std::vector<uint8_t>{1, 2})}, {"componentType", 5121}}},
-           {"values", {{"bufferView", b.view(std::vector<float>{1, 0, 0, 0, 1, 0})}}}}}});
-    b.node({{"mesh", b.mesh(static_cast<int>(b.j["accessors"].size() - 1))}});
     return b;
 }
 

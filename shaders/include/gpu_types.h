@@ -81,7 +81,7 @@ struct MaterialPush {
     vec4 baseColor;      // linear RGBA factor
     float alphaCutoff;
     uint alphaTest;      // 1: coverage below alphaCutoff is a hole
-    uint hasTexture;     // 0: the bound texture is a white placeholder
+    uint hasTexture;     // 0: the material has no texture (a 1x1 white one is bound)
     uint pad;
 };
 

@@ -65,7 +65,6 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
     const bool perspective = view.projection.perspective;
     CasterPush push{
         .shadow = {.viewProj = view.projection.viewProj, .bias = {s.constantBias, 0, 0, 0}}};
-    const GpuTextures::Binding white = scene.textures.placeholder();
     auto bind = [&](VkPipeline pipeline) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
         vkCmdSetDepthBias(cmd, 0.0f, 0.0f, s.slopeBias);
@@ -85,13 +84,14 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
             vkCmdPushConstants(cmd, p.peelLayout.get(), kStages, 0, sizeof push, &push);
         };
         if (scene.opaqueIndexCount > 0) {
-            pushFor(white);
+            pushFor(scene.textures.white());
             draw(0, scene.opaqueIndexCount);
         }
         for (const DrawBatch& batch : scene.batches)
             if (batch.firstIndex >= scene.opaqueIndexCount) {
-                push.material = scene.materials[batch.material];
-                pushFor(scene.materialTextures[batch.material]);
+                const GpuScene::Material& material = scene.materials[batch.material];
+                push.material = material.constants;
+                pushFor(material.texture);
                 draw(batch.firstIndex, batch.indexCount);
             }
     } else {
@@ -105,11 +105,11 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
             bind(perspective ? p.shadowMaskPerspective.get() : p.shadowMaskOrtho.get());
         for (const DrawBatch& batch : scene.batches)
             if (batch.firstIndex >= scene.opaqueIndexCount) {
-                const GpuTextures::Binding& texture = scene.materialTextures[batch.material];
+                const GpuScene::Material& material = scene.materials[batch.material];
                 vk::PushDescriptors()
-                    .sampled(0, texture.view, texture.sampler)
+                    .sampled(0, material.texture.view, material.texture.sampler)
                     .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.shadowMaskLayout);
-                push.material = scene.materials[batch.material];
+                push.material = material.constants;
                 vkCmdPushConstants(cmd, p.shadowMaskLayout.get(), kStages, 0, sizeof push, &push);
                 draw(batch.firstIndex, batch.indexCount);
             }
@@ -170,16 +170,15 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbuffer.get());
     bindGeometry(cmd, scene);
     for (const DrawBatch& batch : scene.batches) {
-        const GpuTextures::Binding& texture = scene.materialTextures[batch.material];
+        const GpuScene::Material& material = scene.materials[batch.material];
         vk::PushDescriptors()
             .uniformBuffer(0, t.frame.get())
-            .sampled(1, texture.view, texture.sampler)
+            .sampled(1, material.texture.view, material.texture.sampler)
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbufferLayout);
         vkCmdPushConstants(cmd, p.gbufferLayout.get(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof(gpu::MaterialPush), &scene.materials[batch.material]);
-        vkCmdSetCullMode(cmd, scene.doubleSided[batch.material] ? VK_CULL_MODE_NONE
-                                                                : VK_CULL_MODE_BACK_BIT);
+                           sizeof material.constants, &material.constants);
+        vkCmdSetCullMode(cmd, material.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
         vkCmdDrawIndexed(cmd, batch.indexCount, 1, batch.firstIndex, 0, 0);
     }
     vkCmdEndRendering(cmd);
@@ -313,12 +312,13 @@ GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
     out.textures = uploadTextures(ctx, scene);
     for (size_t m = 0; m < materialCount; ++m) {
         const Material material = m < scene.materials.size() ? scene.materials[m] : Material{};
-        out.materials.push_back({.baseColor = material.baseColor,
-                                 .alphaCutoff = material.alphaCutoff,
-                                 .alphaTest = material.alphaTested() ? 1u : 0u,
-                                 .hasTexture = material.baseColorTexture >= 0 ? 1u : 0u});
-        out.materialTextures.push_back(out.textures.of(scene, static_cast<uint32_t>(m)));
-        out.doubleSided.push_back(material.doubleSided);
+        out.materials.push_back(
+            {.constants = {.baseColor = material.baseColor,
+                           .alphaCutoff = material.alphaCutoff,
+                           .alphaTest = material.alphaTested() ? 1u : 0u,
+                           .hasTexture = material.baseColorTexture >= 0 ? 1u : 0u},
+             .texture = out.textures.of(scene, material),
+             .doubleSided = material.doubleSided});
     }
     out.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.vertices)),
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex buffer");

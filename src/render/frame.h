@@ -25,10 +25,13 @@ struct GpuScene {
     uint32_t indexCount = 0;
     uint32_t opaqueIndexCount = 0; // indices [0, opaqueIndexCount) have no alpha test
     std::vector<DrawBatch> batches;
-    std::vector<gpu::MaterialPush> materials; // per Scene::materials
     GpuTextures textures;
-    std::vector<GpuTextures::Binding> materialTextures; // per Scene::materials
-    std::vector<bool> doubleSided;                      // per Scene::materials
+    struct Material {
+        gpu::MaterialPush constants;
+        GpuTextures::Binding texture; // the 1x1 white texture when it has none
+        bool doubleSided;
+    };
+    std::vector<Material> materials; // per Scene::materials
 };
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
 

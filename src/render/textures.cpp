@@ -79,11 +79,10 @@ void recordUpload(VkCommandBuffer cmd, const vk::Image& image, VkBuffer staging,
 
 } // namespace
 
-GpuTextures::Binding GpuTextures::of(const Scene& scene, uint32_t material) const {
-    const int32_t t =
-        material < scene.materials.size() ? scene.materials[material].baseColorTexture : -1;
+GpuTextures::Binding GpuTextures::of(const Scene& scene, const Material& material) const {
+    const int32_t t = material.baseColorTexture;
     if (t < 0)
-        return {images.back().view.get(), samplers.back().get()};
+        return white();
     const Texture& texture = scene.textures[static_cast<size_t>(t)];
     return {images[texture.image].view.get(), samplers[static_cast<size_t>(t)].get()};
 }

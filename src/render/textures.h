@@ -1,7 +1,8 @@
 #pragma once
 // Base-colour textures on the GPU: one sRGB image with a full mip chain per scene image, one
-// sampler per texture (its glTF wrap modes and magnification filter), and a white placeholder
-// for materials without a texture, so every draw binds a texture.
+// sampler per texture (its glTF wrap modes and magnification filter), and a 1x1 white texture
+// that materials without one bind: every draw writes its texture binding (lavapipe crashes on
+// an unwritten one) and multiplying by white changes nothing.
 #include "penumbra/scene.h"
 #include "vk/resources.h"
 
@@ -10,15 +11,15 @@
 namespace penumbra::render {
 
 struct GpuTextures {
-    std::vector<vk::Image> images;           // per Scene::images, then the white placeholder
-    std::vector<vk::SamplerHandle> samplers; // per Scene::textures, then the placeholder's
+    std::vector<vk::Image> images;           // per Scene::images, then the white texture
+    std::vector<vk::SamplerHandle> samplers; // per Scene::textures, then the white one's
     struct Binding {
         VkImageView view;
         VkSampler sampler;
     };
-    // The texture material `m` samples (the placeholder when it has none).
-    Binding of(const Scene& scene, uint32_t material) const;
-    Binding placeholder() const { return {images.back().view.get(), samplers.back().get()}; }
+    // The base-colour texture `material` of `scene` samples (white when it has none).
+    Binding of(const Scene& scene, const Material& material) const;
+    Binding white() const { return {images.back().view.get(), samplers.back().get()}; }
 };
 
 GpuTextures uploadTextures(const vk::Context& ctx, const Scene& scene);

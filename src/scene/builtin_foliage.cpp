@@ -116,12 +116,7 @@ Scene foliage() {
     mb.quad({t0.x, 0.0f, t0.z}, {t1.x, 0.0f, t0.z}, {t1.x, t1.y, t0.z}, {t0.x, t1.y, t0.z},
             lattice);
 
-    scene.lights.push_back({.name = "sun",
-                            .type = LightType::Directional,
-                            .direction = glm::normalize(kSunDirection),
-                            .color = {1.0f, 0.97f, 0.92f},
-                            .intensity = 1.8f,
-                            .angularDiameter = 0.53f});
+    scene.lights.push_back(sun());
     scene.cameras.push_back({.name = "main",
                              .position = {0.0f, 8.0f, 11.5f},
                              .target = {-0.5f, 0.8f, -1.2f},

@@ -41,14 +41,18 @@ Scene showcaseGeometry(std::string name) {
 
 } // namespace
 
+Light sun() {
+    return {.name = "sun",
+            .type = LightType::Directional,
+            .direction = glm::normalize(kSunDirection),
+            .color = {1.0f, 0.97f, 0.92f},
+            .intensity = 1.8f,
+            .angularDiameter = 0.53f};
+}
+
 Scene showcase() {
     Scene scene = showcaseGeometry("showcase");
-    scene.lights.push_back({.name = "sun",
-                            .type = LightType::Directional,
-                            .direction = glm::normalize(kSunDirection),
-                            .color = {1.0f, 0.97f, 0.92f},
-                            .intensity = 1.8f,
-                            .angularDiameter = 0.53f});
+    scene.lights.push_back(sun());
     return scene;
 }
 

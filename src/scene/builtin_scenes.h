@@ -36,6 +36,9 @@ inline constexpr glm::vec2 kCanopyTiles{3.0f, 2.0f};
 inline constexpr glm::vec3 kTrellisMin{2.5f, 0.0f, -3.0f}; // a vertical quad at z = kTrellisMin.z
 inline constexpr glm::vec3 kTrellisMax{5.5f, 2.4f, -3.0f};
 
+// The outdoor scenes' sun: kSunDirection, 0.53 degrees wide (the real sun's size), warm white.
+Light sun();
+
 Scene showcase();
 Scene grazing();
 Scene spot();
