@@ -9,7 +9,7 @@ export XDG_RUNTIME_DIR ?= /tmp/penumbra-xdg-$(shell id -u)
 PACKAGES := cmake g++ make pkg-config glslc libvulkan-dev mesa-vulkan-drivers \
     vulkan-validationlayers libglm-dev libstb-dev libcli11-dev nlohmann-json3-dev libfmt-dev \
     libgtest-dev libbenchmark-dev libembree-dev libtbb-dev libtinygltf-dev chromium \
-    clang libclang-rt-14-dev
+    clang libclang-rt-14-dev python3
 
 # The glTF loader's libFuzzer target (clang, ASan + UBSan: the asan preset). `make fuzz` runs it
 # for FUZZ_SECONDS (0: until interrupted); `make test` runs it for 60 s. New inputs accumulate in
@@ -22,7 +22,7 @@ FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
 FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
                 -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
 
-.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build
+.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -60,6 +60,15 @@ fuzz-smoke:
 	    && grep -E '^#[0-9]+.*DONE|^stat::' $(FUZZ_DIR)/fuzz-smoke.log \
 	    || { tail -n 100 $(FUZZ_DIR)/fuzz-smoke.log; \
 	         echo "fuzz-smoke: FAILED; inputs in $(FUZZ_DIR)/fuzz-crashes/"; exit 1; }
+
+# Plants each mutation of tests/mutations/*.toml in a scratch copy (build/mutation/tree), rebuilds,
+# runs the ctest labels that can see it and reports the survivors (docs/testing.md). Not part of
+# `make test`. MUTATIONS=id,id runs a few; MUTATION_LABEL=filters those of one area.
+MUTATIONS ?=
+MUTATION_LABEL ?=
+mutation-test: deps
+	python3 tools/mutation_test.py --jobs $(JOBS) $(if $(MUTATIONS),--only $(MUTATIONS)) \
+	    $(if $(MUTATION_LABEL),--label $(MUTATION_LABEL))
 
 demo: build
 	$(BUILDDIR)/apps/penumbra/penumbra compare builtin:showcase -o out/showcase

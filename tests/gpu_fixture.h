@@ -32,6 +32,15 @@ private:
     uint32_t mErrorsBefore = 0;
 };
 
+// The suite name is the test's area: tests/CMakeLists.txt gives each area a ctest label, which
+// `make mutation-test` uses to run only the tests that can see a change.
+using FilterTest = GpuTest;   // filters on synthetic maps: CPU/GPU parity, closed forms
+using ShadowTest = GpuTest;   // where shadows land, what the frame outputs
+using BiasTest = GpuTest;     // acne and peter-panning for each bias and light type
+using LightingTest = GpuTest; // the lit image: composite, attenuation, shadow intensity
+using QualityTest = GpuTest;  // every technique against the ray-traced ground truth
+using MaterialTest = GpuTest; // textures, alpha-tested casters, culling
+
 inline glm::vec3 pixelVec(const std::vector<float>& v, size_t i) {
     return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
 }

@@ -66,7 +66,7 @@ uint32_t leavesMaterial(const Scene& scene) {
 
 } // namespace
 
-TEST_F(GpuTest, AlphaTestedCanopyLetsTheSunThroughItsHoles) {
+TEST_F(MaterialTest, AlphaTestedCanopyLetsTheSunThroughItsHoles) {
     const Scene scene = parallelFoliage(true);
     const double holes = canopyHoleFraction(scene, leavesMaterial(scene));
     ASSERT_GT(holes, 0.2);
@@ -99,7 +99,7 @@ TEST_F(GpuTest, AlphaTestedCanopyLetsTheSunThroughItsHoles) {
     EXPECT_LT(litUnderCanopy(opaque, r, truth.visibility[0], &n), 0.01);
 }
 
-TEST_F(GpuTest, CameraSeesTheGroundThroughTheHoles) {
+TEST_F(MaterialTest, CameraSeesTheGroundThroughTheHoles) {
     const Scene scene = parallelFoliage(true);
     const double holes = canopyHoleFraction(scene, leavesMaterial(scene));
     const RenderResult r = render(scene, {.width = 640, .height = 360});
@@ -146,7 +146,7 @@ Scene wallSeenFromBehind(bool doubleSided) {
 
 } // namespace
 
-TEST_F(GpuTest, SingleSidedBackFacesAreCulledForTheCameraButStillCastShadows) {
+TEST_F(MaterialTest, SingleSidedBackFacesAreCulledForTheCameraButStillCastShadows) {
     size_t wallPixels[2] = {0, 0}, shadowed[2] = {0, 0};
     for (const bool doubleSided : {false, true}) {
         const Scene scene = wallSeenFromBehind(doubleSided);
@@ -164,7 +164,7 @@ TEST_F(GpuTest, SingleSidedBackFacesAreCulledForTheCameraButStillCastShadows) {
     EXPECT_GT(shadowed[0], 200u); // the light sees the wall's front either way
 }
 
-TEST_F(GpuTest, BaseColourTextureAndVertexColoursReachTheImage) {
+TEST_F(MaterialTest, BaseColourTextureAndVertexColoursReachTheImage) {
     Scene scene;
     MeshBuilder mb(scene);
     // 2x2 nearest: red, green / blue, white (sRGB-encoded bytes).
@@ -198,7 +198,7 @@ TEST_F(GpuTest, BaseColourTextureAndVertexColoursReachTheImage) {
     EXPECT_LT(bl.z, tl.x - 50); // the tint dims the blue too
 }
 
-TEST_F(GpuTest, ExposureScalesTheDirectLightOnly) {
+TEST_F(LightingTest, ExposureScalesTheDirectLightOnly) {
     const Scene scene = builtin::showcase();
     int spread[2] = {0, 0};
     for (const int ev : {0, -30}) {

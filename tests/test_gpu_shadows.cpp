@@ -68,7 +68,7 @@ void expectSphereShadowWhereProjected(const RenderResult& r, const Light& light)
 
 } // namespace
 
-TEST_F(GpuTest, GrazingPlaneIsAcneFreeWithDefaultBias) {
+TEST_F(BiasTest, GrazingPlaneIsAcneFreeWithDefaultBias) {
     const Scene scene = loadScene("builtin:grazing");
     const RenderResult r = render(scene, {.width = 640, .height = 360});
     size_t lit = 0;
@@ -78,7 +78,7 @@ TEST_F(GpuTest, GrazingPlaneIsAcneFreeWithDefaultBias) {
     EXPECT_LT(acne, 0.001) << "acne fraction with default bias";
 }
 
-TEST_F(GpuTest, GrazingPlaneShowsAcneWithoutBias) {
+TEST_F(BiasTest, GrazingPlaneShowsAcneWithoutBias) {
     const Scene scene = loadScene("builtin:grazing");
     RenderOptions o{.width = 640, .height = 360};
     o.parameters.assign("bias.constant=0");
@@ -92,17 +92,17 @@ TEST_F(GpuTest, GrazingPlaneShowsAcneWithoutBias) {
     EXPECT_GT(acne, 0.05) << "zero bias must show acne";
 }
 
-TEST_F(GpuTest, SphereShadowSitsWhereTheDirectionalLightProjectsIt) {
+TEST_F(ShadowTest, SphereShadowSitsWhereTheDirectionalLightProjectsIt) {
     expectSphereShadowWhereProjected(render(loadScene("builtin:showcase"), {}),
                                      loadScene("builtin:showcase").lights[0]);
 }
 
-TEST_F(GpuTest, SphereShadowSitsWhereTheSpotLightProjectsIt) {
+TEST_F(ShadowTest, SphereShadowSitsWhereTheSpotLightProjectsIt) {
     expectSphereShadowWhereProjected(render(loadScene("builtin:spot"), {}),
                                      loadScene("builtin:spot").lights[0]);
 }
 
-TEST_F(GpuTest, PoleShadowStaysAttachedAtItsBase) {
+TEST_F(ShadowTest, PoleShadowStaysAttachedAtItsBase) {
     // Peter-panning check: ground pixels just beyond the pole's foot, on the side away from the
     // light, must be in shadow with the default bias.
     const Scene scene = loadScene("builtin:showcase");
@@ -132,7 +132,7 @@ TEST_F(GpuTest, PoleShadowStaysAttachedAtItsBase) {
     EXPECT_EQ(shadowed, near);
 }
 
-TEST_F(GpuTest, BackgroundIsNaNAndGeometryIsBinaryVisibility) {
+TEST_F(ShadowTest, BackgroundIsNaNAndGeometryIsBinaryVisibility) {
     const Scene scene = loadScene("builtin:showcase");
     const RenderResult r = render(scene, {.width = 160, .height = 90, .shadowMapSize = 512});
     ASSERT_EQ(r.visibility.size(), 1u);
@@ -153,7 +153,7 @@ TEST_F(GpuTest, BackgroundIsNaNAndGeometryIsBinaryVisibility) {
     EXPECT_FALSE(std::isnan(r.visibility[0][size_t{r.width} * (r.height - 1)])); // ground below
 }
 
-TEST_F(GpuTest, RefusesSizesPastTheDeviceLimit) {
+TEST_F(ShadowTest, RefusesSizesPastTheDeviceLimit) {
     const Scene scene = loadScene("builtin:showcase");
     const uint32_t limit = sharedRenderer().device().maxImageDimension2D;
     RenderOptions o{.shadowMapSize = limit + 1};
@@ -164,7 +164,7 @@ TEST_F(GpuTest, RefusesSizesPastTheDeviceLimit) {
     EXPECT_THROW(sharedRenderer().check(scene, o), InputError);
 }
 
-TEST_F(GpuTest, HardMatchesTheRadiusZeroGroundTruthOutsideEdges) {
+TEST_F(QualityTest, HardMatchesTheRadiusZeroGroundTruthOutsideEdges) {
     Scene scene = loadScene("builtin:showcase");
     const RenderResult r = render(
         scene, {.width = 512, .height = 512, .shadowMapSize = 2048, .lightAngleOverride = 0.0f});
@@ -182,7 +182,7 @@ TEST_F(GpuTest, HardMatchesTheRadiusZeroGroundTruthOutsideEdges) {
     EXPECT_LT(m.misclassifiedOutsideEdges, 0.005);
 }
 
-TEST_F(GpuTest, RasterizerDropsInvalidTrianglesLikeTheGroundTruth) {
+TEST_F(ShadowTest, RasterizerDropsInvalidTrianglesLikeTheGroundTruth) {
     const Scene clean = loadScene("builtin:showcase");
     Scene hostile = clean;
     const float nan = std::numeric_limits<float>::quiet_NaN();

@@ -91,7 +91,7 @@ std::vector<Variant> everyVariant() {
 
 } // namespace
 
-TEST_F(GpuTest, EveryFilterMatchesItsCpuReference) {
+TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
     const DeviceInfo& device = sharedRenderer().device();
     const std::vector<float> depth = syntheticMap(11);
     const ShadowMapView map{depth, kMapSize};
@@ -128,7 +128,7 @@ TEST_F(GpuTest, EveryFilterMatchesItsCpuReference) {
     }
 }
 
-TEST_F(GpuTest, FiltersAreFractionalAndReachBothExtremes) {
+TEST_F(FilterTest, FiltersAreFractionalAndReachBothExtremes) {
     // A kernel over a real edge must produce in-between values (it filters) and still report
     // fully lit and fully shadowed receivers exactly.
     const std::vector<float> depth = syntheticMap(11);
@@ -146,7 +146,7 @@ TEST_F(GpuTest, FiltersAreFractionalAndReachBothExtremes) {
     EXPECT_GT(between, 200u);
 }
 
-TEST_F(GpuTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
+TEST_F(FilterTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
     // Both light models, both sizes of light, with and without rotation: the average blocker
     // depth, the number of blocking texels and the filter radius agree, not only the result.
     const std::vector<float> depth = syntheticMap(17);

@@ -1,45 +1,10 @@
 // The PCF family against the ray-traced ground truth on the built-in scenes.
-#include "gpu_fixture.h"
-#include "penumbra/reference.h"
-#include "report/light_mask.h"
-#include "report/metrics.h"
-#include "scene/builtin_scenes.h"
-
-#include <cstdio>
+#include "truth_fixture.h"
 
 using namespace penumbra;
 using namespace penumbra::test;
 
 namespace {
-
-struct Truth {
-    Scene scene;
-    RenderResult gbuffer;
-    ReferenceResult reference;
-    std::vector<uint8_t> mask;
-};
-
-// The ground truth of `sceneName` at 512x512 with the sun's angular diameter `angle` (degrees).
-Truth groundTruth(const char* sceneName, float angle, uint32_t samples, GpuTest& test) {
-    Truth t{.scene = loadScene(sceneName)};
-    applyLightSizeOverrides(t.scene, -1.0f, angle);
-    t.gbuffer = sharedRenderer().render(t.scene, {.width = 512, .height = 512, .frames = 1});
-    t.reference = computeReference(t.scene, t.gbuffer, {.samples = samples});
-    t.mask = lightMask(t.scene, t.gbuffer, t.gbuffer.lights[0]);
-    (void)test;
-    return t;
-}
-
-ErrorMetrics measure(const Truth& t, Technique technique,
-                     const std::vector<std::pair<std::string, std::string>>& sets) {
-    RenderOptions o{
-        .width = 512, .height = 512, .shadowMapSize = 2048, .frames = 1, .technique = technique};
-    for (const auto& [key, value] : sets)
-        o.parameters.set(key, value);
-    const RenderResult r = sharedRenderer().render(t.scene, o);
-    const MetricLayer layer{r.visibility[0], t.reference.visibility[0], t.mask};
-    return computeMetrics(r.width, r.height, std::span(&layer, 1));
-}
 
 // The rows `penumbra compare` shows for pcf, plus screen-space receiver-plane bias.
 std::vector<TechniqueRow> pcfRows() {
@@ -53,8 +18,8 @@ std::vector<TechniqueRow> pcfRows() {
 
 } // namespace
 
-TEST_F(GpuTest, EveryPcfVariantIsAcneFreeAndRightAwayFromEdges) {
-    const Truth t = groundTruth("builtin:showcase", 0.0f, 1, *this);
+TEST_F(QualityTest, EveryPcfVariantIsAcneFreeAndRightAwayFromEdges) {
+    const Truth t = groundTruth({.scene = "builtin:showcase", .angle = 0.0f, .samples = 1});
     for (const TechniqueRow& row : pcfRows()) {
         const ErrorMetrics m = measure(t, Technique::Pcf, row.sets);
         std::printf("%s vs hard truth: rmse %.4f acne %.4f%% misclassified outside edges %.4f%% "
@@ -66,7 +31,7 @@ TEST_F(GpuTest, EveryPcfVariantIsAcneFreeAndRightAwayFromEdges) {
     }
 }
 
-TEST_F(GpuTest, ReceiverPlaneBiasLetsA9x9KernelGoWithoutConstantBias) {
+TEST_F(BiasTest, ReceiverPlaneBiasLetsA9x9KernelGoWithoutConstantBias) {
     // builtin:grazing, the plane's pixels that nothing can shadow: any visibility < 1 is acne.
     const Scene scene = loadScene("builtin:grazing");
     auto acne = [&](const char* receiver) {
@@ -86,10 +51,10 @@ TEST_F(GpuTest, ReceiverPlaneBiasLetsA9x9KernelGoWithoutConstantBias) {
     EXPECT_GT(acne("off"), 0.001) << "without receiver-plane bias the kernel must show acne";
 }
 
-TEST_F(GpuTest, Box7BeatsHardAgainstAnAreaLight) {
+TEST_F(QualityTest, Box7BeatsHardAgainstAnAreaLight) {
     // A 4-degree sun gives the showcase visible penumbrae; filtering should track them better
     // than a binary test.
-    const Truth t = groundTruth("builtin:showcase", 4.0f, 64, *this);
+    const Truth t = groundTruth({.scene = "builtin:showcase", .angle = 4.0f, .samples = 64});
     const ErrorMetrics hard = measure(t, Technique::Hard, {});
     const ErrorMetrics box7 =
         measure(t, Technique::Pcf, {{"pcf.filter", "box"}, {"pcf.size", "7"}});

@@ -167,15 +167,15 @@ void expectContactHardening(const Setup& setup) {
 
 } // namespace
 
-TEST_F(GpuTest, PcssBeatsFixedPcfUnderALargeSun) {
+TEST_F(QualityTest, PcssBeatsFixedPcfUnderALargeSun) {
     expectPcssBeatsFixedPcf(kDirectional);
 }
-TEST_F(GpuTest, PcssBeatsFixedPcfUnderALargeSpot) {
+TEST_F(QualityTest, PcssBeatsFixedPcfUnderALargeSpot) {
     expectPcssBeatsFixedPcf(kSpot);
 }
-TEST_F(GpuTest, PcssHardensAtContactUnderALargeSun) {
+TEST_F(QualityTest, PcssHardensAtContactUnderALargeSun) {
     expectContactHardening(kDirectional);
 }
-TEST_F(GpuTest, PcssHardensAtContactUnderALargeSpot) {
+TEST_F(QualityTest, PcssHardensAtContactUnderALargeSpot) {
     expectContactHardening(kSpot);
 }

@@ -119,3 +119,24 @@ TEST(LightSpace, SpotFrustumCoversTheConeAndTheScene) {
     EXPECT_LT(p.nearPlane, 9.0f + 1e-3f);
     EXPECT_GE(p.farPlane, 10.0f); // axial depth of the ground, not Euclidean distance
 }
+
+TEST(LightSpace, SpotRangeCutsTheFarPlaneAndTexelSizeFollowsTheCone) {
+    Bounds b;
+    b.grow({-4, 0, -4});
+    b.grow({4, 1, 4});
+    Light spot{.type = LightType::Spot,
+               .position = {0, 10, 0},
+               .direction = {0, -1, 0},
+               .range = 9.5f,
+               .outerConeAngle = 0.5f};
+    const LightProjection cut = fitSpot(spot, b, 512);
+    // The ground (10 along the axis) lies beyond the range: the far plane stops at the range.
+    EXPECT_NEAR(cut.farPlane, 9.5f * 1.001f, 1e-4f);
+    EXPECT_NEAR(project(textureMatrix() * cut.viewProj, {0, 0.5f, 0}).z, 1.0f, 0.01f);
+    spot.range = 50.0f; // past the scene: the scene decides
+    const LightProjection whole = fitSpot(spot, b, 512);
+    EXPECT_NEAR(whole.farPlane, 10.0f * 1.001f, 1e-3f);
+    // One texel at unit distance spans the cone's full width over the map's texels.
+    EXPECT_NEAR(whole.texelWorldSize * 512.0f, 2.0f * std::tan(0.5f), 1e-5f);
+    EXPECT_NEAR(whole.yfov, 1.0f, 1e-6f);
+}

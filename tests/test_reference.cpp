@@ -228,3 +228,36 @@ TEST(Reference, EmbreeFailuresAreClearErrorsNotCrashes) {
         EXPECT_NE(std::string(e.what()).find("threads=abc"), std::string::npos);
     }
 }
+
+TEST(Reference, SanitationKeepsTheLastValidValueAndDropsTheFirstInvalid) {
+    // Each row: a triangle on the boundary of one rule (kept) and one just past it (dropped).
+    auto dropped = [](std::vector<glm::vec3> positions, std::vector<uint32_t> indices) {
+        Scene s;
+        for (const glm::vec3& p : positions)
+            s.vertices.push_back({p, {0, 1, 0}, 0});
+        s.indices = std::move(indices);
+        const size_t n = dropInvalidTriangles(s);
+        EXPECT_EQ(s.triangleCount() + n, 1u);
+        return n;
+    };
+    const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(0, 0, 1), d(5, 5, 5);
+    // Indices: the last vertex is index count - 1; the count itself is past the end.
+    EXPECT_EQ(dropped({a, b, c, d}, {0, 1, 3}), 0u);
+    EXPECT_EQ(dropped({a, b, c}, {0, 1, 3}), 1u);
+    EXPECT_EQ(dropped({a, b, c}, {3, 1, 2}), 1u);
+    EXPECT_EQ(dropped({a, b, c}, {0, 3, 2}), 1u);
+    // Coordinates: kMaxCoordinate itself is usable, the next float is not.
+    const float cap = kMaxCoordinate, past = std::nextafter(kMaxCoordinate, INFINITY);
+    EXPECT_EQ(dropped({a, {cap, 0, 0}, {0, 0, cap}}, {0, 1, 2}), 0u);
+    EXPECT_EQ(dropped({a, {past, 0, 0}, {0, 0, cap}}, {0, 1, 2}), 1u);
+    EXPECT_EQ(dropped({a, {-cap, 0, 0}, {0, 0, -past}}, {0, 1, 2}), 1u);
+    // Area: the thinnest sliver float can hold is a triangle; a straight line is not.
+    EXPECT_EQ(dropped({a, b, {2, 0, 1e-30f}}, {0, 1, 2}), 0u);
+    EXPECT_EQ(dropped({a, b, {2, 0, 0}}, {0, 1, 2}), 1u);
+    // A trailing partial triangle counts as dropped.
+    Scene s;
+    s.vertices = {{a, {0, 1, 0}, 0}, {b, {0, 1, 0}, 0}, {c, {0, 1, 0}, 0}};
+    s.indices = {0, 1, 2, 0};
+    EXPECT_EQ(dropInvalidTriangles(s), 1u);
+    EXPECT_EQ(s.triangleCount(), 1u);
+}

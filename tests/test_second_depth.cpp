@@ -53,7 +53,7 @@ ErrorMetrics measure(const Scene& scene, Technique technique) {
 
 } // namespace
 
-TEST_F(GpuTest, SecondDepthNeedsNoBiasOnClosedGeometry) {
+TEST_F(BiasTest, SecondDepthNeedsNoBiasOnClosedGeometry) {
     const Scene scene = closedScene();
     const ErrorMetrics second = measure(scene, Technique::SecondDepth);
     const ErrorMetrics hard = measure(scene, Technique::Hard);

@@ -146,6 +146,11 @@ void checkReferences(const std::filesystem::path& file, const nlohmann::json& j)
                 refuse(file, path + ".pbrMetallicRoughness: wrong JSON type (object expected)");
             for (const char* key : {"baseColorTexture", "metallicRoughnessTexture"})
                 textureInfo(path + ".pbrMetallicRoughness", pbr, key);
+            // tinygltf drops a factor of any other length with a note nobody reads, and the
+            // base colour texture with it: the material would load white and untextured.
+            if (pbr.contains("baseColorFactor") &&
+                (!pbr["baseColorFactor"].is_array() || pbr["baseColorFactor"].size() != 4))
+                refuse(file, path + ".pbrMetallicRoughness.baseColorFactor: needs 4 numbers");
         }
     });
     each("textures", [&](const std::string& path, const nlohmann::json& t) {
@@ -171,6 +176,22 @@ void checkReferences(const std::filesystem::path& file, const nlohmann::json& j)
         if (!v.contains("buffer"))
             refuse(file, path + ".buffer: missing");
         checkIndex(file, j, path + ".buffer", v["buffer"], "buffers");
+        // tinygltf hands an image's bufferView to the decoder while it parses, before
+        // validateModel sees a byte range, so each view must lie inside its buffer's declared
+        // byteLength here (tinygltf then holds every buffer to exactly that length). Values
+        // that are not unsigned integers are tinygltf's to refuse (or, byteOffset, to ignore).
+        const auto& buffer = j["buffers"][v["buffer"].get<size_t>()];
+        auto unsignedAt = [](const nlohmann::json& o, const char* key) {
+            return o.is_object() && o.contains(key) && o[key].is_number_unsigned()
+                       ? std::optional<uint64_t>(o[key].get<uint64_t>())
+                       : std::nullopt;
+        };
+        const auto bufferLength = unsignedAt(buffer, "byteLength");
+        const auto length = unsignedAt(v, "byteLength");
+        const uint64_t offset = unsignedAt(v, "byteOffset").value_or(0);
+        if (bufferLength && length && (offset > *bufferLength || *length > *bufferLength - offset))
+            refuse(file, fmt::format("{}: bytes {}..{} run past buffer {} ({} bytes)", path, offset,
+                                     offset + *length, v["buffer"].dump(), *bufferLength));
         if (v.contains("byteStride")) {
             if (!v["byteStride"].is_number_integer())
                 refuse(file, path + ".byteStride: wrong JSON type");

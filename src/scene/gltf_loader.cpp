@@ -128,8 +128,20 @@ struct Flattener {
             warn(fmt::format("meshes[{}]: a primitive of points or lines is skipped", meshIndex));
             return;
         }
+        // The caps come first, from the accessors' counts: an accessor without a bufferView
+        // costs a few bytes of JSON whatever its count, and reading it allocates them all.
+        const size_t count = m.accessors[p.attributes.at("POSITION")].count;
+        const size_t indexCount = p.indices >= 0 ? m.accessors[p.indices].count : count;
+        const size_t newTriangles = p.mode == TINYGLTF_MODE_TRIANGLES ? indexCount / 3
+                                    : indexCount < 3                  ? 0
+                                                                      : indexCount - 2;
+        if (scene.indices.size() / 3 + newTriangles > options.maxTriangles ||
+            scene.vertices.size() + count > 3 * options.maxTriangles)
+            throw InputError(file.string(),
+                             fmt::format("meshes[{}]: the scene would have more than {} triangles "
+                                         "after instancing (--max-triangles raises the cap)",
+                                         meshIndex, options.maxTriangles));
         const std::vector<float> pos = readFloats(m, p.attributes.at("POSITION"));
-        const size_t count = pos.size() / 3;
         for (float v : pos)
             if (!std::isfinite(v))
                 throw InputError(file.string(), fmt::format("meshes[{}]: POSITION contains NaN or "
@@ -150,12 +162,6 @@ struct Flattener {
                 idx[i] = i;
         }
         std::vector<uint32_t> tri = triangles(p.mode, idx);
-        if (scene.indices.size() / 3 + tri.size() / 3 > options.maxTriangles ||
-            scene.vertices.size() + count > 3 * options.maxTriangles)
-            throw InputError(file.string(),
-                             fmt::format("meshes[{}]: the scene would have more than {} triangles "
-                                         "after instancing (--max-triangles raises the cap)",
-                                         meshIndex, options.maxTriangles));
         if (glm::determinant(glm::mat3(world)) < 0.0f) // a mirroring transform flips the winding
             for (size_t t = 0; t + 2 < tri.size(); t += 3)
                 std::swap(tri[t + 1], tri[t + 2]);

@@ -79,6 +79,9 @@ struct Checker {
                 fail(path, "invalid componentType or type");
             if (a.count == 0)
                 fail(path + ".count", "must be at least 1");
+            // The decoded elements' size fits 64 bits: the one bound of an accessor without a
+            // bufferView (zeros plus sparse values), whose count readFloats multiplies.
+            mul(path, a.count, bytes);
             const uint64_t component =
                 tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
             if (a.byteOffset % component)
@@ -104,7 +107,9 @@ struct Checker {
         if (s.count <= 0 || static_cast<size_t>(s.count) > a.count)
             fail(path + ".count", fmt::format("{} is outside 1..{}", s.count, a.count));
         const uint64_t indexBytes = elementBytes(s.indices.componentType, TINYGLTF_TYPE_SCALAR);
-        if (indexBytes == 0 || s.indices.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
+        if (s.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            s.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+            s.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
             fail(path + ".indices.componentType", "must be an unsigned integer type");
         range(path + ".indices", s.indices.bufferView, s.indices.byteOffset, s.count, indexBytes,
               indexBytes);

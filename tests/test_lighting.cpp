@@ -1,0 +1,241 @@
+// The lit image (image.png) for every light type, against the composite's contract computed on
+// the CPU from the G-buffer's positions and normals: ambient + sum over lights of
+// 2^EV x colour x intensity x max(N.L, 0) x attenuation x (1 - shadowIntensity x (1 - v)),
+// the exponential tone curve 1 - exp(-albedo x light), sRGB. Attenuation: glTF
+// KHR_lights_punctual's inverse square with the range window (1 - (d/range)^4)^2 for spot and
+// point lights; the spot cone's smoothstep from cos(outer) to cos(inner) (docs/architecture.md).
+// Written from those formulas, not from shaders/composite.comp.
+#include "gpu_fixture.h"
+#include "scene/mesh_builder.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+constexpr glm::vec3 kGroundColour{0.6f, 0.45f, 0.3f};
+
+struct CompositeKnobs {
+    double ambient = 0.12, shadowIntensity = 1.0, exposureEv = 0.0;
+};
+
+// A 20 x 20 ground at y = 0 under a floating slab (its shadow), seen from above at an angle.
+Scene groundUnderSlab(std::vector<Light> lights) {
+    Scene scene;
+    scene.name = "lighting";
+    MeshBuilder mb(scene);
+    const uint32_t ground = mb.material("ground", kGroundColour);
+    mb.quad({-10, 0, 10}, {10, 0, 10}, {10, 0, -10}, {-10, 0, -10}, ground);
+    const glm::mat4 slab = glm::scale(glm::translate(glm::mat4(1.0f), {-0.5f, 1.6f, 0.5f}),
+                                      glm::vec3(3.0f, 0.2f, 2.4f));
+    mb.box(slab, mb.material("slab", {0.3f, 0.3f, 0.3f}));
+    scene.lights = std::move(lights);
+    scene.cameras.push_back({.name = "above",
+                             .position = {0.0f, 12.0f, 9.0f},
+                             .target = {0.0f, 0.0f, -0.5f},
+                             .yfov = 1.15f,
+                             .znear = 0.1f,
+                             .zfar = 100.0f});
+    return scene;
+}
+
+double smoothstep(double e0, double e1, double x) {
+    const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
+    return t * t * (3.0 - 2.0 * t);
+}
+
+// Distance and cone attenuation of `light` at `p` (1 for a directional light).
+double attenuation(const Light& light, const glm::dvec3& p) {
+    if (light.type == LightType::Directional)
+        return 1.0;
+    const double d = glm::length(glm::dvec3(light.position) - p);
+    double window = 1.0;
+    if (light.range > 0.0f) {
+        const double x = d / light.range;
+        window = std::clamp(1.0 - x * x * x * x, 0.0, 1.0);
+    }
+    double a = window * window / (d * d);
+    if (light.type == LightType::Spot) {
+        const double along = glm::dot(glm::normalize(p - glm::dvec3(light.position)),
+                                      glm::normalize(glm::dvec3(light.direction)));
+        a *= smoothstep(std::cos(light.outerConeAngle), std::cos(light.innerConeAngle), along);
+    }
+    return a;
+}
+
+glm::dvec3 towardsLight(const Light& light, const glm::dvec3& p) {
+    return light.type == LightType::Directional ? -glm::normalize(glm::dvec3(light.direction))
+                                                : glm::normalize(glm::dvec3(light.position) - p);
+}
+
+double srgbEncode(double c) {
+    c = std::clamp(c, 0.0, 1.0);
+    return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
+
+struct ImageCheck {
+    size_t pixels = 0, offByMoreThanOne = 0;
+    int worst = 0;
+};
+
+// Compares every ground pixel of r.image with the contract's value.
+ImageCheck checkGround(const Scene& scene, const RenderResult& r, const CompositeKnobs& k) {
+    // The G-buffer stores the base colour in 8 bits.
+    const glm::dvec3 albedo = glm::round(glm::dvec3(kGroundColour) * 255.0) / 255.0;
+    const double exposure = std::exp2(k.exposureEv);
+    ImageCheck c;
+    for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
+        if (!onGround(r, i))
+            continue;
+        const glm::dvec3 p = pixelVec(r.position, i), n = pixelVec(r.normal, i);
+        glm::dvec3 light(k.ambient);
+        for (const LightShadow& s : r.lights) {
+            const Light& l = scene.lights[s.sceneLight];
+            const double v = s.visibilityIndex >= 0 ? r.visibility[s.visibilityIndex][i] : 1.0;
+            const double lambert = std::max(glm::dot(n, towardsLight(l, p)), 0.0);
+            light += exposure * glm::dvec3(l.color) * double(l.intensity) * lambert *
+                     attenuation(l, p) * (1.0 - k.shadowIntensity * (1.0 - v));
+        }
+        ++c.pixels;
+        for (int ch = 0; ch < 3; ++ch) {
+            const double expected = 255.0 * srgbEncode(1.0 - std::exp(-albedo[ch] * light[ch]));
+            const int diff =
+                static_cast<int>(std::lround(std::abs(expected - r.image[4 * i + ch])));
+            c.worst = std::max(c.worst, diff);
+            c.offByMoreThanOne += diff > 1;
+        }
+    }
+    return c;
+}
+
+RenderResult renderWith(const Scene& scene, const CompositeKnobs& k) {
+    RenderOptions o{.width = 320, .height = 240, .frames = 1};
+    o.parameters.set("composite.ambient", std::to_string(k.ambient));
+    o.parameters.set("composite.shadowIntensity", std::to_string(k.shadowIntensity));
+    o.parameters.set("composite.exposure", std::to_string(k.exposureEv));
+    return sharedRenderer().render(scene, o);
+}
+
+void expectImageFollowsTheContract(const Scene& scene, const RenderResult& r,
+                                   const CompositeKnobs& k, const char* what) {
+    const ImageCheck c = checkGround(scene, r, k);
+    std::printf("%s: %zu ground pixels, worst channel difference %d/255, %zu channels off by "
+                "more than 1\n",
+                what, c.pixels, c.worst, c.offByMoreThanOne);
+    ASSERT_GT(c.pixels, 320u * 240u / 3) << what;
+    EXPECT_LE(c.worst, 2) << what;
+    EXPECT_LE(c.offByMoreThanOne, c.pixels / 1000) << what;
+}
+
+// Fractions of ground pixels with attenuation-factor `f` equal to 0, strictly between, and 1.
+struct Spread {
+    double none = 0, partial = 0, full = 0, shadowed = 0;
+};
+
+template <typename Factor>
+Spread spreadOf(const RenderResult& r, Factor factor) {
+    Spread s;
+    size_t n = 0;
+    for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
+        if (!onGround(r, i))
+            continue;
+        ++n;
+        const double f = factor(glm::dvec3(pixelVec(r.position, i)));
+        (f <= 0.0 ? s.none : f >= 1.0 ? s.full : s.partial) += 1;
+        if (!r.visibility.empty() && r.visibility[0][i] < 0.5f)
+            s.shadowed += 1;
+    }
+    for (double* x : {&s.none, &s.partial, &s.full, &s.shadowed})
+        *x /= static_cast<double>(std::max<size_t>(n, 1));
+    return s;
+}
+
+Light spotLight() {
+    return {.name = "spot",
+            .type = LightType::Spot,
+            .position = {-0.5f, 6.0f, 1.5f},
+            .direction = glm::normalize(glm::vec3(0.5f, -6.0f, -2.0f)),
+            .color = {1.0f, 0.9f, 0.8f},
+            .intensity = 55.0f,
+            .innerConeAngle = 0.45f,
+            .outerConeAngle = 0.7f};
+}
+
+Light pointLight() {
+    return {.name = "bulb",
+            .type = LightType::Point,
+            .position = {2.0f, 2.5f, -1.5f},
+            .color = {0.8f, 0.9f, 1.0f},
+            .intensity = 14.0f,
+            .range = 7.5f};
+}
+
+Light sunLight() {
+    return {.name = "sun",
+            .type = LightType::Directional,
+            .direction = glm::normalize(glm::vec3(0.5f, -1.0f, 0.6f)),
+            .color = {1.0f, 0.95f, 0.9f},
+            .intensity = 1.4f};
+}
+
+} // namespace
+
+TEST_F(LightingTest, SunLightsTheGroundByLambertAndShadowIntensity) {
+    const Scene scene = groundUnderSlab({sunLight()});
+    const CompositeKnobs k{.ambient = 0.2, .shadowIntensity = 0.6, .exposureEv = -0.5};
+    const RenderResult r = renderWith(scene, k);
+    expectImageFollowsTheContract(scene, r, k, "sun, shadow intensity 0.6, EV -0.5");
+    const Spread s = spreadOf(r, [](const glm::dvec3&) { return 1.0; });
+    EXPECT_GT(s.shadowed, 0.02) << "the slab's shadow must be in view";
+}
+
+TEST_F(LightingTest, SpotConeFadesFromInnerToOuterAngle) {
+    const Scene scene = groundUnderSlab({spotLight()});
+    const CompositeKnobs k{};
+    const RenderResult r = renderWith(scene, k);
+    expectImageFollowsTheContract(scene, r, k, "spot");
+    const Light spot = scene.lights[0];
+    const Spread s = spreadOf(r, [&](const glm::dvec3& p) {
+        const double along =
+            glm::dot(glm::normalize(p - glm::dvec3(spot.position)), glm::dvec3(spot.direction));
+        return smoothstep(std::cos(spot.outerConeAngle), std::cos(spot.innerConeAngle), along);
+    });
+    std::printf("spot: outside the cone %.2f, in its rim %.2f, inside %.2f, shadowed %.3f\n",
+                s.none, s.partial, s.full, s.shadowed);
+    EXPECT_GT(s.none, 0.2) << "ground outside the cone must be in view";
+    EXPECT_GT(s.partial, 0.03) << "the cone's rim must be in view";
+    EXPECT_GT(s.full, 0.05) << "the cone's core must be in view";
+    EXPECT_GT(s.shadowed, 0.01) << "the slab's shadow must be in view";
+}
+
+TEST_F(LightingTest, PointLightFallsOffWithDistanceAndRange) {
+    const Scene scene = groundUnderSlab({pointLight()});
+    const CompositeKnobs k{.ambient = 0.05, .shadowIntensity = 1.0, .exposureEv = 1.0};
+    const RenderResult r = renderWith(scene, k);
+    expectImageFollowsTheContract(scene, r, k, "point, range 7.5, EV +1");
+    const Light bulb = scene.lights[0];
+    const Spread s = spreadOf(r, [&](const glm::dvec3& p) {
+        const double x = glm::length(p - glm::dvec3(bulb.position)) / bulb.range;
+        return x >= 1.0 ? 0.0 : 0.5; // beyond the range, or inside it
+    });
+    std::printf("point: beyond its range %.2f, within %.2f\n", s.none, s.partial);
+    EXPECT_GT(s.none, 0.1) << "ground beyond the range must be in view";
+    EXPECT_GT(s.partial, 0.2);
+}
+
+TEST_F(LightingTest, LightsOfEveryTypeAddUp) {
+    // A shadowing sun and spot (visibility layers 0 and 1) and a point light (no shadow map).
+    const Scene scene = groundUnderSlab({spotLight(), pointLight(), sunLight()});
+    const CompositeKnobs k{.ambient = 0.1, .shadowIntensity = 0.8, .exposureEv = -1.0};
+    const RenderResult r = renderWith(scene, k);
+    ASSERT_EQ(r.visibility.size(), 2u);
+    ASSERT_EQ(r.lights.size(), 3u);
+    EXPECT_EQ(r.lights[1].visibilityIndex, -1) << "point lights cast no shadow yet";
+    expectImageFollowsTheContract(scene, r, k, "spot + point + sun");
+}

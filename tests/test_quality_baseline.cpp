@@ -1,0 +1,158 @@
+// Every row `penumbra compare` shows, against the ray-traced truth on four small set-ups (a sun
+// and a spot, each small and large), with the error each row measured when the table was made
+// (lavapipe; map 1024 so that filters and aliasing show at 512x288). A row that gets 15% worse
+// (or better: then the table is stale) on any metric fails, and so does a row that appears or
+// disappears: the table names every row. PENUMBRA_PRINT_BASELINE=1 prints the table afresh.
+#include "truth_fixture.h"
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <map>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+struct StoredRow {
+    const char* row;
+    double rmse, misclassified, acne, leak;
+};
+
+void expectBaseline(const TruthSetup& setup, const std::vector<StoredRow>& table) {
+    const Truth t = groundTruth(setup);
+    const bool print = std::getenv("PENUMBRA_PRINT_BASELINE") != nullptr;
+    std::map<std::string, const StoredRow*> stored;
+    for (const StoredRow& s : table)
+        stored[s.row] = &s;
+    std::string where = setup.scene;
+    if (setup.angle >= 0)
+        where += fmt::format(" sun {:g} deg", setup.angle);
+    if (setup.radius >= 0)
+        where += fmt::format(" radius {:g}", setup.radius);
+    for (const TechniqueRow& row : comparisonRows("")) {
+        const ErrorMetrics m = measure(t, row.technique, row.sets);
+        std::printf("%-44s rmse %.5f misclassified %.4f%% acne %.4f%% leak %.4f%%\n",
+                    (where + " " + row.name).c_str(), m.rmse, 100 * m.misclassified, 100 * m.acne,
+                    100 * m.leak);
+        if (print)
+            std::printf("    {\"%s\", %.6f, %.6f, %.6f, %.6f},\n", row.name.c_str(), m.rmse,
+                        m.misclassified, m.acne, m.leak);
+        const auto it = stored.find(row.name);
+        if (it == stored.end()) {
+            ADD_FAILURE() << where << ": row " << row.name << " has no stored metrics";
+            continue;
+        }
+        const StoredRow& s = *it->second;
+        const std::string what = where + " " + row.name;
+        const double tolerance = storedTolerance();
+        expectStored(what + " rmse", m.rmse, s.rmse, tolerance, 2e-4);
+        expectStored(what + " misclassified", m.misclassified, s.misclassified, tolerance, 1e-4);
+        expectStored(what + " acne", m.acne, s.acne, tolerance, 1e-4);
+        expectStored(what + " leak", m.leak, s.leak, tolerance, 1e-4);
+        stored.erase(it);
+    }
+    for (const auto& [name, row] : stored)
+        ADD_FAILURE() << where << ": stored row " << name << " is no longer a compare row";
+}
+
+} // namespace
+
+TEST_F(QualityTest, EveryCompareRowKeepsItsErrorUnderTheSun) {
+    expectBaseline({.scene = "builtin:showcase",
+                    .width = 512,
+                    .height = 288,
+                    .shadowMapSize = 1024,
+                    .samples = 64},
+                   {
+                       {"hard", 0.028268, 0.000990, 0.000000, 0.000000},
+                       {"pcf[bilinear]", 0.021730, 0.000434, 0.000000, 0.000000},
+                       {"pcf[hardware]", 0.022078, 0.000434, 0.000254, 0.000000},
+                       {"pcf[box3]", 0.027979, 0.000387, 0.000010, 0.000000},
+                       {"pcf[box7]", 0.045735, 0.002140, 0.000204, 0.000000},
+                       {"pcf[box11]", 0.055758, 0.002433, 0.001669, 0.016699},
+                       {"pcf[gauss7]", 0.037326, 0.000820, 0.000031, 0.000000},
+                       {"pcf[poisson16]", 0.036870, 0.000792, 0.000020, 0.000000},
+                       {"pcf[poisson32]", 0.035847, 0.000726, 0.000020, 0.000000},
+                       {"pcf[adaptive-box7]", 0.052561, 0.002235, 0.000204, 0.000000},
+                       {"pcss", 0.021674, 0.000396, 0.000000, 0.000000},
+                       {"pcss[fast]", 0.021702, 0.000405, 0.000000, 0.000000},
+                       {"second-depth", 0.028764, 0.001018, 0.000000, 0.000000},
+                       {"second-depth[nobias]", 0.034842, 0.001405, 0.000214, 0.000000},
+                   });
+}
+
+TEST_F(QualityTest, EveryCompareRowKeepsItsErrorUnderALargeSun) {
+    expectBaseline({.scene = "builtin:showcase",
+                    .angle = 4.0f,
+                    .width = 512,
+                    .height = 288,
+                    .shadowMapSize = 1024,
+                    .samples = 64},
+                   {
+                       {"hard", 0.035814, 0.000933, 0.000000, 0.000000},
+                       {"pcf[bilinear]", 0.028205, 0.000236, 0.000000, 0.000000},
+                       {"pcf[hardware]", 0.028473, 0.000236, 0.000254, 0.000000},
+                       {"pcf[box3]", 0.020523, 0.000198, 0.000010, 0.000000},
+                       {"pcf[box7]", 0.031303, 0.001056, 0.000214, 0.000000},
+                       {"pcf[box11]", 0.041797, 0.001546, 0.001750, 0.013340},
+                       {"pcf[gauss7]", 0.023782, 0.000462, 0.000031, 0.000000},
+                       {"pcf[poisson16]", 0.023277, 0.000424, 0.000020, 0.000000},
+                       {"pcf[poisson32]", 0.022555, 0.000396, 0.000020, 0.000000},
+                       {"pcf[adaptive-box7]", 0.039918, 0.001471, 0.000214, 0.000000},
+                       {"pcss", 0.016213, 0.000207, 0.000000, 0.000000},
+                       {"pcss[fast]", 0.020915, 0.000405, 0.000000, 0.000000},
+                       {"second-depth", 0.036207, 0.000962, 0.000000, 0.000000},
+                       {"second-depth[nobias]", 0.041198, 0.001348, 0.000214, 0.000000},
+                   });
+}
+
+TEST_F(QualityTest, EveryCompareRowKeepsItsErrorUnderTheSpot) {
+    expectBaseline({.scene = "builtin:spot",
+                    .width = 512,
+                    .height = 288,
+                    .shadowMapSize = 1024,
+                    .samples = 64},
+                   {
+                       {"hard", 0.039591, 0.001020, 0.000000, 0.000000},
+                       {"pcf[bilinear]", 0.032245, 0.000297, 0.000000, 0.000000},
+                       {"pcf[hardware]", 0.032233, 0.000285, 0.000000, 0.000000},
+                       {"pcf[box3]", 0.024905, 0.000285, 0.000000, 0.000000},
+                       {"pcf[box7]", 0.025295, 0.000320, 0.000000, 0.000000},
+                       {"pcf[box11]", 0.035531, 0.000593, 0.000000, 0.000000},
+                       {"pcf[gauss7]", 0.022536, 0.000297, 0.000000, 0.000000},
+                       {"pcf[poisson16]", 0.022935, 0.000297, 0.000000, 0.000000},
+                       {"pcf[poisson32]", 0.022809, 0.000297, 0.000000, 0.000000},
+                       {"pcf[adaptive-box7]", 0.025412, 0.000320, 0.000000, 0.000000},
+                       {"pcss", 0.018413, 0.000273, 0.000000, 0.000000},
+                       {"pcss[fast]", 0.032946, 0.001115, 0.000000, 0.000000},
+                       {"second-depth", 0.041062, 0.001139, 0.000000, 0.000000},
+                       {"second-depth[nobias]", 0.038854, 0.001008, 0.000042, 0.000000},
+                   });
+}
+
+TEST_F(QualityTest, EveryCompareRowKeepsItsErrorUnderALargeSpot) {
+    expectBaseline({.scene = "builtin:spot",
+                    .radius = 1.0f,
+                    .width = 512,
+                    .height = 288,
+                    .shadowMapSize = 1024,
+                    .samples = 64},
+                   {
+                       {"hard", 0.080586, 0.002835, 0.000000, 0.000000},
+                       {"pcf[bilinear]", 0.076649, 0.001708, 0.000000, 0.000000},
+                       {"pcf[hardware]", 0.076645, 0.001708, 0.000000, 0.000000},
+                       {"pcf[box3]", 0.070868, 0.000913, 0.000000, 0.000000},
+                       {"pcf[box7]", 0.060099, 0.000344, 0.000000, 0.000000},
+                       {"pcf[box11]", 0.051589, 0.000285, 0.000000, 0.000000},
+                       {"pcf[gauss7]", 0.064275, 0.000605, 0.000000, 0.000000},
+                       {"pcf[poisson16]", 0.065653, 0.000676, 0.000000, 0.000000},
+                       {"pcf[poisson32]", 0.066050, 0.000676, 0.000000, 0.000000},
+                       {"pcf[adaptive-box7]", 0.060151, 0.000344, 0.000000, 0.000000},
+                       {"pcss", 0.023368, 0.000225, 0.000000, 0.006583},
+                       {"pcss[fast]", 0.034340, 0.000688, 0.000271, 0.018842},
+                       {"second-depth", 0.081154, 0.002953, 0.000000, 0.000000},
+                       {"second-depth[nobias]", 0.080067, 0.002847, 0.000043, 0.000000},
+                   });
+}

@@ -1,0 +1,83 @@
+#pragma once
+// Ground-truth comparisons for the GPU tests: one render's G-buffer, the Embree truth traced
+// from it, and the metrics of any technique row on the same pixels, as `penumbra compare` does.
+#include "gpu_fixture.h"
+#include "penumbra/reference.h"
+#include "report/light_mask.h"
+#include "report/metrics.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace penumbra::test {
+
+struct TruthSetup {
+    std::string scene;
+    float radius = -1.0f, angle = -1.0f; // light size overrides (< 0: the scene's)
+    uint32_t width = 512, height = 512;
+    uint32_t shadowMapSize = 2048;
+    uint32_t samples = 64; // per pixel (1 for a point-like light)
+};
+
+struct Truth {
+    TruthSetup setup;
+    Scene scene;
+    RenderResult gbuffer;
+    ReferenceResult reference;
+    std::vector<uint8_t> mask; // pixels the metrics count for light 0
+};
+
+inline Truth groundTruth(const TruthSetup& setup) {
+    Truth t{.setup = setup, .scene = loadScene(setup.scene)};
+    applyLightSizeOverrides(t.scene, setup.radius, setup.angle);
+    t.gbuffer = sharedRenderer().render(
+        t.scene, {.width = setup.width, .height = setup.height, .frames = 1});
+    t.reference = computeReference(t.scene, t.gbuffer, {.samples = setup.samples});
+    t.mask = lightMask(t.scene, t.gbuffer, t.gbuffer.lights[0]);
+    return t;
+}
+
+inline RenderResult renderRow(const Truth& t, Technique technique,
+                              const std::vector<std::pair<std::string, std::string>>& sets) {
+    RenderOptions o{.width = t.setup.width,
+                    .height = t.setup.height,
+                    .shadowMapSize = t.setup.shadowMapSize,
+                    .frames = 1,
+                    .technique = technique};
+    for (const auto& [key, value] : sets)
+        o.parameters.set(key, value);
+    return sharedRenderer().render(t.scene, o);
+}
+
+inline ErrorMetrics errorOf(const Truth& t, const RenderResult& r) {
+    const MetricLayer layer{r.visibility[0], t.reference.visibility[0], t.mask};
+    return computeMetrics(r.width, r.height, std::span(&layer, 1));
+}
+
+inline ErrorMetrics measure(const Truth& t, Technique technique,
+                            const std::vector<std::pair<std::string, std::string>>& sets) {
+    return errorOf(t, renderRow(t, technique, sets));
+}
+
+// How far a measurement may move from the value stored beside its check. Lavapipe renders
+// bit-identically run after run, so the tables are tight there (a 20% worse error must fail);
+// another device rasterizes and filters a little differently, so they only catch gross changes.
+inline double storedTolerance() {
+    return sharedRenderer().device().type.find("CPU") != std::string::npos ? 0.15 : 0.5;
+}
+
+// A measured value against the one stored beside its threshold: within `relative` of it, or
+// `floor` for values near zero. Both directions fail: a worse value is a regression, a better
+// one means the stored table no longer describes the code (re-measure and update it).
+inline void expectStored(const std::string& what, double measured, double stored, double relative,
+                         double floor) {
+    const double slack = std::max(relative * stored, floor);
+    EXPECT_LE(measured, stored + slack) << what << ": worse than the stored " << stored;
+    EXPECT_GE(measured, stored - slack)
+        << what << ": better than the stored " << stored << " (re-measure and update the table)";
+}
+
+} // namespace penumbra::test

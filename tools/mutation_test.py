@@ -1,0 +1,259 @@
+#!/usr/bin/env python3
+"""Mutation testing for Penumbra: `make mutation-test`.
+
+Applies each one-line mutation listed in tests/mutations/*.toml to a scratch copy of the tree,
+rebuilds incrementally, runs the ctest labels that can see the change (stopping at the first
+failing test) and reports which mutations no test caught. The working tree is never modified.
+
+    tools/mutation_test.py [--only ID,ID...] [--label L] [--list] [--jobs N] [--keep-going]
+
+The scratch tree lives in build/mutation/tree (its build in build/mutation/tree/build/release)
+and is reused between runs: only files that changed are copied, so a second run rebuilds little.
+"""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SCRATCH = ROOT / "build" / "mutation" / "tree"
+BUILD = SCRATCH / "build" / "release"
+KINDS = {"sign", "compare", "off-by-one", "swap", "constant", "drop", "logic"}
+
+
+class ListError(Exception):
+    pass
+
+
+def load_mutations(directory):
+    mutations, seen = [], set()
+    for path in sorted(directory.glob("*.toml")):
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+        for m in data.get("mutation", []):
+            where = f"{path.name}: {m.get('id', '<no id>')}"
+            for key in ("id", "labels", "kind", "why"):
+                if key not in m:
+                    raise ListError(f"{where}: missing '{key}'")
+            if m["id"] in seen:
+                raise ListError(f"{where}: duplicate id")
+            if m["kind"] not in KINDS:
+                raise ListError(f"{where}: kind '{m['kind']}' is not one of {sorted(KINDS)}")
+            # One edit (file/find/replace), or `edits`: the same bug in a shader and its CPU
+            # mirror, which a parity test alone cannot see.
+            edits = m.get("edits") or [{k: m[k] for k in ("file", "find", "replace",
+                                                           "occurrence") if k in m}]
+            for e in edits:
+                for key in ("file", "find", "replace"):
+                    if key not in e:
+                        raise ListError(f"{where}: an edit is missing '{key}'")
+                if e["find"] == e["replace"]:
+                    raise ListError(f"{where}: find and replace are the same")
+            seen.add(m["id"])
+            m["edits"] = edits
+            m["files"] = ", ".join(dict.fromkeys(e["file"] for e in edits))
+            m["list"] = path.name
+            mutations.append(m)
+    return mutations
+
+
+def locate(m, e, text):
+    """Offset of the edit's `find` in `text`; ListError unless it is unambiguous."""
+    count = text.count(e["find"])
+    occurrence = e.get("occurrence")
+    if occurrence is None:
+        if count != 1:
+            raise ListError(f"{m['id']}: 'find' occurs {count} times in {e['file']} "
+                            f"(must be exactly once, or give 'occurrence')")
+        return text.index(e["find"])
+    if not 1 <= occurrence <= count:
+        raise ListError(f"{m['id']}: occurrence {occurrence} of {count} in {e['file']}")
+    at = -1
+    for _ in range(occurrence):
+        at = text.index(e["find"], at + 1)
+    return at
+
+
+def apply(m, root):
+    """Applies every edit of `m` under `root`; returns the original texts to restore."""
+    originals = {}
+    for e in m["edits"]:
+        target = root / e["file"]
+        text = originals.get(target)
+        if text is None:
+            text = originals[target] = target.read_text()
+        current = target.read_text()
+        at = locate(m, e, current)
+        target.write_text(current[:at] + e["replace"] + current[at + len(e["find"]):])
+    return originals
+
+
+def tracked_files():
+    out = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"], cwd=ROOT,
+                         check=True, capture_output=True).stdout
+    return [Path(p.decode()) for p in out.split(b"\0") if p]
+
+
+def sync_scratch():
+    """Copies every tracked or untracked-but-not-ignored file whose bytes differ."""
+    copied = 0
+    wanted = set()
+    for rel in tracked_files():
+        src, dst = ROOT / rel, SCRATCH / rel
+        if not src.is_file():
+            continue
+        wanted.add(rel)
+        data = src.read_bytes()
+        if dst.is_file() and dst.read_bytes() == data:
+            continue
+        dst.parent.mkdir(parents=True, exist_ok=True)
+        dst.write_bytes(data)
+        shutil.copymode(src, dst)
+        copied += 1
+    for path in SCRATCH.rglob("*"):  # files deleted from the tree since the last run
+        rel = path.relative_to(SCRATCH)
+        if path.is_file() and rel.parts[0] != "build" and rel not in wanted:
+            path.unlink()
+    return copied
+
+
+def run(cmd, log, timeout=None, cwd=SCRATCH):
+    with open(log, "w") as f:
+        try:
+            return subprocess.run(cmd, cwd=cwd, stdout=f, stderr=subprocess.STDOUT,
+                                  timeout=timeout).returncode
+        except subprocess.TimeoutExpired:
+            return 124
+
+
+def build(jobs, log):
+    if not (BUILD / "CMakeCache.txt").exists():
+        if run(["cmake", "--preset", "release"], log) != 0:
+            return False
+    return run(["cmake", "--build", "--preset", "release", "-j", str(jobs)], log) == 0
+
+
+def label_regex(labels):
+    return "^(" + "|".join(labels) + ")$"
+
+
+def first_failure(log):
+    """The first test that failed, in the order ctest finished them."""
+    for line in Path(log).read_text(errors="replace").splitlines():
+        if any(mark in line for mark in ("***Failed", "***Timeout", "***Exception", "Subprocess")):
+            name = line.split(": ", 1)[-1].split(" ", 1)[0]
+            return name.rstrip(".")
+    return "?"
+
+
+def run_tests(labels, jobs, log, timeout):
+    env_cmd = ["ctest", "--test-dir", str(BUILD), "-L", label_regex(labels), "-j", str(jobs),
+               "--stop-on-failure", "--timeout", str(timeout), "--output-on-failure"]
+    return run(env_cmd, log, timeout=timeout * 4)
+
+
+def fmt_seconds(s):
+    return f"{int(s) // 60}m{int(s) % 60:02d}s"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--only", default="", help="comma-separated mutation ids to run")
+    parser.add_argument("--label", default="", help="only mutations that name this label")
+    parser.add_argument("--list", action="store_true", help="print the mutations and exit")
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
+    parser.add_argument("--timeout", type=int, default=600, help="seconds per test")
+    args = parser.parse_args()
+    os.environ.setdefault("XDG_RUNTIME_DIR", f"/tmp/penumbra-xdg-{os.getuid()}")
+    Path(os.environ["XDG_RUNTIME_DIR"]).mkdir(mode=0o700, parents=True, exist_ok=True)
+
+    try:
+        mutations = load_mutations(ROOT / "tests" / "mutations")
+        for m in mutations:  # every entry must apply to today's code before anything runs
+            for e in m["edits"]:
+                locate(m, e, (ROOT / e["file"]).read_text())
+    except (ListError, OSError, tomllib.TOMLDecodeError) as e:
+        print(f"error: tests/mutations: {e}", file=sys.stderr)
+        return 2
+    if args.only:
+        wanted = set(args.only.split(","))
+        unknown = wanted - {m["id"] for m in mutations}
+        if unknown:
+            print(f"error: --only: unknown mutation ids {sorted(unknown)}", file=sys.stderr)
+            return 2
+        mutations = [m for m in mutations if m["id"] in wanted]
+    if args.label:
+        mutations = [m for m in mutations if args.label in m["labels"]]
+    if args.list:
+        for m in mutations:
+            note = " (equivalent)" if "equivalent" in m else ""
+            print(f"{m['id']:44} {m['kind']:10} {','.join(m['labels']):22} {m['files']}{note}")
+        return 0
+
+    logs = ROOT / "build" / "mutation" / "logs"
+    logs.mkdir(parents=True, exist_ok=True)
+    started = time.monotonic()
+    SCRATCH.mkdir(parents=True, exist_ok=True)
+    print(f"mutation-test: scratch tree {SCRATCH.relative_to(ROOT)}: "
+          f"{sync_scratch()} files copied", flush=True)
+    print("mutation-test: building the unmutated tree ...", flush=True)
+    if not build(args.jobs, logs / "baseline-build.log"):
+        print(f"error: the unmutated tree does not build (see {logs / 'baseline-build.log'})",
+              file=sys.stderr)
+        return 2
+    active = [m for m in mutations if "equivalent" not in m]
+    labels = sorted({label for m in active for label in m["labels"]})
+    print(f"mutation-test: baseline: labels {', '.join(labels)} must pass unmutated ...",
+          flush=True)
+    if run_tests(labels, args.jobs, logs / "baseline-tests.log", args.timeout) != 0:
+        print(f"error: tests fail on the unmutated tree (see {logs / 'baseline-tests.log'})",
+              file=sys.stderr)
+        return 2
+    print(f"mutation-test: baseline passed after {fmt_seconds(time.monotonic() - started)}; "
+          f"{len(active)} mutations", flush=True)
+
+    killed, survivors, invalid = [], [], []
+    for n, m in enumerate(active, 1):
+        t0 = time.monotonic()
+        originals = apply(m, SCRATCH)
+        log = logs / f"{m['id']}.log"
+        try:
+            if not build(args.jobs, log):
+                outcome = "INVALID (does not build)"
+                invalid.append(m)
+            else:
+                if run_tests(m["labels"], args.jobs, log, args.timeout) != 0:
+                    outcome = f"killed by {first_failure(log)}"
+                    killed.append(m)
+                else:
+                    outcome = "SURVIVED"
+                    survivors.append(m)
+        finally:
+            for target, text in originals.items():
+                target.write_text(text)
+        print(f"[{n:3}/{len(active)}] {m['id']:44} {outcome} "
+              f"({time.monotonic() - t0:.0f} s)", flush=True)
+
+    # Leave the scratch build matching the unmutated tree for the next run.
+    build(args.jobs, logs / "restore-build.log")
+    total = len(killed) + len(survivors)
+    percent = 100.0 * len(killed) / total if total else 0.0
+    print(f"mutation-test: {fmt_seconds(time.monotonic() - started)} in all; logs in "
+          f"{logs.relative_to(ROOT)}")
+    for m in [m for m in mutations if "equivalent" in m]:
+        print(f"  equivalent, not run: {m['id']}: {m['equivalent']}")
+    for m in invalid:
+        print(f"  invalid (fix the list): {m['id']} ({m['files']})")
+    for m in survivors:
+        print(f"  survivor: {m['id']} ({m['files']}): {m['why']}")
+    print(f"mutation-test: killed {len(killed)} of {total} ({percent:.1f}%)")
+    return 1 if invalid else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
