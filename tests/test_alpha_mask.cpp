@@ -85,18 +85,20 @@ TEST_F(MaterialTest, AlphaTestedCanopyLetsTheSunThroughItsHoles) {
                     std::string(techniqueName(technique)).c_str(), n, gpuLit, truthLit, holes,
                     100.0 * static_cast<double>(disagree) /
                         static_cast<double>(r.width * r.height));
+        // Measured, both techniques: lit 0.582 (gpu), 0.583 (truth), holes 0.584; 0.43% of the
+        // image disagrees (leaf-sized shadows alias at map 2048).
         ASSERT_GT(n, 5000u);
-        EXPECT_NEAR(truthLit, holes, 0.04);
-        EXPECT_NEAR(gpuLit, holes, 0.05);
-        EXPECT_LT(static_cast<double>(disagree) / static_cast<double>(r.width * r.height), 0.03);
+        EXPECT_NEAR(truthLit, holes, 0.01);
+        EXPECT_NEAR(gpuLit, holes, 0.01);
+        EXPECT_LT(static_cast<double>(disagree) / static_cast<double>(r.width * r.height), 0.006);
     }
     // The same roof drawn opaque: no light gets through, in the rasterizer or the truth.
     const Scene opaque = parallelFoliage(false);
     const RenderResult r = render(opaque, {.width = 640, .height = 360});
     const ReferenceResult truth = computeReference(opaque, r, {.samples = 1});
     size_t n = 0;
-    EXPECT_LT(litUnderCanopy(opaque, r, r.visibility[0], &n), 0.01);
-    EXPECT_LT(litUnderCanopy(opaque, r, truth.visibility[0], &n), 0.01);
+    EXPECT_LT(litUnderCanopy(opaque, r, r.visibility[0], &n), 0.005);
+    EXPECT_LT(litUnderCanopy(opaque, r, truth.visibility[0], &n), 0.005);
 }
 
 TEST_F(MaterialTest, CameraSeesTheGroundThroughTheHoles) {
@@ -123,7 +125,7 @@ TEST_F(MaterialTest, CameraSeesTheGroundThroughTheHoles) {
     std::printf("pixels looking through the roof: %zu, ground seen through it %.3f, holes %.3f\n",
                 n, seen, holes);
     ASSERT_GT(n, 5000u);
-    EXPECT_NEAR(seen, holes, 0.05);
+    EXPECT_NEAR(seen, holes, 0.015); // measured: 0.578 against 0.584
 }
 
 namespace {
@@ -161,7 +163,9 @@ TEST_F(MaterialTest, SingleSidedBackFacesAreCulledForTheCameraButStillCastShadow
                 wallPixels[0], wallPixels[1], shadowed[0], shadowed[1]);
     EXPECT_EQ(wallPixels[0], 0u);
     EXPECT_GT(wallPixels[1], 2000u);
-    EXPECT_GT(shadowed[0], 200u); // the light sees the wall's front either way
+    // The light sees the wall's front either way. Measured: 441 shadowed ground pixels in view
+    // when single-sided (drawn double-sided, the wall hides most of its own shadow: 9).
+    EXPECT_GT(shadowed[0], 400u);
 }
 
 TEST_F(MaterialTest, BaseColourTextureAndVertexColoursReachTheImage) {
@@ -189,13 +193,14 @@ TEST_F(MaterialTest, BaseColourTextureAndVertexColoursReachTheImage) {
     const glm::ivec3 tl = rgb(44, 44), tr = rgb(84, 44), bl = rgb(44, 84), br = rgb(84, 84);
     std::printf("quadrants: tl %d %d %d, tr %d %d %d, bl %d %d %d, br %d %d %d\n", tl.x, tl.y, tl.z,
                 tr.x, tr.y, tr.z, bl.x, bl.y, bl.z, br.x, br.y, br.z);
-    EXPECT_GT(tl.x, 4 * std::max(tl.y, tl.z) + 20); // red
-    EXPECT_GT(tr.y, 4 * std::max(tr.x, tr.z) + 20); // green
-    EXPECT_GT(bl.z, 4 * std::max(bl.x, bl.y) + 20); // blue
-    EXPECT_GT(std::min(br.x, br.y), 150);           // white x yellow tint
-    EXPECT_LT(std::abs(br.x - br.y), 10);
-    EXPECT_LT(br.z, br.x - 50);
-    EXPECT_LT(bl.z, tl.x - 50); // the tint dims the blue too
+    // Measured: red (214, 0, 0), green (0, 214, 0), blue x tint (0, 0, 136), white x tint
+    // (214, 214, 136); the lit image's formula itself is LightingTest's.
+    EXPECT_EQ(tl, glm::ivec3(tl.x, 0, 0)); // red
+    EXPECT_EQ(tr, glm::ivec3(0, tl.x, 0)); // green, as bright
+    EXPECT_EQ(bl, glm::ivec3(0, 0, bl.z)); // blue
+    EXPECT_GT(tl.x, 200);
+    EXPECT_EQ(br, glm::ivec3(tl.x, tl.x, bl.z)); // white x yellow tint
+    EXPECT_LT(bl.z, tl.x - 60);                  // the tint dims the blue
 }
 
 TEST_F(LightingTest, ExposureScalesTheDirectLightOnly) {

@@ -1,13 +1,20 @@
 // The CLI contract of design.md §1: bad input gives one `error:` line, a non-zero exit code, no
 // crash and no output; good input writes exactly the files the contract lists.
 #include "core/image_io.h"
+#include "core/light_space.h"
+#include "core/projection.h"
 #include "gltf_builder.h"
+#include "penumbra/reference.h"
 #include "process.h"
+#include "report/heatmap.h"
+#include "report/light_mask.h"
+#include "report/metrics.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 using namespace penumbra;
@@ -123,9 +130,9 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST(Cli, RenderWritesTheContractFiles) {
     const fs::path out = scratch("render-ok");
-    const ProcessResult r =
-        runCli({"render", "builtin:showcase", "-o", out.string(), "--width", "96", "--height", "64",
-                "--shadow-map-size", "256", "--frames", "2", "--set", "bias.slope=1.5"});
+    const ProcessResult r = runCli({"render", "builtin:showcase", "-o", out.string(), "--width",
+                                    "96", "--height", "64", "--shadow-map-size", "256", "--frames",
+                                    "2", "--set", "bias.slope=1.5", "--light-angle", "2.5"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const char* f :
          {"image.png", "visibility.pfm", "position.pfm", "normal.pfm", "stats.json"})
@@ -145,6 +152,14 @@ TEST(Cli, RenderWritesTheContractFiles) {
     const PfmImage pos = readPfm(out / "position.pfm");
     EXPECT_EQ(pos.channels, 3u);
     EXPECT_NEAR(pos.pixels[pos.pixels.size() - 2], 0.0f, 1e-3f); // bottom row lies on y = 0
+    const PfmImage normal = readPfm(out / "normal.pfm");
+    EXPECT_EQ(normal.channels, 3u);
+    EXPECT_NEAR(normal.pixels[normal.pixels.size() - 2], 1.0f, 1e-3f); // the ground faces up
+    for (size_t i = 0; i + 2 < normal.pixels.size(); i += 3)
+        if (std::isfinite(normal.pixels[i])) {
+            const float* n = &normal.pixels[i];
+            ASSERT_NEAR(n[0] * n[0] + n[1] * n[1] + n[2] * n[2], 1.0f, 1e-3f) << "pixel " << i / 3;
+        }
 
     const auto stats = nlohmann::json::parse(slurp(out / "stats.json"));
     EXPECT_EQ(stats["technique"], "hard");
@@ -156,6 +171,12 @@ TEST(Cli, RenderWritesTheContractFiles) {
         EXPECT_EQ(stats["gpu_ms_per_frame"][pass].size(), 2u);
     }
     EXPECT_EQ(stats["lights"][0]["visibility_file"], "visibility.pfm");
+    EXPECT_DOUBLE_EQ(stats["lights"][0]["angular_diameter_degrees"].get<double>(), 2.5);
+    double sum = 0;
+    for (const auto& [pass, ms] : stats["gpu_ms"].items())
+        if (pass != "total")
+            sum += ms.get<double>();
+    EXPECT_NEAR(stats["gpu_ms"]["total"].get<double>(), sum, 1e-9 * sum);
     EXPECT_NE(r.out.find("GPU ms per pass"), std::string::npos);
 }
 
@@ -217,6 +238,60 @@ TEST(Cli, CompareWritesMetricsForEveryTechnique) {
     }
     for (const char* f : {"report.html", "visibility.pfm", "position.pfm", "normal.pfm"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
+}
+
+TEST(Cli, CompareMetricsHeatMapsAndTruthFollowFromTheFilesItWrote) {
+    // Everything compare reports must follow from the images it wrote: the truth from the
+    // G-buffer files and the light size asked for, each row's metrics and heat map from the row's
+    // visibility and the truth, on the pixels the light can reach.
+    const fs::path out = scratch("compare-consistent");
+    const ProcessResult r =
+        runCli({"compare", "builtin:showcase", "-o", out.string(), "--techniques",
+                "hard,pcf[box7],pcss", "--width", "96", "--height", "64", "--shadow-map-size",
+                "512", "--frames", "1", "--samples", "16", "--light-angle", "6"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const PfmImage truthFile = readPfm(out / "visibility.pfm");
+    RenderResult g{.width = truthFile.width, .height = truthFile.height};
+    g.position = readPfm(out / "position.pfm").pixels;
+    g.normal = readPfm(out / "normal.pfm").pixels;
+    Scene scene = loadScene("builtin:showcase");
+    applyLightSizeOverrides(scene, -1.0f, 6.0f);
+    const ReferenceResult truth = computeReference(scene, g, {.samples = 16});
+    ASSERT_EQ(truth.visibility.size(), 1u);
+    EXPECT_EQ(0, std::memcmp(truth.visibility[0].data(), truthFile.pixels.data(),
+                             truthFile.pixels.size() * sizeof(float)))
+        << "visibility.pfm is not the truth for a 6-degree sun";
+    const LightShadow shadow{
+        .worldToShadow = textureMatrix() * fitLight(scene.lights[0], scene.bounds(), 512).viewProj};
+    const std::vector<uint8_t> mask = lightMask(scene, g, shadow);
+    const auto metrics = nlohmann::json::parse(slurp(out / "metrics.json"))["techniques"];
+    ASSERT_EQ(metrics.size(), 4u); // hard, pcf[box7], pcss, pcss[fast]
+    for (const auto& [name, reported] : metrics.items()) {
+        std::string prefix;
+        for (char c : name)
+            prefix += c == '[' ? "-" : c == ']' ? "" : std::string(1, c);
+        const PfmImage row = readPfm(out / (prefix + ".visibility.pfm"));
+        const MetricLayer layer{row.pixels, truth.visibility[0], mask};
+        const ErrorMetrics m = computeMetrics(g.width, g.height, std::span(&layer, 1));
+        EXPECT_GT(m.pixels, g.width * g.height / 3) << name;
+        const std::pair<const char*, double> expected[] = {
+            {"rmse", m.rmse},
+            {"mae", m.mae},
+            {"max", m.max},
+            {"misclassified", m.misclassified},
+            {"misclassified_outside_edges", m.misclassifiedOutsideEdges},
+            {"acne", m.acne},
+            {"leak", m.leak}};
+        for (const auto& [key, value] : expected)
+            EXPECT_NEAR(reported[key].get<double>(), value, 1e-9) << name << " " << key;
+        EXPECT_EQ(slurp(out / (prefix + ".heatmap.png")),
+                  [&] {
+                      const std::vector<uint8_t> png = encodePng(signedErrorHeatmap(
+                          g.width, g.height, row.pixels, truth.visibility[0], mask));
+                      return std::string(png.begin(), png.end());
+                  }())
+            << name << ": heat map";
+    }
 }
 
 // report.html in headless Chromium (Debian's package, installed by `make deps`): it loads

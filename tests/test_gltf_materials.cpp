@@ -155,6 +155,18 @@ TEST(GltfMaterials, CoverageIsTheGpuAlphaTest) {
                     linear.coverage(0, {1e6f, -1e6f}, 1.0f)); // huge coordinates stay finite
 }
 
+TEST(GltfMaterials, CoverageExactlyAtTheCutoffIsSurface) {
+    // The GPU discards coverage < cutoff (shaders/include/alpha_test.glsl): equal is surface.
+    Scene s;
+    s.materials.push_back(
+        {.baseColor = {1, 1, 1, 0.5f}, .alphaMode = AlphaMode::Mask, .alphaCutoff = 0.5f});
+    EXPECT_TRUE(s.covers(0, {0.3f, 0.3f}, 1.0f));
+    EXPECT_FALSE(s.covers(0, {0.3f, 0.3f}, std::nextafter(1.0f, 0.0f)));
+    EXPECT_TRUE(s.covers(0, {0.3f, 0.3f}, 0.0f) == false);
+    s.materials[0].alphaMode = AlphaMode::Opaque; // only MASK has holes
+    EXPECT_TRUE(s.covers(0, {0.3f, 0.3f}, 0.0f));
+}
+
 TEST(GltfMaterials, UnusedImagesAreNeverDecodedAndBlendIsDrawnOpaque) {
     GltfBuilder b = texturedQuad();
     const std::vector<uint8_t> junk{'G', 'I', 'F', '8', '9', 'a', 1, 2, 3};

@@ -59,9 +59,11 @@ void expectSphereShadowWhereProjected(const RenderResult& r, const Light& light)
     std::printf("sphere shadow: %zu expected / %zu rendered pixels, centroid error %.3f px\n",
                 c.expectedCount, c.renderedCount, glm::length(c.rendered - c.expected));
     ASSERT_GT(c.expectedCount, 2000u);
+    // Measured (lavapipe, 1280x720, map 2048): counts within 0.3%, centroids 0.044 px (sun) and
+    // 0.054 px (spot) apart.
     EXPECT_NEAR(static_cast<double>(c.renderedCount), static_cast<double>(c.expectedCount),
-                0.05 * static_cast<double>(c.expectedCount));
-    EXPECT_LT(glm::length(c.rendered - c.expected), 2.0)
+                0.01 * static_cast<double>(c.expectedCount));
+    EXPECT_LT(glm::length(c.rendered - c.expected), 0.25)
         << "rendered (" << c.rendered.x << ", " << c.rendered.y << ") expected (" << c.expected.x
         << ", " << c.expected.y << ")";
 }
@@ -75,7 +77,7 @@ TEST_F(BiasTest, GrazingPlaneIsAcneFreeWithDefaultBias) {
     const double acne = grazingAcneFraction(r, scene, 0.15f, &lit);
     std::printf("grazing, default bias: %zu lit plane pixels, acne fraction %.5f\n", lit, acne);
     EXPECT_GT(lit, 640u * 360u / 4) << "the plane should fill much of the view";
-    EXPECT_LT(acne, 0.001) << "acne fraction with default bias";
+    EXPECT_LE(acne, 1e-5) << "acne fraction with default bias"; // measured: 0 of 194,525
 }
 
 TEST_F(BiasTest, GrazingPlaneShowsAcneWithoutBias) {
@@ -89,7 +91,7 @@ TEST_F(BiasTest, GrazingPlaneShowsAcneWithoutBias) {
     size_t lit = 0;
     const double acne = grazingAcneFraction(r, scene, 0.15f, &lit);
     std::printf("grazing, zero bias: acne fraction %.4f\n", acne);
-    EXPECT_GT(acne, 0.05) << "zero bias must show acne";
+    EXPECT_GT(acne, 0.45) << "zero bias must show acne"; // measured: 0.499
 }
 
 TEST_F(ShadowTest, SphereShadowSitsWhereTheDirectionalLightProjectsIt) {
@@ -179,7 +181,10 @@ TEST_F(QualityTest, HardMatchesTheRadiusZeroGroundTruthOutsideEdges) {
                 m.rmse, 100 * m.misclassified, 100 * m.misclassifiedOutsideEdges, 100 * m.acne,
                 100 * m.leak, static_cast<unsigned long long>(m.pixels));
     EXPECT_GT(m.pixels, 512u * 512u / 3);
-    EXPECT_LT(m.misclassifiedOutsideEdges, 0.005);
+    // Measured: rmse 0.0313, misclassified 0.098%, none outside the edge band.
+    EXPECT_LT(m.misclassifiedOutsideEdges, 1e-4);
+    EXPECT_LT(m.rmse, 0.036);
+    EXPECT_LT(m.misclassified, 0.00115);
 }
 
 TEST_F(ShadowTest, RasterizerDropsInvalidTrianglesLikeTheGroundTruth) {
@@ -201,4 +206,30 @@ TEST_F(ShadowTest, RasterizerDropsInvalidTrianglesLikeTheGroundTruth) {
     EXPECT_EQ(0, std::memcmp(a.visibility[0].data(), b.visibility[0].data(),
                              a.visibility[0].size() * sizeof(float)));
     EXPECT_EQ(a.image, b.image);
+}
+
+TEST_F(ShadowTest, PixelsOutsideTheSpotsFrustumReadUnoccluded) {
+    // Nothing in the shadow map can shadow a point the map does not cover: its visibility is 1
+    // (the composite's cone then decides how much light reaches it).
+    const Scene scene = loadScene("builtin:spot");
+    const RenderResult r = render(scene, {.width = 320, .height = 180, .shadowMapSize = 512});
+    size_t outside = 0, inside = 0, shadowedInside = 0;
+    for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
+        const glm::vec3 p = pixelVec(r.position, i);
+        if (!std::isfinite(p.x))
+            continue;
+        const glm::vec4 s = r.lights[0].worldToShadow * glm::vec4(p, 1.0f);
+        const glm::vec2 uv = glm::vec2(s) / s.w;
+        if (s.w <= 0.0f || uv.x < -0.01f || uv.x > 1.01f || uv.y < -0.01f || uv.y > 1.01f) {
+            ++outside;
+            EXPECT_EQ(r.visibility[0][i], 1.0f) << "pixel " << i << " outside the frustum";
+        } else {
+            ++inside;
+            shadowedInside += r.visibility[0][i] < 0.5f;
+        }
+    }
+    std::printf("spot: %zu pixels outside its frustum, %zu inside (%zu shadowed)\n", outside,
+                inside, shadowedInside);
+    EXPECT_GT(outside, 2000u);
+    EXPECT_GT(shadowedInside, 1000u);
 }

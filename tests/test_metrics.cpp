@@ -1,8 +1,10 @@
+#include "report/light_mask.h"
 #include "report/metrics.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <vector>
@@ -221,6 +223,19 @@ TEST(Metrics, LayersArePooled) {
     EXPECT_DOUBLE_EQ(m.max, 1.0);
 }
 
+TEST(Metrics, ATruthOfExactlyOneHalfCountsAsLitForBoundaries) {
+    // Columns 0..6 hold a truth of 0.5 (lit: truth >= 0.5), columns 7.. hold 0.4 (shadowed).
+    Images im(16, 5);
+    for (uint32_t y = 0; y < 5; ++y)
+        for (uint32_t x = 0; x < 16; ++x)
+            im.truth[im.at(x, y)] = im.visibility[im.at(x, y)] = x < 7 ? 0.5f : 0.4f;
+    EXPECT_EQ(im.metrics(2).pixelsOutsideEdges, 10u * 5); // a boundary: band columns 4..9
+    for (uint32_t y = 0; y < 5; ++y)
+        for (uint32_t x = 7; x < 16; ++x)
+            im.truth[im.at(x, y)] = 0.5f;
+    EXPECT_EQ(im.metrics(2).pixelsOutsideEdges, 16u * 5); // 0.5 everywhere: no boundary
+}
+
 TEST(Metrics, NoLayersIsAllZero) {
     ErrorMetrics m = computeMetrics(4, 4, {});
     EXPECT_EQ(m.pixels, 0u);
@@ -232,6 +247,45 @@ TEST(MetricsDeathTest, SizeMismatchIsAProgrammerError) {
     Images im(4, 4);
     im.mask.pop_back();
     EXPECT_DEATH(im.metrics(), "mask size");
+}
+
+TEST(MetricsMask, CountsPixelsFacingTheLightInsideItsFrustumOnly) {
+    // worldToShadow = identity: (u, v, depth) = (x, y, z), so the frustum is the unit cube.
+    Scene scene;
+    scene.lights.push_back({.type = LightType::Directional, .direction = {0, 0, 1}}); // towards +z
+    scene.lights.push_back({.type = LightType::Spot, .position = {0.5f, 0.5f, -4.0f}});
+    struct Pixel {
+        glm::vec3 p, n;
+        uint8_t sun, spot; // expected mask for each light
+    };
+    const Pixel pixels[] = {
+        {{0.5f, 0.5f, 0.5f}, {0, 0, -1}, 1, 1},    // inside, facing both lights
+        {{0.0f, 0.0f, 0.0f}, {0, 0, -1}, 1, 1},    // on the cube's corner: inside
+        {{1.0f, 1.0f, 1.0f}, {0, 0, -1}, 1, 1},    // the opposite corner
+        {{0.5f, 0.5f, 0.5f}, {0, 0, 1}, 0, 0},     // facing away
+        {{0.5f, 0.5f, 0.5f}, {1, 0, 0}, 0, 0},     // edge-on (N.L = 0 for the sun)
+        {{-0.001f, 0.5f, 0.5f}, {0, 0, -1}, 0, 0}, // just left of the frustum
+        {{1.001f, 0.5f, 0.5f}, {0, 0, -1}, 0, 0},  // just right
+        {{0.5f, -0.001f, 0.5f}, {0, 0, -1}, 0, 0}, // below
+        {{0.5f, 1.001f, 0.5f}, {0, 0, -1}, 0, 0},  // above
+        {{0.5f, 0.5f, -0.001f}, {0, 0, -1}, 0, 0}, // nearer than the near plane
+        {{0.5f, 0.5f, 1.001f}, {0, 0, -1}, 0, 0},  // beyond the far plane
+    };
+    RenderResult g{.width = std::size(pixels), .height = 1};
+    for (const Pixel& px : pixels)
+        for (int c = 0; c < 3; ++c)
+            g.position.push_back(px.p[c]), g.normal.push_back(px.n[c]);
+    for (int c = 0; c < 3; ++c) // and a background pixel
+        g.position.push_back(std::nanf("")), g.normal.push_back(std::nanf(""));
+    g.width += 1;
+    for (uint32_t light : {0u, 1u}) {
+        const std::vector<uint8_t> mask = lightMask(scene, g, {.sceneLight = light});
+        ASSERT_EQ(mask.size(), g.width);
+        for (size_t i = 0; i < std::size(pixels); ++i)
+            EXPECT_EQ(mask[i], light == 0 ? pixels[i].sun : pixels[i].spot)
+                << "light " << light << ", pixel " << i;
+        EXPECT_EQ(mask.back(), 0) << "background";
+    }
 }
 
 } // namespace

@@ -26,8 +26,10 @@ TEST_F(QualityTest, EveryPcfVariantIsAcneFreeAndRightAwayFromEdges) {
                     "leak %.3f%%\n",
                     row.name.c_str(), m.rmse, 100 * m.acne, 100 * m.misclassifiedOutsideEdges,
                     100 * m.leak);
-        EXPECT_LT(m.acne, 0.001) << row.name;
-        EXPECT_LT(m.misclassifiedOutsideEdges, 0.01) << row.name;
+        // Measured: acne at most 0.077% (box11: its kernel reaches the cube's foot), none
+        // misclassified outside the edge band for any row.
+        EXPECT_LT(m.acne, 0.0009) << row.name;
+        EXPECT_LT(m.misclassifiedOutsideEdges, 1e-4) << row.name;
     }
 }
 
@@ -46,9 +48,9 @@ TEST_F(BiasTest, ReceiverPlaneBiasLetsA9x9KernelGoWithoutConstantBias) {
                     100 * fraction);
         return fraction;
     };
-    EXPECT_LT(acne("light"), 0.001);
-    EXPECT_LT(acne("screen"), 0.001);
-    EXPECT_GT(acne("off"), 0.001) << "without receiver-plane bias the kernel must show acne";
+    EXPECT_LE(acne("light"), 1e-5);  // measured: 0
+    EXPECT_LE(acne("screen"), 1e-5); // measured: 0
+    EXPECT_GT(acne("off"), 0.05) << "without receiver-plane bias the kernel must show acne"; // 6.4%
 }
 
 TEST_F(QualityTest, Box7BeatsHardAgainstAnAreaLight) {
@@ -59,5 +61,5 @@ TEST_F(QualityTest, Box7BeatsHardAgainstAnAreaLight) {
     const ErrorMetrics box7 =
         measure(t, Technique::Pcf, {{"pcf.filter", "box"}, {"pcf.size", "7"}});
     std::printf("4-degree sun: hard rmse %.4f, pcf box7 rmse %.4f\n", hard.rmse, box7.rmse);
-    EXPECT_LT(box7.rmse, hard.rmse);
+    EXPECT_LT(box7.rmse, 0.6 * hard.rmse); // measured: 0.0246 against 0.0451
 }

@@ -19,13 +19,18 @@ struct Setup {
     const char* scene;
     float radius, angle; // light size overrides (-1: keep)
     double tip, base;    // where along the pole's ground shadow "tip" and "base" are measured
+    double rmseRatio;    // PCSS's RMSE at most this times the best fixed PCF's (measured - 10%)
+    double hardening;    // PCSS's penumbra at the tip at least this times that at the base
 };
 
 // Light sizes for which the pole's penumbra at its tip spans more than 20 pixels at 1280x720.
 // Under the spot the last quarter of the pole's shadow falls on the cube, so its "tip" is the
 // farthest stretch still on the ground.
-constexpr Setup kDirectional{"builtin:showcase", -1.0f, 12.0f, 0.85, 0.15};
-constexpr Setup kSpot{"builtin:spot", 1.5f, -1.0f, 0.62, 0.15};
+// Measured: sun RMSE 0.0190 against box11's 0.0355 (ratio 0.54), penumbra 0.205 at the tip and
+// 0.090 at the base (2.3x; the truth 0.250 / 0.060); spot 0.0367 against 0.0832 (0.44), 0.305 /
+// 0.075 (4.1x; the truth 0.235 / 0.080).
+constexpr Setup kDirectional{"builtin:showcase", -1.0f, 12.0f, 0.85, 0.15, 0.6, 2.0};
+constexpr Setup kSpot{"builtin:spot", 1.5f, -1.0f, 0.62, 0.15, 0.5, 3.5};
 
 Scene sceneFor(const Setup& s) {
     Scene scene = loadScene(s.scene);
@@ -63,9 +68,9 @@ void expectPcssBeatsFixedPcf(const Setup& setup) {
                 "lower)\n",
                 setup.scene, p.rmse, 100 * p.acne, 100 * p.leak, bestName.c_str(), best,
                 100 * (1 - p.rmse / best));
-    EXPECT_LE(p.rmse, 0.6 * best) << "PCSS must be at least 40% below " << bestName;
-    EXPECT_LT(p.acne, 0.001);
-    EXPECT_LT(p.leak, 0.01);
+    EXPECT_LE(p.rmse, setup.rmseRatio * best) << "PCSS against " << bestName;
+    EXPECT_LT(p.acne, 0.0006); // measured: 0.045% (sun), 0 (spot)
+    EXPECT_LT(p.leak, 0.004);  // measured: 0.34% (sun), 0 (spot)
 }
 
 // Where the pole's points fall on the ground, seen from the light.
@@ -162,7 +167,8 @@ void expectContactHardening(const Setup& setup) {
                 setup.scene, truthTip.width, truthBase.width, tip.width, base.width,
                 truthSpanPixels);
     ASSERT_GE(truthSpanPixels, 20.0) << "the light must be big enough";
-    EXPECT_GT(tip.width, 2.0 * base.width) << "contact hardening";
+    EXPECT_GT(tip.width, setup.hardening * base.width) << "contact hardening";
+    EXPECT_NEAR(tip.width, truthTip.width, 0.35 * truthTip.width) << "penumbra at the tip";
 }
 
 } // namespace

@@ -60,8 +60,9 @@ TEST_F(BiasTest, SecondDepthNeedsNoBiasOnClosedGeometry) {
     std::printf("closed scene, all bias 0: second-depth acne %.4f%%, misclassified outside edges "
                 "%.4f%%; hard acne %.2f%%\n",
                 100 * second.acne, 100 * second.misclassifiedOutsideEdges, 100 * hard.acne);
-    EXPECT_LT(second.acne, 0.001);
-    EXPECT_LT(second.misclassifiedOutsideEdges, 0.01) << "the shadows must still be there";
+    // Measured: second-depth acne 0.0030%, misclassified outside edges 0.0026%; hard 49.9%.
+    EXPECT_LT(second.acne, 0.0001);
+    EXPECT_LT(second.misclassifiedOutsideEdges, 0.0001) << "the shadows must still be there";
     EXPECT_GT(second.truthShadowed, 1000u);
-    EXPECT_GT(hard.acne, 0.01) << "without bias a plain shadow map must show acne here";
+    EXPECT_GT(hard.acne, 0.45) << "without bias a plain shadow map must show acne here";
 }

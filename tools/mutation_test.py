@@ -11,6 +11,7 @@ The scratch tree lives in build/mutation/tree (its build in build/mutation/tree/
 and is reused between runs: only files that changed are copied, so a second run rebuilds little.
 """
 import argparse
+import json
 import os
 import shutil
 import subprocess
@@ -130,11 +131,31 @@ def run(cmd, log, timeout=None, cwd=SCRATCH):
             return 124
 
 
-def build(jobs, log):
+def build(jobs, log, targets=()):
     if not (BUILD / "CMakeCache.txt").exists():
         if run(["cmake", "--preset", "release"], log) != 0:
             return False
-    return run(["cmake", "--build", "--preset", "release", "-j", str(jobs)], log) == 0
+    command = ["cmake", "--build", "--preset", "release", "-j", str(jobs)]
+    for target in targets:
+        command += ["--target", target]
+    return run(command, log) == 0
+
+
+def targets_by_label():
+    """Each label's test executables, from ctest's own description of the tests. The CLI
+    tests run the `penumbra` program, which their target does not link, so it comes along."""
+    out = subprocess.run(["ctest", "--test-dir", str(BUILD), "--show-only=json-v1"],
+                         check=True, capture_output=True, text=True).stdout
+    targets = {}
+    for test in json.loads(out)["tests"]:
+        executable = Path(test["command"][0]).name
+        labels = next((p["value"] for p in test.get("properties", []) if p["name"] == "LABELS"),
+                      [])
+        for label in labels:
+            targets.setdefault(label, set()).add(executable)
+            if executable == "penumbra_cli_tests":
+                targets[label].add("penumbra")
+    return targets
 
 
 def label_regex(labels):
@@ -216,14 +237,16 @@ def main():
         return 2
     print(f"mutation-test: baseline passed after {fmt_seconds(time.monotonic() - started)}; "
           f"{len(active)} mutations", flush=True)
+    executables = targets_by_label()
 
     killed, survivors, invalid = [], [], []
     for n, m in enumerate(active, 1):
         t0 = time.monotonic()
         originals = apply(m, SCRATCH)
         log = logs / f"{m['id']}.log"
+        needed = sorted({t for label in m["labels"] for t in executables.get(label, ())})
         try:
-            if not build(args.jobs, log):
+            if not build(args.jobs, logs / f"{m['id']}.build.log", needed):
                 outcome = "INVALID (does not build)"
                 invalid.append(m)
             else:
