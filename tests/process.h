@@ -5,6 +5,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -57,11 +59,14 @@ inline ProcessResult runProcess(std::vector<std::string> full) {
     return result;
 }
 
-// The penumbra CLI, always with the validation layer on.
+// The penumbra CLI, always with the validation layer on; any validation message it prints
+// (warnings included) fails the calling test.
 inline ProcessResult runCli(const std::vector<std::string>& args) {
     std::vector<std::string> full{PENUMBRA_CLI_PATH, "--validation"};
     full.insert(full.end(), args.begin(), args.end());
-    return runProcess(std::move(full));
+    ProcessResult result = runProcess(std::move(full));
+    EXPECT_EQ(result.err.find("vulkan validation"), std::string::npos) << result.err;
+    return result;
 }
 
 } // namespace penumbra::test

@@ -44,7 +44,7 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
                  scene.name.c_str(), device.name.c_str(), device.driverName.c_str(), options.width,
                  options.height, options.shadowMapSize, args.technique.c_str());
     for (const Light& l : scene.lights)
-        if (l.type == LightType::Point && l.castsShadow)
+        if (l.castsShadow && !castsShadowMap(l))
             std::fprintf(stderr,
                          "penumbra: note: point light '%s' lights the scene but casts no "
                          "shadow (point-light shadows are not in this build)\n",

@@ -100,6 +100,8 @@ public:
                                           const ProbeLight& light = {});
     // Validation-layer messages of severity error so far (0 when validation is off).
     uint32_t validationErrors() const;
+    // Every validation-layer message so far, warnings and performance warnings included.
+    uint32_t validationMessages() const;
 
 private:
     struct Impl;

@@ -139,6 +139,11 @@ Scene loadScene(std::string_view spec, const SceneLoadOptions& options = {});
 inline constexpr float kMaxCoordinate = 1e15f;
 size_t dropInvalidTriangles(Scene& scene);
 
+// Whether `light` gets a shadow map, and so a visibility image and a ground truth: the one rule
+// the renderer, the reference and the CLI share. Point lights light the scene but have no
+// shadow map yet (cube maps come with issue 11).
+bool castsShadowMap(const Light& light);
+
 // --light-radius / --light-angle: negative values leave the scene's sizes alone.
 void applyLightSizeOverrides(Scene& scene, float radius, float angleDegrees);
 std::vector<std::string_view> builtinSceneNames();

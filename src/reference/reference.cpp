@@ -106,7 +106,7 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
 
     std::vector<const Light*> lights; // same order as the renderer's visibility images
     for (const Light& l : scene.lights)
-        if (l.castsShadow && l.type != LightType::Point)
+        if (castsShadowMap(l))
             lights.push_back(&l);
 
     const uint32_t w = gbuffer.width, h = gbuffer.height;

@@ -20,7 +20,7 @@ namespace {
 size_t shadowCasterCount(const Scene& scene) {
     size_t n = 0;
     for (const Light& l : scene.lights)
-        n += l.castsShadow && l.type != LightType::Point;
+        n += castsShadowMap(l);
     return n;
 }
 
@@ -120,6 +120,9 @@ const DeviceInfo& Renderer::device() const {
 uint32_t Renderer::validationErrors() const {
     return mImpl->ctx.validationErrors();
 }
+uint32_t Renderer::validationMessages() const {
+    return mImpl->ctx.validationErrors() + mImpl->ctx.validationWarnings();
+}
 
 void Renderer::check(const Scene& scene, const RenderOptions& o) const {
     validate(o);
@@ -147,7 +150,7 @@ RenderResult Renderer::render(const Scene& sceneIn, const RenderOptions& o,
     for (uint32_t i = 0; i < scene.lights.size(); ++i) {
         const Light& light = scene.lights[i];
         LightShadow info{.sceneLight = i, .projection = "none"};
-        const bool casts = light.castsShadow && light.type != LightType::Point;
+        const bool casts = castsShadowMap(light);
         if (casts) {
             info.visibilityIndex = static_cast<int>(t.shadows.size());
             t.shadows.push_back(

@@ -48,6 +48,10 @@ size_t dropInvalidTriangles(Scene& scene) {
     return dropped;
 }
 
+bool castsShadowMap(const Light& light) {
+    return light.castsShadow && light.type != LightType::Point;
+}
+
 void applyLightSizeOverrides(Scene& scene, float radius, float angleDegrees) {
     for (Light& light : scene.lights) {
         if (radius >= 0.0f && light.type != LightType::Directional)
