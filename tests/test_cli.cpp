@@ -9,6 +9,7 @@
 #include "report/heatmap.h"
 #include "report/light_mask.h"
 #include "report/metrics.h"
+#include "scratch_dir.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -23,12 +24,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A path for an output folder the CLI creates: its parent exists, the folder itself does not.
 fs::path scratch(const std::string& name) {
-    const fs::path p =
-        fs::temp_directory_path() / ("penumbra-test-" + std::to_string(::getpid())) / name;
-    fs::remove_all(p);
-    fs::create_directories(p.parent_path());
+    const fs::path p = scratchDir("test", name, true);
+    fs::remove(p);
     return p;
+}
+
+// The file-name prefix compare gives a row: "pcf[box7]" is written "pcf-box7".
+std::string rowFilePrefix(const std::string& row) {
+    std::string prefix;
+    for (char c : row)
+        prefix += c == '[' ? "-" : c == ']' ? "" : std::string(1, c);
+    return prefix;
 }
 
 struct BadInput {
@@ -230,9 +238,7 @@ TEST(Cli, CompareWritesMetricsForEveryTechnique) {
                                 "misclassified_outside_edges", "acne", "leak", "gpu_ms"})
             EXPECT_TRUE(m.contains(key)) << name << " lacks " << key;
         EXPECT_TRUE(m["gpu_ms"].contains("visibility"));
-        std::string prefix; // "pcf[box7]" is written "pcf-box7"
-        for (char c : name)
-            prefix += c == '[' ? "-" : c == ']' ? "" : std::string(1, c);
+        const std::string prefix = rowFilePrefix(name);
         EXPECT_TRUE(fs::exists(out / (prefix + ".image.png"))) << name;
         EXPECT_TRUE(fs::exists(out / (prefix + ".heatmap.png"))) << name;
     }
@@ -267,9 +273,7 @@ TEST(Cli, CompareMetricsHeatMapsAndTruthFollowFromTheFilesItWrote) {
     const auto metrics = nlohmann::json::parse(slurp(out / "metrics.json"))["techniques"];
     ASSERT_EQ(metrics.size(), 4u); // hard, pcf[box7], pcss, pcss[fast]
     for (const auto& [name, reported] : metrics.items()) {
-        std::string prefix;
-        for (char c : name)
-            prefix += c == '[' ? "-" : c == ']' ? "" : std::string(1, c);
+        const std::string prefix = rowFilePrefix(name);
         const PfmImage row = readPfm(out / (prefix + ".visibility.pfm"));
         const MetricLayer layer{row.pixels, truth.visibility[0], mask};
         const ErrorMetrics m = computeMetrics(g.width, g.height, std::span(&layer, 1));

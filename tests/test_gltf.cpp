@@ -4,6 +4,7 @@
 #include "gltf_builder.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
+#include "scratch_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -18,9 +19,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path dir() {
-    const fs::path d = fs::temp_directory_path() / ("penumbra-gltf-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    return d;
+    return scratchDir("gltf");
 }
 
 Scene load(const fs::path& f, std::vector<std::string>* warnings = nullptr) {

@@ -11,6 +11,7 @@
 #include "gltf_builder.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
+#include "scratch_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -27,10 +28,7 @@ using J = nlohmann::json;
 namespace {
 
 fs::path dir(const std::string& name) {
-    const fs::path d =
-        fs::temp_directory_path() / ("penumbra-bounds-" + std::to_string(::getpid())) / name;
-    fs::create_directories(d);
-    return d;
+    return scratchDir("bounds", name);
 }
 
 void writeBytes(const fs::path& file, const std::vector<uint8_t>& bytes) {

@@ -6,6 +6,7 @@
 #include "gltf_builder.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
+#include "scratch_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -19,10 +20,7 @@ using J = nlohmann::json;
 namespace {
 
 fs::path dir(const std::string& name) {
-    const fs::path d =
-        fs::temp_directory_path() / ("penumbra-materials-" + std::to_string(::getpid())) / name;
-    fs::create_directories(d);
-    return d;
+    return scratchDir("materials", name);
 }
 
 // 2x2 RGBA: alpha 255, 0 on the top row; 64, 192 on the bottom.

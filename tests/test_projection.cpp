@@ -99,15 +99,29 @@ TEST(LightSpace, DirectionalBoxFitsTheSceneTightly) {
                 std::max(p.window.y - p.window.x, p.window.w - p.window.z), 1e-4f);
 }
 
-TEST(LightSpace, SpotFrustumCoversTheConeAndTheScene) {
+namespace {
+
+// An 8 x 1 x 8 box on the ground, and a spot 10 units above it looking down, cone 0.5 rad.
+Bounds groundBox() {
     Bounds b;
     b.grow({-4, 0, -4});
     b.grow({4, 1, 4});
-    Light spot{.type = LightType::Spot,
-               .position = {0, 10, 0},
-               .direction = {0, -1, 0},
-               .outerConeAngle = 0.5f};
-    const LightProjection p = fitSpot(spot, b, 512);
+    return b;
+}
+
+Light spotAbove(float range = 0.0f) {
+    return {.type = LightType::Spot,
+            .position = {0, 10, 0},
+            .direction = {0, -1, 0},
+            .range = range,
+            .outerConeAngle = 0.5f};
+}
+
+} // namespace
+
+TEST(LightSpace, SpotFrustumCoversTheConeAndTheScene) {
+    const Light spot = spotAbove();
+    const LightProjection p = fitSpot(spot, groundBox(), 512);
     const glm::mat4 st = textureMatrix() * p.viewProj;
     // The cone's rim lands on the edge of the map.
     const glm::vec3 rim = spot.position + 8.0f * glm::vec3(std::sin(0.5f), -std::cos(0.5f), 0);
@@ -121,14 +135,8 @@ TEST(LightSpace, SpotFrustumCoversTheConeAndTheScene) {
 }
 
 TEST(LightSpace, SpotRangeCutsTheFarPlaneAndTexelSizeFollowsTheCone) {
-    Bounds b;
-    b.grow({-4, 0, -4});
-    b.grow({4, 1, 4});
-    Light spot{.type = LightType::Spot,
-               .position = {0, 10, 0},
-               .direction = {0, -1, 0},
-               .range = 9.5f,
-               .outerConeAngle = 0.5f};
+    const Bounds b = groundBox();
+    Light spot = spotAbove(9.5f);
     const LightProjection cut = fitSpot(spot, b, 512);
     // The ground (10 along the axis) lies beyond the range: the far plane stops at the range.
     EXPECT_NEAR(cut.farPlane, 9.5f * 1.001f, 1e-4f);
