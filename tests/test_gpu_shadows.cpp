@@ -233,3 +233,43 @@ TEST_F(ShadowTest, PixelsOutsideTheSpotsFrustumReadUnoccluded) {
     EXPECT_GT(outside, 2000u);
     EXPECT_GT(shadowedInside, 1000u);
 }
+
+TEST_F(ShadowTest, ASceneRendererGivesWhatAFreshRenderGivesWhateverCameBefore) {
+    // One upload, then renders that change the technique (and its shadow maps), the sizes, the
+    // light size, the camera and the parameters, and come back: each result must be the one a
+    // fresh render of the same options gives, bit for bit (no stale target, no stale ring slot).
+    Scene scene = loadScene("builtin:showcase");
+    scene.cameras.push_back({.name = "side", .position = {9, 3, 2}, .target = {0, 0.5f, 0}});
+    std::vector<RenderOptions> sequence;
+    auto add = [&](RenderOptions o, std::vector<const char*> sets) {
+        o.frames = 1;
+        for (const char* s : sets)
+            o.parameters.assign(s);
+        sequence.push_back(o);
+    };
+    add({.width = 96, .height = 64, .shadowMapSize = 256}, {});
+    add({.width = 96, .height = 64, .shadowMapSize = 256, .technique = Technique::SecondDepth}, {});
+    add({.width = 80, .height = 60, .shadowMapSize = 512, .technique = Technique::Pcf},
+        {"pcf.filter=poisson"});
+    add({.width = 80,
+         .height = 60,
+         .shadowMapSize = 512,
+         .camera = "side",
+         .technique = Technique::Pcss,
+         .lightAngleOverride = 6.0f},
+        {"composite.shadowIntensity=0.5"});
+    add({.width = 96, .height = 64, .shadowMapSize = 256}, {});
+    SceneRenderer persistent(sharedRenderer(), scene);
+    for (size_t i = 0; i < sequence.size(); ++i) {
+        const RenderResult a = persistent.render(sequence[i]);
+        const RenderResult b = sharedRenderer().render(scene, sequence[i]);
+        EXPECT_EQ(a.image, b.image) << "render " << i;
+        ASSERT_EQ(a.visibility.size(), b.visibility.size()) << "render " << i;
+        EXPECT_EQ(0, std::memcmp(a.visibility[0].data(), b.visibility[0].data(),
+                                 a.visibility[0].size() * sizeof(float)))
+            << "render " << i;
+        EXPECT_EQ(
+            0, std::memcmp(a.position.data(), b.position.data(), a.position.size() * sizeof(float)))
+            << "render " << i;
+    }
+}

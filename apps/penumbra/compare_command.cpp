@@ -64,11 +64,12 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         renderer.check(scene, o);
     const DeviceInfo& device = renderer.device();
 
+    SceneRenderer uploaded(renderer, scene); // one upload and one set of targets for all rows
     std::vector<RenderResult> results;
     for (size_t r = 0; r < rows.size(); ++r) {
         std::fprintf(stderr, "penumbra: rendering %s (%zu/%zu) on %s\n", rows[r].name.c_str(),
                      r + 1, rows.size(), device.name.c_str());
-        results.push_back(renderer.render(scene, rowOptions[r]));
+        results.push_back(uploaded.render(rowOptions[r]));
     }
     Scene lit = scene; // the light sizes the reference must use
     applyLightSizeOverrides(lit, args.options.lightRadiusOverride, args.options.lightAngleOverride);

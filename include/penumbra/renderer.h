@@ -75,6 +75,8 @@ struct ProbeLight {
     glm::vec2 worldPerUv{1.0f}; // world size of one uv unit (at unit distance if perspective)
 };
 
+class SceneRenderer;
+
 class Renderer {
 public:
     // Throws InputError("--device", ...) for a bad index or a device lacking what we need.
@@ -102,6 +104,33 @@ public:
     uint32_t validationErrors() const;
     // Every validation-layer message so far, warnings and performance warnings included.
     uint32_t validationMessages() const;
+
+private:
+    friend class SceneRenderer;
+    struct Impl;
+    std::unique_ptr<Impl> mImpl;
+};
+
+// A scene uploaded once to a Renderer's device. It renders any number of frames with any
+// technique, parameters, light sizes, camera and image or shadow-map size without uploading the
+// scene again; its targets are kept while the sizes and the technique's shadow maps stay the
+// same. Per-frame data (camera, lights, settings) lives in a ring of buffers, so a frame can be
+// recorded while the previous one is still in flight. Renderer::render is one SceneRenderer
+// rendering once; `compare` renders every row with one.
+class SceneRenderer {
+public:
+    // Drops invalid triangles (the rule the ground truth applies) and uploads the rest; throws
+    // InputError when none are left. `renderer` must outlive this.
+    SceneRenderer(Renderer& renderer, const Scene& scene);
+    ~SceneRenderer();
+    SceneRenderer(const SceneRenderer&) = delete;
+    SceneRenderer& operator=(const SceneRenderer&) = delete;
+
+    // The scene as uploaded (invalid triangles dropped).
+    const Scene& scene() const;
+    // Throws InputError on options this device cannot honour for this scene.
+    void check(const RenderOptions& options) const;
+    RenderResult render(const RenderOptions& options, const ProgressFn& progress = {});
 
 private:
     struct Impl;

@@ -120,7 +120,7 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
 void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                         FrameTargets& t, const FrameSettings& s) {
     for (ShadowView& view : t.shadows) {
-        renderLightDepth(cmd, p, scene, view.map, view, s, nullptr, t.nearest.get());
+        renderLightDepth(cmd, p, scene, view.map, view, s, nullptr, t.nearest);
         if (!view.second) {
             vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kComputeSampled);
             continue;
@@ -128,7 +128,7 @@ void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& 
         // Second-depth: peel the layer behind the first, reading the first in the fragment
         // shader (same vertex shader and state, so the first layer reproduces its depths).
         vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kFragmentSampled);
-        renderLightDepth(cmd, p, scene, view.second, view, s, &view.map, t.nearest.get());
+        renderLightDepth(cmd, p, scene, view.second, view, s, &view.map, t.nearest);
         vk::imageBarrier(cmd, view.map, vk::kFragmentSampled, vk::kComputeSampled);
         vk::imageBarrier(cmd, view.second, vk::kDepthWrite, vk::kComputeSampled);
     }
@@ -140,8 +140,8 @@ void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
     for (ShadowView& view : t.shadows) {
         vk::imageBarrier(cmd, view.midpoint, vk::kUndefined, vk::kComputeWrite);
         vk::PushDescriptors()
-            .sampled(0, view.map.view.get(), t.nearest.get())
-            .sampled(1, view.second.view.get(), t.nearest.get())
+            .sampled(0, view.map.view.get(), t.nearest)
+            .sampled(1, view.second.view.get(), t.nearest)
             .storageImage(2, view.midpoint.view.get())
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.midpointLayout);
         const glm::uvec4 size(view.map.width, view.map.height, 0, 0);
@@ -172,7 +172,7 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
     for (const DrawBatch& batch : scene.batches) {
         const GpuScene::Material& material = scene.materials[batch.material];
         vk::PushDescriptors()
-            .uniformBuffer(0, t.frame.get())
+            .uniformBuffer(0, t.frame)
             .sampled(1, material.texture.view, material.texture.sampler)
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbufferLayout);
         vkCmdPushConstants(cmd, p.gbufferLayout.get(),
@@ -195,12 +195,12 @@ void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
     for (uint32_t layer = 0; layer < t.shadows.size(); ++layer) {
         const ShadowView& view = t.shadows[layer];
         vk::PushDescriptors()
-            .uniformBuffer(0, t.frame.get())
-            .storageBuffer(1, t.lights.get())
-            .sampled(2, t.depth.view.get(), t.nearest.get())
-            .sampled(3, t.normal.view.get(), t.nearest.get())
-            .sampled(4, (view.midpoint ? &view.midpoint : &view.map)->view.get(), t.nearest.get())
-            .sampled(5, view.map.view.get(), t.compare.get())
+            .uniformBuffer(0, t.frame)
+            .storageBuffer(1, t.lights)
+            .sampled(2, t.depth.view.get(), t.nearest)
+            .sampled(3, t.normal.view.get(), t.nearest)
+            .sampled(4, (view.midpoint ? &view.midpoint : &view.map)->view.get(), t.nearest)
+            .sampled(5, view.map.view.get(), t.compare)
             .storageImage(6, t.visibility.view.get())
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.screenLayout);
         const gpu::VisibilityPush push{.light = {view.light, layer, s.shadowMapSize, 0}};
@@ -215,12 +215,12 @@ void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
     vk::imageBarrier(cmd, t.color, vk::kUndefined, vk::kComputeWrite);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.composite.get());
     vk::PushDescriptors()
-        .uniformBuffer(0, t.frame.get())
-        .storageBuffer(1, t.lights.get())
-        .sampled(2, t.depth.view.get(), t.nearest.get())
-        .sampled(3, t.normal.view.get(), t.nearest.get())
-        .sampled(4, t.albedo.view.get(), t.nearest.get())
-        .sampled(5, t.visibility.view.get(), t.nearest.get())
+        .uniformBuffer(0, t.frame)
+        .storageBuffer(1, t.lights)
+        .sampled(2, t.depth.view.get(), t.nearest)
+        .sampled(3, t.normal.view.get(), t.nearest)
+        .sampled(4, t.albedo.view.get(), t.nearest)
+        .sampled(5, t.visibility.view.get(), t.nearest)
         .storageImage(6, t.color.view.get())
         .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.screenLayout);
     vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
@@ -255,9 +255,9 @@ void recordReadback(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, VkB
     vk::imageBarrier(cmd, t.exportNormal, vk::kUndefined, vk::kComputeWrite);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.exportGBuffer.get());
     vk::PushDescriptors()
-        .uniformBuffer(0, t.frame.get())
-        .sampled(1, t.depth.view.get(), t.nearest.get())
-        .sampled(2, t.normal.view.get(), t.nearest.get())
+        .uniformBuffer(0, t.frame)
+        .sampled(1, t.depth.view.get(), t.nearest)
+        .sampled(2, t.normal.view.get(), t.nearest)
         .storageImage(3, t.position.view.get())
         .storageImage(4, t.exportNormal.view.get())
         .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.exportLayout);

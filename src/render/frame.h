@@ -51,8 +51,9 @@ struct FrameTargets {
     vk::Image color;                  // RGBA8, sRGB-encoded values
     vk::Image position, exportNormal; // RGBA32F, filled for readback only
     std::vector<ShadowView> shadows;
-    vk::Buffer frame, lights; // FrameData, LightData[]
-    vk::SamplerHandle nearest, compare;
+    // Not owned: this frame's ring slot (FrameData, LightData[]) and the renderer's samplers.
+    VkBuffer frame = VK_NULL_HANDLE, lights = VK_NULL_HANDLE;
+    VkSampler nearest = VK_NULL_HANDLE, compare = VK_NULL_HANDLE;
 };
 
 struct FrameSettings {

@@ -1,0 +1,295 @@
+// SceneRenderer (include/penumbra/renderer.h): one frame, start to end.
+//   1. The scene is sanitized and uploaded once (constructor).
+//   2. Per render: the lights with the options' size overrides, one shadow view per light that
+//      casts a shadow map, the camera; FrameData and LightData go into the next ring slot.
+//   3. Targets (G-buffer, shadow maps, visibility, colour, readback) are made when the sizes or
+//      the technique's maps change, and kept otherwise.
+//   4. recordFrame (render/frame.cpp) records shadow passes, post passes, G-buffer, visibility
+//      and composite; a warm-up frame, then the timed frames.
+//   5. recordReadback copies colour, visibility, position and normal into one buffer.
+#include "core/projection.h"
+#include "penumbra/error.h"
+#include "penumbra/renderer.h"
+#include "render/frame.h"
+#include "render/frame_data.h"
+#include "render/renderer_impl.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <optional>
+
+namespace penumbra {
+namespace {
+
+// Near, far and the world size of one uv unit (perspective: at unit distance), for the
+// techniques that reason in light-space distances (PCSS).
+glm::vec4 lightFrustum(const LightProjection* shadow) {
+    if (!shadow)
+        return glm::vec4(0.0f, 1.0f, 1.0f, 1.0f);
+    const glm::vec2 worldPerUv =
+        shadow->perspective
+            ? glm::vec2(2.0f * std::tan(0.5f * shadow->yfov))
+            : glm::vec2(shadow->window.y - shadow->window.x, shadow->window.w - shadow->window.z);
+    return {shadow->nearPlane, shadow->farPlane, worldPerUv};
+}
+
+gpu::LightData lightData(const Light& light, const LightProjection* shadow, int layer,
+                         const ParameterValues& params) {
+    const float type = light.type == LightType::Directional ? LIGHT_DIRECTIONAL
+                       : light.type == LightType::Spot      ? LIGHT_SPOT
+                                                            : LIGHT_POINT;
+    return {.shadowMatrix = shadow ? textureMatrix() * shadow->viewProj : glm::mat4(1.0f),
+            .positionType = glm::vec4(light.position, type),
+            .directionRange = glm::vec4(glm::normalize(light.direction), light.range),
+            .colorIntensity = glm::vec4(light.color, light.intensity),
+            .cone = {std::cos(light.outerConeAngle), std::cos(light.innerConeAngle),
+                     shadow ? shadow->texelWorldSize : 0.0f, static_cast<float>(layer)},
+            .bias = {static_cast<float>(params.number("bias.constant")),
+                     static_cast<float>(params.number("bias.slope")),
+                     static_cast<float>(params.number("bias.normal")),
+                     shadow && shadow->perspective ? 1.0f : 0.0f},
+            .frustum = lightFrustum(shadow),
+            .shape = {light.type == LightType::Directional
+                          ? std::tan(0.5f * glm::radians(light.angularDiameter))
+                          : light.radius,
+                      0.0f, 0.0f, 0.0f}};
+}
+
+vk::Image targetImage(const vk::Context& ctx, const char* name, VkFormat format, uint32_t w,
+                      uint32_t h, VkImageUsageFlags usage, uint32_t layers = 0) {
+    // layers = 0: a plain 2D image; >= 1: an array image with an array view.
+    return vk::createImage(ctx, {.name = name,
+                                 .format = format,
+                                 .width = w,
+                                 .height = h,
+                                 .layers = std::max(layers, 1u),
+                                 .usage = usage,
+                                 .arrayView = layers > 0});
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// What the targets were made for: a render with another key makes new ones.
+struct TargetKey {
+    uint32_t width, height, shadowMapSize, shadowViews;
+    bool secondDepth;
+    bool operator==(const TargetKey&) const = default;
+};
+
+// Frames in flight: each render takes the next slot for its camera, lights and settings.
+constexpr size_t kFramesInFlight = 2;
+
+} // namespace
+
+struct SceneRenderer::Impl {
+    Renderer& renderer;
+    Scene scene; // sanitized
+    Bounds bounds;
+    render::GpuScene gpu;
+    std::optional<TargetKey> key;
+    render::FrameTargets targets;
+    vk::Buffer readback;
+    struct Slot {
+        vk::Buffer frame, lights; // FrameData, LightData[] (host-visible, mapped)
+    };
+    std::array<Slot, kFramesInFlight> slots;
+    size_t nextSlot = 0;
+    vk::SamplerHandle nearest, compare;
+
+    const vk::Context& ctx() const { return renderer.mImpl->ctx; }
+    void makeTargets(const TargetKey& k);
+};
+
+void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
+    const vk::Context& c = ctx();
+    render::FrameTargets& t = targets;
+    t = {.width = k.width, .height = k.height};
+    constexpr VkImageUsageFlags sampled = VK_IMAGE_USAGE_SAMPLED_BIT;
+    constexpr VkImageUsageFlags storageOut =
+        VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    constexpr VkImageUsageFlags depthTarget = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled;
+    const uint32_t n = k.shadowMapSize;
+    t.shadows.resize(k.shadowViews);
+    for (render::ShadowView& view : t.shadows) {
+        view.map = targetImage(c, "--shadow-map-size", render::kDepthFormat, n, n, depthTarget);
+        if (k.secondDepth) {
+            view.second =
+                targetImage(c, "--shadow-map-size", render::kDepthFormat, n, n, depthTarget);
+            view.midpoint = targetImage(c, "--shadow-map-size", VK_FORMAT_R32_SFLOAT, n, n,
+                                        VK_IMAGE_USAGE_STORAGE_BIT | sampled);
+        }
+    }
+    const uint32_t w = k.width, h = k.height;
+    t.depth = targetImage(c, "G-buffer depth", render::kDepthFormat, w, h, depthTarget);
+    t.normal = targetImage(c, "G-buffer normal", render::kNormalFormat, w, h,
+                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | sampled);
+    t.albedo = targetImage(c, "G-buffer albedo", render::kAlbedoFormat, w, h,
+                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | sampled);
+    const uint32_t layers = std::max(1u, k.shadowViews);
+    t.visibility =
+        targetImage(c, "visibility", VK_FORMAT_R32_SFLOAT, w, h, storageOut | sampled, layers);
+    t.color = targetImage(c, "colour", VK_FORMAT_R8G8B8A8_UNORM, w, h, storageOut);
+    t.position = targetImage(c, "position", VK_FORMAT_R32G32B32A32_SFLOAT, w, h, storageOut);
+    t.exportNormal = targetImage(c, "normal", VK_FORMAT_R32G32B32A32_SFLOAT, w, h, storageOut);
+    t.nearest = nearest.get();
+    t.compare = compare.get();
+    const size_t pixels = size_t{w} * h;
+    readback =
+        vk::createBuffer(c, pixels * (4 + 4 * layers + 16 + 16), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                         vk::MemoryUse::Readback, "readback buffer");
+    key = k;
+}
+
+SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
+    : mImpl(std::make_unique<Impl>(Impl{.renderer = renderer, .scene = sceneIn})) {
+    Impl& m = *mImpl;
+    dropInvalidTriangles(m.scene); // the same rule the ground truth applies
+    if (m.scene.triangleCount() == 0)
+        throw InputError(m.scene.name, "the scene has no valid triangles");
+    m.bounds = m.scene.bounds();
+    m.gpu = render::uploadScene(m.ctx(), m.scene);
+    const size_t lightBytes = sizeof(gpu::LightData) * std::max<size_t>(m.scene.lights.size(), 1);
+    for (Impl::Slot& slot : m.slots) {
+        slot.frame =
+            vk::createBuffer(m.ctx(), sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                             vk::MemoryUse::Upload, "frame buffer");
+        // Storage buffers cannot be empty: a scene without lights still gets one record.
+        slot.lights = vk::createBuffer(m.ctx(), lightBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                       vk::MemoryUse::Upload, "light buffer");
+        std::memset(slot.lights.mapped, 0, lightBytes);
+    }
+    m.nearest = vk::createSampler(m.ctx(), {.filter = VK_FILTER_NEAREST});
+    m.compare = vk::createSampler(
+        m.ctx(), {.filter = m.ctx().info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST,
+                  .compare = true});
+}
+
+SceneRenderer::~SceneRenderer() = default;
+
+const Scene& SceneRenderer::scene() const {
+    return mImpl->scene;
+}
+
+void SceneRenderer::check(const RenderOptions& o) const {
+    mImpl->renderer.check(mImpl->scene, o);
+}
+
+RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& progress) {
+    check(o);
+    Impl& m = *mImpl;
+    const vk::Context& ctx = m.ctx();
+    Scene lit; // the lights with the options' sizes; the uploaded geometry stays as it is
+    lit.lights = m.scene.lights;
+    applyLightSizeOverrides(lit, o.lightRadiusOverride, o.lightAngleOverride);
+    const Camera camera = m.scene.camera(o.camera);
+
+    RenderResult result{.width = o.width, .height = o.height};
+    std::vector<render::ShadowView> views; // one per light that casts a shadow map
+    std::vector<gpu::LightData> lights;
+    for (uint32_t i = 0; i < lit.lights.size(); ++i) {
+        const Light& light = lit.lights[i];
+        LightShadow info{.sceneLight = i, .projection = "none"};
+        const LightProjection* shadow = nullptr;
+        if (castsShadowMap(light)) {
+            info.visibilityIndex = static_cast<int>(views.size());
+            views.push_back({.light = i, .projection = fitLight(light, m.bounds, o.shadowMapSize)});
+            shadow = &views.back().projection;
+            info.projection = shadow->perspective ? "perspective" : "orthographic";
+            info.nearPlane = shadow->nearPlane, info.farPlane = shadow->farPlane;
+            info.texelWorldSize = shadow->texelWorldSize;
+            info.worldToShadow = textureMatrix() * shadow->viewProj;
+        }
+        lights.push_back(lightData(light, shadow, info.visibilityIndex, o.parameters));
+        result.lights.push_back(info);
+    }
+
+    const TargetKey key{.width = o.width,
+                        .height = o.height,
+                        .shadowMapSize = o.shadowMapSize,
+                        .shadowViews = static_cast<uint32_t>(views.size()),
+                        .secondDepth = o.technique == Technique::SecondDepth};
+    if (m.key != key) {
+        if (progress)
+            progress("creating targets");
+        m.makeTargets(key);
+    }
+    render::FrameTargets& t = m.targets;
+    for (size_t v = 0; v < views.size(); ++v) {
+        t.shadows[v].light = views[v].light;
+        t.shadows[v].projection = views[v].projection;
+    }
+
+    Impl::Slot& slot = m.slots[m.nextSlot];
+    m.nextSlot = (m.nextSlot + 1) % m.slots.size();
+    const gpu::FrameData frameBlock =
+        render::frameData(camera, o, static_cast<uint32_t>(lights.size()), ctx);
+    std::memcpy(slot.frame.mapped, &frameBlock, sizeof frameBlock);
+    if (!lights.empty())
+        std::memcpy(slot.lights.mapped, lights.data(), lights.size() * sizeof(gpu::LightData));
+    t.frame = slot.frame.get();
+    t.lights = slot.lights.get();
+
+    const render::FrameSettings settings{
+        .technique = o.technique,
+        .filter = static_cast<uint32_t>(o.parameters.number("pcf.filter")),
+        .receiver = static_cast<uint32_t>(o.parameters.number("bias.receiver")),
+        .slopeBias = static_cast<float>(o.parameters.number("bias.slope")),
+        .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
+        .shadowMapSize = o.shadowMapSize,
+        .lightCount = static_cast<uint32_t>(lights.size())};
+    render::FramePipelines& pipelines = m.renderer.mImpl->pipelines;
+    vk::GpuTimer timer(ctx, 8);
+    for (uint32_t frame = 0; frame <= o.frames; ++frame) {
+        if (progress)
+            progress(frame == 0 ? std::string("warm-up frame")
+                                : fmt::format("frame {}/{}", frame, o.frames));
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            render::recordFrame(cmd, pipelines, m.gpu, t, settings, timer);
+        });
+        if (frame == 0)
+            continue; // the warm-up frame pays for first-use costs
+        for (const auto& [pass, ms] : timer.read()) {
+            auto it = std::find_if(result.passes.begin(), result.passes.end(),
+                                   [&, name = pass](const PassTime& p) { return p.pass == name; });
+            if (it == result.passes.end())
+                it = result.passes.insert(result.passes.end(), {.pass = pass});
+            it->frameMs.push_back(ms);
+        }
+    }
+    for (PassTime& p : result.passes)
+        p.medianMs = median(p.frameMs);
+
+    if (progress)
+        progress("reading back");
+    ctx.submitAndWait(
+        [&](VkCommandBuffer cmd) { render::recordReadback(cmd, pipelines, t, m.readback.get()); });
+    const size_t pixels = size_t{o.width} * o.height;
+    const auto* src = static_cast<const std::byte*>(m.readback.mapped);
+    result.image.resize(pixels * 4);
+    std::memcpy(result.image.data(), src, pixels * 4);
+    src += pixels * 4;
+    for (size_t l = 0; l < t.shadows.size(); ++l) {
+        std::vector<float>& v = result.visibility.emplace_back(pixels);
+        std::memcpy(v.data(), src + l * pixels * 4, pixels * 4);
+    }
+    src += pixels * 4 * t.visibility.layers;
+    for (std::vector<float>* out : {&result.position, &result.normal}) {
+        out->resize(pixels * 3);
+        const auto* rgba = reinterpret_cast<const float*>(src);
+        for (size_t i = 0; i < pixels; ++i)
+            for (int c = 0; c < 3; ++c)
+                (*out)[3 * i + c] = rgba[4 * i + c];
+        src += pixels * 16;
+    }
+    return result;
+}
+
+} // namespace penumbra
