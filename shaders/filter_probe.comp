@@ -3,8 +3,8 @@
 // of the CPU/GPU parity tests (src/reference/filter_reference.cpp is the CPU side).
 #include "gpu_types.h"
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
-layout(constant_id = 0) const uint TECHNIQUE = TECHNIQUE_HARD;
-layout(constant_id = 1) const uint FILTER = FILTER_BOX;
+layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
+layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
 #include "techniques.glsl"
 
 layout(local_size_x = 64) in;

@@ -3,9 +3,9 @@
 // technique chosen by TECHNIQUE for one light, into that light's layer of the visibility image.
 #include "gpu_types.h"
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
-layout(constant_id = 0) const uint TECHNIQUE = TECHNIQUE_HARD;
-layout(constant_id = 1) const uint FILTER = FILTER_BOX;
-layout(constant_id = 2) const uint RECEIVER = RECEIVER_OFF;
+layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
+layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
+layout(constant_id = SPEC_RECEIVER) const uint RECEIVER = RECEIVER_OFF;
 #include "gbuffer.glsl"
 #include "receiver_plane.glsl"
 #include "shadow_common.glsl"

@@ -26,6 +26,12 @@ using uint = uint32_t;
 #define TECHNIQUE_PCSS 2u
 #define TECHNIQUE_SECOND_DEPTH 3u
 
+// Specialization-constant ids of visibility.comp and filter_probe.comp (the pipeline key is the
+// list of (id, value) pairs: src/shadows/technique.h).
+#define SPEC_TECHNIQUE 0
+#define SPEC_FILTER 1
+#define SPEC_RECEIVER 2
+
 // pcf.filter, pcf.rotation and bias.receiver: indices of their choices in the registry.
 #define FILTER_BILINEAR 0u
 #define FILTER_HARDWARE 1u
@@ -85,6 +91,16 @@ struct MaterialPush {
     uint pad;
 };
 
+// A shadow-map post pass samples its inputs at bindings POST_INPUT_BINDING + i and writes its
+// outputs at POST_OUTPUT_BINDING + i (src/shadows/technique.h, PostPassDecl).
+#define POST_INPUT_BINDING 0
+#define POST_OUTPUT_BINDING 8
+#define POST_MAX_MAPS 8
+
+struct PostPassPush {    // push constants of every shadow-map post pass
+    uvec4 size;          // xy: the shadow map's size in texels
+};
+
 struct VisibilityPush {  // push constants of visibility.comp
     uvec4 light;         // x light index, y shadow layer, z shadow-map size
 };
@@ -97,7 +113,8 @@ static_assert(sizeof(FrameData) == 800 && offsetof(FrameData, position) == 128 &
 static_assert(sizeof(LightData) == 176 && offsetof(LightData, positionType) == 64 &&
               offsetof(LightData, cone) == 112 && offsetof(LightData, bias) == 128 &&
               offsetof(LightData, frustum) == 144 && offsetof(LightData, shape) == 160);
-static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16);
+static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
+              sizeof(PostPassPush) == 16);
 static_assert(sizeof(MaterialPush) == 32 && offsetof(MaterialPush, alphaCutoff) == 16);
 } // namespace penumbra::gpu
 #endif

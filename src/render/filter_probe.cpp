@@ -74,8 +74,9 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         vkCmdCopyBufferToImage(cmd, mapBuffer.get(), map.get(),
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
         vk::imageBarrier(cmd, map, transferWrite, vk::kComputeSampled);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                          p.probe(technique, frame.filterMode.x));
+        vkCmdBindPipeline(
+            cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+            p.probe(shadows::visibilityConstants(shadows::moduleOf(technique), params)));
         vk::PushDescriptors()
             .uniformBuffer(0, frameBuffer.get())
             .storageBuffer(1, probeBuffer.get())

@@ -1,5 +1,6 @@
 #include "render/frame.h"
 
+#include "penumbra/error.h"
 #include "vk/sync.h"
 
 #include <span>
@@ -46,13 +47,19 @@ struct CasterPush {
     gpu::MaterialPush material;
 };
 
+// A map that a technique's extra depth pass reads, and the pipeline that reads it.
+struct ReadMap {
+    const vk::Image* map;
+    VkPipeline pipeline;
+};
+
 // One depth pass of the scene from a light into `target` (cleared to the far plane), with the
 // hardware slope bias and the constant bias of the vertex shader. Opaque casters go in one draw;
-// alpha-tested ones per material with their texture. `firstDepth` set: the second-depth peel,
-// which draws everything with the peel pipeline.
+// alpha-tested ones per material with their texture. `reads` set: a technique's extra depth pass
+// (a depth peel), which draws every caster with its pipeline, the read map at binding 0.
 void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                       const vk::Image& target, const ShadowView& view, const FrameSettings& s,
-                      const vk::Image* firstDepth, VkSampler nearest) {
+                      const ReadMap* reads, VkSampler nearest) {
     vk::imageBarrier(cmd, target, vk::kUndefined, vk::kDepthWrite);
     const VkRenderingAttachmentInfo depth = attachment(target, {.depthStencil = {1.0f, 0}});
     const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
@@ -74,14 +81,14 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
     };
     constexpr VkShaderStageFlags kStages =
         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
-    if (firstDepth) {
-        bind(perspective ? p.peelPerspective.get() : p.peelOrtho.get());
+    if (reads) {
+        bind(reads->pipeline);
         auto pushFor = [&](const GpuTextures::Binding& texture) {
             vk::PushDescriptors()
-                .sampled(0, firstDepth->view.get(), nearest)
+                .sampled(0, reads->map->view.get(), nearest)
                 .sampled(1, texture.view, texture.sampler)
-                .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.peelLayout);
-            vkCmdPushConstants(cmd, p.peelLayout.get(), kStages, 0, sizeof push, &push);
+                .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.readingDepthLayout);
+            vkCmdPushConstants(cmd, p.readingDepthLayout.get(), kStages, 0, sizeof push, &push);
         };
         if (scene.opaqueIndexCount > 0) {
             pushFor(scene.textures.white());
@@ -117,38 +124,57 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
     vkCmdEndRendering(cmd);
 }
 
+// The light's depth pass for every shadow view, then the technique's own depth passes.
 void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                         FrameTargets& t, const FrameSettings& s) {
+    const shadows::TechniqueModule& technique = *s.technique;
     for (ShadowView& view : t.shadows) {
         renderLightDepth(cmd, p, scene, view.map, view, s, nullptr, t.nearest);
-        if (!view.second) {
-            vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kComputeSampled);
-            continue;
+        for (const shadows::DepthPassDecl& pass : technique.depthPasses) {
+            const vk::Image& read = view.named(technique, pass.reads);
+            vk::imageBarrier(cmd, read, vk::kDepthWrite, vk::kFragmentSampled);
+            const ReadMap reads{
+                &read, p.readingDepthPass(pass.fragmentShader, view.projection.perspective)};
+            renderLightDepth(cmd, p, scene, view.named(technique, pass.target), view, s, &reads,
+                             t.nearest);
+            vk::imageBarrier(cmd, read, vk::kFragmentSampled, vk::kDepthWrite);
         }
-        // Second-depth: peel the layer behind the first, reading the first in the fragment
-        // shader (same vertex shader and state, so the first layer reproduces its depths).
-        vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kFragmentSampled);
-        renderLightDepth(cmd, p, scene, view.second, view, s, &view.map, t.nearest);
-        vk::imageBarrier(cmd, view.map, vk::kFragmentSampled, vk::kComputeSampled);
-        vk::imageBarrier(cmd, view.second, vk::kDepthWrite, vk::kComputeSampled);
+        vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kComputeSampled);
+        for (size_t m = 0; m < technique.maps.size(); ++m)
+            if (technique.maps[m].format == shadows::MapFormat::Depth32)
+                vk::imageBarrier(cmd, view.maps[m], vk::kDepthWrite, vk::kComputeSampled);
     }
 }
 
-// Shadow-map post passes (compute): the second-depth midpoints.
-void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.midpoint.get());
-    for (ShadowView& view : t.shadows) {
-        vk::imageBarrier(cmd, view.midpoint, vk::kUndefined, vk::kComputeWrite);
-        vk::PushDescriptors()
-            .sampled(0, view.map.view.get(), t.nearest)
-            .sampled(1, view.second.view.get(), t.nearest)
-            .storageImage(2, view.midpoint.view.get())
-            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.midpointLayout);
-        const glm::uvec4 size(view.map.width, view.map.height, 0, 0);
-        vkCmdPushConstants(cmd, p.midpointLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof size,
-                           &size);
-        vkCmdDispatch(cmd, groups(view.map.width), groups(view.map.height), 1);
-        vk::imageBarrier(cmd, view.midpoint, vk::kComputeWrite, vk::kComputeSampled);
+// The technique's post passes (compute), in order, over every shadow view.
+void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
+                      const FrameSettings& s) {
+    const shadows::TechniqueModule& technique = *s.technique;
+    for (const shadows::PostPassDecl& pass : technique.postPasses) {
+        const auto inputs = static_cast<uint32_t>(pass.inputs.size());
+        const auto outputs = static_cast<uint32_t>(pass.outputs.size());
+        const vk::PipelineLayout& layout = p.postPassLayout(inputs, outputs);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                          p.postPass(pass.shader, inputs, outputs));
+        for (ShadowView& view : t.shadows) {
+            vk::PushDescriptors writes;
+            for (uint32_t i = 0; i < inputs; ++i)
+                writes.sampled(POST_INPUT_BINDING + i,
+                               view.named(technique, pass.inputs[i]).view.get(), t.nearest);
+            for (uint32_t i = 0; i < outputs; ++i) {
+                const vk::Image& out = view.named(technique, pass.outputs[i]);
+                vk::imageBarrier(cmd, out, vk::kUndefined, vk::kComputeWrite);
+                writes.storageImage(POST_OUTPUT_BINDING + i, out.view.get());
+            }
+            writes.push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
+            const gpu::PostPassPush push{.size = {view.map.width, view.map.height, 0, 0}};
+            vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                               &push);
+            vkCmdDispatch(cmd, groups(view.map.width), groups(view.map.height), 1);
+            for (std::string_view name : pass.outputs)
+                vk::imageBarrier(cmd, view.named(technique, name), vk::kComputeWrite,
+                                 vk::kComputeSampled);
+        }
     }
 }
 
@@ -190,8 +216,7 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
 void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
                       const FrameSettings& s) {
     vk::imageBarrier(cmd, t.visibility, vk::kUndefined, vk::kComputeWrite);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                      p.visibility(s.technique, s.filter, s.receiver));
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(s.constants));
     for (uint32_t layer = 0; layer < t.shadows.size(); ++layer) {
         const ShadowView& view = t.shadows[layer];
         vk::PushDescriptors()
@@ -199,13 +224,13 @@ void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
             .storageBuffer(1, t.lights)
             .sampled(2, t.depth.view.get(), t.nearest)
             .sampled(3, t.normal.view.get(), t.nearest)
-            .sampled(4, (view.midpoint ? &view.midpoint : &view.map)->view.get(), t.nearest)
+            .sampled(4, view.named(*s.technique, s.technique->visibilityMap).view.get(), t.nearest)
             .sampled(5, view.map.view.get(), t.compare)
             .storageImage(6, t.visibility.view.get())
-            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.screenLayout);
+            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
         const gpu::VisibilityPush push{.light = {view.light, layer, s.shadowMapSize, 0}};
-        vkCmdPushConstants(cmd, p.screenLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
-                           &push);
+        vkCmdPushConstants(cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           sizeof push, &push);
         vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
     }
     vk::imageBarrier(cmd, t.visibility, vk::kComputeWrite, vk::kComputeSampled);
@@ -222,11 +247,35 @@ void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
         .sampled(4, t.albedo.view.get(), t.nearest)
         .sampled(5, t.visibility.view.get(), t.nearest)
         .storageImage(6, t.color.view.get())
-        .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.screenLayout);
+        .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.compositeLayout);
     vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
 }
 
 } // namespace
+
+const vk::Image& ShadowView::named(const shadows::TechniqueModule& module,
+                                   std::string_view name) const {
+    if (name == shadows::kDepthMap)
+        return map;
+    for (size_t m = 0; m < module.maps.size(); ++m)
+        if (module.maps[m].name == name)
+            return maps[m];
+    fatal(__FILE__, __LINE__, "ShadowView::named: the technique declares no such map");
+}
+
+VkFormat formatOf(shadows::MapFormat format) {
+    switch (format) {
+    case shadows::MapFormat::Depth32:
+        return kDepthFormat;
+    case shadows::MapFormat::R32F:
+        return VK_FORMAT_R32_SFLOAT;
+    case shadows::MapFormat::RG32F:
+        return VK_FORMAT_R32G32_SFLOAT;
+    case shadows::MapFormat::RGBA32F:
+        break;
+    }
+    return VK_FORMAT_R32G32B32A32_SFLOAT;
+}
 
 void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene& scene,
                  FrameTargets& targets, const FrameSettings& settings, vk::GpuTimer& timer) {
@@ -234,9 +283,9 @@ void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene&
     timer.begin(cmd, "shadow");
     recordShadowPasses(cmd, pipelines, scene, targets, settings);
     timer.end(cmd);
-    if (!targets.shadows.empty() && targets.shadows.front().midpoint) {
+    if (!targets.shadows.empty() && !settings.technique->postPasses.empty()) {
         timer.begin(cmd, "shadow-post");
-        recordShadowPost(cmd, pipelines, targets);
+        recordShadowPost(cmd, pipelines, targets, settings);
         timer.end(cmd);
     }
     timer.begin(cmd, "gbuffer");

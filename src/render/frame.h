@@ -5,9 +5,11 @@
 #include "gpu_types.h"
 #include "render/pipelines.h"
 #include "render/textures.h"
+#include "shadows/technique.h"
 #include "vk/resources.h"
 #include "vk/timestamps.h"
 
+#include <string_view>
 #include <vector>
 
 namespace penumbra::render {
@@ -38,10 +40,10 @@ GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
 struct ShadowView {
     uint32_t light; // index into the scene's lights
     LightProjection projection;
-    vk::Image map; // D32_SFLOAT, the seeds' depth (near 0, far 1)
-    // Second-depth only: the peeled second layer (D32) and the midpoint the visibility pass
-    // tests against (R32F).
-    vk::Image second, midpoint;
+    vk::Image map;               // D32_SFLOAT, the seeds' depth (near 0, far 1): shadows::kDepthMap
+    std::vector<vk::Image> maps; // the technique's own maps, as its module declares them
+    // The map called `name` (kDepthMap or one of the module's).
+    const vk::Image& named(const shadows::TechniqueModule& module, std::string_view name) const;
 };
 
 struct FrameTargets {
@@ -57,14 +59,15 @@ struct FrameTargets {
 };
 
 struct FrameSettings {
-    Technique technique;
-    uint32_t filter;   // pcf.filter choice index (a specialization constant)
-    uint32_t receiver; // bias.receiver choice index (a specialization constant)
+    const shadows::TechniqueModule* technique;
+    std::vector<shadows::SpecConstant> constants; // of the visibility pass
     float slopeBias;
     float constantBias;
     uint32_t shadowMapSize;
-    uint32_t lightCount;
 };
+
+// The Vulkan format of a technique's map.
+VkFormat formatOf(shadows::MapFormat format);
 
 void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene& scene,
                  FrameTargets& targets, const FrameSettings& settings, vk::GpuTimer& timer);

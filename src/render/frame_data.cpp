@@ -2,6 +2,7 @@
 
 #include "core/projection.h"
 #include "shadows/poisson.h"
+#include "shadows/technique.h"
 
 #include <cmath>
 
@@ -9,23 +10,19 @@ namespace penumbra::render {
 
 void setTechniqueSettings(gpu::FrameData& f, const ParameterValues& p, bool hardwareDepthFilter,
                           uint32_t subTexelBits) {
-    auto number = [&](const char* key) { return static_cast<float>(p.number(key)); };
     auto index = [&](const char* key) { return static_cast<uint32_t>(p.number(key)); };
-    const uint32_t size = index("pcf.size");
-    const float sigma = number("pcf.sigma") > 0.0f ? number("pcf.sigma") : 0.25f * float(size);
-    f.filterMode = {index("pcf.filter"), size, index("pcf.samples"), index("pcf.rotation")};
-    f.filterParams = {number("pcf.radius"), sigma, number("pcf.adaptive"), 0.0f};
     f.biasMode = {index("bias.receiver"), hardwareDepthFilter ? 1u : 0u, subTexelBits, 0u};
     // Corrections bring a tap's reference depth nearer the light (negative) up to the clamp;
     // with bias.receiverSides=near none may push it away (see docs/techniques.md).
-    const float limit = number("bias.receiverClamp");
+    const auto limit = static_cast<float>(p.number("bias.receiverClamp"));
     f.biasParams = {-limit, index("bias.receiverSides") == 0 ? limit : 0.0f, 0.0f, 0.0f};
-    f.pcssMode = {index("pcss.blockerSamples"), index("pcss.filterSamples"), index("pcss.rotation"),
-                  0u};
-    f.pcssParams = {number("pcss.maxRadius"), 0.0f, 0.0f, 0.0f};
     const auto& disk = poissonDisk();
     for (size_t i = 0; i < kPoissonPoints / 2; ++i)
         f.poisson[i] = {disk[2 * i].x, disk[2 * i].y, disk[2 * i + 1].x, disk[2 * i + 1].y};
+    // Each technique packs its own family (the frame block holds them all).
+    for (const shadows::TechniqueModule* module : shadows::allModules())
+        if (module->pack)
+            module->pack(p, f);
 }
 
 gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t lightCount,

@@ -1,6 +1,7 @@
 #include "render/pipelines.h"
 
 #include "gpu_types.h"
+#include "penumbra/error.h"
 #include "penumbra/scene.h"
 
 #include <cstddef>
@@ -36,19 +37,13 @@ vk::GraphicsPipelineDesc shadowDesc(bool depthClamp, std::string_view fragment =
 } // namespace
 
 FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
-    static_assert(static_cast<uint32_t>(Technique::Hard) == TECHNIQUE_HARD &&
-                  static_cast<uint32_t>(Technique::Pcf) == TECHNIQUE_PCF &&
-                  static_cast<uint32_t>(Technique::Pcss) == TECHNIQUE_PCSS &&
-                  static_cast<uint32_t>(Technique::SecondDepth) == TECHNIQUE_SECOND_DEPTH);
     shadowLayout =
         vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
     shadowMaskLayout = vk::createPipelineLayout(
         ctx, {{0, kSampled}}, kGraphicsStages, sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
     gbufferLayout = vk::createPipelineLayout(ctx, {{0, kUniform}, {1, kSampled}}, kGraphicsStages,
                                              sizeof(gpu::MaterialPush));
-    // Visibility and composite read the same inputs (camera, lights, four textures, one image
-    // out), so they share one layout; only visibility uses the push constants.
-    screenLayout =
+    visibilityLayout =
         vk::createPipelineLayout(ctx,
                                  {{0, kUniform},
                                   {1, kStorage},
@@ -58,6 +53,15 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {5, kSampled},
                                   {6, kImage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
+    compositeLayout = vk::createPipelineLayout(ctx,
+                                               {{0, kUniform},
+                                                {1, kStorage},
+                                                {2, kSampled},
+                                                {3, kSampled},
+                                                {4, kSampled},
+                                                {5, kSampled},
+                                                {6, kImage}},
+                                               VK_SHADER_STAGE_COMPUTE_BIT, 0);
     exportLayout = vk::createPipelineLayout(
         ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kImage}, {4, kImage}},
         VK_SHADER_STAGE_COMPUTE_BIT, 0);
@@ -67,14 +71,9 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
         {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kStorage}, {5, kStorage}},
         VK_SHADER_STAGE_COMPUTE_BIT, sizeof(glm::uvec4));
 
-    peelLayout = vk::createPipelineLayout(ctx, {{0, kSampled}, {1, kSampled}}, kGraphicsStages,
-                                          sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
-    midpointLayout = vk::createPipelineLayout(ctx, {{0, kSampled}, {1, kSampled}, {2, kImage}},
-                                              VK_SHADER_STAGE_COMPUTE_BIT, sizeof(glm::uvec4));
-    peelOrtho = vk::createGraphicsPipeline(ctx, peelLayout, shadowDesc(true, "shadow_peel.frag"));
-    peelPerspective =
-        vk::createGraphicsPipeline(ctx, peelLayout, shadowDesc(false, "shadow_peel.frag"));
-    midpoint = vk::createComputePipeline(ctx, midpointLayout, "second_depth_mid.comp");
+    readingDepthLayout =
+        vk::createPipelineLayout(ctx, {{0, kSampled}, {1, kSampled}}, kGraphicsStages,
+                                 sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
     shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(true));
     shadowPerspective = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(false));
     shadowMaskOrtho =
@@ -94,31 +93,68 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
          .depthFormat = kDepthFormat,
          .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL, // reverse-Z
          .dynamicCullMode = true});
-    composite = vk::createComputePipeline(ctx, screenLayout, "composite.comp");
+    composite = vk::createComputePipeline(ctx, compositeLayout, "composite.comp");
     exportGBuffer = vk::createComputePipeline(ctx, exportLayout, "export.comp");
 }
 
-VkPipeline FramePipelines::specialized(std::map<Key, vk::PipelineHandle>& cache,
+VkPipeline FramePipelines::specialized(std::map<Constants, vk::PipelineHandle>& cache,
                                        const vk::PipelineLayout& layout, std::string_view shader,
-                                       const Key& key) {
-    auto it = cache.find(key);
+                                       const Constants& constants) {
+    auto it = cache.find(constants);
     if (it == cache.end()) {
-        const auto [technique, filter, receiver] = key;
-        const vk::SpecConstant constants[] = {
-            {/* TECHNIQUE= */ 0, static_cast<uint32_t>(technique)},
-            {/* FILTER= */ 1, filter},
-            {/* RECEIVER= */ 2, receiver}};
-        it = cache.emplace(key, vk::createComputePipeline(ctx, layout, shader, constants)).first;
+        std::vector<vk::SpecConstant> values;
+        for (const shadows::SpecConstant& c : constants)
+            values.push_back({.id = c.id, .value = c.value});
+        it = cache.emplace(constants, vk::createComputePipeline(ctx, layout, shader, values)).first;
     }
     return it->second.get();
 }
 
-VkPipeline FramePipelines::visibility(Technique technique, uint32_t filter, uint32_t receiver) {
-    return specialized(mVisibility, screenLayout, "visibility.comp", {technique, filter, receiver});
+VkPipeline FramePipelines::visibility(const Constants& constants) {
+    return specialized(mVisibility, visibilityLayout, "visibility.comp", constants);
 }
 
-VkPipeline FramePipelines::probe(Technique technique, uint32_t filter) {
-    return specialized(mProbe, probeLayout, "filter_probe.comp", {technique, filter, 0});
+VkPipeline FramePipelines::probe(const Constants& constants) {
+    return specialized(mProbe, probeLayout, "filter_probe.comp", constants);
+}
+
+VkPipeline FramePipelines::readingDepthPass(std::string_view fragmentShader, bool perspective) {
+    const auto key = std::make_pair(std::string(fragmentShader), perspective);
+    auto it = mReadingDepth.find(key);
+    if (it == mReadingDepth.end())
+        it = mReadingDepth
+                 .emplace(key, vk::createGraphicsPipeline(ctx, readingDepthLayout,
+                                                          shadowDesc(!perspective, fragmentShader)))
+                 .first;
+    return it->second.get();
+}
+
+const vk::PipelineLayout& FramePipelines::postPassLayout(uint32_t inputs, uint32_t outputs) {
+    PENUMBRA_CHECK(inputs <= POST_MAX_MAPS && outputs <= POST_MAX_MAPS, "post pass maps");
+    auto it = mPostLayouts.find({inputs, outputs});
+    if (it == mPostLayouts.end()) {
+        std::vector<vk::Binding> bindings;
+        for (uint32_t i = 0; i < inputs; ++i)
+            bindings.push_back({POST_INPUT_BINDING + i, kSampled});
+        for (uint32_t i = 0; i < outputs; ++i)
+            bindings.push_back({POST_OUTPUT_BINDING + i, kImage});
+        it = mPostLayouts
+                 .emplace(std::make_pair(inputs, outputs),
+                          vk::createPipelineLayout(ctx, bindings, VK_SHADER_STAGE_COMPUTE_BIT,
+                                                   sizeof(gpu::PostPassPush)))
+                 .first;
+    }
+    return it->second;
+}
+
+VkPipeline FramePipelines::postPass(std::string_view shader, uint32_t inputs, uint32_t outputs) {
+    auto it = mPost.find(shader);
+    if (it == mPost.end())
+        it = mPost
+                 .emplace(std::string(shader),
+                          vk::createComputePipeline(ctx, postPassLayout(inputs, outputs), shader))
+                 .first;
+    return it->second.get();
 }
 
 } // namespace penumbra::render

@@ -1,13 +1,16 @@
 #pragma once
-// Every pipeline of the frame (design.md §2), created once per Renderer. The visibility pass
-// has one pipeline per technique, made on first use with TECHNIQUE as a specialization
-// constant, so adding a technique adds a shader function and a table row, not a pass.
+// Every pipeline of the frame (design.md §2), created once per Renderer. What depends on the
+// technique is made on first use from what its module declares: the visibility pass per list of
+// specialization constants, extra depth passes per fragment shader, post passes per shader.
 #include "penumbra/settings.h"
+#include "shadows/technique.h"
 #include "vk/pipelines.h"
 
 #include <map>
+#include <string>
 #include <string_view>
-#include <tuple>
+#include <utility>
+#include <vector>
 
 namespace penumbra::render {
 
@@ -16,25 +19,35 @@ public:
     explicit FramePipelines(const vk::Context& ctx);
 
     const vk::Context& ctx;
-    vk::PipelineLayout shadowLayout, gbufferLayout, screenLayout, exportLayout, probeLayout;
-    vk::PipelineLayout peelLayout, midpointLayout; // second-depth shadow maps
-    vk::PipelineLayout shadowMaskLayout;           // alpha-tested casters
-    vk::PipelineHandle shadowOrtho;       // depth clamp on: casters before the near plane clamp
-    vk::PipelineHandle shadowPerspective; // depth clamp off
+    vk::PipelineLayout shadowLayout, gbufferLayout, visibilityLayout, compositeLayout, exportLayout,
+        probeLayout;
+    vk::PipelineLayout readingDepthLayout; // extra depth passes that read a map (depth peels)
+    vk::PipelineLayout shadowMaskLayout;   // alpha-tested casters
+    vk::PipelineHandle shadowOrtho;        // depth clamp on: casters before the near plane clamp
+    vk::PipelineHandle shadowPerspective;  // depth clamp off
     vk::PipelineHandle shadowMaskOrtho, shadowMaskPerspective; // alpha-tested casters
-    vk::PipelineHandle peelOrtho, peelPerspective, midpoint;
     vk::PipelineHandle gbuffer, composite, exportGBuffer;
 
-    // Pipelines per specialization: technique, pcf.filter and bias.receiver (choice indices).
-    VkPipeline visibility(Technique technique, uint32_t filter, uint32_t receiver);
-    VkPipeline probe(Technique technique, uint32_t filter); // filter_probe.comp (parity tests)
+    // The visibility pass (and the parity tests' probe) for one list of specialization
+    // constants (shadows::visibilityConstants), made on first use.
+    VkPipeline visibility(const std::vector<shadows::SpecConstant>& constants);
+    VkPipeline probe(const std::vector<shadows::SpecConstant>& constants);
+    // A technique's extra depth pass: the shadow pass's vertex stage and state with
+    // `fragmentShader`, which reads a map at binding 0 (readingDepthLayout).
+    VkPipeline readingDepthPass(std::string_view fragmentShader, bool perspective);
+    // A technique's post pass and its layout: `inputs` sampled maps, `outputs` storage images.
+    VkPipeline postPass(std::string_view shader, uint32_t inputs, uint32_t outputs);
+    const vk::PipelineLayout& postPassLayout(uint32_t inputs, uint32_t outputs);
 
 private:
-    using Key = std::tuple<Technique, uint32_t, uint32_t>;
-    VkPipeline specialized(std::map<Key, vk::PipelineHandle>& cache,
+    using Constants = std::vector<shadows::SpecConstant>;
+    VkPipeline specialized(std::map<Constants, vk::PipelineHandle>& cache,
                            const vk::PipelineLayout& layout, std::string_view shader,
-                           const Key& key);
-    std::map<Key, vk::PipelineHandle> mVisibility, mProbe;
+                           const Constants& constants);
+    std::map<Constants, vk::PipelineHandle> mVisibility, mProbe;
+    std::map<std::pair<std::string, bool>, vk::PipelineHandle> mReadingDepth;
+    std::map<std::pair<uint32_t, uint32_t>, vk::PipelineLayout> mPostLayouts;
+    std::map<std::string, vk::PipelineHandle, std::less<>> mPost;
 };
 
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;

@@ -5,6 +5,7 @@
 #include "render/frame.h"
 #include "render/frame_data.h"
 #include "render/renderer_impl.h"
+#include "shadows/technique.h"
 #include "vk/context.h"
 
 #include <fmt/format.h>
@@ -37,9 +38,9 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, size_t sh
     tooBig("--shadow-map-size", o.shadowMapSize);
     // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
     const double pixels = double(o.width) * double(o.height);
-    const double shadowBytes = double(o.shadowMapSize) * o.shadowMapSize * 4.0 *
-                               double(shadowLights) *
-                               (o.technique == Technique::SecondDepth ? 3.0 : 1.0);
+    const double shadowBytes =
+        double(shadows::shadowMapBytes(shadows::moduleOf(o.technique), o.shadowMapSize)) *
+        double(shadowLights);
     const double need =
         pixels * (16 + 36 + 2 * 4.0 * double(std::max<size_t>(shadowLights, 1)) + 36) + shadowBytes;
     const double have = static_cast<double>(ctx.deviceLocalHeapBytes());

@@ -80,7 +80,7 @@ double median(std::vector<double> values) {
 // What the targets were made for: a render with another key makes new ones.
 struct TargetKey {
     uint32_t width, height, shadowMapSize, shadowViews;
-    bool secondDepth;
+    const shadows::TechniqueModule* technique; // its maps
     bool operator==(const TargetKey&) const = default;
 };
 
@@ -120,12 +120,11 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
     t.shadows.resize(k.shadowViews);
     for (render::ShadowView& view : t.shadows) {
         view.map = targetImage(c, "--shadow-map-size", render::kDepthFormat, n, n, depthTarget);
-        if (k.secondDepth) {
-            view.second =
-                targetImage(c, "--shadow-map-size", render::kDepthFormat, n, n, depthTarget);
-            view.midpoint = targetImage(c, "--shadow-map-size", VK_FORMAT_R32_SFLOAT, n, n,
-                                        VK_IMAGE_USAGE_STORAGE_BIT | sampled);
-        }
+        for (const shadows::MapDecl& map : k.technique->maps)
+            view.maps.push_back(targetImage(
+                c, "--shadow-map-size", render::formatOf(map.format), n, n,
+                map.format == shadows::MapFormat::Depth32 ? depthTarget
+                                                          : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
     }
     const uint32_t w = k.width, h = k.height;
     t.depth = targetImage(c, "G-buffer depth", render::kDepthFormat, w, h, depthTarget);
@@ -215,7 +214,7 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
                         .height = o.height,
                         .shadowMapSize = o.shadowMapSize,
                         .shadowViews = static_cast<uint32_t>(views.size()),
-                        .secondDepth = o.technique == Technique::SecondDepth};
+                        .technique = &shadows::moduleOf(o.technique)};
     if (m.key != key) {
         if (progress)
             progress("creating targets");
@@ -238,13 +237,11 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
     t.lights = slot.lights.get();
 
     const render::FrameSettings settings{
-        .technique = o.technique,
-        .filter = static_cast<uint32_t>(o.parameters.number("pcf.filter")),
-        .receiver = static_cast<uint32_t>(o.parameters.number("bias.receiver")),
+        .technique = key.technique,
+        .constants = shadows::visibilityConstants(*key.technique, o.parameters),
         .slopeBias = static_cast<float>(o.parameters.number("bias.slope")),
         .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
-        .shadowMapSize = o.shadowMapSize,
-        .lightCount = static_cast<uint32_t>(lights.size())};
+        .shadowMapSize = o.shadowMapSize};
     render::FramePipelines& pipelines = m.renderer.mImpl->pipelines;
     vk::GpuTimer timer(ctx, 8);
     for (uint32_t frame = 0; frame <= o.frames; ++frame) {

@@ -1,8 +1,10 @@
-// The technique and parameter tables behind `--technique`, `--set` and `penumbra techniques`.
-// A parameter is registered once here with its default, range and meaning; the renderer reads
-// values by key, so a new technique family adds rows, not plumbing.
+// The technique and parameter tables behind `--technique`, `--set` and `penumbra techniques`,
+// gathered from the technique modules (src/shadows/technique.h): each registers its own rows and
+// parameter family; the families every technique reads (bias, composite) are registered here.
+// The renderer reads values by key, so a new family adds rows, not plumbing.
 #include "penumbra/error.h"
 #include "penumbra/settings.h"
+#include "shadows/technique.h"
 
 #include <fmt/format.h>
 
@@ -14,57 +16,18 @@ namespace penumbra {
 namespace {
 
 const std::vector<TechniqueInfo>& techniqueTable() {
-    static const std::vector<TechniqueInfo> table{
-        {.id = Technique::Hard,
-         .name = "hard",
-         .summary = "one shadow-map sample per pixel: lit when d(p) <= s(p)",
-         .reference = "Williams 1978, 'Casting curved shadows on curved surfaces'",
-         .families = {"bias", "composite"},
-         .variants = {{.label = ""}}},
-        {.id = Technique::Pcf,
-         .name = "pcf",
-         .summary = "percentage-closer filtering: the fraction of shadow-map tests a kernel passes",
-         .reference = "Reeves, Salesin, Cook 1987, 'Rendering antialiased shadows with depth "
-                      "maps'; Isidoro 2006 (edge-only PCF); Tuft 2010 (receiver-plane bias)",
-         .families = {"bias", "pcf", "composite"},
-         .variants =
-             {{.label = "bilinear", .sets = {{"pcf.filter", "bilinear"}}},
-              {.label = "hardware", .sets = {{"pcf.filter", "hardware"}}},
-              {.label = "box3", .sets = {{"pcf.filter", "box"}, {"pcf.size", "3"}}},
-              {.label = "box7", .sets = {{"pcf.filter", "box"}, {"pcf.size", "7"}}},
-              {.label = "box11", .sets = {{"pcf.filter", "box"}, {"pcf.size", "11"}}},
-              {.label = "gauss7", .sets = {{"pcf.filter", "gaussian"}, {"pcf.size", "7"}}},
-              {.label = "poisson16", .sets = {{"pcf.filter", "poisson"}, {"pcf.samples", "16"}}},
-              {.label = "poisson32", .sets = {{"pcf.filter", "poisson"}, {"pcf.samples", "32"}}},
-              {.label = "adaptive-box7",
-               .sets = {{"pcf.filter", "box"}, {"pcf.size", "7"}, {"pcf.adaptive", "true"}}}}},
-        {.id = Technique::Pcss,
-         .name = "pcss",
-         .summary = "percentage-closer soft shadows: blocker search, penumbra estimate, PCF of "
-                    "that width (contact hardening)",
-         .reference = "Fernando 2005, 'Percentage-closer soft shadows'",
-         .families = {"bias", "pcss", "composite"},
-         .variants = {{.label = ""},
-                      {.label = "fast",
-                       .sets = {{"pcss.blockerSamples", "8"}, {"pcss.filterSamples", "16"}}}}},
-        {.id = Technique::SecondDepth,
-         .name = "second-depth",
-         .summary = "one sample against the midpoint of the nearest and second-nearest depths: "
-                    "no self-shadowing without bias, for watertight geometry",
-         .reference = "Wang and Molnar 1994, 'Second-depth shadow mapping'",
-         .families = {"bias", "composite"},
-         .variants = {{.label = ""},
-                      {.label = "nobias",
-                       .sets = {{"bias.constant", "0"},
-                                {"bias.slope", "0"},
-                                {"bias.normal", "0"},
-                                {"bias.receiver", "off"}}}}},
-    };
+    static const std::vector<TechniqueInfo> table = [] {
+        std::vector<TechniqueInfo> t;
+        for (const shadows::TechniqueModule* m : shadows::allModules())
+            t.push_back(m->info);
+        return t;
+    }();
     return table;
 }
 
+// The families every technique reads (bias, composite) and each module's own.
 const std::vector<ParameterInfo>& parameterTable() {
-    static const std::vector<ParameterInfo> table{
+    static const std::vector<ParameterInfo> bias{
         {.key = "bias.constant",
          .type = ParameterType::Float,
          .defaultValue = 0.0005,
@@ -109,77 +72,8 @@ const std::vector<ParameterInfo>& parameterTable() {
          .choices = {"both", "near"},
          .description = "which receiver-plane corrections apply: both signs, or only those that "
                         "bring a tap's depth nearer the light (near: the plane cannot extrapolate "
-                        "beneath a neighbouring surface at a concave crease)"},
-        {.key = "pcf.filter",
-         .type = ParameterType::Choice,
-         .defaultValue = 2,
-         .choices = {"bilinear", "hardware", "box", "gaussian", "poisson"},
-         .description = "kernel: bilinear 4-tap, one hardware comparison tap, box or Gaussian "
-                        "NxN of bilinear taps, or a rotated Poisson disk of bilinear taps"},
-        {.key = "pcf.size",
-         .type = ParameterType::Int,
-         .defaultValue = 5,
-         .min = 3,
-         .max = 15,
-         .unit = "texels (odd)",
-         .description = "box and Gaussian kernel width N (N x N taps)",
-         .oddOnly = true},
-        {.key = "pcf.sigma",
-         .type = ParameterType::Float,
-         .defaultValue = 0.0,
-         .min = 0.0,
-         .max = 16.0,
-         .unit = "texels",
-         .description = "Gaussian standard deviation; 0 = size / 4"},
-        {.key = "pcf.samples",
-         .type = ParameterType::Int,
-         .defaultValue = 16,
-         .min = 1,
-         .max = 64,
-         .description = "Poisson-disk taps"},
-        {.key = "pcf.radius",
-         .type = ParameterType::Float,
-         .defaultValue = 2.5,
-         .min = 0.5,
-         .max = 32.0,
-         .unit = "texels",
-         .description = "Poisson-disk radius"},
-        {.key = "pcf.rotation",
-         .type = ParameterType::Choice,
-         .defaultValue = 2,
-         .choices = {"none", "random", "ign"},
-         .description = "per-pixel rotation of the Poisson disk: none, a hash, or interleaved "
-                        "gradient noise [Jimenez 2014]"},
-        {.key = "pcf.adaptive",
-         .type = ParameterType::Bool,
-         .defaultValue = 0,
-         .description = "edge-only PCF [Isidoro 2006]: four corner taps decide whether a pixel "
-                        "is near a shadow edge; only then the full kernel runs"},
-        {.key = "pcss.blockerSamples",
-         .type = ParameterType::Int,
-         .defaultValue = 24,
-         .min = 1,
-         .max = 64,
-         .unit = "gathers (4 texels each)",
-         .description = "blocker-search taps on a Poisson disk over the search region"},
-        {.key = "pcss.filterSamples",
-         .type = ParameterType::Int,
-         .defaultValue = 48,
-         .min = 1,
-         .max = 64,
-         .description = "PCF taps (bilinear, Poisson disk) over the estimated penumbra"},
-        {.key = "pcss.maxRadius",
-         .type = ParameterType::Float,
-         .defaultValue = 40.0,
-         .min = 1.0,
-         .max = 256.0,
-         .unit = "texels",
-         .description = "largest blocker-search and filter radius (bounds cost for big lights)"},
-        {.key = "pcss.rotation",
-         .type = ParameterType::Choice,
-         .defaultValue = 2,
-         .choices = {"none", "random", "ign"},
-         .description = "per-pixel rotation of both Poisson disks"},
+                        "beneath a neighbouring surface at a concave crease)"}};
+    static const std::vector<ParameterInfo> composite{
         {.key = "composite.shadowIntensity",
          .type = ParameterType::Float,
          .defaultValue = 1.0,
@@ -202,8 +96,14 @@ const std::vector<ParameterInfo>& parameterTable() {
          .unit = "EV (stops)",
          .description = "scales every light by 2^EV before the tone curve; glTF intensities "
                         "in lux or candela need negative values (about -16 for a 100000-lux "
-                        "sun)"},
-    };
+                        "sun)"}};
+    static const std::vector<ParameterInfo> table = [] {
+        std::vector<ParameterInfo> t = bias;
+        for (const shadows::TechniqueModule* m : shadows::allModules())
+            t.insert(t.end(), m->parameters.begin(), m->parameters.end());
+        t.insert(t.end(), composite.begin(), composite.end());
+        return t;
+    }();
     return table;
 }
 

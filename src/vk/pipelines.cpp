@@ -46,6 +46,12 @@ struct Specialization {
 
 PipelineLayout createPipelineLayout(const Context& ctx, std::initializer_list<Binding> bindings,
                                     VkShaderStageFlags stages, uint32_t pushConstantBytes) {
+    return createPipelineLayout(ctx, std::span(bindings.begin(), bindings.size()), stages,
+                                pushConstantBytes);
+}
+
+PipelineLayout createPipelineLayout(const Context& ctx, std::span<const Binding> bindings,
+                                    VkShaderStageFlags stages, uint32_t pushConstantBytes) {
     std::vector<VkDescriptorSetLayoutBinding> vkBindings;
     for (const Binding& b : bindings)
         vkBindings.push_back({.binding = b.binding,

@@ -26,6 +26,8 @@ struct PipelineLayout {
 
 PipelineLayout createPipelineLayout(const Context& ctx, std::initializer_list<Binding> bindings,
                                     VkShaderStageFlags stages, uint32_t pushConstantBytes);
+PipelineLayout createPipelineLayout(const Context& ctx, std::span<const Binding> bindings,
+                                    VkShaderStageFlags stages, uint32_t pushConstantBytes);
 
 struct SpecConstant {
     uint32_t id;

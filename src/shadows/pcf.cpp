@@ -1,0 +1,120 @@
+// Technique `pcf` [Reeves, Salesin, Cook 1987]: the fraction of shadow-map tests a kernel passes,
+// every kernel built from bilinear comparison taps; edge-only PCF [Isidoro 2006]. Shader:
+// shaders/include/shadow_pcf.glsl (the kernel is the specialization constant FILTER); CPU mirror:
+// src/reference/filter_reference.cpp.
+#include "shadows/technique.h"
+
+namespace penumbra::shadows {
+namespace {
+
+uint32_t choice(const ParameterValues& p, const char* key) {
+    return static_cast<uint32_t>(p.number(key));
+}
+
+float number(const ParameterValues& p, const char* key) {
+    return static_cast<float>(p.number(key));
+}
+
+} // namespace
+
+const TechniqueModule& pcfModule() {
+    static const TechniqueModule module{
+        .info =
+            {.id = Technique::Pcf,
+             .name = "pcf",
+             .summary =
+                 "percentage-closer filtering: the fraction of shadow-map tests a kernel passes",
+             .reference = "Reeves, Salesin, Cook 1987, 'Rendering antialiased shadows with depth "
+                          "maps'; Isidoro 2006 (edge-only PCF); Tuft 2010 (receiver-plane bias)",
+             .families = {"bias", "pcf", "composite"},
+             .variants =
+                 {{.label = "bilinear", .sets = {{"pcf.filter", "bilinear"}}},
+                  {.label = "hardware", .sets = {{"pcf.filter", "hardware"}}},
+                  {.label = "box3", .sets = {{"pcf.filter", "box"}, {"pcf.size", "3"}}},
+                  {.label = "box7", .sets = {{"pcf.filter", "box"}, {"pcf.size", "7"}}},
+                  {.label = "box11", .sets = {{"pcf.filter", "box"}, {"pcf.size", "11"}}},
+                  {.label = "gauss7", .sets = {{"pcf.filter", "gaussian"}, {"pcf.size", "7"}}},
+                  {.label = "poisson16",
+                   .sets = {{"pcf.filter", "poisson"}, {"pcf.samples", "16"}}},
+                  {.label = "poisson32",
+                   .sets = {{"pcf.filter", "poisson"}, {"pcf.samples", "32"}}},
+                  {.label = "adaptive-box7",
+                   .sets = {{"pcf.filter", "box"}, {"pcf.size", "7"}, {"pcf.adaptive", "true"}}}}},
+        .parameters = {{.key = "pcf.filter",
+                        .type = ParameterType::Choice,
+                        .defaultValue = 2,
+                        .choices = {"bilinear", "hardware", "box", "gaussian", "poisson"},
+                        .description =
+                            "kernel: bilinear 4-tap, one hardware comparison tap, box or Gaussian "
+                            "NxN of bilinear taps, or a rotated Poisson disk of bilinear taps"},
+                       {.key = "pcf.size",
+                        .type = ParameterType::Int,
+                        .defaultValue = 5,
+                        .min = 3,
+                        .max = 15,
+                        .unit = "texels (odd)",
+                        .description = "box and Gaussian kernel width N (N x N taps)",
+                        .oddOnly = true},
+                       {.key = "pcf.sigma",
+                        .type = ParameterType::Float,
+                        .defaultValue = 0.0,
+                        .min = 0.0,
+                        .max = 16.0,
+                        .unit = "texels",
+                        .description = "Gaussian standard deviation; 0 = size / 4"},
+                       {.key = "pcf.samples",
+                        .type = ParameterType::Int,
+                        .defaultValue = 16,
+                        .min = 1,
+                        .max = 64,
+                        .description = "Poisson-disk taps"},
+                       {.key = "pcf.radius",
+                        .type = ParameterType::Float,
+                        .defaultValue = 2.5,
+                        .min = 0.5,
+                        .max = 32.0,
+                        .unit = "texels",
+                        .description = "Poisson-disk radius"},
+                       {.key = "pcf.rotation",
+                        .type = ParameterType::Choice,
+                        .defaultValue = 2,
+                        .choices = {"none", "random", "ign"},
+                        .description =
+                            "per-pixel rotation of the Poisson disk: none, a hash, or interleaved "
+                            "gradient noise [Jimenez 2014]"},
+                       {.key = "pcf.adaptive",
+                        .type = ParameterType::Bool,
+                        .defaultValue = 0,
+                        .description =
+                            "edge-only PCF [Isidoro 2006]: four corner taps decide whether a pixel "
+                            "is near a shadow edge; only then the full kernel runs"}},
+        .constants =
+            [](const ParameterValues& p) {
+                return std::vector<SpecConstant>{{SPEC_FILTER, choice(p, "pcf.filter")}};
+            },
+        .pack =
+            [](const ParameterValues& p, gpu::FrameData& f) {
+                const uint32_t size = choice(p, "pcf.size");
+                const float sigma =
+                    number(p, "pcf.sigma") > 0.0f ? number(p, "pcf.sigma") : 0.25f * float(size);
+                f.filterMode = {choice(p, "pcf.filter"), size, choice(p, "pcf.samples"),
+                                choice(p, "pcf.rotation")};
+                f.filterParams = {number(p, "pcf.radius"), sigma, number(p, "pcf.adaptive"), 0.0f};
+            },
+        .blurRadiusTexels =
+            [](const ParameterValues& p) {
+                // A bilinear tap reaches one texel past its centre.
+                switch (choice(p, "pcf.filter")) {
+                case FILTER_BOX:
+                case FILTER_GAUSSIAN:
+                    return 0.5 * (p.number("pcf.size") - 1.0) + 1.0;
+                case FILTER_POISSON:
+                    return p.number("pcf.radius") + 1.0;
+                default:
+                    return 1.0;
+                }
+            }};
+    return module;
+}
+
+} // namespace penumbra::shadows

@@ -1,0 +1,37 @@
+// Technique `second-depth` [Wang and Molnar 1994]: a depth peel keeps the second-nearest caster
+// per texel, a post pass stores the midpoint of the two layers, and the visibility pass tests
+// against it with the hard technique's one sample: a surface never shadows itself, with no bias,
+// as long as the geometry is watertight (shaders/shadow_peel.frag, second_depth_mid.comp).
+#include "shadows/technique.h"
+
+namespace penumbra::shadows {
+
+const TechniqueModule& secondDepthModule() {
+    static const TechniqueModule module{
+        .info = {.id = Technique::SecondDepth,
+                 .name = "second-depth",
+                 .summary =
+                     "one sample against the midpoint of the nearest and second-nearest depths: "
+                     "no self-shadowing without bias, for watertight geometry",
+                 .reference = "Wang and Molnar 1994, 'Second-depth shadow mapping'",
+                 .families = {"bias", "composite"},
+                 .variants = {{.label = ""},
+                              {.label = "nobias",
+                               .sets = {{"bias.constant", "0"},
+                                        {"bias.slope", "0"},
+                                        {"bias.normal", "0"},
+                                        {"bias.receiver", "off"}}}}},
+        .maps = {{.name = "second", .format = MapFormat::Depth32},
+                 {.name = "midpoint", .format = MapFormat::R32F}},
+        .depthPasses = {{.target = "second",
+                         .fragmentShader = "shadow_peel.frag",
+                         .reads = kDepthMap}},
+        .postPasses = {{.shader = "second_depth_mid.comp",
+                        .inputs = {kDepthMap, "second"},
+                        .outputs = {"midpoint"}}},
+        .visibilityMap = "midpoint",
+        .blurRadiusTexels = [](const ParameterValues&) { return 0.5; }};
+    return module;
+}
+
+} // namespace penumbra::shadows

@@ -1,0 +1,86 @@
+#pragma once
+// A shadow technique as the frame sees it: what it keeps per shadow view beside the light's depth
+// map, the passes that fill it, the map the visibility pass filters, its specialization
+// constants, its parameters and how they pack into FrameData, and what it costs in memory. The
+// frame (src/render) runs what a module declares and never asks which technique it is; each
+// technique is one module in this folder plus its shader include (docs/architecture.md, "Adding a
+// technique").
+#include "gpu_types.h"
+#include "penumbra/settings.h"
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+namespace penumbra::shadows {
+
+enum class MapFormat { Depth32, R32F, RG32F, RGBA32F };
+uint32_t bytesPerTexel(MapFormat format);
+
+// Every technique has the light's depth map, "depth" (Depth32, cleared to 1 = far).
+inline constexpr std::string_view kDepthMap = "depth";
+
+// A map the technique keeps per shadow view: a depth target that a depth pass renders, or an
+// image a post pass writes.
+struct MapDecl {
+    std::string_view name;
+    MapFormat format;
+};
+
+// Another depth pass over the casters, into `target` (a Depth32 map), whose fragment shader
+// reads the map `reads` at the fragment's texel (a depth peel, say).
+struct DepthPassDecl {
+    std::string_view target;
+    std::string_view fragmentShader; // in shaders/
+    std::string_view reads;
+};
+
+// A compute pass run over each shadow view after the depth passes: it samples `inputs` with a
+// nearest sampler (bindings 0, 1, ...) and writes `outputs` as storage images (bindings 8, ...);
+// its push constants are gpu::PostPassPush.
+struct PostPassDecl {
+    std::string_view shader; // in shaders/
+    std::vector<std::string_view> inputs, outputs;
+};
+
+struct SpecConstant {
+    uint32_t id; // SPEC_* in shaders/include/gpu_types.h
+    uint32_t value;
+    auto operator<=>(const SpecConstant&) const = default;
+};
+
+struct TechniqueModule {
+    TechniqueInfo info;                         // name, summary, paper, parameter families, rows
+    std::vector<ParameterInfo> parameters;      // the technique's own family (`pcf.*`, ...)
+    std::vector<MapDecl> maps;                  // beyond kDepthMap
+    std::vector<DepthPassDecl> depthPasses;     // beyond the light's depth pass
+    std::vector<PostPassDecl> postPasses;       // in order
+    std::string_view visibilityMap = kDepthMap; // what the visibility pass filters
+    // Specialization constants of the visibility pass beyond TECHNIQUE (the module's id) and
+    // RECEIVER (bias.receiver, every technique's).
+    std::vector<SpecConstant> (*constants)(const ParameterValues&) = nullptr;
+    // Writes the module's parameters into the frame block (its own fields).
+    void (*pack)(const ParameterValues&, gpu::FrameData&) = nullptr;
+    // The widest footprint the technique filters over, in texels from the receiver: the blur
+    // radius a metric may allow at a shadow edge (0 for a single sample).
+    double (*blurRadiusTexels)(const ParameterValues&) = nullptr;
+};
+
+// The registered modules, in `penumbra techniques` order.
+std::span<const TechniqueModule* const> allModules();
+const TechniqueModule& moduleOf(Technique technique);
+
+// Device memory the technique's maps take per shadow view of size x size texels.
+uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size);
+// Every specialization constant of the visibility pass, TECHNIQUE first: the pipeline key.
+std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
+                                              const ParameterValues& params);
+
+// The modules, one per file of this folder.
+const TechniqueModule& hardModule();
+const TechniqueModule& pcfModule();
+const TechniqueModule& pcssModule();
+const TechniqueModule& secondDepthModule();
+
+} // namespace penumbra::shadows
