@@ -1,10 +1,13 @@
 #include "penumbra/error.h"
 #include "penumbra/settings.h"
+#include "shadows/technique.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <span>
 
 using namespace penumbra;
 
@@ -144,4 +147,95 @@ TEST(RenderOptions, ValidateAcceptsTheLastValidValueAndRefusesTheFirstInvalid) {
         EXPECT_NO_THROW(validate(valid)) << c.what;
         EXPECT_THROW(validate(invalid), InputError) << c.what;
     }
+}
+
+TEST(TechniqueModules, DeclarationsAreConsistent) {
+    for (const shadows::TechniqueModule* m : shadows::allModules()) {
+        const std::string name(m->info.name);
+        EXPECT_EQ(&shadows::moduleOf(m->info.id), m) << name;
+        EXPECT_EQ(findTechnique(m->info.name).id, m->info.id) << name;
+        // Every map a pass names is declared, and the visibility pass filters a declared one.
+        auto declared = [&](std::string_view map) {
+            if (map == shadows::kDepthMap)
+                return true;
+            for (const shadows::MapDecl& d : m->maps)
+                if (d.name == map)
+                    return true;
+            return false;
+        };
+        EXPECT_TRUE(declared(m->visibilityMap)) << name;
+        for (const shadows::DepthPassDecl& pass : m->depthPasses) {
+            EXPECT_TRUE(declared(pass.target) && declared(pass.reads)) << name;
+            EXPECT_NE(pass.target, pass.reads) << name;
+        }
+        for (const shadows::PostPassDecl& pass : m->postPasses) {
+            EXPECT_LE(pass.inputs.size(), size_t{POST_MAX_MAPS}) << name;
+            EXPECT_LE(pass.outputs.size(), size_t{POST_MAX_MAPS}) << name;
+            for (std::string_view map : pass.inputs)
+                EXPECT_TRUE(declared(map)) << name << ": " << map;
+            for (std::string_view map : pass.outputs)
+                EXPECT_TRUE(declared(map)) << name << ": " << map;
+        }
+        // Its own parameters are of a family it lists.
+        for (const ParameterInfo& p : m->parameters) {
+            const std::string family(p.key.substr(0, p.key.find('.')));
+            EXPECT_NE(std::find(m->info.families.begin(), m->info.families.end(), family),
+                      m->info.families.end())
+                << name << ": " << p.key;
+        }
+        // The pipeline key starts with the technique and the receiver plane.
+        const auto constants = shadows::visibilityConstants(*m, ParameterValues());
+        ASSERT_GE(constants.size(), 2u) << name;
+        EXPECT_EQ(constants[0].id, uint32_t{SPEC_TECHNIQUE});
+        EXPECT_EQ(constants[0].value, static_cast<uint32_t>(m->info.id));
+        EXPECT_EQ(constants[1].id, uint32_t{SPEC_RECEIVER});
+        EXPECT_EQ(constants[1].value, uint32_t{RECEIVER_LIGHT}); // the default
+        EXPECT_GE(m->blurRadiusTexels(ParameterValues()), 0.5) << name;
+    }
+    // What the techniques keep per texel of a shadow view: depth, plus second-depth's second
+    // layer and midpoint; the PCF kernel's filter constant in its key only.
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::hardModule(), 1024), 4u * 1024 * 1024);
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::secondDepthModule(), 16), 12u * 16 * 16);
+    ParameterValues poisson;
+    poisson.assign("pcf.filter=poisson");
+    poisson.assign("pcf.radius=6");
+    const auto pcf = shadows::visibilityConstants(shadows::pcfModule(), poisson);
+    ASSERT_EQ(pcf.size(), 3u);
+    EXPECT_EQ(pcf[2].id, uint32_t{SPEC_FILTER});
+    EXPECT_EQ(pcf[2].value, uint32_t{FILTER_POISSON});
+    // Blur radii: how far from the receiver the last texel a kernel reads lies (a bilinear tap
+    // reaches one texel past its position).
+    EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(poisson), 7.0);
+    ParameterValues box;
+    box.assign("pcf.size=7");
+    EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(box), 4.0);
+    box.assign("pcf.filter=bilinear");
+    EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(box), 1.0);
+    EXPECT_EQ(shadows::pcssModule().blurRadiusTexels(box), 41.0); // pcss.maxRadius 40
+    EXPECT_EQ(shadows::hardModule().blurRadiusTexels(box), 0.5);
+    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 2u);
+}
+
+TEST(TechniqueModules, ChoiceListsAreTheShadersOwnTables) {
+    const std::pair<const char*, std::span<const char* const>> lists[] = {
+        {"pcf.filter", gpu::kFilterChoices},
+        {"pcf.rotation", gpu::kRotationChoices},
+        {"pcss.rotation", gpu::kRotationChoices},
+        {"bias.receiver", gpu::kReceiverChoices}};
+    for (const auto& [key, names] : lists) {
+        const auto params = allParameters();
+        const auto it = std::find_if(params.begin(), params.end(),
+                                     [&](const ParameterInfo& p) { return p.key == key; });
+        ASSERT_NE(it, params.end()) << key;
+        ASSERT_EQ(it->choices.size(), names.size()) << key;
+        for (size_t i = 0; i < names.size(); ++i)
+            EXPECT_EQ(it->choices[i], names[i]) << key << " choice " << i;
+    }
+    ParameterValues v;
+    v.assign("pcf.filter=gaussian");
+    EXPECT_EQ(v.number("pcf.filter"), double{FILTER_GAUSSIAN});
+    v.assign("bias.receiver=screen");
+    EXPECT_EQ(v.number("bias.receiver"), double{RECEIVER_SCREEN});
+    v.assign("pcss.rotation=ign");
+    EXPECT_EQ(v.number("pcss.rotation"), double{ROTATION_IGN});
 }

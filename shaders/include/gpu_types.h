@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 namespace penumbra::gpu {
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
@@ -106,6 +107,20 @@ struct VisibilityPush {  // push constants of visibility.comp
 };
 
 #ifdef __cplusplus
+// The names of pcf.filter, pcf.rotation / pcss.rotation and bias.receiver, in the order of the
+// values above: the registry's choice lists are these arrays, so a name's index is the value the
+// shaders compare with.
+inline constexpr const char* kFilterChoices[] = {"bilinear", "hardware", "box", "gaussian",
+                                                 "poisson"};
+inline constexpr const char* kRotationChoices[] = {"none", "random", "ign"};
+inline constexpr const char* kReceiverChoices[] = {"off", "screen", "light"};
+static_assert(FILTER_BILINEAR == 0 && FILTER_HARDWARE == 1 && FILTER_BOX == 2 &&
+              FILTER_GAUSSIAN == 3 && FILTER_POISSON == 4 && std::size(kFilterChoices) == 5);
+static_assert(ROTATION_NONE == 0 && ROTATION_RANDOM == 1 && ROTATION_IGN == 2 &&
+              std::size(kRotationChoices) == 3);
+static_assert(RECEIVER_OFF == 0 && RECEIVER_SCREEN == 1 && RECEIVER_LIGHT == 2 &&
+              std::size(kReceiverChoices) == 3);
+
 static_assert(sizeof(FrameData) == 800 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, filterMode) == 192 && offsetof(FrameData, biasParams) == 240 &&

@@ -44,7 +44,7 @@ const TechniqueModule& pcssModule() {
              {.key = "pcss.rotation",
               .type = ParameterType::Choice,
               .defaultValue = 2,
-              .choices = {"none", "random", "ign"},
+              .choices = {std::begin(gpu::kRotationChoices), std::end(gpu::kRotationChoices)},
               .description = "per-pixel rotation of both Poisson disks"}},
         .pack =
             [](const ParameterValues& p, gpu::FrameData& f) {

@@ -2,6 +2,7 @@
 // gathered from the technique modules (src/shadows/technique.h): each registers its own rows and
 // parameter family; the families every technique reads (bias, composite) are registered here.
 // The renderer reads values by key, so a new family adds rows, not plumbing.
+#include "gpu_types.h"
 #include "penumbra/error.h"
 #include "penumbra/settings.h"
 #include "shadows/technique.h"
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <iterator>
 
 namespace penumbra {
 namespace {
@@ -54,7 +56,7 @@ const std::vector<ParameterInfo>& parameterTable() {
         {.key = "bias.receiver",
          .type = ParameterType::Choice,
          .defaultValue = 2,
-         .choices = {"off", "screen", "light"},
+         .choices = {std::begin(gpu::kReceiverChoices), std::end(gpu::kReceiverChoices)},
          .description = "receiver-plane depth bias [Tuft 2010]: each tap compares against the "
                         "receiver's depth at that tap, from screen-space neighbours (screen) or "
                         "from the surface normal in light space (light)"},
