@@ -15,10 +15,10 @@ struct Probe {
 };
 
 layout(set = 0, binding = 1, std430) readonly buffer Probes { Probe probes[]; };
-layout(set = 0, binding = 2) uniform sampler2D shadowMap;
-layout(set = 0, binding = 3) uniform sampler2DShadow shadowMapCmp;
+layout(set = 0, binding = 2) uniform sampler2DArray shadowMap;          // one layer
+layout(set = 0, binding = 3) uniform sampler2DArrayShadow shadowMapCmp;
 layout(set = 0, binding = 4, std430) writeonly buffer Results { vec4 results[]; };
-layout(set = 0, binding = 5, std430) readonly buffer Lights { LightData light; };
+layout(set = 0, binding = 5, std430) readonly buffer Views { ShadowViewData view; };
 layout(push_constant) uniform Push { uvec4 counts; }; // x probes, y map size
 
 void main() {
@@ -29,6 +29,7 @@ void main() {
     r.uv = probe.uvDepth.xy;
     r.depth = probe.uvDepth.z;
     r.gradient = probe.gradientPixel.xy;
-    results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, counts.y, light,
+    r.layer = 0.0;
+    results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, counts.y, view,
                                    uvec2(probe.gradientPixel.zw));
 }

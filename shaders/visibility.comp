@@ -16,9 +16,10 @@ layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 layout(set = 0, binding = 1, std430) readonly buffer Lights { LightData lights[]; };
 layout(set = 0, binding = 2) uniform sampler2D gDepth;
 layout(set = 0, binding = 3) uniform sampler2D gNormal;
-layout(set = 0, binding = 4) uniform sampler2D shadowMap;           // nearest, raw depths
-layout(set = 0, binding = 5) uniform sampler2DShadow shadowMapCmp;  // hardware compare
+layout(set = 0, binding = 4) uniform sampler2DArray shadowMap;          // nearest, every view
+layout(set = 0, binding = 5) uniform sampler2DArrayShadow shadowMapCmp; // hardware compare
 layout(set = 0, binding = 6, r32f) uniform writeonly image2DArray visibility;
+layout(set = 0, binding = 7, std430) readonly buffer Views { ShadowViewData views[]; };
 layout(push_constant) uniform Push { VisibilityPush push; };
 
 // Light-space (u, v, depth) offset to the neighbour at p + step along one axis, taking the side
@@ -39,22 +40,23 @@ vec3 neighbourOffset(mat4 S, ivec2 p, ivec2 step, vec3 centre, float depth) {
     return best;
 }
 
-Receiver makeReceiver(LightData light, ivec2 p, vec3 world, vec3 normal, float depth,
-                      out bool inside) {
-    ShadowCoord c = projectToShadowMap(light, offsetReceiver(light, world, normal));
+Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world, vec3 normal,
+                      float depth, out bool inside) {
+    ShadowCoord c = projectToShadowMap(view, offsetReceiver(light, view, world, normal));
     inside = c.inside;
     Receiver r;
     r.uv = c.uv;
     r.depth = c.depth;
     r.gradient = vec2(0.0);
+    r.layer = view.texel.z;
     if (RECEIVER == RECEIVER_LIGHT) {
-        r.gradient = receiverGradientFromNormal(light.shadowMatrix, world, normal);
+        r.gradient = receiverGradientFromNormal(view.shadowMatrix, world, normal);
     } else if (RECEIVER == RECEIVER_SCREEN) {
-        vec4 s = light.shadowMatrix * vec4(world, 1.0);
+        vec4 s = view.shadowMatrix * vec4(world, 1.0);
         vec3 centre = s.xyz / s.w;
         r.gradient = receiverGradientFromOffsets(
-            neighbourOffset(light.shadowMatrix, p, ivec2(1, 0), centre, depth),
-            neighbourOffset(light.shadowMatrix, p, ivec2(0, 1), centre, depth));
+            neighbourOffset(view.shadowMatrix, p, ivec2(1, 0), centre, depth),
+            neighbourOffset(view.shadowMatrix, p, ivec2(0, 1), centre, depth));
     }
     return r;
 }
@@ -69,10 +71,11 @@ void main() {
         vec3 world = worldPosition(frame.invViewProj, p, size, depth);
         vec3 normal = normalize(texelFetch(gNormal, p, 0).xyz);
         LightData light = lights[push.light.x];
+        ShadowViewData view = views[push.light.w];
         bool inside;
-        Receiver r = makeReceiver(light, p, world, normal, depth, inside);
+        Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
         v = inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, push.light.z,
-                                       light, uvec2(p)).x
+                                       view, uvec2(p)).x
                    : 1.0;
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));

@@ -84,9 +84,9 @@ Evaluated evaluate(Technique technique, const ParameterValues& params,
     e.gpu = sharedRenderer().probeTechnique(technique, params, map, kSize, probes, light);
     gpu::FrameData frame{};
     render::setTechniqueSettings(frame, params, sharedRenderer().device().depthLinearFilter, 8);
-    const gpu::LightData lightData = render::probeLightData(light);
+    const gpu::ShadowViewData viewData = render::probeViewData(light);
     for (const FilterProbe& p : probes)
-        e.cpu.push_back(techniqueReference(technique, {map, kSize}, p, frame, lightData));
+        e.cpu.push_back(techniqueReference(technique, {map, kSize}, p, frame, viewData));
     return e;
 }
 

@@ -273,3 +273,34 @@ TEST_F(ShadowTest, ASceneRendererGivesWhatAFreshRenderGivesWhateverCameBefore) {
             << "render " << i;
     }
 }
+
+TEST_F(ShadowTest, EveryLightFiltersItsOwnShadowView) {
+    // Four lights, three with a shadow map (each a view, a layer of the technique's maps): each
+    // light's visibility must be what a render with that light alone gives, bit for bit, for a
+    // technique whose maps have post passes (second-depth) and one that reads the view's
+    // geometry (PCSS).
+    Scene all = loadScene("builtin:showcase");
+    all.lights.push_back({.name = "bulb", .type = LightType::Point, .position = {2, 4, 2}});
+    all.lights.push_back(loadScene("builtin:spot").lights[0]);
+    all.lights.push_back({.name = "low sun",
+                          .type = LightType::Directional,
+                          .direction = glm::normalize(glm::vec3(-0.8f, -0.5f, -0.2f)),
+                          .angularDiameter = 3.0f});
+    for (const Technique technique : {Technique::SecondDepth, Technique::Pcss}) {
+        const RenderOptions o{
+            .width = 128, .height = 96, .shadowMapSize = 512, .technique = technique};
+        const RenderResult r = render(all, o);
+        ASSERT_EQ(r.visibility.size(), 3u);
+        for (const LightShadow& s : r.lights) {
+            if (s.visibilityIndex < 0)
+                continue;
+            Scene alone = all;
+            alone.lights = {all.lights[s.sceneLight]};
+            const RenderResult single = render(alone, o);
+            EXPECT_EQ(0, std::memcmp(r.visibility[s.visibilityIndex].data(),
+                                     single.visibility[0].data(),
+                                     single.visibility[0].size() * sizeof(float)))
+                << techniqueName(technique) << ", light " << s.sceneLight;
+        }
+    }
+}

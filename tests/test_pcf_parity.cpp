@@ -103,7 +103,7 @@ TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
                 params.assign(set);
             const std::vector<glm::vec4> gpu =
                 sharedRenderer().probeTechnique(variant.technique, params, depth, kMapSize, probes);
-            const gpu::LightData light = render::probeLightData({});
+            const gpu::ShadowViewData light = render::probeViewData({});
             gpu::FrameData frame{};
             // The subTexelPrecisionBits the CPU emulates only matter with hardware filtering.
             render::setTechniqueSettings(frame, params, device.depthLinearFilter, 8);
@@ -171,7 +171,7 @@ TEST_F(FilterTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
                 Technique::Pcss, params, depth, kMapSize, probes, probeLight);
             gpu::FrameData frame{};
             render::setTechniqueSettings(frame, params, false, 8);
-            const gpu::LightData light = render::probeLightData(probeLight);
+            const gpu::ShadowViewData light = render::probeViewData(probeLight);
             glm::vec4 worst(0.0f);
             size_t compared = 0, searched = 0;
             for (size_t i = 0; i < probes.size(); ++i) {

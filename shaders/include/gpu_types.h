@@ -66,15 +66,24 @@ struct FrameData {       // std140 uniform block: the camera and every technique
 };
 
 struct LightData {       // std430 storage buffer, one per scene light
-    mat4 shadowMatrix;   // world -> (u, v, depth) * w: T x light view-projection
     vec4 positionType;   // xyz position (spot, point), w: LIGHT_* type
     vec4 directionRange; // xyz direction the light travels, w range (0 = unlimited)
     vec4 colorIntensity; // rgb linear colour, a intensity
-    vec4 cone;           // x cos(outer), y cos(inner), z texel world size, w shadow layer (-1 none)
-    vec4 bias;           // x constant, y slope, z normal offset (texels), w 1 if perspective
-    vec4 frustum;        // x near, y far (light view distance), zw world size of one uv unit
+    vec4 cone;           // x cos(outer), y cos(inner), w visibility layer (-1: no shadow map)
+    vec4 bias;           // x constant, y slope (both applied in the shadow pass), z normal offset
+                         // (texels)
+    uvec4 views;         // x first shadow view (ShadowViewData), y how many (0: no shadow map)
+};
+
+// One shadow view: a projection of a light into one layer of the technique's maps (a light may
+// own several: cascades, cube faces).
+struct ShadowViewData {  // std430 storage buffer, one per shadow view
+    mat4 shadowMatrix;   // world -> (u, v, depth) * w: T x the view's view-projection
+    vec4 frustum;        // x near, y far (view distance), zw world size of one uv unit
                          // (orthographic) or of one uv unit at unit distance (perspective)
-    vec4 shape;          // x light size: radius (spot, point) or tan(half angular diameter)
+    vec4 texel;          // x world size of a texel (perspective: at unit distance), y 1 if
+                         // perspective, z the view's layer in the maps, w the light's size as
+                         // this view sees it: radius (perspective) or tan(half angular diameter)
 };
 
 struct ShadowPush {      // push constants of shadow_depth.vert
@@ -103,7 +112,7 @@ struct PostPassPush {    // push constants of every shadow-map post pass
 };
 
 struct VisibilityPush {  // push constants of visibility.comp
-    uvec4 light;         // x light index, y shadow layer, z shadow-map size
+    uvec4 light;         // x light index, y its visibility layer, z shadow-map size, w its view
 };
 
 #ifdef __cplusplus
@@ -125,9 +134,10 @@ static_assert(sizeof(FrameData) == 800 && offsetof(FrameData, position) == 128 &
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, filterMode) == 192 && offsetof(FrameData, biasParams) == 240 &&
               offsetof(FrameData, pcssMode) == 256 && offsetof(FrameData, poisson) == 288);
-static_assert(sizeof(LightData) == 176 && offsetof(LightData, positionType) == 64 &&
-              offsetof(LightData, cone) == 112 && offsetof(LightData, bias) == 128 &&
-              offsetof(LightData, frustum) == 144 && offsetof(LightData, shape) == 160);
+static_assert(sizeof(LightData) == 96 && offsetof(LightData, cone) == 48 &&
+              offsetof(LightData, bias) == 64 && offsetof(LightData, views) == 80);
+static_assert(sizeof(ShadowViewData) == 96 && offsetof(ShadowViewData, frustum) == 64 &&
+              offsetof(ShadowViewData, texel) == 80);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
               sizeof(PostPassPush) == 16);
 static_assert(sizeof(MaterialPush) == 32 && offsetof(MaterialPush, alphaCutoff) == 16);

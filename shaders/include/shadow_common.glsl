@@ -17,17 +17,18 @@ vec3 directionToLight(LightData light, vec3 world) {
 }
 
 // Normal offset [Holbert 2010 'Normal offset shadows']: move the receiver along its normal by
-// bias.z texels, scaled by 1 - N.L (none where the light is head-on, most at grazing angles).
-vec3 offsetReceiver(LightData light, vec3 world, vec3 normal) {
+// bias.z texels of the view, scaled by 1 - N.L (none where the light is head-on, most at grazing
+// angles).
+vec3 offsetReceiver(LightData light, ShadowViewData view, vec3 world, vec3 normal) {
     float nDotL = max(dot(normal, directionToLight(light, world)), 0.0);
-    float texelWorld = light.cone.z;
-    if (light.bias.w > 0.5) // perspective: texels grow with distance along the light axis
+    float texelWorld = view.texel.x;
+    if (view.texel.y > 0.5) // perspective: texels grow with distance along the light axis
         texelWorld *= max(dot(world - light.positionType.xyz, light.directionRange.xyz), 0.0);
     return world + normal * (light.bias.z * texelWorld * (1.0 - nDotL));
 }
 
-ShadowCoord projectToShadowMap(LightData light, vec3 world) {
-    vec4 s = light.shadowMatrix * vec4(world, 1.0);
+ShadowCoord projectToShadowMap(ShadowViewData view, vec3 world) {
+    vec4 s = view.shadowMatrix * vec4(world, 1.0);
     ShadowCoord c;
     c.inside = s.w > 0.0;
     c.uv = s.xy / s.w;

@@ -15,6 +15,7 @@ struct Receiver {
     vec2 uv;        // shadow-map texture coordinates
     float depth;    // d(p), light depth in [0, 1]
     vec2 gradient;  // d depth / d uv on the receiver's plane (zero: no receiver-plane bias)
+    float layer;    // the shadow view's layer in the maps
 };
 
 float texelTest(Receiver r, float stored, vec2 texelUv, vec2 dzRange) {
@@ -24,8 +25,8 @@ float texelTest(Receiver r, float stored, vec2 texelUv, vec2 dzRange) {
 
 // Tests of the 2x2 texels whose first texel is `base`, in textureGather order:
 // x (i, j+1), y (i+1, j+1), z (i+1, j), w (i, j). One gather fetches all four depths.
-vec4 gatherTests(sampler2D map, ivec2 base, float size, Receiver r, vec2 dzRange) {
-    vec4 d = textureGather(map, (vec2(base) + 1.0) / size, 0);
+vec4 gatherTests(sampler2DArray map, ivec2 base, float size, Receiver r, vec2 dzRange) {
+    vec4 d = textureGather(map, vec3((vec2(base) + 1.0) / size, r.layer), 0);
     vec2 c = (vec2(base) + 0.5) / size;
     float t = 1.0 / size;
     return vec4(texelTest(r, d.x, c + vec2(0.0, t), dzRange),
@@ -35,7 +36,7 @@ vec4 gatherTests(sampler2D map, ivec2 base, float size, Receiver r, vec2 dzRange
 }
 
 // One bilinear comparison tap at `texelPos` (texel units: the map spans [0, size]).
-float bilinearTap(sampler2D map, vec2 texelPos, float size, Receiver r, vec2 dzRange) {
+float bilinearTap(sampler2DArray map, vec2 texelPos, float size, Receiver r, vec2 dzRange) {
     vec2 p = texelPos - 0.5;
     vec2 base = floor(p);
     vec2 f = p - base;
@@ -64,7 +65,7 @@ void footprintWeights(uint filterKind, int n, float sigma, float f, out float c[
 // An n x n grid of bilinear taps, one texel apart, centred on the receiver (n odd; n = 1 is
 // the bilinear variant). All taps share the sub-texel fraction, so the sum is separable over
 // the (n+1) x (n+1) footprint: ((n + 1) / 2)^2 gathers instead of 4 n^2 point fetches.
-float pcfGrid(sampler2D map, Receiver r, uint mapSize, uint filterKind, int n, float sigma,
+float pcfGrid(sampler2DArray map, Receiver r, uint mapSize, uint filterKind, int n, float sigma,
               vec2 dzRange) {
     float size = float(mapSize);
     vec2 p = r.uv * size - 0.5;
@@ -103,7 +104,7 @@ vec2 poissonPoint(uint i) {
 }
 
 // n bilinear taps on the Poisson disk scaled to `radius` texels, rotated by `turns`.
-float poissonTaps(sampler2D map, Receiver r, uint mapSize, uint n, float radius, float turns,
+float poissonTaps(sampler2DArray map, Receiver r, uint mapSize, uint n, float radius, float turns,
                   vec2 dzRange) {
     float angle = 6.28318530718 * turns;
     float c = cos(angle), s = sin(angle);
@@ -117,14 +118,14 @@ float poissonTaps(sampler2D map, Receiver r, uint mapSize, uint n, float radius,
     return sum / float(n);
 }
 
-float pcfPoisson(sampler2D map, Receiver r, uint mapSize, uvec2 pixel, vec2 dzRange) {
+float pcfPoisson(sampler2DArray map, Receiver r, uint mapSize, uvec2 pixel, vec2 dzRange) {
     return poissonTaps(map, r, mapSize, frame.filterMode.z, frame.filterParams.x,
                        rotationTurns(frame.filterMode.w, pixel), dzRange);
 }
 
 // [Isidoro 2006] edge-only PCF: four taps at the kernel's corners; when they agree fully
 // (all lit or all shadowed) the pixel is taken to be away from any edge.
-bool pcfProbeDecides(sampler2D map, Receiver r, uint mapSize, vec2 dzRange, out float result) {
+bool pcfProbeDecides(sampler2DArray map, Receiver r, uint mapSize, vec2 dzRange, out float result) {
     float reach = FILTER == FILTER_POISSON ? frame.filterParams.x * 0.70710678
                                                        : 0.5 * float(frame.filterMode.y - 1u);
     vec2 centre = r.uv * float(mapSize);
@@ -140,7 +141,7 @@ bool pcfProbeDecides(sampler2D map, Receiver r, uint mapSize, vec2 dzRange, out 
 // agrees; fully lit must read exactly 1 (and fully shadowed 0), so round-off snaps.
 float snapToExtremes(float v) { return v >= 0.99999 ? 1.0 : (v <= 0.00001 ? 0.0 : v); }
 
-float shadowPcfUnsnapped(sampler2D map, sampler2DShadow mapCompare, Receiver r, uint mapSize,
+float shadowPcfUnsnapped(sampler2DArray map, sampler2DArrayShadow mapCompare, Receiver r, uint mapSize,
                          uvec2 pixel) {
     const uint filterKind = FILTER;
     vec2 dzRange = frame.biasParams.xy;
@@ -149,7 +150,7 @@ float shadowPcfUnsnapped(sampler2D map, sampler2DShadow mapCompare, Receiver r, 
         // (lavapipe) the same bilinear comparison is done by hand.
         // A comparison sampler compares every texel with one reference depth, so receiver-plane
         // bias cannot apply per texel here; the by-hand version drops it the same way.
-        if (frame.biasMode.y != 0u) return texture(mapCompare, vec3(r.uv, r.depth));
+        if (frame.biasMode.y != 0u) return texture(mapCompare, vec4(r.uv, r.layer, r.depth));
         Receiver noPlane = r;
         noPlane.gradient = vec2(0.0);
         return bilinearTap(map, r.uv * float(mapSize), float(mapSize), noPlane, dzRange);
@@ -163,7 +164,7 @@ float shadowPcfUnsnapped(sampler2D map, sampler2DShadow mapCompare, Receiver r, 
     return pcfGrid(map, r, mapSize, filterKind, n, frame.filterParams.y, dzRange);
 }
 
-float shadowPcf(sampler2D map, sampler2DShadow mapCompare, Receiver r, uint mapSize, uvec2 pixel) {
+float shadowPcf(sampler2DArray map, sampler2DArrayShadow mapCompare, Receiver r, uint mapSize, uvec2 pixel) {
     return snapToExtremes(shadowPcfUnsnapped(map, mapCompare, r, mapSize, pixel));
 }
 

@@ -8,10 +8,10 @@
 
 // x: visibility; yzw: intermediate results the parity tests check (PCSS: average blocker depth,
 // blocking texels found, filter radius in texels; zero for the others).
-vec4 evaluateTechnique(uint technique, sampler2D map, sampler2DShadow mapCompare, Receiver r,
-                       uint mapSize, LightData light, uvec2 pixel) {
+vec4 evaluateTechnique(uint technique, sampler2DArray map, sampler2DArrayShadow mapCompare,
+                       Receiver r, uint mapSize, ShadowViewData view, uvec2 pixel) {
     switch (technique) {
-    case TECHNIQUE_PCSS: return shadowPcssDetail(map, r, mapSize, light, pixel);
+    case TECHNIQUE_PCSS: return shadowPcssDetail(map, r, mapSize, view, pixel);
     // Second-depth [Wang and Molnar 1994]: `map` holds the midpoint of the nearest and second
     // nearest depths, so a surface never shadows itself and needs no bias.
     case TECHNIQUE_SECOND_DEPTH: return vec4(shadowHard(map, r, mapSize, vec2(0.0)), vec3(0.0));

@@ -189,28 +189,29 @@ float hard(const ShadowMapView& map, const FilterProbe& probe, const MarginTrack
 }
 
 // shadow_pcss.glsl, transcribed.
-float viewDistance(const gpu::LightData& l, float depth) {
-    const float n = l.frustum.x, far = l.frustum.y;
-    return l.bias.w > 0.5f ? n * far / (far - depth * (far - n)) : n + depth * (far - n);
+float viewDistance(const gpu::ShadowViewData& v, float depth) {
+    const float n = v.frustum.x, far = v.frustum.y;
+    return v.texel.y > 0.5f ? n * far / (far - depth * (far - n)) : n + depth * (far - n);
 }
 
-float texelsPerWorld(const gpu::LightData& l, float z, uint32_t mapSize) {
-    const float worldPerUv = l.frustum.z * (l.bias.w > 0.5f ? z : 1.0f);
+float texelsPerWorld(const gpu::ShadowViewData& v, float z, uint32_t mapSize) {
+    const float worldPerUv = v.frustum.z * (v.texel.y > 0.5f ? z : 1.0f);
     return static_cast<float>(mapSize) / worldPerUv;
 }
 
-float blockerSearchRadius(const gpu::LightData& l, float zReceiver, uint32_t mapSize) {
-    const float n = l.frustum.x, size = l.shape.x;
+float blockerSearchRadius(const gpu::ShadowViewData& v, float zReceiver, uint32_t mapSize) {
+    const float n = v.frustum.x, size = v.texel.w;
     const float world =
-        l.bias.w > 0.5f ? size * (zReceiver - n) / zReceiver : (zReceiver - n) * size;
-    return world * texelsPerWorld(l, l.bias.w > 0.5f ? n : 1.0f, mapSize);
+        v.texel.y > 0.5f ? size * (zReceiver - n) / zReceiver : (zReceiver - n) * size;
+    return world * texelsPerWorld(v, v.texel.y > 0.5f ? n : 1.0f, mapSize);
 }
 
-float penumbraRadius(const gpu::LightData& l, float zReceiver, float zBlocker, uint32_t mapSize) {
-    const float size = l.shape.x;
+float penumbraRadius(const gpu::ShadowViewData& v, float zReceiver, float zBlocker,
+                     uint32_t mapSize) {
+    const float size = v.texel.w;
     const float world =
-        l.bias.w > 0.5f ? (zReceiver - zBlocker) * size / zBlocker : (zReceiver - zBlocker) * size;
-    return world * texelsPerWorld(l, zReceiver, mapSize);
+        v.texel.y > 0.5f ? (zReceiver - zBlocker) * size / zBlocker : (zReceiver - zBlocker) * size;
+    return world * texelsPerWorld(v, zReceiver, mapSize);
 }
 
 float searchBlockers(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
@@ -236,22 +237,22 @@ float searchBlockers(const ShadowMapView& map, const Receiver& r, const gpu::Fra
 }
 
 glm::vec4 pcss(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
-               const gpu::LightData& light, const MarginTracker& m) {
+               const gpu::ShadowViewData& view, const MarginTracker& m) {
     const Receiver r = receiverOf(probe);
     const glm::vec2 dzRange(f.biasParams.x, f.biasParams.y);
     const float turns = rotationTurns(f.pcssMode.z, probe.pixel);
     const float maxRadius = f.pcssParams.x;
-    const float zReceiver = viewDistance(light, r.depth);
-    const float search = std::min(blockerSearchRadius(light, zReceiver, map.size), maxRadius);
+    const float zReceiver = viewDistance(view, r.depth);
+    const float search = std::min(blockerSearchRadius(view, zReceiver, map.size), maxRadius);
     float blockerDepth = 1.0f;
     const uint32_t searchTaps = f.pcssMode.x;
     const float blockers = searchBlockers(map, r, f, searchTaps, std::max(search, 0.5f), turns,
                                           dzRange, m, blockerDepth);
     if (blockers == 0.0f)
         return {1.0f, blockerDepth, 0.0f, 0.0f};
-    const float zBlocker = viewDistance(light, blockerDepth);
+    const float zBlocker = viewDistance(view, blockerDepth);
     const float radius =
-        std::clamp(penumbraRadius(light, zReceiver, zBlocker, map.size), 0.5f, maxRadius);
+        std::clamp(penumbraRadius(view, zReceiver, zBlocker, map.size), 0.5f, maxRadius);
     if (blockers == 4.0f * static_cast<float>(searchTaps) && radius <= 1.0f)
         return {0.0f, blockerDepth, blockers, radius};
     const float v = poissonTaps(map, r, f, f.pcssMode.y, radius, turns, dzRange, m);
@@ -259,10 +260,11 @@ glm::vec4 pcss(const ShadowMapView& map, const FilterProbe& probe, const gpu::Fr
 }
 
 glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterProbe& probe,
-                   const gpu::FrameData& f, const gpu::LightData& light, const MarginTracker& m) {
+                   const gpu::FrameData& f, const gpu::ShadowViewData& view,
+                   const MarginTracker& m) {
     switch (technique) {
     case Technique::Pcss:
-        return pcss(map, probe, f, light, m);
+        return pcss(map, probe, f, view, m);
     case Technique::Pcf:
         return {pcf(map, probe, f, m), 0.0f, 0.0f, 0.0f};
     case Technique::SecondDepth: // `map` holds the midpoints; no receiver-plane correction
@@ -291,15 +293,15 @@ float pcfReference(const ShadowMapView& map, const FilterProbe& probe, const gpu
 
 glm::vec4 techniqueReference(Technique technique, const ShadowMapView& map,
                              const FilterProbe& probe, const gpu::FrameData& f,
-                             const gpu::LightData& light) {
-    return evaluate(technique, map, probe, f, light, {});
+                             const gpu::ShadowViewData& view) {
+    return evaluate(technique, map, probe, f, view, {});
 }
 
 float smallestComparisonMargin(Technique technique, const ShadowMapView& map,
                                const FilterProbe& probe, const gpu::FrameData& f,
-                               const gpu::LightData& light) {
+                               const gpu::ShadowViewData& view) {
     float margin = 1e30f;
-    evaluate(technique, map, probe, f, light, MarginTracker{&margin});
+    evaluate(technique, map, probe, f, view, MarginTracker{&margin});
     return margin;
 }
 

@@ -22,12 +22,12 @@ float pcfReference(const ShadowMapView& map, const FilterProbe& probe, const gpu
 // x visibility; yzw as Renderer::probeTechnique (PCSS: blocker depth, blockers, radius).
 glm::vec4 techniqueReference(Technique technique, const ShadowMapView& map,
                              const FilterProbe& probe, const gpu::FrameData& f,
-                             const gpu::LightData& light);
+                             const gpu::ShadowViewData& view);
 
 // The smallest |receiver depth + correction - stored depth| over every texel the filter reads:
 // how close a probe comes to a comparison tie (tests skip probes a float rounding could flip).
 float smallestComparisonMargin(Technique technique, const ShadowMapView& map,
                                const FilterProbe& probe, const gpu::FrameData& f,
-                               const gpu::LightData& light);
+                               const gpu::ShadowViewData& view);
 
 } // namespace penumbra

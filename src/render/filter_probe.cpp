@@ -45,18 +45,19 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         upload(std::as_bytes(std::span(gpuProbes)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probes");
     const vk::Buffer mapBuffer =
         upload(std::as_bytes(depths), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "probe shadow map");
-    const gpu::LightData light = render::probeLightData(probeLight);
-    const vk::Buffer lightBuffer = upload(std::as_bytes(std::span(&light, 1)),
-                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe light");
+    const gpu::ShadowViewData view = render::probeViewData(probeLight);
+    const vk::Buffer viewBuffer = upload(std::as_bytes(std::span(&view, 1)),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe view");
     const vk::Buffer results =
         vk::createBuffer(ctx, probes.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          vk::MemoryUse::Readback, "probe results");
-    const vk::Image map = vk::createImage(
-        ctx, {.name = "probe shadow map",
-              .format = render::kDepthFormat,
-              .width = size,
-              .height = size,
-              .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT});
+    const vk::Image map =
+        vk::createImage(ctx, {.name = "probe shadow map",
+                              .format = render::kDepthFormat,
+                              .width = size,
+                              .height = size,
+                              .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
+                              .arrayView = true});
     const vk::SamplerHandle nearest = vk::createSampler(ctx, {.filter = VK_FILTER_NEAREST});
     const vk::SamplerHandle compare = vk::createSampler(
         ctx, {.filter = ctx.info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST,
@@ -83,7 +84,7 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
             .sampled(2, map.view.get(), nearest.get())
             .sampled(3, map.view.get(), compare.get())
             .storageBuffer(4, results.get())
-            .storageBuffer(5, lightBuffer.get())
+            .storageBuffer(5, viewBuffer.get())
             .push(ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.probeLayout);
         const glm::uvec4 counts(static_cast<uint32_t>(probes.size()), size, 0, 0);
         vkCmdPushConstants(cmd, p.probeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof counts,

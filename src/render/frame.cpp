@@ -24,9 +24,10 @@ void setViewport(VkCommandBuffer cmd, uint32_t width, uint32_t height) {
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-VkRenderingAttachmentInfo attachment(const vk::Image& image, VkClearValue clear) {
+VkRenderingAttachmentInfo attachment(const vk::Image& image, VkClearValue clear,
+                                     VkImageView view = VK_NULL_HANDLE) {
     return {.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-            .imageView = image.view.get(),
+            .imageView = view ? view : image.view.get(),
             .imageLayout = image.aspect == VK_IMAGE_ASPECT_DEPTH_BIT
                                ? VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL
                                : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -47,27 +48,29 @@ struct CasterPush {
     gpu::MaterialPush material;
 };
 
-// A map that a technique's extra depth pass reads, and the pipeline that reads it.
+// The layer of a map that a technique's extra depth pass reads, and the pipeline that reads it.
 struct ReadMap {
-    const vk::Image* map;
+    VkImageView layer;
     VkPipeline pipeline;
 };
 
-// One depth pass of the scene from a light into `target` (cleared to the far plane), with the
-// hardware slope bias and the constant bias of the vertex shader. Opaque casters go in one draw;
-// alpha-tested ones per material with their texture. `reads` set: a technique's extra depth pass
-// (a depth peel), which draws every caster with its pipeline, the read map at binding 0.
+// One depth pass of the scene from a light into layer `layer` of `target` (cleared to the far
+// plane, already in kDepthWrite), with the hardware slope bias and the constant bias of the vertex
+// shader. Opaque casters go in one draw; alpha-tested ones per material with their texture.
+// `reads` set: a technique's extra depth pass (a depth peel), which draws every caster with its
+// pipeline, the read map's layer at binding 0.
 void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
-                      const vk::Image& target, const ShadowView& view, const FrameSettings& s,
-                      const ReadMap* reads, VkSampler nearest) {
-    vk::imageBarrier(cmd, target, vk::kUndefined, vk::kDepthWrite);
-    const VkRenderingAttachmentInfo depth = attachment(target, {.depthStencil = {1.0f, 0}});
+                      const ViewMaps& target, uint32_t layer, const ShadowView& view,
+                      const FrameSettings& s, const ReadMap* reads, VkSampler nearest) {
+    const vk::Image& image = target.image;
+    const VkRenderingAttachmentInfo depth =
+        attachment(image, {.depthStencil = {1.0f, 0}}, target.layers[layer].get());
     const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-                               .renderArea = {{0, 0}, {target.width, target.height}},
+                               .renderArea = {{0, 0}, {image.width, image.height}},
                                .layerCount = 1,
                                .pDepthAttachment = &depth};
     vkCmdBeginRendering(cmd, &info);
-    setViewport(cmd, target.width, target.height);
+    setViewport(cmd, image.width, image.height);
     bindGeometry(cmd, scene);
     const bool perspective = view.projection.perspective;
     CasterPush push{
@@ -85,7 +88,7 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
         bind(reads->pipeline);
         auto pushFor = [&](const GpuTextures::Binding& texture) {
             vk::PushDescriptors()
-                .sampled(0, reads->map->view.get(), nearest)
+                .sampled(0, reads->layer, nearest)
                 .sampled(1, texture.view, texture.sampler)
                 .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.readingDepthLayout);
             vkCmdPushConstants(cmd, p.readingDepthLayout.get(), kStages, 0, sizeof push, &push);
@@ -124,29 +127,40 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
     vkCmdEndRendering(cmd);
 }
 
-// The light's depth pass for every shadow view, then the technique's own depth passes.
+// The light's depth pass for every shadow view, then the technique's own depth passes; every
+// barrier covers all the views' layers at once.
 void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                         FrameTargets& t, const FrameSettings& s) {
     const shadows::TechniqueModule& technique = *s.technique;
-    for (ShadowView& view : t.shadows) {
-        renderLightDepth(cmd, p, scene, view.map, view, s, nullptr, t.nearest);
-        for (const shadows::DepthPassDecl& pass : technique.depthPasses) {
-            const vk::Image& read = view.named(technique, pass.reads);
-            vk::imageBarrier(cmd, read, vk::kDepthWrite, vk::kFragmentSampled);
+    std::vector<const ViewMaps*> depthMaps{&t.shadowDepth};
+    for (size_t m = 0; m < technique.maps.size(); ++m)
+        if (technique.maps[m].format == shadows::MapFormat::Depth32)
+            depthMaps.push_back(&t.maps[m]);
+    vk::Barriers toDepthWrite;
+    for (const ViewMaps* map : depthMaps)
+        toDepthWrite.image(map->image, vk::kUndefined, vk::kDepthWrite);
+    toDepthWrite.record(cmd);
+    for (uint32_t v = 0; v < t.views.size(); ++v)
+        renderLightDepth(cmd, p, scene, t.shadowDepth, v, t.views[v], s, nullptr, t.nearest);
+    for (const shadows::DepthPassDecl& pass : technique.depthPasses) {
+        const ViewMaps& read = t.named(technique, pass.reads);
+        vk::imageBarrier(cmd, read.image, vk::kDepthWrite, vk::kFragmentSampled);
+        for (uint32_t v = 0; v < t.views.size(); ++v) {
             const ReadMap reads{
-                &read, p.readingDepthPass(pass.fragmentShader, view.projection.perspective)};
-            renderLightDepth(cmd, p, scene, view.named(technique, pass.target), view, s, &reads,
-                             t.nearest);
-            vk::imageBarrier(cmd, read, vk::kFragmentSampled, vk::kDepthWrite);
+                read.layers[v].get(),
+                p.readingDepthPass(pass.fragmentShader, t.views[v].projection.perspective)};
+            renderLightDepth(cmd, p, scene, t.named(technique, pass.target), v, t.views[v], s,
+                             &reads, t.nearest);
         }
-        vk::imageBarrier(cmd, view.map, vk::kDepthWrite, vk::kComputeSampled);
-        for (size_t m = 0; m < technique.maps.size(); ++m)
-            if (technique.maps[m].format == shadows::MapFormat::Depth32)
-                vk::imageBarrier(cmd, view.maps[m], vk::kDepthWrite, vk::kComputeSampled);
+        vk::imageBarrier(cmd, read.image, vk::kFragmentSampled, vk::kDepthWrite);
     }
+    vk::Barriers toSampled;
+    for (const ViewMaps* map : depthMaps)
+        toSampled.image(map->image, vk::kDepthWrite, vk::kComputeSampled);
+    toSampled.record(cmd);
 }
 
-// The technique's post passes (compute), in order, over every shadow view.
+// The technique's post passes (compute), in order, each over every shadow view.
 void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
                       const FrameSettings& s) {
     const shadows::TechniqueModule& technique = *s.technique;
@@ -156,25 +170,28 @@ void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
         const vk::PipelineLayout& layout = p.postPassLayout(inputs, outputs);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                           p.postPass(pass.shader, inputs, outputs));
-        for (ShadowView& view : t.shadows) {
+        vk::Barriers toWrite, toSampled;
+        for (std::string_view name : pass.outputs) {
+            toWrite.image(t.named(technique, name).image, vk::kUndefined, vk::kComputeWrite);
+            toSampled.image(t.named(technique, name).image, vk::kComputeWrite, vk::kComputeSampled);
+        }
+        toWrite.record(cmd);
+        const vk::Image& size = t.shadowDepth.image;
+        for (uint32_t v = 0; v < t.views.size(); ++v) {
             vk::PushDescriptors writes;
             for (uint32_t i = 0; i < inputs; ++i)
                 writes.sampled(POST_INPUT_BINDING + i,
-                               view.named(technique, pass.inputs[i]).view.get(), t.nearest);
-            for (uint32_t i = 0; i < outputs; ++i) {
-                const vk::Image& out = view.named(technique, pass.outputs[i]);
-                vk::imageBarrier(cmd, out, vk::kUndefined, vk::kComputeWrite);
-                writes.storageImage(POST_OUTPUT_BINDING + i, out.view.get());
-            }
+                               t.named(technique, pass.inputs[i]).layers[v].get(), t.nearest);
+            for (uint32_t i = 0; i < outputs; ++i)
+                writes.storageImage(POST_OUTPUT_BINDING + i,
+                                    t.named(technique, pass.outputs[i]).layers[v].get());
             writes.push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
-            const gpu::PostPassPush push{.size = {view.map.width, view.map.height, 0, 0}};
+            const gpu::PostPassPush push{.size = {size.width, size.height, v, 0}};
             vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
                                &push);
-            vkCmdDispatch(cmd, groups(view.map.width), groups(view.map.height), 1);
-            for (std::string_view name : pass.outputs)
-                vk::imageBarrier(cmd, view.named(technique, name), vk::kComputeWrite,
-                                 vk::kComputeSampled);
+            vkCmdDispatch(cmd, groups(size.width), groups(size.height), 1);
         }
+        toSampled.record(cmd);
     }
 }
 
@@ -213,22 +230,23 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
     vk::imageBarrier(cmd, t.albedo, vk::kColorWrite, vk::kComputeSampled);
 }
 
+// One dispatch per light with shadow views, into its layer of the visibility image.
 void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
                       const FrameSettings& s) {
     vk::imageBarrier(cmd, t.visibility, vk::kUndefined, vk::kComputeWrite);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(s.constants));
-    for (uint32_t layer = 0; layer < t.shadows.size(); ++layer) {
-        const ShadowView& view = t.shadows[layer];
+    const ViewMaps& filtered = t.named(*s.technique, s.technique->visibilityMap);
+    for (const gpu::VisibilityPush& push : s.shadowLights) {
         vk::PushDescriptors()
             .uniformBuffer(0, t.frame)
             .storageBuffer(1, t.lights)
             .sampled(2, t.depth.view.get(), t.nearest)
             .sampled(3, t.normal.view.get(), t.nearest)
-            .sampled(4, view.named(*s.technique, s.technique->visibilityMap).view.get(), t.nearest)
-            .sampled(5, view.map.view.get(), t.compare)
+            .sampled(4, filtered.image.view.get(), t.nearest)
+            .sampled(5, t.shadowDepth.image.view.get(), t.compare)
             .storageImage(6, t.visibility.view.get())
+            .storageBuffer(7, t.viewData)
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
-        const gpu::VisibilityPush push{.light = {view.light, layer, s.shadowMapSize, 0}};
         vkCmdPushConstants(cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                            sizeof push, &push);
         vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
@@ -253,14 +271,14 @@ void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
 
 } // namespace
 
-const vk::Image& ShadowView::named(const shadows::TechniqueModule& module,
-                                   std::string_view name) const {
+const ViewMaps& FrameTargets::named(const shadows::TechniqueModule& module,
+                                    std::string_view name) const {
     if (name == shadows::kDepthMap)
-        return map;
+        return shadowDepth;
     for (size_t m = 0; m < module.maps.size(); ++m)
         if (module.maps[m].name == name)
             return maps[m];
-    fatal(__FILE__, __LINE__, "ShadowView::named: the technique declares no such map");
+    fatal(__FILE__, __LINE__, "FrameTargets::named: the technique declares no such map");
 }
 
 VkFormat formatOf(shadows::MapFormat format) {
@@ -283,7 +301,7 @@ void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene&
     timer.begin(cmd, "shadow");
     recordShadowPasses(cmd, pipelines, scene, targets, settings);
     timer.end(cmd);
-    if (!targets.shadows.empty() && !settings.technique->postPasses.empty()) {
+    if (!targets.views.empty() && !settings.technique->postPasses.empty()) {
         timer.begin(cmd, "shadow-post");
         recordShadowPost(cmd, pipelines, targets, settings);
         timer.end(cmd);

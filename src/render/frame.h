@@ -37,13 +37,18 @@ struct GpuScene {
 };
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
 
+// A shadow view as the frame draws it: the light it belongs to and its projection. Its index is
+// its layer in every map (ShadowViewData::texel.z).
 struct ShadowView {
     uint32_t light; // index into the scene's lights
     LightProjection projection;
-    vk::Image map;               // D32_SFLOAT, the seeds' depth (near 0, far 1): shadows::kDepthMap
-    std::vector<vk::Image> maps; // the technique's own maps, as its module declares them
-    // The map called `name` (kDepthMap or one of the module's).
-    const vk::Image& named(const shadows::TechniqueModule& module, std::string_view name) const;
+};
+
+// One map of every shadow view: an array image with a layer per view (its array view is what the
+// visibility pass reads), and a 2D view of each layer to render into or write in a post pass.
+struct ViewMaps {
+    vk::Image image;
+    std::vector<vk::ImageViewHandle> layers;
 };
 
 struct FrameTargets {
@@ -52,15 +57,22 @@ struct FrameTargets {
     vk::Image visibility;             // R32F array, one layer per shadow-casting light
     vk::Image color;                  // RGBA8, sRGB-encoded values
     vk::Image position, exportNormal; // RGBA32F, filled for readback only
-    std::vector<ShadowView> shadows;
-    // Not owned: this frame's ring slot (FrameData, LightData[]) and the renderer's samplers.
-    VkBuffer frame = VK_NULL_HANDLE, lights = VK_NULL_HANDLE;
+    std::vector<ShadowView> views;
+    ViewMaps shadowDepth;       // shadows::kDepthMap: D32_SFLOAT, the seeds' depth (near 0, far 1)
+    std::vector<ViewMaps> maps; // the technique's own, as its module declares them
+    // Not owned: this frame's ring slot (FrameData, LightData[], ShadowViewData[]) and the
+    // renderer's samplers.
+    VkBuffer frame = VK_NULL_HANDLE, lights = VK_NULL_HANDLE, viewData = VK_NULL_HANDLE;
     VkSampler nearest = VK_NULL_HANDLE, compare = VK_NULL_HANDLE;
+
+    // The map called `name` (kDepthMap or one of the module's).
+    const ViewMaps& named(const shadows::TechniqueModule& module, std::string_view name) const;
 };
 
 struct FrameSettings {
     const shadows::TechniqueModule* technique;
-    std::vector<shadows::SpecConstant> constants; // of the visibility pass
+    std::vector<shadows::SpecConstant> constants;  // of the visibility pass
+    std::vector<gpu::VisibilityPush> shadowLights; // one visibility dispatch per light with views
     float slopeBias;
     float constantBias;
     uint32_t shadowMapSize;

@@ -50,11 +50,10 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
     return f;
 }
 
-gpu::LightData probeLightData(const ProbeLight& light) {
+gpu::ShadowViewData probeViewData(const ProbeLight& light) {
     return {.shadowMatrix = glm::mat4(1.0f),
-            .bias = {0.0f, 0.0f, 0.0f, light.perspective ? 1.0f : 0.0f},
             .frustum = {light.nearPlane, light.farPlane, light.worldPerUv.x, light.worldPerUv.y},
-            .shape = {light.size, 0.0f, 0.0f, 0.0f}};
+            .texel = {0.0f, light.perspective ? 1.0f : 0.0f, 0.0f, light.size}};
 }
 
 } // namespace penumbra::render

@@ -16,7 +16,7 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& options, uin
 void setTechniqueSettings(gpu::FrameData& frame, const ParameterValues& params,
                           bool hardwareDepthFilter, uint32_t subTexelBits);
 
-// The LightData block for a probed shadow map (only what the filters read is filled).
-gpu::LightData probeLightData(const ProbeLight& light);
+// The shadow view of a probed shadow map (only what the filters read is filled; layer 0).
+gpu::ShadowViewData probeViewData(const ProbeLight& light);
 
 } // namespace penumbra::render

@@ -51,7 +51,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {3, kSampled},
                                   {4, kSampled},
                                   {5, kSampled},
-                                  {6, kImage}},
+                                  {6, kImage},
+                                  {7, kStorage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     compositeLayout = vk::createPipelineLayout(ctx,
                                                {{0, kUniform},

@@ -25,38 +25,50 @@
 namespace penumbra {
 namespace {
 
-// Near, far and the world size of one uv unit (perspective: at unit distance), for the
-// techniques that reason in light-space distances (PCSS).
-glm::vec4 lightFrustum(const LightProjection* shadow) {
-    if (!shadow)
-        return glm::vec4(0.0f, 1.0f, 1.0f, 1.0f);
-    const glm::vec2 worldPerUv =
-        shadow->perspective
-            ? glm::vec2(2.0f * std::tan(0.5f * shadow->yfov))
-            : glm::vec2(shadow->window.y - shadow->window.x, shadow->window.w - shadow->window.z);
-    return {shadow->nearPlane, shadow->farPlane, worldPerUv};
+// A shadow view's record: its projection, and the light's size as this view measures it (the
+// techniques that reason in light-space distances, PCSS, read both).
+gpu::ShadowViewData viewData(const Light& light, const LightProjection& shadow, uint32_t layer) {
+    const glm::vec2 worldPerUv = shadow.perspective ? glm::vec2(2.0f * std::tan(0.5f * shadow.yfov))
+                                                    : glm::vec2(shadow.window.y - shadow.window.x,
+                                                                shadow.window.w - shadow.window.z);
+    return {.shadowMatrix = textureMatrix() * shadow.viewProj,
+            .frustum = {shadow.nearPlane, shadow.farPlane, worldPerUv},
+            .texel = {shadow.texelWorldSize, shadow.perspective ? 1.0f : 0.0f,
+                      static_cast<float>(layer),
+                      light.type == LightType::Directional
+                          ? std::tan(0.5f * glm::radians(light.angularDiameter))
+                          : light.radius}};
 }
 
-gpu::LightData lightData(const Light& light, const LightProjection* shadow, int layer,
-                         const ParameterValues& params) {
+gpu::LightData lightData(const Light& light, int visibilityLayer, uint32_t firstView,
+                         uint32_t viewCount, const ParameterValues& params) {
     const float type = light.type == LightType::Directional ? LIGHT_DIRECTIONAL
                        : light.type == LightType::Spot      ? LIGHT_SPOT
                                                             : LIGHT_POINT;
-    return {.shadowMatrix = shadow ? textureMatrix() * shadow->viewProj : glm::mat4(1.0f),
-            .positionType = glm::vec4(light.position, type),
+    return {.positionType = glm::vec4(light.position, type),
             .directionRange = glm::vec4(glm::normalize(light.direction), light.range),
             .colorIntensity = glm::vec4(light.color, light.intensity),
-            .cone = {std::cos(light.outerConeAngle), std::cos(light.innerConeAngle),
-                     shadow ? shadow->texelWorldSize : 0.0f, static_cast<float>(layer)},
+            .cone = {std::cos(light.outerConeAngle), std::cos(light.innerConeAngle), 0.0f,
+                     static_cast<float>(visibilityLayer)},
             .bias = {static_cast<float>(params.number("bias.constant")),
                      static_cast<float>(params.number("bias.slope")),
-                     static_cast<float>(params.number("bias.normal")),
-                     shadow && shadow->perspective ? 1.0f : 0.0f},
-            .frustum = lightFrustum(shadow),
-            .shape = {light.type == LightType::Directional
-                          ? std::tan(0.5f * glm::radians(light.angularDiameter))
-                          : light.radius,
-                      0.0f, 0.0f, 0.0f}};
+                     static_cast<float>(params.number("bias.normal")), 0.0f},
+            .views = {firstView, viewCount, 0u, 0u}};
+}
+
+// An array image, one layer per shadow view, and a 2D view of each layer.
+render::ViewMaps viewMaps(const vk::Context& ctx, VkFormat format, uint32_t size, uint32_t views,
+                          VkImageUsageFlags usage) {
+    render::ViewMaps maps{.image = vk::createImage(ctx, {.name = "--shadow-map-size",
+                                                         .format = format,
+                                                         .width = size,
+                                                         .height = size,
+                                                         .layers = std::max(views, 1u),
+                                                         .usage = usage,
+                                                         .arrayView = true})};
+    for (uint32_t layer = 0; layer < maps.image.layers; ++layer)
+        maps.layers.push_back(vk::createLayerView(ctx, maps.image, layer));
+    return maps;
 }
 
 vk::Image targetImage(const vk::Context& ctx, const char* name, VkFormat format, uint32_t w,
@@ -79,7 +91,8 @@ double median(std::vector<double> values) {
 
 // What the targets were made for: a render with another key makes new ones.
 struct TargetKey {
-    uint32_t width, height, shadowMapSize, shadowViews;
+    uint32_t width, height, shadowMapSize;
+    uint32_t shadowViews, shadowLights;        // map layers, visibility layers
     const shadows::TechniqueModule* technique; // its maps
     bool operator==(const TargetKey&) const = default;
 };
@@ -98,7 +111,7 @@ struct SceneRenderer::Impl {
     render::FrameTargets targets;
     vk::Buffer readback;
     struct Slot {
-        vk::Buffer frame, lights; // FrameData, LightData[] (host-visible, mapped)
+        vk::Buffer frame, lights, views; // FrameData, LightData[], ShadowViewData[] (mapped)
     };
     std::array<Slot, kFramesInFlight> slots;
     size_t nextSlot = 0;
@@ -116,23 +129,20 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
     constexpr VkImageUsageFlags storageOut =
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     constexpr VkImageUsageFlags depthTarget = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled;
-    const uint32_t n = k.shadowMapSize;
-    t.shadows.resize(k.shadowViews);
-    for (render::ShadowView& view : t.shadows) {
-        view.map = targetImage(c, "--shadow-map-size", render::kDepthFormat, n, n, depthTarget);
-        for (const shadows::MapDecl& map : k.technique->maps)
-            view.maps.push_back(targetImage(
-                c, "--shadow-map-size", render::formatOf(map.format), n, n,
-                map.format == shadows::MapFormat::Depth32 ? depthTarget
-                                                          : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
-    }
+    const uint32_t n = k.shadowMapSize, views = k.shadowViews;
+    t.shadowDepth = viewMaps(c, render::kDepthFormat, n, views, depthTarget);
+    for (const shadows::MapDecl& map : k.technique->maps)
+        t.maps.push_back(viewMaps(c, render::formatOf(map.format), n, views,
+                                  map.format == shadows::MapFormat::Depth32
+                                      ? depthTarget
+                                      : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
     const uint32_t w = k.width, h = k.height;
     t.depth = targetImage(c, "G-buffer depth", render::kDepthFormat, w, h, depthTarget);
     t.normal = targetImage(c, "G-buffer normal", render::kNormalFormat, w, h,
                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | sampled);
     t.albedo = targetImage(c, "G-buffer albedo", render::kAlbedoFormat, w, h,
                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | sampled);
-    const uint32_t layers = std::max(1u, k.shadowViews);
+    const uint32_t layers = std::max(1u, k.shadowLights);
     t.visibility =
         targetImage(c, "visibility", VK_FORMAT_R32_SFLOAT, w, h, storageOut | sampled, layers);
     t.color = targetImage(c, "colour", VK_FORMAT_R8G8B8A8_UNORM, w, h, storageOut);
@@ -156,6 +166,10 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
     m.bounds = m.scene.bounds();
     m.gpu = render::uploadScene(m.ctx(), m.scene);
     const size_t lightBytes = sizeof(gpu::LightData) * std::max<size_t>(m.scene.lights.size(), 1);
+    size_t viewCount = 0;
+    for (const Light& light : m.scene.lights)
+        viewCount += castsShadowMap(light);
+    const size_t viewBytes = sizeof(gpu::ShadowViewData) * std::max<size_t>(viewCount, 1);
     for (Impl::Slot& slot : m.slots) {
         slot.frame =
             vk::createBuffer(m.ctx(), sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
@@ -164,6 +178,9 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
         slot.lights = vk::createBuffer(m.ctx(), lightBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                        vk::MemoryUse::Upload, "light buffer");
         std::memset(slot.lights.mapped, 0, lightBytes);
+        slot.views = vk::createBuffer(m.ctx(), viewBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                      vk::MemoryUse::Upload, "shadow view buffer");
+        std::memset(slot.views.mapped, 0, viewBytes);
     }
     m.nearest = vk::createSampler(m.ctx(), {.filter = VK_FILTER_NEAREST});
     m.compare = vk::createSampler(
@@ -192,21 +209,27 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
 
     RenderResult result{.width = o.width, .height = o.height};
     std::vector<render::ShadowView> views; // one per light that casts a shadow map
+    std::vector<gpu::ShadowViewData> viewRecords;
     std::vector<gpu::LightData> lights;
+    std::vector<gpu::VisibilityPush> shadowLights;
     for (uint32_t i = 0; i < lit.lights.size(); ++i) {
         const Light& light = lit.lights[i];
         LightShadow info{.sceneLight = i, .projection = "none"};
-        const LightProjection* shadow = nullptr;
+        const auto firstView = static_cast<uint32_t>(views.size());
         if (castsShadowMap(light)) {
-            info.visibilityIndex = static_cast<int>(views.size());
+            info.visibilityIndex = static_cast<int>(shadowLights.size());
             views.push_back({.light = i, .projection = fitLight(light, m.bounds, o.shadowMapSize)});
-            shadow = &views.back().projection;
-            info.projection = shadow->perspective ? "perspective" : "orthographic";
-            info.nearPlane = shadow->nearPlane, info.farPlane = shadow->farPlane;
-            info.texelWorldSize = shadow->texelWorldSize;
-            info.worldToShadow = textureMatrix() * shadow->viewProj;
+            const LightProjection& shadow = views.back().projection;
+            viewRecords.push_back(viewData(light, shadow, firstView));
+            shadowLights.push_back({.light = {i, static_cast<uint32_t>(info.visibilityIndex),
+                                              o.shadowMapSize, firstView}});
+            info.projection = shadow.perspective ? "perspective" : "orthographic";
+            info.nearPlane = shadow.nearPlane, info.farPlane = shadow.farPlane;
+            info.texelWorldSize = shadow.texelWorldSize;
+            info.worldToShadow = viewRecords.back().shadowMatrix;
         }
-        lights.push_back(lightData(light, shadow, info.visibilityIndex, o.parameters));
+        lights.push_back(lightData(light, info.visibilityIndex, firstView,
+                                   static_cast<uint32_t>(views.size()) - firstView, o.parameters));
         result.lights.push_back(info);
     }
 
@@ -214,6 +237,7 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
                         .height = o.height,
                         .shadowMapSize = o.shadowMapSize,
                         .shadowViews = static_cast<uint32_t>(views.size()),
+                        .shadowLights = static_cast<uint32_t>(shadowLights.size()),
                         .technique = &shadows::moduleOf(o.technique)};
     if (m.key != key) {
         if (progress)
@@ -221,10 +245,7 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
         m.makeTargets(key);
     }
     render::FrameTargets& t = m.targets;
-    for (size_t v = 0; v < views.size(); ++v) {
-        t.shadows[v].light = views[v].light;
-        t.shadows[v].projection = views[v].projection;
-    }
+    t.views = views;
 
     Impl::Slot& slot = m.slots[m.nextSlot];
     m.nextSlot = (m.nextSlot + 1) % m.slots.size();
@@ -233,12 +254,17 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
     std::memcpy(slot.frame.mapped, &frameBlock, sizeof frameBlock);
     if (!lights.empty())
         std::memcpy(slot.lights.mapped, lights.data(), lights.size() * sizeof(gpu::LightData));
+    if (!viewRecords.empty())
+        std::memcpy(slot.views.mapped, viewRecords.data(),
+                    viewRecords.size() * sizeof(gpu::ShadowViewData));
     t.frame = slot.frame.get();
     t.lights = slot.lights.get();
+    t.viewData = slot.views.get();
 
     const render::FrameSettings settings{
         .technique = key.technique,
         .constants = shadows::visibilityConstants(*key.technique, o.parameters),
+        .shadowLights = shadowLights,
         .slopeBias = static_cast<float>(o.parameters.number("bias.slope")),
         .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
         .shadowMapSize = o.shadowMapSize};
@@ -273,7 +299,7 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
     result.image.resize(pixels * 4);
     std::memcpy(result.image.data(), src, pixels * 4);
     src += pixels * 4;
-    for (size_t l = 0; l < t.shadows.size(); ++l) {
+    for (size_t l = 0; l < shadowLights.size(); ++l) {
         std::vector<float>& v = result.visibility.emplace_back(pixels);
         std::memcpy(v.data(), src + l * pixels * 4, pixels * 4);
     }

@@ -2,28 +2,42 @@
 
 namespace penumbra::vk {
 
+Barriers& Barriers::image(const Image& image, const ImageState& from, const ImageState& to,
+                          SubresourceRange range) {
+    mImages.push_back(
+        {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+         .srcStageMask = from.stage,
+         .srcAccessMask = from.access,
+         .dstStageMask = to.stage,
+         .dstAccessMask = to.access,
+         .oldLayout = from.layout,
+         .newLayout = to.layout,
+         .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+         .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+         .image = image.get(),
+         .subresourceRange = {
+             .aspectMask = image.aspect,
+             .baseMipLevel = range.baseMip,
+             .levelCount = range.mipCount ? range.mipCount : image.mipLevels - range.baseMip,
+             .baseArrayLayer = range.baseLayer,
+             .layerCount = range.layerCount ? range.layerCount : image.layers - range.baseLayer}});
+    return *this;
+}
+
+void Barriers::record(VkCommandBuffer cmd) {
+    if (mImages.empty())
+        return;
+    const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+                                      .imageMemoryBarrierCount =
+                                          static_cast<uint32_t>(mImages.size()),
+                                      .pImageMemoryBarriers = mImages.data()};
+    vkCmdPipelineBarrier2(cmd, &dependency);
+    mImages.clear();
+}
+
 void imageBarrier(VkCommandBuffer cmd, const Image& image, const ImageState& from,
                   const ImageState& to, uint32_t baseMip, uint32_t mipCount) {
-    const VkImageMemoryBarrier2 barrier{
-        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-        .srcStageMask = from.stage,
-        .srcAccessMask = from.access,
-        .dstStageMask = to.stage,
-        .dstAccessMask = to.access,
-        .oldLayout = from.layout,
-        .newLayout = to.layout,
-        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-        .image = image.get(),
-        .subresourceRange = {.aspectMask = image.aspect,
-                             .baseMipLevel = baseMip,
-                             .levelCount = mipCount ? mipCount : image.mipLevels - baseMip,
-                             .baseArrayLayer = 0,
-                             .layerCount = image.layers}};
-    const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
-                                      .imageMemoryBarrierCount = 1,
-                                      .pImageMemoryBarriers = &barrier};
-    vkCmdPipelineBarrier2(cmd, &dependency);
+    Barriers().image(image, from, to, {.baseMip = baseMip, .mipCount = mipCount}).record(cmd);
 }
 
 void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStage,

@@ -5,6 +5,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include <vector>
+
 namespace penumbra::vk {
 
 struct ImageState {
@@ -42,7 +44,25 @@ inline constexpr ImageState kBlitRead{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_
 inline constexpr ImageState kBlitWrite{VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
                                        VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
 
-// Mip levels [baseMip, baseMip + mipCount) of every layer; mipCount 0: all from baseMip.
+// Which mips and layers a barrier covers; a count of 0 means all from the base.
+struct SubresourceRange {
+    uint32_t baseLayer = 0, layerCount = 0;
+    uint32_t baseMip = 0, mipCount = 0;
+};
+
+// Image barriers recorded together, in one vkCmdPipelineBarrier2.
+class Barriers {
+public:
+    Barriers& image(const Image& image, const ImageState& from, const ImageState& to,
+                    SubresourceRange range = {});
+    void record(VkCommandBuffer cmd);
+
+private:
+    std::vector<VkImageMemoryBarrier2> mImages;
+};
+
+// One barrier: mip levels [baseMip, baseMip + mipCount) of every layer; mipCount 0: all from
+// baseMip.
 void imageBarrier(VkCommandBuffer cmd, const Image& image, const ImageState& from,
                   const ImageState& to, uint32_t baseMip = 0, uint32_t mipCount = 0);
 void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStage,
