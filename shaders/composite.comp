@@ -7,13 +7,13 @@
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
-layout(set = 0, binding = 1, std430) readonly buffer Lights { LightData lights[]; };
-layout(set = 0, binding = 2) uniform sampler2D gDepth;
-layout(set = 0, binding = 3) uniform sampler2D gNormal;
-layout(set = 0, binding = 4) uniform sampler2D gAlbedo;
-layout(set = 0, binding = 5) uniform sampler2DArray visibility;
-layout(set = 0, binding = 6, rgba8) uniform writeonly image2D outColor;
+layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = COMPOSITE_LIGHTS, std430) readonly buffer Lights { LightData lights[]; };
+layout(set = 0, binding = COMPOSITE_GBUFFER_DEPTH) uniform sampler2D gDepth;
+layout(set = 0, binding = COMPOSITE_GBUFFER_NORMAL) uniform sampler2D gNormal;
+layout(set = 0, binding = COMPOSITE_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
+layout(set = 0, binding = COMPOSITE_VISIBILITY) uniform sampler2DArray visibility;
+layout(set = 0, binding = COMPOSITE_OUT, rgba8) uniform writeonly image2D outColor;
 
 // glTF KHR_lights_punctual: inverse square with the recommended smooth range window.
 float distanceAttenuation(LightData light, float d) {

@@ -6,11 +6,11 @@
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
-layout(set = 0, binding = 1) uniform sampler2D gDepth;
-layout(set = 0, binding = 2) uniform sampler2D gNormal;
-layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D outPosition;
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D outNormal;
+layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = EXPORT_GBUFFER_DEPTH) uniform sampler2D gDepth;
+layout(set = 0, binding = EXPORT_GBUFFER_NORMAL) uniform sampler2D gNormal;
+layout(set = 0, binding = EXPORT_POSITION, rgba32f) uniform writeonly image2D outPosition;
+layout(set = 0, binding = EXPORT_NORMAL, rgba32f) uniform writeonly image2D outNormal;
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);

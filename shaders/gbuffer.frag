@@ -7,8 +7,8 @@ layout(location = 1) in vec3 inWorld;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inColor;
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
-layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
+layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = GBUFFER_TEXTURE) uniform sampler2D baseColorTexture;
 layout(push_constant) uniform Push { MaterialPush material; };
 
 layout(location = 0) out vec4 outNormal;

@@ -6,7 +6,7 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inColor;
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
 
 layout(location = 0) out vec3 outNormal;
 layout(location = 1) out vec3 outWorld;

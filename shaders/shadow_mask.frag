@@ -6,7 +6,7 @@
 layout(location = 0) in vec2 inUv;
 layout(location = 1) in float inAlpha;
 
-layout(set = 0, binding = 0) uniform sampler2D baseColorTexture;
+layout(set = 0, binding = MASK_TEXTURE) uniform sampler2D baseColorTexture;
 layout(push_constant) uniform Push { ShadowPush push; MaterialPush material; };
 
 void main() {

@@ -7,8 +7,8 @@
 layout(location = 0) in vec2 inUv;
 layout(location = 1) in float inAlpha;
 
-layout(set = 0, binding = 0) uniform sampler2D firstDepth;
-layout(set = 0, binding = 1) uniform sampler2D baseColorTexture;
+layout(set = 0, binding = READ_MAP) uniform sampler2D firstDepth;
+layout(set = 0, binding = READ_TEXTURE) uniform sampler2D baseColorTexture;
 layout(push_constant) uniform Push { ShadowPush push; MaterialPush material; };
 
 void main() {

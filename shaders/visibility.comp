@@ -2,7 +2,7 @@
 // Visibility pass: per pixel, reconstruct the world position from the G-buffer and evaluate the
 // technique chosen by TECHNIQUE for one light, into that light's layer of the visibility image.
 #include "gpu_types.h"
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
 layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
 layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
 layout(constant_id = SPEC_RECEIVER) const uint RECEIVER = RECEIVER_OFF;
@@ -13,13 +13,13 @@ layout(constant_id = SPEC_RECEIVER) const uint RECEIVER = RECEIVER_OFF;
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
-layout(set = 0, binding = 1, std430) readonly buffer Lights { LightData lights[]; };
-layout(set = 0, binding = 2) uniform sampler2D gDepth;
-layout(set = 0, binding = 3) uniform sampler2D gNormal;
-layout(set = 0, binding = 4) uniform sampler2DArray shadowMap;          // nearest, every view
-layout(set = 0, binding = 5) uniform sampler2DArrayShadow shadowMapCmp; // hardware compare
-layout(set = 0, binding = 6, r32f) uniform writeonly image2DArray visibility;
-layout(set = 0, binding = 7, std430) readonly buffer Views { ShadowViewData views[]; };
+layout(set = 0, binding = VIS_LIGHTS, std430) readonly buffer Lights { LightData lights[]; };
+layout(set = 0, binding = VIS_GBUFFER_DEPTH) uniform sampler2D gDepth;
+layout(set = 0, binding = VIS_GBUFFER_NORMAL) uniform sampler2D gNormal;
+layout(set = 0, binding = VIS_SHADOW_MAP) uniform sampler2DArray shadowMap;
+layout(set = 0, binding = VIS_SHADOW_COMPARE) uniform sampler2DArrayShadow shadowMapCmp;
+layout(set = 0, binding = VIS_OUT, r32f) uniform writeonly image2DArray visibility;
+layout(set = 0, binding = VIS_VIEWS, std430) readonly buffer Views { ShadowViewData views[]; };
 layout(push_constant) uniform Push { VisibilityPush push; };
 
 // Light-space (u, v, depth) offset to the neighbour at p + step along one axis, taking the side

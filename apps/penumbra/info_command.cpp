@@ -31,6 +31,10 @@ Action addInfoCommand(CLI::App& app, const GlobalOptions&) {
                        static_cast<double>(d.deviceLocalBytes) / (1 << 30));
             fmt::print("  timestamp period:      {} ns\n", d.timestampPeriodNs);
             fmt::print("  D32 linear filtering:  {}\n", d.depthLinearFilter ? "yes" : "no");
+            fmt::print("  anisotropic filtering: {}\n",
+                       d.maxSamplerAnisotropy > 0 ? fmt::format("up to {}x", d.maxSamplerAnisotropy)
+                                                  : std::string("no"));
+            fmt::print("  cube-map arrays:       {}\n", d.imageCubeArray ? "yes" : "no");
             fmt::print("  usable by penumbra:    {}\n",
                        d.suitable ? "yes" : "no: " + d.unsuitableReason);
         }

@@ -27,6 +27,8 @@ struct DeviceInfo {
     uint64_t deviceLocalBytes = 0;
     float timestampPeriodNs = 0.0f;
     bool depthLinearFilter = false; // D32_SFLOAT linear (and hardware 2x2 PCF) filtering
+    float maxSamplerAnisotropy = 0; // 0: no anisotropic filtering (the feature is missing)
+    bool imageCubeArray = false;    // cube-map arrays (point lights' shadow views)
     bool suitable = false;          // has everything Penumbra needs
     std::string unsuitableReason;
 };

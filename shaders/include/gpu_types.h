@@ -46,6 +46,37 @@ using uint = uint32_t;
 #define RECEIVER_SCREEN 1u
 #define RECEIVER_LIGHT 2u
 
+// Descriptor bindings (set 0, push descriptors) of every pass: the shaders declare
+// `layout(binding = X)`, src/render/pipelines.cpp builds each pass's layout from the same names,
+// src/render/frame.cpp writes them.
+#define BIND_FRAME 0             // FrameData, in every pass that reads it
+#define VIS_LIGHTS 1             // visibility.comp
+#define VIS_GBUFFER_DEPTH 2
+#define VIS_GBUFFER_NORMAL 3
+#define VIS_SHADOW_MAP 4         // the technique's filtered map, every view (nearest)
+#define VIS_SHADOW_COMPARE 5     // the depth map, every view (comparison sampler)
+#define VIS_OUT 6                // R32F array, a layer per shadow-casting light
+#define VIS_VIEWS 7              // ShadowViewData[]
+#define COMPOSITE_LIGHTS 1       // composite.comp
+#define COMPOSITE_GBUFFER_DEPTH 2
+#define COMPOSITE_GBUFFER_NORMAL 3
+#define COMPOSITE_GBUFFER_ALBEDO 4
+#define COMPOSITE_VISIBILITY 5
+#define COMPOSITE_OUT 6
+#define EXPORT_GBUFFER_DEPTH 1   // export.comp
+#define EXPORT_GBUFFER_NORMAL 2
+#define EXPORT_POSITION 3
+#define EXPORT_NORMAL 4
+#define PROBE_RECEIVERS 1        // filter_probe.comp
+#define PROBE_SHADOW_MAP 2
+#define PROBE_SHADOW_COMPARE 3
+#define PROBE_RESULTS 4
+#define PROBE_VIEW 5
+#define GBUFFER_TEXTURE 1        // gbuffer.frag: the material's base colour
+#define MASK_TEXTURE 0           // shadow_mask.frag: the alpha-tested caster's texture
+#define READ_MAP 0               // a technique's extra depth pass (shadow_peel.frag): the map
+#define READ_TEXTURE 1           // it reads, and the caster's texture
+
 #define POISSON_MAX_SAMPLES 64u
 #define GROUP_SIZE 8u
 
@@ -111,6 +142,15 @@ struct PostPassPush {    // push constants of every shadow-map post pass
     uvec4 size;          // xy: the shadow map's size in texels
 };
 
+struct ProbeReceiver {   // std430, filter_probe.comp's input (Renderer::probeTechnique)
+    vec4 uvDepth;        // u, v, receiver depth
+    vec4 gradientPixel;  // d depth / du, d depth / dv, pixel x, pixel y (rotations use it)
+};
+
+struct ProbePush {       // push constants of filter_probe.comp
+    uvec4 counts;        // x receivers, y shadow-map size
+};
+
 struct VisibilityPush {  // push constants of visibility.comp
     uvec4 light;         // x light index, y its visibility layer, z shadow-map size, w its view
 };
@@ -139,7 +179,8 @@ static_assert(sizeof(LightData) == 96 && offsetof(LightData, cone) == 48 &&
 static_assert(sizeof(ShadowViewData) == 96 && offsetof(ShadowViewData, frustum) == 64 &&
               offsetof(ShadowViewData, texel) == 80);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
-              sizeof(PostPassPush) == 16);
+              sizeof(PostPassPush) == 16 && sizeof(ProbePush) == 16);
+static_assert(sizeof(ProbeReceiver) == 32 && offsetof(ProbeReceiver, gradientPixel) == 16);
 static_assert(sizeof(MaterialPush) == 32 && offsetof(MaterialPush, alphaCutoff) == 16);
 } // namespace penumbra::gpu
 #endif

@@ -8,15 +8,7 @@
 #include <cstring>
 
 namespace penumbra {
-namespace {
-
-struct GpuProbe {
-    glm::vec4 uvDepth;
-    glm::vec4 gradientPixel;
-};
-static_assert(sizeof(GpuProbe) == 32);
-
-} // namespace
+namespace {} // namespace
 
 std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const ParameterValues& params,
                                                 std::span<const float> depths, uint32_t size,
@@ -27,7 +19,7 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     gpu::FrameData frame{};
     render::setTechniqueSettings(frame, params, ctx.info().depthLinearFilter,
                                  ctx.limits().subTexelPrecisionBits);
-    std::vector<GpuProbe> gpuProbes;
+    std::vector<gpu::ProbeReceiver> gpuProbes;
     for (const FilterProbe& p : probes)
         gpuProbes.push_back(
             {{p.uv, p.depth, 0.0f},
@@ -58,10 +50,11 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
                               .height = size,
                               .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
                               .arrayView = true});
-    const vk::SamplerHandle nearest = vk::createSampler(ctx, {.filter = VK_FILTER_NEAREST});
+    const vk::SamplerHandle nearest = vk::createSampler(ctx, {});
+    const VkFilter compareFilter =
+        ctx.info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     const vk::SamplerHandle compare = vk::createSampler(
-        ctx, {.filter = ctx.info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST,
-              .compare = true});
+        ctx, {.magFilter = compareFilter, .minFilter = compareFilter, .compare = true});
 
     render::FramePipelines& p = mImpl->pipelines;
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -79,16 +72,16 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
             cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
             p.probe(shadows::visibilityConstants(shadows::moduleOf(technique), params)));
         vk::PushDescriptors()
-            .uniformBuffer(0, frameBuffer.get())
-            .storageBuffer(1, probeBuffer.get())
-            .sampled(2, map.view.get(), nearest.get())
-            .sampled(3, map.view.get(), compare.get())
-            .storageBuffer(4, results.get())
-            .storageBuffer(5, viewBuffer.get())
+            .uniformBuffer(BIND_FRAME, frameBuffer.get())
+            .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
+            .sampled(PROBE_SHADOW_MAP, map.view.get(), nearest.get())
+            .sampled(PROBE_SHADOW_COMPARE, map.view.get(), compare.get())
+            .storageBuffer(PROBE_RESULTS, results.get())
+            .storageBuffer(PROBE_VIEW, viewBuffer.get())
             .push(ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.probeLayout);
-        const glm::uvec4 counts(static_cast<uint32_t>(probes.size()), size, 0, 0);
-        vkCmdPushConstants(cmd, p.probeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof counts,
-                           &counts);
+        const gpu::ProbePush push{.counts = {static_cast<uint32_t>(probes.size()), size, 0, 0}};
+        vkCmdPushConstants(cmd, p.probeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                           &push);
         vkCmdDispatch(cmd, static_cast<uint32_t>((probes.size() + 63) / 64), 1, 1);
         vk::bufferBarrier(cmd, results.get(), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,

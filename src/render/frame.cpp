@@ -88,8 +88,8 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
         bind(reads->pipeline);
         auto pushFor = [&](const GpuTextures::Binding& texture) {
             vk::PushDescriptors()
-                .sampled(0, reads->layer, nearest)
-                .sampled(1, texture.view, texture.sampler)
+                .sampled(READ_MAP, reads->layer, nearest)
+                .sampled(READ_TEXTURE, texture.view, texture.sampler)
                 .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.readingDepthLayout);
             vkCmdPushConstants(cmd, p.readingDepthLayout.get(), kStages, 0, sizeof push, &push);
         };
@@ -117,7 +117,7 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
             if (batch.firstIndex >= scene.opaqueIndexCount) {
                 const GpuScene::Material& material = scene.materials[batch.material];
                 vk::PushDescriptors()
-                    .sampled(0, material.texture.view, material.texture.sampler)
+                    .sampled(MASK_TEXTURE, material.texture.view, material.texture.sampler)
                     .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.shadowMaskLayout);
                 push.material = material.constants;
                 vkCmdPushConstants(cmd, p.shadowMaskLayout.get(), kStages, 0, sizeof push, &push);
@@ -215,8 +215,8 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
     for (const DrawBatch& batch : scene.batches) {
         const GpuScene::Material& material = scene.materials[batch.material];
         vk::PushDescriptors()
-            .uniformBuffer(0, t.frame)
-            .sampled(1, material.texture.view, material.texture.sampler)
+            .uniformBuffer(BIND_FRAME, t.frame)
+            .sampled(GBUFFER_TEXTURE, material.texture.view, material.texture.sampler)
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbufferLayout);
         vkCmdPushConstants(cmd, p.gbufferLayout.get(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
@@ -238,14 +238,14 @@ void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
     const ViewMaps& filtered = t.named(*s.technique, s.technique->visibilityMap);
     for (const gpu::VisibilityPush& push : s.shadowLights) {
         vk::PushDescriptors()
-            .uniformBuffer(0, t.frame)
-            .storageBuffer(1, t.lights)
-            .sampled(2, t.depth.view.get(), t.nearest)
-            .sampled(3, t.normal.view.get(), t.nearest)
-            .sampled(4, filtered.image.view.get(), t.nearest)
-            .sampled(5, t.shadowDepth.image.view.get(), t.compare)
-            .storageImage(6, t.visibility.view.get())
-            .storageBuffer(7, t.viewData)
+            .uniformBuffer(BIND_FRAME, t.frame)
+            .storageBuffer(VIS_LIGHTS, t.lights)
+            .sampled(VIS_GBUFFER_DEPTH, t.depth.view.get(), t.nearest)
+            .sampled(VIS_GBUFFER_NORMAL, t.normal.view.get(), t.nearest)
+            .sampled(VIS_SHADOW_MAP, filtered.image.view.get(), t.nearest)
+            .sampled(VIS_SHADOW_COMPARE, t.shadowDepth.image.view.get(), t.compare)
+            .storageImage(VIS_OUT, t.visibility.view.get())
+            .storageBuffer(VIS_VIEWS, t.viewData)
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
         vkCmdPushConstants(cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                            sizeof push, &push);
@@ -258,13 +258,13 @@ void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
     vk::imageBarrier(cmd, t.color, vk::kUndefined, vk::kComputeWrite);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.composite.get());
     vk::PushDescriptors()
-        .uniformBuffer(0, t.frame)
-        .storageBuffer(1, t.lights)
-        .sampled(2, t.depth.view.get(), t.nearest)
-        .sampled(3, t.normal.view.get(), t.nearest)
-        .sampled(4, t.albedo.view.get(), t.nearest)
-        .sampled(5, t.visibility.view.get(), t.nearest)
-        .storageImage(6, t.color.view.get())
+        .uniformBuffer(BIND_FRAME, t.frame)
+        .storageBuffer(COMPOSITE_LIGHTS, t.lights)
+        .sampled(COMPOSITE_GBUFFER_DEPTH, t.depth.view.get(), t.nearest)
+        .sampled(COMPOSITE_GBUFFER_NORMAL, t.normal.view.get(), t.nearest)
+        .sampled(COMPOSITE_GBUFFER_ALBEDO, t.albedo.view.get(), t.nearest)
+        .sampled(COMPOSITE_VISIBILITY, t.visibility.view.get(), t.nearest)
+        .storageImage(COMPOSITE_OUT, t.color.view.get())
         .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.compositeLayout);
     vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
 }
@@ -322,11 +322,11 @@ void recordReadback(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, VkB
     vk::imageBarrier(cmd, t.exportNormal, vk::kUndefined, vk::kComputeWrite);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.exportGBuffer.get());
     vk::PushDescriptors()
-        .uniformBuffer(0, t.frame)
-        .sampled(1, t.depth.view.get(), t.nearest)
-        .sampled(2, t.normal.view.get(), t.nearest)
-        .storageImage(3, t.position.view.get())
-        .storageImage(4, t.exportNormal.view.get())
+        .uniformBuffer(BIND_FRAME, t.frame)
+        .sampled(EXPORT_GBUFFER_DEPTH, t.depth.view.get(), t.nearest)
+        .sampled(EXPORT_GBUFFER_NORMAL, t.normal.view.get(), t.nearest)
+        .storageImage(EXPORT_POSITION, t.position.view.get())
+        .storageImage(EXPORT_NORMAL, t.exportNormal.view.get())
         .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.exportLayout);
     vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
 

@@ -39,42 +39,51 @@ vk::GraphicsPipelineDesc shadowDesc(bool depthClamp, std::string_view fragment =
 FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     shadowLayout =
         vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
-    shadowMaskLayout = vk::createPipelineLayout(
-        ctx, {{0, kSampled}}, kGraphicsStages, sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
-    gbufferLayout = vk::createPipelineLayout(ctx, {{0, kUniform}, {1, kSampled}}, kGraphicsStages,
-                                             sizeof(gpu::MaterialPush));
+    // Binding numbers: gpu_types.h, shared with the shaders.
+    shadowMaskLayout =
+        vk::createPipelineLayout(ctx, {{MASK_TEXTURE, kSampled}}, kGraphicsStages,
+                                 sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
+    gbufferLayout =
+        vk::createPipelineLayout(ctx, {{BIND_FRAME, kUniform}, {GBUFFER_TEXTURE, kSampled}},
+                                 kGraphicsStages, sizeof(gpu::MaterialPush));
     visibilityLayout =
         vk::createPipelineLayout(ctx,
-                                 {{0, kUniform},
-                                  {1, kStorage},
-                                  {2, kSampled},
-                                  {3, kSampled},
-                                  {4, kSampled},
-                                  {5, kSampled},
-                                  {6, kImage},
-                                  {7, kStorage}},
+                                 {{BIND_FRAME, kUniform},
+                                  {VIS_LIGHTS, kStorage},
+                                  {VIS_GBUFFER_DEPTH, kSampled},
+                                  {VIS_GBUFFER_NORMAL, kSampled},
+                                  {VIS_SHADOW_MAP, kSampled},
+                                  {VIS_SHADOW_COMPARE, kSampled},
+                                  {VIS_OUT, kImage},
+                                  {VIS_VIEWS, kStorage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     compositeLayout = vk::createPipelineLayout(ctx,
-                                               {{0, kUniform},
-                                                {1, kStorage},
-                                                {2, kSampled},
-                                                {3, kSampled},
-                                                {4, kSampled},
-                                                {5, kSampled},
-                                                {6, kImage}},
+                                               {{BIND_FRAME, kUniform},
+                                                {COMPOSITE_LIGHTS, kStorage},
+                                                {COMPOSITE_GBUFFER_DEPTH, kSampled},
+                                                {COMPOSITE_GBUFFER_NORMAL, kSampled},
+                                                {COMPOSITE_GBUFFER_ALBEDO, kSampled},
+                                                {COMPOSITE_VISIBILITY, kSampled},
+                                                {COMPOSITE_OUT, kImage}},
                                                VK_SHADER_STAGE_COMPUTE_BIT, 0);
-    exportLayout = vk::createPipelineLayout(
-        ctx, {{0, kUniform}, {1, kSampled}, {2, kSampled}, {3, kImage}, {4, kImage}},
-        VK_SHADER_STAGE_COMPUTE_BIT, 0);
-
-    probeLayout = vk::createPipelineLayout(
-        ctx,
-        {{0, kUniform}, {1, kStorage}, {2, kSampled}, {3, kSampled}, {4, kStorage}, {5, kStorage}},
-        VK_SHADER_STAGE_COMPUTE_BIT, sizeof(glm::uvec4));
-
-    readingDepthLayout =
-        vk::createPipelineLayout(ctx, {{0, kSampled}, {1, kSampled}}, kGraphicsStages,
-                                 sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
+    exportLayout = vk::createPipelineLayout(ctx,
+                                            {{BIND_FRAME, kUniform},
+                                             {EXPORT_GBUFFER_DEPTH, kSampled},
+                                             {EXPORT_GBUFFER_NORMAL, kSampled},
+                                             {EXPORT_POSITION, kImage},
+                                             {EXPORT_NORMAL, kImage}},
+                                            VK_SHADER_STAGE_COMPUTE_BIT, 0);
+    probeLayout = vk::createPipelineLayout(ctx,
+                                           {{BIND_FRAME, kUniform},
+                                            {PROBE_RECEIVERS, kStorage},
+                                            {PROBE_SHADOW_MAP, kSampled},
+                                            {PROBE_SHADOW_COMPARE, kSampled},
+                                            {PROBE_RESULTS, kStorage},
+                                            {PROBE_VIEW, kStorage}},
+                                           VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::ProbePush));
+    readingDepthLayout = vk::createPipelineLayout(
+        ctx, {{READ_MAP, kSampled}, {READ_TEXTURE, kSampled}}, kGraphicsStages,
+        sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
     shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(true));
     shadowPerspective = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(false));
     shadowMaskOrtho =

@@ -182,10 +182,11 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
                                       vk::MemoryUse::Upload, "shadow view buffer");
         std::memset(slot.views.mapped, 0, viewBytes);
     }
-    m.nearest = vk::createSampler(m.ctx(), {.filter = VK_FILTER_NEAREST});
+    m.nearest = vk::createSampler(m.ctx(), {});
+    const VkFilter compareFilter =
+        m.ctx().info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     m.compare = vk::createSampler(
-        m.ctx(), {.filter = m.ctx().info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST,
-                  .compare = true});
+        m.ctx(), {.magFilter = compareFilter, .minFilter = compareFilter, .compare = true});
 }
 
 SceneRenderer::~SceneRenderer() = default;

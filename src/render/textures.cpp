@@ -27,17 +27,13 @@ VkSamplerAddressMode addressOf(TextureWrap wrap) {
 // Trilinear minification; magnification as the asset asks. The alpha test reads level 0
 // (textureLod 0 magnifies), the same texels the ground truth's CPU test reads.
 vk::SamplerHandle createTextureSampler(const vk::Context& ctx, const Texture& t) {
-    const VkSamplerCreateInfo info{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-                                   .magFilter = t.nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR,
+    return vk::createSampler(ctx, {.magFilter = t.nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR,
                                    .minFilter = VK_FILTER_LINEAR,
                                    .mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR,
-                                   .addressModeU = addressOf(t.wrapS),
-                                   .addressModeV = addressOf(t.wrapT),
-                                   .addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT,
-                                   .maxLod = VK_LOD_CLAMP_NONE};
-    VkSampler sampler = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
-    return vk::SamplerHandle(ctx.device(), sampler);
+                                   .maxLod = VK_LOD_CLAMP_NONE,
+                                   .addressU = addressOf(t.wrapS),
+                                   .addressV = addressOf(t.wrapT),
+                                   .addressW = VK_SAMPLER_ADDRESS_MODE_REPEAT});
 }
 
 // Records the copy of level 0 from `staging` and the blits down the mip chain; leaves every

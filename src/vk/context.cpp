@@ -197,6 +197,9 @@ DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index) const {
     // Optional: lavapipe 22.3 advertises linear filtering for no depth format.
     info.depthLinearFilter =
         (depth.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+    info.maxSamplerAnisotropy =
+        features.features.samplerAnisotropy ? p.limits.maxSamplerAnisotropy : 0.0f;
+    info.imageCubeArray = features.features.imageCubeArray != 0;
     if (p.apiVersion < VK_API_VERSION_1_3)
         info.unsuitableReason = "Vulkan 1.3 is not supported";
     else if (!f13.dynamicRendering || !f13.synchronization2 || !f13.maintenance4)
@@ -264,7 +267,10 @@ Context::Context(const DeviceOptions& options) : mInstance(options.validation) {
     const VkPhysicalDeviceFeatures2 features{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
         .pNext = &f12,
-        .features = {.depthClamp = VK_TRUE, .depthBiasClamp = VK_TRUE}};
+        .features = {.imageCubeArray = mInfo.imageCubeArray ? VK_TRUE : VK_FALSE,
+                     .depthClamp = VK_TRUE,
+                     .depthBiasClamp = VK_TRUE,
+                     .samplerAnisotropy = mInfo.maxSamplerAnisotropy > 0 ? VK_TRUE : VK_FALSE}};
     const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     const VkDeviceCreateInfo info{.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
                                   .pNext = &features,

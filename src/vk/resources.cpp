@@ -100,23 +100,30 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
         throw InputError(desc.name, fmt::format("{}x{} is outside this device's image size range "
                                                 "1..{}",
                                                 desc.width, desc.height, limit));
+    PENUMBRA_CHECK(desc.depth == 1 || (desc.layers == 1 && !desc.cube), "3D images have one layer");
+    PENUMBRA_CHECK(!desc.cube || (desc.layers % 6 == 0 && desc.width == desc.height),
+                   "cube images have square faces, six layers per cube");
     Image image{.format = desc.format,
                 .width = desc.width,
                 .height = desc.height,
+                .depth = desc.depth,
                 .layers = desc.layers,
                 .mipLevels = desc.mipLevels,
                 .aspect = aspectOf(desc.format)};
-    const VkImageCreateInfo info{.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
-                                 .imageType = VK_IMAGE_TYPE_2D,
-                                 .format = desc.format,
-                                 .extent = {desc.width, desc.height, 1},
-                                 .mipLevels = desc.mipLevels,
-                                 .arrayLayers = desc.layers,
-                                 .samples = VK_SAMPLE_COUNT_1_BIT,
-                                 .tiling = VK_IMAGE_TILING_OPTIMAL,
-                                 .usage = desc.usage,
-                                 .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
-                                 .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+    const VkImageCreateInfo info{
+        .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+        .flags = desc.cube ? VkImageCreateFlags{VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT}
+                           : VkImageCreateFlags{0},
+        .imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D,
+        .format = desc.format,
+        .extent = {desc.width, desc.height, desc.depth},
+        .mipLevels = desc.mipLevels,
+        .arrayLayers = desc.layers,
+        .samples = VK_SAMPLE_COUNT_1_BIT,
+        .tiling = VK_IMAGE_TILING_OPTIMAL,
+        .usage = desc.usage,
+        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+        .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
     VkImage raw = VK_NULL_HANDLE;
     VK_CHECK(vkCreateImage(ctx.device(), &info, nullptr, &raw));
     image.image = ImageHandle(ctx.device(), raw);
@@ -124,10 +131,13 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
     vkGetImageMemoryRequirements(ctx.device(), raw, &req);
     image.memory = allocate(ctx, req, MemoryUse::DeviceLocal, desc.name);
     VK_CHECK(vkBindImageMemory(ctx.device(), raw, image.memory.get(), 0));
-    image.view = createView(ctx, image,
-                            desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
-                                                              : VK_IMAGE_VIEW_TYPE_2D,
-                            0, desc.layers);
+    const VkImageViewType viewType =
+        desc.depth > 1 ? VK_IMAGE_VIEW_TYPE_3D
+        : desc.cube    ? (desc.layers == 6 && !desc.arrayView ? VK_IMAGE_VIEW_TYPE_CUBE
+                                                              : VK_IMAGE_VIEW_TYPE_CUBE_ARRAY)
+        : desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                            : VK_IMAGE_VIEW_TYPE_2D;
+    image.view = createView(ctx, image, viewType, 0, desc.layers);
     return image;
 }
 
@@ -137,17 +147,22 @@ ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t
 }
 
 SamplerHandle createSampler(const Context& ctx, const SamplerDesc& desc) {
+    const float limit = ctx.info().maxSamplerAnisotropy;
+    const bool anisotropic = desc.anisotropy > 1.0f && limit > 1.0f;
     const VkSamplerCreateInfo info{.sType = VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO,
-                                   .magFilter = desc.filter,
-                                   .minFilter = desc.filter,
-                                   .mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST,
-                                   .addressModeU = desc.address,
-                                   .addressModeV = desc.address,
-                                   .addressModeW = desc.address,
+                                   .magFilter = desc.magFilter,
+                                   .minFilter = desc.minFilter,
+                                   .mipmapMode = desc.mipmapMode,
+                                   .addressModeU = desc.addressU,
+                                   .addressModeV = desc.addressV,
+                                   .addressModeW = desc.addressW,
+                                   .anisotropyEnable = anisotropic ? VK_TRUE : VK_FALSE,
+                                   .maxAnisotropy =
+                                       anisotropic ? std::min(desc.anisotropy, limit) : 1.0f,
                                    .compareEnable = desc.compare ? VK_TRUE : VK_FALSE,
                                    .compareOp = VK_COMPARE_OP_LESS_OR_EQUAL,
-                                   .maxLod = 0.0f,
-                                   .borderColor = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE};
+                                   .maxLod = desc.maxLod,
+                                   .borderColor = desc.border};
     VkSampler sampler = VK_NULL_HANDLE;
     VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
     return SamplerHandle(ctx.device(), sampler);

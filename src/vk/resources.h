@@ -28,6 +28,9 @@ struct ImageDesc {
     VkImageUsageFlags usage = 0;
     bool arrayView = false; // a 2D-array view even for one layer (image2DArray in shaders)
     uint32_t mipLevels = 1; // the view covers them all
+    uint32_t depth = 1;     // > 1: a 3D image (one layer) with a 3D view (a distance field)
+    bool cube = false;      // layers a multiple of 6: a cube (6) or cube-array view, faces in
+                            // Vulkan's order +x, -x, +y, -y, +z, -z
 };
 
 struct Image {
@@ -35,7 +38,7 @@ struct Image {
     MemoryHandle memory;
     ImageViewHandle view; // 2D, or 2D array for several layers or ImageDesc::arrayView
     VkFormat format = VK_FORMAT_UNDEFINED;
-    uint32_t width = 0, height = 0, layers = 1, mipLevels = 1;
+    uint32_t width = 0, height = 0, depth = 1, layers = 1, mipLevels = 1;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     VkImage get() const { return image.get(); }
     explicit operator bool() const { return static_cast<bool>(image); }
@@ -47,10 +50,18 @@ Image createImage(const Context& ctx, const ImageDesc& desc);
 // A view of one layer of an array image (for rendering into it or sampling it as 2D).
 ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer);
 
+// A sampler, whole: filters, mips, anisotropy, addressing in three dimensions, comparison.
 struct SamplerDesc {
-    VkFilter filter = VK_FILTER_NEAREST;
+    VkFilter magFilter = VK_FILTER_NEAREST, minFilter = VK_FILTER_NEAREST;
+    VkSamplerMipmapMode mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    float maxLod = 0.0f;     // VK_LOD_CLAMP_NONE: every mip level
+    float anisotropy = 0.0f; // > 1: anisotropic filtering, clamped to the device's limit (none
+                             // where the device has no anisotropic filtering)
+    VkSamplerAddressMode addressU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkSamplerAddressMode addressV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkSamplerAddressMode addressW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     bool compare = false; // depth comparison (sampler2DShadow), VK_COMPARE_OP_LESS_OR_EQUAL
-    VkSamplerAddressMode address = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkBorderColor border = VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
 };
 SamplerHandle createSampler(const Context& ctx, const SamplerDesc& desc);
 
