@@ -7,7 +7,7 @@ layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
 layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
 layout(constant_id = SPEC_RECEIVER) const uint RECEIVER = RECEIVER_OFF;
 #include "gbuffer.glsl"
-#include "receiver_plane.glsl"
+#include "filter_math.h"
 #include "shadow_common.glsl"
 #include "techniques.glsl"
 

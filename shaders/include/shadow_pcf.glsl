@@ -2,14 +2,15 @@
 // one primitive, the bilinear comparison tap: the four texels around a point are compared with
 // the receiver (at each texel's centre, with receiver-plane bias) and the four results are
 // interpolated (seed 000's 4-tap, with texel centres at (i + 1/2) / size).
-// src/reference/filter_reference.cpp mirrors this file on the CPU, operation for operation.
+// The scalar maths (the test, the weights, rotations) is shaders/include/filter_math.h, which
+// the CPU reference compiles too; src/reference/filter_reference.cpp mirrors the texture loops.
 // The including shader declares, first, the FrameData uniform block as `frame` (passing the
 // 768-byte block by value would copy it per call) and the specialization constant FILTER
 // (== frame.filterMode.x), so each kernel compiles alone: a runtime switch over every kernel
 // made even the simplest one 2x slower on lavapipe.
 #ifndef PENUMBRA_SHADOW_PCF_GLSL
 #define PENUMBRA_SHADOW_PCF_GLSL
-#include "gpu_types.h"
+#include "filter_math.h"
 
 struct Receiver {
     vec2 uv;        // shadow-map texture coordinates
@@ -19,8 +20,7 @@ struct Receiver {
 };
 
 float texelTest(Receiver r, float stored, vec2 texelUv, vec2 dzRange) {
-    float dz = clamp(dot(r.gradient, texelUv - r.uv), dzRange.x, dzRange.y);
-    return r.depth + dz <= stored ? 1.0 : 0.0;
+    return depthTest(receiverDepthAt(r.depth, r.gradient, texelUv - r.uv, dzRange), stored);
 }
 
 // Tests of the 2x2 texels whose first texel is `base`, in textureGather order:
@@ -40,26 +40,7 @@ float bilinearTap(sampler2DArray map, vec2 texelPos, float size, Receiver r, vec
     vec2 p = texelPos - 0.5;
     vec2 base = floor(p);
     vec2 f = p - base;
-    vec4 t = gatherTests(map, ivec2(base), size, r, dzRange);
-    return mix(mix(t.w, t.z, f.x), mix(t.x, t.y, f.x), f.y);
-}
-
-#define PCF_MAX_SIZE 15
-
-// Texel weights of an n-tap kernel (box: 1/n; Gaussian with sigma, normalised) after bilinear
-// taps with sub-texel fraction f: texel k of the (n+1)-wide footprint gets
-// c(k) = g(k)(1 - f) + g(k-1) f.
-void footprintWeights(uint filterKind, int n, float sigma, float f, out float c[PCF_MAX_SIZE + 1]) {
-    float g[PCF_MAX_SIZE];
-    float h = 0.5 * float(n - 1), sum = 0.0;
-    for (int i = 0; i < n; ++i) {
-        g[i] = filterKind == FILTER_GAUSSIAN
-                   ? exp(-0.5 * (float(i) - h) * (float(i) - h) / (sigma * sigma))
-                   : 1.0;
-        sum += g[i];
-    }
-    for (int k = 0; k <= n; ++k)
-        c[k] = ((k < n ? g[k] : 0.0) * (1.0 - f) + (k > 0 ? g[k - 1] : 0.0) * f) / sum;
+    return bilinearMix(gatherTests(map, ivec2(base), size, r, dzRange), f);
 }
 
 // An n x n grid of bilinear taps, one texel apart, centred on the receiver (n odd; n = 1 is
@@ -85,19 +66,6 @@ float pcfGrid(sampler2DArray map, Receiver r, uint mapSize, uint filterKind, int
     return sum;
 }
 
-uint hashU32(uint v) { // lowbias32, as src/reference/sampling.cpp
-    v ^= v >> 16; v *= 0x7feb352du; v ^= v >> 15; v *= 0x846ca68bu; v ^= v >> 16;
-    return v;
-}
-
-// Per-pixel rotation of the Poisson disk, in turns [0, 1).
-float rotationTurns(uint rotation, uvec2 pixel) {
-    if (rotation == ROTATION_RANDOM) return float(hashU32(pixel.x * 0x9E3779B9u ^ hashU32(pixel.y))) * (1.0 / 4294967296.0);
-    if (rotation == ROTATION_IGN) // interleaved gradient noise [Jimenez 2014]
-        return fract(52.9829189 * fract(0.06711056 * float(pixel.x) + 0.00583715 * float(pixel.y)));
-    return 0.0;
-}
-
 vec2 poissonPoint(uint i) {
     vec4 pair = frame.poisson[i / 2u];
     return (i % 2u) == 0u ? pair.xy : pair.zw;
@@ -106,15 +74,11 @@ vec2 poissonPoint(uint i) {
 // n bilinear taps on the Poisson disk scaled to `radius` texels, rotated by `turns`.
 float poissonTaps(sampler2DArray map, Receiver r, uint mapSize, uint n, float radius, float turns,
                   vec2 dzRange) {
-    float angle = 6.28318530718 * turns;
-    float c = cos(angle), s = sin(angle);
     vec2 centre = r.uv * float(mapSize);
     float sum = 0.0;
-    for (uint i = 0u; i < n; ++i) {
-        vec2 d = poissonPoint(i);
-        vec2 offset = radius * vec2(c * d.x - s * d.y, s * d.x + c * d.y);
-        sum += bilinearTap(map, centre + offset, float(mapSize), r, dzRange);
-    }
+    for (uint i = 0u; i < n; ++i)
+        sum += bilinearTap(map, centre + rotatedOffset(poissonPoint(i), turns, radius),
+                           float(mapSize), r, dzRange);
     return sum / float(n);
 }
 
@@ -136,10 +100,6 @@ bool pcfProbeDecides(sampler2DArray map, Receiver r, uint mapSize, vec2 dzRange,
     result = sum * 0.25;
     return sum == 0.0 || sum == 4.0;
 }
-
-// Weighted sums of exact 0/1 tests land within float round-off of 0 or 1 when every test
-// agrees; fully lit must read exactly 1 (and fully shadowed 0), so round-off snaps.
-float snapToExtremes(float v) { return v >= 0.99999 ? 1.0 : (v <= 0.00001 ? 0.0 : v); }
 
 float shadowPcfUnsnapped(sampler2DArray map, sampler2DArrayShadow mapCompare, Receiver r, uint mapSize,
                          uvec2 pixel) {

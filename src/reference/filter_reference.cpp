@@ -1,5 +1,6 @@
 #include "reference/filter_reference.h"
 
+#include "filter_math.h"
 #include "reference/sampling.h"
 
 #include <algorithm>
@@ -25,9 +26,9 @@ struct MarginTracker {
 
 float texelTest(const Receiver& r, float stored, glm::vec2 texelUv, glm::vec2 dzRange,
                 const MarginTracker& m) {
-    const float dz = std::clamp(glm::dot(r.gradient, texelUv - r.uv), dzRange.x, dzRange.y);
-    m.see(r.depth + dz, stored);
-    return r.depth + dz <= stored ? 1.0f : 0.0f;
+    const float receiver = gpu::receiverDepthAt(r.depth, r.gradient, texelUv - r.uv, dzRange);
+    m.see(receiver, stored);
+    return gpu::depthTest(receiver, stored);
 }
 
 // x (i, j+1), y (i+1, j+1), z (i+1, j), w (i, j): textureGather's order.
@@ -41,10 +42,6 @@ glm::vec4 gatherTests(const ShadowMapView& map, glm::ivec2 base, float size, con
             texelTest(r, map.texel(base.x, base.y), c, dzRange, m)};
 }
 
-float mix(float a, float b, float t) {
-    return a * (1.0f - t) + b * t;
-}
-
 float bilinearTap(const ShadowMapView& map, glm::vec2 texelPos, float size, const Receiver& r,
                   glm::vec2 dzRange, const MarginTracker& m, uint32_t subTexelBits = 0) {
     const glm::vec2 p = texelPos - 0.5f;
@@ -54,24 +51,10 @@ float bilinearTap(const ShadowMapView& map, glm::vec2 texelPos, float size, cons
         const float steps = std::ldexp(1.0f, static_cast<int>(subTexelBits));
         f = glm::round(f * steps) / steps;
     }
-    const glm::vec4 t = gatherTests(map, glm::ivec2(base), size, r, dzRange, m);
-    return mix(mix(t.w, t.z, f.x), mix(t.x, t.y, f.x), f.y);
+    return gpu::bilinearMix(gatherTests(map, glm::ivec2(base), size, r, dzRange, m), f);
 }
 
-constexpr int kMaxSize = 15;
-
-void footprintWeights(uint32_t filterKind, int n, float sigma, float f, float* c) {
-    float g[kMaxSize];
-    const float h = 0.5f * static_cast<float>(n - 1);
-    float sum = 0.0f;
-    for (int i = 0; i < n; ++i) {
-        const float x = static_cast<float>(i) - h;
-        g[i] = filterKind == FILTER_GAUSSIAN ? std::exp(-0.5f * x * x / (sigma * sigma)) : 1.0f;
-        sum += g[i];
-    }
-    for (int k = 0; k <= n; ++k)
-        c[k] = ((k < n ? g[k] : 0.0f) * (1.0f - f) + (k > 0 ? g[k - 1] : 0.0f) * f) / sum;
-}
+constexpr int kMaxSize = PCF_MAX_SIZE;
 
 float pcfGrid(const ShadowMapView& map, const Receiver& r, uint32_t filterKind, int n, float sigma,
               glm::vec2 dzRange, const MarginTracker& m) {
@@ -80,8 +63,8 @@ float pcfGrid(const ShadowMapView& map, const Receiver& r, uint32_t filterKind, 
     const glm::vec2 base = glm::floor(p);
     const glm::vec2 f = p - base;
     float cx[kMaxSize + 1], cy[kMaxSize + 1];
-    footprintWeights(filterKind, n, sigma, f.x, cx);
-    footprintWeights(filterKind, n, sigma, f.y, cy);
+    gpu::footprintWeights(filterKind, n, sigma, f.x, cx);
+    gpu::footprintWeights(filterKind, n, sigma, f.y, cy);
     const glm::ivec2 first = glm::ivec2(base) - (n - 1) / 2;
     float sum = 0.0f;
     for (int ky = 0; ky <= n; ky += 2)
@@ -93,19 +76,6 @@ float pcfGrid(const ShadowMapView& map, const Receiver& r, uint32_t filterKind, 
     return sum;
 }
 
-float rotationTurns(uint32_t rotation, glm::uvec2 pixel) {
-    if (rotation == ROTATION_RANDOM)
-        return static_cast<float>(hashU32(pixel.x * 0x9E3779B9u ^ hashU32(pixel.y))) *
-               (1.0f / 4294967296.0f);
-    if (rotation == ROTATION_IGN) {
-        const float inner =
-            0.06711056f * static_cast<float>(pixel.x) + 0.00583715f * static_cast<float>(pixel.y);
-        const float v = 52.9829189f * (inner - std::floor(inner));
-        return v - std::floor(v);
-    }
-    return 0.0f;
-}
-
 glm::vec2 poissonPoint(const gpu::FrameData& f, uint32_t i) {
     const glm::vec4 pair = f.poisson[i / 2];
     return i % 2 == 0 ? glm::vec2(pair.x, pair.y) : glm::vec2(pair.z, pair.w);
@@ -113,23 +83,19 @@ glm::vec2 poissonPoint(const gpu::FrameData& f, uint32_t i) {
 
 float poissonTaps(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f, uint32_t n,
                   float radius, float turns, glm::vec2 dzRange, const MarginTracker& m) {
-    const float angle = 6.28318530718f * turns;
-    const float c = std::cos(angle), s = std::sin(angle);
     const float size = static_cast<float>(map.size);
     const glm::vec2 centre = r.uv * size;
     float sum = 0.0f;
-    for (uint32_t i = 0; i < n; ++i) {
-        const glm::vec2 d = poissonPoint(f, i);
-        const glm::vec2 offset = radius * glm::vec2(c * d.x - s * d.y, s * d.x + c * d.y);
-        sum += bilinearTap(map, centre + offset, size, r, dzRange, m);
-    }
+    for (uint32_t i = 0; i < n; ++i)
+        sum += bilinearTap(map, centre + gpu::rotatedOffset(poissonPoint(f, i), turns, radius),
+                           size, r, dzRange, m);
     return sum / static_cast<float>(n);
 }
 
 float pcfPoisson(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
                  glm::uvec2 pixel, glm::vec2 dzRange, const MarginTracker& m) {
     return poissonTaps(map, r, f, f.filterMode.z, f.filterParams.x,
-                       rotationTurns(f.filterMode.w, pixel), dzRange, m);
+                       gpu::rotationTurns(f.filterMode.w, pixel), dzRange, m);
 }
 
 bool probeDecides(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
@@ -149,10 +115,6 @@ bool probeDecides(const ShadowMapView& map, const Receiver& r, const gpu::FrameD
 
 Receiver receiverOf(const FilterProbe& p) {
     return {p.uv, p.depth, p.gradient};
-}
-
-float snapToExtremes(float v) {
-    return v >= 0.99999f ? 1.0f : (v <= 0.00001f ? 0.0f : v);
 }
 
 float pcfUnsnapped(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
@@ -176,7 +138,7 @@ float pcfUnsnapped(const ShadowMapView& map, const FilterProbe& probe, const gpu
 
 float pcf(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
           const MarginTracker& m) {
-    return snapToExtremes(pcfUnsnapped(map, probe, f, m));
+    return gpu::snapToExtremes(pcfUnsnapped(map, probe, f, m));
 }
 
 float hard(const ShadowMapView& map, const FilterProbe& probe, const MarginTracker& m,
@@ -188,43 +150,15 @@ float hard(const ShadowMapView& map, const FilterProbe& probe, const MarginTrack
     return texelTest(receiverOf(probe), map.texel(texel.x, texel.y), centre, dzRange, m);
 }
 
-// shadow_pcss.glsl, transcribed.
-float viewDistance(const gpu::ShadowViewData& v, float depth) {
-    const float n = v.frustum.x, far = v.frustum.y;
-    return v.texel.y > 0.5f ? n * far / (far - depth * (far - n)) : n + depth * (far - n);
-}
-
-float texelsPerWorld(const gpu::ShadowViewData& v, float z, uint32_t mapSize) {
-    const float worldPerUv = v.frustum.z * (v.texel.y > 0.5f ? z : 1.0f);
-    return static_cast<float>(mapSize) / worldPerUv;
-}
-
-float blockerSearchRadius(const gpu::ShadowViewData& v, float zReceiver, uint32_t mapSize) {
-    const float n = v.frustum.x, size = v.texel.w;
-    const float world =
-        v.texel.y > 0.5f ? size * (zReceiver - n) / zReceiver : (zReceiver - n) * size;
-    return world * texelsPerWorld(v, v.texel.y > 0.5f ? n : 1.0f, mapSize);
-}
-
-float penumbraRadius(const gpu::ShadowViewData& v, float zReceiver, float zBlocker,
-                     uint32_t mapSize) {
-    const float size = v.texel.w;
-    const float world =
-        v.texel.y > 0.5f ? (zReceiver - zBlocker) * size / zBlocker : (zReceiver - zBlocker) * size;
-    return world * texelsPerWorld(v, zReceiver, mapSize);
-}
-
+// shadow_pcss.glsl's loops, transcribed; its geometry is filter_math.h's.
 float searchBlockers(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
                      uint32_t n, float radius, float turns, glm::vec2 dzRange,
                      const MarginTracker& m, float& averageDepth) {
-    const float angle = 6.28318530718f * turns;
-    const float c = std::cos(angle), s = std::sin(angle), size = static_cast<float>(map.size);
+    const float size = static_cast<float>(map.size);
     const glm::vec2 centre = r.uv * size;
     float sum = 0.0f, count = 0.0f;
     for (uint32_t i = 0; i < n; ++i) {
-        const glm::vec2 d = poissonPoint(f, i);
-        const glm::vec2 p =
-            centre + radius * glm::vec2(c * d.x - s * d.y, s * d.x + c * d.y) - 0.5f;
+        const glm::vec2 p = centre + gpu::rotatedOffset(poissonPoint(f, i), turns, radius) - 0.5f;
         const glm::ivec2 base = glm::ivec2(glm::floor(p));
         const glm::vec4 depths(map.texel(base.x, base.y + 1), map.texel(base.x + 1, base.y + 1),
                                map.texel(base.x + 1, base.y), map.texel(base.x, base.y));
@@ -240,23 +174,23 @@ glm::vec4 pcss(const ShadowMapView& map, const FilterProbe& probe, const gpu::Fr
                const gpu::ShadowViewData& view, const MarginTracker& m) {
     const Receiver r = receiverOf(probe);
     const glm::vec2 dzRange(f.biasParams.x, f.biasParams.y);
-    const float turns = rotationTurns(f.pcssMode.z, probe.pixel);
+    const float turns = gpu::rotationTurns(f.pcssMode.z, probe.pixel);
     const float maxRadius = f.pcssParams.x;
-    const float zReceiver = viewDistance(view, r.depth);
-    const float search = std::min(blockerSearchRadius(view, zReceiver, map.size), maxRadius);
+    const float zReceiver = gpu::viewDistance(view, r.depth);
+    const float search = std::min(gpu::blockerSearchRadius(view, zReceiver, map.size), maxRadius);
     float blockerDepth = 1.0f;
     const uint32_t searchTaps = f.pcssMode.x;
     const float blockers = searchBlockers(map, r, f, searchTaps, std::max(search, 0.5f), turns,
                                           dzRange, m, blockerDepth);
     if (blockers == 0.0f)
         return {1.0f, blockerDepth, 0.0f, 0.0f};
-    const float zBlocker = viewDistance(view, blockerDepth);
+    const float zBlocker = gpu::viewDistance(view, blockerDepth);
     const float radius =
-        std::clamp(penumbraRadius(view, zReceiver, zBlocker, map.size), 0.5f, maxRadius);
+        std::clamp(gpu::penumbraRadius(view, zReceiver, zBlocker, map.size), 0.5f, maxRadius);
     if (blockers == 4.0f * static_cast<float>(searchTaps) && radius <= 1.0f)
         return {0.0f, blockerDepth, blockers, radius};
     const float v = poissonTaps(map, r, f, f.pcssMode.y, radius, turns, dzRange, m);
-    return {snapToExtremes(v), blockerDepth, blockers, radius};
+    return {gpu::snapToExtremes(v), blockerDepth, blockers, radius};
 }
 
 glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterProbe& probe,

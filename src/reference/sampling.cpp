@@ -1,5 +1,7 @@
 #include "reference/sampling.h"
 
+#include "filter_math.h"
+
 #include <cmath>
 #include <limits>
 
@@ -19,13 +21,8 @@ double radicalInverse2(uint32_t i) {
 
 } // namespace
 
-uint32_t hashU32(uint32_t v) { // lowbias32 (a public-domain integer hash); GLSL has a twin
-    v ^= v >> 16;
-    v *= 0x7feb352du;
-    v ^= v >> 15;
-    v *= 0x846ca68bu;
-    v ^= v >> 16;
-    return v;
+uint32_t hashU32(uint32_t v) {
+    return gpu::hashU32(v); // the shaders' own (filter_math.h)
 }
 
 LightCone coneTowards(const Light& light, const glm::dvec3& p) {

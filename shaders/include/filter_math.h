@@ -1,0 +1,168 @@
+// The scalar maths of the shadow filters, written once and compiled twice: as GLSL by the
+// shaders (shadow_pcf.glsl, shadow_pcss.glsl, visibility.comp) and as C++ with GLM by the CPU
+// references (src/reference/filter_reference.cpp), so both run the same code. A bug written here
+// reaches both sides at once: the parity tests cannot see it, the closed-form tests
+// (tests/test_filter_closed_forms.cpp) and the ground truth can.
+// Rules for both languages: float literals carry an f, conversions are explicit, `OUT(T)` and
+// `OUT_ARRAY(T, name, n)` mark out parameters, `IN(T)` passes a struct (by value in GLSL, by
+// reference in C++).
+// clang-format off
+#ifndef PENUMBRA_FILTER_MATH_H
+#define PENUMBRA_FILTER_MATH_H
+#include "gpu_types.h"
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+namespace penumbra::gpu {
+using glm::ivec2;
+using glm::uvec2;
+using glm::vec2;
+using glm::vec3;
+using glm::abs;
+using glm::clamp;
+using glm::cos;
+using glm::cross;
+using glm::dot;
+using glm::exp;
+using glm::floor;
+using glm::fract;
+using glm::mix;
+using glm::sin;
+#define OUT(T) T&
+#define OUT_ARRAY(T, name, n) T (&name)[n]
+#define IN(T) const T&
+#define SHARED inline
+#else
+#define OUT(T) out T
+#define OUT_ARRAY(T, name, n) out T name[n]
+#define IN(T) T
+#define SHARED
+#endif
+
+#define PCF_MAX_SIZE 15
+
+// The comparison of one texel [Williams 1978]: lit (1) when the receiver's depth, corrected by
+// receiver-plane bias to the texel's centre (`offset` = texel centre - receiver, in uv), lies at or
+// in front of the stored depth. The correction is clamped to `dzRange`.
+SHARED float receiverDepthAt(float depth, vec2 gradient, vec2 offset, vec2 dzRange) {
+    return depth + clamp(dot(gradient, offset), dzRange.x, dzRange.y);
+}
+
+SHARED float depthTest(float receiver, float stored) { return receiver <= stored ? 1.0f : 0.0f; }
+
+// A bilinear comparison tap from its four tests in textureGather order (x (i, j+1), y (i+1, j+1),
+// z (i+1, j), w (i, j)) and the tap's sub-texel fraction.
+SHARED float bilinearMix(vec4 t, vec2 f) {
+    return mix(mix(t.w, t.z, f.x), mix(t.x, t.y, f.x), f.y);
+}
+
+// Texel weights of an n-tap kernel (box: 1/n; Gaussian with sigma, normalised) after bilinear
+// taps with sub-texel fraction f: texel k of the (n+1)-wide footprint gets
+// c(k) = g(k)(1 - f) + g(k-1) f.
+SHARED void footprintWeights(uint filterKind, int n, float sigma, float f,
+                             OUT_ARRAY(float, c, PCF_MAX_SIZE + 1)) {
+    float g[PCF_MAX_SIZE];
+    float h = 0.5f * float(n - 1), sum = 0.0f;
+    for (int i = 0; i < n; ++i) {
+        float x = float(i) - h;
+        g[i] = filterKind == FILTER_GAUSSIAN ? exp(-0.5f * x * x / (sigma * sigma)) : 1.0f;
+        sum += g[i];
+    }
+    for (int k = 0; k <= n; ++k)
+        c[k] = ((k < n ? g[k] : 0.0f) * (1.0f - f) + (k > 0 ? g[k - 1] : 0.0f) * f) / sum;
+}
+
+SHARED uint hashU32(uint v) { // lowbias32, a public-domain integer hash
+    v ^= v >> 16u;
+    v *= 0x7feb352du;
+    v ^= v >> 15u;
+    v *= 0x846ca68bu;
+    v ^= v >> 16u;
+    return v;
+}
+
+// Per-pixel rotation of a Poisson disk, in turns [0, 1): none, a hash, or interleaved gradient
+// noise [Jimenez 2014].
+SHARED float rotationTurns(uint rotation, uvec2 pixel) {
+    if (rotation == ROTATION_RANDOM)
+        return float(hashU32(pixel.x * 0x9E3779B9u ^ hashU32(pixel.y))) * (1.0f / 4294967296.0f);
+    if (rotation == ROTATION_IGN)
+        return fract(52.9829189f * fract(0.06711056f * float(pixel.x) + 0.00583715f * float(pixel.y)));
+    return 0.0f;
+}
+
+// `d` rotated by `turns` of a full turn, scaled by `radius`.
+SHARED vec2 rotatedOffset(vec2 d, float turns, float radius) {
+    float angle = 6.28318530718f * turns;
+    float c = cos(angle), s = sin(angle);
+    return radius * vec2(c * d.x - s * d.y, s * d.x + c * d.y);
+}
+
+// Weighted sums of exact 0/1 tests land within float round-off of 0 or 1 when every test agrees;
+// fully lit must read exactly 1 (and fully shadowed 0), so round-off snaps.
+SHARED float snapToExtremes(float v) { return v >= 0.99999f ? 1.0f : (v <= 0.00001f ? 0.0f : v); }
+
+// PCSS [Fernando 2005; seed 001] geometry of one shadow view (docs/techniques.md). Light view
+// distance of a normalised light depth (inverse of the seeds' depth mappings).
+SHARED float viewDistance(IN(ShadowViewData) view, float depth) {
+    float n = view.frustum.x, f = view.frustum.y;
+    return view.texel.y > 0.5f ? n * f / (f - depth * (f - n)) : n + depth * (f - n);
+}
+
+// Texels per world unit laterally at view distance z (u axis).
+SHARED float texelsPerWorld(IN(ShadowViewData) view, float z, uint mapSize) {
+    float worldPerUv = view.frustum.z * (view.texel.y > 0.5f ? z : 1.0f);
+    return float(mapSize) / worldPerUv;
+}
+
+// Search radius (texels): the light seen from the receiver, cut by the near plane, where the
+// nearest possible blocker lies. Perspective: R (z_r - n) / z_r at the near plane;
+// orthographic: (z_r - n) tan(half angle).
+SHARED float blockerSearchRadius(IN(ShadowViewData) view, float zReceiver, uint mapSize) {
+    float n = view.frustum.x, size = view.texel.w;
+    float world = view.texel.y > 0.5f ? size * (zReceiver - n) / zReceiver : (zReceiver - n) * size;
+    return world * texelsPerWorld(view, view.texel.y > 0.5f ? n : 1.0f, mapSize);
+}
+
+// Penumbra radius (texels at the receiver): perspective, the seed's
+// w = (d_receiver - d_blocker) w_light / d_blocker with distances along the light; orthographic,
+// (z_r - z_b) tan(half angle).
+SHARED float penumbraRadius(IN(ShadowViewData) view, float zReceiver, float zBlocker, uint mapSize) {
+    float size = view.texel.w;
+    float world = view.texel.y > 0.5f ? (zReceiver - zBlocker) * size / zBlocker
+                                      : (zReceiver - zBlocker) * size;
+    return world * texelsPerWorld(view, zReceiver, mapSize);
+}
+
+// Receiver-plane depth bias [Tuft 2010; seed 000]: the receiver's light depth as a linear function
+// of shadow-map (u, v) on its tangent plane. `light`: from the surface normal. The three rows of
+// d(u, v, depth)/d(world) at `world` for the projective map S; the plane's normal in (u, v, depth)
+// space is J^-T N, and J^-T is the cofactor matrix of J over det J (see techniques.md).
+SHARED vec2 receiverGradientFromNormal(IN(mat4) S, vec3 world, vec3 normal) {
+    vec4 s = S * vec4(world, 1.0f);
+    vec3 rowW = vec3(S[0][3], S[1][3], S[2][3]);
+    vec3 du = (vec3(S[0][0], S[1][0], S[2][0]) - (s.x / s.w) * rowW) / s.w;
+    vec3 dv = (vec3(S[0][1], S[1][1], S[2][1]) - (s.y / s.w) * rowW) / s.w;
+    vec3 dz = (vec3(S[0][2], S[1][2], S[2][2]) - (s.z / s.w) * rowW) / s.w;
+    float nu = dot(cross(dv, dz), normal);
+    float nv = dot(cross(dz, du), normal);
+    float nz = dot(cross(du, dv), normal);
+    if (abs(nz) <= 1e-6f * (abs(nu) + abs(nv))) return vec2(0.0f); // edge-on to the light
+    return vec2(-nu, -nv) / nz;
+}
+
+// `screen`: from the light-space offsets to two neighbouring pixels (seed 000's 2x2 solve):
+// [dz/du, dz/dv] = [dz/dx, dz/dy] [[du/dx, dv/dx], [du/dy, dv/dy]]^-1.
+SHARED vec2 receiverGradientFromOffsets(vec3 alongX, vec3 alongY) {
+    float det = alongX.x * alongY.y - alongX.y * alongY.x;
+    if (abs(det) < 1e-20f) return vec2(0.0f);
+    return vec2(alongX.z * alongY.y - alongY.z * alongX.y,
+                alongX.x * alongY.z - alongY.x * alongX.z) / det;
+}
+
+#ifdef __cplusplus
+} // namespace penumbra::gpu
+#endif
+#undef SHARED
+#endif
+// clang-format on
