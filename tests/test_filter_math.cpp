@@ -1,0 +1,153 @@
+// The filter maths the shaders and the CPU reference share (shaders/include/filter_math.h),
+// against answers derived independently: a plane's gradient from the inverse Jacobian and from
+// finite differences, weights that sum to one, rotations that keep lengths, the depth mappings'
+// end points.
+#include "core/light_space.h"
+#include "core/projection.h"
+#include "filter_math.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace penumbra;
+
+namespace {
+
+// (u, v, depth) of a world point under the projective map S.
+glm::dvec3 project(const glm::mat4& S, const glm::dvec3& p) {
+    const glm::dvec4 s = glm::dmat4(S) * glm::dvec4(p, 1.0);
+    return glm::dvec3(s) / s.w;
+}
+
+// The plane through p with normal n as it appears in (u, v, depth): the gradient of depth over
+// (u, v), by finite differences along two tangents and a 2x2 solve in double.
+glm::dvec2 gradientByDifferences(const glm::mat4& S, const glm::dvec3& p, const glm::dvec3& n) {
+    const glm::dvec3 t1 = glm::normalize(
+        glm::cross(n, std::abs(n.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0)));
+    const glm::dvec3 t2 = glm::cross(n, t1);
+    const double h = 1e-4;
+    const glm::dvec3 a = (project(S, p + h * t1) - project(S, p - h * t1)) / (2 * h);
+    const glm::dvec3 b = (project(S, p + h * t2) - project(S, p - h * t2)) / (2 * h);
+    // Along each tangent, d depth = g.u du + g.v dv: rows (du_a, dv_a) and (du_b, dv_b).
+    const glm::dmat2 rows(a.x, b.x, a.y, b.y); // glm is column-major: columns (du), (dv)
+    return glm::inverse(rows) * glm::dvec2(a.z, b.z);
+}
+
+} // namespace
+
+TEST(FilterMath, ReceiverPlaneGradientsFromTheNormalAndFromNeighboursAreThePlanes) {
+    const Bounds scene = [] {
+        Bounds b;
+        b.grow({-10, 0, -10});
+        b.grow({10, 4, 10});
+        return b;
+    }();
+    const Light sun{.type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.4f))};
+    const Light spot{.type = LightType::Spot,
+                     .position = {-4, 9, -3},
+                     .direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f)),
+                     .outerConeAngle = 0.6f};
+    for (const Light& light : {sun, spot}) {
+        const glm::mat4 S = textureMatrix() * fitLight(light, scene, 1024).viewProj;
+        for (const glm::dvec3 n :
+             {glm::dvec3(0, 1, 0), glm::normalize(glm::dvec3(0.5, 1, -0.2)),
+              glm::normalize(glm::dvec3(-0.3, 0.8, 0.6)), glm::normalize(glm::dvec3(1, 0.2, 0))}) {
+            const glm::dvec3 p(1.5, 0.7, -2.0);
+            const glm::dvec2 want = gradientByDifferences(S, p, n);
+            const glm::vec2 fromNormal =
+                gpu::receiverGradientFromNormal(S, glm::vec3(p), glm::vec3(n));
+            // The screen-space variant sees two neighbours' offsets along any two tangents.
+            const glm::dvec3 t1 = glm::normalize(glm::cross(n, glm::dvec3(0.2, 0.3, 1.0)));
+            const glm::dvec3 t2 = glm::cross(n, t1);
+            const glm::vec3 alongX(project(S, p + 0.01 * t1) - project(S, p));
+            const glm::vec3 alongY(project(S, p - 0.01 * t2) - project(S, p));
+            const glm::vec2 fromOffsets = gpu::receiverGradientFromOffsets(alongX, alongY);
+            const double scale = std::max(1.0, glm::length(want));
+            const std::string what = std::string(lightTypeName(light.type)) + ", normal " +
+                                     std::to_string(n.x) + " " + std::to_string(n.y) + " " +
+                                     std::to_string(n.z);
+            EXPECT_NEAR(fromNormal.x, want.x, 2e-3 * scale) << what;
+            EXPECT_NEAR(fromNormal.y, want.y, 2e-3 * scale) << what;
+            // Perspective maps bend over the 0.01 step the offsets take.
+            const double tolerance = light.type == LightType::Spot ? 2e-2 : 2e-3;
+            EXPECT_NEAR(fromOffsets.x, want.x, tolerance * scale) << what;
+            EXPECT_NEAR(fromOffsets.y, want.y, tolerance * scale) << what;
+        }
+    }
+    // Edge-on to the light: no plane to speak of.
+    const glm::mat4 S = textureMatrix() * fitLight(sun, scene, 1024).viewProj;
+    const glm::vec3 edgeOn = glm::normalize(glm::cross(sun.direction, glm::vec3(1, 0, 0)));
+    EXPECT_EQ(gpu::receiverGradientFromNormal(S, {0, 1, 0}, edgeOn), glm::vec2(0.0f));
+    EXPECT_EQ(gpu::receiverGradientFromOffsets({1, 2, 3}, {2, 4, 6}), glm::vec2(0.0f));
+}
+
+TEST(FilterMath, KernelWeightsSumToOneAndFollowTheBilinearFraction) {
+    for (const uint32_t kind : {FILTER_BOX, FILTER_GAUSSIAN})
+        for (int n = 1; n <= PCF_MAX_SIZE; n += 2)
+            for (const float f : {0.0f, 0.25f, 0.5f, 0.9f}) {
+                float c[PCF_MAX_SIZE + 1];
+                gpu::footprintWeights(kind, n, 0.3f * float(n), f, c);
+                double sum = 0;
+                for (int k = 0; k <= n; ++k) {
+                    EXPECT_GE(c[k], 0.0f);
+                    sum += c[k];
+                }
+                EXPECT_NEAR(sum, 1.0, 1e-5) << "kind " << kind << " n " << n << " f " << f;
+                if (kind == FILTER_BOX) { // (1 - f)/n, then 1/n, ..., then f/n
+                    EXPECT_NEAR(c[0], (1.0f - f) / float(n), 1e-6f);
+                    EXPECT_NEAR(c[n], f / float(n), 1e-6f);
+                    for (int k = 1; k < n; ++k)
+                        EXPECT_NEAR(c[k], 1.0f / float(n), 1e-6f);
+                } else if (f == 0.5f) { // symmetric about the footprint's centre
+                    for (int k = 0; k <= n; ++k)
+                        EXPECT_NEAR(c[k], c[n - k], 1e-6f);
+                    if (n >= 3) {
+                        EXPECT_GT(c[n / 2], c[0]);
+                    }
+                }
+            }
+    // The bilinear mix of textureGather's (x (i, j+1), y (i+1, j+1), z (i+1, j), w (i, j)).
+    const glm::vec4 tests(0.0f, 1.0f, 1.0f, 0.0f); // the right column passes
+    EXPECT_FLOAT_EQ(gpu::bilinearMix(tests, {0.3f, 0.8f}), 0.3f);
+    EXPECT_FLOAT_EQ(gpu::bilinearMix(glm::vec4(1, 1, 0, 0), {0.7f, 0.4f}), 0.4f); // top row
+}
+
+TEST(FilterMath, RotationsKeepLengthsAndTurnTheRightWay) {
+    const glm::vec2 d(0.6f, -0.3f);
+    for (const float turns : {0.0f, 0.1f, 0.25f, 0.5f, 0.9f}) {
+        const glm::vec2 r = gpu::rotatedOffset(d, turns, 2.5f);
+        EXPECT_NEAR(glm::length(r), 2.5f * glm::length(d), 1e-5f);
+        const double angle = std::atan2(r.y, r.x) - std::atan2(d.y, d.x);
+        EXPECT_NEAR(std::remainder(angle - 2 * M_PI * turns, 2 * M_PI), 0.0, 1e-5);
+    }
+    EXPECT_NEAR(gpu::rotatedOffset({1, 0}, 0.25f, 1.0f).y, 1.0f, 1e-6f); // counter-clockwise
+    for (uint32_t x = 0; x < 64; ++x)
+        for (const uint32_t rotation : {ROTATION_RANDOM, ROTATION_IGN}) {
+            const float t = gpu::rotationTurns(rotation, {x * 37, x * 11 + 5});
+            EXPECT_GE(t, 0.0f);
+            EXPECT_LT(t, 1.0f);
+        }
+    EXPECT_EQ(gpu::rotationTurns(ROTATION_NONE, {17, 3}), 0.0f);
+    EXPECT_NE(gpu::hashU32(1), gpu::hashU32(2));
+}
+
+TEST(FilterMath, PcssGeometryMeetsItsEndPoints) {
+    for (const float perspective : {0.0f, 1.0f}) {
+        const gpu::ShadowViewData view{.frustum = {2.0f, 30.0f, 1.5f, 1.5f},
+                                       .texel = {0.0f, perspective, 0.0f, 0.4f}};
+        EXPECT_NEAR(gpu::viewDistance(view, 0.0f), 2.0f, 1e-5f);  // depth 0: the near plane
+        EXPECT_NEAR(gpu::viewDistance(view, 1.0f), 30.0f, 1e-4f); // depth 1: the far plane
+        // A receiver on the near plane has nothing to search; a blocker at the receiver casts
+        // no penumbra.
+        EXPECT_NEAR(gpu::blockerSearchRadius(view, 2.0f, 1024), 0.0f, 1e-5f);
+        EXPECT_NEAR(gpu::penumbraRadius(view, 9.0f, 9.0f, 1024), 0.0f, 1e-5f);
+        // Texels per world unit: the map's texels over what one uv unit spans there.
+        const float z = 6.0f, spans = perspective > 0.5f ? 1.5f * z : 1.5f;
+        EXPECT_NEAR(gpu::texelsPerWorld(view, z, 1024), 1024.0f / spans, 1e-3f);
+    }
+    EXPECT_EQ(gpu::snapToExtremes(0.999995f), 1.0f);
+    EXPECT_EQ(gpu::snapToExtremes(0.99f), 0.99f);
+    EXPECT_EQ(gpu::snapToExtremes(0.000005f), 0.0f);
+}
