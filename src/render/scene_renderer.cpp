@@ -1,11 +1,13 @@
 // SceneRenderer (include/penumbra/renderer.h): one frame, start to end.
-//   1. The scene is sanitized and uploaded once (constructor).
-//   2. Per render: the lights with the options' size overrides, one shadow view per light that
-//      casts a shadow map, the camera; FrameData and LightData go into the next ring slot.
-//   3. Targets (G-buffer, shadow maps, visibility, colour, readback) are made when the sizes or
-//      the technique's maps change, and kept otherwise.
-//   4. recordFrame (render/frame.cpp) records shadow passes, post passes, G-buffer, visibility
-//      and composite; a warm-up frame, then the timed frames.
+//   1. The scene is sanitized and uploaded once (constructor), with a ring of per-frame slots.
+//   2. Per render: the lights with the options' size overrides; for each light that casts a
+//      shadow map, its shadow views (one today) and their records; the camera. FrameData,
+//      LightData[] and ShadowViewData[] go into the next ring slot.
+//   3. Targets (the technique's maps, an array layer per view; G-buffer; visibility; colour;
+//      readback) are made when the sizes or the technique's maps change, and kept otherwise.
+//   4. recordFrame (render/frame.cpp) records the shadow passes and the technique's own depth
+//      passes, its post passes, the G-buffer, visibility and composite; a warm-up frame, then
+//      the timed frames.
 //   5. recordReadback copies colour, visibility, position and normal into one buffer.
 #include "core/projection.h"
 #include "penumbra/error.h"
