@@ -122,8 +122,8 @@ struct ShadowPush {      // push constants of shadow_depth.vert
     vec4 bias;           // x: constant depth offset
 };
 
-// A material as one draw sees it: push constants of gbuffer.frag and, after ShadowPush, of the
-// alpha-tested shadow and peel passes.
+// A material as one draw sees it: push constants of gbuffer.frag and, after ShadowPush (see
+// CasterPush), of the alpha-tested shadow passes and of a technique's extra depth passes.
 struct MaterialPush {
     vec4 baseColor;      // linear RGBA factor
     float alphaCutoff;
@@ -140,6 +140,11 @@ struct MaterialPush {
 
 struct PostPassPush {    // push constants of every shadow-map post pass
     uvec4 size;          // xy: the shadow map's size in texels
+};
+
+struct CasterPush {      // push constants of shadow_mask.frag and shadow_peel.frag
+    ShadowPush shadow;
+    MaterialPush material;
 };
 
 struct ProbeReceiver {   // std430, filter_probe.comp's input (Renderer::probeTechnique)
@@ -182,6 +187,7 @@ static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
               sizeof(PostPassPush) == 16 && sizeof(ProbePush) == 16);
 static_assert(sizeof(ProbeReceiver) == 32 && offsetof(ProbeReceiver, gradientPixel) == 16);
 static_assert(sizeof(MaterialPush) == 32 && offsetof(MaterialPush, alphaCutoff) == 16);
+static_assert(sizeof(CasterPush) == 112 && offsetof(CasterPush, material) == 80);
 } // namespace penumbra::gpu
 #endif
 

@@ -43,11 +43,6 @@ void bindGeometry(VkCommandBuffer cmd, const GpuScene& scene) {
     vkCmdBindIndexBuffer(cmd, scene.indices.get(), 0, VK_INDEX_TYPE_UINT32);
 }
 
-struct CasterPush {
-    gpu::ShadowPush shadow;
-    gpu::MaterialPush material;
-};
-
 // The layer of a map that a technique's extra depth pass reads, and the pipeline that reads it.
 struct ReadMap {
     VkImageView layer;
@@ -73,7 +68,7 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
     setViewport(cmd, image.width, image.height);
     bindGeometry(cmd, scene);
     const bool perspective = view.projection.perspective;
-    CasterPush push{
+    gpu::CasterPush push{
         .shadow = {.viewProj = view.projection.viewProj, .bias = {s.constantBias, 0, 0, 0}}};
     auto bind = [&](VkPipeline pipeline) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
