@@ -71,7 +71,7 @@ void main() {
         vec3 world = worldPosition(frame.invViewProj, p, size, depth);
         vec3 normal = normalize(texelFetch(gNormal, p, 0).xyz);
         LightData light = lights[push.light.x];
-        ShadowViewData view = views[push.light.w];
+        ShadowViewData view = views[shadowViewOf(light, world)];
         bool inside;
         Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
         v = inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, push.light.z,

@@ -173,7 +173,7 @@ TEST_F(QualityTest, HardMatchesTheRadiusZeroGroundTruthOutsideEdges) {
     applyLightSizeOverrides(scene, -1.0f, 0.0f);
     const ReferenceResult truth = computeReference(scene, r, {.samples = 1});
     ASSERT_EQ(truth.visibility.size(), 1u);
-    const std::vector<uint8_t> mask = lightMask(scene, r, r.lights[0]);
+    const std::vector<uint8_t> mask = lightMask(scene.lights[r.lights[0].sceneLight], r);
     const MetricLayer layer{r.visibility[0], truth.visibility[0], mask};
     const ErrorMetrics m = computeMetrics(r.width, r.height, std::span(&layer, 1));
     std::printf("hard vs radius-0 truth: rmse %.4f, misclassified %.4f%%, outside edges %.4f%%, "
@@ -275,10 +275,10 @@ TEST_F(ShadowTest, ASceneRendererGivesWhatAFreshRenderGivesWhateverCameBefore) {
 }
 
 TEST_F(ShadowTest, EveryLightFiltersItsOwnShadowView) {
-    // Four lights, three with a shadow map (each a view, a layer of the technique's maps): each
-    // light's visibility must be what a render with that light alone gives, bit for bit, for a
-    // technique whose maps have post passes (second-depth) and one that reads the view's
-    // geometry (PCSS).
+    // Five lights, four with a shadow map (the sun and the spot a view each, the bulb six cube
+    // faces: layers of the technique's maps), one without: each light's visibility must be what
+    // a render with that light alone gives, bit for bit, for a technique whose maps have post
+    // passes (second-depth) and one that reads the view's geometry (PCSS).
     Scene all = loadScene("builtin:showcase");
     all.lights.push_back({.name = "bulb", .type = LightType::Point, .position = {2, 4, 2}});
     all.lights.push_back(loadScene("builtin:spot").lights[0]);
@@ -286,11 +286,16 @@ TEST_F(ShadowTest, EveryLightFiltersItsOwnShadowView) {
                           .type = LightType::Directional,
                           .direction = glm::normalize(glm::vec3(-0.8f, -0.5f, -0.2f)),
                           .angularDiameter = 3.0f});
+    all.lights.push_back({.name = "fill",
+                          .type = LightType::Point,
+                          .position = {-2, 3, 4},
+                          .castsShadow = false});
     for (const Technique technique : {Technique::SecondDepth, Technique::Pcss}) {
         const RenderOptions o{
             .width = 128, .height = 96, .shadowMapSize = 512, .technique = technique};
         const RenderResult r = render(all, o);
-        ASSERT_EQ(r.visibility.size(), 3u);
+        ASSERT_EQ(r.visibility.size(), 4u);
+        EXPECT_EQ(r.lights[4].visibilityIndex, -1);
         for (const LightShadow& s : r.lights) {
             if (s.visibilityIndex < 0)
                 continue;

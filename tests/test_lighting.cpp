@@ -255,12 +255,17 @@ TEST_F(LightingTest, PointLightFallsOffWithDistanceAndRange) {
 }
 
 TEST_F(LightingTest, LightsOfEveryTypeAddUp) {
-    // A shadowing sun and spot (visibility layers 0 and 1) and a point light (no shadow map).
-    const Scene scene = groundUnderSlab({spotLight(), pointLight(), sunLight()});
+    // A shadowing spot, point light and sun (visibility layers 0, 1 and 2) and a point light
+    // that casts no shadow (no visibility layer: fully lit).
+    Light fill = pointLight();
+    fill.castsShadow = false;
+    fill.position += glm::vec3(1.5f, 0.5f, -1.0f);
+    const Scene scene = groundUnderSlab({spotLight(), pointLight(), sunLight(), fill});
     const CompositeKnobs k{.ambient = 0.1, .shadowIntensity = 0.8, .exposureEv = -1.0};
     const RenderResult r = renderWith(scene, k);
-    ASSERT_EQ(r.visibility.size(), 2u);
-    ASSERT_EQ(r.lights.size(), 3u);
-    EXPECT_EQ(r.lights[1].visibilityIndex, -1) << "point lights cast no shadow yet";
+    ASSERT_EQ(r.visibility.size(), 3u);
+    ASSERT_EQ(r.lights.size(), 4u);
+    EXPECT_EQ(r.lights[1].visibilityIndex, 1);
+    EXPECT_EQ(r.lights[3].visibilityIndex, -1);
     expectImageFollowsTheContract(scene, r, k, "spot + point + sun", 300);
 }

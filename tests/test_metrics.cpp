@@ -249,27 +249,33 @@ TEST(MetricsDeathTest, SizeMismatchIsAProgrammerError) {
     EXPECT_DEATH(im.metrics(), "mask size");
 }
 
-TEST(MetricsMask, CountsPixelsFacingTheLightInsideItsFrustumOnly) {
-    // worldToShadow = identity: (u, v, depth) = (x, y, z), so the frustum is the unit cube.
-    Scene scene;
-    scene.lights.push_back({.type = LightType::Directional, .direction = {0, 0, 1}}); // towards +z
-    scene.lights.push_back({.type = LightType::Spot, .position = {0.5f, 0.5f, -4.0f}});
+TEST(MetricsMask, CountsPixelsTheLightReachesJudgedFromTheLightItself) {
+    // A sun travelling +z; a spot at the origin pointing +z with a 0.3 rad outer cone and range
+    // 10; a point light at the origin with range 10; one without a range.
+    const Light sun{.type = LightType::Directional, .direction = {0, 0, 1}};
+    const Light spot{.type = LightType::Spot,
+                     .direction = {0, 0, 1},
+                     .range = 10.0f,
+                     .innerConeAngle = 0.2f,
+                     .outerConeAngle = 0.3f};
+    const Light point{.type = LightType::Point, .range = 10.0f};
+    const Light endless{.type = LightType::Point};
+    const float edge = 5.0f * std::tan(0.3f); // the cone's radius at z = 5
     struct Pixel {
         glm::vec3 p, n;
-        uint8_t sun, spot; // expected mask for each light
+        uint8_t sun, spot, point, endless; // expected mask for each light
     };
     const Pixel pixels[] = {
-        {{0.5f, 0.5f, 0.5f}, {0, 0, -1}, 1, 1},    // inside, facing both lights
-        {{0.0f, 0.0f, 0.0f}, {0, 0, -1}, 1, 1},    // on the cube's corner: inside
-        {{1.0f, 1.0f, 1.0f}, {0, 0, -1}, 1, 1},    // the opposite corner
-        {{0.5f, 0.5f, 0.5f}, {0, 0, 1}, 0, 0},     // facing away
-        {{0.5f, 0.5f, 0.5f}, {1, 0, 0}, 0, 0},     // edge-on (N.L = 0 for the sun)
-        {{-0.001f, 0.5f, 0.5f}, {0, 0, -1}, 0, 0}, // just left of the frustum
-        {{1.001f, 0.5f, 0.5f}, {0, 0, -1}, 0, 0},  // just right
-        {{0.5f, -0.001f, 0.5f}, {0, 0, -1}, 0, 0}, // below
-        {{0.5f, 1.001f, 0.5f}, {0, 0, -1}, 0, 0},  // above
-        {{0.5f, 0.5f, -0.001f}, {0, 0, -1}, 0, 0}, // nearer than the near plane
-        {{0.5f, 0.5f, 1.001f}, {0, 0, -1}, 0, 0},  // beyond the far plane
+        {{0, 0, 5}, {0, 0, -1}, 1, 1, 1, 1},                   // on the axis, facing all
+        {{0, 0, 5}, {0, 0, 1}, 0, 0, 0, 0},                    // facing away
+        {{0, 0, 5}, {1, 0, 0}, 0, 0, 0, 0},                    // edge-on
+        {{0, 0.99f * edge, 5}, {0, 0, -1}, 1, 1, 1, 1},        // just inside the cone
+        {{0, 1.01f * edge, 5}, {0, 0, -1}, 1, 0, 1, 1},        // just outside it
+        {{0, 0, 9.99f}, {0, 0, -1}, 1, 1, 1, 1},               // just inside the range
+        {{0, 0, 10.01f}, {0, 0, -1}, 1, 0, 0, 1},              // just beyond it
+        {{0, 0, -5}, {0, 0, 1}, 0, 0, 1, 1},                   // behind the spot, facing back
+        {{6, 0, 0}, {-1, 0, 0}, 0, 0, 1, 1},                   // beside: only the point lights
+        {{0, 0, 300}, {0, 0, -1}, 1, 0, 0, 1},                 // far away
     };
     RenderResult g{.width = std::size(pixels), .height = 1};
     for (const Pixel& px : pixels)
@@ -278,12 +284,15 @@ TEST(MetricsMask, CountsPixelsFacingTheLightInsideItsFrustumOnly) {
     for (int c = 0; c < 3; ++c) // and a background pixel
         g.position.push_back(std::nanf("")), g.normal.push_back(std::nanf(""));
     g.width += 1;
-    for (uint32_t light : {0u, 1u}) {
-        const std::vector<uint8_t> mask = lightMask(scene, g, {.sceneLight = light});
+    const Light* lights[] = {&sun, &spot, &point, &endless};
+    for (int l = 0; l < 4; ++l) {
+        const std::vector<uint8_t> mask = lightMask(*lights[l], g);
         ASSERT_EQ(mask.size(), g.width);
-        for (size_t i = 0; i < std::size(pixels); ++i)
-            EXPECT_EQ(mask[i], light == 0 ? pixels[i].sun : pixels[i].spot)
-                << "light " << light << ", pixel " << i;
+        for (size_t i = 0; i < std::size(pixels); ++i) {
+            const uint8_t want[] = {pixels[i].sun, pixels[i].spot, pixels[i].point,
+                                    pixels[i].endless};
+            EXPECT_EQ(mask[i], want[l]) << "light " << l << ", pixel " << i;
+        }
         EXPECT_EQ(mask.back(), 0) << "background";
     }
 }

@@ -216,6 +216,27 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 2u);
 }
 
+TEST(TechniqueModules, CubeGuardBandsHoldEveryKernel) {
+    // A point light's face keeps, beyond its 90 degrees, every texel a kernel centred inside it
+    // reads: the footprint, the bilinear tap's 1.5 texels, and the normal offset.
+    for (const TechniqueRow& row : comparisonRows("")) {
+        for (const char* normal : {"0", "1.5", "4"}) {
+            ParameterValues p;
+            for (const auto& [key, value] : row.sets)
+                p.set(key, value);
+            p.set("bias.normal", normal);
+            const shadows::TechniqueModule& m = shadows::moduleOf(row.technique);
+            const double need = m.blurRadiusTexels(p) + 1.5 + p.number("bias.normal");
+            const uint32_t guard = shadows::cubeGuardTexels(m, p);
+            EXPECT_GE(guard, need) << row.name << ", bias.normal " << normal;
+            EXPECT_LE(guard, need + 3.0) << row.name << ": a wider band costs resolution";
+        }
+    }
+    ParameterValues wide;
+    wide.set("pcss.maxRadius", "100");
+    EXPECT_EQ(shadows::cubeGuardTexels(shadows::pcssModule(), wide), 101u + 2u + 1u); // normal 0.3
+}
+
 TEST(TechniqueModules, ChoiceListsAreTheShadersOwnTables) {
     const std::pair<const char*, std::span<const char* const>> lists[] = {
         {"pcf.filter", gpu::kFilterChoices},

@@ -46,7 +46,7 @@ RenderResult renderRow(const Scene& scene, uint32_t w, uint32_t h, const Techniq
 }
 
 ErrorMetrics errorOf(const Scene& scene, const RenderResult& r, const ReferenceResult& truth) {
-    const std::vector<uint8_t> mask = lightMask(scene, r, r.lights[0]);
+    const std::vector<uint8_t> mask = lightMask(scene.lights[r.lights[0].sceneLight], r);
     const MetricLayer layer{r.visibility[0], truth.visibility[0], mask};
     return computeMetrics(r.width, r.height, std::span(&layer, 1));
 }

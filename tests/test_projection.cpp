@@ -1,10 +1,12 @@
 // The conventions of src/core/projection.h, tested by where points of each view volume land.
 #include "core/light_space.h"
 #include "core/projection.h"
+#include "filter_math.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 using namespace penumbra;
 
@@ -172,4 +174,115 @@ TEST(Projection, AutomaticCameraFramesTheWholeScene) {
         EXPECT_LT(std::abs(v.x) / distance, std::tan(0.5f * c.yfov)) << "corner " << i;
     }
     EXPECT_LT(c.znear, c.zfar);
+}
+
+namespace {
+
+// Directions on a fine sphere grid, the axes, the face borders and the cube's corners.
+std::vector<glm::vec3> testDirections() {
+    std::vector<glm::vec3> d;
+    for (int i = 0; i < 64; ++i)
+        for (int j = 0; j <= 32; ++j) {
+            const float phi = 6.2831853f * (static_cast<float>(i) + 0.37f) / 64.0f;
+            const float theta = 3.1415927f * static_cast<float>(j) / 32.0f;
+            d.push_back({std::sin(theta) * std::cos(phi), std::cos(theta),
+                         std::sin(theta) * std::sin(phi)});
+        }
+    for (int x = -1; x <= 1; ++x)
+        for (int y = -1; y <= 1; ++y)
+            for (int z = -1; z <= 1; ++z)
+                if (x || y || z)
+                    d.push_back(glm::normalize(glm::vec3(x, y, z)));
+    return d;
+}
+
+} // namespace
+
+TEST(LightSpace, CubeFacesHoldEveryDirectionInsideTheirGuardBand) {
+    const Light bulb{.type = LightType::Point, .position = {1.0f, 2.0f, -3.0f}};
+    const Bounds scene{.min = {-20, -1, -25}, .max = {15, 9, 10}};
+    const uint32_t size = 256, guard = 20;
+    const float nearest = 0.5f;
+    const std::vector<LightProjection> faces =
+        fitLightViews(bulb, scene, size, {.guardTexels = guard, .nearestSurface = nearest});
+    ASSERT_EQ(faces.size(), kCubeFaces);
+    const char* names[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    const float tanHalf = 256.0f / (256.0f - 40.0f);
+    for (uint32_t f = 0; f < kCubeFaces; ++f) {
+        EXPECT_STREQ(faces[f].name, names[f]);
+        EXPECT_TRUE(faces[f].perspective);
+        EXPECT_NEAR(faces[f].yfov, 2.0f * std::atan(tanHalf), 1e-6f);
+        EXPECT_NEAR(faces[f].texelWorldSize, 2.0f * tanHalf / 256.0f, 1e-7f);
+    }
+    const float inner = static_cast<float>(guard) / static_cast<float>(size);
+    for (const glm::vec3& d : testDirections()) {
+        const uint32_t f = gpu::cubeFace(d);
+        const LightProjection& face = faces[f];
+        // The chosen face holds the direction inside its 90 degrees (the guard band stays free
+        // for the kernels), at every distance between the nearest surface and the far plane.
+        for (float distance : {nearest, 3.0f, 0.999f * face.farPlane}) {
+            const glm::vec3 uvz =
+                project(textureMatrix() * face.viewProj, bulb.position + distance * d);
+            EXPECT_GE(uvz.x, inner - 1e-5f) << names[f] << " " << d.x << "," << d.y << "," << d.z;
+            EXPECT_LE(uvz.x, 1.0f - inner + 1e-5f) << names[f];
+            EXPECT_GE(uvz.y, inner - 1e-5f) << names[f];
+            EXPECT_LE(uvz.y, 1.0f - inner + 1e-5f) << names[f];
+            EXPECT_GE(uvz.z, 0.0f) << names[f] << ": a surface at " << distance << " is clipped";
+            EXPECT_LE(uvz.z, 1.0f) << names[f];
+        }
+        // The face's whole frustum, guard band included, starts beyond the near plane: even the
+        // far corner of the guard band at the nearest surface's distance is kept.
+        glm::vec3 cornerDir(0.0f);
+        const int axis = static_cast<int>(f / 2);
+        cornerDir[axis] = f % 2 == 0 ? 1.0f : -1.0f;
+        cornerDir[(axis + 1) % 3] = tanHalf;
+        cornerDir[(axis + 2) % 3] = tanHalf;
+        const glm::vec3 corner = project(textureMatrix() * face.viewProj,
+                                         bulb.position + nearest * glm::normalize(cornerDir));
+        EXPECT_GE(corner.z, 0.0f) << names[f];
+    }
+    // The far planes reach the scene's farthest corner along each axis.
+    EXPECT_NEAR(faces[0].farPlane, 14.0f * 1.001f, 1e-3f);  // +x: 15 - 1
+    EXPECT_NEAR(faces[1].farPlane, 21.0f * 1.001f, 1e-3f);  // -x: 1 + 20
+    EXPECT_NEAR(faces[2].farPlane, 7.0f * 1.001f, 1e-3f);   // +y
+    EXPECT_NEAR(faces[3].farPlane, 3.0f * 1.001f, 1e-3f);   // -y
+    EXPECT_NEAR(faces[4].farPlane, 13.0f * 1.001f, 1e-3f);  // +z
+    EXPECT_NEAR(faces[5].farPlane, 22.0f * 1.001f, 1e-3f);  // -z
+}
+
+TEST(LightSpace, CubeFacesHonourRangeAndCapTheGuardBand) {
+    const Light bulb{.type = LightType::Point, .position = {0, 0, 0}, .range = 4.0f};
+    const Bounds scene{.min = {-50, -50, -50}, .max = {50, 50, 50}};
+    const std::vector<LightProjection> faces =
+        fitLightViews(bulb, scene, 64, {.guardTexels = 1000, .nearestSurface = 1.0f});
+    for (const LightProjection& face : faces) {
+        EXPECT_NEAR(face.farPlane, 4.0f * 1.001f, 1e-4f) << face.name;
+        // A guard band past a quarter of the map is capped there: tangent 2.
+        EXPECT_NEAR(std::tan(0.5f * face.yfov), 2.0f, 1e-5f) << face.name;
+    }
+    // No surface known: the near plane keeps far / near at 1e4.
+    const auto unknown = fitLightViews(bulb, scene, 64, {.nearestSurface = INFINITY});
+    EXPECT_NEAR(unknown[0].nearPlane, unknown[0].farPlane * 1e-4f, 1e-7f);
+    // A sun and a spot have one view.
+    EXPECT_EQ(fitLightViews({.type = LightType::Directional}, scene, 64, {}).size(), 1u);
+    EXPECT_EQ(fitLightViews({.type = LightType::Spot, .position = {0, 60, 0}}, scene, 64, {}).size(),
+              1u);
+}
+
+TEST(LightSpace, NearestSurfaceDistanceFindsFacesEdgesAndCorners) {
+    Scene scene;
+    auto vertex = [&](glm::vec3 p) {
+        scene.vertices.push_back({.position = p});
+        return static_cast<uint32_t>(scene.vertices.size() - 1);
+    };
+    // One triangle in the plane z = 0 with corners (0,0), (4,0), (0,4); a far one for company.
+    scene.indices = {vertex({0, 0, 0}), vertex({4, 0, 0}), vertex({0, 4, 0}),
+                     vertex({100, 0, 0}), vertex({101, 0, 0}), vertex({100, 1, 0})};
+    EXPECT_NEAR(nearestSurfaceDistance(scene, {1, 1, 3}), 3.0f, 1e-5f);            // face
+    EXPECT_NEAR(nearestSurfaceDistance(scene, {2, -2, 0}), 2.0f, 1e-5f);           // edge y = 0
+    EXPECT_NEAR(nearestSurfaceDistance(scene, {3, 3, 0}), std::sqrt(2.0f), 1e-5f); // hypotenuse
+    EXPECT_NEAR(nearestSurfaceDistance(scene, {-3, -4, 0}), 5.0f, 1e-5f);          // corner
+    EXPECT_NEAR(nearestSurfaceDistance(scene, {7, 0, 4}), 5.0f, 1e-5f);            // corner (4,0)
+    EXPECT_NEAR(nearestSurfaceDistance(scene, {100.5f, 0.2f, -2}), 2.0f, 1e-5f);   // the far one
+    EXPECT_EQ(nearestSurfaceDistance(Scene{}, {0, 0, 0}), INFINITY);
 }

@@ -46,7 +46,7 @@ ErrorMetrics measure(const Scene& scene, Technique technique) {
         o.parameters.assign(s);
     const RenderResult r = sharedRenderer().render(scene, o);
     const ReferenceResult truth = computeReference(scene, r, {.samples = 1});
-    const std::vector<uint8_t> mask = lightMask(scene, r, r.lights[0]);
+    const std::vector<uint8_t> mask = lightMask(scene.lights[r.lights[0].sceneLight], r);
     const MetricLayer layer{r.visibility[0], truth.visibility[0], mask};
     return computeMetrics(r.width, r.height, std::span(&layer, 1));
 }

@@ -36,7 +36,7 @@ inline Truth groundTruth(const TruthSetup& setup) {
     t.gbuffer = sharedRenderer().render(
         t.scene, {.width = setup.width, .height = setup.height, .frames = 1});
     t.reference = computeReference(t.scene, t.gbuffer, {.samples = setup.samples});
-    t.mask = lightMask(t.scene, t.gbuffer, t.gbuffer.lights[0]);
+    t.mask = lightMask(t.scene.lights[t.gbuffer.lights[0].sceneLight], t.gbuffer);
     return t;
 }
 

@@ -93,7 +93,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     for (const LightShadow& s : gbuffer.lights)
         if (s.visibilityIndex >= 0) {
             report.lights.push_back(describeLight(lit.lights[s.sceneLight]));
-            masks.push_back(lightMask(lit, gbuffer, s));
+            masks.push_back(lightMask(lit.lights[s.sceneLight], gbuffer));
         }
     if (!truth.visibility.empty())
         report.referenceVisibilityPng = encodePng(visibilityImage(w, h, truth.visibility[0]));

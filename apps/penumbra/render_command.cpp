@@ -43,12 +43,6 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     std::fprintf(stderr, "penumbra: %s on %s (%s), %ux%u, shadow map %u, technique %s\n",
                  scene.name.c_str(), device.name.c_str(), device.driverName.c_str(), options.width,
                  options.height, options.shadowMapSize, args.technique.c_str());
-    for (const Light& l : scene.lights)
-        if (l.castsShadow && !castsShadowMap(l))
-            std::fprintf(stderr,
-                         "penumbra: note: point light '%s' lights the scene but casts no "
-                         "shadow (point-light shadows are not in this build)\n",
-                         l.name.c_str());
     const RenderResult result = renderer.render(scene, options, [](const std::string& stage) {
         std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
     });

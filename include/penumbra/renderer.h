@@ -39,13 +39,27 @@ struct PassTime {
     std::vector<double> frameMs; // every timed frame
 };
 
+// One shadow view of a light (a layer of the shadow maps): its projection.
+struct ShadowViewInfo {
+    std::string name;       // "" for a light's only view; "+x", "-x", ... for cube faces
+    uint32_t layer = 0;     // its layer in the shadow maps
+    std::string projection; // "orthographic" / "perspective"
+    float nearPlane = 0.0f, farPlane = 0.0f;
+    float texelWorldSize = 0.0f;   // at unit distance for perspective
+    float fovDegrees = 0.0f;       // perspective: the full field of view (cube faces: 90 + guard)
+    glm::mat4 worldToShadow{1.0f}; // T x view-projection: world -> (u, v, depth) * w
+};
+
 struct LightShadow {
     uint32_t sceneLight = 0;  // index into Scene::lights
     int visibilityIndex = -1; // index into RenderResult::visibility; -1: casts no shadow
-    std::string projection;   // "orthographic" / "perspective" / "none"
+    std::string projection;   // "orthographic" / "perspective" / "cube" / "none"
+    // The first view's (the only one's for suns and spots):
     float nearPlane = 0.0f, farPlane = 0.0f;
     float texelWorldSize = 0.0f;   // at unit distance for perspective
     glm::mat4 worldToShadow{1.0f}; // T x light view-projection: world -> (u, v, depth) * w
+    std::vector<ShadowViewInfo> views;
+    uint32_t guardTexels = 0; // cube faces: texels beyond 90 degrees on each side
 };
 
 struct RenderResult {

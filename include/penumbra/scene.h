@@ -140,9 +140,16 @@ inline constexpr float kMaxCoordinate = 1e15f;
 size_t dropInvalidTriangles(Scene& scene);
 
 // Whether `light` gets a shadow map, and so a visibility image and a ground truth: the one rule
-// the renderer, the reference and the CLI share. Point lights light the scene but have no
-// shadow map yet (cube maps come with issue 11).
+// the renderer, the reference and the CLI share (every light type: suns and spots get one view,
+// point lights a cube of six).
 bool castsShadowMap(const Light& light);
+// How many shadow views (map layers) it takes: 0 without a shadow map, 6 cube faces for a point
+// light, 1 otherwise.
+uint32_t shadowViewCount(const Light& light);
+
+// The distance from `p` to the nearest point of any triangle (infinity for none): how near a
+// light's shadow views may put their near plane without clipping a caster.
+float nearestSurfaceDistance(const Scene& scene, const glm::vec3& p);
 
 // --light-radius / --light-angle: negative values leave the scene's sizes alone.
 void applyLightSizeOverrides(Scene& scene, float radius, float angleDegrees);

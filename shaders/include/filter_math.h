@@ -98,6 +98,16 @@ SHARED vec2 rotatedOffset(vec2 d, float turns, float radius) {
     return radius * vec2(c * d.x - s * d.y, s * d.x + c * d.y);
 }
 
+// The face of a point light's cube that holds direction `d` from the light: its major axis, in
+// the order of src/core/light_space.h (+x, -x, +y, -y, +z, -z). Ties go to the earlier axis;
+// the faces' guard bands make either choice correct.
+SHARED uint cubeFace(vec3 d) {
+    vec3 a = abs(d);
+    if (a.x >= a.y && a.x >= a.z) return d.x >= 0.0f ? 0u : 1u;
+    if (a.y >= a.z) return d.y >= 0.0f ? 2u : 3u;
+    return d.z >= 0.0f ? 4u : 5u;
+}
+
 // Weighted sums of exact 0/1 tests land within float round-off of 0 or 1 when every test agrees;
 // fully lit must read exactly 1 (and fully shadowed 0), so round-off snaps.
 SHARED float snapToExtremes(float v) { return v >= 0.99999f ? 1.0f : (v <= 0.00001f ? 0.0f : v); }

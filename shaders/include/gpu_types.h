@@ -103,7 +103,8 @@ struct LightData {       // std430 storage buffer, one per scene light
     vec4 cone;           // x cos(outer), y cos(inner), w visibility layer (-1: no shadow map)
     vec4 bias;           // x constant, y slope (both applied in the shadow pass), z normal offset
                          // (texels)
-    uvec4 views;         // x first shadow view (ShadowViewData), y how many (0: no shadow map)
+    uvec4 views;         // x first shadow view (ShadowViewData), y how many (0: no shadow map;
+                         // 6 for a point light's cube faces, in cubeFace() order)
 };
 
 // One shadow view: a projection of a light into one layer of the technique's maps (a light may
@@ -157,7 +158,8 @@ struct ProbePush {       // push constants of filter_probe.comp
 };
 
 struct VisibilityPush {  // push constants of visibility.comp
-    uvec4 light;         // x light index, y its visibility layer, z shadow-map size, w its view
+    uvec4 light;         // x light index, y its visibility layer, z shadow-map size, w its first
+                         // view (the shader picks the view of each pixel: shadowViewOf)
 };
 
 #ifdef __cplusplus

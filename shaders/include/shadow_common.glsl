@@ -3,6 +3,7 @@
 #ifndef PENUMBRA_SHADOW_COMMON_GLSL
 #define PENUMBRA_SHADOW_COMMON_GLSL
 #include "gpu_types.h"
+#include "filter_math.h"
 
 struct ShadowCoord {
     vec2 uv;       // shadow-map texture coordinates, [0,1]^2 inside the map
@@ -16,14 +17,23 @@ vec3 directionToLight(LightData light, vec3 world) {
                : normalize(light.positionType.xyz - world);
 }
 
+// The light's shadow view that holds `world`: a point light's cube face (by the direction from
+// the light), else the light's only view.
+uint shadowViewOf(LightData light, vec3 world) {
+    uint first = light.views.x;
+    if (light.positionType.w == float(LIGHT_POINT))
+        return first + cubeFace(world - light.positionType.xyz);
+    return first;
+}
+
 // Normal offset [Holbert 2010 'Normal offset shadows']: move the receiver along its normal by
 // bias.z texels of the view, scaled by 1 - N.L (none where the light is head-on, most at grazing
 // angles).
 vec3 offsetReceiver(LightData light, ShadowViewData view, vec3 world, vec3 normal) {
     float nDotL = max(dot(normal, directionToLight(light, world)), 0.0);
     float texelWorld = view.texel.x;
-    if (view.texel.y > 0.5) // perspective: texels grow with distance along the light axis
-        texelWorld *= max(dot(world - light.positionType.xyz, light.directionRange.xyz), 0.0);
+    if (view.texel.y > 0.5) // perspective: texels grow with distance along the view's axis (w)
+        texelWorld *= max((view.shadowMatrix * vec4(world, 1.0)).w, 0.0);
     return world + normal * (light.bias.z * texelWorld * (1.0 - nDotL));
 }
 

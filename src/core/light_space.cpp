@@ -48,7 +48,8 @@ LightProjection fitDirectional(const Light& light, const Bounds& scene, uint32_t
     return p;
 }
 
-LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSize) {
+LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSize,
+                        float nearestSurface) {
     const glm::vec3 dir = glm::normalize(light.direction);
     LightProjection p;
     p.perspective = true;
@@ -65,13 +66,66 @@ LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSiz
     if (light.range > 0.0f)
         farthest = std::min(farthest, light.range);
     p.farPlane = std::max(farthest * 1.001f, 1e-3f);
-    // A light inside the scene bounds sees geometry at any distance: keep depth precision
-    // bounded (far/near <= 1e4) rather than put the near plane at zero.
+    // A light inside the scene bounds has bounds corners behind it; the nearest surface then
+    // places the near plane (a surface at that distance lies at least that times the cosine of
+    // the frustum's corner ray along the axis). Without either, keep depth precision bounded
+    // (far/near <= 1e4) rather than put the near plane at zero.
+    if (nearest <= 0.0f && std::isfinite(nearestSurface)) {
+        const float t = std::tan(half);
+        nearest = std::max(nearest, 0.99f * nearestSurface / std::sqrt(1.0f + 2.0f * t * t));
+    }
     p.nearPlane = std::clamp(nearest * 0.999f, p.farPlane * 1e-4f, p.farPlane * 0.5f);
     p.projection = perspectiveLight(p.yfov, 1.0f, p.nearPlane, p.farPlane);
     p.viewProj = p.projection * p.view;
     p.texelWorldSize = 2.0f * std::tan(half) / static_cast<float>(mapSize);
     return p;
+}
+
+LightProjection fitCubeFace(const Light& light, const Bounds& scene, uint32_t mapSize,
+                            uint32_t face, const CubeFitting& fitting) {
+    static constexpr const char* kNames[kCubeFaces] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    glm::vec3 axis(0.0f);
+    axis[static_cast<int>(face / 2)] = face % 2 == 0 ? 1.0f : -1.0f;
+    LightProjection p;
+    p.perspective = true;
+    p.name = kNames[face];
+    p.view = lookAt(light.position, light.position + axis, upFor(axis));
+    // The inner mapSize - 2 guard texels span the 90-degree face (tangent -1..1); the guard band
+    // widens it to tangent +-t.
+    const float n = static_cast<float>(mapSize);
+    const float guard = std::min(static_cast<float>(fitting.guardTexels), 0.25f * n);
+    const float tanHalf = n / (n - 2.0f * guard);
+    p.yfov = 2.0f * std::atan(tanHalf);
+    float farthest = 0.0f;
+    for (const glm::vec3& c : corners(scene))
+        farthest = std::max(farthest, glm::dot(c - light.position, axis));
+    if (light.range > 0.0f)
+        farthest = std::min(farthest, light.range); // nothing beyond the range is lit
+    p.farPlane = std::max(farthest * 1.001f, 1e-3f);
+    // A point at distance d inside the face's frustum lies at least d / sqrt(1 + 2 t^2) along
+    // its axis (at a corner of the face): a near plane there clips no surface. Depth precision
+    // stays bounded (far/near <= 1e4).
+    const float cornerCos = 1.0f / std::sqrt(1.0f + 2.0f * tanHalf * tanHalf);
+    const float nearest = std::isfinite(fitting.nearestSurface)
+                              ? 0.99f * fitting.nearestSurface * cornerCos
+                              : p.farPlane * 1e-4f;
+    p.nearPlane = std::clamp(nearest, p.farPlane * 1e-4f, p.farPlane * 0.5f);
+    p.projection = perspectiveLight(p.yfov, 1.0f, p.nearPlane, p.farPlane);
+    p.viewProj = p.projection * p.view;
+    p.texelWorldSize = 2.0f * tanHalf / n;
+    return p;
+}
+
+std::vector<LightProjection> fitLightViews(const Light& light, const Bounds& scene,
+                                           uint32_t mapSize, const CubeFitting& fitting) {
+    if (light.type == LightType::Spot)
+        return {fitSpot(light, scene, mapSize, fitting.nearestSurface)};
+    if (light.type != LightType::Point)
+        return {fitLight(light, scene, mapSize)};
+    std::vector<LightProjection> faces;
+    for (uint32_t face = 0; face < kCubeFaces; ++face)
+        faces.push_back(fitCubeFace(light, scene, mapSize, face, fitting));
+    return faces;
 }
 
 LightProjection fitLight(const Light& light, const Bounds& scene, uint32_t mapSize) {

@@ -1,12 +1,15 @@
 #pragma once
-// Fits each light's shadow projection to the scene: a directional light gets the seeds'
+// Fits each light's shadow projections to the scene: a directional light gets the seeds'
 // orthographic box fitted tightly around the scene bounds in light space; a spot light gets a
-// perspective frustum around its cone, with near and far planes hugging the scene.
+// perspective frustum around its cone, with near and far planes hugging the scene; a point light
+// gets six perspective cube faces with a guard band (docs/techniques.md, "Point lights").
 #include "penumbra/scene.h"
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <limits>
+#include <vector>
 
 namespace penumbra {
 
@@ -21,11 +24,35 @@ struct LightProjection {
     // World size of one shadow-map texel: constant for orthographic; for perspective, the size
     // at unit distance along the light axis (multiply by the distance).
     float texelWorldSize = 0.0f;
+    const char* name = ""; // "" for a light's only view; "+x", "-x", ... for cube faces
+};
+
+// A point light's cube: face i looks down axis i / 2 (x, y, z), towards + when i is even; the
+// shaders pick a face with cubeFace() (shaders/include/filter_math.h), which uses this order.
+inline constexpr uint32_t kCubeFaces = 6;
+
+// What a point light's faces (and a spot's frustum) need beyond the scene bounds.
+struct CubeFitting {
+    // Texels of each face beyond its 90 degrees, on every side, so that a filter kernel centred in
+    // the face reads the geometry across the edge from the same map (at most mapSize / 4).
+    uint32_t guardTexels = 0;
+    // The distance from the light to the nearest surface: the near plane is placed just inside
+    // it (infinity when unknown: the near plane then follows the scene bounds).
+    float nearestSurface = 0.0f;
 };
 
 LightProjection fitDirectional(const Light& light, const Bounds& scene, uint32_t mapSize);
-LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSize);
+// `nearestSurface`: the distance from the light to the nearest surface, when known (see
+// CubeFitting); it keeps the near plane off zero when bounds corners lie behind the light.
+LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSize,
+                        float nearestSurface = std::numeric_limits<float>::infinity());
+// Face `face` (0..5) of a point light's cube.
+LightProjection fitCubeFace(const Light& light, const Bounds& scene, uint32_t mapSize,
+                            uint32_t face, const CubeFitting& fitting);
 // Dispatches on light.type; point lights have no single projection (programmer error).
 LightProjection fitLight(const Light& light, const Bounds& scene, uint32_t mapSize);
+// Every shadow view of a light, in layer order: one for a sun or a spot, six faces for a point.
+std::vector<LightProjection> fitLightViews(const Light& light, const Bounds& scene,
+                                           uint32_t mapSize, const CubeFitting& fitting);
 
 } // namespace penumbra

@@ -18,14 +18,24 @@ namespace penumbra {
 
 namespace {
 
-size_t shadowCasterCount(const Scene& scene) {
-    size_t n = 0;
-    for (const Light& l : scene.lights)
-        n += castsShadowMap(l);
+// Lights with a shadow map (a visibility layer each) and their views (a map layer each).
+struct ShadowCount {
+    std::string scene;
+    size_t lights = 0, views = 0;
+};
+
+ShadowCount shadowCount(const Scene& scene) {
+    ShadowCount n{.scene = scene.name};
+    for (const Light& l : scene.lights) {
+        n.lights += castsShadowMap(l);
+        n.views += shadowViewCount(l);
+    }
     return n;
 }
 
-void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, size_t shadowLights) {
+void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o,
+                       const ShadowCount& shadows) {
+    const size_t shadowLights = shadows.lights;
     const uint32_t limit = ctx.limits().maxImageDimension2D;
     auto tooBig = [&](const char* option, uint32_t value) {
         if (value > limit)
@@ -36,19 +46,26 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, size_t sh
     tooBig("--width", o.width);
     tooBig("--height", o.height);
     tooBig("--shadow-map-size", o.shadowMapSize);
+    const uint32_t layers = ctx.limits().maxImageArrayLayers;
+    if (shadows.views > layers || shadowLights > layers)
+        throw InputError(shadows.scene, fmt::format("its {} shadow-casting lights need {} shadow views "
+                                              "(a point light takes 6); this device's "
+                                              "maxImageArrayLayers is {}",
+                                              shadowLights, shadows.views, layers));
     // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
     const double pixels = double(o.width) * double(o.height);
     const double shadowBytes =
         double(shadows::shadowMapBytes(shadows::moduleOf(o.technique), o.shadowMapSize)) *
-        double(shadowLights);
+        double(shadows.views);
     const double need =
         pixels * (16 + 36 + 2 * 4.0 * double(std::max<size_t>(shadowLights, 1)) + 36) + shadowBytes;
     const double have = static_cast<double>(ctx.deviceLocalHeapBytes());
     if (need > 0.8 * have)
         throw InputError(shadowBytes > pixels * 100 ? "--shadow-map-size" : "--width",
-                         fmt::format("this render needs {:.1f} GiB of device memory; the device "
-                                     "has {:.1f} GiB",
-                                     need / (1 << 30), have / (1 << 30)));
+                         fmt::format("this render needs {:.1f} GiB of device memory ({:.1f} GiB "
+                                     "for {} shadow views of {} texels); the device has {:.1f} GiB",
+                                     need / (1 << 30), shadowBytes / (1 << 30), shadows.views,
+                                     o.shadowMapSize, have / (1 << 30)));
 }
 
 } // namespace
@@ -71,7 +88,7 @@ void Renderer::check(const Scene& scene, const RenderOptions& o) const {
     if (scene.triangleCount() == 0)
         throw InputError(scene.name, "the scene has no triangles");
     (void)scene.camera(o.camera); // throws for an unknown camera name
-    checkDeviceLimits(mImpl->ctx, o, shadowCasterCount(scene));
+    checkDeviceLimits(mImpl->ctx, o, shadowCount(scene));
 }
 
 RenderResult Renderer::render(const Scene& scene, const RenderOptions& o,

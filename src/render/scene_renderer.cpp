@@ -1,7 +1,8 @@
 // SceneRenderer (include/penumbra/renderer.h): one frame, start to end.
 //   1. The scene is sanitized and uploaded once (constructor), with a ring of per-frame slots.
 //   2. Per render: the lights with the options' size overrides; for each light that casts a
-//      shadow map, its shadow views (one today) and their records; the camera. FrameData,
+//      shadow map, its shadow views (one, or a point light's six cube faces) and their records;
+//      the camera. FrameData,
 //      LightData[] and ShadowViewData[] go into the next ring slot.
 //   3. Targets (the technique's maps, an array layer per view; G-buffer; visibility; colour;
 //      readback) are made when the sizes or the technique's maps change, and kept otherwise.
@@ -22,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <optional>
 
 namespace penumbra {
@@ -40,6 +42,18 @@ gpu::ShadowViewData viewData(const Light& light, const LightProjection& shadow, 
                       light.type == LightType::Directional
                           ? std::tan(0.5f * glm::radians(light.angularDiameter))
                           : light.radius}};
+}
+
+ShadowViewInfo viewInfo(const LightProjection& shadow, uint32_t layer,
+                        const glm::mat4& worldToShadow) {
+    return {.name = shadow.name,
+            .layer = layer,
+            .projection = shadow.perspective ? "perspective" : "orthographic",
+            .nearPlane = shadow.nearPlane,
+            .farPlane = shadow.farPlane,
+            .texelWorldSize = shadow.texelWorldSize,
+            .fovDegrees = shadow.perspective ? glm::degrees(shadow.yfov) : 0.0f,
+            .worldToShadow = worldToShadow};
 }
 
 gpu::LightData lightData(const Light& light, int visibilityLayer, uint32_t firstView,
@@ -109,6 +123,7 @@ struct SceneRenderer::Impl {
     Scene scene; // sanitized
     Bounds bounds;
     render::GpuScene gpu;
+    std::vector<float> nearestSurface; // per scene light: from its position (spot and point)
     std::optional<TargetKey> key;
     render::FrameTargets targets;
     vk::Buffer readback;
@@ -169,8 +184,12 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
     m.gpu = render::uploadScene(m.ctx(), m.scene);
     const size_t lightBytes = sizeof(gpu::LightData) * std::max<size_t>(m.scene.lights.size(), 1);
     size_t viewCount = 0;
-    for (const Light& light : m.scene.lights)
-        viewCount += castsShadowMap(light);
+    for (const Light& light : m.scene.lights) {
+        viewCount += shadowViewCount(light);
+        m.nearestSurface.push_back(castsShadowMap(light) && light.type != LightType::Directional
+                                       ? nearestSurfaceDistance(m.scene, light.position)
+                                       : std::numeric_limits<float>::infinity());
+    }
     const size_t viewBytes = sizeof(gpu::ShadowViewData) * std::max<size_t>(viewCount, 1);
     for (Impl::Slot& slot : m.slots) {
         slot.frame =
@@ -211,25 +230,33 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
     const Camera camera = m.scene.camera(o.camera);
 
     RenderResult result{.width = o.width, .height = o.height};
-    std::vector<render::ShadowView> views; // one per light that casts a shadow map
+    std::vector<render::ShadowView> views; // every shadow view of every light, in layer order
     std::vector<gpu::ShadowViewData> viewRecords;
     std::vector<gpu::LightData> lights;
     std::vector<gpu::VisibilityPush> shadowLights;
+    const uint32_t guard = cubeGuardTexels(shadows::moduleOf(o.technique), o.parameters);
     for (uint32_t i = 0; i < lit.lights.size(); ++i) {
         const Light& light = lit.lights[i];
         LightShadow info{.sceneLight = i, .projection = "none"};
         const auto firstView = static_cast<uint32_t>(views.size());
         if (castsShadowMap(light)) {
             info.visibilityIndex = static_cast<int>(shadowLights.size());
-            views.push_back({.light = i, .projection = fitLight(light, m.bounds, o.shadowMapSize)});
-            const LightProjection& shadow = views.back().projection;
-            viewRecords.push_back(viewData(light, shadow, firstView));
+            const CubeFitting cube{.guardTexels = guard, .nearestSurface = m.nearestSurface[i]};
+            for (const LightProjection& shadow :
+                 fitLightViews(light, m.bounds, o.shadowMapSize, cube)) {
+                const auto layer = static_cast<uint32_t>(views.size());
+                views.push_back({.light = i, .projection = shadow});
+                viewRecords.push_back(viewData(light, shadow, layer));
+                info.views.push_back(viewInfo(shadow, layer, viewRecords.back().shadowMatrix));
+            }
             shadowLights.push_back({.light = {i, static_cast<uint32_t>(info.visibilityIndex),
                                               o.shadowMapSize, firstView}});
-            info.projection = shadow.perspective ? "perspective" : "orthographic";
-            info.nearPlane = shadow.nearPlane, info.farPlane = shadow.farPlane;
-            info.texelWorldSize = shadow.texelWorldSize;
-            info.worldToShadow = viewRecords.back().shadowMatrix;
+            const ShadowViewInfo& first = info.views.front();
+            info.projection = light.type == LightType::Point ? "cube" : first.projection;
+            info.nearPlane = first.nearPlane, info.farPlane = first.farPlane;
+            info.texelWorldSize = first.texelWorldSize;
+            info.worldToShadow = first.worldToShadow;
+            info.guardTexels = light.type == LightType::Point ? guard : 0;
         }
         lights.push_back(lightData(light, info.visibilityIndex, firstView,
                                    static_cast<uint32_t>(views.size()) - firstView, o.parameters));

@@ -4,27 +4,30 @@
 
 namespace penumbra {
 
-std::vector<uint8_t> lightMask(const Scene& scene, const RenderResult& g,
-                               const LightShadow& shadow) {
-    const Light& light = scene.lights[shadow.sceneLight];
+std::vector<uint8_t> lightMask(const Light& light, const RenderResult& g) {
     const size_t pixels = size_t{g.width} * g.height;
     std::vector<uint8_t> mask(pixels, 0);
+    const glm::vec3 axis = glm::normalize(light.direction);
+    const float cosOuter = std::cos(light.outerConeAngle);
     for (size_t i = 0; i < pixels; ++i) {
         const glm::vec3 p(g.position[3 * i], g.position[3 * i + 1], g.position[3 * i + 2]);
         const glm::vec3 n(g.normal[3 * i], g.normal[3 * i + 1], g.normal[3 * i + 2]);
         if (!std::isfinite(p.x) || !std::isfinite(n.x))
             continue;
-        const glm::vec3 toLight = light.type == LightType::Directional
-                                      ? -glm::normalize(light.direction)
-                                      : glm::normalize(light.position - p);
-        if (glm::dot(n, toLight) <= 0.0f)
+        if (light.type == LightType::Directional) {
+            mask[i] = glm::dot(n, -axis) > 0.0f;
             continue;
-        const glm::vec4 s = shadow.worldToShadow * glm::vec4(p, 1.0f);
-        if (s.w <= 0.0f)
+        }
+        const glm::vec3 toLight = light.position - p;
+        const float distance = glm::length(toLight);
+        if (distance <= 0.0f || glm::dot(n, toLight) <= 0.0f)
             continue;
-        const glm::vec3 uvz = glm::vec3(s) / s.w;
-        mask[i] = uvz.x >= 0.0f && uvz.x <= 1.0f && uvz.y >= 0.0f && uvz.y <= 1.0f &&
-                  uvz.z >= 0.0f && uvz.z <= 1.0f;
+        if (light.range > 0.0f && distance > light.range)
+            continue; // glTF's range: the light's contribution is zero beyond it
+        // The composite's cone falls to zero at the outer angle.
+        if (light.type == LightType::Spot && glm::dot(-toLight / distance, axis) <= cosOuter)
+            continue;
+        mask[i] = 1;
     }
     return mask;
 }

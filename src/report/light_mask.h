@@ -1,6 +1,8 @@
 #pragma once
-// Which pixels the error metrics count for one light: those that face it (N.L > 0) and lie
-// inside its shadow frustum, where a shadow map can say anything at all.
+// Which pixels the error metrics count for one light: those the light itself reaches, judged from
+// the light and not from any shadow projection: they face it (N.L > 0), lie inside a spot's
+// outer cone, and within the light's range when it has one. Whatever a technique's views miss
+// inside that region counts against the technique.
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
 
@@ -9,9 +11,8 @@
 
 namespace penumbra {
 
-// `shadow` is one entry of RenderResult::lights with visibilityIndex >= 0; the scene is the
-// rendered one (lights in the same order). 1 = counted.
-std::vector<uint8_t> lightMask(const Scene& scene, const RenderResult& gbuffer,
-                               const LightShadow& shadow);
+// One value per pixel of `gbuffer` (its position and normal), 1 = counted; background pixels
+// are 0.
+std::vector<uint8_t> lightMask(const Light& light, const RenderResult& gbuffer);
 
 } // namespace penumbra

@@ -66,6 +66,28 @@ nlohmann::json renderStats(const RenderRun& run) {
             light["near"] = s.nearPlane;
             light["far"] = s.farPlane;
             light["texel_world_size"] = s.texelWorldSize;
+            if (l.type == LightType::Point)
+                light["guard_texels"] = s.guardTexels;
+            nlohmann::json views = nlohmann::json::array();
+            for (const ShadowViewInfo& v : s.views) {
+                nlohmann::json view = {{"layer", v.layer},
+                                       {"projection", v.projection},
+                                       {"near", v.nearPlane},
+                                       {"far", v.farPlane},
+                                       {"texel_world_size", v.texelWorldSize}};
+                if (!v.name.empty())
+                    view["face"] = v.name;
+                if (v.projection == "perspective")
+                    view["fov_degrees"] = v.fovDegrees;
+                // Column-major, as GLM and GLSL store it: world -> (u, v, depth) * w.
+                nlohmann::json matrix = nlohmann::json::array();
+                for (int c = 0; c < 4; ++c)
+                    for (int r = 0; r < 4; ++r)
+                        matrix.push_back(v.worldToShadow[c][r]);
+                view["world_to_shadow"] = matrix;
+                views.push_back(view);
+            }
+            light["views"] = views;
         }
         lights.push_back(light);
     }

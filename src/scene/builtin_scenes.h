@@ -36,6 +36,13 @@ inline constexpr glm::vec2 kCanopyTiles{3.0f, 2.0f};
 inline constexpr glm::vec3 kTrellisMin{2.5f, 0.0f, -3.0f}; // a vertical quad at z = kTrellisMin.z
 inline constexpr glm::vec3 kTrellisMax{5.5f, 2.4f, -3.0f};
 
+// Room: a point light in a cut-away room (floor, ceiling, three walls; open towards +z).
+inline constexpr float kRoomHalfWidth = 5.0f;
+inline constexpr float kRoomHeight = 4.5f;
+inline constexpr float kRoomCeilingFront = 2.0f; // the ceiling and side walls end at this z
+inline constexpr float kRoomFloorFront = 6.0f;   // the floor runs on to this z
+inline constexpr glm::vec3 kRoomLightPosition{0.0f, 1.8f, -0.5f};
+
 // The outdoor scenes' sun: kSunDirection, 0.53 degrees wide (the real sun's size), warm white.
 Light sun();
 
@@ -43,5 +50,6 @@ Scene showcase();
 Scene grazing();
 Scene spot();
 Scene foliage();
+Scene room();
 
 } // namespace penumbra::builtin

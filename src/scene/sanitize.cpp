@@ -1,6 +1,7 @@
 #include "penumbra/scene.h"
 
 #include <cmath>
+#include <limits>
 
 namespace penumbra {
 namespace {
@@ -49,7 +50,64 @@ size_t dropInvalidTriangles(Scene& scene) {
 }
 
 bool castsShadowMap(const Light& light) {
-    return light.castsShadow && light.type != LightType::Point;
+    return light.castsShadow;
+}
+
+uint32_t shadowViewCount(const Light& light) {
+    if (!castsShadowMap(light))
+        return 0;
+    return light.type == LightType::Point ? 6 : 1;
+}
+
+namespace {
+
+// Squared distance from p to triangle abc [Ericson 2005, 'Real-Time Collision Detection' 5.1.5:
+// the closest point by Voronoi region].
+double squaredDistanceToTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                 const glm::dvec3& c) {
+    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    auto at = [&](const glm::dvec3& q) { return glm::dot(p - q, p - q); };
+    if (d1 <= 0 && d2 <= 0)
+        return at(a);
+    const glm::dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3)
+        return at(b);
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0)
+        return at(a + ab * (d1 / (d1 - d3)));
+    const glm::dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6)
+        return at(c);
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0)
+        return at(a + ac * (d2 / (d2 - d6)));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+        return at(b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))));
+    const double denom = 1.0 / (va + vb + vc);
+    return at(a + ab * (vb * denom) + ac * (vc * denom));
+}
+
+} // namespace
+
+float nearestSurfaceDistance(const Scene& scene, const glm::vec3& point) {
+    const glm::dvec3 p(point);
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
+        const glm::dvec3 a(scene.vertices[scene.indices[t]].position);
+        const glm::dvec3 b(scene.vertices[scene.indices[t + 1]].position);
+        const glm::dvec3 c(scene.vertices[scene.indices[t + 2]].position);
+        // The triangle's box is nearer than the triangle: skip it when that is already too far.
+        const glm::dvec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
+        const glm::dvec3 outside = glm::max(glm::max(lo - p, p - hi), glm::dvec3(0.0));
+        if (glm::dot(outside, outside) >= best)
+            continue;
+        best = std::min(best, squaredDistanceToTriangle(p, a, b, c));
+    }
+    return static_cast<float>(std::sqrt(best));
 }
 
 void applyLightSizeOverrides(Scene& scene, float radius, float angleDegrees) {

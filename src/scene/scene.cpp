@@ -18,7 +18,8 @@ struct BuiltinEntry {
 constexpr BuiltinEntry kBuiltins[] = {{"showcase", builtin::showcase},
                                       {"grazing", builtin::grazing},
                                       {"spot", builtin::spot},
-                                      {"foliage", builtin::foliage}};
+                                      {"foliage", builtin::foliage},
+                                      {"room", builtin::room}};
 
 } // namespace
 

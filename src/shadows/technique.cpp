@@ -3,6 +3,8 @@
 
 #include "penumbra/error.h"
 
+#include <cmath>
+
 namespace penumbra::shadows {
 
 uint32_t bytesPerTexel(MapFormat format) {
@@ -36,6 +38,14 @@ uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size) {
     for (const MapDecl& map : module.maps)
         perTexel += bytesPerTexel(map.format);
     return perTexel * size * size;
+}
+
+uint32_t cubeGuardTexels(const TechniqueModule& module, const ParameterValues& params) {
+    const double footprint = module.blurRadiusTexels ? module.blurRadiusTexels(params) : 0.0;
+    // A bilinear tap reads 1.5 texels past its centre; the normal offset moves the receiver up to
+    // bias.normal texels after its face was chosen.
+    return static_cast<uint32_t>(std::ceil(footprint) + 2.0 +
+                                 std::ceil(params.number("bias.normal")));
 }
 
 std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
