@@ -285,4 +285,15 @@ TEST(LightSpace, NearestSurfaceDistanceFindsFacesEdgesAndCorners) {
     EXPECT_NEAR(nearestSurfaceDistance(scene, {7, 0, 4}), 5.0f, 1e-5f);            // corner (4,0)
     EXPECT_NEAR(nearestSurfaceDistance(scene, {100.5f, 0.2f, -2}), 2.0f, 1e-5f);   // the far one
     EXPECT_EQ(nearestSurfaceDistance(Scene{}, {0, 0, 0}), INFINITY);
+    // The nearest triangle listed after a farther one, a little nearer than it: the cull that
+    // skips triangles by their boxes must not skip it.
+    Scene order;
+    for (float z : {10.0f, 6.0f, 7.0f}) {
+        const auto first = static_cast<uint32_t>(order.vertices.size());
+        order.vertices.push_back({.position = {-1, -1, z}});
+        order.vertices.push_back({.position = {1, -1, z}});
+        order.vertices.push_back({.position = {0, 1, z}});
+        order.indices.insert(order.indices.end(), {first, first + 1, first + 2});
+    }
+    EXPECT_NEAR(nearestSurfaceDistance(order, {0, 0, 0}), 6.0f, 1e-5f);
 }
