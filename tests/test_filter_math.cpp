@@ -50,7 +50,8 @@ TEST(FilterMath, ReceiverPlaneGradientsFromTheNormalAndFromNeighboursAreThePlane
                      .direction = glm::normalize(glm::vec3(0.4f, -1.0f, 0.3f)),
                      .outerConeAngle = 0.6f};
     for (const Light& light : {sun, spot}) {
-        const glm::mat4 S = textureMatrix() * fitLight(light, scene, 1024).viewProj;
+        const glm::mat4 S =
+            textureMatrix() * fitLightViews(light, scene, 1024, {}).front().viewProj;
         for (const glm::dvec3 n :
              {glm::dvec3(0, 1, 0), glm::normalize(glm::dvec3(0.5, 1, -0.2)),
               glm::normalize(glm::dvec3(-0.3, 0.8, 0.6)), glm::normalize(glm::dvec3(1, 0.2, 0))}) {
@@ -77,7 +78,7 @@ TEST(FilterMath, ReceiverPlaneGradientsFromTheNormalAndFromNeighboursAreThePlane
         }
     }
     // Edge-on to the light: no plane to speak of.
-    const glm::mat4 S = textureMatrix() * fitLight(sun, scene, 1024).viewProj;
+    const glm::mat4 S = textureMatrix() * fitDirectional(sun, scene, 1024).viewProj;
     const glm::vec3 edgeOn = glm::normalize(glm::cross(sun.direction, glm::vec3(1, 0, 0)));
     EXPECT_EQ(gpu::receiverGradientFromNormal(S, {0, 1, 0}, edgeOn), glm::vec2(0.0f));
     EXPECT_EQ(gpu::receiverGradientFromOffsets({1, 2, 3}, {2, 4, 6}), glm::vec2(0.0f));

@@ -218,7 +218,7 @@ TEST_F(ShadowTest, PixelsOutsideTheSpotsFrustumReadUnoccluded) {
         const glm::vec3 p = pixelVec(r.position, i);
         if (!std::isfinite(p.x))
             continue;
-        const glm::vec4 s = r.lights[0].worldToShadow * glm::vec4(p, 1.0f);
+        const glm::vec4 s = r.lights[0].views[0].worldToShadow * glm::vec4(p, 1.0f);
         const glm::vec2 uv = glm::vec2(s) / s.w;
         if (s.w <= 0.0f || uv.x < -0.01f || uv.x > 1.01f || uv.y < -0.01f || uv.y > 1.01f) {
             ++outside;
@@ -286,10 +286,8 @@ TEST_F(ShadowTest, EveryLightFiltersItsOwnShadowView) {
                           .type = LightType::Directional,
                           .direction = glm::normalize(glm::vec3(-0.8f, -0.5f, -0.2f)),
                           .angularDiameter = 3.0f});
-    all.lights.push_back({.name = "fill",
-                          .type = LightType::Point,
-                          .position = {-2, 3, 4},
-                          .castsShadow = false});
+    all.lights.push_back(
+        {.name = "fill", .type = LightType::Point, .position = {-2, 3, 4}, .castsShadow = false});
     for (const Technique technique : {Technique::SecondDepth, Technique::Pcss}) {
         const RenderOptions o{
             .width = 128, .height = 96, .shadowMapSize = 512, .technique = technique};

@@ -266,16 +266,16 @@ TEST(MetricsMask, CountsPixelsTheLightReachesJudgedFromTheLightItself) {
         uint8_t sun, spot, point, endless; // expected mask for each light
     };
     const Pixel pixels[] = {
-        {{0, 0, 5}, {0, 0, -1}, 1, 1, 1, 1},                   // on the axis, facing all
-        {{0, 0, 5}, {0, 0, 1}, 0, 0, 0, 0},                    // facing away
-        {{0, 0, 5}, {1, 0, 0}, 0, 0, 0, 0},                    // edge-on
-        {{0, 0.99f * edge, 5}, {0, 0, -1}, 1, 1, 1, 1},        // just inside the cone
-        {{0, 1.01f * edge, 5}, {0, 0, -1}, 1, 0, 1, 1},        // just outside it
-        {{0, 0, 9.99f}, {0, 0, -1}, 1, 1, 1, 1},               // just inside the range
-        {{0, 0, 10.01f}, {0, 0, -1}, 1, 0, 0, 1},              // just beyond it
-        {{0, 0, -5}, {0, 0, 1}, 0, 0, 1, 1},                   // behind the spot, facing back
-        {{6, 0, 0}, {-1, 0, 0}, 0, 0, 1, 1},                   // beside: only the point lights
-        {{0, 0, 300}, {0, 0, -1}, 1, 0, 0, 1},                 // far away
+        {{0, 0, 5}, {0, 0, -1}, 1, 1, 1, 1},            // on the axis, facing all
+        {{0, 0, 5}, {0, 0, 1}, 0, 0, 0, 0},             // facing away
+        {{0, 0, 5}, {1, 0, 0}, 0, 0, 0, 0},             // edge-on
+        {{0, 0.99f * edge, 5}, {0, 0, -1}, 1, 1, 1, 1}, // just inside the cone
+        {{0, 1.01f * edge, 5}, {0, 0, -1}, 1, 0, 1, 1}, // just outside it
+        {{0, 0, 9.99f}, {0, 0, -1}, 1, 1, 1, 1},        // just inside the range
+        {{0, 0, 10.01f}, {0, 0, -1}, 1, 0, 0, 1},       // just beyond it
+        {{0, 0, -5}, {0, 0, 1}, 0, 0, 1, 1},            // behind the spot, facing back
+        {{6, 0, 0}, {-1, 0, 0}, 0, 0, 1, 1},            // beside: only the point lights
+        {{0, 0, 300}, {0, 0, -1}, 1, 0, 0, 1},          // far away
     };
     RenderResult g{.width = std::size(pixels), .height = 1};
     for (const Pixel& px : pixels)

@@ -51,50 +51,8 @@ Scene spheresOverPlane(float radius) {
     return scene;
 }
 
-struct LightTruth {
-    Scene scene;
-    RenderResult gbuffer;
-    ReferenceResult reference;
-};
-
-LightTruth truthOf(Scene scene, uint32_t size, uint32_t samples) {
-    LightTruth t{.scene = std::move(scene)};
-    t.gbuffer = sharedRenderer().render(t.scene, {.width = size, .height = size, .frames = 1});
-    t.reference = computeReference(t.scene, t.gbuffer, {.samples = samples});
-    return t;
-}
-
-RenderResult renderWith(const LightTruth& t, Technique technique,
-                        const std::vector<std::pair<std::string, std::string>>& sets,
-                        uint32_t shadowMapSize = 2048) {
-    RenderOptions o{.width = t.gbuffer.width,
-                    .height = t.gbuffer.height,
-                    .shadowMapSize = shadowMapSize,
-                    .frames = 1,
-                    .technique = technique};
-    for (const auto& [key, value] : sets)
-        o.parameters.set(key, value);
-    return sharedRenderer().render(t.scene, o);
-}
-
-// Metrics of visibility layer `layer` (light `light` of the scene) over the pixels that light
-// reaches, optionally only where `only` is non-zero.
-ErrorMetrics errorOfLight(const LightTruth& t, const RenderResult& r, size_t layer,
-                          const std::vector<uint8_t>* only = nullptr) {
-    const auto shadow = std::find_if(r.lights.begin(), r.lights.end(), [&](const LightShadow& s) {
-        return s.visibilityIndex == static_cast<int>(layer);
-    });
-    EXPECT_NE(shadow, r.lights.end());
-    std::vector<uint8_t> mask = lightMask(t.scene.lights[shadow->sceneLight], t.gbuffer);
-    if (only)
-        for (size_t i = 0; i < mask.size(); ++i)
-            mask[i] = mask[i] && (*only)[i];
-    const MetricLayer m{r.visibility[layer], t.reference.visibility[layer], mask};
-    return computeMetrics(r.width, r.height, std::span(&m, 1));
-}
-
 // Each counted pixel's cube face, as the shaders choose it.
-std::array<size_t, 6> pixelsPerFace(const LightTruth& t, const glm::vec3& light) {
+std::array<size_t, 6> pixelsPerFace(const Truth& t, const glm::vec3& light) {
     std::array<size_t, 6> count{};
     const std::vector<uint8_t> mask = lightMask(t.scene.lights[0], t.gbuffer);
     for (size_t i = 0; i < mask.size(); ++i)
@@ -104,12 +62,13 @@ std::array<size_t, 6> pixelsPerFace(const LightTruth& t, const glm::vec3& light)
 }
 
 const std::vector<std::pair<std::string, std::string>> kBox7 = {{"pcf.filter", "box"},
-                                                                 {"pcf.size", "7"}};
+                                                                {"pcf.size", "7"}};
 
 } // namespace
 
 TEST_F(QualityTest, PointLightHardShadowsMatchTheTruthThroughEveryFace) {
-    const LightTruth t = truthOf(spheresOverPlane(0.0f), 384, 1);
+    const Truth t =
+        groundTruth(spheresOverPlane(0.0f), {.width = 384, .height = 384, .samples = 1});
     const std::array<size_t, 6> faces = pixelsPerFace(t, kBulb);
     std::printf("counted pixels per face +x..-z: %zu %zu %zu %zu %zu %zu\n", faces[0], faces[1],
                 faces[2], faces[3], faces[4], faces[5]);
@@ -120,8 +79,8 @@ TEST_F(QualityTest, PointLightHardShadowsMatchTheTruthThroughEveryFace) {
              {Technique::Hard, {}},
              {Technique::SecondDepth, {}},
              {Technique::Pcf, {{"pcf.filter", "bilinear"}}}}) {
-        const RenderResult r = renderWith(t, technique, sets);
-        const ErrorMetrics m = errorOfLight(t, r, 0);
+        const RenderResult r = renderRow(t, technique, sets);
+        const ErrorMetrics m = errorOfLayer(t, r, 0);
         std::printf("%s: misclassified away from edges %.4f%%, acne %.4f%% (%llu pixels)\n",
                     techniqueName(technique).data(), 100 * m.misclassifiedOutsideEdges,
                     100 * m.acne, static_cast<unsigned long long>(m.pixels));
@@ -134,12 +93,13 @@ TEST_F(QualityTest, PointLightHardShadowsMatchTheTruthThroughEveryFace) {
 // builtin:room: the bulb lights surfaces through all six faces, and every technique follows the
 // truth through each.
 TEST_F(QualityTest, RoomIsLitThroughAllSixFacesAndMatchesTheTruth) {
-    const LightTruth t = truthOf(loadScene("builtin:room"), 256, 64);
+    const Truth t =
+        groundTruth(loadScene("builtin:room"), {.width = 256, .height = 256, .samples = 64});
     const std::array<size_t, 6> faces = pixelsPerFace(t, builtin::kRoomLightPosition);
     for (uint32_t face = 0; face < 6; ++face)
         EXPECT_GT(faces[face], 400u) << "face " << face;
-    const ErrorMetrics hard = errorOfLight(t, renderWith(t, Technique::Hard, {}), 0);
-    const ErrorMetrics pcss = errorOfLight(t, renderWith(t, Technique::Pcss, {}), 0);
+    const ErrorMetrics hard = errorOfLayer(t, renderRow(t, Technique::Hard, {}), 0);
+    const ErrorMetrics pcss = errorOfLayer(t, renderRow(t, Technique::Pcss, {}), 0);
     std::printf("room: hard rmse %.5f misclassified %.4f%%; pcss rmse %.5f misclassified %.4f%%\n",
                 hard.rmse, 100 * hard.misclassifiedOutsideEdges, pcss.rmse,
                 100 * pcss.misclassifiedOutsideEdges);
@@ -150,10 +110,11 @@ TEST_F(QualityTest, RoomIsLitThroughAllSixFacesAndMatchesTheTruth) {
 }
 
 TEST_F(QualityTest, PointLightPcssBeatsAWideBoxWithASphericalLight) {
-    const LightTruth t = truthOf(spheresOverPlane(0.3f), 384, 128);
-    const ErrorMetrics pcss = errorOfLight(t, renderWith(t, Technique::Pcss, {}), 0);
-    const ErrorMetrics box = errorOfLight(t, renderWith(t, Technique::Pcf, kBox7), 0);
-    const ErrorMetrics hard = errorOfLight(t, renderWith(t, Technique::Hard, {}), 0);
+    const Truth t =
+        groundTruth(spheresOverPlane(0.3f), {.width = 384, .height = 384, .samples = 128});
+    const ErrorMetrics pcss = errorOfLayer(t, renderRow(t, Technique::Pcss, {}), 0);
+    const ErrorMetrics box = errorOfLayer(t, renderRow(t, Technique::Pcf, kBox7), 0);
+    const ErrorMetrics hard = errorOfLayer(t, renderRow(t, Technique::Hard, {}), 0);
     std::printf("radius 0.3: RMSE pcss %.5f, pcf[box7] %.5f, hard %.5f\n", pcss.rmse, box.rmse,
                 hard.rmse);
     EXPECT_LT(pcss.rmse, 0.6 * box.rmse);
@@ -168,8 +129,8 @@ Scene polesOnFaceBorders(float turnDegrees, float tiltDegrees = 0.0f) {
     Scene scene;
     scene.name = "poles on face borders";
     MeshBuilder mb(scene);
-    const glm::mat3 turn = glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(turnDegrees),
-                                                 glm::vec3(0, 1, 0)));
+    const glm::mat3 turn =
+        glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(turnDegrees), glm::vec3(0, 1, 0)));
     const glm::mat3 tilt = glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(tiltDegrees),
                                                  glm::normalize(glm::vec3(1, 0, 0.3f))));
     const uint32_t grey = mb.material("plane", {0.7f, 0.7f, 0.7f});
@@ -200,7 +161,8 @@ using Sets = std::vector<std::pair<std::string, std::string>>;
 // shadows that run along the borders, split between two faces, keep their shape: no hole, no
 // acne, no leak.
 TEST_F(QualityTest, PointLightShadowsAlongFaceBordersMatchTheTruth) {
-    const LightTruth t = truthOf(polesOnFaceBorders(0.0f, 12.0f), 256, 64);
+    const Truth t =
+        groundTruth(polesOnFaceBorders(0.0f, 12.0f), {.width = 256, .height = 256, .samples = 64});
     const uint32_t mapSize = 512; // coarse texels: a seam would span several pixels
     for (const auto& [technique, sets] : std::vector<std::pair<Technique, Sets>>{
              {Technique::Hard, {}},
@@ -211,7 +173,7 @@ TEST_F(QualityTest, PointLightShadowsAlongFaceBordersMatchTheTruth) {
              {Technique::SecondDepth, {}}}) {
         const std::string name =
             std::string(techniqueName(technique)) + (sets.empty() ? "" : " " + sets[0].second);
-        const ErrorMetrics m = errorOfLight(t, renderWith(t, technique, sets, mapSize), 0);
+        const ErrorMetrics m = errorOfLayer(t, renderRow(t, technique, sets, mapSize), 0);
         std::printf("%-12s rmse %.5f misclassified away from edges %.4f%% acne %.4f%% leak "
                     "%.4f%%\n",
                     name.c_str(), m.rmse, 100 * m.misclassifiedOutsideEdges, 100 * m.acne,
@@ -228,8 +190,9 @@ TEST_F(QualityTest, PointLightShadowsAlongFaceBordersMatchTheTruth) {
 TEST_F(BiasTest, PointLightOverAnEmptyPlaneIsLitEverywhere) {
     Scene scene = polesOnFaceBorders(0.0f, 25.0f);
     scene.indices.resize(6); // the plane alone, tilted so that its depth changes along every face
-    const LightTruth t{.scene = scene,
-                       .gbuffer = sharedRenderer().render(scene, {.width = 192, .height = 192})};
+    const Truth t{.setup = {.width = 192, .height = 192},
+                  .scene = scene,
+                  .gbuffer = sharedRenderer().render(scene, {.width = 192, .height = 192})};
     const std::vector<uint8_t> mask = lightMask(scene.lights[0], t.gbuffer);
     for (const auto& [technique, sets] : std::vector<std::pair<Technique, Sets>>{
              {Technique::Hard, {}},
@@ -239,7 +202,7 @@ TEST_F(BiasTest, PointLightOverAnEmptyPlaneIsLitEverywhere) {
              {Technique::Pcf, {{"pcf.filter", "poisson"}, {"pcf.radius", "12"}}},
              {Technique::Pcss, {}},
              {Technique::SecondDepth, {}}}) {
-        const RenderResult r = renderWith(t, technique, sets, 512);
+        const RenderResult r = renderRow(t, technique, sets, 512);
         size_t counted = 0, dark = 0;
         for (size_t i = 0; i < mask.size(); ++i)
             if (mask[i]) {
@@ -262,13 +225,13 @@ TEST_F(QualityTest, SunSpotAndPointShadowTogether) {
                             .intensity = 6.0f,
                             .radius = 0.05f});
     applyLightSizeOverrides(scene, 0.02f, 0.1f);
-    const LightTruth t = truthOf(scene, 384, 16);
+    const Truth t = groundTruth(scene, {.width = 384, .height = 384, .samples = 16});
     ASSERT_EQ(t.gbuffer.visibility.size(), 3u);
-    const RenderResult r = renderWith(t, Technique::Pcf, {{"pcf.filter", "bilinear"}});
+    const RenderResult r = renderRow(t, Technique::Pcf, {{"pcf.filter", "bilinear"}});
     const uint32_t expectedViews[] = {1, 1, 6};
     for (size_t l = 0; l < 3; ++l) {
         EXPECT_EQ(r.lights[l].views.size(), expectedViews[l]);
-        const ErrorMetrics m = errorOfLight(t, r, l);
+        const ErrorMetrics m = errorOfLayer(t, r, l);
         std::printf("%s: misclassified away from edges %.4f%% of %llu pixels\n",
                     scene.lights[l].name.c_str(), 100 * m.misclassifiedOutsideEdges,
                     static_cast<unsigned long long>(m.pixels));
@@ -310,9 +273,9 @@ Scene sixteenLights() {
 } // namespace
 
 TEST_F(ShadowTest, SixteenShadowedLightsOfEveryKindInOneFrame) {
-    const LightTruth t = truthOf(sixteenLights(), 192, 1);
+    const Truth t = groundTruth(sixteenLights(), {.width = 192, .height = 192, .samples = 1});
     ASSERT_EQ(t.gbuffer.visibility.size(), 16u);
-    const RenderResult r = renderWith(t, Technique::Hard, {}, 1024);
+    const RenderResult r = renderRow(t, Technique::Hard, {}, 1024);
     ASSERT_EQ(r.visibility.size(), 16u);
     uint32_t layer = 0;
     for (size_t l = 0; l < 16; ++l) {
@@ -321,7 +284,7 @@ TEST_F(ShadowTest, SixteenShadowedLightsOfEveryKindInOneFrame) {
         ASSERT_EQ(s.views.size(), l % 3 == 0 ? 6u : 1u);
         for (const ShadowViewInfo& v : s.views)
             EXPECT_EQ(v.layer, layer++) << "views follow each other in light order";
-        const ErrorMetrics m = errorOfLight(t, r, l);
+        const ErrorMetrics m = errorOfLayer(t, r, l);
         EXPECT_GT(m.pixels, 5000u) << t.scene.lights[l].name;
         EXPECT_LT(m.misclassifiedOutsideEdges, 0.003) << t.scene.lights[l].name;
         EXPECT_LT(m.acne, 0.001) << t.scene.lights[l].name;

@@ -242,12 +242,12 @@ TEST(LightSpace, CubeFacesHoldEveryDirectionInsideTheirGuardBand) {
         EXPECT_GE(corner.z, 0.0f) << names[f];
     }
     // The far planes reach the scene's farthest corner along each axis.
-    EXPECT_NEAR(faces[0].farPlane, 14.0f * 1.001f, 1e-3f);  // +x: 15 - 1
-    EXPECT_NEAR(faces[1].farPlane, 21.0f * 1.001f, 1e-3f);  // -x: 1 + 20
-    EXPECT_NEAR(faces[2].farPlane, 7.0f * 1.001f, 1e-3f);   // +y
-    EXPECT_NEAR(faces[3].farPlane, 3.0f * 1.001f, 1e-3f);   // -y
-    EXPECT_NEAR(faces[4].farPlane, 13.0f * 1.001f, 1e-3f);  // +z
-    EXPECT_NEAR(faces[5].farPlane, 22.0f * 1.001f, 1e-3f);  // -z
+    EXPECT_NEAR(faces[0].farPlane, 14.0f * 1.001f, 1e-3f); // +x: 15 - 1
+    EXPECT_NEAR(faces[1].farPlane, 21.0f * 1.001f, 1e-3f); // -x: 1 + 20
+    EXPECT_NEAR(faces[2].farPlane, 7.0f * 1.001f, 1e-3f);  // +y
+    EXPECT_NEAR(faces[3].farPlane, 3.0f * 1.001f, 1e-3f);  // -y
+    EXPECT_NEAR(faces[4].farPlane, 13.0f * 1.001f, 1e-3f); // +z
+    EXPECT_NEAR(faces[5].farPlane, 22.0f * 1.001f, 1e-3f); // -z
 }
 
 TEST(LightSpace, CubeFacesHonourRangeAndCapTheGuardBand) {
@@ -265,8 +265,8 @@ TEST(LightSpace, CubeFacesHonourRangeAndCapTheGuardBand) {
     EXPECT_NEAR(unknown[0].nearPlane, unknown[0].farPlane * 1e-4f, 1e-7f);
     // A sun and a spot have one view.
     EXPECT_EQ(fitLightViews({.type = LightType::Directional}, scene, 64, {}).size(), 1u);
-    EXPECT_EQ(fitLightViews({.type = LightType::Spot, .position = {0, 60, 0}}, scene, 64, {}).size(),
-              1u);
+    EXPECT_EQ(
+        fitLightViews({.type = LightType::Spot, .position = {0, 60, 0}}, scene, 64, {}).size(), 1u);
 }
 
 TEST(LightSpace, NearestSurfaceDistanceFindsFacesEdgesAndCorners) {
@@ -276,7 +276,7 @@ TEST(LightSpace, NearestSurfaceDistanceFindsFacesEdgesAndCorners) {
         return static_cast<uint32_t>(scene.vertices.size() - 1);
     };
     // One triangle in the plane z = 0 with corners (0,0), (4,0), (0,4); a far one for company.
-    scene.indices = {vertex({0, 0, 0}), vertex({4, 0, 0}), vertex({0, 4, 0}),
+    scene.indices = {vertex({0, 0, 0}),   vertex({4, 0, 0}),   vertex({0, 4, 0}),
                      vertex({100, 0, 0}), vertex({101, 0, 0}), vertex({100, 1, 0})};
     EXPECT_NEAR(nearestSurfaceDistance(scene, {1, 1, 3}), 3.0f, 1e-5f);            // face
     EXPECT_NEAR(nearestSurfaceDistance(scene, {2, -2, 0}), 2.0f, 1e-5f);           // edge y = 0

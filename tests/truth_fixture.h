@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,24 +28,39 @@ struct Truth {
     Scene scene;
     RenderResult gbuffer;
     ReferenceResult reference;
-    std::vector<uint8_t> mask; // pixels the metrics count for light 0
+    std::vector<uint8_t> mask; // pixels the metrics count for the first shadow-casting light
 };
 
-inline Truth groundTruth(const TruthSetup& setup) {
-    Truth t{.setup = setup, .scene = loadScene(setup.scene)};
+// The light behind visibility layer `layer` of a render of `scene`.
+inline const Light& lightOfLayer(const Scene& scene, const RenderResult& r, size_t layer) {
+    for (const LightShadow& s : r.lights)
+        if (s.visibilityIndex == static_cast<int>(layer))
+            return scene.lights[s.sceneLight];
+    throw std::out_of_range("no light has visibility layer " + std::to_string(layer));
+}
+
+// The truth of a scene made in code (setup.scene is ignored).
+inline Truth groundTruth(Scene scene, const TruthSetup& setup) {
+    Truth t{.setup = setup, .scene = std::move(scene)};
     applyLightSizeOverrides(t.scene, setup.radius, setup.angle);
     t.gbuffer = sharedRenderer().render(
         t.scene, {.width = setup.width, .height = setup.height, .frames = 1});
     t.reference = computeReference(t.scene, t.gbuffer, {.samples = setup.samples});
-    t.mask = lightMask(t.scene.lights[t.gbuffer.lights[0].sceneLight], t.gbuffer);
+    t.mask = lightMask(lightOfLayer(t.scene, t.gbuffer, 0), t.gbuffer);
     return t;
 }
 
+inline Truth groundTruth(const TruthSetup& setup) {
+    return groundTruth(loadScene(setup.scene), setup);
+}
+
+// `shadowMapSize` 0: the setup's.
 inline RenderResult renderRow(const Truth& t, Technique technique,
-                              const std::vector<std::pair<std::string, std::string>>& sets) {
+                              const std::vector<std::pair<std::string, std::string>>& sets,
+                              uint32_t shadowMapSize = 0) {
     RenderOptions o{.width = t.setup.width,
                     .height = t.setup.height,
-                    .shadowMapSize = t.setup.shadowMapSize,
+                    .shadowMapSize = shadowMapSize ? shadowMapSize : t.setup.shadowMapSize,
                     .frames = 1,
                     .technique = technique};
     for (const auto& [key, value] : sets)
@@ -55,6 +71,13 @@ inline RenderResult renderRow(const Truth& t, Technique technique,
 inline ErrorMetrics errorOf(const Truth& t, const RenderResult& r) {
     const MetricLayer layer{r.visibility[0], t.reference.visibility[0], t.mask};
     return computeMetrics(r.width, r.height, std::span(&layer, 1));
+}
+
+// Visibility layer `layer` against its truth, over the pixels its light reaches.
+inline ErrorMetrics errorOfLayer(const Truth& t, const RenderResult& r, size_t layer) {
+    const std::vector<uint8_t> mask = lightMask(lightOfLayer(t.scene, r, layer), t.gbuffer);
+    const MetricLayer m{r.visibility[layer], t.reference.visibility[layer], mask};
+    return computeMetrics(r.width, r.height, std::span(&m, 1));
 }
 
 inline ErrorMetrics measure(const Truth& t, Technique technique,

@@ -51,15 +51,11 @@ struct ShadowViewInfo {
 };
 
 struct LightShadow {
-    uint32_t sceneLight = 0;  // index into Scene::lights
-    int visibilityIndex = -1; // index into RenderResult::visibility; -1: casts no shadow
-    std::string projection;   // "orthographic" / "perspective" / "cube" / "none"
-    // The first view's (the only one's for suns and spots):
-    float nearPlane = 0.0f, farPlane = 0.0f;
-    float texelWorldSize = 0.0f;   // at unit distance for perspective
-    glm::mat4 worldToShadow{1.0f}; // T x light view-projection: world -> (u, v, depth) * w
-    std::vector<ShadowViewInfo> views;
-    uint32_t guardTexels = 0; // cube faces: texels beyond 90 degrees on each side
+    uint32_t sceneLight = 0;           // index into Scene::lights
+    int visibilityIndex = -1;          // index into RenderResult::visibility; -1: casts no shadow
+    std::string projection;            // "orthographic" / "perspective" / "cube" / "none"
+    std::vector<ShadowViewInfo> views; // empty when it casts no shadow
+    uint32_t guardTexels = 0;          // cube faces: texels beyond 90 degrees on each side
 };
 
 struct RenderResult {

@@ -1,7 +1,6 @@
 #include "core/light_space.h"
 
 #include "core/projection.h"
-#include "penumbra/error.h"
 
 #include <algorithm>
 #include <array>
@@ -118,26 +117,14 @@ LightProjection fitCubeFace(const Light& light, const Bounds& scene, uint32_t ma
 
 std::vector<LightProjection> fitLightViews(const Light& light, const Bounds& scene,
                                            uint32_t mapSize, const CubeFitting& fitting) {
+    if (light.type == LightType::Directional)
+        return {fitDirectional(light, scene, mapSize)};
     if (light.type == LightType::Spot)
         return {fitSpot(light, scene, mapSize, fitting.nearestSurface)};
-    if (light.type != LightType::Point)
-        return {fitLight(light, scene, mapSize)};
     std::vector<LightProjection> faces;
     for (uint32_t face = 0; face < kCubeFaces; ++face)
         faces.push_back(fitCubeFace(light, scene, mapSize, face, fitting));
     return faces;
-}
-
-LightProjection fitLight(const Light& light, const Bounds& scene, uint32_t mapSize) {
-    switch (light.type) {
-    case LightType::Directional:
-        return fitDirectional(light, scene, mapSize);
-    case LightType::Spot:
-        return fitSpot(light, scene, mapSize);
-    case LightType::Point:
-        break;
-    }
-    fatal(__FILE__, __LINE__, "fitLight: point lights have no single shadow projection");
 }
 
 } // namespace penumbra

@@ -49,8 +49,6 @@ LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSiz
 // Face `face` (0..5) of a point light's cube.
 LightProjection fitCubeFace(const Light& light, const Bounds& scene, uint32_t mapSize,
                             uint32_t face, const CubeFitting& fitting);
-// Dispatches on light.type; point lights have no single projection (programmer error).
-LightProjection fitLight(const Light& light, const Bounds& scene, uint32_t mapSize);
 // Every shadow view of a light, in layer order: one for a sun or a spot, six faces for a point.
 std::vector<LightProjection> fitLightViews(const Light& light, const Bounds& scene,
                                            uint32_t mapSize, const CubeFitting& fitting);

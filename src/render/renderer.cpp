@@ -33,8 +33,7 @@ ShadowCount shadowCount(const Scene& scene) {
     return n;
 }
 
-void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o,
-                       const ShadowCount& shadows) {
+void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const ShadowCount& shadows) {
     const size_t shadowLights = shadows.lights;
     const uint32_t limit = ctx.limits().maxImageDimension2D;
     auto tooBig = [&](const char* option, uint32_t value) {
@@ -48,10 +47,11 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o,
     tooBig("--shadow-map-size", o.shadowMapSize);
     const uint32_t layers = ctx.limits().maxImageArrayLayers;
     if (shadows.views > layers || shadowLights > layers)
-        throw InputError(shadows.scene, fmt::format("its {} shadow-casting lights need {} shadow views "
-                                              "(a point light takes 6); this device's "
-                                              "maxImageArrayLayers is {}",
-                                              shadowLights, shadows.views, layers));
+        throw InputError(shadows.scene,
+                         fmt::format("its {} shadow-casting lights need {} shadow views "
+                                     "(a point light takes 6); this device's "
+                                     "maxImageArrayLayers is {}",
+                                     shadowLights, shadows.views, layers));
     // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
     const double pixels = double(o.width) * double(o.height);
     const double shadowBytes =

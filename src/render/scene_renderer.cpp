@@ -251,11 +251,8 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
             }
             shadowLights.push_back({.light = {i, static_cast<uint32_t>(info.visibilityIndex),
                                               o.shadowMapSize, firstView}});
-            const ShadowViewInfo& first = info.views.front();
-            info.projection = light.type == LightType::Point ? "cube" : first.projection;
-            info.nearPlane = first.nearPlane, info.farPlane = first.farPlane;
-            info.texelWorldSize = first.texelWorldSize;
-            info.worldToShadow = first.worldToShadow;
+            info.projection =
+                light.type == LightType::Point ? "cube" : info.views.front().projection;
             info.guardTexels = light.type == LightType::Point ? guard : 0;
         }
         lights.push_back(lightData(light, info.visibilityIndex, firstView,

@@ -63,9 +63,10 @@ nlohmann::json renderStats(const RenderRun& run) {
             light["radius"] = o.lightRadiusOverride >= 0 ? o.lightRadiusOverride : l.radius;
         if (s.visibilityIndex >= 0) {
             light["visibility_file"] = visibilityFileName(static_cast<size_t>(s.visibilityIndex));
-            light["near"] = s.nearPlane;
-            light["far"] = s.farPlane;
-            light["texel_world_size"] = s.texelWorldSize;
+            // The first view's (the only one's for suns and spots), as before views were listed.
+            light["near"] = s.views.front().nearPlane;
+            light["far"] = s.views.front().farPlane;
+            light["texel_world_size"] = s.views.front().texelWorldSize;
             if (l.type == LightType::Point)
                 light["guard_texels"] = s.guardTexels;
             nlohmann::json views = nlohmann::json::array();
