@@ -124,6 +124,7 @@ struct SceneRenderer::Impl {
     Bounds bounds;
     render::GpuScene gpu;
     std::vector<float> nearestSurface; // per scene light: from its position (spot and point)
+    size_t viewCapacity = 0;           // records the view buffers hold: shadowViewCount's sum
     std::optional<TargetKey> key;
     render::FrameTargets targets;
     vk::Buffer readback;
@@ -190,6 +191,7 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
                                        ? nearestSurfaceDistance(m.scene, light.position)
                                        : std::numeric_limits<float>::infinity());
     }
+    m.viewCapacity = viewCount;
     const size_t viewBytes = sizeof(gpu::ShadowViewData) * std::max<size_t>(viewCount, 1);
     for (Impl::Slot& slot : m.slots) {
         slot.frame =
@@ -260,6 +262,9 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
         result.lights.push_back(info);
     }
 
+    // fitLightViews and shadowViewCount must agree: the buffers were sized by the latter.
+    if (viewRecords.size() > m.viewCapacity)
+        fatal(__FILE__, __LINE__, "SceneRenderer: more shadow views than shadowViewCount counted");
     const TargetKey key{.width = o.width,
                         .height = o.height,
                         .shadowMapSize = o.shadowMapSize,
