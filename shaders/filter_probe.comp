@@ -27,6 +27,7 @@ void main() {
     r.depth = probe.uvDepth.z;
     r.gradient = probe.gradientPixel.xy;
     r.layer = 0.0;
+    r.kernelScale = 1.0;
     results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, push.counts.y, view,
                                    uvec2(probe.gradientPixel.zw));
 }

@@ -49,6 +49,7 @@ Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world,
     r.depth = c.depth;
     r.gradient = vec2(0.0);
     r.layer = view.texel.z;
+    r.kernelScale = view.cascade.z;
     if (RECEIVER == RECEIVER_LIGHT) {
         r.gradient = receiverGradientFromNormal(view.shadowMatrix, world, normal);
     } else if (RECEIVER == RECEIVER_SCREEN) {
@@ -61,6 +62,17 @@ Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world,
     return r;
 }
 
+// The technique's visibility of one pixel through one shadow view.
+float visibilityThrough(uint viewIndex, LightData light, ivec2 p, vec3 world, vec3 normal,
+                        float depth) {
+    ShadowViewData view = views[viewIndex];
+    bool inside;
+    Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
+    return inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, push.light.z, view,
+                                      uvec2(p)).x
+                  : 1.0;
+}
+
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = frame.imageSize.xy;
@@ -71,12 +83,22 @@ void main() {
         vec3 world = worldPosition(frame.invViewProj, p, size, depth);
         vec3 normal = normalize(texelFetch(gNormal, p, 0).xyz);
         LightData light = lights[push.light.x];
-        ShadowViewData view = views[shadowViewOf(light, world)];
-        bool inside;
-        Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
-        v = inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, push.light.z,
-                                       view, uvec2(p)).x
-                   : 1.0;
+        uint viewIndex = shadowViewOf(light, world);
+        uint cascades = light.positionType.w == float(LIGHT_DIRECTIONAL) ? light.views.y : 1u;
+        if (cascades > 1u) {
+            // A sun's cascade: the first whose slice reaches the pixel's view distance.
+            float z = dot(world - frame.position.xyz, frame.cameraForward.xyz);
+            uint i = 0u;
+            while (i + 1u < cascades && z > views[viewIndex + i].cascade.x) ++i;
+            viewIndex += i;
+            v = visibilityThrough(viewIndex, light, p, world, normal, depth);
+            vec4 c = views[viewIndex].cascade;
+            if (i + 1u < cascades && z > c.y) // the blend band: mix into the next cascade
+                v = mix(v, visibilityThrough(viewIndex + 1u, light, p, world, normal, depth),
+                        clamp((z - c.y) / (c.x - c.y), 0.0, 1.0));
+        } else {
+            v = visibilityThrough(viewIndex, light, p, world, normal, depth);
+        }
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));
 }

@@ -227,14 +227,14 @@ TEST(TechniqueModules, CubeGuardBandsHoldEveryKernel) {
             p.set("bias.normal", normal);
             const shadows::TechniqueModule& m = shadows::moduleOf(row.technique);
             const double need = m.blurRadiusTexels(p) + 1.5 + p.number("bias.normal");
-            const uint32_t guard = shadows::cubeGuardTexels(m, p);
+            const uint32_t guard = shadows::viewGuardTexels(m, p);
             EXPECT_GE(guard, need) << row.name << ", bias.normal " << normal;
             EXPECT_LE(guard, need + 3.0) << row.name << ": a wider band costs resolution";
         }
     }
     ParameterValues wide;
     wide.set("pcss.maxRadius", "100");
-    EXPECT_EQ(shadows::cubeGuardTexels(shadows::pcssModule(), wide), 101u + 2u + 1u); // normal 0.3
+    EXPECT_EQ(shadows::viewGuardTexels(shadows::pcssModule(), wide), 101u + 2u + 1u); // normal 0.3
 }
 
 TEST(TechniqueModules, ChoiceListsAreTheShadersOwnTables) {

@@ -41,12 +41,18 @@ struct PassTime {
 
 // One shadow view of a light (a layer of the shadow maps): its projection.
 struct ShadowViewInfo {
-    std::string name;       // "" for a light's only view; "+x", "-x", ... for cube faces
+    std::string name;       // "" for a light's only view; "+x", "-x", ... for cube faces;
+                            // "cascade" for a sun's cascades
     uint32_t layer = 0;     // its layer in the shadow maps
     std::string projection; // "orthographic" / "perspective"
     float nearPlane = 0.0f, farPlane = 0.0f;
-    float texelWorldSize = 0.0f;   // at unit distance for perspective
-    float fovDegrees = 0.0f;       // perspective: the full field of view (cube faces: 90 + guard)
+    float texelWorldSize = 0.0f; // at unit distance for perspective
+    float fovDegrees = 0.0f;     // perspective: the full field of view (cube faces: 90 + guard)
+    // A sun's cascade: the slice of the camera's view distance it serves (from splitNear, with
+    // the previous cascade's blend, to splitFar), where it starts blending into the next, and
+    // its kernel scale (the first cascade's texel size over its own).
+    bool cascade = false;
+    float splitNear = 0.0f, splitFar = 0.0f, blendStart = 0.0f, kernelScale = 1.0f;
     glm::mat4 worldToShadow{1.0f}; // T x view-projection: world -> (u, v, depth) * w
 };
 

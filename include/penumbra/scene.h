@@ -144,8 +144,8 @@ size_t dropInvalidTriangles(Scene& scene);
 // point lights a cube of six).
 bool castsShadowMap(const Light& light);
 // How many shadow views (map layers) it takes: 0 without a shadow map, 6 cube faces for a point
-// light, 1 otherwise.
-uint32_t shadowViewCount(const Light& light);
+// light, `cascades` (csm.cascades) for a directional light, 1 for a spot.
+uint32_t shadowViewCount(const Light& light, uint32_t cascades);
 
 // The distance from `p` to the nearest point of any triangle (infinity for none): how near a
 // light's shadow views may put their near plane without clipping a caster.

@@ -98,6 +98,15 @@ SHARED vec2 rotatedOffset(vec2 d, float turns, float radius) {
     return radius * vec2(c * d.x - s * d.y, s * d.x + c * d.y);
 }
 
+// An n x n kernel (n odd) set in texels of a sun's first cascade, in a cascade whose texels are
+// 1/scale times as wide (scale <= 1): the odd size nearest n x scale, at least 1, so the kernel
+// keeps its world size.
+SHARED int scaledKernelSize(uint n, float scale) {
+    if (scale >= 1.0f) return int(n);
+    int k = 2 * int(floor(0.5f * (float(n) * scale - 1.0f) + 0.5f)) + 1;
+    return k < 1 ? 1 : k;
+}
+
 // The face of a point light's cube that holds direction `d` from the light: its major axis, in
 // the order of src/core/light_space.h (+x, -x, +y, -y, +z, -z). Ties go to the earlier axis;
 // the faces' guard bands make either choice correct.

@@ -93,6 +93,8 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     vec4 biasParams;     // xy: range of a tap's receiver-plane depth correction (light depth)
     uvec4 pcssMode;      // x pcss.blockerSamples, y pcss.filterSamples, z pcss.rotation
     vec4 pcssParams;     // x pcss.maxRadius (texels)
+    vec4 cameraForward;  // xyz: the camera's unit view axis (cascades are picked by distance
+                         // along it)
     vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
 };
 
@@ -116,6 +118,9 @@ struct ShadowViewData {  // std430 storage buffer, one per shadow view
     vec4 texel;          // x world size of a texel (perspective: at unit distance), y 1 if
                          // perspective, z the view's layer in the maps, w the light's size as
                          // this view sees it: radius (perspective) or tan(half angular diameter)
+    vec4 cascade;        // x the camera view distance where this view's slice ends, y where it
+                         // starts blending into the next view (both huge: not a cascade), z the
+                         // kernel scale (the first cascade's texel size over this view's)
 };
 
 struct ShadowPush {      // push constants of shadow_depth.vert
@@ -177,14 +182,15 @@ static_assert(ROTATION_NONE == 0 && ROTATION_RANDOM == 1 && ROTATION_IGN == 2 &&
 static_assert(RECEIVER_OFF == 0 && RECEIVER_SCREEN == 1 && RECEIVER_LIGHT == 2 &&
               std::size(kReceiverChoices) == 3);
 
-static_assert(sizeof(FrameData) == 800 && offsetof(FrameData, position) == 128 &&
+static_assert(sizeof(FrameData) == 816 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, filterMode) == 192 && offsetof(FrameData, biasParams) == 240 &&
-              offsetof(FrameData, pcssMode) == 256 && offsetof(FrameData, poisson) == 288);
+              offsetof(FrameData, pcssMode) == 256 && offsetof(FrameData, cameraForward) == 288 &&
+              offsetof(FrameData, poisson) == 304);
 static_assert(sizeof(LightData) == 96 && offsetof(LightData, cone) == 48 &&
               offsetof(LightData, bias) == 64 && offsetof(LightData, views) == 80);
-static_assert(sizeof(ShadowViewData) == 96 && offsetof(ShadowViewData, frustum) == 64 &&
-              offsetof(ShadowViewData, texel) == 80);
+static_assert(sizeof(ShadowViewData) == 112 && offsetof(ShadowViewData, frustum) == 64 &&
+              offsetof(ShadowViewData, texel) == 80 && offsetof(ShadowViewData, cascade) == 96);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
               sizeof(PostPassPush) == 16 && sizeof(ProbePush) == 16);
 static_assert(sizeof(ProbeReceiver) == 32 && offsetof(ProbeReceiver, gradientPixel) == 16);

@@ -17,6 +17,7 @@ struct Receiver {
     float depth;    // d(p), light depth in [0, 1]
     vec2 gradient;  // d depth / d uv on the receiver's plane (zero: no receiver-plane bias)
     float layer;    // the shadow view's layer in the maps
+    float kernelScale; // kernels in texels of the first cascade, in this view's texels
 };
 
 float texelTest(Receiver r, float stored, vec2 texelUv, vec2 dzRange) {
@@ -83,15 +84,16 @@ float poissonTaps(sampler2DArray map, Receiver r, uint mapSize, uint n, float ra
 }
 
 float pcfPoisson(sampler2DArray map, Receiver r, uint mapSize, uvec2 pixel, vec2 dzRange) {
-    return poissonTaps(map, r, mapSize, frame.filterMode.z, frame.filterParams.x,
+    return poissonTaps(map, r, mapSize, frame.filterMode.z, frame.filterParams.x * r.kernelScale,
                        rotationTurns(frame.filterMode.w, pixel), dzRange);
 }
 
 // [Isidoro 2006] edge-only PCF: four taps at the kernel's corners; when they agree fully
 // (all lit or all shadowed) the pixel is taken to be away from any edge.
 bool pcfProbeDecides(sampler2DArray map, Receiver r, uint mapSize, vec2 dzRange, out float result) {
-    float reach = FILTER == FILTER_POISSON ? frame.filterParams.x * 0.70710678
-                                                       : 0.5 * float(frame.filterMode.y - 1u);
+    float reach = FILTER == FILTER_POISSON
+                      ? frame.filterParams.x * r.kernelScale * 0.70710678
+                      : 0.5 * float(scaledKernelSize(frame.filterMode.y, r.kernelScale) - 1);
     vec2 centre = r.uv * float(mapSize);
     float sum = bilinearTap(map, centre + vec2(-reach, -reach), float(mapSize), r, dzRange) +
                 bilinearTap(map, centre + vec2(reach, -reach), float(mapSize), r, dzRange) +
@@ -120,8 +122,8 @@ float shadowPcfUnsnapped(sampler2DArray map, sampler2DArrayShadow mapCompare, Re
         pcfProbeDecides(map, r, mapSize, dzRange, early))
         return early;
     if (filterKind == FILTER_POISSON) return pcfPoisson(map, r, mapSize, pixel, dzRange);
-    int n = filterKind == FILTER_BILINEAR ? 1 : int(frame.filterMode.y);
-    return pcfGrid(map, r, mapSize, filterKind, n, frame.filterParams.y, dzRange);
+    int n = filterKind == FILTER_BILINEAR ? 1 : scaledKernelSize(frame.filterMode.y, r.kernelScale);
+    return pcfGrid(map, r, mapSize, filterKind, n, frame.filterParams.y * r.kernelScale, dzRange);
 }
 
 float shadowPcf(sampler2DArray map, sampler2DArrayShadow mapCompare, Receiver r, uint mapSize, uvec2 pixel) {

@@ -31,7 +31,7 @@ float searchBlockers(sampler2DArray map, Receiver r, uint mapSize, uint n, float
 vec4 shadowPcssDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, uvec2 pixel) {
     vec2 dzRange = frame.biasParams.xy;
     float turns = rotationTurns(frame.pcssMode.z, pixel);
-    float maxRadius = frame.pcssParams.x;
+    float maxRadius = frame.pcssParams.x * r.kernelScale;
     float zReceiver = viewDistance(view, r.depth);
     float search = min(blockerSearchRadius(view, zReceiver, mapSize), maxRadius);
     float blockerDepth;

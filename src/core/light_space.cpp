@@ -1,5 +1,7 @@
 #include "core/light_space.h"
 
+#include "core/cascades.h"
+
 #include "core/projection.h"
 
 #include <algorithm>
@@ -81,7 +83,7 @@ LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSiz
 }
 
 LightProjection fitCubeFace(const Light& light, const Bounds& scene, uint32_t mapSize,
-                            uint32_t face, const CubeFitting& fitting) {
+                            uint32_t face, const ViewFitting& fitting) {
     static constexpr const char* kNames[kCubeFaces] = {"+x", "-x", "+y", "-y", "+z", "-z"};
     glm::vec3 axis(0.0f);
     axis[static_cast<int>(face / 2)] = face % 2 == 0 ? 1.0f : -1.0f;
@@ -116,9 +118,12 @@ LightProjection fitCubeFace(const Light& light, const Bounds& scene, uint32_t ma
 }
 
 std::vector<LightProjection> fitLightViews(const Light& light, const Bounds& scene,
-                                           uint32_t mapSize, const CubeFitting& fitting) {
+                                           uint32_t mapSize, const ViewFitting& fitting) {
     if (light.type == LightType::Directional)
-        return {fitDirectional(light, scene, mapSize)};
+        return fitting.camera && fitting.cascades.count > 1
+                   ? fitCascades(light, scene, *fitting.camera, fitting.aspect, mapSize,
+                                 fitting.cascades, fitting.guardTexels)
+                   : std::vector<LightProjection>{fitDirectional(light, scene, mapSize)};
     if (light.type == LightType::Spot)
         return {fitSpot(light, scene, mapSize, fitting.nearestSurface)};
     std::vector<LightProjection> faces;

@@ -24,33 +24,56 @@ struct LightProjection {
     // World size of one shadow-map texel: constant for orthographic; for perspective, the size
     // at unit distance along the light axis (multiply by the distance).
     float texelWorldSize = 0.0f;
-    const char* name = ""; // "" for a light's only view; "+x", "-x", ... for cube faces
+    const char* name = ""; // "" for a light's only view; "+x", "-x", ... for cube faces;
+                           // "cascade" for a sun's cascades
+    // Cascades: the slice of the camera's view distance this view serves, where it starts
+    // blending into the next, and the first cascade's texel size over this one's (kernels keep
+    // their world size). A view that is not a cascade serves every distance.
+    float splitNear = 0.0f, splitFar = std::numeric_limits<float>::max();
+    float blendStart = std::numeric_limits<float>::max();
+    float kernelScale = 1.0f;
 };
 
 // A point light's cube: face i looks down axis i / 2 (x, y, z), towards + when i is even; the
 // shaders pick a face with cubeFace() (shaders/include/filter_math.h), which uses this order.
 inline constexpr uint32_t kCubeFaces = 6;
 
-// What a point light's faces (and a spot's frustum) need beyond the scene bounds.
-struct CubeFitting {
-    // Texels of each face beyond its 90 degrees, on every side, so that a filter kernel centred in
-    // the face reads the geometry across the edge from the same map (at most mapSize / 4).
+// csm.* (src/core/cascades.h).
+struct CascadeSettings {
+    uint32_t count = 1;    // csm.cascades, 1..8 (1: one map over the whole scene)
+    float lambda = 0.9f;   // csm.lambda: 0 uniform, 1 logarithmic
+    float blend = 0.1f;    // csm.blend: fraction of a cascade blended into the next
+    bool stabilize = true; // csm.stabilize
+};
+inline constexpr uint32_t kMaxCascades = 8;
+
+// What a light's views need beyond the scene bounds.
+struct ViewFitting {
+    // Texels of each view kept free at its border for filter kernels: a cube face's beyond its 90
+    // degrees (a kernel centred in the face reads the geometry across the edge from the same
+    // map), a cascade's around its slice (at most mapSize / 4).
     uint32_t guardTexels = 0;
     // The distance from the light to the nearest surface: the near plane is placed just inside
     // it (infinity when unknown: the near plane then follows the scene bounds).
     float nearestSurface = 0.0f;
+    // Cascades of a directional light follow the camera (image aspect `aspect`); without a
+    // camera, or with one cascade, a sun gets one map over the whole scene.
+    const Camera* camera = nullptr;
+    float aspect = 1.0f;
+    CascadeSettings cascades;
 };
 
 LightProjection fitDirectional(const Light& light, const Bounds& scene, uint32_t mapSize);
 // `nearestSurface`: the distance from the light to the nearest surface, when known (see
-// CubeFitting); it keeps the near plane off zero when bounds corners lie behind the light.
+// ViewFitting); it keeps the near plane off zero when bounds corners lie behind the light.
 LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSize,
                         float nearestSurface = std::numeric_limits<float>::infinity());
 // Face `face` (0..5) of a point light's cube.
 LightProjection fitCubeFace(const Light& light, const Bounds& scene, uint32_t mapSize,
-                            uint32_t face, const CubeFitting& fitting);
-// Every shadow view of a light, in layer order: one for a sun or a spot, six faces for a point.
+                            uint32_t face, const ViewFitting& fitting);
+// Every shadow view of a light, in layer order: a sun's cascades (one without them), a spot's
+// frustum, a point light's six faces.
 std::vector<LightProjection> fitLightViews(const Light& light, const Bounds& scene,
-                                           uint32_t mapSize, const CubeFitting& fitting);
+                                           uint32_t mapSize, const ViewFitting& fitting);
 
 } // namespace penumbra

@@ -45,6 +45,7 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
                       static_cast<float>(params.number("composite.shadowIntensity")),
                       std::exp2(static_cast<float>(params.number("composite.exposure"))), 0},
         .background = {0.55f, 0.65f, 0.8f, 1.0f}};
+    f.cameraForward = glm::vec4(glm::normalize(camera.target - camera.position), 0.0f);
     setTechniqueSettings(f, params, ctx.info().depthLinearFilter,
                          ctx.limits().subTexelPrecisionBits);
     return f;
@@ -53,7 +54,8 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
 gpu::ShadowViewData probeViewData(const ProbeLight& light) {
     return {.shadowMatrix = glm::mat4(1.0f),
             .frustum = {light.nearPlane, light.farPlane, light.worldPerUv.x, light.worldPerUv.y},
-            .texel = {0.0f, light.perspective ? 1.0f : 0.0f, 0.0f, light.size}};
+            .texel = {0.0f, light.perspective ? 1.0f : 0.0f, 0.0f, light.size},
+            .cascade = {kNotACascade, kNotACascade, 1.0f, 0.0f}};
 }
 
 } // namespace penumbra::render

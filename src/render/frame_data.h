@@ -16,6 +16,9 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& options, uin
 void setTechniqueSettings(gpu::FrameData& frame, const ParameterValues& params,
                           bool hardwareDepthFilter, uint32_t subTexelBits);
 
+// ShadowViewData::cascade's distances for a view that is not a cascade: it serves them all.
+inline constexpr float kNotACascade = 3.0e38f;
+
 // The shadow view of a probed shadow map (only what the filters read is filled; layer 0).
 gpu::ShadowViewData probeViewData(const ProbeLight& light);
 

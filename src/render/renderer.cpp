@@ -24,11 +24,12 @@ struct ShadowCount {
     size_t lights = 0, views = 0;
 };
 
-ShadowCount shadowCount(const Scene& scene) {
+ShadowCount shadowCount(const Scene& scene, const RenderOptions& o) {
     ShadowCount n{.scene = scene.name};
+    const auto cascades = static_cast<uint32_t>(o.parameters.number("csm.cascades"));
     for (const Light& l : scene.lights) {
         n.lights += castsShadowMap(l);
-        n.views += shadowViewCount(l);
+        n.views += shadowViewCount(l, cascades);
     }
     return n;
 }
@@ -49,7 +50,7 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
     if (shadows.views > layers || shadowLights > layers)
         throw InputError(shadows.scene,
                          fmt::format("its {} shadow-casting lights need {} shadow views "
-                                     "(a point light takes 6); this device's "
+                                     "(a point light takes 6, a sun csm.cascades); this device's "
                                      "maxImageArrayLayers is {}",
                                      shadowLights, shadows.views, layers));
     // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
@@ -88,7 +89,7 @@ void Renderer::check(const Scene& scene, const RenderOptions& o) const {
     if (scene.triangleCount() == 0)
         throw InputError(scene.name, "the scene has no triangles");
     (void)scene.camera(o.camera); // throws for an unknown camera name
-    checkDeviceLimits(mImpl->ctx, o, shadowCount(scene));
+    checkDeviceLimits(mImpl->ctx, o, shadowCount(scene, o));
 }
 
 RenderResult Renderer::render(const Scene& scene, const RenderOptions& o,

@@ -41,7 +41,10 @@ gpu::ShadowViewData viewData(const Light& light, const LightProjection& shadow, 
                       static_cast<float>(layer),
                       light.type == LightType::Directional
                           ? std::tan(0.5f * glm::radians(light.angularDiameter))
-                          : light.radius}};
+                          : light.radius},
+            .cascade = {std::min(shadow.splitFar, render::kNotACascade),
+                        std::min(shadow.blendStart, render::kNotACascade), shadow.kernelScale,
+                        0.0f}};
 }
 
 ShadowViewInfo viewInfo(const LightProjection& shadow, uint32_t layer,
@@ -53,6 +56,11 @@ ShadowViewInfo viewInfo(const LightProjection& shadow, uint32_t layer,
             .farPlane = shadow.farPlane,
             .texelWorldSize = shadow.texelWorldSize,
             .fovDegrees = shadow.perspective ? glm::degrees(shadow.yfov) : 0.0f,
+            .cascade = shadow.splitFar < std::numeric_limits<float>::max(),
+            .splitNear = shadow.splitNear,
+            .splitFar = shadow.splitFar,
+            .blendStart = shadow.blendStart,
+            .kernelScale = shadow.kernelScale,
             .worldToShadow = worldToShadow};
 }
 
@@ -186,7 +194,7 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
     const size_t lightBytes = sizeof(gpu::LightData) * std::max<size_t>(m.scene.lights.size(), 1);
     size_t viewCount = 0;
     for (const Light& light : m.scene.lights) {
-        viewCount += shadowViewCount(light);
+        viewCount += shadowViewCount(light, kMaxCascades); // room for any csm.cascades
         m.nearestSurface.push_back(castsShadowMap(light) && light.type != LightType::Directional
                                        ? nearestSurfaceDistance(m.scene, light.position)
                                        : std::numeric_limits<float>::infinity());
@@ -236,16 +244,26 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
     std::vector<gpu::ShadowViewData> viewRecords;
     std::vector<gpu::LightData> lights;
     std::vector<gpu::VisibilityPush> shadowLights;
-    const uint32_t guard = cubeGuardTexels(shadows::moduleOf(o.technique), o.parameters);
+    const uint32_t guard = viewGuardTexels(shadows::moduleOf(o.technique), o.parameters);
+    const CascadeSettings cascades{.count =
+                                       static_cast<uint32_t>(o.parameters.number("csm.cascades")),
+                                   .lambda = static_cast<float>(o.parameters.number("csm.lambda")),
+                                   .blend = static_cast<float>(o.parameters.number("csm.blend")),
+                                   .stabilize = o.parameters.number("csm.stabilize") != 0.0};
     for (uint32_t i = 0; i < lit.lights.size(); ++i) {
         const Light& light = lit.lights[i];
         LightShadow info{.sceneLight = i, .projection = "none"};
         const auto firstView = static_cast<uint32_t>(views.size());
         if (castsShadowMap(light)) {
             info.visibilityIndex = static_cast<int>(shadowLights.size());
-            const CubeFitting cube{.guardTexels = guard, .nearestSurface = m.nearestSurface[i]};
+            const ViewFitting fitting{.guardTexels = guard,
+                                      .nearestSurface = m.nearestSurface[i],
+                                      .camera = &camera,
+                                      .aspect = static_cast<float>(o.width) /
+                                                static_cast<float>(o.height),
+                                      .cascades = cascades};
             for (const LightProjection& shadow :
-                 fitLightViews(light, m.bounds, o.shadowMapSize, cube)) {
+                 fitLightViews(light, m.bounds, o.shadowMapSize, fitting)) {
                 const auto layer = static_cast<uint32_t>(views.size());
                 views.push_back({.light = i, .projection = shadow});
                 viewRecords.push_back(viewData(light, shadow, layer));

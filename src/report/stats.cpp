@@ -80,6 +80,11 @@ nlohmann::json renderStats(const RenderRun& run) {
                     view["face"] = v.name;
                 if (v.projection == "perspective")
                     view["fov_degrees"] = v.fovDegrees;
+                if (v.cascade) // camera view distances: the slice this cascade serves
+                    view["cascade"] = {{"split_near", v.splitNear},
+                                       {"split_far", v.splitFar},
+                                       {"blend_start", v.blendStart},
+                                       {"kernel_scale", v.kernelScale}};
                 // Column-major, as GLM and GLSL store it: world -> (u, v, depth) * w.
                 nlohmann::json matrix = nlohmann::json::array();
                 for (int c = 0; c < 4; ++c)

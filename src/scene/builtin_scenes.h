@@ -43,6 +43,12 @@ inline constexpr float kRoomCeilingFront = 2.0f; // the ceiling and side walls e
 inline constexpr float kRoomFloorFront = 6.0f;   // the floor runs on to this z
 inline constexpr glm::vec3 kRoomLightPosition{0.0f, 1.8f, -0.5f};
 
+// Field: an 800-unit ground, objects from 2 to kFieldFarthest units ahead of the camera (at the
+// origin, looking down -z), a low sun.
+inline constexpr float kFieldHalfSize = 400.0f;
+inline constexpr float kFieldFarthest = 180.0f;
+inline constexpr glm::vec3 kFieldSunDirection{0.55f, -0.45f, -0.35f};
+
 // The outdoor scenes' sun: kSunDirection, 0.53 degrees wide (the real sun's size), warm white.
 Light sun();
 
@@ -51,5 +57,6 @@ Scene grazing();
 Scene spot();
 Scene foliage();
 Scene room();
+Scene field();
 
 } // namespace penumbra::builtin

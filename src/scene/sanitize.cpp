@@ -53,10 +53,18 @@ bool castsShadowMap(const Light& light) {
     return light.castsShadow;
 }
 
-uint32_t shadowViewCount(const Light& light) {
+uint32_t shadowViewCount(const Light& light, uint32_t cascades) {
     if (!castsShadowMap(light))
         return 0;
-    return light.type == LightType::Point ? 6 : 1;
+    switch (light.type) {
+    case LightType::Point:
+        return 6;
+    case LightType::Directional:
+        return cascades;
+    case LightType::Spot:
+        break;
+    }
+    return 1;
 }
 
 namespace {

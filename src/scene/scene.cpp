@@ -19,7 +19,8 @@ constexpr BuiltinEntry kBuiltins[] = {{"showcase", builtin::showcase},
                                       {"grazing", builtin::grazing},
                                       {"spot", builtin::spot},
                                       {"foliage", builtin::foliage},
-                                      {"room", builtin::room}};
+                                      {"room", builtin::room},
+                                      {"field", builtin::field}};
 
 } // namespace
 

@@ -10,7 +10,7 @@ const TechniqueModule& hardModule() {
                  .name = "hard",
                  .summary = "one shadow-map sample per pixel: lit when d(p) <= s(p)",
                  .reference = "Williams 1978, 'Casting curved shadows on curved surfaces'",
-                 .families = {"bias", "composite"},
+                 .families = {"bias", "csm", "composite"},
                  .variants = {{.label = ""}}},
         .blurRadiusTexels = [](const ParameterValues&) { return 0.5; }};
     return module;

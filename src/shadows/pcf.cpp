@@ -26,7 +26,7 @@ const TechniqueModule& pcfModule() {
                  "percentage-closer filtering: the fraction of shadow-map tests a kernel passes",
              .reference = "Reeves, Salesin, Cook 1987, 'Rendering antialiased shadows with depth "
                           "maps'; Isidoro 2006 (edge-only PCF); Tuft 2010 (receiver-plane bias)",
-             .families = {"bias", "pcf", "composite"},
+             .families = {"bias", "pcf", "csm", "composite"},
              .variants =
                  {{.label = "bilinear", .sets = {{"pcf.filter", "bilinear"}}},
                   {.label = "hardware", .sets = {{"pcf.filter", "hardware"}}},

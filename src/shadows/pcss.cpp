@@ -14,7 +14,7 @@ const TechniqueModule& pcssModule() {
                      "percentage-closer soft shadows: blocker search, penumbra estimate, PCF of "
                      "that width (contact hardening)",
                  .reference = "Fernando 2005, 'Percentage-closer soft shadows'",
-                 .families = {"bias", "pcss", "composite"},
+                 .families = {"bias", "pcss", "csm", "composite"},
                  .variants = {{.label = ""},
                               {.label = "fast",
                                .sets = {{"pcss.blockerSamples", "8"},

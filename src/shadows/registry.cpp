@@ -1,6 +1,7 @@
 // The technique and parameter tables behind `--technique`, `--set` and `penumbra techniques`,
 // gathered from the technique modules (src/shadows/technique.h): each registers its own rows and
-// parameter family; the families every technique reads (bias, composite) are registered here.
+// parameter family; the families every technique reads (bias, csm, composite) are registered
+// here.
 // The renderer reads values by key, so a new family adds rows, not plumbing.
 #include "gpu_types.h"
 #include "penumbra/error.h"
@@ -27,7 +28,7 @@ const std::vector<TechniqueInfo>& techniqueTable() {
     return table;
 }
 
-// The families every technique reads (bias, composite) and each module's own.
+// The families every technique reads (bias, csm, composite) and each module's own.
 const std::vector<ParameterInfo>& parameterTable() {
     static const std::vector<ParameterInfo> bias{
         {.key = "bias.constant",
@@ -75,6 +76,37 @@ const std::vector<ParameterInfo>& parameterTable() {
          .description = "which receiver-plane corrections apply: both signs, or only those that "
                         "bring a tap's depth nearer the light (near: the plane cannot extrapolate "
                         "beneath a neighbouring surface at a concave crease)"}};
+    // Cascaded shadow maps for directional lights [Engel 2006; Zhang et al. 2006, parallel-split
+    // shadow maps]: src/core/cascades.cpp, docs/techniques.md "Cascades".
+    static const std::vector<ParameterInfo> csm{
+        {.key = "csm.cascades",
+         .type = ParameterType::Int,
+         .defaultValue = 1,
+         .min = 1,
+         .max = 8,
+         .unit = "shadow views",
+         .description = "cascades of a directional light, each fitted to a slice of the camera's "
+                        "view distance (1: one map over the whole scene)"},
+        {.key = "csm.lambda",
+         .type = ParameterType::Float,
+         .defaultValue = 0.9, // measured: docs/techniques.md, "Cascades"
+         .min = 0.0,
+         .max = 1.0,
+         .unit = "",
+         .description = "split scheme: 0 uniform, 1 logarithmic, between them the practical "
+                        "split's blend"},
+        {.key = "csm.blend",
+         .type = ParameterType::Float,
+         .defaultValue = 0.1,
+         .min = 0.0,
+         .max = 0.5,
+         .unit = "fraction of a cascade",
+         .description = "the last part of each cascade, blended into the next one (no seam)"},
+        {.key = "csm.stabilize",
+         .type = ParameterType::Bool,
+         .defaultValue = 1,
+         .description = "fit each cascade to its slice's bounding sphere and snap it to whole "
+                        "texels, so shadows do not crawl when the camera moves or turns"}};
     static const std::vector<ParameterInfo> composite{
         {.key = "composite.shadowIntensity",
          .type = ParameterType::Float,
@@ -103,6 +135,7 @@ const std::vector<ParameterInfo>& parameterTable() {
         std::vector<ParameterInfo> t = bias;
         for (const shadows::TechniqueModule* m : shadows::allModules())
             t.insert(t.end(), m->parameters.begin(), m->parameters.end());
+        t.insert(t.end(), csm.begin(), csm.end());
         t.insert(t.end(), composite.begin(), composite.end());
         return t;
     }();

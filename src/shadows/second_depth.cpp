@@ -14,7 +14,7 @@ const TechniqueModule& secondDepthModule() {
                      "one sample against the midpoint of the nearest and second-nearest depths: "
                      "no self-shadowing without bias, for watertight geometry",
                  .reference = "Wang and Molnar 1994, 'Second-depth shadow mapping'",
-                 .families = {"bias", "composite"},
+                 .families = {"bias", "csm", "composite"},
                  .variants = {{.label = ""},
                               {.label = "nobias",
                                .sets = {{"bias.constant", "0"},

@@ -40,7 +40,7 @@ uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size) {
     return perTexel * size * size;
 }
 
-uint32_t cubeGuardTexels(const TechniqueModule& module, const ParameterValues& params) {
+uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params) {
     const double footprint = module.blurRadiusTexels ? module.blurRadiusTexels(params) : 0.0;
     // A bilinear tap reads 1.5 texels past its centre; the normal offset moves the receiver up to
     // bias.normal texels after its face was chosen.

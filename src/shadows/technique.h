@@ -73,10 +73,10 @@ const TechniqueModule& moduleOf(Technique technique);
 
 // Device memory the technique's maps take per shadow view of size x size texels.
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size);
-// The guard band of a point light's cube faces (src/core/light_space.h, CubeFitting): the
-// technique's widest footprint, the bilinear tap's reach and the normal offset, in texels, so a
-// kernel near a face edge reads the geometry across it from the same face.
-uint32_t cubeGuardTexels(const TechniqueModule& module, const ParameterValues& params);
+// The guard band of a point light's cube faces and a sun's cascades (src/core/light_space.h,
+// ViewFitting): the technique's widest footprint, the bilinear tap's reach and the normal offset,
+// in texels, so a kernel near a view's edge reads the geometry across it from the same map.
+uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params);
 // Every specialization constant of the visibility pass, TECHNIQUE first: the pipeline key.
 std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
                                               const ParameterValues& params);

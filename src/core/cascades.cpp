@@ -1,0 +1,155 @@
+#include "core/cascades.h"
+
+#include "core/projection.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+struct CameraFrame {
+    glm::vec3 position, forward, right, up;
+    glm::vec2 halfExtentPerDistance{0.0f}; // perspective: half width and height at distance 1
+    glm::vec2 halfExtent{0.0f};            // orthographic: half width and height
+};
+
+CameraFrame frameOf(const Camera& c, float aspect) {
+    CameraFrame f{.position = c.position, .forward = glm::normalize(c.target - c.position)};
+    f.right = glm::normalize(glm::cross(f.forward, c.up));
+    f.up = glm::cross(f.right, f.forward);
+    if (c.orthographic)
+        f.halfExtent = {aspect * c.ymag, c.ymag};
+    else
+        f.halfExtentPerDistance = glm::vec2(aspect, 1.0f) * std::tan(0.5f * c.yfov);
+    return f;
+}
+
+glm::vec2 halfExtentAt(const CameraFrame& f, float distance) {
+    return f.halfExtent + f.halfExtentPerDistance * distance;
+}
+
+std::array<glm::vec3, 8> sliceCorners(const CameraFrame& f, float a, float b) {
+    std::array<glm::vec3, 8> c;
+    for (int i = 0; i < 8; ++i) {
+        const float d = i & 4 ? b : a;
+        const glm::vec2 h = halfExtentAt(f, d);
+        c[i] = f.position + f.forward * d + f.right * (i & 1 ? h.x : -h.x) +
+               f.up * (i & 2 ? h.y : -h.y);
+    }
+    return c;
+}
+
+// The smallest sphere around the slice [a, b]: its centre lies on the view axis, where the near
+// and far corners are equally far (or at the far face's centre when that is nearer).
+std::pair<glm::vec3, float> sliceSphere(const CameraFrame& f, float a, float b) {
+    const float rNear = glm::length(halfExtentAt(f, a)), rFar = glm::length(halfExtentAt(f, b));
+    float t = (b * b - a * a + rFar * rFar - rNear * rNear) / (2.0f * (b - a));
+    t = std::clamp(t, a, b);
+    const float radius = std::max(std::hypot(t - a, rNear), std::hypot(b - t, rFar));
+    return {f.position + f.forward * t, radius};
+}
+
+} // namespace
+
+std::vector<float> cascadeSplits(float n, float f, uint32_t count, float lambda) {
+    std::vector<float> d(count + 1);
+    for (uint32_t i = 0; i <= count; ++i) {
+        const float s = static_cast<float>(i) / static_cast<float>(count);
+        d[i] = lambda * n * std::pow(f / n, s) + (1.0f - lambda) * (n + (f - n) * s);
+    }
+    d.front() = n, d.back() = f; // exact ends despite rounding
+    return d;
+}
+
+glm::vec2 cameraDepthRange(const Camera& camera, const Bounds& scene) {
+    const glm::vec3 forward = glm::normalize(camera.target - camera.position);
+    float lo = std::numeric_limits<float>::max(), hi = -lo;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 c{i & 1 ? scene.max.x : scene.min.x, i & 2 ? scene.max.y : scene.min.y,
+                          i & 4 ? scene.max.z : scene.min.z};
+        const float d = glm::dot(c - camera.position, forward);
+        lo = std::min(lo, d), hi = std::max(hi, d);
+    }
+    const float nearDistance = std::max(camera.znear, lo);
+    const float farDistance = std::min(camera.zfar, hi);
+    return {nearDistance, std::max(farDistance, nearDistance * 1.01f + 1e-4f)};
+}
+
+glm::vec2 stableDepthRange(const Camera& camera, const Bounds& scene) {
+    const float distance = glm::length(scene.center() - camera.position);
+    const float radius = 0.5f * glm::length(scene.extent());
+    auto steps = [](float x) { return 4.0f * std::log2(x); }; // quarter powers of two
+    const float nearDistance =
+        distance - radius > camera.znear
+            ? std::max(camera.znear, std::exp2(std::floor(steps(distance - radius)) / 4.0f))
+            : camera.znear;
+    const float farDistance =
+        std::min(camera.zfar, std::exp2(std::ceil(steps(distance + radius)) / 4.0f));
+    return {nearDistance, std::max(farDistance, nearDistance * 1.01f + 1e-4f)};
+}
+
+std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
+                                         const Camera& camera, float aspect, uint32_t mapSize,
+                                         const CascadeSettings& s, uint32_t guardTexels) {
+    const CameraFrame frame = frameOf(camera, aspect);
+    const glm::vec2 range =
+        s.stabilize ? stableDepthRange(camera, scene) : cameraDepthRange(camera, scene);
+    const std::vector<float> d = cascadeSplits(range.x, range.y, s.count, s.lambda);
+    const glm::vec3 dir = glm::normalize(sun.direction);
+    // One orientation for every cascade and every frame: only the window moves.
+    const glm::mat4 rotation = lookAt(
+        glm::vec3(0.0f), dir, std::abs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0));
+    // Depth: every caster of the scene, whichever slice it shadows.
+    float zLo = std::numeric_limits<float>::max(), zHi = -zLo;
+    for (int i = 0; i < 8; ++i) {
+        const glm::vec3 c{i & 1 ? scene.max.x : scene.min.x, i & 2 ? scene.max.y : scene.min.y,
+                          i & 4 ? scene.max.z : scene.min.z};
+        const float z = (rotation * glm::vec4(c, 1.0f)).z;
+        zLo = std::min(zLo, z), zHi = std::max(zHi, z);
+    }
+    const float pad = 1e-4f * std::max(zHi - zLo, 1e-3f);
+    const float n = static_cast<float>(mapSize);
+    const float guard = std::min(static_cast<float>(guardTexels), 0.25f * n);
+    const float widen = n / (n - 2.0f * guard); // the guard band around the slice's window
+
+    std::vector<LightProjection> cascades;
+    for (uint32_t i = 0; i < s.count; ++i) {
+        const float a = i == 0 ? d[0] : d[i] - s.blend * (d[i] - d[i - 1]);
+        const float b = d[i + 1];
+        glm::vec2 centre, half;
+        if (s.stabilize) {
+            const auto [sphereCentre, radius] = sliceSphere(frame, a, b);
+            half = glm::vec2(radius * widen);
+            const float texel = 2.0f * half.x / n;
+            centre = glm::vec2(rotation * glm::vec4(sphereCentre, 1.0f));
+            centre = glm::floor(centre / texel) * texel; // whole texels: the grid does not slide
+        } else {
+            glm::vec2 lo(std::numeric_limits<float>::max()), hi(-lo);
+            for (const glm::vec3& c : sliceCorners(frame, a, b)) {
+                const glm::vec2 p(rotation * glm::vec4(c, 1.0f));
+                lo = glm::min(lo, p), hi = glm::max(hi, p);
+            }
+            centre = 0.5f * (lo + hi);
+            half = glm::vec2(0.5f * std::max(hi.x - lo.x, hi.y - lo.y) * widen);
+        }
+        LightProjection p;
+        p.name = "cascade";
+        p.view = rotation;
+        p.window = {centre.x - half.x, centre.x + half.x, centre.y - half.y, centre.y + half.y};
+        p.nearPlane = -zHi - pad, p.farPlane = -zLo + pad; // the view looks down -z
+        p.projection =
+            orthographic(p.window.x, p.window.y, p.window.z, p.window.w, p.nearPlane, p.farPlane);
+        p.viewProj = p.projection * p.view;
+        p.texelWorldSize = 2.0f * half.x / n;
+        p.splitNear = a, p.splitFar = b;
+        p.blendStart = i + 1 < s.count ? b - s.blend * (b - d[i]) : b;
+        cascades.push_back(p);
+    }
+    for (LightProjection& p : cascades)
+        p.kernelScale = cascades.front().texelWorldSize / p.texelWorldSize;
+    return cascades;
+}
+
+} // namespace penumbra
