@@ -151,6 +151,27 @@ TEST(Cascades, StabilizedCascadesKeepTheirTexelGridAsTheCameraMovesAndTurns) {
         EXPECT_NEAR(glm::fract(a.x), glm::fract(b.x), 2e-3f) << "cascade " << i;
         EXPECT_NEAR(glm::fract(a.y), glm::fract(b.y), 2e-3f) << "cascade " << i;
     }
+    // The window is the smallest sphere around the slice (plus the guard band): found here by a
+    // ternary search along the view axis over the farthest slice corner.
+    const Camera c = camera({0, 1.7f, 0}, 0.0f);
+    const float tanY = std::tan(0.5f * c.yfov), corner = std::sqrt(2.0f) * tanY; // aspect 1
+    for (const LightProjection& p : before) {
+        const float a = p.splitNear, b = p.splitFar;
+        auto reach = [&](float t) {
+            return std::max(std::hypot(t - a, a * corner), std::hypot(b - t, b * corner));
+        };
+        float lo = a, hi = b;
+        for (int k = 0; k < 200; ++k) {
+            const float m1 = lo + (hi - lo) / 3.0f, m2 = hi - (hi - lo) / 3.0f;
+            if (reach(m1) < reach(m2))
+                hi = m2;
+            else
+                lo = m1;
+        }
+        const float radius = reach(0.5f * (lo + hi));
+        const float half = 0.5f * (p.window.y - p.window.x) * (1024.0f - 12.0f) / 1024.0f;
+        EXPECT_NEAR(half, radius, 1e-4f * radius) << "cascade " << p.splitNear;
+    }
     // Without stabilisation the fit follows the slice: a turn changes the texel size.
     CascadeSettings tight = settings;
     tight.stabilize = false;
