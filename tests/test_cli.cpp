@@ -415,3 +415,67 @@ TEST(Cli, RefusesAMalformedGltfWithOneLineAndNoOutput) {
                          ": nodes[0].mesh: index 7 is out of range (0 meshes)\n");
     EXPECT_FALSE(fs::exists(out));
 }
+
+namespace {
+
+// compare on builtin:field with four cascades along a camera path: metrics.json's shimmer of
+// the one row.
+double fieldShimmer(const char* path, bool stabilize) {
+    const fs::path out =
+        scratch(std::string("shimmer-") + path + (stabilize ? "-stable" : "-free"));
+    const ProcessResult r = runCli({"compare",
+                                    "builtin:field",
+                                    "-o",
+                                    out.string(),
+                                    "--techniques",
+                                    "hard",
+                                    "--width",
+                                    "160",
+                                    "--height",
+                                    "120",
+                                    "--shadow-map-size",
+                                    "1024",
+                                    "--frames",
+                                    "1",
+                                    "--samples",
+                                    "4",
+                                    "--set",
+                                    "csm.cascades=4",
+                                    "--set",
+                                    std::string("csm.stabilize=") + (stabilize ? "true" : "false"),
+                                    "--camera-path",
+                                    path,
+                                    "--path-frames",
+                                    "4"});
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    const auto metrics = nlohmann::json::parse(slurp(out / "metrics.json"));
+    EXPECT_EQ(metrics["camera_path"]["path"], path);
+    EXPECT_EQ(metrics["camera_path"]["frames"], 4);
+    EXPECT_NE(slurp(out / "report.html").find("Shimmer (" + std::string(path)), std::string::npos);
+    return metrics["techniques"]["hard"]["shimmer"].get<double>();
+}
+
+} // namespace
+
+TEST(Cli, StabilizedCascadesShimmerAtMostHalfAsMuchAsFreeOnes) {
+    for (const char* path : {"dolly", "orbit"}) {
+        const double stable = fieldShimmer(path, true), free = fieldShimmer(path, false);
+        std::printf("%s: shimmer stabilised %.6f, free %.6f\n", path, stable, free);
+        EXPECT_GT(free, 1e-4) << path << ": free cascades crawl";
+        EXPECT_LE(stable, 0.5 * free) << path;
+    }
+    // A turning sun: each frame's change against the truth's own (traced per frame).
+    const double sun = fieldShimmer("sun", true);
+    std::printf("sun: shimmer %.6f\n", sun);
+    EXPECT_GE(sun, 0.0);
+    EXPECT_LT(sun, 0.05);
+}
+
+TEST(Cli, CompareRefusesAnUnknownCameraPath) {
+    const fs::path out = scratch("shimmer-bad");
+    const ProcessResult r =
+        runCli({"compare", "builtin:field", "-o", out.string(), "--camera-path", "spiral"});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "error: --camera-path: 'spiral' is not dolly, orbit or sun\n");
+    EXPECT_FALSE(fs::exists(out));
+}

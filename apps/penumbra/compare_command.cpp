@@ -1,6 +1,7 @@
 // `penumbra compare`: every technique row and the ground truth on the same pixels; writes
 // report.html (self-contained), metrics.json, and each row's images and analysis buffers.
 #include "commands.h"
+#include "compare_path.h"
 #include "core/image_io.h"
 #include "penumbra/error.h"
 #include "penumbra/reference.h"
@@ -24,6 +25,8 @@ struct CompareArgs {
     std::vector<std::string> sets;
     RenderOptions options;
     ReferenceOptions reference{.progress = true};
+    std::string cameraPath; // empty: no shimmer
+    uint32_t pathFrames = 8;
 };
 
 // File-name prefix of a row: "pcf[box7]" -> "pcf-box7".
@@ -57,6 +60,10 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         rowOptions.push_back(std::move(o));
     }
     validate(args.reference);
+    CameraPath path{};
+    if (!args.cameraPath.empty() && !cameraPathFromName(args.cameraPath, path))
+        throw InputError("--camera-path",
+                         fmt::format("'{}' is not dolly, orbit or sun", args.cameraPath));
     Scene scene = loadSceneReporting(args.scene, global);
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
@@ -98,6 +105,16 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     if (!truth.visibility.empty())
         report.referenceVisibilityPng = encodePng(visibilityImage(w, h, truth.visibility[0]));
     writeViewFiles(out, gbuffer, truth.visibility); // the reference's files at the top level
+    std::vector<double> shimmer;
+    if (!args.cameraPath.empty()) {
+        std::vector<std::string> names;
+        for (const TechniqueRow& row : rows)
+            names.push_back(row.name);
+        shimmer = measurePathShimmer(uploaded, scene, rowOptions, names, path, args.pathFrames,
+                                     args.reference);
+        report.cameraPath = args.cameraPath;
+        report.pathFrames = args.pathFrames;
+    }
 
     for (size_t r = 0; r < rows.size(); ++r) {
         const RenderResult& result = results[r];
@@ -106,7 +123,8 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
             layers.push_back({result.visibility[l], truth.visibility[l], masks[l]});
         ReportRow row{.name = rows[r].name,
                       .technique = std::string(techniqueName(rows[r].technique)),
-                      .metrics = computeMetrics(w, h, layers)};
+                      .metrics = computeMetrics(w, h, layers),
+                      .shimmer = shimmer.empty() ? NAN : shimmer[r]};
         for (const auto& [key, value] : rows[r].sets)
             row.parameters.emplace_back(key, value);
         for (const PassTime& p : result.passes)
@@ -136,15 +154,18 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                                              renderer.validationErrors()));
     out.commit();
 
-    std::printf("%-22s %9s %9s %11s %8s %8s %10s\n", "technique", "RMSE", "MAE", "misclass.%",
-                "acne%", "leak%", "GPU ms");
+    std::printf("%-22s %9s %9s %11s %8s %8s %10s%s\n", "technique", "RMSE", "MAE", "misclass.%",
+                "acne%", "leak%", "GPU ms", shimmer.empty() ? "" : "    shimmer");
     for (const ReportRow& row : report.rows) {
         double total = 0;
         for (const auto& [pass, ms] : row.gpuMs)
             total += ms;
-        std::printf("%-22s %9.5f %9.5f %11.3f %8.3f %8.3f %10.3f\n", row.name.c_str(),
+        std::printf("%-22s %9.5f %9.5f %11.3f %8.3f %8.3f %10.3f", row.name.c_str(),
                     row.metrics.rmse, row.metrics.mae, 100 * row.metrics.misclassified,
                     100 * row.metrics.acne, 100 * row.metrics.leak, total);
+        if (!shimmer.empty())
+            std::printf(" %10.5f", row.shimmer);
+        std::printf("\n");
     }
     std::printf("ground truth: %.3g rays in %.1f s (%.2f Mrays/s)\n", double(truth.rays),
                 truth.seconds, report.raysPerSecond * 1e-6);
@@ -166,6 +187,12 @@ Action addCompareCommand(CLI::App& app, const GlobalOptions& global) {
     addViewOptions(*cmd, args->options);
     addTechniqueOptions(*cmd, args->options, args->sets);
     addReferenceOptions(*cmd, args->reference);
+    cmd->add_option("--camera-path", args->cameraPath,
+                    "measure shimmer along a path: dolly (forward by sub-texel steps), orbit "
+                    "(0.1 deg a frame about the target), sun (directional lights turn 0.05 deg "
+                    "a frame)");
+    cmd->add_option("--path-frames", args->pathFrames, "frames along --camera-path")
+        ->check(CLI::Range(2, 64));
     return [args, &global] { return runCompare(*args, global); };
 }
 

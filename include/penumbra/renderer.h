@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -149,6 +150,17 @@ public:
     // Throws InputError on options this device cannot honour for this scene.
     void check(const RenderOptions& options) const;
     RenderResult render(const RenderOptions& options, const ProgressFn& progress = {});
+    // One frame of a path (compare --camera-path): the camera, and the lights' directions and
+    // sizes, changed from the scene's; the lights keep their count, order and positions.
+    // `shadowCamera`: the camera the shadow views (cascades) are fitted to, when it is not the
+    // one that draws the frame (shimmer: this frame's pixels under the previous frame's views).
+    struct FrameState {
+        std::optional<Camera> camera;
+        std::optional<std::vector<Light>> lights;
+        std::optional<Camera> shadowCamera;
+    };
+    RenderResult render(const RenderOptions& options, const FrameState& state,
+                        const ProgressFn& progress = {});
 
 private:
     struct Impl;

@@ -79,4 +79,14 @@ glm::mat4 textureMatrix() {
     return m;
 }
 
+glm::mat4 cameraProjection(const Camera& camera, float aspect) {
+    return camera.orthographic
+               ? orthographicCameraReverseZ(camera.ymag, aspect, camera.znear, camera.zfar)
+               : perspectiveCameraReverseZ(camera.yfov, aspect, camera.znear, camera.zfar);
+}
+
+glm::mat4 cameraViewProj(const Camera& camera, float aspect) {
+    return cameraProjection(camera, aspect) * lookAt(camera.position, camera.target, camera.up);
+}
+
 } // namespace penumbra

@@ -10,6 +10,8 @@
 //    is u = x/2 + 1/2, v = y/2 + 1/2 (the seeds' -1/2 belongs to D3D, whose NDC y points up).
 //  - The camera uses reverse-Z (near -> 1, far -> 0: floats are densest near 0, where distant
 //    depths land) and flips y so that world-up is image-up.
+#include "penumbra/scene.h"
+
 #include <glm/glm.hpp>
 
 namespace penumbra {
@@ -30,6 +32,12 @@ glm::mat4 perspectiveCameraReverseZ(float yfov, float aspect, float n, float f);
 // Orthographic camera, reverse-Z and y flipped like the perspective one: view-space
 // [-ymag aspect, ymag aspect] x [-ymag, ymag] x (distance in [n, f]) -> NDC, depth 1 at n.
 glm::mat4 orthographicCameraReverseZ(float ymag, float aspect, float n, float f);
+
+// The camera's projection (perspective or orthographic, reverse-Z, y flipped) and its world ->
+// clip matrix (projection x view, as the G-buffer pass draws it) for an image of width / height
+// `aspect`.
+glm::mat4 cameraProjection(const Camera& camera, float aspect);
+glm::mat4 cameraViewProj(const Camera& camera, float aspect);
 
 // T: NDC -> shadow-map texture space, (x, y, z) -> (x/2 + 1/2, y/2 + 1/2, z).
 glm::mat4 textureMatrix();

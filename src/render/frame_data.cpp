@@ -29,15 +29,14 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
                          const vk::Context& ctx) {
     const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
     const glm::mat4 view = lookAt(camera.position, camera.target, camera.up);
-    const glm::mat4 proj =
-        camera.orthographic
-            ? orthographicCameraReverseZ(camera.ymag, aspect, camera.znear, camera.zfar)
-            : perspectiveCameraReverseZ(camera.yfov, aspect, camera.znear, camera.zfar);
-    // Inverting in double keeps reconstructed positions accurate far from the origin.
+    const glm::mat4 proj = cameraProjection(camera, aspect);
+    const glm::mat4 viewProj = proj * view;
+    // Multiplying and inverting in double keeps reconstructed positions accurate far from the
+    // origin.
     const glm::dmat4 inv = glm::inverse(glm::dmat4(proj) * glm::dmat4(view));
     const ParameterValues& params = o.parameters;
     gpu::FrameData f{
-        .viewProj = proj * view,
+        .viewProj = viewProj,
         .invViewProj = glm::mat4(inv),
         .position = glm::vec4(camera.position, 1.0f),
         .imageSize = {o.width, o.height, lightCount, 0},

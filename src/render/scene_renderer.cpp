@@ -231,13 +231,20 @@ void SceneRenderer::check(const RenderOptions& o) const {
 }
 
 RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& progress) {
+    return render(o, FrameState{}, progress);
+}
+
+RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& state,
+                                   const ProgressFn& progress) {
     check(o);
     Impl& m = *mImpl;
     const vk::Context& ctx = m.ctx();
     Scene lit; // the lights with the options' sizes; the uploaded geometry stays as it is
-    lit.lights = m.scene.lights;
+    lit.lights = state.lights ? *state.lights : m.scene.lights;
+    PENUMBRA_CHECK(lit.lights.size() == m.scene.lights.size(),
+                   "a frame state must keep the scene's lights");
     applyLightSizeOverrides(lit, o.lightRadiusOverride, o.lightAngleOverride);
-    const Camera camera = m.scene.camera(o.camera);
+    const Camera camera = state.camera ? *state.camera : m.scene.camera(o.camera);
 
     RenderResult result{.width = o.width, .height = o.height};
     std::vector<render::ShadowView> views; // every shadow view of every light, in layer order
@@ -258,7 +265,7 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
             info.visibilityIndex = static_cast<int>(shadowLights.size());
             const ViewFitting fitting{.guardTexels = guard,
                                       .nearestSurface = m.nearestSurface[i],
-                                      .camera = &camera,
+                                      .camera = state.shadowCamera ? &*state.shadowCamera : &camera,
                                       .aspect = static_cast<float>(o.width) /
                                                 static_cast<float>(o.height),
                                       .cascades = cascades};

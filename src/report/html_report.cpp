@@ -235,6 +235,10 @@ void writeTable(std::string& s, const ReportData& d) {
     s += "<h2>Error against the reference</h2>\n<section class=\"card table-wrap\"><table>\n"
          "<thead><tr><th>Technique</th><th>Parameters</th><th>RMSE</th><th>MAE</th><th>Max</th>"
          "<th>Misclassified</th><th>Misclassified outside edges</th><th>Acne</th><th>Leak</th>";
+    const bool shimmer = !d.cameraPath.empty();
+    if (shimmer)
+        fmt::format_to(out, "<th>Shimmer ({}, {} frames)</th>", escapeHtml(d.cameraPath),
+                       d.pathFrames);
     for (const std::string& pass : passes)
         fmt::format_to(out, "<th>{} ms</th>", escapeHtml(pass));
     s += "<th class=\"total\">GPU total ms</th></tr></thead>\n<tbody>\n";
@@ -266,6 +270,8 @@ void writeTable(std::string& s, const ReportData& d) {
         cell(row, &ErrorMetrics::misclassifiedOutsideEdges, true);
         cell(row, &ErrorMetrics::acne, true);
         cell(row, &ErrorMetrics::leak, true);
+        if (shimmer)
+            fmt::format_to(out, "<td>{:.5f}</td>", row.shimmer);
         for (const std::string& pass : passes) {
             auto it = std::find_if(row.gpuMs.begin(), row.gpuMs.end(),
                                    [&](const auto& p) { return p.first == pass; });
@@ -336,6 +342,8 @@ nlohmann::json metricsJson(const ReportData& data) {
                       {"width", data.width},
                       {"height", data.height},
                       {"device", data.device}};
+    if (!data.cameraPath.empty())
+        j["camera_path"] = {{"path", data.cameraPath}, {"frames", data.pathFrames}};
     nlohmann::json techniques = nlohmann::json::object();
     for (const ReportRow& row : data.rows) {
         PENUMBRA_CHECK(!techniques.contains(row.name), "duplicate report row " + row.name);
@@ -355,6 +363,8 @@ nlohmann::json metricsJson(const ReportData& data) {
                                 {"leak", m.leak},
                                 {"pixels", m.pixels},
                                 {"gpu_ms", gpu}};
+        if (!data.cameraPath.empty())
+            techniques[row.name]["shimmer"] = row.shimmer;
     }
     j["techniques"] = techniques;
     return j;

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -20,6 +21,7 @@ struct ReportRow {
     ErrorMetrics metrics;
     std::vector<std::pair<std::string, double>> gpuMs;        // pass -> median ms, frame order
     std::vector<uint8_t> imagePng, visibilityPng, heatmapPng; // encoded PNG files; may be empty
+    double shimmer = NAN; // mean frame-to-frame change along the camera path; NaN: no path
 };
 
 // Everything a report shows: the run's context, the reference, and one row per technique.
@@ -29,6 +31,8 @@ struct ReportData {
     uint32_t samples = 0; // reference rays per pixel and light
     double referenceSeconds = 0, raysPerSecond = 0;
     std::vector<std::string> lights; // one description per shadow-casting light
+    std::string cameraPath;          // "dolly", "orbit", "sun"; empty: no shimmer measured
+    uint32_t pathFrames = 0;
     std::vector<uint8_t> referenceVisibilityPng;
     std::vector<ReportRow> rows;
 };
