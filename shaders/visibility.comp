@@ -73,6 +73,59 @@ float visibilityThrough(uint viewIndex, LightData light, ivec2 p, vec3 world, ve
                   : 1.0;
 }
 
+// Whether a kernel of `radius` texels around the receiver stays inside its view's map.
+bool holds(Receiver r, bool inside, float radius) {
+    float margin = radius / float(push.light.z);
+    return inside && all(greaterThanEqual(r.uv, vec2(margin))) &&
+           all(lessThanEqual(r.uv, vec2(1.0 - margin)));
+}
+
+// PCSS for a pixel of a sun's cascade `i` (of `count` from view `first`). Its kernels follow the
+// light's size, and pcss.maxRadius caps them in texels of the map sampled: the blocker search
+// runs in the finest cascade from i whose texels hold it under the cap (else the coarsest that
+// holds the pixel), and the penumbra is filtered in the finest cascade from i that holds it, so
+// contact shadows keep the fine texels and wide penumbrae are not clipped. The cascades share
+// one orientation and depth range (src/core/cascades.cpp): light view distances carry over.
+float pcssThroughCascades(uint first, uint i, uint count, LightData light, ivec2 p, vec3 world,
+                          vec3 normal, float depth) {
+    uint mapSize = push.light.z;
+    float cap = frame.pcssParams.x;
+    int searchIn = -1;
+    Receiver rs;
+    for (uint j = i; j < count; ++j) {
+        ShadowViewData view = views[first + j];
+        bool inside;
+        Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
+        float search = blockerSearchRadius(view, viewDistance(view, r.depth), mapSize);
+        if (!holds(r, inside, min(search, cap))) continue;
+        searchIn = int(j), rs = r;
+        if (search <= cap) break;
+    }
+    if (searchIn < 0) return visibilityThrough(first + i, light, p, world, normal, depth);
+    float turns = rotationTurns(frame.pcssMode.z, uvec2(p));
+    vec2 blockers = pcssSearch(shadowMap, rs, mapSize, views[first + uint(searchIn)], turns);
+    if (blockers.x == 0.0) return 1.0;
+    float zBlocker = viewDistance(views[first + uint(searchIn)], blockers.y);
+    for (uint k = i; k < uint(searchIn); ++k) {
+        ShadowViewData view = views[first + k];
+        bool inside;
+        Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
+        float radius = penumbraRadius(view, viewDistance(view, r.depth), zBlocker, mapSize);
+        if (radius <= cap && holds(r, inside, radius))
+            return pcssFilter(shadowMap, r, mapSize, view, zBlocker, blockers, turns).x;
+    }
+    return pcssFilter(shadowMap, rs, mapSize, views[first + uint(searchIn)], zBlocker, blockers,
+                      turns).x;
+}
+
+// The visibility of a pixel through cascade i of a sun's `count` cascades from view `first`.
+float throughCascade(uint first, uint i, uint count, LightData light, ivec2 p, vec3 world,
+                     vec3 normal, float depth) {
+    return TECHNIQUE == TECHNIQUE_PCSS
+               ? pcssThroughCascades(first, i, count, light, p, world, normal, depth)
+               : visibilityThrough(first + i, light, p, world, normal, depth);
+}
+
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = frame.imageSize.xy;
@@ -90,12 +143,11 @@ void main() {
             float z = dot(world - frame.position.xyz, frame.cameraForward.xyz);
             uint i = 0u;
             while (i + 1u < cascades && z > views[viewIndex + i].cascade.x) ++i;
-            viewIndex += i;
-            v = visibilityThrough(viewIndex, light, p, world, normal, depth);
-            vec4 c = views[viewIndex].cascade;
+            v = throughCascade(viewIndex, i, cascades, light, p, world, normal, depth);
+            vec4 c = views[viewIndex + i].cascade;
             if (i + 1u < cascades && z > c.y) // the blend band: mix into the next cascade
-                v = mix(v, visibilityThrough(viewIndex + 1u, light, p, world, normal, depth),
-                        clamp((z - c.y) / (c.x - c.y), 0.0, 1.0));
+                v = mix(v, throughCascade(viewIndex, i + 1u, cascades, light, p, world, normal, depth),
+                        cascadeBlendWeight(z, c.y, c.x));
         } else {
             v = visibilityThrough(viewIndex, light, p, world, normal, depth);
         }

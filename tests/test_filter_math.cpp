@@ -152,3 +152,16 @@ TEST(FilterMath, PcssGeometryMeetsItsEndPoints) {
     EXPECT_EQ(gpu::snapToExtremes(0.99f), 0.99f);
     EXPECT_EQ(gpu::snapToExtremes(0.000005f), 0.0f);
 }
+
+TEST(FilterMath, CascadeBlendRisesAcrossTheBandFromNothingToTheNextCascade) {
+    // A cascade whose slice ends at 10 and starts blending at 8.
+    EXPECT_EQ(gpu::cascadeBlendWeight(5.0f, 8.0f, 10.0f), 0.0f); // before the band: this one
+    EXPECT_EQ(gpu::cascadeBlendWeight(8.0f, 8.0f, 10.0f), 0.0f); // the band's start: no seam
+    EXPECT_FLOAT_EQ(gpu::cascadeBlendWeight(8.5f, 8.0f, 10.0f), 0.25f);
+    EXPECT_FLOAT_EQ(gpu::cascadeBlendWeight(9.0f, 8.0f, 10.0f), 0.5f);
+    EXPECT_EQ(gpu::cascadeBlendWeight(10.0f, 8.0f, 10.0f), 1.0f); // the split: the next alone
+    EXPECT_EQ(gpu::cascadeBlendWeight(12.0f, 8.0f, 10.0f), 1.0f);
+    // csm.blend 0: no band, a switch at the split.
+    EXPECT_EQ(gpu::cascadeBlendWeight(9.99f, 10.0f, 10.0f), 0.0f);
+    EXPECT_EQ(gpu::cascadeBlendWeight(10.01f, 10.0f, 10.0f), 1.0f);
+}

@@ -61,5 +61,7 @@ TEST_F(QualityTest, Box7BeatsHardAgainstAnAreaLight) {
     const ErrorMetrics box7 =
         measure(t, Technique::Pcf, {{"pcf.filter", "box"}, {"pcf.size", "7"}});
     std::printf("4-degree sun: hard rmse %.4f, pcf box7 rmse %.4f\n", hard.rmse, box7.rmse);
-    EXPECT_LT(box7.rmse, 0.6 * hard.rmse); // measured: 0.0246 against 0.0451
+    // Measured: 0.0323 against 0.0439 (0.74x). The kernel is 7 texels of the nearest cascade,
+    // half the world width it had in one map over the scene (0.0246 against 0.0451 then).
+    EXPECT_LT(box7.rmse, 0.8 * hard.rmse);
 }

@@ -122,7 +122,10 @@ std::span<const uint8_t> bytesOf(const std::string& text) {
 Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "render SCENE with one shadow technique into DIR");
-    cmd->add_option("scene", args->scene, "builtin:NAME (showcase, grazing, spot) or a glTF file")
+    std::string builtins;
+    for (std::string_view name : builtinSceneNames())
+        builtins += (builtins.empty() ? "" : ", ") + std::string(name);
+    cmd->add_option("scene", args->scene, "builtin:NAME (" + builtins + ") or a glTF file")
         ->required();
     cmd->add_option("-o,--output", args->output, "output directory")->required();
     cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")

@@ -151,6 +151,23 @@ uint32_t shadowViewCount(const Light& light, uint32_t cascades);
 // light's shadow views may put their near plane without clipping a caster.
 float nearestSurfaceDistance(const Scene& scene, const glm::vec3& p);
 
+// A camera's view volume as a frame: unit axes (forward from the position to the target, right,
+// up) and the half width and height of the view at distance 1 along forward (perspective) or at
+// any distance (orthographic); `aspect` is the image's width over its height.
+struct ViewFrustum {
+    glm::vec3 position{0.0f}, forward{0.0f, 0.0f, -1.0f}, right{1.0f, 0.0f, 0.0f},
+        up{0.0f, 1.0f, 0.0f};
+    glm::vec2 halfExtentPerDistance{0.0f}; // perspective
+    glm::vec2 halfExtent{0.0f};            // orthographic
+    glm::vec2 halfExtentAt(float distance) const {
+        return halfExtent + halfExtentPerDistance * distance;
+    }
+};
+ViewFrustum viewFrustum(const Camera& camera, float aspect);
+// The distances along the camera's view axis at which some triangle lies inside its view volume
+// (image aspect `aspect`, between znear and zfar), as {nearest, farthest}; empty (x > y) when no
+// triangle is in view. What a sun's cascades must cover, and no more.
+glm::vec2 visibleDepthRange(const Scene& scene, const Camera& camera, float aspect);
 // --light-radius / --light-angle: negative values leave the scene's sizes alone.
 void applyLightSizeOverrides(Scene& scene, float radius, float angleDegrees);
 std::vector<std::string_view> builtinSceneNames();

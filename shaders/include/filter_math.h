@@ -107,6 +107,14 @@ SHARED int scaledKernelSize(uint n, float scale) {
     return k < 1 ? 1 : k;
 }
 
+// How much of the next cascade a pixel at camera view distance z takes, in a cascade whose slice
+// ends at `splitFar` and starts blending at `blendStart`: 0 up to the band, rising linearly to 1
+// at the split, where the next cascade alone takes over (no seam on either side of the band).
+SHARED float cascadeBlendWeight(float z, float blendStart, float splitFar) {
+    return splitFar > blendStart ? clamp((z - blendStart) / (splitFar - blendStart), 0.0f, 1.0f)
+                                 : (z > splitFar ? 1.0f : 0.0f);
+}
+
 // The face of a point light's cube that holds direction `d` from the light: its major axis, in
 // the order of src/core/light_space.h (+x, -x, +y, -y, +z, -z). Ties go to the earlier axis;
 // the faces' guard bands make either choice correct.

@@ -27,25 +27,39 @@ float searchBlockers(sampler2DArray map, Receiver r, uint mapSize, uint n, float
     return count;
 }
 
-// x visibility, y average blocker depth, z blocking texels found, w filter radius (texels).
-vec4 shadowPcssDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, uvec2 pixel) {
-    vec2 dzRange = frame.biasParams.xy;
-    float turns = rotationTurns(frame.pcssMode.z, pixel);
-    float maxRadius = frame.pcssParams.x * r.kernelScale;
-    float zReceiver = viewDistance(view, r.depth);
-    float search = min(blockerSearchRadius(view, zReceiver, mapSize), maxRadius);
+// The blocker search over the light's extent seen from the receiver, capped at pcss.maxRadius
+// texels of this view: x blocking texels found, y their average depth in this view (1: none).
+vec2 pcssSearch(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, float turns) {
+    float search = min(blockerSearchRadius(view, viewDistance(view, r.depth), mapSize),
+                       frame.pcssParams.x);
     float blockerDepth;
-    uint searchTaps = frame.pcssMode.x;
-    float blockers = searchBlockers(map, r, mapSize, searchTaps, max(search, 0.5), turns, dzRange,
-                                    blockerDepth);
-    if (blockers == 0.0) return vec4(1.0, blockerDepth, 0.0, 0.0); // nothing in the way: lit
-    float zBlocker = viewDistance(view, blockerDepth);
-    float radius = clamp(penumbraRadius(view, zReceiver, zBlocker, mapSize), 0.5, maxRadius);
+    float blockers = searchBlockers(map, r, mapSize, frame.pcssMode.x, max(search, 0.5), turns,
+                                    frame.biasParams.xy, blockerDepth);
+    return vec2(blockers, blockerDepth);
+}
+
+// The penumbra of blockers at light view distance zBlocker (found by `blockers`, a pcssSearch,
+// in this view or a coarser cascade of it), filtered in this view. The result as
+// shadowPcssDetail's.
+vec4 pcssFilter(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, float zBlocker,
+                vec2 blockers, float turns) {
+    float radius = clamp(penumbraRadius(view, viewDistance(view, r.depth), zBlocker, mapSize),
+                         0.5, frame.pcssParams.x);
     // Only blockers and a penumbra under a texel: inside the umbra.
-    if (blockers == 4.0 * float(searchTaps) && radius <= 1.0)
-        return vec4(0.0, blockerDepth, blockers, radius);
-    float v = poissonTaps(map, r, mapSize, frame.pcssMode.y, radius, turns, dzRange);
-    return vec4(snapToExtremes(v), blockerDepth, blockers, radius);
+    if (blockers.x == 4.0 * float(frame.pcssMode.x) && radius <= 1.0)
+        return vec4(0.0, blockers.y, blockers.x, radius);
+    float v = poissonTaps(map, r, mapSize, frame.pcssMode.y, radius, turns, frame.biasParams.xy);
+    return vec4(snapToExtremes(v), blockers.y, blockers.x, radius);
+}
+
+// x visibility, y average blocker depth, z blocking texels found, w filter radius (texels).
+// pcss.maxRadius is in texels of the view sampled; visibility.comp spreads a sun's PCSS over
+// its cascades so that the cap does not clip what a coarser cascade can hold.
+vec4 shadowPcssDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, uvec2 pixel) {
+    float turns = rotationTurns(frame.pcssMode.z, pixel);
+    vec2 blockers = pcssSearch(map, r, mapSize, view, turns);
+    if (blockers.x == 0.0) return vec4(1.0, blockers.y, 0.0, 0.0); // nothing in the way: lit
+    return pcssFilter(map, r, mapSize, view, viewDistance(view, blockers.y), blockers, turns);
 }
 
 #endif

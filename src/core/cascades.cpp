@@ -9,32 +9,11 @@
 namespace penumbra {
 namespace {
 
-struct CameraFrame {
-    glm::vec3 position, forward, right, up;
-    glm::vec2 halfExtentPerDistance{0.0f}; // perspective: half width and height at distance 1
-    glm::vec2 halfExtent{0.0f};            // orthographic: half width and height
-};
-
-CameraFrame frameOf(const Camera& c, float aspect) {
-    CameraFrame f{.position = c.position, .forward = glm::normalize(c.target - c.position)};
-    f.right = glm::normalize(glm::cross(f.forward, c.up));
-    f.up = glm::cross(f.right, f.forward);
-    if (c.orthographic)
-        f.halfExtent = {aspect * c.ymag, c.ymag};
-    else
-        f.halfExtentPerDistance = glm::vec2(aspect, 1.0f) * std::tan(0.5f * c.yfov);
-    return f;
-}
-
-glm::vec2 halfExtentAt(const CameraFrame& f, float distance) {
-    return f.halfExtent + f.halfExtentPerDistance * distance;
-}
-
-std::array<glm::vec3, 8> sliceCorners(const CameraFrame& f, float a, float b) {
+std::array<glm::vec3, 8> sliceCorners(const ViewFrustum& f, float a, float b) {
     std::array<glm::vec3, 8> c;
     for (int i = 0; i < 8; ++i) {
         const float d = i & 4 ? b : a;
-        const glm::vec2 h = halfExtentAt(f, d);
+        const glm::vec2 h = f.halfExtentAt(d);
         c[i] = f.position + f.forward * d + f.right * (i & 1 ? h.x : -h.x) +
                f.up * (i & 2 ? h.y : -h.y);
     }
@@ -43,8 +22,8 @@ std::array<glm::vec3, 8> sliceCorners(const CameraFrame& f, float a, float b) {
 
 // The smallest sphere around the slice [a, b]: its centre lies on the view axis, where the near
 // and far corners are equally far (or at the far face's centre when that is nearer).
-std::pair<glm::vec3, float> sliceSphere(const CameraFrame& f, float a, float b) {
-    const float rNear = glm::length(halfExtentAt(f, a)), rFar = glm::length(halfExtentAt(f, b));
+std::pair<glm::vec3, float> sliceSphere(const ViewFrustum& f, float a, float b) {
+    const float rNear = glm::length(f.halfExtentAt(a)), rFar = glm::length(f.halfExtentAt(b));
     float t = (b * b - a * a + rFar * rFar - rNear * rNear) / (2.0f * (b - a));
     t = std::clamp(t, a, b);
     const float radius = std::max(std::hypot(t - a, rNear), std::hypot(b - t, rFar));
@@ -77,38 +56,42 @@ glm::vec2 cameraDepthRange(const Camera& camera, const Bounds& scene) {
     return {nearDistance, std::max(farDistance, nearDistance * 1.01f + 1e-4f)};
 }
 
-glm::vec2 stableDepthRange(const Camera& camera, const Bounds& scene) {
-    const float distance = glm::length(scene.center() - camera.position);
-    const float radius = 0.5f * glm::length(scene.extent());
+glm::vec2 stableDepthRange(glm::vec2 range, const Camera& camera) {
     auto steps = [](float x) { return 4.0f * std::log2(x); }; // quarter powers of two
     const float nearDistance =
-        distance - radius > camera.znear
-            ? std::max(camera.znear, std::exp2(std::floor(steps(distance - radius)) / 4.0f))
+        range.x > camera.znear
+            ? std::max(camera.znear, std::exp2(std::floor(steps(range.x)) / 4.0f))
             : camera.znear;
-    const float farDistance =
-        std::min(camera.zfar, std::exp2(std::ceil(steps(distance + radius)) / 4.0f));
+    const float farDistance = std::min(camera.zfar, std::exp2(std::ceil(steps(range.y)) / 4.0f));
     return {nearDistance, std::max(farDistance, nearDistance * 1.01f + 1e-4f)};
 }
 
 std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
                                          const Camera& camera, float aspect, uint32_t mapSize,
-                                         const CascadeSettings& s, uint32_t guardTexels) {
-    const CameraFrame frame = frameOf(camera, aspect);
-    const glm::vec2 range =
-        s.stabilize ? stableDepthRange(camera, scene) : cameraDepthRange(camera, scene);
+                                         const CascadeSettings& s, uint32_t guardTexels,
+                                         glm::vec2 visibleDepths) {
+    const ViewFrustum frame = viewFrustum(camera, aspect);
+    glm::vec2 range =
+        visibleDepths.x <= visibleDepths.y ? visibleDepths : cameraDepthRange(camera, scene);
+    range.y = std::max(range.y, range.x * 1.01f + 1e-4f);
+    if (s.stabilize)
+        range = stableDepthRange(range, camera);
     const std::vector<float> d = cascadeSplits(range.x, range.y, s.count, s.lambda);
     const glm::vec3 dir = glm::normalize(sun.direction);
     // One orientation for every cascade and every frame: only the window moves.
     const glm::mat4 rotation = lookAt(
         glm::vec3(0.0f), dir, std::abs(dir.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0));
-    // Depth: every caster of the scene, whichever slice it shadows.
-    float zLo = std::numeric_limits<float>::max(), zHi = -zLo;
+    // Depth: every caster of the scene, whichever slice it shadows. Across: the scene's box.
+    glm::vec3 sceneLo(std::numeric_limits<float>::max()), sceneHi(-sceneLo);
     for (int i = 0; i < 8; ++i) {
         const glm::vec3 c{i & 1 ? scene.max.x : scene.min.x, i & 2 ? scene.max.y : scene.min.y,
                           i & 4 ? scene.max.z : scene.min.z};
-        const float z = (rotation * glm::vec4(c, 1.0f)).z;
-        zLo = std::min(zLo, z), zHi = std::max(zHi, z);
+        const glm::vec3 v(rotation * glm::vec4(c, 1.0f));
+        sceneLo = glm::min(sceneLo, v), sceneHi = glm::max(sceneHi, v);
     }
+    const float zLo = sceneLo.z, zHi = sceneHi.z;
+    const glm::vec2 sceneCentre = 0.5f * (glm::vec2(sceneLo) + glm::vec2(sceneHi));
+    const glm::vec2 sceneHalf = 0.5f * (glm::vec2(sceneHi) - glm::vec2(sceneLo)) + 1e-4f;
     const float pad = 1e-4f * std::max(zHi - zLo, 1e-3f);
     const float n = static_cast<float>(mapSize);
     const float guard = std::min(static_cast<float>(guardTexels), 0.25f * n);
@@ -134,6 +117,13 @@ std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
             centre = 0.5f * (lo + hi);
             half = glm::vec2(0.5f * std::max(hi.x - lo.x, hi.y - lo.y) * widen);
         }
+        // Never coarser than one map over the whole scene: past the scene's box there is
+        // nothing to shadow, so along an axis where a cascade is wider than the scene it takes
+        // the scene's own extent (a fixed one, as stable as the scene). A low sun sees a scene
+        // thin along one axis: that axis keeps the finer texels that then resist acne.
+        for (int k = 0; k < 2; ++k)
+            if (half[k] >= sceneHalf[k])
+                centre[k] = sceneCentre[k], half[k] = sceneHalf[k];
         LightProjection p;
         p.name = "cascade";
         p.view = rotation;
@@ -142,7 +132,7 @@ std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
         p.projection =
             orthographic(p.window.x, p.window.y, p.window.z, p.window.w, p.nearPlane, p.farPlane);
         p.viewProj = p.projection * p.view;
-        p.texelWorldSize = 2.0f * half.x / n;
+        p.texelWorldSize = 2.0f * std::max(half.x, half.y) / n;
         p.splitNear = a, p.splitFar = b;
         p.blendStart = i + 1 < s.count ? b - s.blend * (b - d[i]) : b;
         cascades.push_back(p);

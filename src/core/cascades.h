@@ -19,16 +19,18 @@ std::vector<float> cascadeSplits(float nearDistance, float farDistance, uint32_t
 // The camera's view distances that hold the scene: from max(znear, nearest bounds corner) to
 // min(zfar, farthest bounds corner) along the view axis.
 glm::vec2 cameraDepthRange(const Camera& camera, const Bounds& scene);
-// The same for stabilised cascades, which must not change as the camera turns or moves a little:
-// from the distance to the scene's bounding sphere to the distance past it, each rounded outwards
-// to a quarter power of two, within [znear, zfar].
-glm::vec2 stableDepthRange(const Camera& camera, const Bounds& scene);
+// Stabilised cascades' range, which must not change as the camera turns or moves a little:
+// `range` rounded outwards to quarter powers of two, within [znear, zfar].
+glm::vec2 stableDepthRange(glm::vec2 range, const Camera& camera);
 
-// Every cascade of `sun` for `camera` (image aspect `aspect`), nearest first. Each view carries
+// Every cascade of `sun` for `camera` (image aspect `aspect`), nearest first, splitting
+// `visibleDepths` (visibleDepthRange(); when empty, cameraDepthRange()). Each view carries
 // its slice (splitNear, splitFar, blendStart: camera view distances) and kernelScale = the
-// first cascade's texel size over its own; `guardTexels` are kept free around each slice.
+// first cascade's texel size over its own; `guardTexels` are kept free around each slice. No
+// cascade is wider than the scene's box seen from the sun.
 std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
                                          const Camera& camera, float aspect, uint32_t mapSize,
-                                         const CascadeSettings& settings, uint32_t guardTexels);
+                                         const CascadeSettings& settings, uint32_t guardTexels,
+                                         glm::vec2 visibleDepths = {1.0f, 0.0f});
 
 } // namespace penumbra

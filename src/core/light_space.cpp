@@ -122,7 +122,7 @@ std::vector<LightProjection> fitLightViews(const Light& light, const Bounds& sce
     if (light.type == LightType::Directional)
         return fitting.camera && fitting.cascades.count > 1
                    ? fitCascades(light, scene, *fitting.camera, fitting.aspect, mapSize,
-                                 fitting.cascades, fitting.guardTexels)
+                                 fitting.cascades, fitting.guardTexels, fitting.visibleDepths)
                    : std::vector<LightProjection>{fitDirectional(light, scene, mapSize)};
     if (light.type == LightType::Spot)
         return {fitSpot(light, scene, mapSize, fitting.nearestSurface)};

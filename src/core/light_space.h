@@ -60,6 +60,8 @@ struct ViewFitting {
     // camera, or with one cascade, a sun gets one map over the whole scene.
     const Camera* camera = nullptr;
     float aspect = 1.0f;
+    // visibleDepthRange() of the scene for that camera; empty (x > y): from the bounds.
+    glm::vec2 visibleDepths{1.0f, 0.0f};
     CascadeSettings cascades;
 };
 

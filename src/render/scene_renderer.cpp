@@ -133,6 +133,25 @@ struct SceneRenderer::Impl {
     render::GpuScene gpu;
     std::vector<float> nearestSurface; // per scene light: from its position (spot and point)
     size_t viewCapacity = 0;           // records the view buffers hold: shadowViewCount's sum
+    // visibleDepthRange() for the last camera a sun's cascades followed (compare renders every
+    // row from one camera: the triangles are clipped once).
+    struct VisibleDepths {
+        Camera camera;
+        float aspect = 0.0f;
+        glm::vec2 range{1.0f, 0.0f};
+    };
+    std::optional<VisibleDepths> visibleDepths;
+    glm::vec2 visibleDepthsFor(const Camera& c, float aspect) {
+        auto same = [&](const VisibleDepths& v) {
+            const Camera& k = v.camera;
+            return v.aspect == aspect && k.position == c.position && k.target == c.target &&
+                   k.up == c.up && k.yfov == c.yfov && k.orthographic == c.orthographic &&
+                   k.ymag == c.ymag && k.znear == c.znear && k.zfar == c.zfar;
+        };
+        if (!visibleDepths || !same(*visibleDepths))
+            visibleDepths = VisibleDepths{c, aspect, visibleDepthRange(scene, c, aspect)};
+        return visibleDepths->range;
+    }
     std::optional<TargetKey> key;
     render::FrameTargets targets;
     vk::Buffer readback;
@@ -263,11 +282,16 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         const auto firstView = static_cast<uint32_t>(views.size());
         if (castsShadowMap(light)) {
             info.visibilityIndex = static_cast<int>(shadowLights.size());
+            const Camera& follows = state.shadowCamera ? *state.shadowCamera : camera;
+            const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
+            const bool cascaded = light.type == LightType::Directional && cascades.count > 1;
             const ViewFitting fitting{.guardTexels = guard,
                                       .nearestSurface = m.nearestSurface[i],
-                                      .camera = state.shadowCamera ? &*state.shadowCamera : &camera,
-                                      .aspect = static_cast<float>(o.width) /
-                                                static_cast<float>(o.height),
+                                      .camera = &follows,
+                                      .aspect = aspect,
+                                      .visibleDepths = cascaded
+                                                           ? m.visibleDepthsFor(follows, aspect)
+                                                           : glm::vec2(1.0f, 0.0f),
                                       .cascades = cascades};
             for (const LightProjection& shadow :
                  fitLightViews(light, m.bounds, o.shadowMapSize, fitting)) {

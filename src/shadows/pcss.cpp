@@ -39,8 +39,9 @@ const TechniqueModule& pcssModule() {
               .min = 1.0,
               .max = 256.0,
               .unit = "texels",
-              .description =
-                  "largest blocker-search and filter radius (bounds cost for big lights)"},
+              .description = "largest blocker-search and filter radius, in texels of the map "
+                             "sampled (a sun's PCSS "
+                             "moves to a coarser cascade rather than clip)"},
              {.key = "pcss.rotation",
               .type = ParameterType::Choice,
               .defaultValue = 2,

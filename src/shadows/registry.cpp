@@ -81,7 +81,7 @@ const std::vector<ParameterInfo>& parameterTable() {
     static const std::vector<ParameterInfo> csm{
         {.key = "csm.cascades",
          .type = ParameterType::Int,
-         .defaultValue = 1,
+         .defaultValue = 4,
          .min = 1,
          .max = 8,
          .unit = "shadow views",
