@@ -165,3 +165,36 @@ TEST(FilterMath, CascadeBlendRisesAcrossTheBandFromNothingToTheNextCascade) {
     EXPECT_EQ(gpu::cascadeBlendWeight(9.99f, 10.0f, 10.0f), 0.0f);
     EXPECT_EQ(gpu::cascadeBlendWeight(10.01f, 10.0f, 10.0f), 1.0f);
 }
+
+TEST(FilterMath, VarianceShadowMapsMathMeetsItsDefinitions) {
+    // Moment depth: linear in the view distance, 0 at the near plane, 1 at the far one.
+    gpu::ShadowViewData perspective{};
+    perspective.frustum = {0.5f, 20.0f, 1.0f, 1.0f};
+    perspective.texel = {0.0f, 1.0f, 0.0f, 0.0f};
+    for (float z : {0.5f, 1.0f, 7.0f, 20.0f}) {
+        const float n = 0.5f, f = 20.0f;
+        const float depth = (f / (f - n)) * (1.0f - n / z); // the perspective depth of z
+        EXPECT_NEAR(gpu::momentDepth(perspective, depth), (z - n) / (f - n), 1e-5f) << z;
+    }
+    gpu::ShadowViewData orthographic = perspective;
+    orthographic.texel.y = 0.0f;
+    EXPECT_EQ(gpu::momentDepth(orthographic, 0.37f), 0.37f);
+    // Chebyshev's one-tailed bound: 1 up to the mean, then sigma^2 / (sigma^2 + d^2).
+    EXPECT_EQ(gpu::chebyshevUpperBound({0.4f, 0.17f}, 0.4f, 0.0f), 1.0f);
+    EXPECT_EQ(gpu::chebyshevUpperBound({0.4f, 0.17f}, 0.2f, 0.0f), 1.0f);
+    EXPECT_NEAR(gpu::chebyshevUpperBound({0.4f, 0.17f}, 0.6f, 0.0f), 0.01f / (0.01f + 0.04f),
+                1e-5f);
+    // The minimum variance takes over when the moments' own is smaller.
+    EXPECT_NEAR(gpu::chebyshevUpperBound({0.4f, 0.16f}, 0.5f, 0.001f), 0.001f / 0.011f, 1e-5f);
+    // Bleeding reduction: amount -> 0, 1 -> 1, linear between, 0 leaves p alone.
+    EXPECT_EQ(gpu::reduceLightBleeding(0.3f, 0.3f), 0.0f);
+    EXPECT_EQ(gpu::reduceLightBleeding(0.2f, 0.3f), 0.0f);
+    EXPECT_EQ(gpu::reduceLightBleeding(1.0f, 0.3f), 1.0f);
+    EXPECT_NEAR(gpu::reduceLightBleeding(0.65f, 0.3f), 0.5f, 1e-6f);
+    EXPECT_EQ(gpu::reduceLightBleeding(0.42f, 0.0f), 0.42f);
+    // Gaussian taps: symmetric, falling, sigma = n / 6 (tap 3 sigma out of the centre of 19).
+    EXPECT_EQ(gpu::gaussianTap(0, 7), 1.0f);
+    EXPECT_EQ(gpu::gaussianTap(-2, 7), gpu::gaussianTap(2, 7));
+    EXPECT_GT(gpu::gaussianTap(1, 7), gpu::gaussianTap(2, 7));
+    EXPECT_NEAR(gpu::gaussianTap(9, 18), std::exp(-0.5f * 9.0f), 1e-6f);
+}

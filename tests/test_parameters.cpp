@@ -49,6 +49,18 @@ TEST(Techniques, LookupByName) {
     EXPECT_THROW(findTechnique("nonsense"), InputError);
 }
 
+TEST(Techniques, ComparisonRowsNameEachRowOnce) {
+    // "pcss" brings pcss and pcss[fast]; naming pcss[fast] again, or pcss twice, adds nothing.
+    std::vector<std::string> names;
+    for (const TechniqueRow& row : comparisonRows("pcss,pcss[fast],hard,pcss"))
+        names.push_back(row.name);
+    EXPECT_EQ(names, (std::vector<std::string>{"pcss", "pcss[fast]", "hard"}));
+    names.clear();
+    for (const TechniqueRow& row : comparisonRows("pcf[box7],pcf[box3]"))
+        names.push_back(row.name);
+    EXPECT_EQ(names, (std::vector<std::string>{"pcf[box7]", "pcf[box3]"}));
+}
+
 TEST(RenderOptions, ValidateRefusesZeroSizes) {
     RenderOptions o;
     EXPECT_NO_THROW(validate(o));
@@ -105,7 +117,13 @@ TEST(Parameters, ChoicesAndBooleansAcceptTheirNamesOnly) {
                 EXPECT_EQ(v.number(p.key), static_cast<double>(i)) << p.key;
                 EXPECT_EQ(v.text(p.key), p.choices[i]) << p.key;
             }
-            EXPECT_THROW(v.set(p.key, std::to_string(p.choices.size())), InputError) << p.key;
+            // Indices are not names (unless a choice is named so: evsm.components "2", "4").
+            for (size_t i = 0; i <= p.choices.size(); ++i) {
+                const std::string index = std::to_string(i);
+                if (std::find(p.choices.begin(), p.choices.end(), index) == p.choices.end()) {
+                    EXPECT_THROW(v.set(p.key, index), InputError) << p.key << " " << i;
+                }
+            }
             EXPECT_THROW(v.set(p.key, "nonsense"), InputError) << p.key;
         } else if (p.type == ParameterType::Bool) {
             for (const char* yes : {"true", "1", "on"}) {
@@ -168,7 +186,12 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
             EXPECT_TRUE(declared(pass.target) && declared(pass.reads)) << name;
             EXPECT_NE(pass.target, pass.reads) << name;
         }
+        EXPECT_LE(m->postPasses.size(), shadows::kMaxPostPasses) << name << ": timer scopes";
         for (const shadows::PostPassDecl& pass : m->postPasses) {
+            // A pass reads nothing it writes: a storage write over a sampled read races.
+            for (std::string_view out : pass.outputs)
+                for (std::string_view in : pass.inputs)
+                    EXPECT_NE(out, in) << name << ": " << pass.shader;
             EXPECT_LE(pass.inputs.size(), size_t{POST_MAX_MAPS}) << name;
             EXPECT_LE(pass.outputs.size(), size_t{POST_MAX_MAPS}) << name;
             for (std::string_view map : pass.inputs)

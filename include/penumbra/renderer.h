@@ -114,7 +114,8 @@ public:
     // (size x size, rows top to bottom) with the visibility pass's own shader code: how the
     // CPU references in src/reference are checked against the GPU. x: visibility; yzw: the
     // technique's intermediate results (PCSS: average blocker depth, blocking texels, filter
-    // radius in texels).
+    // radius in texels; VSM: the filtered moments, the receiver's moment depth); a technique with
+    // post passes (VSM's moments and blur) runs them on the map first.
     std::vector<glm::vec4> probeTechnique(Technique technique, const ParameterValues& parameters,
                                           std::span<const float> depths, uint32_t size,
                                           std::span<const FilterProbe> probes,

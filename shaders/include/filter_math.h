@@ -26,6 +26,8 @@ using glm::dot;
 using glm::exp;
 using glm::floor;
 using glm::fract;
+using glm::max;
+using glm::min;
 using glm::mix;
 using glm::sin;
 #define OUT(T) T&
@@ -113,6 +115,80 @@ SHARED int scaledKernelSize(uint n, float scale) {
 SHARED float cascadeBlendWeight(float z, float blendStart, float splitFar) {
     return splitFar > blendStart ? clamp((z - blendStart) / (splitFar - blendStart), 0.0f, 1.0f)
                                  : (z > splitFar ? 1.0f : 0.0f);
+}
+
+// Variance shadow maps [Donnelly and Lauritzen 2006] (docs/techniques.md, "vsm"). The depth the
+// moments are taken of: linear in the light's view distance, 0 at the near plane and 1 at the
+// far one (the orthographic depth itself; a perspective view's hyperbolic depth would crowd its
+// far half into a sliver where variances vanish).
+SHARED float momentDepth(IN(ShadowViewData) view, float depth) {
+    if (view.texel.y < 0.5f) return depth;
+    float n = view.frustum.x, f = view.frustum.y;
+    return (n * f / (f - depth * (f - n)) - n) / (f - n);
+}
+
+// One-tailed Chebyshev bound on the fraction of the filtered depths at or beyond receiver depth
+// t: 1 where t is not beyond their mean, else sigma^2 / (sigma^2 + (t - mu)^2), with the
+// variance held at least `minVariance` (numeric noise on a flat surface must not read as shadow).
+SHARED float chebyshevUpperBound(vec2 moments, float t, float minVariance) {
+    float mean = moments.x;
+    if (t <= mean) return 1.0f;
+    float variance = max(moments.y - mean * mean, minVariance);
+    float d = t - mean;
+    return variance / (variance + d * d);
+}
+
+// Light-bleeding reduction [Lauritzen 2007]: bounds up to `amount` count as shadow, the rest
+// rescaled to [0, 1] (0 leaves p as it is).
+SHARED float reduceLightBleeding(float p, float amount) {
+    return clamp((p - amount) / (1.0f - amount), 0.0f, 1.0f);
+}
+
+// What a prefiltered map stores of a moment depth z, by technique (its channels, unused ones 0):
+// vsm (z, z^2); esm e^(c z) [Annen et al. 2008]; evsm [Lauritzen and McCool 2008] the moments of
+// both exponential warps, (e^(c+ z), e^(2 c+ z), -e^(-c- z), e^(-2 c- z)). `exponents`: esm
+// (c, -), evsm (c+, c-).
+#define MOMENTS_VSM 0u
+#define MOMENTS_ESM 1u
+#define MOMENTS_EVSM 2u
+SHARED vec4 warpedMoments(uint kind, float z, vec2 exponents) {
+    if (kind == MOMENTS_ESM) return vec4(exp(exponents.x * z), 0.0f, 0.0f, 0.0f);
+    if (kind == MOMENTS_EVSM) {
+        float p = exp(exponents.x * z), n = -exp(-exponents.y * z);
+        return vec4(p, p * p, n, n * n);
+    }
+    return vec4(z, z * z, 0.0f, 0.0f);
+}
+
+// Exponential shadow maps: the filtered e^(c z) over e^(c t), at most 1 (a receiver in front of
+// every occluder). Exact for receivers behind all the occluders they filter; near contact the
+// exponential's tail makes them lighter.
+SHARED float exponentialVisibility(float filtered, float t, float c) {
+    return clamp(exp(-c * t) * filtered, 0.0f, 1.0f);
+}
+
+// Exponential variance shadow maps: Chebyshev's bound in each warp, the smaller one. The minimum
+// variance is given in moment-depth units and carried into each warp by its slope at t (the
+// warp's derivative, squared). components 2: the positive warp alone.
+SHARED float exponentialVarianceVisibility(vec4 moments, float t, vec2 exponents,
+                                           float minVariance, uint components) {
+    float p = exp(exponents.x * t);
+    float slope = exponents.x * p;
+    float bound = chebyshevUpperBound(vec2(moments.x, moments.y), p, minVariance * slope * slope);
+    if (components == 4u) {
+        float n = -exp(-exponents.y * t);
+        float nSlope = exponents.y * n;
+        bound = min(bound, chebyshevUpperBound(vec2(moments.z, moments.w), n,
+                                               minVariance * nSlope * nSlope));
+    }
+    return bound;
+}
+
+// Weight of tap k (-(n-1)/2 .. (n-1)/2) of the n-tap Gaussian blur, before normalising: sigma
+// = n / 6, so the taps reach three sigmas on either side.
+SHARED float gaussianTap(int k, int n) {
+    float sigma = max(float(n) / 6.0f, 0.3f);
+    return exp(-0.5f * float(k * k) / (sigma * sigma));
 }
 
 // The face of a point light's cube that holds direction `d` from the light: its major axis, in

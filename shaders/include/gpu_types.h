@@ -26,6 +26,9 @@ using uint = uint32_t;
 #define TECHNIQUE_PCF 1u
 #define TECHNIQUE_PCSS 2u
 #define TECHNIQUE_SECOND_DEPTH 3u
+#define TECHNIQUE_VSM 4u
+#define TECHNIQUE_ESM 5u
+#define TECHNIQUE_EVSM 6u
 
 // Specialization-constant ids of visibility.comp and filter_probe.comp (the pipeline key is the
 // list of (id, value) pairs: src/shadows/technique.h).
@@ -95,6 +98,11 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     vec4 pcssParams;     // x pcss.maxRadius (texels)
     vec4 cameraForward;  // xyz: the camera's unit view axis (cascades are picked by distance
                          // along it)
+    vec4 vsmParams;      // x vsm.minVariance, y vsm.bleedReduction, z vsm.size (taps)
+    vec4 esmParams;      // x esm.c, y esm.size (taps)
+    vec4 evsmParams;     // x evsm.positive, y evsm.negative, z evsm.minVariance,
+                         // w evsm.bleedReduction
+    uvec4 evsmMode;      // x evsm.components (2 or 4), y evsm.size (taps)
     vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
 };
 
@@ -143,9 +151,11 @@ struct MaterialPush {
 #define POST_INPUT_BINDING 0
 #define POST_OUTPUT_BINDING 8
 #define POST_MAX_MAPS 8
+#define POST_FRAME_BINDING 16   // FrameData (the technique's parameters)
+#define POST_VIEWS_BINDING 17   // ShadowViewData[]; PostPassPush.size.z is the view's index
 
 struct PostPassPush {    // push constants of every shadow-map post pass
-    uvec4 size;          // xy: the shadow map's size in texels
+    uvec4 size;          // xy: the shadow map's size in texels, z: the view (ShadowViewData)
 };
 
 struct CasterPush {      // push constants of shadow_mask.frag and shadow_peel.frag
@@ -182,11 +192,12 @@ static_assert(ROTATION_NONE == 0 && ROTATION_RANDOM == 1 && ROTATION_IGN == 2 &&
 static_assert(RECEIVER_OFF == 0 && RECEIVER_SCREEN == 1 && RECEIVER_LIGHT == 2 &&
               std::size(kReceiverChoices) == 3);
 
-static_assert(sizeof(FrameData) == 816 && offsetof(FrameData, position) == 128 &&
+static_assert(sizeof(FrameData) == 880 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, filterMode) == 192 && offsetof(FrameData, biasParams) == 240 &&
               offsetof(FrameData, pcssMode) == 256 && offsetof(FrameData, cameraForward) == 288 &&
-              offsetof(FrameData, poisson) == 304);
+              offsetof(FrameData, vsmParams) == 304 && offsetof(FrameData, evsmMode) == 352 &&
+              offsetof(FrameData, poisson) == 368);
 static_assert(sizeof(LightData) == 96 && offsetof(LightData, cone) == 48 &&
               offsetof(LightData, bias) == 64 && offsetof(LightData, views) == 80);
 static_assert(sizeof(ShadowViewData) == 112 && offsetof(ShadowViewData, frustum) == 64 &&

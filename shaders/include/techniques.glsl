@@ -5,9 +5,11 @@
 #include "shadow_hard.glsl"
 #include "shadow_pcf.glsl"
 #include "shadow_pcss.glsl"
+#include "shadow_moments.glsl"
 
 // x: visibility; yzw: intermediate results the parity tests check (PCSS: average blocker depth,
-// blocking texels found, filter radius in texels; zero for the others).
+// blocking texels found, filter radius in texels; VSM: the two filtered moments and the
+// receiver's moment depth; ESM and EVSM: see shadow_moments.glsl; zero for the others).
 vec4 evaluateTechnique(uint technique, sampler2DArray map, sampler2DArrayShadow mapCompare,
                        Receiver r, uint mapSize, ShadowViewData view, uvec2 pixel) {
     switch (technique) {
@@ -15,6 +17,9 @@ vec4 evaluateTechnique(uint technique, sampler2DArray map, sampler2DArrayShadow 
     // Second-depth [Wang and Molnar 1994]: `map` holds the midpoint of the nearest and second
     // nearest depths, so a surface never shadows itself and needs no bias.
     case TECHNIQUE_SECOND_DEPTH: return vec4(shadowHard(map, r, mapSize, vec2(0.0)), vec3(0.0));
+    case TECHNIQUE_VSM: return shadowVsmDetail(map, r, mapSize, view);
+    case TECHNIQUE_ESM: return shadowEsmDetail(map, r, mapSize, view);
+    case TECHNIQUE_EVSM: return shadowEvsmDetail(map, r, mapSize, view);
     case TECHNIQUE_PCF: return vec4(shadowPcf(map, mapCompare, r, mapSize, pixel), vec3(0.0));
     case TECHNIQUE_HARD:
     default: return vec4(shadowHard(map, r, mapSize, frame.biasParams.xy), vec3(0.0));

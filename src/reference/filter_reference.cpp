@@ -193,6 +193,83 @@ glm::vec4 pcss(const ShadowMapView& map, const FilterProbe& probe, const gpu::Fr
     return {gpu::snapToExtremes(v), blockerDepth, blockers, radius};
 }
 
+// The prefiltered family (shaders/include/moments_blur.glsl, shadow_moments.glsl). What texel
+// (i, j) of the blurred map holds after the two post passes: the row pass's warpedMoments of
+// momentDepth, then the column pass over those, each a normalised Gaussian with clamp-to-edge.
+glm::vec4 blurredMoments(const ShadowMapView& map, uint32_t kind, uint32_t taps,
+                         glm::vec2 exponents, const gpu::ShadowViewData& view, int i, int j) {
+    const int last = static_cast<int>(map.size) - 1;
+    i = std::clamp(i, 0, last), j = std::clamp(j, 0, last); // the gather's clamp-to-edge
+    const int n = gpu::scaledKernelSize(taps, view.cascade.z);
+    const int reach = (n - 1) / 2;
+    auto rowPass = [&](int y) {
+        glm::vec4 sum(0.0f);
+        float weights = 0.0f;
+        for (int k = -reach; k <= reach; ++k) {
+            const float w = gpu::gaussianTap(k, n);
+            const float z = gpu::momentDepth(view, map.texel(std::clamp(i + k, 0, last), y));
+            sum += w * gpu::warpedMoments(kind, z, exponents);
+            weights += w;
+        }
+        return sum / weights;
+    };
+    glm::vec4 sum(0.0f);
+    float weights = 0.0f;
+    for (int k = -reach; k <= reach; ++k) {
+        const float w = gpu::gaussianTap(k, n);
+        sum += w * rowPass(std::clamp(j + k, 0, last));
+        weights += w;
+    }
+    return sum / weights;
+}
+
+// The blurred map at the probe, bilinear over the four texels around it (textureGather's order).
+glm::vec4 momentsAt(const ShadowMapView& map, uint32_t kind, uint32_t taps, glm::vec2 exponents,
+                    const gpu::ShadowViewData& view, glm::vec2 uv) {
+    const glm::vec2 p = uv * static_cast<float>(map.size) - 0.5f;
+    const glm::vec2 base = glm::floor(p);
+    const glm::vec2 frac = p - base;
+    const auto b = glm::ivec2(base);
+    const glm::vec4 x = blurredMoments(map, kind, taps, exponents, view, b.x, b.y + 1);
+    const glm::vec4 y = blurredMoments(map, kind, taps, exponents, view, b.x + 1, b.y + 1);
+    const glm::vec4 z = blurredMoments(map, kind, taps, exponents, view, b.x + 1, b.y);
+    const glm::vec4 w = blurredMoments(map, kind, taps, exponents, view, b.x, b.y);
+    glm::vec4 m;
+    for (int c = 0; c < 4; ++c)
+        m[c] = gpu::bilinearMix({x[c], y[c], z[c], w[c]}, frac);
+    return m;
+}
+
+glm::vec4 vsm(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
+              const gpu::ShadowViewData& view) {
+    const glm::vec2 moments(momentsAt(map, MOMENTS_VSM, static_cast<uint32_t>(f.vsmParams.z),
+                                      glm::vec2(0.0f), view, probe.uv));
+    const float t = gpu::momentDepth(view, probe.depth);
+    const float bound = gpu::chebyshevUpperBound(moments, t, f.vsmParams.x);
+    return {gpu::snapToExtremes(gpu::reduceLightBleeding(bound, f.vsmParams.y)), moments, t};
+}
+
+glm::vec4 esm(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
+              const gpu::ShadowViewData& view) {
+    const float filtered = momentsAt(map, MOMENTS_ESM, static_cast<uint32_t>(f.esmParams.y),
+                                     glm::vec2(f.esmParams.x), view, probe.uv)
+                               .x;
+    const float t = gpu::momentDepth(view, probe.depth);
+    return {gpu::snapToExtremes(gpu::exponentialVisibility(filtered, t, f.esmParams.x)), filtered,
+            t, 0.0f};
+}
+
+glm::vec4 evsm(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
+               const gpu::ShadowViewData& view) {
+    const glm::vec2 exponents(f.evsmParams.x, f.evsmParams.y);
+    const glm::vec4 moments = momentsAt(map, MOMENTS_EVSM, f.evsmMode.y, exponents, view, probe.uv);
+    const float t = gpu::momentDepth(view, probe.depth);
+    const float p =
+        gpu::exponentialVarianceVisibility(moments, t, exponents, f.evsmParams.z, f.evsmMode.x);
+    return {gpu::snapToExtremes(gpu::reduceLightBleeding(p, f.evsmParams.w)), moments.x, moments.z,
+            t};
+}
+
 glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterProbe& probe,
                    const gpu::FrameData& f, const gpu::ShadowViewData& view,
                    const MarginTracker& m) {
@@ -201,6 +278,12 @@ glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterPr
         return pcss(map, probe, f, view, m);
     case Technique::Pcf:
         return {pcf(map, probe, f, m), 0.0f, 0.0f, 0.0f};
+    case Technique::Vsm: // `map` holds the light's depth; the moments are derived here
+        return vsm(map, probe, f, view);
+    case Technique::Esm:
+        return esm(map, probe, f, view);
+    case Technique::Evsm:
+        return evsm(map, probe, f, view);
     case Technique::SecondDepth: // `map` holds the midpoints; no receiver-plane correction
         return {hard(map, probe, m, glm::vec2(0.0f)), 0.0f, 0.0f, 0.0f};
     case Technique::Hard:

@@ -19,7 +19,8 @@ struct ShadowMapView {
 
 float hardReference(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f);
 float pcfReference(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f);
-// x visibility; yzw as Renderer::probeTechnique (PCSS: blocker depth, blockers, radius).
+// x visibility; yzw as Renderer::probeTechnique (PCSS: blocker depth, blockers, radius; VSM: the
+// filtered moments and the receiver's moment depth).
 glm::vec4 techniqueReference(Technique technique, const ShadowMapView& map,
                              const FilterProbe& probe, const gpu::FrameData& f,
                              const gpu::ShadowViewData& view);

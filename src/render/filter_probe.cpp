@@ -1,6 +1,7 @@
 // Renderer::probeTechnique: uploads a synthetic shadow map into a D32_SFLOAT image and runs
 // filter_probe.comp, which calls the visibility pass's technique code at the given receivers.
 #include "penumbra/error.h"
+#include "render/frame.h"
 #include "render/frame_data.h"
 #include "render/renderer_impl.h"
 #include "vk/sync.h"
@@ -43,14 +44,22 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     const vk::Buffer results =
         vk::createBuffer(ctx, probes.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          vk::MemoryUse::Readback, "probe results");
-    const vk::Image map =
-        vk::createImage(ctx, {.name = "probe shadow map",
-                              .format = render::kDepthFormat,
-                              .width = size,
-                              .height = size,
-                              .usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT,
-                              .arrayView = true});
+    // The technique's own maps, filled from the depth map by its post passes as in a frame; a
+    // technique whose passes also need another depth pass (second-depth's peel) is probed on
+    // the given map as its filtered map instead.
+    const shadows::TechniqueModule& module = shadows::moduleOf(technique);
+    const bool derived = module.depthPasses.empty() && !module.postPasses.empty();
+    render::FrameTargets t{.views = std::vector<render::ShadowView>(1)};
+    t.shadowDepth = render::makeViewMaps(ctx, render::kDepthFormat, size, 1,
+                                         VK_IMAGE_USAGE_SAMPLED_BIT |
+                                             VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    for (const shadows::MapDecl& decl : derived ? module.maps : std::vector<shadows::MapDecl>{})
+        t.maps.push_back(render::makeViewMaps(ctx, render::formatOf(decl.format), size, 1,
+                                              VK_IMAGE_USAGE_STORAGE_BIT |
+                                                  VK_IMAGE_USAGE_SAMPLED_BIT));
+    const vk::Image& map = t.shadowDepth.image;
     const vk::SamplerHandle nearest = vk::createSampler(ctx, {});
+    t.frame = frameBuffer.get(), t.viewData = viewBuffer.get(), t.nearest = nearest.get();
     const VkFilter compareFilter =
         ctx.info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     const vk::SamplerHandle compare = vk::createSampler(
@@ -68,13 +77,16 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         vkCmdCopyBufferToImage(cmd, mapBuffer.get(), map.get(),
                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
         vk::imageBarrier(cmd, map, transferWrite, vk::kComputeSampled);
-        vkCmdBindPipeline(
-            cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-            p.probe(shadows::visibilityConstants(shadows::moduleOf(technique), params)));
+        if (derived)
+            render::recordPostPasses(cmd, p, t, module);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                          p.probe(shadows::visibilityConstants(module, params)));
         vk::PushDescriptors()
             .uniformBuffer(BIND_FRAME, frameBuffer.get())
             .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
-            .sampled(PROBE_SHADOW_MAP, map.view.get(), nearest.get())
+            .sampled(PROBE_SHADOW_MAP,
+                     (derived ? t.named(module, module.visibilityMap).image : map).view.get(),
+                     nearest.get())
             .sampled(PROBE_SHADOW_COMPARE, map.view.get(), compare.get())
             .storageBuffer(PROBE_RESULTS, results.get())
             .storageBuffer(PROBE_VIEW, viewBuffer.get())

@@ -3,6 +3,7 @@
 #include "penumbra/error.h"
 #include "vk/sync.h"
 
+#include <algorithm>
 #include <span>
 
 namespace penumbra::render {
@@ -156,10 +157,13 @@ void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& 
 }
 
 // The technique's post passes (compute), in order, each over every shadow view.
+// Each pass is timed on its own, named after its shader ("vsm_blur_rows"), when `timer` is given.
 void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
-                      const FrameSettings& s) {
+                      const FrameSettings& s, vk::GpuTimer* timer = nullptr) {
     const shadows::TechniqueModule& technique = *s.technique;
     for (const shadows::PostPassDecl& pass : technique.postPasses) {
+        if (timer)
+            timer->begin(cmd, std::string(pass.shader.substr(0, pass.shader.rfind('.'))));
         const auto inputs = static_cast<uint32_t>(pass.inputs.size());
         const auto outputs = static_cast<uint32_t>(pass.outputs.size());
         const vk::PipelineLayout& layout = p.postPassLayout(inputs, outputs);
@@ -180,6 +184,8 @@ void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
             for (uint32_t i = 0; i < outputs; ++i)
                 writes.storageImage(POST_OUTPUT_BINDING + i,
                                     t.named(technique, pass.outputs[i]).layers[v].get());
+            writes.uniformBuffer(POST_FRAME_BINDING, t.frame)
+                .storageBuffer(POST_VIEWS_BINDING, t.viewData);
             writes.push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
             const gpu::PostPassPush push{.size = {size.width, size.height, v, 0}};
             vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
@@ -187,6 +193,8 @@ void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
             vkCmdDispatch(cmd, groups(size.width), groups(size.height), 1);
         }
         toSampled.record(cmd);
+        if (timer)
+            timer->end(cmd);
     }
 }
 
@@ -266,6 +274,25 @@ void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
 
 } // namespace
 
+ViewMaps makeViewMaps(const vk::Context& ctx, VkFormat format, uint32_t size, uint32_t views,
+                      VkImageUsageFlags usage) {
+    ViewMaps maps{.image = vk::createImage(ctx, {.name = "--shadow-map-size",
+                                                 .format = format,
+                                                 .width = size,
+                                                 .height = size,
+                                                 .layers = std::max(views, 1u),
+                                                 .usage = usage,
+                                                 .arrayView = true})};
+    for (uint32_t layer = 0; layer < maps.image.layers; ++layer)
+        maps.layers.push_back(vk::createLayerView(ctx, maps.image, layer));
+    return maps;
+}
+
+void recordPostPasses(VkCommandBuffer cmd, FramePipelines& pipelines, FrameTargets& targets,
+                      const shadows::TechniqueModule& technique) {
+    recordShadowPost(cmd, pipelines, targets, FrameSettings{.technique = &technique});
+}
+
 const ViewMaps& FrameTargets::named(const shadows::TechniqueModule& module,
                                     std::string_view name) const {
     if (name == shadows::kDepthMap)
@@ -296,11 +323,8 @@ void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene&
     timer.begin(cmd, "shadow");
     recordShadowPasses(cmd, pipelines, scene, targets, settings);
     timer.end(cmd);
-    if (!targets.views.empty() && !settings.technique->postPasses.empty()) {
-        timer.begin(cmd, "shadow-post");
-        recordShadowPost(cmd, pipelines, targets, settings);
-        timer.end(cmd);
-    }
+    if (!targets.views.empty())
+        recordShadowPost(cmd, pipelines, targets, settings, &timer);
     timer.begin(cmd, "gbuffer");
     recordGBuffer(cmd, pipelines, scene, targets);
     timer.end(cmd);

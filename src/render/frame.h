@@ -81,6 +81,15 @@ struct FrameSettings {
 // The Vulkan format of a technique's map.
 VkFormat formatOf(shadows::MapFormat format);
 
+// An array image, one layer per shadow view, and a 2D view of each layer.
+ViewMaps makeViewMaps(const vk::Context& ctx, VkFormat format, uint32_t size, uint32_t views,
+                      VkImageUsageFlags usage);
+
+// The technique's post passes over every view of `targets` (their inputs already filled, in
+// kComputeSampled): what recordFrame runs after the shadow passes, for Renderer::probeTechnique.
+void recordPostPasses(VkCommandBuffer cmd, FramePipelines& pipelines, FrameTargets& targets,
+                      const shadows::TechniqueModule& technique);
+
 void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene& scene,
                  FrameTargets& targets, const FrameSettings& settings, vk::GpuTimer& timer);
 

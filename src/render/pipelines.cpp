@@ -148,6 +148,8 @@ const vk::PipelineLayout& FramePipelines::postPassLayout(uint32_t inputs, uint32
             bindings.push_back({POST_INPUT_BINDING + i, kSampled});
         for (uint32_t i = 0; i < outputs; ++i)
             bindings.push_back({POST_OUTPUT_BINDING + i, kImage});
+        bindings.push_back({POST_FRAME_BINDING, kUniform});
+        bindings.push_back({POST_VIEWS_BINDING, kStorage});
         it = mPostLayouts
                  .emplace(std::make_pair(inputs, outputs),
                           vk::createPipelineLayout(ctx, bindings, VK_SHADER_STAGE_COMPUTE_BIT,

@@ -80,21 +80,6 @@ gpu::LightData lightData(const Light& light, int visibilityLayer, uint32_t first
             .views = {firstView, viewCount, 0u, 0u}};
 }
 
-// An array image, one layer per shadow view, and a 2D view of each layer.
-render::ViewMaps viewMaps(const vk::Context& ctx, VkFormat format, uint32_t size, uint32_t views,
-                          VkImageUsageFlags usage) {
-    render::ViewMaps maps{.image = vk::createImage(ctx, {.name = "--shadow-map-size",
-                                                         .format = format,
-                                                         .width = size,
-                                                         .height = size,
-                                                         .layers = std::max(views, 1u),
-                                                         .usage = usage,
-                                                         .arrayView = true})};
-    for (uint32_t layer = 0; layer < maps.image.layers; ++layer)
-        maps.layers.push_back(vk::createLayerView(ctx, maps.image, layer));
-    return maps;
-}
-
 vk::Image targetImage(const vk::Context& ctx, const char* name, VkFormat format, uint32_t w,
                       uint32_t h, VkImageUsageFlags usage, uint32_t layers = 0) {
     // layers = 0: a plain 2D image; >= 1: an array image with an array view.
@@ -175,9 +160,9 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     constexpr VkImageUsageFlags depthTarget = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled;
     const uint32_t n = k.shadowMapSize, views = k.shadowViews;
-    t.shadowDepth = viewMaps(c, render::kDepthFormat, n, views, depthTarget);
+    t.shadowDepth = render::makeViewMaps(c, render::kDepthFormat, n, views, depthTarget);
     for (const shadows::MapDecl& map : k.technique->maps)
-        t.maps.push_back(viewMaps(c, render::formatOf(map.format), n, views,
+        t.maps.push_back(render::makeViewMaps(c, render::formatOf(map.format), n, views,
                                   map.format == shadows::MapFormat::Depth32
                                       ? depthTarget
                                       : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
@@ -350,7 +335,7 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
         .shadowMapSize = o.shadowMapSize};
     render::FramePipelines& pipelines = m.renderer.mImpl->pipelines;
-    vk::GpuTimer timer(ctx, 8);
+    vk::GpuTimer timer(ctx, static_cast<uint32_t>(4 + shadows::kMaxPostPasses));
     for (uint32_t frame = 0; frame <= o.frames; ++frame) {
         if (progress)
             progress(frame == 0 ? std::string("warm-up frame")

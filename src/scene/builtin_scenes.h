@@ -58,5 +58,6 @@ Scene spot();
 Scene foliage();
 Scene room();
 Scene field();
+Scene bleeding();
 
 } // namespace penumbra::builtin

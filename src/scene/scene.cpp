@@ -20,7 +20,8 @@ constexpr BuiltinEntry kBuiltins[] = {{"showcase", builtin::showcase},
                                       {"spot", builtin::spot},
                                       {"foliage", builtin::foliage},
                                       {"room", builtin::room},
-                                      {"field", builtin::field}};
+                                      {"field", builtin::field},
+                                      {"bleeding", builtin::bleeding}};
 
 } // namespace
 

@@ -239,8 +239,11 @@ std::vector<TechniqueRow> comparisonRows(std::string_view list) {
         bool found = false;
         for (const TechniqueRow& row : all)
             if (row.name == item || row.name.starts_with(std::string(item) + "[")) {
-                rows.push_back(row);
                 found = true;
+                // A technique's name brings all its rows: a row named again is not repeated.
+                if (std::none_of(rows.begin(), rows.end(),
+                                 [&](const TechniqueRow& r) { return r.name == row.name; }))
+                    rows.push_back(row);
             }
         if (!found) {
             std::string names;

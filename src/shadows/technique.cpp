@@ -22,7 +22,8 @@ uint32_t bytesPerTexel(MapFormat format) {
 
 std::span<const TechniqueModule* const> allModules() {
     static const TechniqueModule* const modules[] = {&hardModule(), &pcfModule(), &pcssModule(),
-                                                     &secondDepthModule()};
+                                                     &secondDepthModule(), &vsmModule(),
+                                                     &esmModule(), &evsmModule()};
     return modules;
 }
 

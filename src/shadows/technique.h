@@ -39,6 +39,7 @@ struct DepthPassDecl {
 // A compute pass run over each shadow view after the depth passes: it samples `inputs` with a
 // nearest sampler (bindings 0, 1, ...) and writes `outputs` as storage images (bindings 8, ...);
 // its push constants are gpu::PostPassPush.
+inline constexpr size_t kMaxPostPasses = 12; // each is a GPU timestamp scope of its own
 struct PostPassDecl {
     std::string_view shader; // in shaders/
     std::vector<std::string_view> inputs, outputs;
@@ -86,5 +87,8 @@ const TechniqueModule& hardModule();
 const TechniqueModule& pcfModule();
 const TechniqueModule& pcssModule();
 const TechniqueModule& secondDepthModule();
+const TechniqueModule& vsmModule();
+const TechniqueModule& esmModule();
+const TechniqueModule& evsmModule();
 
 } // namespace penumbra::shadows

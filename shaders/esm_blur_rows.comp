@@ -1,0 +1,6 @@
+#version 460
+// Exponential shadow maps: e^(c z) of the light's depth, blurred along rows.
+#define AXIS 0
+#define MOMENTS MOMENTS_ESM
+#define FORMAT r32f
+#include "moments_blur.glsl"

@@ -1,0 +1,47 @@
+// The separable Gaussian blur of the prefiltered family's maps [Donnelly and Lauritzen 2006], one
+// axis a pass: AXIS 0 runs along rows, reading the light's depth and storing what the technique
+// keeps of it (warpedMoments of momentDepth: MOMENTS, one of MOMENTS_* in filter_math.h, in maps
+// of image format FORMAT); AXIS 1 runs along columns over the row pass's result. Texels past the
+// map's edge repeat the edge (clamp-to-edge, as the CPU reference does). The kernel is the
+// technique's size in taps, in texels of a sun's first cascade, scaled in the farther ones
+// (scaledKernelSize).
+#include "gpu_types.h"
+#include "filter_math.h"
+layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
+layout(set = 0, binding = POST_INPUT_BINDING) uniform sampler2D source;
+layout(set = 0, binding = POST_OUTPUT_BINDING, FORMAT) uniform writeonly image2D blurred;
+layout(set = 0, binding = POST_FRAME_BINDING, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = POST_VIEWS_BINDING, std430) readonly buffer Views {
+    ShadowViewData views[];
+};
+layout(push_constant) uniform Push { PostPassPush push; };
+
+vec4 momentsAt(ivec2 q, ShadowViewData view) {
+#if AXIS == 0
+    vec2 exponents = MOMENTS == MOMENTS_ESM ? frame.esmParams.xx : frame.evsmParams.xy;
+    return warpedMoments(MOMENTS, momentDepth(view, texelFetch(source, q, 0).r), exponents);
+#else
+    return texelFetch(source, q, 0);
+#endif
+}
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(push.size.xy);
+    if (any(greaterThanEqual(p, size))) return;
+    ShadowViewData view = views[push.size.z];
+    uint taps = MOMENTS == MOMENTS_VSM   ? uint(frame.vsmParams.z)
+                : MOMENTS == MOMENTS_ESM ? uint(frame.esmParams.y)
+                                         : frame.evsmMode.y;
+    int n = scaledKernelSize(taps, view.cascade.z);
+    int reach = (n - 1) / 2;
+    ivec2 axis = AXIS == 0 ? ivec2(1, 0) : ivec2(0, 1);
+    vec4 sum = vec4(0.0);
+    float weights = 0.0;
+    for (int k = -reach; k <= reach; ++k) {
+        float w = gaussianTap(k, n);
+        sum += w * momentsAt(clamp(p + k * axis, ivec2(0), size - 1), view);
+        weights += w;
+    }
+    imageStore(blurred, p, sum / weights);
+}

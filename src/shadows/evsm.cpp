@@ -1,0 +1,82 @@
+// Technique `evsm` [Lauritzen and McCool 2008, 'Layered variance shadow maps' (the exponential
+// warp)]: the moments of two exponential warps of the moment depth, e^(c+ z) and -e^(-c- z),
+// blurred like VSM's (shaders/include/moments_blur.glsl); Chebyshev's bound in each warp, the
+// smaller one wins (shaders/include/shadow_moments.glsl). The warps squeeze the depths an
+// occluder's far side spreads, which is what makes VSM bleed. CPU mirror:
+// src/reference/filter_reference.cpp; derivations in docs/techniques.md.
+#include "shadows/technique.h"
+
+namespace penumbra::shadows {
+
+const TechniqueModule& evsmModule() {
+    static const TechniqueModule module{
+        .info = {.id = Technique::Evsm,
+                 .name = "evsm",
+                 .summary = "exponential variance shadow maps: Chebyshev's bound on exponentially "
+                            "warped depths (2 or 4 moments; far less light bleeding than vsm)",
+                 .reference = "Lauritzen and McCool 2008, 'Layered variance shadow maps'",
+                 .families = {"bias", "evsm", "csm", "composite"},
+                 .variants = {{.label = ""}, {.label = "2", .sets = {{"evsm.components", "2"}}}}},
+        .parameters =
+            {{.key = "evsm.components",
+              .type = ParameterType::Choice,
+              .defaultValue = 1,
+              .choices = {"2", "4"},
+              .description = "2: the positive warp's moments alone; 4: both warps (the map keeps "
+                             "four channels either way)"},
+             {.key = "evsm.positive",
+              .type = ParameterType::Float,
+              .defaultValue = 40.0,
+              .min = 0.1,
+              .max = 42.0,
+              .description = "exponent c+ of the positive warp; 42 keeps e^(2 c+ z) within "
+                             "32-bit floats"},
+             {.key = "evsm.negative",
+              .type = ParameterType::Float,
+              .defaultValue = 5.0,
+              .min = 0.1,
+              .max = 42.0,
+              .description = "exponent c- of the negative warp"},
+             {.key = "evsm.minVariance",
+              .type = ParameterType::Float,
+              .defaultValue = 1e-5,
+              .min = 0.0,
+              .max = 0.01,
+              .unit = "(depth range)^2",
+              .description = "least variance, in moment-depth units (carried into each warp by "
+                             "its slope)"},
+             {.key = "evsm.bleedReduction",
+              .type = ParameterType::Float,
+              .defaultValue = 0.0,
+              .min = 0.0,
+              .max = 0.99,
+              .description = "as vsm.bleedReduction, on the smaller bound"},
+             {.key = "evsm.size",
+              .type = ParameterType::Int,
+              .defaultValue = 7,
+              .min = 1,
+              .max = 63,
+              .unit = "texels (odd)",
+              .description = "taps of the separable Gaussian blur (sigma = size / 6)",
+              .oddOnly = true}},
+        .maps = {{.name = "rows", .format = MapFormat::RGBA32F},
+                 {.name = "moments", .format = MapFormat::RGBA32F}},
+        .postPasses =
+            {{.shader = "evsm_blur_rows.comp", .inputs = {kDepthMap}, .outputs = {"rows"}},
+             {.shader = "evsm_blur_columns.comp", .inputs = {"rows"}, .outputs = {"moments"}}},
+        .visibilityMap = "moments",
+        .pack =
+            [](const ParameterValues& p, gpu::FrameData& f) {
+                f.evsmParams = {static_cast<float>(p.number("evsm.positive")),
+                                static_cast<float>(p.number("evsm.negative")),
+                                static_cast<float>(p.number("evsm.minVariance")),
+                                static_cast<float>(p.number("evsm.bleedReduction"))};
+                f.evsmMode = {p.number("evsm.components") == 0.0 ? 2u : 4u,
+                              static_cast<uint32_t>(p.number("evsm.size")), 0u, 0u};
+            },
+        .blurRadiusTexels =
+            [](const ParameterValues& p) { return 0.5 * (p.number("evsm.size") - 1.0) + 1.0; }};
+    return module;
+}
+
+} // namespace penumbra::shadows

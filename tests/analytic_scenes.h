@@ -1,0 +1,41 @@
+#pragma once
+// Scenes whose shadows the tests know by construction, shared by several test files.
+#include "penumbra/scene.h"
+#include "scene/mesh_builder.h"
+
+#include <array>
+
+namespace penumbra::test {
+
+// Spheres of several sizes and heights over a 60-unit plane, seen from above, under `light`
+// (the point-light tests put a bulb low above the plane, so that the lit plane is seen through
+// five cube faces).
+inline Scene spheresOverPlane(const Light& light) {
+    Scene scene;
+    scene.name = "spheres over a plane";
+    MeshBuilder mb(scene);
+    const uint32_t grey = mb.material("plane", {0.7f, 0.7f, 0.7f});
+    const uint32_t red = mb.material("spheres", {0.7f, 0.25f, 0.2f});
+    const float g = 30.0f;
+    mb.quad({-g, 0, g}, {g, 0, g}, {g, 0, -g}, {-g, 0, -g}, grey);
+    const std::array<glm::vec4, 8> spheres = {{{2.0f, 0.6f, 0.5f, 0.4f},
+                                               {-1.5f, 1.0f, -2.0f, 0.5f},
+                                               {0.5f, 0.5f, -3.5f, 0.45f},
+                                               {-3.0f, 0.8f, 2.5f, 0.6f},
+                                               {4.0f, 1.5f, -1.0f, 0.5f},
+                                               {1.2f, 0.4f, 2.2f, 0.35f},
+                                               {-0.9f, 0.35f, 0.4f, 0.3f},
+                                               {0.3f, 0.5f, -0.9f, 0.25f}}};
+    for (const glm::vec4& s : spheres)
+        mb.sphere(glm::vec3(s), s.w, red);
+    scene.lights.push_back(light);
+    scene.cameras.push_back({.name = "above",
+                             .position = {0.5f, 10.0f, 8.0f},
+                             .target = {0.0f, 0.0f, -0.5f},
+                             .yfov = 1.0f,
+                             .znear = 0.1f,
+                             .zfar = 100.0f});
+    return scene;
+}
+
+} // namespace penumbra::test

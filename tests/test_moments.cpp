@@ -1,0 +1,274 @@
+// The prefiltered family (`vsm`, `esm`, `evsm`): the GPU's warped moments, blur and bounds
+// against the CPU reference, the bounds against their closed forms on a step edge, and the
+// results against the ray-traced truth for every light type.
+#include "analytic_scenes.h"
+#include "filter_math.h"
+#include "reference/filter_reference.h"
+#include "render/frame_data.h"
+#include "truth_fixture.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <random>
+
+using namespace penumbra;
+using namespace penumbra::test;
+using Sets = std::vector<std::pair<std::string, std::string>>;
+
+namespace {
+
+constexpr uint32_t kSize = 64;
+
+// A smooth receiver with box-shaped occluders nearer the light.
+std::vector<float> boxesOverAWave(uint32_t seed) {
+    std::mt19937 engine(seed);
+    auto rng = [&] { return static_cast<uint32_t>(engine()); };
+    std::vector<float> depth(kSize * kSize);
+    for (uint32_t j = 0; j < kSize; ++j)
+        for (uint32_t i = 0; i < kSize; ++i)
+            depth[j * kSize + i] =
+                0.6f + 0.1f * std::sin(0.3f * float(i)) * std::cos(0.2f * float(j));
+    for (int b = 0; b < 14; ++b) {
+        const uint32_t x0 = rng() % kSize, y0 = rng() % kSize, w = 2 + rng() % 10,
+                       h = 2 + rng() % 10;
+        const float d = 0.2f + 0.3f * float(rng() % 1000) / 1000.0f;
+        for (uint32_t y = y0; y < std::min(y0 + h, kSize); ++y)
+            for (uint32_t x = x0; x < std::min(x0 + w, kSize); ++x)
+                depth[y * kSize + x] = d;
+    }
+    return depth;
+}
+
+std::vector<FilterProbe> probesOver(uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<FilterProbe> probes(1500);
+    for (FilterProbe& p : probes) {
+        p.uv = {unit(rng), unit(rng)}; // the whole map, edges included (clamp-to-edge)
+        p.depth = 0.15f + 0.7f * unit(rng);
+    }
+    return probes;
+}
+
+const ProbeLight kLights[] = {
+    {.perspective = false, .nearPlane = 1.0f, .farPlane = 21.0f, .worldPerUv = {12.0f, 12.0f}},
+    {.perspective = true, .nearPlane = 0.5f, .farPlane = 30.0f, .worldPerUv = {1.2f, 1.2f}}};
+
+} // namespace
+
+struct FamilyCase {
+    Technique technique;
+    std::vector<std::pair<const char*, const char*>> sets;
+};
+
+std::vector<FamilyCase> familyCases() {
+    std::vector<FamilyCase> cases;
+    for (const char* size : {"1", "7", "15"})
+        for (const char* bleed : {"0", "0.4"})
+            for (const char* minVariance : {"0.00001", "0.001"})
+                cases.push_back({Technique::Vsm,
+                                 {{"vsm.size", size},
+                                  {"vsm.bleedReduction", bleed},
+                                  {"vsm.minVariance", minVariance}}});
+    for (const char* size : {"1", "9"})
+        for (const char* c : {"10", "80", "88"})
+            cases.push_back({Technique::Esm, {{"esm.size", size}, {"esm.c", c}}});
+    for (const char* components : {"2", "4"})
+        for (const char* positive : {"5", "42"})
+            for (const char* negative : {"1", "20"})
+                cases.push_back({Technique::Evsm,
+                                 {{"evsm.components", components},
+                                  {"evsm.positive", positive},
+                                  {"evsm.negative", negative},
+                                  {"evsm.size", "5"},
+                                  {"evsm.bleedReduction", "0.1"}}});
+    return cases;
+}
+
+TEST_F(FilterTest, PrefilteredFamilyMatchesItsCpuReference) {
+    const std::vector<float> depth = boxesOverAWave(5);
+    const ShadowMapView map{depth, kSize};
+    const std::vector<FilterProbe> probes = probesOver(9);
+    for (const ProbeLight& light : kLights)
+        for (const FamilyCase& c : familyCases()) {
+            ParameterValues params;
+            std::string what = fmt::format("{} {}", techniqueName(c.technique),
+                                           light.perspective ? "perspective" : "orthographic");
+            for (const auto& [key, value] : c.sets) {
+                params.set(key, value);
+                what += fmt::format(" {}={}", key, value);
+            }
+            const std::vector<glm::vec4> gpuResult =
+                sharedRenderer().probeTechnique(c.technique, params, depth, kSize, probes, light);
+            gpu::FrameData frame{};
+            render::setTechniqueSettings(frame, params, false, 8);
+            const gpu::ShadowViewData view = render::probeViewData(light);
+            glm::vec4 worst(0.0f);
+            size_t between = 0;
+            for (size_t i = 0; i < probes.size(); ++i) {
+                const glm::vec4 cpu = techniqueReference(c.technique, map, probes[i], frame, view);
+                // Filtered values relative to their size (exponentials span many decades).
+                const glm::vec4 scale = glm::max(glm::abs(cpu), glm::vec4(1.0f));
+                worst = glm::max(worst, glm::abs(cpu - gpuResult[i]) /
+                                            glm::vec4(1.0f, scale.y, scale.z, 1.0f));
+                between += cpu.x > 0.0f && cpu.x < 1.0f;
+            }
+            EXPECT_GT(between, probes.size() / 60) << what << ": a filter's in-betweens";
+            EXPECT_LE(worst.y, 2e-5f) << what << ": filtered value (relative)";
+            EXPECT_LE(worst.z, 2e-5f) << what << ": filtered value (relative)";
+            EXPECT_LE(worst.w, 1e-6f) << what << ": receiver depth";
+            // EVSM's variance with a small exponent is a difference of nearly equal moments:
+            // the float rounding both sides do differently grows there (measured 0.0036).
+            EXPECT_LE(worst.x, c.technique == Technique::Evsm ? 5e-3f : 2e-3f)
+                << what << ": visibility";
+        }
+}
+
+// Without blur, bilinear interpolation across a step between depths a and b mixes the moments:
+// at fraction s of the way the variance is s (1 - s) (b - a)^2, and the bound on a receiver at t
+// between them is that variance over itself plus (t - mean)^2.
+TEST_F(FilterTest, VsmBoundsAStepEdgeByChebyshevsInequality) {
+    const float a = 0.3f, b = 0.8f;
+    std::vector<float> depth(kSize * kSize);
+    for (uint32_t j = 0; j < kSize; ++j)
+        for (uint32_t i = 0; i < kSize; ++i)
+            depth[j * kSize + i] = i < kSize / 2 ? a : b;
+    ParameterValues params;
+    params.set("vsm.size", "1");
+    params.set("vsm.bleedReduction", "0");
+    params.set("vsm.minVariance", "0.00001");
+    std::vector<FilterProbe> probes;
+    std::vector<float> expected;
+    for (float t : {0.25f, 0.5f, 0.7f, 0.9f})
+        for (int k = 0; k <= 8; ++k) {
+            const float s = static_cast<float>(k) / 8.0f; // from texel 31's centre to 32's
+            const float u = (31.5f + s) / static_cast<float>(kSize);
+            probes.push_back({.uv = {u, 0.5f}, .depth = t});
+            const float mean = a + s * (b - a);
+            const float variance = std::max(s * (1.0f - s) * (b - a) * (b - a), 1e-5f);
+            expected.push_back(t <= mean ? 1.0f : variance / (variance + (t - mean) * (t - mean)));
+        }
+    const std::vector<glm::vec4> v =
+        sharedRenderer().probeTechnique(Technique::Vsm, params, depth, kSize, probes, kLights[0]);
+    for (size_t i = 0; i < probes.size(); ++i)
+        EXPECT_NEAR(v[i].x, expected[i], 2e-3f)
+            << "t " << probes[i].depth << ", u " << probes[i].uv.x;
+    // Light-bleeding reduction cuts bounds below its amount to shadow and rescales the rest.
+    params.set("vsm.bleedReduction", "0.5");
+    const std::vector<glm::vec4> reduced =
+        sharedRenderer().probeTechnique(Technique::Vsm, params, depth, kSize, probes, kLights[0]);
+    for (size_t i = 0; i < probes.size(); ++i)
+        EXPECT_NEAR(reduced[i].x, std::clamp((expected[i] - 0.5f) / 0.5f, 0.0f, 1.0f), 4e-3f);
+}
+
+// The exponential members across the same step: ESM's e^(-c t) E[e^(c z)], EVSM's bound in each
+// warp, from the moments bilinear interpolation mixes.
+TEST_F(FilterTest, ExponentialMapsMeetTheirClosedFormsOnAStep) {
+    const double a = 0.3, b = 0.8;
+    std::vector<float> depth(kSize * kSize);
+    for (uint32_t j = 0; j < kSize; ++j)
+        for (uint32_t i = 0; i < kSize; ++i)
+            depth[j * kSize + i] = static_cast<float>(i < kSize / 2 ? a : b);
+    std::vector<FilterProbe> probes;
+    std::vector<double> fractions;
+    for (float t : {0.25f, 0.5f, 0.7f, 0.9f})
+        for (int k = 0; k <= 8; ++k) {
+            const double s = k / 8.0;
+            probes.push_back({.uv = {static_cast<float>((31.5 + s) / kSize), 0.5f}, .depth = t});
+            fractions.push_back(s);
+        }
+    ParameterValues esm;
+    esm.set("esm.size", "1");
+    esm.set("esm.c", "30");
+    const std::vector<glm::vec4> e =
+        sharedRenderer().probeTechnique(Technique::Esm, esm, depth, kSize, probes, kLights[0]);
+    ParameterValues evsm;
+    evsm.set("evsm.size", "1");
+    evsm.set("evsm.positive", "20");
+    evsm.set("evsm.negative", "6");
+    evsm.set("evsm.minVariance", "0");
+    const std::vector<glm::vec4> v =
+        sharedRenderer().probeTechnique(Technique::Evsm, evsm, depth, kSize, probes, kLights[0]);
+    auto chebyshev = [](double m1, double m2, double t) {
+        if (t <= m1)
+            return 1.0;
+        const double variance = std::max(m2 - m1 * m1, 0.0);
+        return variance / (variance + (t - m1) * (t - m1));
+    };
+    for (size_t i = 0; i < probes.size(); ++i) {
+        const double s = fractions[i], t = probes[i].depth;
+        auto mixed = [&](auto f) { return (1.0 - s) * f(a) + s * f(b); };
+        const double filtered = mixed([](double z) { return std::exp(30.0 * z); });
+        EXPECT_NEAR(e[i].x, std::min(1.0, std::exp(-30.0 * t) * filtered), 2e-3)
+            << "esm t " << t << ", s " << s;
+        const double p1 = mixed([](double z) { return std::exp(20.0 * z); });
+        const double p2 = mixed([](double z) { return std::exp(40.0 * z); });
+        const double n1 = mixed([](double z) { return -std::exp(-6.0 * z); });
+        const double n2 = mixed([](double z) { return std::exp(-12.0 * z); });
+        const double bound =
+            std::min(chebyshev(p1, p2, std::exp(20.0 * t)), chebyshev(n1, n2, -std::exp(-6.0 * t)));
+        EXPECT_NEAR(v[i].x, bound, 3e-3) << "evsm t " << t << ", s " << s;
+    }
+}
+
+// The analytic scenes: every light type, every member at its defaults has no acne and
+// beats a single hard sample against the truth.
+TEST_F(QualityTest, PrefilteredFamilyBeatsHardWithoutAcneForEveryLightType) {
+    const Light lights[] = {{.name = "sun",
+                             .type = LightType::Directional,
+                             .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)),
+                             .angularDiameter = 4.0f},
+                            {.name = "spot",
+                             .type = LightType::Spot,
+                             .position = {1.0f, 7.0f, 2.0f},
+                             .direction = glm::normalize(glm::vec3(-0.1f, -1.0f, -0.3f)),
+                             .intensity = 40.0f,
+                             .outerConeAngle = 0.8f,
+                             .radius = 0.5f},
+                            {.name = "bulb",
+                             .type = LightType::Point,
+                             .position = {0.0f, 2.5f, 0.0f},
+                             .intensity = 8.0f,
+                             .radius = 0.2f}};
+    for (const Light& light : lights) {
+        const Truth t =
+            groundTruth(spheresOverPlane(light),
+                        {.width = 192, .height = 192, .shadowMapSize = 1024, .samples = 64});
+        const ErrorMetrics hard = measure(t, Technique::Hard, {});
+        for (Technique technique : {Technique::Vsm, Technique::Esm, Technique::Evsm}) {
+            const ErrorMetrics m = measure(t, technique, {});
+            const std::string name(techniqueName(technique));
+            std::printf("%s: rmse hard %.4f, %s %.4f; acne %.4f%%, leak %.4f%%\n",
+                        light.name.c_str(), hard.rmse, name.c_str(), m.rmse, 100 * m.acne,
+                        100 * m.leak);
+            EXPECT_LT(m.rmse, hard.rmse) << light.name << ", " << name;
+            EXPECT_LT(m.acne, 0.001) << light.name << ", " << name;
+        }
+    }
+}
+
+// Two occluders on one light ray (builtin:bleeding): VSM's bound lets the farther plate's outline
+// through the nearer one's shadow; the exponential warps keep it dark.
+TEST_F(QualityTest, ExponentialWarpsStopVsmsLightBleeding) {
+    const Truth t = groundTruth({.scene = "builtin:bleeding",
+                                 .width = 256,
+                                 .height = 256,
+                                 .shadowMapSize = 1024,
+                                 .samples = 16});
+    const Sets wide = {{"vsm.size", "15"}, {"esm.size", "15"}, {"evsm.size", "15"}};
+    auto with = [&](Sets sets) {
+        sets.insert(sets.end(), wide.begin(), wide.end());
+        return sets;
+    };
+    const ErrorMetrics vsm = measure(t, Technique::Vsm, with({{"vsm.bleedReduction", "0"}}));
+    const ErrorMetrics reduced = measure(t, Technique::Vsm, with({}));
+    const ErrorMetrics esm = measure(t, Technique::Esm, with({}));
+    const ErrorMetrics evsm = measure(t, Technique::Evsm, with({}));
+    std::printf("leak: vsm %.3f%%, vsm bleedReduction 0.2 %.3f%%, esm %.3f%%, evsm %.3f%%\n",
+                100 * vsm.leak, 100 * reduced.leak, 100 * esm.leak, 100 * evsm.leak);
+    EXPECT_GT(vsm.leak, 0.002) << "the scene must make VSM bleed";
+    EXPECT_LT(reduced.leak, 0.75 * vsm.leak);
+    EXPECT_LE(evsm.leak, 0.5 * vsm.leak);
+    EXPECT_LE(esm.leak, 0.5 * vsm.leak);
+}
