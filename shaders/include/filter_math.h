@@ -184,6 +184,21 @@ SHARED float exponentialVarianceVisibility(vec4 moments, float t, vec2 exponents
     return bound;
 }
 
+// Summed-area VSM [Lauritzen 2007]: the moments a summed-area table sums, offset to [-1/2, 1/2]
+// so that sums over a whole map stay small (their signs cancel). The variance is unchanged; the
+// receiver's depth takes the same offset.
+SHARED vec2 offsetMoments(float z) {
+    float d = z - 0.5f;
+    return vec2(d, d * d);
+}
+
+// The integral of the table's texels over [0, x] x [0, y] (texel units) from its values at the
+// four integer corners around (x, y), `f` the fraction between them: within one texel the
+// integral of a constant is bilinear in (x, y), so the interpolation is exact.
+SHARED vec2 integralBetweenCorners(vec2 i00, vec2 i10, vec2 i01, vec2 i11, vec2 f) {
+    return mix(mix(i00, i10, f.x), mix(i01, i11, f.x), f.y);
+}
+
 // Weight of tap k (-(n-1)/2 .. (n-1)/2) of the n-tap Gaussian blur, before normalising: sigma
 // = n / 6, so the taps reach three sigmas on either side.
 SHARED float gaussianTap(int k, int n) {

@@ -190,7 +190,10 @@ void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
             const gpu::PostPassPush push{.size = {size.width, size.height, v, 0}};
             vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
                                &push);
-            vkCmdDispatch(cmd, groups(size.width), groups(size.height), 1);
+            if (pass.dispatch == shadows::PostDispatch::Lines)
+                vkCmdDispatch(cmd, (size.height + LINE_GROUP_SIZE - 1) / LINE_GROUP_SIZE, 1, 1);
+            else
+                vkCmdDispatch(cmd, groups(size.width), groups(size.height), 1);
         }
         toSampled.record(cmd);
         if (timer)

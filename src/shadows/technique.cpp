@@ -23,7 +23,7 @@ uint32_t bytesPerTexel(MapFormat format) {
 std::span<const TechniqueModule* const> allModules() {
     static const TechniqueModule* const modules[] = {&hardModule(), &pcfModule(), &pcssModule(),
                                                      &secondDepthModule(), &vsmModule(),
-                                                     &esmModule(), &evsmModule()};
+                                                     &esmModule(), &evsmModule(), &savsmModule()};
     return modules;
 }
 

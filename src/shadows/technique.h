@@ -40,9 +40,13 @@ struct DepthPassDecl {
 // nearest sampler (bindings 0, 1, ...) and writes `outputs` as storage images (bindings 8, ...);
 // its push constants are gpu::PostPassPush.
 inline constexpr size_t kMaxPostPasses = 12; // each is a GPU timestamp scope of its own
+// Texels: one invocation per texel (GROUP_SIZE x GROUP_SIZE groups); Lines: one per row or column
+// of the (square) map, LINE_GROUP_SIZE a group (scans).
+enum class PostDispatch { Texels, Lines };
 struct PostPassDecl {
     std::string_view shader; // in shaders/
     std::vector<std::string_view> inputs, outputs;
+    PostDispatch dispatch = PostDispatch::Texels;
 };
 
 struct SpecConstant {
@@ -90,5 +94,6 @@ const TechniqueModule& secondDepthModule();
 const TechniqueModule& vsmModule();
 const TechniqueModule& esmModule();
 const TechniqueModule& evsmModule();
+const TechniqueModule& savsmModule();
 
 } // namespace penumbra::shadows
