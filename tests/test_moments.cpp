@@ -83,6 +83,9 @@ std::vector<FamilyCase> familyCases() {
                                   {"evsm.negative", negative},
                                   {"evsm.size", "5"},
                                   {"evsm.bleedReduction", "0.1"}}});
+    for (const char* size : {"1", "9"})
+        for (const char* bias : {"0.00003", "0.001"})
+            cases.push_back({Technique::Msm, {{"msm.size", size}, {"msm.bias", bias}}});
     // (A one-texel box differences sums of about 10^3 to get one texel's moments: the table's
     // rounding then decides, differently on each side; SummedAreaTableQueries... measures it.)
     for (const char* size : {"7.5", "33"})
@@ -260,7 +263,7 @@ TEST_F(QualityTest, PrefilteredFamilyBeatsHardWithoutAcneForEveryLightType) {
                         {.width = 192, .height = 192, .shadowMapSize = 1024, .samples = 64});
         const ErrorMetrics hard = measure(t, Technique::Hard, {});
         for (Technique technique :
-             {Technique::Vsm, Technique::Esm, Technique::Evsm, Technique::Savsm}) {
+             {Technique::Vsm, Technique::Esm, Technique::Evsm, Technique::Savsm, Technique::Msm}) {
             const ErrorMetrics m = measure(t, technique, {});
             const std::string name(techniqueName(technique));
             std::printf("%s: rmse hard %.4f, %s %.4f; acne %.4f%%, leak %.4f%%\n",
@@ -295,6 +298,35 @@ TEST_F(QualityTest, ExponentialWarpsStopVsmsLightBleeding) {
     EXPECT_LT(reduced.leak, 0.75 * vsm.leak);
     EXPECT_LE(evsm.leak, 0.5 * vsm.leak);
     EXPECT_LE(esm.leak, 0.5 * vsm.leak);
+    const ErrorMetrics msm = measure(t, Technique::Msm, {{"msm.size", "15"}});
+    std::printf("leak: msm %.3f%%\n", 100 * msm.leak);
+    EXPECT_LE(msm.leak, 0.5 * vsm.leak);
+}
+
+// MSM across the step: the depths are two atoms, a (weight 1 - s) and b (weight s); a receiver
+// between them is occluded by a's weight, one behind both by all, one in front by none (up to
+// the moment bias).
+TEST_F(FilterTest, MomentShadowMapsRecoverTwoDepthsOnAStep) {
+    const float a = 0.3f, b = 0.8f;
+    std::vector<float> depth(kSize * kSize);
+    for (uint32_t j = 0; j < kSize; ++j)
+        for (uint32_t i = 0; i < kSize; ++i)
+            depth[j * kSize + i] = i < kSize / 2 ? a : b;
+    std::vector<FilterProbe> probes;
+    std::vector<float> expected;
+    for (float t : {0.2f, 0.55f, 0.9f})
+        for (int k = 1; k <= 7; ++k) {
+            const float s = static_cast<float>(k) / 8.0f;
+            probes.push_back({.uv = {(31.5f + s) / static_cast<float>(kSize), 0.5f}, .depth = t});
+            expected.push_back(t < a ? 1.0f : t < b ? s : 0.0f);
+        }
+    ParameterValues params;
+    params.set("msm.size", "1");
+    const std::vector<glm::vec4> v =
+        sharedRenderer().probeTechnique(Technique::Msm, params, depth, kSize, probes, kLights[0]);
+    for (size_t i = 0; i < probes.size(); ++i)
+        EXPECT_NEAR(v[i].x, expected[i], 0.02f)
+            << "t " << probes[i].depth << ", u " << probes[i].uv.x;
 }
 
 // The summed-area table's float sums over a whole 1024^2 map: a box query's mean moments against

@@ -30,6 +30,7 @@ using glm::max;
 using glm::min;
 using glm::mix;
 using glm::sin;
+using glm::sqrt;
 #define OUT(T) T&
 #define OUT_ARRAY(T, name, n) T (&name)[n]
 #define IN(T) const T&
@@ -151,7 +152,12 @@ SHARED float reduceLightBleeding(float p, float amount) {
 #define MOMENTS_VSM 0u
 #define MOMENTS_ESM 1u
 #define MOMENTS_EVSM 2u
+#define MOMENTS_MSM 3u
 SHARED vec4 warpedMoments(uint kind, float z, vec2 exponents) {
+    if (kind == MOMENTS_MSM) { // msm: the powers of the depth mapped to [-1, 1]
+        float d = 2.0f * z - 1.0f, d2 = d * d;
+        return vec4(d, d2, d2 * d, d2 * d2);
+    }
     if (kind == MOMENTS_ESM) return vec4(exp(exponents.x * z), 0.0f, 0.0f, 0.0f);
     if (kind == MOMENTS_EVSM) {
         float p = exp(exponents.x * z), n = -exp(-exponents.y * z);
@@ -197,6 +203,38 @@ SHARED vec2 offsetMoments(float z) {
 // integral of a constant is bilinear in (x, y), so the interpolation is exact.
 SHARED vec2 integralBetweenCorners(vec2 i00, vec2 i10, vec2 i01, vec2 i11, vec2 f) {
     return mix(mix(i00, i10, f.x), mix(i01, i11, f.x), f.y);
+}
+
+// Moment shadow maps [Peters and Klein 2015], Hamburger reconstruction with four moments: the
+// fraction of the filtered depths in front of the receiver at d (in [-1, 1]), as the smallest
+// one any distribution with these moments allows. The moments b = (E x, E x^2, E x^3, E x^4)
+// are first pulled towards (0, 0.63, 0, 0.63) by `bias` (the paper's moment bias), which keeps
+// the Hankel matrix B = [1 b1 b2; b1 b2 b3; b2 b3 b4] positive definite. The extremal
+// distribution has three atoms: d and the roots z1 < z2 of the quadratic whose coefficients
+// solve B c = (1, d, d^2); the occluded fraction is the weight of the atoms in front of d, the
+// weights following from the first two moments (Lagrange: w_i = E[(x - z_j)(x - z_k)] /
+// ((z_i - z_j)(z_i - z_k))).
+SHARED float momentOcclusion(vec4 moments, float d, float bias) {
+    vec4 b = mix(moments, vec4(0.0f, 0.63f, 0.0f, 0.63f), bias);
+    // B = L D L^T with L unit lower triangular: solve L y = r, then D L^T c = y.
+    float d1 = b.y - b.x * b.x;          // D22 (D11 = 1)
+    float l21 = b.x, l31 = b.y;           // first column of L
+    float l32 = (b.z - b.x * b.y) / d1;
+    float d2 = b.w - b.y * b.y - l32 * l32 * d1; // D33
+    vec3 y = vec3(1.0f, d - l21, 0.0f);
+    y.z = d * d - l31 - l32 * y.y;
+    float c3 = y.z / d2;
+    float c2 = y.y / d1 - l32 * c3;
+    float c1 = y.x - l21 * c2 - l31 * c3;
+    // Roots of c1 + c2 x + c3 x^2 (d is not among them unless B is singular).
+    float p = c2 / c3, q = c1 / c3;
+    float r = sqrt(max(0.25f * p * p - q, 0.0f));
+    float z1 = -0.5f * p - r, z2 = -0.5f * p + r;
+    if (d <= z1) return 0.0f;
+    if (d <= z2) // the atom at z1 is in front
+        return (b.y - b.x * (d + z2) + d * z2) / ((z1 - d) * (z1 - z2));
+    // Both in front: everything but the receiver's own atom.
+    return 1.0f - (b.y - b.x * (z1 + z2) + z1 * z2) / ((d - z1) * (d - z2));
 }
 
 // Weight of tap k (-(n-1)/2 .. (n-1)/2) of the n-tap Gaussian blur, before normalising: sigma

@@ -30,6 +30,7 @@ using uint = uint32_t;
 #define TECHNIQUE_ESM 5u
 #define TECHNIQUE_EVSM 6u
 #define TECHNIQUE_SAVSM 7u
+#define TECHNIQUE_MSM 8u
 
 // Specialization-constant ids of visibility.comp and filter_probe.comp (the pipeline key is the
 // list of (id, value) pairs: src/shadows/technique.h).
@@ -106,6 +107,7 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     uvec4 evsmMode;      // x evsm.components (2 or 4), y evsm.size (taps)
     vec4 savsmParams;    // x savsm.size (texels, box width), y savsm.minVariance,
                          // z savsm.bleedReduction
+    vec4 msmParams;      // x msm.bias (moment bias), y msm.size (taps)
     vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
 };
 
@@ -196,12 +198,13 @@ static_assert(ROTATION_NONE == 0 && ROTATION_RANDOM == 1 && ROTATION_IGN == 2 &&
 static_assert(RECEIVER_OFF == 0 && RECEIVER_SCREEN == 1 && RECEIVER_LIGHT == 2 &&
               std::size(kReceiverChoices) == 3);
 
-static_assert(sizeof(FrameData) == 896 && offsetof(FrameData, position) == 128 &&
+static_assert(sizeof(FrameData) == 912 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, filterMode) == 192 && offsetof(FrameData, biasParams) == 240 &&
               offsetof(FrameData, pcssMode) == 256 && offsetof(FrameData, cameraForward) == 288 &&
               offsetof(FrameData, vsmParams) == 304 && offsetof(FrameData, evsmMode) == 352 &&
-              offsetof(FrameData, savsmParams) == 368 && offsetof(FrameData, poisson) == 384);
+              offsetof(FrameData, savsmParams) == 368 && offsetof(FrameData, msmParams) == 384 &&
+              offsetof(FrameData, poisson) == 400);
 static_assert(sizeof(LightData) == 96 && offsetof(LightData, cone) == 48 &&
               offsetof(LightData, bias) == 64 && offsetof(LightData, views) == 80);
 static_assert(sizeof(ShadowViewData) == 112 && offsetof(ShadowViewData, frustum) == 64 &&

@@ -30,9 +30,10 @@ void main() {
     ivec2 size = ivec2(push.size.xy);
     if (any(greaterThanEqual(p, size))) return;
     ShadowViewData view = views[push.size.z];
-    uint taps = MOMENTS == MOMENTS_VSM   ? uint(frame.vsmParams.z)
-                : MOMENTS == MOMENTS_ESM ? uint(frame.esmParams.y)
-                                         : frame.evsmMode.y;
+    uint taps = MOMENTS == MOMENTS_VSM    ? uint(frame.vsmParams.z)
+                : MOMENTS == MOMENTS_ESM  ? uint(frame.esmParams.y)
+                : MOMENTS == MOMENTS_EVSM ? frame.evsmMode.y
+                                          : uint(frame.msmParams.y);
     int n = scaledKernelSize(taps, view.cascade.z);
     int reach = (n - 1) / 2;
     ivec2 axis = AXIS == 0 ? ivec2(1, 0) : ivec2(0, 1);

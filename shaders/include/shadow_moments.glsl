@@ -49,6 +49,14 @@ vec4 shadowEvsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 t);
 }
 
+// x visibility, y z the filtered first two moments, w the receiver's depth in [-1, 1].
+vec4 shadowMsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view) {
+    vec4 moments = momentsBilinear(map, r.uv, mapSize, r.layer, 4);
+    float d = 2.0 * momentDepth(view, r.depth) - 1.0;
+    float v = clamp(1.0 - momentOcclusion(moments, d, frame.msmParams.x), 0.0, 1.0);
+    return vec4(snapToExtremes(v), moments.x, moments.y, d);
+}
+
 // Summed-area VSM: the integral I(x, y) of the table's texels over [0, x] x [0, y] (texel units),
 // I at integer corner c being texel c - 1 of the table (0 along the first row and column).
 vec2 satCorner(sampler2DArray table, ivec2 c, float layer) {

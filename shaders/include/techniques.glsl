@@ -21,6 +21,7 @@ vec4 evaluateTechnique(uint technique, sampler2DArray map, sampler2DArrayShadow 
     case TECHNIQUE_ESM: return shadowEsmDetail(map, r, mapSize, view);
     case TECHNIQUE_EVSM: return shadowEvsmDetail(map, r, mapSize, view);
     case TECHNIQUE_SAVSM: return shadowSavsmDetail(map, r, mapSize, view);
+    case TECHNIQUE_MSM: return shadowMsmDetail(map, r, mapSize, view);
     case TECHNIQUE_PCF: return vec4(shadowPcf(map, mapCompare, r, mapSize, pixel), vec3(0.0));
     case TECHNIQUE_HARD:
     default: return vec4(shadowHard(map, r, mapSize, frame.biasParams.xy), vec3(0.0));

@@ -271,6 +271,15 @@ glm::vec4 evsm(const ShadowMapView& map, const FilterProbe& probe, const gpu::Fr
             t};
 }
 
+glm::vec4 msm(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
+              const gpu::ShadowViewData& view) {
+    const glm::vec4 moments = momentsAt(map, MOMENTS_MSM, static_cast<uint32_t>(f.msmParams.y),
+                                        glm::vec2(0.0f), view, probe.uv);
+    const float d = 2.0f * gpu::momentDepth(view, probe.depth) - 1.0f;
+    const float v = std::clamp(1.0f - gpu::momentOcclusion(moments, d, f.msmParams.x), 0.0f, 1.0f);
+    return {gpu::snapToExtremes(v), moments.x, moments.y, d};
+}
+
 // Summed-area VSM (shaders/include/sat_scan.glsl, shadow_moments.glsl): the table as the two
 // passes leave it, float sums in the same order, then the box query.
 std::vector<glm::vec2> summedAreaTable(const ShadowMapView& map, const gpu::ShadowViewData& view) {
@@ -344,6 +353,8 @@ glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterPr
         return evsm(map, probe, f, view);
     case Technique::Savsm:
         return savsm(map, probe, f, view);
+    case Technique::Msm:
+        return msm(map, probe, f, view);
     case Technique::SecondDepth: // `map` holds the midpoints; no receiver-plane correction
         return {hard(map, probe, m, glm::vec2(0.0f)), 0.0f, 0.0f, 0.0f};
     case Technique::Hard:

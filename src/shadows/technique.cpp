@@ -23,7 +23,8 @@ uint32_t bytesPerTexel(MapFormat format) {
 std::span<const TechniqueModule* const> allModules() {
     static const TechniqueModule* const modules[] = {&hardModule(), &pcfModule(), &pcssModule(),
                                                      &secondDepthModule(), &vsmModule(),
-                                                     &esmModule(), &evsmModule(), &savsmModule()};
+                                                     &esmModule(), &evsmModule(), &savsmModule(),
+                                                     &msmModule()};
     return modules;
 }
 

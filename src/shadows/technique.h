@@ -95,5 +95,6 @@ const TechniqueModule& vsmModule();
 const TechniqueModule& esmModule();
 const TechniqueModule& evsmModule();
 const TechniqueModule& savsmModule();
+const TechniqueModule& msmModule();
 
 } // namespace penumbra::shadows

@@ -1,0 +1,54 @@
+// Technique `msm` [Peters and Klein 2015, 'Moment shadow mapping']: four moments (z, z^2, z^3,
+// z^4) of the depth mapped to [-1, 1], blurred like VSM's (shaders/include/moments_blur.glsl);
+// the visibility pass reconstructs the smallest occluded fraction these moments allow (the
+// Hamburger problem: momentOcclusion in filter_math.h, shaders/include/shadow_moments.glsl).
+// 32-bit moments; the paper's 16-bit optimised quantisation is not built yet. CPU mirror:
+// src/reference/filter_reference.cpp; derivations in docs/techniques.md.
+#include "shadows/technique.h"
+
+namespace penumbra::shadows {
+
+const TechniqueModule& msmModule() {
+    static const TechniqueModule module{
+        .info = {.id = Technique::Msm,
+                 .name = "msm",
+                 .summary = "moment shadow maps: four blurred depth moments, the smallest "
+                            "occluded fraction they allow (little light bleeding)",
+                 .reference = "Peters and Klein 2015, 'Moment shadow mapping'",
+                 .families = {"bias", "msm", "csm", "composite"},
+                 .variants = {{.label = ""}}},
+        .parameters = {{.key = "msm.bias",
+                        .type = ParameterType::Float,
+                        .defaultValue = 3e-5,
+                        .min = 0.0,
+                        .max = 0.01,
+                        .description =
+                            "moment bias: the moments are pulled this far towards (0, 0.63, 0, "
+                            "0.63), which keeps the reconstruction stable (the paper's 3e-5 "
+                            "for 32-bit moments)"},
+                       {.key = "msm.size",
+                        .type = ParameterType::Int,
+                        .defaultValue = 7,
+                        .min = 1,
+                        .max = 63,
+                        .unit = "texels (odd)",
+                        .description = "taps of the separable Gaussian blur (sigma = size / 6)",
+                        .oddOnly = true}},
+        .maps = {{.name = "rows", .format = MapFormat::RGBA32F},
+                 {.name = "moments", .format = MapFormat::RGBA32F}},
+        .postPasses = {{.shader = "msm_blur_rows.comp", .inputs = {kDepthMap}, .outputs = {"rows"}},
+                       {.shader = "msm_blur_columns.comp",
+                        .inputs = {"rows"},
+                        .outputs = {"moments"}}},
+        .visibilityMap = "moments",
+        .pack =
+            [](const ParameterValues& p, gpu::FrameData& f) {
+                f.msmParams = {static_cast<float>(p.number("msm.bias")),
+                               static_cast<float>(p.number("msm.size")), 0.0f, 0.0f};
+            },
+        .blurRadiusTexels =
+            [](const ParameterValues& p) { return 0.5 * (p.number("msm.size") - 1.0) + 1.0; }};
+    return module;
+}
+
+} // namespace penumbra::shadows
