@@ -91,27 +91,28 @@ float pcssThroughCascades(uint first, uint i, uint count, LightData light, ivec2
     uint mapSize = push.light.z;
     float cap = frame.pcssParams.x;
     int searchIn = -1;
-    Receiver rs;
+    // Each cascade's receiver, made once: the filter below looks again at those before searchIn.
+    Receiver receivers[MAX_CASCADES];
+    bool insides[MAX_CASCADES];
     for (uint j = i; j < count; ++j) {
         ShadowViewData view = views[first + j];
-        bool inside;
-        Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
-        float search = blockerSearchRadius(view, viewDistance(view, r.depth), mapSize);
-        if (!holds(r, inside, min(search, cap))) continue;
-        searchIn = int(j), rs = r;
+        receivers[j] = makeReceiver(light, view, p, world, normal, depth, insides[j]);
+        float search = blockerSearchRadius(view, viewDistance(view, receivers[j].depth), mapSize);
+        if (!holds(receivers[j], insides[j], min(search, cap))) continue;
+        searchIn = int(j);
         if (search <= cap) break;
     }
     if (searchIn < 0) return visibilityThrough(first + i, light, p, world, normal, depth);
     float turns = rotationTurns(frame.pcssMode.z, uvec2(p));
+    Receiver rs = receivers[searchIn];
     vec2 blockers = pcssSearch(shadowMap, rs, mapSize, views[first + uint(searchIn)], turns);
     if (blockers.x == 0.0) return 1.0;
     float zBlocker = viewDistance(views[first + uint(searchIn)], blockers.y);
     for (uint k = i; k < uint(searchIn); ++k) {
         ShadowViewData view = views[first + k];
-        bool inside;
-        Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
+        Receiver r = receivers[k];
         float radius = penumbraRadius(view, viewDistance(view, r.depth), zBlocker, mapSize);
-        if (radius <= cap && holds(r, inside, radius))
+        if (radius <= cap && holds(r, insides[k], radius))
             return pcssFilter(shadowMap, r, mapSize, view, zBlocker, blockers, turns).x;
     }
     return pcssFilter(shadowMap, rs, mapSize, views[first + uint(searchIn)], zBlocker, blockers,

@@ -1,7 +1,10 @@
 // Cascaded shadow maps against the ray-traced truth on builtin:field (a sun over an 800-unit
 // ground, objects 2 to 180 units ahead): cascades against one map near the camera, no acne at
 // cascade borders for any filter, kernels that keep their world size in farther cascades.
+#include "scene/mesh_builder.h"
 #include "truth_fixture.h"
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <array>
@@ -81,28 +84,9 @@ TEST_F(QualityTest, CascadeKernelsKeepTheirWorldSize) {
 
 namespace {
 
-void addQuad(Scene& scene, std::array<glm::vec3, 4> corners, glm::vec3 normal) {
-    const auto base = static_cast<uint32_t>(scene.vertices.size());
-    for (const glm::vec3& p : corners)
-        scene.vertices.push_back({.position = p, .normal = normal, .material = 0});
-    for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u})
-        scene.indices.push_back(base + i);
-}
-
-void addBox(Scene& scene, glm::vec3 lo, glm::vec3 hi) {
-    for (int axis = 0; axis < 3; ++axis)
-        for (int side = 0; side < 2; ++side) {
-            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-            std::array<glm::vec3, 4> c;
-            for (int k = 0; k < 4; ++k) {
-                c[k][axis] = side ? hi[axis] : lo[axis];
-                c[k][u] = (k == 1 || k == 2) ? hi[u] : lo[u];
-                c[k][v] = k >= 2 ? hi[v] : lo[v];
-            }
-            glm::vec3 normal(0.0f);
-            normal[axis] = side ? 1.0f : -1.0f;
-            addQuad(scene, c, normal);
-        }
+// A box from corner `lo` to corner `hi`.
+void addBox(MeshBuilder& mb, glm::vec3 lo, glm::vec3 hi) {
+    mb.box(glm::scale(glm::translate(glm::mat4(1.0f), 0.5f * (lo + hi)), hi - lo), 0);
 }
 
 // A ground `size` units across under a 10-degree sun, seen from close by.
@@ -110,10 +94,8 @@ Scene groundUnderALargeSun(float size, glm::vec3 cameraPosition, glm::vec3 targe
     const float h = 0.5f * size;
     Scene scene;
     scene.name = "ground under a large sun";
-    scene.materials.push_back({});
-    addQuad(scene,
-            {glm::vec3(-h, 0, h), glm::vec3(h, 0, h), glm::vec3(h, 0, -h), glm::vec3(-h, 0, -h)},
-            {0, 1, 0});
+    MeshBuilder mb(scene);
+    mb.quad({-h, 0, h}, {h, 0, h}, {h, 0, -h}, {-h, 0, -h}, mb.material("grey", glm::vec3(0.7f)));
     scene.lights.push_back({.name = "sun",
                             .type = LightType::Directional,
                             .direction = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f)),
@@ -131,9 +113,7 @@ Scene groundUnderALargeSun(float size, glm::vec3 cameraPosition, glm::vec3 targe
 // finest cascade on either side of its edge.
 Scene highPlate() {
     Scene scene = groundUnderALargeSun(40.0f, {1.0f, 3.0f, 5.0f}, {1.0f, 0.0f, 0.5f});
-    addQuad(scene,
-            {glm::vec3(-1, 5, -1), glm::vec3(1, 5, -1), glm::vec3(1, 5, 1), glm::vec3(-1, 5, 1)},
-            {0, -1, 0});
+    MeshBuilder(scene).quad({-1, 5, -1}, {1, 5, -1}, {1, 5, 1}, {-1, 5, 1}, 0); // facing down
     return scene;
 }
 
@@ -143,12 +123,25 @@ Scene highPlate() {
 // near the camera reach past the cap of every cascade but the last.
 Scene blocksAndATallPost() {
     Scene scene = groundUnderALargeSun(60.0f, {0.0f, 1.0f, 2.2f}, {0.0f, 0.8f, -4.0f});
+    MeshBuilder mb(scene);
     for (int i = 0; i < 5; ++i) {
         const float x = -0.8f + 0.4f * static_cast<float>(i), z = -0.3f * static_cast<float>(i % 2);
-        addBox(scene, {x - 0.1f, 0.0f, z - 0.1f}, {x + 0.1f, 0.25f, z + 0.1f});
+        addBox(mb, {x - 0.1f, 0.0f, z - 0.1f}, {x + 0.1f, 0.25f, z + 0.1f});
     }
-    addBox(scene, {-15.1f, 0.0f, -15.1f}, {-14.9f, 8.0f, -14.9f});
+    addBox(mb, {-15.1f, 0.0f, -15.1f}, {-14.9f, 8.0f, -14.9f});
     return scene;
+}
+
+struct OneAndFour {
+    ErrorMetrics one, four;
+    RenderResult cascaded;
+};
+
+// PCSS against the truth with one map and with four cascades.
+OneAndFour pcssOneMapAndFourCascades(const Truth& t) {
+    RenderResult cascaded = renderRow(t, Technique::Pcss, withCascades(4));
+    return {errorOf(t, renderRow(t, Technique::Pcss, withCascades(1))), errorOf(t, cascaded),
+            std::move(cascaded)};
 }
 
 } // namespace
@@ -159,9 +152,7 @@ Scene blocksAndATallPost() {
 // needed).
 TEST_F(QualityTest, PcssTakesACoarserCascadeWhenItsSearchDoesNotFit) {
     const Truth t = groundTruth(highPlate(), {.width = 256, .height = 256, .samples = 64});
-    const ErrorMetrics one = errorOf(t, renderRow(t, Technique::Pcss, withCascades(1)));
-    const RenderResult cascaded = renderRow(t, Technique::Pcss, withCascades(4));
-    const ErrorMetrics four = errorOf(t, cascaded);
+    const auto [one, four, cascaded] = pcssOneMapAndFourCascades(t);
     std::printf("plate 5 units up, 10-degree sun: pcss rmse one map %.4f, 4 cascades %.4f (%llu "
                 "px); first cascade texel %.4f\n",
                 one.rmse, four.rmse, static_cast<unsigned long long>(four.pixels),
@@ -178,9 +169,7 @@ TEST_F(QualityTest, PcssTakesACoarserCascadeWhenItsSearchDoesNotFit) {
 // against one map's 0.0355), although no blocker search there fits under the cap.
 TEST_F(QualityTest, PcssKeepsContactShadowsSharpUnderALargeSunWithCascades) {
     const Truth t = groundTruth(blocksAndATallPost(), {.width = 256, .height = 256, .samples = 64});
-    const ErrorMetrics one = errorOf(t, renderRow(t, Technique::Pcss, withCascades(1)));
-    const RenderResult cascaded = renderRow(t, Technique::Pcss, withCascades(4));
-    const ErrorMetrics four = errorOf(t, cascaded);
+    const auto [one, four, cascaded] = pcssOneMapAndFourCascades(t);
     std::printf("blocks 0.25 high, 10-degree sun, a post 8 high: pcss rmse one map %.4f, 4 "
                 "cascades %.4f (%llu px)\n",
                 one.rmse, four.rmse, static_cast<unsigned long long>(four.pixels));

@@ -3,6 +3,7 @@
 // scales and blend bands.
 #include "core/cascades.h"
 #include "core/projection.h"
+#include "scene/mesh_builder.h"
 
 #include <gtest/gtest.h>
 
@@ -226,14 +227,10 @@ namespace {
 
 Scene quads(std::initializer_list<std::array<glm::vec3, 4>> list) {
     Scene s;
-    s.materials.push_back({});
-    for (const auto& q : list) {
-        const auto base = static_cast<uint32_t>(s.vertices.size());
-        for (const glm::vec3& p : q)
-            s.vertices.push_back({.position = p, .normal = {0, 1, 0}, .material = 0});
-        for (uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u})
-            s.indices.push_back(base + i);
-    }
+    MeshBuilder mb(s);
+    const uint32_t grey = mb.material("grey", glm::vec3(0.7f));
+    for (const auto& q : list)
+        mb.quad(q[0], q[1], q[2], q[3], grey);
     return s;
 }
 

@@ -55,6 +55,21 @@ const ProbeLight kLights[] = {
     {.perspective = false, .nearPlane = 1.0f, .farPlane = 21.0f, .worldPerUv = {12.0f, 12.0f}},
     {.perspective = true, .nearPlane = 0.5f, .farPlane = 30.0f, .worldPerUv = {1.2f, 1.2f}}};
 
+// Depth a left of the middle, b right of it: across the middle, bilinear interpolation mixes two
+// atoms, a with weight 1 - s and b with weight s, s the way from texel 31's centre to 32's.
+std::vector<float> stepMap(float a, float b) {
+    std::vector<float> depth(kSize * kSize);
+    for (uint32_t j = 0; j < kSize; ++j)
+        for (uint32_t i = 0; i < kSize; ++i)
+            depth[j * kSize + i] = i < kSize / 2 ? a : b;
+    return depth;
+}
+
+// A probe at receiver depth t, the way s across the step.
+FilterProbe acrossTheStep(double s, float t) {
+    return {.uv = {static_cast<float>((31.5 + s) / kSize), 0.5f}, .depth = t};
+}
+
 } // namespace
 
 struct FamilyCase {
@@ -151,10 +166,7 @@ TEST_F(FilterTest, PrefilteredFamilyMatchesItsCpuReference) {
 // between them is that variance over itself plus (t - mean)^2.
 TEST_F(FilterTest, VsmBoundsAStepEdgeByChebyshevsInequality) {
     const float a = 0.3f, b = 0.8f;
-    std::vector<float> depth(kSize * kSize);
-    for (uint32_t j = 0; j < kSize; ++j)
-        for (uint32_t i = 0; i < kSize; ++i)
-            depth[j * kSize + i] = i < kSize / 2 ? a : b;
+    const std::vector<float> depth = stepMap(a, b);
     ParameterValues params;
     params.set("vsm.size", "1");
     params.set("vsm.bleedReduction", "0");
@@ -163,9 +175,8 @@ TEST_F(FilterTest, VsmBoundsAStepEdgeByChebyshevsInequality) {
     std::vector<float> expected;
     for (float t : {0.25f, 0.5f, 0.7f, 0.9f})
         for (int k = 0; k <= 8; ++k) {
-            const float s = static_cast<float>(k) / 8.0f; // from texel 31's centre to 32's
-            const float u = (31.5f + s) / static_cast<float>(kSize);
-            probes.push_back({.uv = {u, 0.5f}, .depth = t});
+            const float s = static_cast<float>(k) / 8.0f;
+            probes.push_back(acrossTheStep(s, t));
             const float mean = a + s * (b - a);
             const float variance = std::max(s * (1.0f - s) * (b - a) * (b - a), 1e-5f);
             expected.push_back(t <= mean ? 1.0f : variance / (variance + (t - mean) * (t - mean)));
@@ -187,16 +198,13 @@ TEST_F(FilterTest, VsmBoundsAStepEdgeByChebyshevsInequality) {
 // warp, from the moments bilinear interpolation mixes.
 TEST_F(FilterTest, ExponentialMapsMeetTheirClosedFormsOnAStep) {
     const double a = 0.3, b = 0.8;
-    std::vector<float> depth(kSize * kSize);
-    for (uint32_t j = 0; j < kSize; ++j)
-        for (uint32_t i = 0; i < kSize; ++i)
-            depth[j * kSize + i] = static_cast<float>(i < kSize / 2 ? a : b);
+    const std::vector<float> depth = stepMap(static_cast<float>(a), static_cast<float>(b));
     std::vector<FilterProbe> probes;
     std::vector<double> fractions;
     for (float t : {0.25f, 0.5f, 0.7f, 0.9f})
         for (int k = 0; k <= 8; ++k) {
             const double s = k / 8.0;
-            probes.push_back({.uv = {static_cast<float>((31.5 + s) / kSize), 0.5f}, .depth = t});
+            probes.push_back(acrossTheStep(s, t));
             fractions.push_back(s);
         }
     ParameterValues esm;
@@ -308,16 +316,13 @@ TEST_F(QualityTest, ExponentialWarpsStopVsmsLightBleeding) {
 // the moment bias).
 TEST_F(FilterTest, MomentShadowMapsRecoverTwoDepthsOnAStep) {
     const float a = 0.3f, b = 0.8f;
-    std::vector<float> depth(kSize * kSize);
-    for (uint32_t j = 0; j < kSize; ++j)
-        for (uint32_t i = 0; i < kSize; ++i)
-            depth[j * kSize + i] = i < kSize / 2 ? a : b;
+    const std::vector<float> depth = stepMap(a, b);
     std::vector<FilterProbe> probes;
     std::vector<float> expected;
     for (float t : {0.2f, 0.55f, 0.9f})
         for (int k = 1; k <= 7; ++k) {
             const float s = static_cast<float>(k) / 8.0f;
-            probes.push_back({.uv = {(31.5f + s) / static_cast<float>(kSize), 0.5f}, .depth = t});
+            probes.push_back(acrossTheStep(s, t));
             expected.push_back(t < a ? 1.0f : t < b ? s : 0.0f);
         }
     ParameterValues params;

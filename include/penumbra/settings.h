@@ -10,7 +10,17 @@
 
 namespace penumbra {
 
-enum class Technique : uint32_t { Hard = 0, Pcf = 1, Pcss = 2, SecondDepth = 3, Vsm = 4, Esm = 5, Evsm = 6, Savsm = 7, Msm = 8 };
+enum class Technique : uint32_t {
+    Hard = 0,
+    Pcf = 1,
+    Pcss = 2,
+    SecondDepth = 3,
+    Vsm = 4,
+    Esm = 5,
+    Evsm = 6,
+    Savsm = 7,
+    Msm = 8
+};
 
 // A parameter setting worth its own row in `compare`, e.g. label "box7" for pcf: pcf[box7].
 struct TechniqueVariant {

@@ -83,6 +83,7 @@ using uint = uint32_t;
 #define READ_TEXTURE 1           // it reads, and the caster's texture
 
 #define POISSON_MAX_SAMPLES 64u
+#define MAX_CASCADES 8u           // csm.cascades' largest value (src/core/light_space.h)
 #define GROUP_SIZE 8u
 
 struct FrameData {       // std140 uniform block: the camera and every technique setting

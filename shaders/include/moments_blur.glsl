@@ -5,16 +5,11 @@
 // map's edge repeat the edge (clamp-to-edge, as the CPU reference does). The kernel is the
 // technique's size in taps, in texels of a sun's first cascade, scaled in the farther ones
 // (scaledKernelSize).
-#include "gpu_types.h"
+#include "post_pass.glsl"
 #include "filter_math.h"
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 layout(set = 0, binding = POST_INPUT_BINDING) uniform sampler2D source;
 layout(set = 0, binding = POST_OUTPUT_BINDING, FORMAT) uniform writeonly image2D blurred;
-layout(set = 0, binding = POST_FRAME_BINDING, std140) uniform FrameBlock { FrameData frame; };
-layout(set = 0, binding = POST_VIEWS_BINDING, std430) readonly buffer Views {
-    ShadowViewData views[];
-};
-layout(push_constant) uniform Push { PostPassPush push; };
 
 vec4 momentsAt(ivec2 q, ShadowViewData view) {
 #if AXIS == 0

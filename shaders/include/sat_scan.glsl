@@ -4,16 +4,11 @@
 // sums those row sums down each column. Texel (i, j) of the table then holds the sum over every
 // texel (a <= i, b <= j). Offsetting the depths to [-1/2, 1/2] keeps the sums small (the signs
 // cancel), which is what 32-bit float sums over a whole map need (docs/techniques.md, "savsm").
-#include "gpu_types.h"
+#include "post_pass.glsl"
 #include "filter_math.h"
 layout(local_size_x = LINE_GROUP_SIZE) in;
 layout(set = 0, binding = POST_INPUT_BINDING) uniform sampler2D source;
 layout(set = 0, binding = POST_OUTPUT_BINDING, rg32f) uniform writeonly image2D sums;
-layout(set = 0, binding = POST_FRAME_BINDING, std140) uniform FrameBlock { FrameData frame; };
-layout(set = 0, binding = POST_VIEWS_BINDING, std430) readonly buffer Views {
-    ShadowViewData views[];
-};
-layout(push_constant) uniform Push { PostPassPush push; };
 
 void main() {
     int line = int(gl_GlobalInvocationID.x);

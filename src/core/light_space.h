@@ -45,7 +45,7 @@ struct CascadeSettings {
     float blend = 0.1f;    // csm.blend: fraction of a cascade blended into the next
     bool stabilize = true; // csm.stabilize
 };
-inline constexpr uint32_t kMaxCascades = 8;
+inline constexpr uint32_t kMaxCascades = 8; // MAX_CASCADES in shaders/include/gpu_types.h
 
 // What a light's views need beyond the scene bounds.
 struct ViewFitting {

@@ -50,13 +50,13 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     const shadows::TechniqueModule& module = shadows::moduleOf(technique);
     const bool derived = module.depthPasses.empty() && !module.postPasses.empty();
     render::FrameTargets t{.views = std::vector<render::ShadowView>(1)};
-    t.shadowDepth = render::makeViewMaps(ctx, render::kDepthFormat, size, 1,
-                                         VK_IMAGE_USAGE_SAMPLED_BIT |
-                                             VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+    t.shadowDepth =
+        render::makeViewMaps(ctx, render::kDepthFormat, size, 1,
+                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     for (const shadows::MapDecl& decl : derived ? module.maps : std::vector<shadows::MapDecl>{})
-        t.maps.push_back(render::makeViewMaps(ctx, render::formatOf(decl.format), size, 1,
-                                              VK_IMAGE_USAGE_STORAGE_BIT |
-                                                  VK_IMAGE_USAGE_SAMPLED_BIT));
+        t.maps.push_back(
+            render::makeViewMaps(ctx, render::formatOf(decl.format), size, 1,
+                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT));
     const vk::Image& map = t.shadowDepth.image;
     const vk::SamplerHandle nearest = vk::createSampler(ctx, {});
     t.frame = frameBuffer.get(), t.viewData = viewBuffer.get(), t.nearest = nearest.get();

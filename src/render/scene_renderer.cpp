@@ -26,6 +26,9 @@
 #include <limits>
 #include <optional>
 
+static_assert(penumbra::kMaxCascades == MAX_CASCADES,
+              "the shaders size their cascade arrays by it");
+
 namespace penumbra {
 namespace {
 
@@ -163,9 +166,9 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
     t.shadowDepth = render::makeViewMaps(c, render::kDepthFormat, n, views, depthTarget);
     for (const shadows::MapDecl& map : k.technique->maps)
         t.maps.push_back(render::makeViewMaps(c, render::formatOf(map.format), n, views,
-                                  map.format == shadows::MapFormat::Depth32
-                                      ? depthTarget
-                                      : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
+                                              map.format == shadows::MapFormat::Depth32
+                                                  ? depthTarget
+                                                  : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
     const uint32_t w = k.width, h = k.height;
     t.depth = targetImage(c, "G-buffer depth", render::kDepthFormat, w, h, depthTarget);
     t.normal = targetImage(c, "G-buffer normal", render::kNormalFormat, w, h,

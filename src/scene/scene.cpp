@@ -15,13 +15,10 @@ struct BuiltinEntry {
     std::string_view name;
     Scene (*make)();
 };
-constexpr BuiltinEntry kBuiltins[] = {{"showcase", builtin::showcase},
-                                      {"grazing", builtin::grazing},
-                                      {"spot", builtin::spot},
-                                      {"foliage", builtin::foliage},
-                                      {"room", builtin::room},
-                                      {"field", builtin::field},
-                                      {"bleeding", builtin::bleeding}};
+constexpr BuiltinEntry kBuiltins[] = {
+    {"showcase", builtin::showcase}, {"grazing", builtin::grazing}, {"spot", builtin::spot},
+    {"foliage", builtin::foliage},   {"room", builtin::room},       {"field", builtin::field},
+    {"bleeding", builtin::bleeding}};
 
 } // namespace
 

@@ -6,6 +6,15 @@
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
+namespace {
+
+constexpr GaussianBlur kBlur{.sizeKey = "esm.size",
+                             .rowsShader = "esm_blur_rows.comp",
+                             .columnsShader = "esm_blur_columns.comp",
+                             .output = "exponentials",
+                             .format = MapFormat::R32F};
+
+} // namespace
 
 const TechniqueModule& esmModule() {
     static const TechniqueModule module{
@@ -24,28 +33,16 @@ const TechniqueModule& esmModule() {
                         .description =
                             "exponent over the [0, 1] moment depth: sharper and less light near "
                             "contact as it grows; 88 keeps e^(c z) within 32-bit floats"},
-                       {.key = "esm.size",
-                        .type = ParameterType::Int,
-                        .defaultValue = 7,
-                        .min = 1,
-                        .max = 63,
-                        .unit = "texels (odd)",
-                        .description = "taps of the separable Gaussian blur (sigma = size / 6)",
-                        .oddOnly = true}},
-        .maps = {{.name = "rows", .format = MapFormat::R32F},
-                 {.name = "exponentials", .format = MapFormat::R32F}},
-        .postPasses = {{.shader = "esm_blur_rows.comp", .inputs = {kDepthMap}, .outputs = {"rows"}},
-                       {.shader = "esm_blur_columns.comp",
-                        .inputs = {"rows"},
-                        .outputs = {"exponentials"}}},
+                       kBlur.sizeParameter()},
+        .maps = kBlur.maps(),
+        .postPasses = kBlur.passes(),
         .visibilityMap = "exponentials",
         .pack =
             [](const ParameterValues& p, gpu::FrameData& f) {
                 f.esmParams = {static_cast<float>(p.number("esm.c")),
                                static_cast<float>(p.number("esm.size")), 0.0f, 0.0f};
             },
-        .blurRadiusTexels =
-            [](const ParameterValues& p) { return 0.5 * (p.number("esm.size") - 1.0) + 1.0; }};
+        .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
     return module;
 }
 

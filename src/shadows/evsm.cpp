@@ -7,6 +7,15 @@
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
+namespace {
+
+constexpr GaussianBlur kBlur{.sizeKey = "evsm.size",
+                             .rowsShader = "evsm_blur_rows.comp",
+                             .columnsShader = "evsm_blur_columns.comp",
+                             .output = "moments",
+                             .format = MapFormat::RGBA32F};
+
+} // namespace
 
 const TechniqueModule& evsmModule() {
     static const TechniqueModule module{
@@ -51,19 +60,9 @@ const TechniqueModule& evsmModule() {
               .min = 0.0,
               .max = 0.99,
               .description = "as vsm.bleedReduction, on the smaller bound"},
-             {.key = "evsm.size",
-              .type = ParameterType::Int,
-              .defaultValue = 7,
-              .min = 1,
-              .max = 63,
-              .unit = "texels (odd)",
-              .description = "taps of the separable Gaussian blur (sigma = size / 6)",
-              .oddOnly = true}},
-        .maps = {{.name = "rows", .format = MapFormat::RGBA32F},
-                 {.name = "moments", .format = MapFormat::RGBA32F}},
-        .postPasses =
-            {{.shader = "evsm_blur_rows.comp", .inputs = {kDepthMap}, .outputs = {"rows"}},
-             {.shader = "evsm_blur_columns.comp", .inputs = {"rows"}, .outputs = {"moments"}}},
+             kBlur.sizeParameter()},
+        .maps = kBlur.maps(),
+        .postPasses = kBlur.passes(),
         .visibilityMap = "moments",
         .pack =
             [](const ParameterValues& p, gpu::FrameData& f) {
@@ -74,8 +73,7 @@ const TechniqueModule& evsmModule() {
                 f.evsmMode = {p.number("evsm.components") == 0.0 ? 2u : 4u,
                               static_cast<uint32_t>(p.number("evsm.size")), 0u, 0u};
             },
-        .blurRadiusTexels =
-            [](const ParameterValues& p) { return 0.5 * (p.number("evsm.size") - 1.0) + 1.0; }};
+        .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
     return module;
 }
 

@@ -7,6 +7,15 @@
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
+namespace {
+
+constexpr GaussianBlur kBlur{.sizeKey = "msm.size",
+                             .rowsShader = "msm_blur_rows.comp",
+                             .columnsShader = "msm_blur_columns.comp",
+                             .output = "moments",
+                             .format = MapFormat::RGBA32F};
+
+} // namespace
 
 const TechniqueModule& msmModule() {
     static const TechniqueModule module{
@@ -26,28 +35,16 @@ const TechniqueModule& msmModule() {
                             "moment bias: the moments are pulled this far towards (0, 0.63, 0, "
                             "0.63), which keeps the reconstruction stable (the paper's 3e-5 "
                             "for 32-bit moments)"},
-                       {.key = "msm.size",
-                        .type = ParameterType::Int,
-                        .defaultValue = 7,
-                        .min = 1,
-                        .max = 63,
-                        .unit = "texels (odd)",
-                        .description = "taps of the separable Gaussian blur (sigma = size / 6)",
-                        .oddOnly = true}},
-        .maps = {{.name = "rows", .format = MapFormat::RGBA32F},
-                 {.name = "moments", .format = MapFormat::RGBA32F}},
-        .postPasses = {{.shader = "msm_blur_rows.comp", .inputs = {kDepthMap}, .outputs = {"rows"}},
-                       {.shader = "msm_blur_columns.comp",
-                        .inputs = {"rows"},
-                        .outputs = {"moments"}}},
+                       kBlur.sizeParameter()},
+        .maps = kBlur.maps(),
+        .postPasses = kBlur.passes(),
         .visibilityMap = "moments",
         .pack =
             [](const ParameterValues& p, gpu::FrameData& f) {
                 f.msmParams = {static_cast<float>(p.number("msm.bias")),
                                static_cast<float>(p.number("msm.size")), 0.0f, 0.0f};
             },
-        .blurRadiusTexels =
-            [](const ParameterValues& p) { return 0.5 * (p.number("msm.size") - 1.0) + 1.0; }};
+        .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
     return module;
 }
 

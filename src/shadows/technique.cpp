@@ -21,11 +21,35 @@ uint32_t bytesPerTexel(MapFormat format) {
 }
 
 std::span<const TechniqueModule* const> allModules() {
-    static const TechniqueModule* const modules[] = {&hardModule(), &pcfModule(), &pcssModule(),
-                                                     &secondDepthModule(), &vsmModule(),
-                                                     &esmModule(), &evsmModule(), &savsmModule(),
-                                                     &msmModule()};
+    static const TechniqueModule* const modules[] = {
+        &hardModule(), &pcfModule(),  &pcssModule(),  &secondDepthModule(), &vsmModule(),
+        &esmModule(),  &evsmModule(), &savsmModule(), &msmModule()};
     return modules;
+}
+
+ParameterInfo GaussianBlur::sizeParameter() const {
+    return {.key = sizeKey,
+            .type = ParameterType::Int,
+            .defaultValue = 7,
+            .min = 1,
+            .max = 63,
+            .unit = "texels (odd)",
+            .description = "taps of the separable Gaussian blur (sigma = size / 6; 1: no blur, "
+                           "bilinear interpolation only)",
+            .oddOnly = true};
+}
+
+std::vector<MapDecl> GaussianBlur::maps() const {
+    return {{.name = "rows", .format = format}, {.name = output, .format = format}};
+}
+
+std::vector<PostPassDecl> GaussianBlur::passes() const {
+    return {{.shader = rowsShader, .inputs = {kDepthMap}, .outputs = {"rows"}},
+            {.shader = columnsShader, .inputs = {"rows"}, .outputs = {output}}};
+}
+
+double GaussianBlur::radiusTexels(const ParameterValues& p) const {
+    return 0.5 * (p.number(sizeKey) - 1.0) + 1.0;
 }
 
 const TechniqueModule& moduleOf(Technique technique) {

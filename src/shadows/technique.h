@@ -72,6 +72,19 @@ struct TechniqueModule {
     double (*blurRadiusTexels)(const ParameterValues&) = nullptr;
 };
 
+// The separable Gaussian blur of the blurred-moment techniques (vsm, esm, evsm, msm;
+// shaders/include/moments_blur.glsl): the `sizeKey` parameter (odd taps, sigma = size / 6), a
+// row pass from the depth map into "rows" and a column pass into `output`, both maps of
+// `format`, and the radius the blur and the bilinear fetch after it reach.
+struct GaussianBlur {
+    std::string_view sizeKey, rowsShader, columnsShader, output;
+    MapFormat format;
+    ParameterInfo sizeParameter() const;
+    std::vector<MapDecl> maps() const;
+    std::vector<PostPassDecl> passes() const;
+    double radiusTexels(const ParameterValues& p) const;
+};
+
 // The registered modules, in `penumbra techniques` order.
 std::span<const TechniqueModule* const> allModules();
 const TechniqueModule& moduleOf(Technique technique);

@@ -7,6 +7,15 @@
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
+namespace {
+
+constexpr GaussianBlur kBlur{.sizeKey = "vsm.size",
+                             .rowsShader = "vsm_blur_rows.comp",
+                             .columnsShader = "vsm_blur_columns.comp",
+                             .output = "moments",
+                             .format = MapFormat::RG32F};
+
+} // namespace
 
 const TechniqueModule& vsmModule() {
     static const TechniqueModule module{
@@ -19,37 +28,26 @@ const TechniqueModule& vsmModule() {
                  .variants = {{.label = ""},
                               {.label = "no-bleed-reduction",
                                .sets = {{"vsm.bleedReduction", "0"}}}}},
-        .parameters =
-            {{.key = "vsm.size",
-              .type = ParameterType::Int,
-              .defaultValue = 7,
-              .min = 1,
-              .max = 63,
-              .unit = "texels (odd)",
-              .description = "taps of the separable Gaussian blur of the moments (sigma = size / 6; "
-                             "1: no blur, bilinear interpolation only)",
-              .oddOnly = true},
-             {.key = "vsm.minVariance",
-              .type = ParameterType::Float,
-              .defaultValue = 1e-5,
-              .min = 0.0,
-              .max = 0.01,
-              .unit = "(depth range)^2",
-              .description = "least variance Chebyshev's bound assumes, in squared units of the "
-                             "view's depth range (keeps flat receivers from shadowing themselves)"},
-             {.key = "vsm.bleedReduction",
-              .type = ParameterType::Float,
-              .defaultValue = 0.2,
-              .min = 0.0,
-              .max = 0.99,
-              .description = "bounds up to this count as shadow, the rest rescaled: less light "
-                             "bleeding between stacked occluders, darker and harder penumbrae"}},
-        .maps = {{.name = "rows", .format = MapFormat::RG32F},
-                 {.name = "moments", .format = MapFormat::RG32F}},
-        .postPasses = {{.shader = "vsm_blur_rows.comp", .inputs = {kDepthMap}, .outputs = {"rows"}},
-                       {.shader = "vsm_blur_columns.comp",
-                        .inputs = {"rows"},
-                        .outputs = {"moments"}}},
+        .parameters = {kBlur.sizeParameter(),
+                       {.key = "vsm.minVariance",
+                        .type = ParameterType::Float,
+                        .defaultValue = 1e-5,
+                        .min = 0.0,
+                        .max = 0.01,
+                        .unit = "(depth range)^2",
+                        .description =
+                            "least variance Chebyshev's bound assumes, in squared units of the "
+                            "view's depth range (keeps flat receivers from shadowing themselves)"},
+                       {.key = "vsm.bleedReduction",
+                        .type = ParameterType::Float,
+                        .defaultValue = 0.2,
+                        .min = 0.0,
+                        .max = 0.99,
+                        .description =
+                            "bounds up to this count as shadow, the rest rescaled: less light "
+                            "bleeding between stacked occluders, darker and harder penumbrae"}},
+        .maps = kBlur.maps(),
+        .postPasses = kBlur.passes(),
         .visibilityMap = "moments",
         .pack =
             [](const ParameterValues& p, gpu::FrameData& f) {
@@ -57,8 +55,7 @@ const TechniqueModule& vsmModule() {
                                static_cast<float>(p.number("vsm.bleedReduction")),
                                static_cast<float>(p.number("vsm.size")), 0.0f};
             },
-        .blurRadiusTexels =
-            [](const ParameterValues& p) { return 0.5 * (p.number("vsm.size") - 1.0) + 1.0; }};
+        .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
     return module;
 }
 

@@ -1,0 +1,12 @@
+// What every shadow-map post pass that reads its technique's parameters or its view binds: the
+// frame block, the view records and the push block (PostPassPush.size.z: the view's index).
+// Inputs and outputs are the pass's own (POST_INPUT_BINDING + i, POST_OUTPUT_BINDING + i).
+#ifndef PENUMBRA_POST_PASS_GLSL
+#define PENUMBRA_POST_PASS_GLSL
+#include "gpu_types.h"
+layout(set = 0, binding = POST_FRAME_BINDING, std140) uniform FrameBlock { FrameData frame; };
+layout(set = 0, binding = POST_VIEWS_BINDING, std430) readonly buffer Views {
+    ShadowViewData views[];
+};
+layout(push_constant) uniform Push { PostPassPush push; };
+#endif
