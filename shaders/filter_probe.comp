@@ -14,6 +14,7 @@ layout(set = 0, binding = PROBE_RECEIVERS, std430) readonly buffer Probes {
 };
 layout(set = 0, binding = PROBE_SHADOW_MAP) uniform sampler2DArray shadowMap; // one layer
 layout(set = 0, binding = PROBE_SHADOW_COMPARE) uniform sampler2DArrayShadow shadowMapCmp;
+layout(set = 0, binding = PROBE_SHADOW_TABLE) uniform usampler2DArray shadowTable;
 layout(set = 0, binding = PROBE_RESULTS, std430) writeonly buffer Results { vec4 results[]; };
 layout(set = 0, binding = PROBE_VIEW, std430) readonly buffer Views { ShadowViewData view; };
 layout(push_constant) uniform Push { ProbePush push; };
@@ -28,6 +29,6 @@ void main() {
     r.gradient = probe.gradientPixel.xy;
     r.layer = 0.0;
     r.kernelScale = 1.0;
-    results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, push.counts.y, view,
-                                   uvec2(probe.gradientPixel.zw));
+    results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, shadowTable, r,
+                                   push.counts.y, view, uvec2(probe.gradientPixel.zw));
 }

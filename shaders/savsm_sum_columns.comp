@@ -1,4 +1,7 @@
 #version 460
 // Summed-area VSM: the row sums summed down columns.
 #define AXIS 1
+#define MOMENTS MOMENTS_VSM
+#define FORMAT rg32ui
+#define SCALE frame.tableScales.x
 #include "sat_scan.glsl"

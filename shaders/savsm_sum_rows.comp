@@ -1,4 +1,7 @@
 #version 460
-// Summed-area VSM: offset moments summed along rows.
+// Summed-area VSM: fixed-point offset moments summed along rows.
 #define AXIS 0
+#define MOMENTS MOMENTS_VSM
+#define FORMAT rg32ui
+#define SCALE frame.tableScales.x
 #include "sat_scan.glsl"

@@ -6,6 +6,7 @@ layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData fra
 layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
 layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
 layout(constant_id = SPEC_RECEIVER) const uint RECEIVER = RECEIVER_OFF;
+layout(constant_id = SPEC_HORIZON) const uint HORIZON = 0u;
 #include "gbuffer.glsl"
 #include "filter_math.h"
 #include "shadow_common.glsl"
@@ -18,6 +19,7 @@ layout(set = 0, binding = VIS_GBUFFER_DEPTH) uniform sampler2D gDepth;
 layout(set = 0, binding = VIS_GBUFFER_NORMAL) uniform sampler2D gNormal;
 layout(set = 0, binding = VIS_SHADOW_MAP) uniform sampler2DArray shadowMap;
 layout(set = 0, binding = VIS_SHADOW_COMPARE) uniform sampler2DArrayShadow shadowMapCmp;
+layout(set = 0, binding = VIS_SHADOW_TABLE) uniform usampler2DArray shadowTable;
 layout(set = 0, binding = VIS_OUT, r32f) uniform writeonly image2DArray visibility;
 layout(set = 0, binding = VIS_VIEWS, std430) readonly buffer Views { ShadowViewData views[]; };
 layout(push_constant) uniform Push { VisibilityPush push; };
@@ -68,8 +70,8 @@ float visibilityThrough(uint viewIndex, LightData light, ivec2 p, vec3 world, ve
     ShadowViewData view = views[viewIndex];
     bool inside;
     Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
-    return inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, r, push.light.z, view,
-                                      uvec2(p)).x
+    return inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, shadowTable, r,
+                                      push.light.z, view, uvec2(p)).x
                   : 1.0;
 }
 
@@ -152,6 +154,9 @@ void main() {
         } else {
             v = visibilityThrough(viewIndex, light, p, world, normal, depth);
         }
+        if (HORIZON != 0u)
+            v *= horizonVisibility(dot(normal, directionToLight(light, world)),
+                                   lightSine(light, views[viewIndex], world));
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));
 }

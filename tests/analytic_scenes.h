@@ -38,4 +38,25 @@ inline Scene spheresOverPlane(const Light& light) {
     return scene;
 }
 
+// One sphere of radius 0.8 whose lowest point is 0.5 above a 40-unit plane, seen obliquely from
+// above, under `light`: the soft techniques' acceptance scene (its penumbra widens with the light's
+// size from contact-sharp under the sphere to wide on the far side of its shadow).
+inline Scene sphereOverPlane(const Light& light) {
+    Scene scene;
+    scene.name = "sphere over a plane";
+    MeshBuilder mb(scene);
+    const float g = 20.0f;
+    mb.quad({-g, 0, g}, {g, 0, g}, {g, 0, -g}, {-g, 0, -g},
+            mb.material("plane", {0.7f, 0.7f, 0.7f}));
+    mb.sphere({0.0f, 1.3f, 0.0f}, 0.8f, mb.material("sphere", {0.7f, 0.25f, 0.2f}));
+    scene.lights.push_back(light);
+    scene.cameras.push_back({.name = "above",
+                             .position = {0.0f, 6.0f, 6.0f},
+                             .target = {-0.3f, 0.0f, -0.6f},
+                             .yfov = 0.9f,
+                             .znear = 0.1f,
+                             .zfar = 100.0f});
+    return scene;
+}
+
 } // namespace penumbra::test

@@ -198,3 +198,90 @@ TEST(FilterMath, VarianceShadowMapsMathMeetsItsDefinitions) {
     EXPECT_GT(gpu::gaussianTap(1, 7), gpu::gaussianTap(2, 7));
     EXPECT_NEAR(gpu::gaussianTap(9, 18), std::exp(-0.5f * 9.0f), 1e-6f);
 }
+
+// Two depths a (weight w) and b: VSSM's estimate recovers both exactly, as Yang et al. derive.
+TEST(FilterMath, ChebyshevBlockersRecoverTwoDepths) {
+    for (float w : {0.1f, 0.5f, 0.9f}) {
+        const float a = 0.2f, t = 0.7f; // blockers at a, the receiver (and the rest) at t
+        const glm::vec2 moments(w * a + (1 - w) * t, w * a * a + (1 - w) * t * t);
+        const glm::vec2 b = gpu::chebyshevBlockers(moments, t, 0.0f);
+        EXPECT_NEAR(b.x, w, 1e-5f) << w;
+        EXPECT_NEAR(b.y / b.x, a, 1e-5f) << w;
+    }
+    // A receiver not beyond the mean has no blockers.
+    EXPECT_EQ(gpu::chebyshevBlockers({0.5f, 0.3f}, 0.5f, 1e-5f), glm::vec2(0.0f));
+    // momentDepthDistance inverts momentDepth in both projections.
+    gpu::ShadowViewData view{};
+    view.frustum = {0.5f, 20.0f, 1.0f, 1.0f};
+    view.texel = {0.0f, 1.0f, 0.0f, 0.0f};
+    EXPECT_NEAR(gpu::momentDepthDistance(view, 0.0f), 0.5f, 1e-6f);
+    EXPECT_NEAR(gpu::momentDepthDistance(view, 1.0f), 20.0f, 1e-5f);
+    EXPECT_NEAR(gpu::momentDepthDistance(view, (7.0f - 0.5f) / 19.5f), 7.0f, 1e-5f);
+}
+
+// Moment soft shadows' blockers on two and three atoms: with four moments the reconstruction
+// of a two-atom distribution is exact, blockers and their depth included.
+TEST(FilterMath, MomentBlockersRecoverTheAtomsInFront) {
+    auto momentsOf = [](std::initializer_list<std::pair<float, float>> atoms) {
+        glm::vec4 m(0.0f);
+        for (auto [z, w] : atoms)
+            m += w * glm::vec4(z, z * z, z * z * z, z * z * z * z);
+        return m;
+    };
+    const glm::vec4 two = momentsOf({{-0.6f, 0.3f}, {0.4f, 0.7f}});
+    glm::vec2 b = gpu::momentBlockers(two, 0.1f, 0.0f); // between: the atom at -0.6 blocks
+    EXPECT_NEAR(b.x, 0.3f, 2e-3f);
+    EXPECT_NEAR(b.y / b.x, -0.6f, 5e-3f);
+    EXPECT_NEAR(gpu::momentOcclusion(two, 0.1f, 0.0f), 0.3f, 2e-3f);
+    b = gpu::momentBlockers(two, 0.8f, 0.0f); // behind both: everything blocks, at the mean
+    EXPECT_NEAR(b.x, 1.0f, 2e-3f);
+    EXPECT_NEAR(b.y / b.x, 0.3f * -0.6f + 0.7f * 0.4f, 5e-3f);
+    EXPECT_EQ(gpu::momentBlockers(two, -0.8f, 0.0f), glm::vec2(0.0f)); // in front of both
+    // Three atoms: the reconstruction is a bound, the blockers' weight at most the truth's.
+    const glm::vec4 three = momentsOf({{-0.7f, 0.2f}, {-0.1f, 0.3f}, {0.6f, 0.5f}});
+    b = gpu::momentBlockers(three, 0.3f, 0.0f);
+    EXPECT_LE(b.x, 0.5f + 1e-4f);
+    EXPECT_NEAR(b.x, gpu::momentOcclusion(three, 0.3f, 0.0f), 1e-5f);
+    EXPECT_GT(b.y / b.x, -0.7f);
+    EXPECT_LT(b.y / b.x, 0.3f);
+}
+
+// bias.horizon: the part of a disc above a line at distance h from its centre.
+TEST(FilterMath, HorizonVisibilityIsTheDiscAboveTheTangentPlane) {
+    const float s = std::sin(0.1f); // a light of angular radius 0.1
+    EXPECT_EQ(gpu::horizonVisibility(std::sin(0.1f), s), 1.0f);
+    EXPECT_EQ(gpu::horizonVisibility(0.5f, s), 1.0f);
+    EXPECT_EQ(gpu::horizonVisibility(-0.5f, s), 0.0f);
+    EXPECT_NEAR(gpu::horizonVisibility(0.0f, s), 0.5f, 1e-6f);
+    // Centre at half the radius above: the segment's area over the disc's,
+    // 1/2 + (x sqrt(1 - x^2) + asin x) / pi at x = 1/2.
+    const double x = 0.5, expected = 0.5 + (x * std::sqrt(1 - x * x) + std::asin(x)) / M_PI;
+    EXPECT_NEAR(gpu::horizonVisibility(std::sin(0.05f), s), expected, 1e-4);
+    EXPECT_NEAR(gpu::horizonVisibility(-std::sin(0.05f), s), 1.0 - expected, 1e-4);
+    EXPECT_EQ(gpu::horizonVisibility(0.01f, 0.0f), 1.0f); // a point light: no change
+}
+
+// The fixed-point tables: quantising and its inverse, and a backwards box read signed.
+TEST(FilterMath, FixedPointTablesRoundTripTheirMoments) {
+    const float scale = 100000.0f;
+    for (float z : {0.0f, 0.3f, 0.77f, 1.0f}) {
+        const glm::vec4 vsm =
+            gpu::tableMean(MOMENTS_VSM, glm::vec4(gpu::tableMoments(MOMENTS_VSM, z, scale)), scale);
+        EXPECT_NEAR(vsm.x, z - 0.5f, 1e-5f) << z;
+        EXPECT_NEAR(vsm.y, (z - 0.5f) * (z - 0.5f), 1e-5f) << z;
+        const glm::vec4 msm =
+            gpu::tableMean(MOMENTS_MSM, glm::vec4(gpu::tableMoments(MOMENTS_MSM, z, scale)), scale);
+        const float d = 2 * z - 1;
+        EXPECT_NEAR(msm.x, d, 2e-5f) << z;
+        EXPECT_NEAR(msm.w, d * d * d * d, 2e-5f) << z;
+    }
+    // Corners whose box runs backwards (a wrapped negative sum) read as negative.
+    const glm::uvec4 small(5u), large(9u);
+    EXPECT_EQ(gpu::boxFromCorners(glm::uvec4(0u), small, glm::uvec4(0u), large).x, 4.0f);
+    EXPECT_EQ(gpu::boxFromCorners(glm::uvec4(0u), large, glm::uvec4(0u), small).x, -4.0f);
+    // Sums wrap past 2^32 and still difference exactly.
+    const glm::uvec4 wrapped = glm::uvec4(4294967290u) + glm::uvec4(10u);
+    EXPECT_EQ(
+        gpu::boxFromCorners(glm::uvec4(0u), glm::uvec4(4294967290u), glm::uvec4(0u), wrapped).x,
+        10.0f);
+}

@@ -1,8 +1,9 @@
-// The prefiltered family (`vsm`, `esm`, `evsm`): the GPU's warped moments, blur and bounds
-// against the CPU reference, the bounds against their closed forms on a step edge, and the
+// The prefiltered family (`vsm`, `esm`, `evsm`, `msm`, `savsm`): the GPU's warped moments, blur and
+// bounds against the CPU reference, the bounds against their closed forms on a step edge, and the
 // results against the ray-traced truth for every light type.
 #include "analytic_scenes.h"
 #include "filter_math.h"
+#include "moment_maps.h"
 #include "reference/filter_reference.h"
 #include "render/frame_data.h"
 #include "truth_fixture.h"
@@ -15,62 +16,6 @@
 using namespace penumbra;
 using namespace penumbra::test;
 using Sets = std::vector<std::pair<std::string, std::string>>;
-
-namespace {
-
-constexpr uint32_t kSize = 64;
-
-// A smooth receiver with box-shaped occluders nearer the light.
-std::vector<float> boxesOverAWave(uint32_t seed) {
-    std::mt19937 engine(seed);
-    auto rng = [&] { return static_cast<uint32_t>(engine()); };
-    std::vector<float> depth(kSize * kSize);
-    for (uint32_t j = 0; j < kSize; ++j)
-        for (uint32_t i = 0; i < kSize; ++i)
-            depth[j * kSize + i] =
-                0.6f + 0.1f * std::sin(0.3f * float(i)) * std::cos(0.2f * float(j));
-    for (int b = 0; b < 14; ++b) {
-        const uint32_t x0 = rng() % kSize, y0 = rng() % kSize, w = 2 + rng() % 10,
-                       h = 2 + rng() % 10;
-        const float d = 0.2f + 0.3f * float(rng() % 1000) / 1000.0f;
-        for (uint32_t y = y0; y < std::min(y0 + h, kSize); ++y)
-            for (uint32_t x = x0; x < std::min(x0 + w, kSize); ++x)
-                depth[y * kSize + x] = d;
-    }
-    return depth;
-}
-
-std::vector<FilterProbe> probesOver(uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    std::vector<FilterProbe> probes(1500);
-    for (FilterProbe& p : probes) {
-        p.uv = {unit(rng), unit(rng)}; // the whole map, edges included (clamp-to-edge)
-        p.depth = 0.15f + 0.7f * unit(rng);
-    }
-    return probes;
-}
-
-const ProbeLight kLights[] = {
-    {.perspective = false, .nearPlane = 1.0f, .farPlane = 21.0f, .worldPerUv = {12.0f, 12.0f}},
-    {.perspective = true, .nearPlane = 0.5f, .farPlane = 30.0f, .worldPerUv = {1.2f, 1.2f}}};
-
-// Depth a left of the middle, b right of it: across the middle, bilinear interpolation mixes two
-// atoms, a with weight 1 - s and b with weight s, s the way from texel 31's centre to 32's.
-std::vector<float> stepMap(float a, float b) {
-    std::vector<float> depth(kSize * kSize);
-    for (uint32_t j = 0; j < kSize; ++j)
-        for (uint32_t i = 0; i < kSize; ++i)
-            depth[j * kSize + i] = i < kSize / 2 ? a : b;
-    return depth;
-}
-
-// A probe at receiver depth t, the way s across the step.
-FilterProbe acrossTheStep(double s, float t) {
-    return {.uv = {static_cast<float>((31.5 + s) / kSize), 0.5f}, .depth = t};
-}
-
-} // namespace
 
 struct FamilyCase {
     Technique technique;
@@ -101,9 +46,8 @@ std::vector<FamilyCase> familyCases() {
     for (const char* size : {"1", "9"})
         for (const char* bias : {"0.00003", "0.001"})
             cases.push_back({Technique::Msm, {{"msm.size", size}, {"msm.bias", bias}}});
-    // (A one-texel box differences sums of about 10^3 to get one texel's moments: the table's
-    // rounding then decides, differently on each side; SummedAreaTableQueries... measures it.)
-    for (const char* size : {"7.5", "33"})
+    // The tables are exact integers on both sides: even a one-texel box agrees.
+    for (const char* size : {"1", "7.5", "33"})
         for (const char* bleed : {"0", "0.3"})
             cases.push_back(
                 {Technique::Savsm, {{"savsm.size", size}, {"savsm.bleedReduction", bleed}}});
@@ -130,20 +74,8 @@ TEST_F(FilterTest, PrefilteredFamilyMatchesItsCpuReference) {
             const gpu::ShadowViewData view = render::probeViewData(light);
             glm::vec4 worst(0.0f);
             size_t between = 0;
-            const bool table = c.technique == Technique::Savsm;
             for (size_t i = 0; i < probes.size(); ++i) {
-                glm::vec4 cpu = techniqueReference(c.technique, map, probes[i], frame, view);
-                if (table) {
-                    // A summed-area query differences sums of ~10^3 whose rounding the two sides
-                    // do in their own order: the moments agree to that rounding, and the bound
-                    // is checked on the GPU's own moments (the table's precision is measured
-                    // below against double-precision sums).
-                    const glm::vec4 g = gpuResult[i];
-                    const float bound =
-                        gpu::chebyshevUpperBound({g.y, g.z}, g.w, frame.savsmParams.y);
-                    cpu.x =
-                        gpu::snapToExtremes(gpu::reduceLightBleeding(bound, frame.savsmParams.z));
-                }
+                const glm::vec4 cpu = techniqueReference(c.technique, map, probes[i], frame, view);
                 // Filtered values relative to their size (exponentials span many decades).
                 const glm::vec4 scale = glm::max(glm::abs(cpu), glm::vec4(1.0f));
                 worst = glm::max(worst, glm::abs(cpu - gpuResult[i]) /
@@ -151,8 +83,8 @@ TEST_F(FilterTest, PrefilteredFamilyMatchesItsCpuReference) {
                 between += cpu.x > 0.0f && cpu.x < 1.0f;
             }
             EXPECT_GT(between, probes.size() / 60) << what << ": a filter's in-betweens";
-            EXPECT_LE(worst.y, table ? 1e-4f : 2e-5f) << what << ": filtered value (relative)";
-            EXPECT_LE(worst.z, table ? 1e-4f : 2e-5f) << what << ": filtered value (relative)";
+            EXPECT_LE(worst.y, 2e-5f) << what << ": filtered value (relative)";
+            EXPECT_LE(worst.z, 2e-5f) << what << ": filtered value (relative)";
             EXPECT_LE(worst.w, 1e-6f) << what << ": receiver depth";
             // EVSM's variance with a small exponent is a difference of nearly equal moments:
             // the float rounding both sides do differently grows there (measured 0.0036).
@@ -334,8 +266,10 @@ TEST_F(FilterTest, MomentShadowMapsRecoverTwoDepthsOnAStep) {
             << "t " << probes[i].depth << ", u " << probes[i].uv.x;
 }
 
-// The summed-area table's float sums over a whole 1024^2 map: a box query's mean moments against
-// a double-precision average over the same box (fractional edges weighted by their overlap).
+// The summed-area table's fixed-point sums over a whole 1024^2 map: a box query's mean moments
+// against a double-precision average over the same box (fractional edges weighted by their
+// overlap), anywhere in the map. Float sums, as the table first had, were off by 6e-3 for a
+// 3.5-texel box far from the origin (the sums reach 4 x 10^5 there, where a float's step is 0.03).
 TEST_F(FilterTest, SummedAreaTableQueriesKeepTheirPrecisionOverALargeMap) {
     constexpr uint32_t n = 1024;
     std::vector<float> depth(size_t{n} * n);
@@ -369,8 +303,12 @@ TEST_F(FilterTest, SummedAreaTableQueriesKeepTheirPrecisionOverALargeMap) {
             worst = std::max({worst, std::abs(v[k].y - m1 / area), std::abs(v[k].z - m2 / area)});
         }
         std::printf("savsm.size %s on a %u^2 map: worst moment error %.2e\n", size, n, worst);
-        // Measured: 6.1e-3 (3.5 texels), 1.2e-4 (40): the sums reach 4 x 10^5 here, where a
-        // float's step is 0.03, spread over the box's area.
-        EXPECT_LT(worst, std::string(size) == "40" ? 2e-4 : 8e-3) << size;
+        // Only the quantisation is left: half a step of 1 / scale per texel (scale 2^24 for the
+        // 3.5-texel box, 1.2 x 10^6 for the 40-texel one), and float rounding in the mean
+        // (measured 2.8e-7 for both).
+        const double step =
+            1.0 / std::min(16777216.0, std::floor(2147483647.0 /
+                                                  std::pow(std::ceil(std::stod(size)) + 2.0, 2.0)));
+        EXPECT_LT(worst, 0.5 * step + 5e-7) << size;
     }
 }

@@ -206,13 +206,23 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
                       m->info.families.end())
                 << name << ": " << p.key;
         }
-        // The pipeline key starts with the technique and the receiver plane.
+        // The pipeline key starts with the technique, the receiver plane and the horizon (by
+        // default only where the technique models the light's size).
         const auto constants = shadows::visibilityConstants(*m, ParameterValues());
-        ASSERT_GE(constants.size(), 2u) << name;
+        ASSERT_GE(constants.size(), 3u) << name;
         EXPECT_EQ(constants[0].id, uint32_t{SPEC_TECHNIQUE});
         EXPECT_EQ(constants[0].value, static_cast<uint32_t>(m->info.id));
         EXPECT_EQ(constants[1].id, uint32_t{SPEC_RECEIVER});
         EXPECT_EQ(constants[1].value, uint32_t{RECEIVER_LIGHT}); // the default
+        EXPECT_EQ(constants[2].id, uint32_t{SPEC_HORIZON});
+        const bool sized = m->info.id == Technique::Pcss || m->info.id == Technique::Vssm ||
+                           m->info.id == Technique::MsmSoft;
+        EXPECT_EQ(constants[2].value, sized ? 1u : 0u) << name;
+        ParameterValues everywhere, nowhere;
+        everywhere.assign("bias.horizon=all");
+        nowhere.assign("bias.horizon=off");
+        EXPECT_EQ(shadows::visibilityConstants(*m, everywhere)[2].value, 1u) << name;
+        EXPECT_EQ(shadows::visibilityConstants(*m, nowhere)[2].value, 0u) << name;
         EXPECT_GE(m->blurRadiusTexels(ParameterValues()), 0.5) << name;
     }
     // What the techniques keep per texel of a shadow view: depth, plus second-depth's second
@@ -223,9 +233,9 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     poisson.assign("pcf.filter=poisson");
     poisson.assign("pcf.radius=6");
     const auto pcf = shadows::visibilityConstants(shadows::pcfModule(), poisson);
-    ASSERT_EQ(pcf.size(), 3u);
-    EXPECT_EQ(pcf[2].id, uint32_t{SPEC_FILTER});
-    EXPECT_EQ(pcf[2].value, uint32_t{FILTER_POISSON});
+    ASSERT_EQ(pcf.size(), 4u);
+    EXPECT_EQ(pcf[3].id, uint32_t{SPEC_FILTER});
+    EXPECT_EQ(pcf[3].value, uint32_t{FILTER_POISSON});
     // Blur radii: how far from the receiver the last texel a kernel reads lies (a bilinear tap
     // reaches one texel past its position).
     EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(poisson), 7.0);
@@ -236,7 +246,19 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(box), 1.0);
     EXPECT_EQ(shadows::pcssModule().blurRadiusTexels(box), 41.0); // pcss.maxRadius 40
     EXPECT_EQ(shadows::hardModule().blurRadiusTexels(box), 0.5);
-    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 2u);
+    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 3u);
+    // The summed-area members' memory: two RG32UI maps (savsm, vssm) or two RGBA32UI maps
+    // (msm-soft) beside the depth; their fixed-point scales keep the widest box exact.
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::vssmModule(), 16), (4u + 16u) * 16 * 16);
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::msmSoftModule(), 16), (4u + 32u) * 16 * 16);
+    for (double widest : {1.0, 7.0, 40.0, 128.0, 512.0}) {
+        const double scale = shadows::fixedPointScale(widest);
+        const double hull = std::ceil(widest) + 2.0;
+        EXPECT_LE(hull * hull * scale, 2147483647.0) << widest;
+        EXPECT_GT(hull * hull * (scale + 1.0), 2147483647.0 * (scale < 16777216.0 ? 1.0 : 0.0))
+            << widest << ": as many steps as fit";
+        EXPECT_LE(scale, 16777216.0);
+    }
 }
 
 TEST(TechniqueModules, CubeGuardBandsHoldEveryKernel) {

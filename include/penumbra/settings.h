@@ -19,7 +19,9 @@ enum class Technique : uint32_t {
     Esm = 5,
     Evsm = 6,
     Savsm = 7,
-    Msm = 8
+    Msm = 8,
+    Vssm = 9,
+    MsmSoft = 10
 };
 
 // A parameter setting worth its own row in `compare`, e.g. label "box7" for pcf: pcf[box7].

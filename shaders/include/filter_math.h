@@ -15,10 +15,14 @@
 #include <glm/glm.hpp>
 namespace penumbra::gpu {
 using glm::ivec2;
+using glm::ivec4;
+using glm::uvec4;
+using glm::vec4;
 using glm::uvec2;
 using glm::vec2;
 using glm::vec3;
 using glm::abs;
+using glm::asin;
 using glm::clamp;
 using glm::cos;
 using glm::cross;
@@ -43,6 +47,12 @@ using glm::sqrt;
 #endif
 
 #define PCF_MAX_SIZE 15
+#define VSSM_MAX_SUBDIVISION 4    // vssm.subdivision's and msm-soft.subdivision's largest value
+#define VSSM_NO_BLOCKERS 1e-4f    // a blocking fraction at most this: nothing in the way
+#define VSSM_MIN_CELL 2.0f        // texels: no sub-kernel is cut narrower
+// The half-width of the box with the variance of a disc of unit radius (sqrt(3) / 2): the box
+// the summed-area members filter a penumbra of radius r over is this times r.
+#define VSSM_BOX_PER_RADIUS 0.8660254f
 
 // The comparison of one texel [Williams 1978]: lit (1) when the receiver's depth, corrected by
 // receiver-plane bias to the texel's centre (`offset` = texel centre - receiver, in uv), lies at or
@@ -198,24 +208,67 @@ SHARED vec2 offsetMoments(float z) {
     return vec2(d, d * d);
 }
 
-// The integral of the table's texels over [0, x] x [0, y] (texel units) from its values at the
-// four integer corners around (x, y), `f` the fraction between them: within one texel the
-// integral of a constant is bilinear in (x, y), so the interpolation is exact.
-SHARED vec2 integralBetweenCorners(vec2 i00, vec2 i10, vec2 i01, vec2 i11, vec2 f) {
-    return mix(mix(i00, i10, f.x), mix(i01, i11, f.x), f.y);
+// Summed-area tables in fixed point [Lauritzen 2007, GPU Gems 3 ch. 8]: what a table sums of a
+// moment depth z, each channel as a number in [0, 1] quantised to `scale` steps (unused channels
+// 0). MOMENTS_VSM: the offset moments (z - 1/2, (z - 1/2)^2) as z and 4 (z - 1/2)^2; MOMENTS_MSM:
+// the four powers of 2 z - 1 (warpedMoments), mapped from [-1, 1]. Integer sums wrap around 2^32
+// and stay exact, so a box's sum does not depend on where in the map it lies (float sums lose
+// their low bits far from the table's origin).
+SHARED uvec4 tableMoments(uint kind, float z, float scale) {
+    vec4 unit;
+    if (kind == MOMENTS_MSM) {
+        unit = 0.5f * warpedMoments(MOMENTS_MSM, z, vec2(0.0f)) + 0.5f;
+    } else {
+        vec2 m = offsetMoments(z);
+        unit = vec4(m.x + 0.5f, 4.0f * m.y, 0.0f, 0.0f);
+    }
+    return uvec4(floor(unit * scale + 0.5f));
+}
+
+// The moments a box's mean (steps per texel) stands for: tableMoments' inverse.
+SHARED vec4 tableMean(uint kind, vec4 steps, float scale) {
+    vec4 unit = steps / scale;
+    if (kind == MOMENTS_MSM) return 2.0f * unit - 1.0f;
+    return vec4(unit.x - 0.5f, 0.25f * unit.y, 0.0f, 0.0f);
+}
+
+// One integer box of a table from its corners' wrapping sums: exact while the true sum's
+// magnitude stays under 2^31 (fixedPointScale), signed because a box between the corners either
+// side of a fractional edge may run backwards (tableBoxSum).
+SHARED vec4 boxFromCorners(uvec4 c00, uvec4 c10, uvec4 c01, uvec4 c11) {
+    return vec4(ivec4(c11 - c01 - c10 + c00));
+}
+
+// Variance soft shadow maps [Yang et al. 2010] (docs/techniques.md, "vssm"): the blockers a
+// (sub-)kernel's moments imply for a receiver at depth t. Chebyshev's bound p is taken as the
+// fraction at t (unoccluded) and the rest as blockers at one depth z_occ, so that the mean
+// mu = p t + (1 - p) z_occ: x the blocking fraction 1 - p, y (1 - p) z_occ = mu - p t. Zero where
+// t is not beyond the mean (the bound says lit). Weighted by their areas, sub-kernels add up;
+// the average blocker depth is y / x.
+SHARED vec2 chebyshevBlockers(vec2 moments, float t, float minVariance) {
+    float p = chebyshevUpperBound(moments, t, minVariance);
+    if (p >= 1.0f) return vec2(0.0f);
+    return vec2(1.0f - p, moments.x - p * t);
+}
+
+// The light view distance of a moment depth (momentDepth's inverse: linear in both projections).
+SHARED float momentDepthDistance(IN(ShadowViewData) view, float z) {
+    return view.frustum.x + z * (view.frustum.y - view.frustum.x);
 }
 
 // Moment shadow maps [Peters and Klein 2015], Hamburger reconstruction with four moments: the
-// fraction of the filtered depths in front of the receiver at d (in [-1, 1]), as the smallest
-// one any distribution with these moments allows. The moments b = (E x, E x^2, E x^3, E x^4)
-// are first pulled towards (0, 0.63, 0, 0.63) by `bias` (the paper's moment bias), which keeps
-// the Hankel matrix B = [1 b1 b2; b1 b2 b3; b2 b3 b4] positive definite. The extremal
-// distribution has three atoms: d and the roots z1 < z2 of the quadratic whose coefficients
-// solve B c = (1, d, d^2); the occluded fraction is the weight of the atoms in front of d, the
-// weights following from the first two moments (Lagrange: w_i = E[(x - z_j)(x - z_k)] /
-// ((z_i - z_j)(z_i - z_k))).
-SHARED float momentOcclusion(vec4 moments, float d, float bias) {
-    vec4 b = mix(moments, vec4(0.0f, 0.63f, 0.0f, 0.63f), bias);
+// moments b = (E x, E x^2, E x^3, E x^4) of depths in [-1, 1] are first pulled towards
+// (0, 0.63, 0, 0.63) by `bias` (the paper's moment bias), which keeps the Hankel matrix
+// B = [1 b1 b2; b1 b2 b3; b2 b3 b4] positive definite. The distribution with these moments that
+// puts the least weight in front of a receiver at d has three atoms: d and the roots z1 < z2 of
+// the quadratic whose coefficients solve B c = (1, d, d^2). Their weights follow from the first
+// two moments (Lagrange: w_i = E[(x - z_j)(x - z_k)] / ((z_i - z_j)(z_i - z_k))).
+SHARED vec4 biasedMoments(vec4 moments, float bias) {
+    return mix(moments, vec4(0.0f, 0.63f, 0.0f, 0.63f), bias);
+}
+
+// z1 <= z2 for the biased moments b and receiver d.
+SHARED vec2 hamburgerAtoms(vec4 b, float d) {
     // B = L D L^T with L unit lower triangular: solve L y = r, then D L^T c = y.
     float d1 = b.y - b.x * b.x;          // D22 (D11 = 1)
     float l21 = b.x, l31 = b.y;           // first column of L
@@ -229,12 +282,38 @@ SHARED float momentOcclusion(vec4 moments, float d, float bias) {
     // Roots of c1 + c2 x + c3 x^2 (d is not among them unless B is singular).
     float p = c2 / c3, q = c1 / c3;
     float r = sqrt(max(0.25f * p * p - q, 0.0f));
-    float z1 = -0.5f * p - r, z2 = -0.5f * p + r;
-    if (d <= z1) return 0.0f;
-    if (d <= z2) // the atom at z1 is in front
-        return (b.y - b.x * (d + z2) + d * z2) / ((z1 - d) * (z1 - z2));
-    // Both in front: everything but the receiver's own atom.
-    return 1.0f - (b.y - b.x * (z1 + z2) + z1 * z2) / ((d - z1) * (d - z2));
+    return vec2(-0.5f * p - r, -0.5f * p + r);
+}
+
+// E[(x - u)(x - v)] over the biased moments b, over (z - u)(z - v): the weight of atom z in a
+// three-atom distribution whose other atoms are u and v.
+SHARED float atomWeight(vec4 b, float z, float u, float v) {
+    return (b.y - b.x * (u + v) + u * v) / ((z - u) * (z - v));
+}
+
+// The smallest fraction of the filtered depths in front of the receiver at d: the weight of the
+// atoms in front of it.
+SHARED float momentOcclusion(vec4 moments, float d, float bias) {
+    vec4 b = biasedMoments(moments, bias);
+    vec2 z = hamburgerAtoms(b, d);
+    if (d <= z.x) return 0.0f;
+    if (d <= z.y) return atomWeight(b, z.x, d, z.y); // the atom at z1 is in front
+    return 1.0f - atomWeight(b, d, z.x, z.y);       // both in front: all but the receiver's own
+}
+
+// Moment soft shadows [Peters et al. 2016]: the blockers the same distribution puts in front of
+// d, x their weight and y their weight times their mean depth (the atoms' first moment: with
+// both in front, b1 minus the receiver's own atom's share).
+SHARED vec2 momentBlockers(vec4 moments, float d, float bias) {
+    vec4 b = biasedMoments(moments, bias);
+    vec2 z = hamburgerAtoms(b, d);
+    if (d <= z.x) return vec2(0.0f);
+    if (d <= z.y) {
+        float w1 = atomWeight(b, z.x, d, z.y);
+        return vec2(w1, w1 * z.x);
+    }
+    float wd = atomWeight(b, d, z.x, z.y);
+    return vec2(1.0f - wd, b.x - wd * d);
 }
 
 // Weight of tap k (-(n-1)/2 .. (n-1)/2) of the n-tap Gaussian blur, before normalising: sigma
@@ -242,6 +321,16 @@ SHARED float momentOcclusion(vec4 moments, float d, float bias) {
 SHARED float gaussianTap(int k, int n) {
     float sigma = max(float(n) / 6.0f, 0.3f);
     return exp(-0.5f * float(k * k) / (sigma * sigma));
+}
+
+// bias.horizon: the part of a light of angular radius a (sin a = sinRadius) above a receiver's
+// tangent plane, its centre at elevation h over it (sin h = N.L): the segment of a disc of radius
+// a cut at distance h from its centre (a small light's disc, seen flat). The surface hides the
+// rest itself, which no shadow map holds. 1 for a point-like light.
+SHARED float horizonVisibility(float nDotL, float sinRadius) {
+    if (sinRadius <= 0.0f) return 1.0f;
+    float x = clamp(asin(clamp(nDotL, -1.0f, 1.0f)) / asin(min(sinRadius, 1.0f)), -1.0f, 1.0f);
+    return 0.5f + (x * sqrt(1.0f - x * x) + asin(x)) / 3.14159265f;
 }
 
 // The face of a point light's cube that holds direction `d` from the light: its major axis, in

@@ -31,12 +31,15 @@ using uint = uint32_t;
 #define TECHNIQUE_EVSM 6u
 #define TECHNIQUE_SAVSM 7u
 #define TECHNIQUE_MSM 8u
+#define TECHNIQUE_VSSM 9u
+#define TECHNIQUE_MSM_SOFT 10u
 
 // Specialization-constant ids of visibility.comp and filter_probe.comp (the pipeline key is the
 // list of (id, value) pairs: src/shadows/technique.h).
 #define SPEC_TECHNIQUE 0
 #define SPEC_FILTER 1
 #define SPEC_RECEIVER 2
+#define SPEC_HORIZON 3           // 1: the visibility pass applies bias.horizon
 
 // pcf.filter, pcf.rotation and bias.receiver: indices of their choices in the registry.
 #define FILTER_BILINEAR 0u
@@ -50,6 +53,9 @@ using uint = uint32_t;
 #define RECEIVER_OFF 0u
 #define RECEIVER_SCREEN 1u
 #define RECEIVER_LIGHT 2u
+#define HORIZON_OFF 0u            // bias.horizon
+#define HORIZON_SOFT 1u
+#define HORIZON_ALL 2u
 
 // Descriptor bindings (set 0, push descriptors) of every pass: the shaders declare
 // `layout(binding = X)`, src/render/pipelines.cpp builds each pass's layout from the same names,
@@ -62,6 +68,8 @@ using uint = uint32_t;
 #define VIS_SHADOW_COMPARE 5     // the depth map, every view (comparison sampler)
 #define VIS_OUT 6                // R32F array, a layer per shadow-casting light
 #define VIS_VIEWS 7              // ShadowViewData[]
+#define VIS_SHADOW_TABLE 8       // the technique's filtered map when it holds integers (a
+                                 // placeholder otherwise), every view (nearest)
 #define COMPOSITE_LIGHTS 1       // composite.comp
 #define COMPOSITE_GBUFFER_DEPTH 2
 #define COMPOSITE_GBUFFER_NORMAL 3
@@ -77,6 +85,7 @@ using uint = uint32_t;
 #define PROBE_SHADOW_COMPARE 3
 #define PROBE_RESULTS 4
 #define PROBE_VIEW 5
+#define PROBE_SHADOW_TABLE 6
 #define GBUFFER_TEXTURE 1        // gbuffer.frag: the material's base colour
 #define MASK_TEXTURE 0           // shadow_mask.frag: the alpha-tested caster's texture
 #define READ_MAP 0               // a technique's extra depth pass (shadow_peel.frag): the map
@@ -109,6 +118,12 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     vec4 savsmParams;    // x savsm.size (texels, box width), y savsm.minVariance,
                          // z savsm.bleedReduction
     vec4 msmParams;      // x msm.bias (moment bias), y msm.size (taps)
+    vec4 vssmParams;     // x vssm.maxRadius (texels), y vssm.minVariance, z vssm.bleedReduction
+    vec4 msmSoftParams;  // x msm-soft.maxRadius (texels), y msm-soft.bias
+    uvec4 softMode;      // x vssm.subdivision (sub-kernels per axis), y vssm.refine (1: on),
+                         // z msm-soft.subdivision, w msm-soft.refine
+    vec4 tableScales;    // fixed-point steps per unit of the summed-area tables' moments:
+                         // x savsm, y vssm, z msm-soft (src/shadows/technique.h, fixedPointScale)
     vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
 };
 
@@ -192,20 +207,26 @@ inline constexpr const char* kFilterChoices[] = {"bilinear", "hardware", "box", 
                                                  "poisson"};
 inline constexpr const char* kRotationChoices[] = {"none", "random", "ign"};
 inline constexpr const char* kReceiverChoices[] = {"off", "screen", "light"};
+inline constexpr const char* kHorizonChoices[] = {"off", "soft", "all"};
 static_assert(FILTER_BILINEAR == 0 && FILTER_HARDWARE == 1 && FILTER_BOX == 2 &&
               FILTER_GAUSSIAN == 3 && FILTER_POISSON == 4 && std::size(kFilterChoices) == 5);
 static_assert(ROTATION_NONE == 0 && ROTATION_RANDOM == 1 && ROTATION_IGN == 2 &&
               std::size(kRotationChoices) == 3);
 static_assert(RECEIVER_OFF == 0 && RECEIVER_SCREEN == 1 && RECEIVER_LIGHT == 2 &&
               std::size(kReceiverChoices) == 3);
+static_assert(HORIZON_OFF == 0 && HORIZON_SOFT == 1 && HORIZON_ALL == 2 &&
+              std::size(kHorizonChoices) == 3);
 
-static_assert(sizeof(FrameData) == 912 && offsetof(FrameData, position) == 128 &&
+static_assert(sizeof(FrameData) == 976 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, filterMode) == 192 && offsetof(FrameData, biasParams) == 240 &&
               offsetof(FrameData, pcssMode) == 256 && offsetof(FrameData, cameraForward) == 288 &&
               offsetof(FrameData, vsmParams) == 304 && offsetof(FrameData, evsmMode) == 352 &&
               offsetof(FrameData, savsmParams) == 368 && offsetof(FrameData, msmParams) == 384 &&
-              offsetof(FrameData, poisson) == 400);
+              offsetof(FrameData, vssmParams) == 400 &&
+              offsetof(FrameData, msmSoftParams) == 416 &&
+              offsetof(FrameData, softMode) == 432 &&
+              offsetof(FrameData, tableScales) == 448 && offsetof(FrameData, poisson) == 464);
 static_assert(sizeof(LightData) == 96 && offsetof(LightData, cone) == 48 &&
               offsetof(LightData, bias) == 64 && offsetof(LightData, views) == 80);
 static_assert(sizeof(ShadowViewData) == 112 && offsetof(ShadowViewData, frustum) == 64 &&

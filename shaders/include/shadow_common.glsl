@@ -17,6 +17,13 @@ vec3 directionToLight(LightData light, vec3 world) {
                : normalize(light.positionType.xyz - world);
 }
 
+// The sine of the light's angular radius seen from `world` (0: a point-like light).
+float lightSine(LightData light, ShadowViewData view, vec3 world) {
+    float size = view.texel.w;
+    if (view.texel.y < 0.5) return size / sqrt(1.0 + size * size); // a sun: tan of half its angle
+    return min(size / max(length(light.positionType.xyz - world), 1e-6), 1.0);
+}
+
 // The light's shadow view that holds `world`: a point light's cube face (by the direction from
 // the light), else the light's only view.
 uint shadowViewOf(LightData light, vec3 world) {

@@ -57,38 +57,4 @@ vec4 shadowMsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDat
     return vec4(snapToExtremes(v), moments.x, moments.y, d);
 }
 
-// Summed-area VSM: the integral I(x, y) of the table's texels over [0, x] x [0, y] (texel units),
-// I at integer corner c being texel c - 1 of the table (0 along the first row and column).
-vec2 satCorner(sampler2DArray table, ivec2 c, float layer) {
-    if (c.x <= 0 || c.y <= 0) return vec2(0.0);
-    return texelFetch(table, ivec3(c - 1, int(layer)), 0).rg;
-}
-
-vec2 satIntegral(sampler2DArray table, vec2 q, int size, float layer) {
-    ivec2 base = min(ivec2(floor(q)), ivec2(size - 1));
-    vec2 f = q - vec2(base);
-    return integralBetweenCorners(satCorner(table, base, layer),
-                                  satCorner(table, base + ivec2(1, 0), layer),
-                                  satCorner(table, base + ivec2(0, 1), layer),
-                                  satCorner(table, base + ivec2(1, 1), layer), f);
-}
-
-// x visibility, y z the box's mean offset moments, w the receiver's offset moment depth. The box
-// is savsm.size texels wide (of a sun's first cascade, scaled in the others), centred on the
-// receiver, cut to the map (averaged over the part inside).
-vec4 shadowSavsmDetail(sampler2DArray table, Receiver r, uint mapSize, ShadowViewData view) {
-    float size = float(mapSize);
-    float reach = 0.5 * max(frame.savsmParams.x * r.kernelScale, 1.0);
-    vec2 p = r.uv * size;
-    vec2 lo = clamp(p - reach, vec2(0.0), vec2(size)), hi = clamp(p + reach, vec2(0.0), vec2(size));
-    float area = (hi.x - lo.x) * (hi.y - lo.y);
-    int n = int(mapSize);
-    vec2 sum = satIntegral(table, hi, n, r.layer) - satIntegral(table, vec2(lo.x, hi.y), n, r.layer) -
-               satIntegral(table, vec2(hi.x, lo.y), n, r.layer) + satIntegral(table, lo, n, r.layer);
-    vec2 moments = sum / max(area, 1e-6);
-    float t = momentDepth(view, r.depth) - 0.5;
-    float v = chebyshevUpperBound(moments, t, frame.savsmParams.y);
-    return vec4(snapToExtremes(reduceLightBleeding(v, frame.savsmParams.z)), moments, t);
-}
-
 #endif

@@ -2,6 +2,7 @@
 
 #include "filter_math.h"
 #include "reference/sampling.h"
+#include "reference/sat_reference.h"
 
 #include <algorithm>
 #include <cmath>
@@ -280,63 +281,6 @@ glm::vec4 msm(const ShadowMapView& map, const FilterProbe& probe, const gpu::Fra
     return {gpu::snapToExtremes(v), moments.x, moments.y, d};
 }
 
-// Summed-area VSM (shaders/include/sat_scan.glsl, shadow_moments.glsl): the table as the two
-// passes leave it, float sums in the same order, then the box query.
-std::vector<glm::vec2> summedAreaTable(const ShadowMapView& map, const gpu::ShadowViewData& view) {
-    const auto n = static_cast<int>(map.size);
-    std::vector<glm::vec2> rows(static_cast<size_t>(n) * static_cast<size_t>(n));
-    std::vector<glm::vec2> table(rows.size());
-    auto at = [n](int i, int j) {
-        return static_cast<size_t>(j) * static_cast<size_t>(n) + static_cast<size_t>(i);
-    };
-    for (int j = 0; j < n; ++j) {
-        glm::vec2 sum(0.0f);
-        for (int i = 0; i < n; ++i) {
-            sum += gpu::offsetMoments(gpu::momentDepth(view, map.texel(i, j)));
-            rows[at(i, j)] = sum;
-        }
-    }
-    for (int i = 0; i < n; ++i) {
-        glm::vec2 sum(0.0f);
-        for (int j = 0; j < n; ++j) {
-            sum += rows[at(i, j)];
-            table[at(i, j)] = sum;
-        }
-    }
-    return table;
-}
-
-glm::vec4 savsm(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
-                const gpu::ShadowViewData& view) {
-    const std::vector<glm::vec2> table = summedAreaTable(map, view);
-    const auto n = static_cast<int>(map.size);
-    auto corner = [&](glm::ivec2 c) {
-        if (c.x <= 0 || c.y <= 0)
-            return glm::vec2(0.0f);
-        return table[static_cast<size_t>(c.y - 1) * static_cast<size_t>(n) +
-                     static_cast<size_t>(c.x - 1)];
-    };
-    auto integral = [&](glm::vec2 q) {
-        const glm::ivec2 base = glm::min(glm::ivec2(glm::floor(q)), glm::ivec2(n - 1));
-        const glm::vec2 frac = q - glm::vec2(base);
-        return gpu::integralBetweenCorners(corner(base), corner(base + glm::ivec2(1, 0)),
-                                           corner(base + glm::ivec2(0, 1)),
-                                           corner(base + glm::ivec2(1, 1)), frac);
-    };
-    const float size = static_cast<float>(map.size);
-    const float reach = 0.5f * std::max(f.savsmParams.x * view.cascade.z, 1.0f);
-    const glm::vec2 p = probe.uv * size;
-    const glm::vec2 lo = glm::clamp(p - reach, glm::vec2(0.0f), glm::vec2(size));
-    const glm::vec2 hi = glm::clamp(p + reach, glm::vec2(0.0f), glm::vec2(size));
-    const float area = (hi.x - lo.x) * (hi.y - lo.y);
-    const glm::vec2 sum =
-        integral(hi) - integral({lo.x, hi.y}) - integral({hi.x, lo.y}) + integral(lo);
-    const glm::vec2 moments = sum / std::max(area, 1e-6f);
-    const float t = gpu::momentDepth(view, probe.depth) - 0.5f;
-    const float v = gpu::chebyshevUpperBound(moments, t, f.savsmParams.y);
-    return {gpu::snapToExtremes(gpu::reduceLightBleeding(v, f.savsmParams.z)), moments, t};
-}
-
 glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterProbe& probe,
                    const gpu::FrameData& f, const gpu::ShadowViewData& view,
                    const MarginTracker& m) {
@@ -352,7 +296,12 @@ glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterPr
     case Technique::Evsm:
         return evsm(map, probe, f, view);
     case Technique::Savsm:
-        return savsm(map, probe, f, view);
+        return savsmReference(map, probe, f, view);
+    case Technique::Vssm:
+        return vssmReference(map, probe, f, view);
+    case Technique::MsmSoft:
+        return msmSoftReference(map, probe, f, view);
+
     case Technique::Msm:
         return msm(map, probe, f, view);
     case Technique::SecondDepth: // `map` holds the midpoints; no receiver-plane correction

@@ -57,6 +57,7 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         t.maps.push_back(
             render::makeViewMaps(ctx, render::formatOf(decl.format), size, 1,
                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT));
+    t.integerPlaceholder = render::makeIntegerPlaceholder(ctx);
     const vk::Image& map = t.shadowDepth.image;
     const vk::SamplerHandle nearest = vk::createSampler(ctx, {});
     t.frame = frameBuffer.get(), t.viewData = viewBuffer.get(), t.nearest = nearest.get();
@@ -79,14 +80,18 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         vk::imageBarrier(cmd, map, transferWrite, vk::kComputeSampled);
         if (derived)
             render::recordPostPasses(cmd, p, t, module);
+        vk::imageBarrier(cmd, t.integerPlaceholder, vk::kUndefined, vk::kComputeSampled);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                           p.probe(shadows::visibilityConstants(module, params)));
+        // A technique probed on the given map (no post passes) filters the depth map itself.
+        const render::FilteredBindings filtered =
+            derived ? render::filteredBindings(t, module)
+                    : render::FilteredBindings{map.view.get(), t.integerPlaceholder.view.get()};
         vk::PushDescriptors()
             .uniformBuffer(BIND_FRAME, frameBuffer.get())
             .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
-            .sampled(PROBE_SHADOW_MAP,
-                     (derived ? t.named(module, module.visibilityMap).image : map).view.get(),
-                     nearest.get())
+            .sampled(PROBE_SHADOW_MAP, filtered.floats, nearest.get())
+            .sampled(PROBE_SHADOW_TABLE, filtered.integers, nearest.get())
             .sampled(PROBE_SHADOW_COMPARE, map.view.get(), compare.get())
             .storageBuffer(PROBE_RESULTS, results.get())
             .storageBuffer(PROBE_VIEW, viewBuffer.get())

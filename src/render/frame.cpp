@@ -241,14 +241,16 @@ void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
                       const FrameSettings& s) {
     vk::imageBarrier(cmd, t.visibility, vk::kUndefined, vk::kComputeWrite);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(s.constants));
-    const ViewMaps& filtered = t.named(*s.technique, s.technique->visibilityMap);
+    const FilteredBindings filtered = filteredBindings(t, *s.technique);
+    vk::imageBarrier(cmd, t.integerPlaceholder, vk::kUndefined, vk::kComputeSampled);
     for (const gpu::VisibilityPush& push : s.shadowLights) {
         vk::PushDescriptors()
             .uniformBuffer(BIND_FRAME, t.frame)
             .storageBuffer(VIS_LIGHTS, t.lights)
             .sampled(VIS_GBUFFER_DEPTH, t.depth.view.get(), t.nearest)
             .sampled(VIS_GBUFFER_NORMAL, t.normal.view.get(), t.nearest)
-            .sampled(VIS_SHADOW_MAP, filtered.image.view.get(), t.nearest)
+            .sampled(VIS_SHADOW_MAP, filtered.floats, t.nearest)
+            .sampled(VIS_SHADOW_TABLE, filtered.integers, t.nearest)
             .sampled(VIS_SHADOW_COMPARE, t.shadowDepth.image.view.get(), t.compare)
             .storageImage(VIS_OUT, t.visibility.view.get())
             .storageBuffer(VIS_VIEWS, t.viewData)
@@ -314,10 +316,30 @@ VkFormat formatOf(shadows::MapFormat format) {
         return VK_FORMAT_R32_SFLOAT;
     case shadows::MapFormat::RG32F:
         return VK_FORMAT_R32G32_SFLOAT;
+    case shadows::MapFormat::RG32UI:
+        return VK_FORMAT_R32G32_UINT;
+    case shadows::MapFormat::RGBA32UI:
+        return VK_FORMAT_R32G32B32A32_UINT;
     case shadows::MapFormat::RGBA32F:
         break;
     }
     return VK_FORMAT_R32G32B32A32_SFLOAT;
+}
+
+vk::Image makeIntegerPlaceholder(const vk::Context& ctx) {
+    return vk::createImage(ctx, {.name = "integer-map placeholder",
+                                 .format = VK_FORMAT_R32G32B32A32_UINT,
+                                 .width = 1,
+                                 .height = 1,
+                                 .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
+                                 .arrayView = true});
+}
+
+FilteredBindings filteredBindings(const FrameTargets& t, const shadows::TechniqueModule& module) {
+    const VkImageView map = t.named(module, module.visibilityMap).image.view.get();
+    if (shadows::holdsIntegers(shadows::visibilityMapFormat(module)))
+        return {.floats = t.shadowDepth.image.view.get(), .integers = map};
+    return {.floats = map, .integers = t.integerPlaceholder.view.get()};
 }
 
 void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene& scene,

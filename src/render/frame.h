@@ -60,6 +60,8 @@ struct FrameTargets {
     std::vector<ShadowView> views;
     ViewMaps shadowDepth;       // shadows::kDepthMap: D32_SFLOAT, the seeds' depth (near 0, far 1)
     std::vector<ViewMaps> maps; // the technique's own, as its module declares them
+    vk::Image integerPlaceholder; // makeIntegerPlaceholder: VIS_SHADOW_TABLE when the filtered
+                                  // map holds floats
     // Not owned: this frame's ring slot (FrameData, LightData[], ShadowViewData[]) and the
     // renderer's samplers.
     VkBuffer frame = VK_NULL_HANDLE, lights = VK_NULL_HANDLE, viewData = VK_NULL_HANDLE;
@@ -80,6 +82,15 @@ struct FrameSettings {
 
 // The Vulkan format of a technique's map.
 VkFormat formatOf(shadows::MapFormat format);
+// A 1x1 RGBA32UI array image: what the visibility and probe passes bind at their integer-map
+// binding when the technique filters a float map (every binding a shader uses must be written).
+vk::Image makeIntegerPlaceholder(const vk::Context& ctx);
+// What a pass that filters the technique's map binds: the float map (the depth map when the
+// filtered map holds integers) and the integer one (the placeholder when it holds floats).
+struct FilteredBindings {
+    VkImageView floats, integers;
+};
+FilteredBindings filteredBindings(const FrameTargets& t, const shadows::TechniqueModule& module);
 
 // An array image, one layer per shadow view, and a 2D view of each layer.
 ViewMaps makeViewMaps(const vk::Context& ctx, VkFormat format, uint32_t size, uint32_t views,

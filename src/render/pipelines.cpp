@@ -55,7 +55,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {VIS_SHADOW_MAP, kSampled},
                                   {VIS_SHADOW_COMPARE, kSampled},
                                   {VIS_OUT, kImage},
-                                  {VIS_VIEWS, kStorage}},
+                                  {VIS_VIEWS, kStorage},
+                                  {VIS_SHADOW_TABLE, kSampled}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     compositeLayout = vk::createPipelineLayout(ctx,
                                                {{BIND_FRAME, kUniform},
@@ -79,7 +80,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                             {PROBE_SHADOW_MAP, kSampled},
                                             {PROBE_SHADOW_COMPARE, kSampled},
                                             {PROBE_RESULTS, kStorage},
-                                            {PROBE_VIEW, kStorage}},
+                                            {PROBE_VIEW, kStorage},
+                                            {PROBE_SHADOW_TABLE, kSampled}},
                                            VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::ProbePush));
     readingDepthLayout = vk::createPipelineLayout(
         ctx, {{READ_MAP, kSampled}, {READ_TEXTURE, kSampled}}, kGraphicsStages,

@@ -169,6 +169,7 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
                                               map.format == shadows::MapFormat::Depth32
                                                   ? depthTarget
                                                   : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
+    t.integerPlaceholder = render::makeIntegerPlaceholder(c);
     const uint32_t w = k.width, h = k.height;
     t.depth = targetImage(c, "G-buffer depth", render::kDepthFormat, w, h, depthTarget);
     t.normal = targetImage(c, "G-buffer normal", render::kNormalFormat, w, h,

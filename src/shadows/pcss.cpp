@@ -54,6 +54,7 @@ const TechniqueModule& pcssModule() {
                               choice("pcss.rotation"), 0u};
                 f.pcssParams = {static_cast<float>(p.number("pcss.maxRadius")), 0.0f, 0.0f, 0.0f};
             },
+        .modelsLightSize = true,
         .blurRadiusTexels =
             [](const ParameterValues& p) { return p.number("pcss.maxRadius") + 1.0; }};
     return module;

@@ -54,6 +54,14 @@ const std::vector<ParameterInfo>& parameterTable() {
          .unit = "shadow-map texels",
          .description = "normal offset: the receiver moves along its normal by this many texels, "
                         "scaled by 1 - N.L, before the lookup"},
+        {.key = "bias.horizon",
+         .type = ParameterType::Choice,
+         .defaultValue = 1,
+         .choices = {std::begin(gpu::kHorizonChoices), std::end(gpu::kHorizonChoices)},
+         .description = "clip a light with a size by the receiver's own tangent plane, the part "
+                        "of it below the surface's horizon being hidden by the surface itself, "
+                        "which no shadow map holds: in the techniques that model the light's size "
+                        "(soft: pcss, vssm, msm-soft), in every technique (all), or none (off)"},
         {.key = "bias.receiver",
          .type = ParameterType::Choice,
          .defaultValue = 2,

@@ -1,12 +1,19 @@
 // Technique `savsm` [Lauritzen 2007, 'Summed-area variance shadow maps', GPU Gems 3 ch. 8]: two
 // post passes build a summed-area table of the offset moments (shaders/include/sat_scan.glsl:
-// rows, then columns, one invocation per line); the visibility pass averages the moments over a
-// box of any width from four corners of the table (exact fractional edges) and bounds the lit
-// fraction as VSM does (shaders/include/shadow_moments.glsl). CPU mirror:
-// src/reference/filter_reference.cpp; derivations and precision in docs/techniques.md.
+// rows, then columns, one invocation per line); the visibility pass
+// (shaders/include/shadow_sat.glsl) averages the moments over a box of any width from four
+// corners of the table (exact fractional edges) and bounds the lit fraction as VSM does. CPU
+// mirror: src/reference/filter_reference.cpp; derivations and precision in docs/techniques.md.
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
+namespace {
+
+constexpr SummedAreaTable kTable{.rowsShader = "savsm_sum_rows.comp",
+                                 .columnsShader = "savsm_sum_columns.comp",
+                                 .format = MapFormat::RG32UI};
+
+} // namespace
 
 const TechniqueModule& savsmModule() {
     static const TechniqueModule module{
@@ -41,22 +48,15 @@ const TechniqueModule& savsmModule() {
                         .min = 0.0,
                         .max = 0.99,
                         .description = "as vsm.bleedReduction"}},
-        .maps = {{.name = "rowSums", .format = MapFormat::RG32F},
-                 {.name = "table", .format = MapFormat::RG32F}},
-        .postPasses = {{.shader = "savsm_sum_rows.comp",
-                        .inputs = {kDepthMap},
-                        .outputs = {"rowSums"},
-                        .dispatch = PostDispatch::Lines},
-                       {.shader = "savsm_sum_columns.comp",
-                        .inputs = {"rowSums"},
-                        .outputs = {"table"},
-                        .dispatch = PostDispatch::Lines}},
-        .visibilityMap = "table",
+        .maps = kTable.maps(),
+        .postPasses = kTable.passes(),
+        .visibilityMap = kMomentTable,
         .pack =
             [](const ParameterValues& p, gpu::FrameData& f) {
                 f.savsmParams = {static_cast<float>(p.number("savsm.size")),
                                  static_cast<float>(p.number("savsm.minVariance")),
                                  static_cast<float>(p.number("savsm.bleedReduction")), 0.0f};
+                f.tableScales.x = fixedPointScale(p.number("savsm.size"));
             },
         .blurRadiusTexels =
             [](const ParameterValues& p) { return 0.5 * p.number("savsm.size") + 1.0; }};

@@ -3,9 +3,23 @@
 
 #include "penumbra/error.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra::shadows {
+
+static_assert(TECHNIQUE_HARD == uint32_t(Technique::Hard) &&
+                  TECHNIQUE_PCF == uint32_t(Technique::Pcf) &&
+                  TECHNIQUE_PCSS == uint32_t(Technique::Pcss) &&
+                  TECHNIQUE_SECOND_DEPTH == uint32_t(Technique::SecondDepth) &&
+                  TECHNIQUE_VSM == uint32_t(Technique::Vsm) &&
+                  TECHNIQUE_ESM == uint32_t(Technique::Esm) &&
+                  TECHNIQUE_EVSM == uint32_t(Technique::Evsm) &&
+                  TECHNIQUE_SAVSM == uint32_t(Technique::Savsm) &&
+                  TECHNIQUE_MSM == uint32_t(Technique::Msm) &&
+                  TECHNIQUE_VSSM == uint32_t(Technique::Vssm) &&
+                  TECHNIQUE_MSM_SOFT == uint32_t(Technique::MsmSoft),
+              "the visibility pass's technique ids are penumbra::Technique's");
 
 uint32_t bytesPerTexel(MapFormat format) {
     switch (format) {
@@ -13,17 +27,24 @@ uint32_t bytesPerTexel(MapFormat format) {
     case MapFormat::R32F:
         return 4;
     case MapFormat::RG32F:
+    case MapFormat::RG32UI:
         return 8;
     case MapFormat::RGBA32F:
+    case MapFormat::RGBA32UI:
         break;
     }
     return 16;
 }
 
+bool holdsIntegers(MapFormat format) {
+    return format == MapFormat::RG32UI || format == MapFormat::RGBA32UI;
+}
+
 std::span<const TechniqueModule* const> allModules() {
     static const TechniqueModule* const modules[] = {
-        &hardModule(), &pcfModule(),  &pcssModule(),  &secondDepthModule(), &vsmModule(),
-        &esmModule(),  &evsmModule(), &savsmModule(), &msmModule()};
+        &hardModule(), &pcfModule(),  &pcssModule(),   &secondDepthModule(),
+        &vsmModule(),  &esmModule(),  &evsmModule(),   &savsmModule(),
+        &msmModule(),  &vssmModule(), &msmSoftModule()};
     return modules;
 }
 
@@ -52,11 +73,40 @@ double GaussianBlur::radiusTexels(const ParameterValues& p) const {
     return 0.5 * (p.number(sizeKey) - 1.0) + 1.0;
 }
 
+std::vector<MapDecl> SummedAreaTable::maps() const {
+    return {{.name = "rowSums", .format = format}, {.name = kMomentTable, .format = format}};
+}
+
+std::vector<PostPassDecl> SummedAreaTable::passes() const {
+    return {{.shader = rowsShader,
+             .inputs = {kDepthMap},
+             .outputs = {"rowSums"},
+             .dispatch = PostDispatch::Lines},
+            {.shader = columnsShader,
+             .inputs = {"rowSums"},
+             .outputs = {kMomentTable},
+             .dispatch = PostDispatch::Lines}};
+}
+
+float fixedPointScale(double widestBox) {
+    const double hull = std::ceil(widestBox) + 2.0;
+    // Sums under 2^31 in magnitude (boxFromCorners reads them signed); at most 2^24 steps, where
+    // a float still holds every integer, so quantising is exact.
+    return static_cast<float>(std::min(std::floor(2147483647.0 / (hull * hull)), 16777216.0));
+}
+
 const TechniqueModule& moduleOf(Technique technique) {
     for (const TechniqueModule* m : allModules())
         if (m->info.id == technique)
             return *m;
     fatal(__FILE__, __LINE__, "moduleOf: unregistered technique");
+}
+
+MapFormat visibilityMapFormat(const TechniqueModule& module) {
+    for (const MapDecl& map : module.maps)
+        if (map.name == module.visibilityMap)
+            return map.format;
+    return MapFormat::Depth32;
 }
 
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size) {
@@ -79,6 +129,10 @@ std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
     std::vector<SpecConstant> constants{
         {SPEC_TECHNIQUE, static_cast<uint32_t>(module.info.id)},
         {SPEC_RECEIVER, static_cast<uint32_t>(params.number("bias.receiver"))}};
+    const auto horizon = static_cast<uint32_t>(params.number("bias.horizon"));
+    constants.push_back(
+        {SPEC_HORIZON,
+         horizon == HORIZON_ALL || (horizon == HORIZON_SOFT && module.modelsLightSize) ? 1u : 0u});
     if (module.constants)
         for (const SpecConstant& c : module.constants(params))
             constants.push_back(c);

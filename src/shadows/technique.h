@@ -15,8 +15,11 @@
 
 namespace penumbra::shadows {
 
-enum class MapFormat { Depth32, R32F, RG32F, RGBA32F };
+enum class MapFormat { Depth32, R32F, RG32F, RGBA32F, RG32UI, RGBA32UI };
 uint32_t bytesPerTexel(MapFormat format);
+// Integer maps are read through usamplers: the visibility pass binds its filtered map at
+// VIS_SHADOW_TABLE instead of VIS_SHADOW_MAP when it is one.
+bool holdsIntegers(MapFormat format);
 
 // Every technique has the light's depth map, "depth" (Depth32, cleared to 1 = far).
 inline constexpr std::string_view kDepthMap = "depth";
@@ -67,6 +70,8 @@ struct TechniqueModule {
     std::vector<SpecConstant> (*constants)(const ParameterValues&) = nullptr;
     // Writes the module's parameters into the frame block (its own fields).
     void (*pack)(const ParameterValues&, gpu::FrameData&) = nullptr;
+    // Whether it models the light's size (its penumbra follows it): bias.horizon=soft applies.
+    bool modelsLightSize = false;
     // The widest footprint the technique filters over, in texels from the receiver: the blur
     // radius a metric may allow at a shadow edge (0 for a single sample).
     double (*blurRadiusTexels)(const ParameterValues&) = nullptr;
@@ -85,9 +90,28 @@ struct GaussianBlur {
     double radiusTexels(const ParameterValues& p) const;
 };
 
+// A summed-area table of fixed-point moments (shaders/include/sat_scan.glsl): a row pass from the
+// depth map into "rowSums", a column pass into "table", both of `format` (RG32UI: offset VSM
+// moments; RGBA32UI: MSM's four), with the technique's own pair of scan shaders.
+inline constexpr std::string_view kMomentTable = "table";
+struct SummedAreaTable {
+    std::string_view rowsShader, columnsShader;
+    MapFormat format;
+    std::vector<MapDecl> maps() const;
+    std::vector<PostPassDecl> passes() const;
+};
+// The fixed-point steps per unit that keep every box sum exact [Lauritzen 2007, GPU Gems 3
+// ch. 8]: the tables wrap around 2^32, so a box's sum, a difference of corners, is exact as long
+// as the true sum's magnitude stays under 2^31; boxes span at most `widestBox` texels a side (plus
+// the two texels its fractional edges reach) and each texel's moments are at most one unit.
+float fixedPointScale(double widestBox);
+
 // The registered modules, in `penumbra techniques` order.
 std::span<const TechniqueModule* const> allModules();
 const TechniqueModule& moduleOf(Technique technique);
+
+// The format of the map the visibility pass filters.
+MapFormat visibilityMapFormat(const TechniqueModule& module);
 
 // Device memory the technique's maps take per shadow view of size x size texels.
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size);
@@ -109,5 +133,7 @@ const TechniqueModule& esmModule();
 const TechniqueModule& evsmModule();
 const TechniqueModule& savsmModule();
 const TechniqueModule& msmModule();
+const TechniqueModule& vssmModule();
+const TechniqueModule& msmSoftModule();
 
 } // namespace penumbra::shadows

@@ -1,0 +1,7 @@
+#version 460
+// Moment soft shadows: fixed-point moments summed along rows.
+#define AXIS 0
+#define MOMENTS MOMENTS_MSM
+#define FORMAT rgba32ui
+#define SCALE frame.tableScales.z
+#include "sat_scan.glsl"

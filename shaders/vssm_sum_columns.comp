@@ -1,0 +1,7 @@
+#version 460
+// Variance soft shadow maps: the row sums summed down columns.
+#define AXIS 1
+#define MOMENTS MOMENTS_VSM
+#define FORMAT rg32ui
+#define SCALE frame.tableScales.y
+#include "sat_scan.glsl"

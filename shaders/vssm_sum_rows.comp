@@ -1,0 +1,7 @@
+#version 460
+// Variance soft shadow maps: fixed-point offset moments summed along rows.
+#define AXIS 0
+#define MOMENTS MOMENTS_VSM
+#define FORMAT rg32ui
+#define SCALE frame.tableScales.y
+#include "sat_scan.glsl"
