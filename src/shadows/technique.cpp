@@ -1,6 +1,7 @@
 // The module list and what the frame asks of any module.
 #include "shadows/technique.h"
 
+#include "filter_math.h"
 #include "penumbra/error.h"
 
 #include <algorithm>
@@ -86,6 +87,45 @@ std::vector<PostPassDecl> SummedAreaTable::passes() const {
              .inputs = {"rowSums"},
              .outputs = {kMomentTable},
              .dispatch = PostDispatch::Lines}};
+}
+
+std::vector<ParameterInfo> SoftSearch::parameters() const {
+    return {{.key = maxRadiusKey,
+             .type = ParameterType::Float,
+             .defaultValue = 64.0,
+             .min = 1.0,
+             .max = 256.0,
+             .unit = "texels",
+             .description = "largest blocker-search and filter half-width, in texels of the map "
+                            "sampled (also the guard band of cube faces and cascades; wider boxes "
+                            "leave the table fewer fixed-point bits)"},
+            {.key = subdivisionKey,
+             .type = ParameterType::Int,
+             .defaultValue = 3,
+             .min = 1,
+             .max = VSSM_MAX_SUBDIVISION,
+             .unit = "sub-kernels per axis",
+             .description = "kernel subdivision for non-planar receivers: the search and filter "
+                            "boxes are cut into n x n sub-kernels, each bounded on its own against "
+                            "the receiver's plane (1: the whole box at once)"},
+            {.key = refineKey,
+             .type = ParameterType::Bool,
+             .defaultValue = 1,
+             .description = "search again over the region where blockers at the first estimate's "
+                            "depth can hide the light (the penumbra's own box), so blockers far "
+                            "off to the side do not widen it"}};
+}
+
+SoftSearch::Packed SoftSearch::pack(const ParameterValues& p) const {
+    const double cap = p.number(maxRadiusKey);
+    return {.maxRadius = static_cast<float>(cap),
+            .subdivision = static_cast<uint32_t>(p.number(subdivisionKey)),
+            .refine = p.number(refineKey) != 0.0 ? 1u : 0u,
+            .tableScale = fixedPointScale(2.0 * cap)};
+}
+
+double SoftSearch::radiusTexels(const ParameterValues& p) const {
+    return p.number(maxRadiusKey) + 1.0;
 }
 
 float fixedPointScale(double widestBox) {

@@ -100,6 +100,22 @@ struct SummedAreaTable {
     std::vector<MapDecl> maps() const;
     std::vector<PostPassDecl> passes() const;
 };
+// The summed-area soft members' common parameters (vssm, msm-soft; shadowSoftDetail in
+// shaders/include/shadow_sat.glsl) under the family's own keys: the search and filter cap in
+// texels, the kernel subdivision and the refining second search.
+struct SoftSearch {
+    std::string_view maxRadiusKey, subdivisionKey, refineKey;
+    std::vector<ParameterInfo> parameters() const;
+    // The cap, the two gpu::FrameData::softMode fields and the table's fixed-point scale.
+    struct Packed {
+        float maxRadius;
+        uint32_t subdivision, refine;
+        float tableScale;
+    };
+    Packed pack(const ParameterValues& p) const;
+    double radiusTexels(const ParameterValues& p) const; // the widest footprint
+};
+
 // The fixed-point steps per unit that keep every box sum exact [Lauritzen 2007, GPU Gems 3
 // ch. 8]: the tables wrap around 2^32, so a box's sum, a difference of corners, is exact as long
 // as the true sum's magnitude stays under 2^31; boxes span at most `widestBox` texels a side (plus
