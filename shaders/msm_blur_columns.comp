@@ -2,5 +2,4 @@
 // Moment shadow maps: the row-blurred moments, blurred along columns.
 #define AXIS 1
 #define MOMENTS MOMENTS_MSM
-#define FORMAT rgba32f
 #include "moments_blur.glsl"

@@ -285,3 +285,29 @@ TEST(FilterMath, FixedPointTablesRoundTripTheirMoments) {
         gpu::boxFromCorners(glm::uvec4(0u), glm::uvec4(4294967290u), glm::uvec4(0u), wrapped).x,
         10.0f);
 }
+
+// msm.precision=16: the paper's affine map takes the moments of every depth in [0, 1] into the
+// unit cube (what a unorm texel holds), the stored values are whole 16-bit steps, and the inverse
+// gives back the moments of d = 2z - 1 to the quantisation's precision.
+TEST(FilterMath, OptimisedMomentQuantisationRoundTrips) {
+    for (int k = 0; k <= 100; ++k) {
+        const float z = static_cast<float>(k) / 100.0f;
+        const glm::vec4 d = gpu::warpedMoments(MOMENTS_MSM, z, glm::vec2(0.0f));
+        const glm::vec4 stored = gpu::msmStore16(d);
+        for (int c = 0; c < 4; ++c) {
+            EXPECT_GE(stored[c], 0.0f) << z;
+            EXPECT_LE(stored[c], 1.0f) << z;
+            const float steps = stored[c] * 65535.0f;
+            EXPECT_NEAR(steps, std::round(steps), 1e-2f) << z;
+        }
+        const glm::vec4 back = gpu::msmLoad16(stored);
+        for (int c = 0; c < 4; ++c)
+            EXPECT_NEAR(back[c], d[c], 5e-4f) << "z " << z << ", moment " << c + 1;
+    }
+    // A mixture: the map is affine, so a filtered (averaged) texel round-trips as well.
+    const glm::vec4 mix = 0.3f * gpu::warpedMoments(MOMENTS_MSM, 0.2f, glm::vec2(0.0f)) +
+                          0.7f * gpu::warpedMoments(MOMENTS_MSM, 0.9f, glm::vec2(0.0f));
+    const glm::vec4 back = gpu::msmLoad16(gpu::msmStore16(mix));
+    for (int c = 0; c < 4; ++c)
+        EXPECT_NEAR(back[c], mix[c], 5e-4f) << c;
+}

@@ -227,8 +227,9 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     }
     // What the techniques keep per texel of a shadow view: depth, plus second-depth's second
     // layer and midpoint; the PCF kernel's filter constant in its key only.
-    EXPECT_EQ(shadows::shadowMapBytes(shadows::hardModule(), 1024), 4u * 1024 * 1024);
-    EXPECT_EQ(shadows::shadowMapBytes(shadows::secondDepthModule(), 16), 12u * 16 * 16);
+    const ParameterValues defaults;
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::hardModule(), 1024, defaults), 4u * 1024 * 1024);
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::secondDepthModule(), 16, defaults), 12u * 16 * 16);
     ParameterValues poisson;
     poisson.assign("pcf.filter=poisson");
     poisson.assign("pcf.radius=6");
@@ -249,8 +250,14 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 3u);
     // The summed-area members' memory: two RG32UI maps (savsm, vssm) or two RGBA32UI maps
     // (msm-soft) beside the depth; their fixed-point scales keep the widest box exact.
-    EXPECT_EQ(shadows::shadowMapBytes(shadows::vssmModule(), 16), (4u + 16u) * 16 * 16);
-    EXPECT_EQ(shadows::shadowMapBytes(shadows::msmSoftModule(), 16), (4u + 32u) * 16 * 16);
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::vssmModule(), 16, defaults), (4u + 16u) * 16 * 16);
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::msmSoftModule(), 16, defaults),
+              (4u + 32u) * 16 * 16);
+    // msm.precision=16 keeps the blurred moments in 16-bit unorm (the row pass's stay 32-bit).
+    ParameterValues sixteen;
+    sixteen.assign("msm.precision=16");
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::msmModule(), 16, defaults), (4u + 32u) * 16 * 16);
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::msmModule(), 16, sixteen), (4u + 24u) * 16 * 16);
     for (double widest : {1.0, 7.0, 40.0, 128.0, 512.0}) {
         const double scale = shadows::fixedPointScale(widest);
         const double hull = std::ceil(widest) + 2.0;

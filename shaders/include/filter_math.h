@@ -316,6 +316,36 @@ SHARED vec2 momentBlockers(vec4 moments, float d, float bias) {
     return vec2(1.0f - wd, b.x - wd * d);
 }
 
+// msm.precision=16 [Peters and Klein 2015, "optimized moment quantization"]: the moments of
+// z = (d + 1) / 2 in [0, 1] under an affine map that spreads them over [0, 1]^4 (the paper's
+// matrix; a unit cube's worth of 16-bit steps then resolves what raw powers of z, crowded near
+// the diagonal, would not), rounded to 16-bit unorm steps here so that every device stores the
+// same values. msmLoad16 undoes it (the inverse matrix, computed and checked in
+// tests/test_filter_math.cpp) and returns the moments of d.
+SHARED vec4 msmStore16(vec4 dMoments) {
+    vec4 b = dMoments; // E d, E d^2, E d^3, E d^4 -> E z^k with z = (d + 1) / 2
+    vec4 z = vec4(0.5f * (b.x + 1.0f), 0.25f * (b.y + 2.0f * b.x + 1.0f),
+                  0.125f * (b.z + 3.0f * b.y + 3.0f * b.x + 1.0f),
+                  0.0625f * (b.w + 4.0f * b.z + 6.0f * b.y + 4.0f * b.x + 1.0f));
+    mat4 forward = mat4(-2.07224649f, 13.7948857237f, 0.105877704f, 9.7924062118f,
+                        32.23703778f, -59.4683975703f, -1.9077466311f, -33.7652110555f,
+                        -68.571074599f, 82.0359750338f, 9.3496555107f, 47.9456096605f,
+                        39.3703274134f, -35.364903257f, -6.6543490743f, -23.9728048165f);
+    vec4 q = forward * z + vec4(0.035955884801f, 0.0f, 0.0f, 0.0f);
+    return floor(clamp(q, 0.0f, 1.0f) * 65535.0f + 0.5f) / 65535.0f;
+}
+
+SHARED vec4 msmLoad16(vec4 stored) {
+    mat4 inverse = mat4(2.2277441459e-01f, 1.5496792612e-01f, 1.4519889456e-01f, 1.6312744299e-01f,
+                        7.7197286078e-02f, 1.3946294265e-01f, 2.1202021568e-01f, 2.5914322664e-01f,
+                        7.9269866366e-01f, 7.9634158379e-01f, 7.2586944639e-01f, 6.5390924967e-01f,
+                        3.1941755461e-02f, -1.7228231730e-01f, -2.7580148115e-01f, -3.3761317341e-01f);
+    vec4 z = inverse * (stored - vec4(0.035955884801f, 0.0f, 0.0f, 0.0f));
+    return vec4(2.0f * z.x - 1.0f, 4.0f * z.y - 4.0f * z.x + 1.0f,
+                8.0f * z.z - 12.0f * z.y + 6.0f * z.x - 1.0f,
+                16.0f * z.w - 32.0f * z.z + 24.0f * z.y - 8.0f * z.x + 1.0f);
+}
+
 // Weight of tap k (-(n-1)/2 .. (n-1)/2) of the n-tap Gaussian blur, before normalising: sigma
 // = n / 6, so the taps reach three sigmas on either side.
 SHARED float gaussianTap(int k, int n) {

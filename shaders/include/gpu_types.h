@@ -117,7 +117,7 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     uvec4 evsmMode;      // x evsm.components (2 or 4), y evsm.size (taps)
     vec4 savsmParams;    // x savsm.size (texels, box width), y savsm.minVariance,
                          // z savsm.bleedReduction
-    vec4 msmParams;      // x msm.bias (moment bias), y msm.size (taps)
+    vec4 msmParams;      // x msm.bias (moment bias), y msm.size (taps), z msm.precision (16, 32)
     vec4 vssmParams;     // x vssm.maxRadius (texels), y vssm.minVariance, z vssm.bleedReduction
     vec4 msmSoftParams;  // x msm-soft.maxRadius (texels), y msm-soft.bias
     uvec4 softMode;      // x vssm.subdivision (sub-kernels per axis), y vssm.refine (1: on),

@@ -9,7 +9,11 @@
 #include "filter_math.h"
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 layout(set = 0, binding = POST_INPUT_BINDING) uniform sampler2D source;
+#ifdef FORMAT
 layout(set = 0, binding = POST_OUTPUT_BINDING, FORMAT) uniform writeonly image2D blurred;
+#else // the map's format follows a parameter (msm.precision): written without a format
+layout(set = 0, binding = POST_OUTPUT_BINDING) uniform writeonly image2D blurred;
+#endif
 
 vec4 momentsAt(ivec2 q, ShadowViewData view) {
 #if AXIS == 0
@@ -39,5 +43,8 @@ void main() {
         sum += w * momentsAt(clamp(p + k * axis, ivec2(0), size - 1), view);
         weights += w;
     }
-    imageStore(blurred, p, sum / weights);
+    vec4 result = sum / weights;
+    if (AXIS == 1 && MOMENTS == MOMENTS_MSM && frame.msmParams.z == 16.0)
+        result = msmStore16(result); // msm.precision=16: what a 16-bit unorm map holds
+    imageStore(blurred, p, result);
 }

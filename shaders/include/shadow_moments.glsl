@@ -52,6 +52,7 @@ vec4 shadowEvsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
 // x visibility, y z the filtered first two moments, w the receiver's depth in [-1, 1].
 vec4 shadowMsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view) {
     vec4 moments = momentsBilinear(map, r.uv, mapSize, r.layer, 4);
+    if (frame.msmParams.z == 16.0) moments = msmLoad16(moments);
     float d = 2.0 * momentDepth(view, r.depth) - 1.0;
     float v = clamp(1.0 - momentOcclusion(moments, d, frame.msmParams.x), 0.0, 1.0);
     return vec4(snapToExtremes(v), moments.x, moments.y, d);

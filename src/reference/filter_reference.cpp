@@ -226,16 +226,20 @@ glm::vec4 blurredMoments(const ShadowMapView& map, uint32_t kind, uint32_t taps,
 }
 
 // The blurred map at the probe, bilinear over the four texels around it (textureGather's order).
+// `stored`: what the blurred map holds of a texel's moments (msm.precision=16 quantises them).
 glm::vec4 momentsAt(const ShadowMapView& map, uint32_t kind, uint32_t taps, glm::vec2 exponents,
-                    const gpu::ShadowViewData& view, glm::vec2 uv) {
+                    const gpu::ShadowViewData& view, glm::vec2 uv,
+                    glm::vec4 (*stored)(glm::vec4) = nullptr) {
     const glm::vec2 p = uv * static_cast<float>(map.size) - 0.5f;
     const glm::vec2 base = glm::floor(p);
     const glm::vec2 frac = p - base;
     const auto b = glm::ivec2(base);
-    const glm::vec4 x = blurredMoments(map, kind, taps, exponents, view, b.x, b.y + 1);
-    const glm::vec4 y = blurredMoments(map, kind, taps, exponents, view, b.x + 1, b.y + 1);
-    const glm::vec4 z = blurredMoments(map, kind, taps, exponents, view, b.x + 1, b.y);
-    const glm::vec4 w = blurredMoments(map, kind, taps, exponents, view, b.x, b.y);
+    glm::vec4 x = blurredMoments(map, kind, taps, exponents, view, b.x, b.y + 1);
+    glm::vec4 y = blurredMoments(map, kind, taps, exponents, view, b.x + 1, b.y + 1);
+    glm::vec4 z = blurredMoments(map, kind, taps, exponents, view, b.x + 1, b.y);
+    glm::vec4 w = blurredMoments(map, kind, taps, exponents, view, b.x, b.y);
+    if (stored)
+        x = stored(x), y = stored(y), z = stored(z), w = stored(w);
     glm::vec4 m;
     for (int c = 0; c < 4; ++c)
         m[c] = gpu::bilinearMix({x[c], y[c], z[c], w[c]}, frac);
@@ -272,10 +276,18 @@ glm::vec4 evsm(const ShadowMapView& map, const FilterProbe& probe, const gpu::Fr
             t};
 }
 
+glm::vec4 storedIn16Bits(glm::vec4 moments) {
+    return gpu::msmStore16(moments);
+}
+
 glm::vec4 msm(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
               const gpu::ShadowViewData& view) {
-    const glm::vec4 moments = momentsAt(map, MOMENTS_MSM, static_cast<uint32_t>(f.msmParams.y),
-                                        glm::vec2(0.0f), view, probe.uv);
+    const bool sixteen = f.msmParams.z == 16.0f;
+    glm::vec4 moments =
+        momentsAt(map, MOMENTS_MSM, static_cast<uint32_t>(f.msmParams.y), glm::vec2(0.0f), view,
+                  probe.uv, sixteen ? &storedIn16Bits : nullptr);
+    if (sixteen)
+        moments = gpu::msmLoad16(moments);
     const float d = 2.0f * gpu::momentDepth(view, probe.depth) - 1.0f;
     const float v = std::clamp(1.0f - gpu::momentOcclusion(moments, d, f.msmParams.x), 0.0f, 1.0f);
     return {gpu::snapToExtremes(v), moments.x, moments.y, d};

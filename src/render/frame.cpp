@@ -320,6 +320,8 @@ VkFormat formatOf(shadows::MapFormat format) {
         return VK_FORMAT_R32G32_UINT;
     case shadows::MapFormat::RGBA32UI:
         return VK_FORMAT_R32G32B32A32_UINT;
+    case shadows::MapFormat::RGBA16:
+        return VK_FORMAT_R16G16B16A16_UNORM;
     case shadows::MapFormat::RGBA32F:
         break;
     }
@@ -336,8 +338,9 @@ vk::Image makeIntegerPlaceholder(const vk::Context& ctx) {
 }
 
 FilteredBindings filteredBindings(const FrameTargets& t, const shadows::TechniqueModule& module) {
-    const VkImageView map = t.named(module, module.visibilityMap).image.view.get();
-    if (shadows::holdsIntegers(shadows::visibilityMapFormat(module)))
+    const vk::Image& filtered = t.named(module, module.visibilityMap).image;
+    const VkImageView map = filtered.view.get();
+    if (filtered.format == VK_FORMAT_R32G32_UINT || filtered.format == VK_FORMAT_R32G32B32A32_UINT)
         return {.floats = t.shadowDepth.image.view.get(), .integers = map};
     return {.floats = map, .integers = t.integerPlaceholder.view.get()};
 }

@@ -55,9 +55,9 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
                                      shadowLights, shadows.views, layers));
     // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
     const double pixels = double(o.width) * double(o.height);
-    const double shadowBytes =
-        double(shadows::shadowMapBytes(shadows::moduleOf(o.technique), o.shadowMapSize)) *
-        double(shadows.views);
+    const double shadowBytes = double(shadows::shadowMapBytes(shadows::moduleOf(o.technique),
+                                                              o.shadowMapSize, o.parameters)) *
+                               double(shadows.views);
     const double need =
         pixels * (16 + 36 + 2 * 4.0 * double(std::max<size_t>(shadowLights, 1)) + 36) + shadowBytes;
     const double have = static_cast<double>(ctx.deviceLocalHeapBytes());

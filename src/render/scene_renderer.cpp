@@ -106,6 +106,7 @@ struct TargetKey {
     uint32_t width, height, shadowMapSize;
     uint32_t shadowViews, shadowLights;        // map layers, visibility layers
     const shadows::TechniqueModule* technique; // its maps
+    std::vector<shadows::MapFormat> formats;   // of its maps, for these parameters
     bool operator==(const TargetKey&) const = default;
 };
 
@@ -164,9 +165,9 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
     constexpr VkImageUsageFlags depthTarget = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled;
     const uint32_t n = k.shadowMapSize, views = k.shadowViews;
     t.shadowDepth = render::makeViewMaps(c, render::kDepthFormat, n, views, depthTarget);
-    for (const shadows::MapDecl& map : k.technique->maps)
-        t.maps.push_back(render::makeViewMaps(c, render::formatOf(map.format), n, views,
-                                              map.format == shadows::MapFormat::Depth32
+    for (const shadows::MapFormat format : k.formats)
+        t.maps.push_back(render::makeViewMaps(c, render::formatOf(format), n, views,
+                                              format == shadows::MapFormat::Depth32
                                                   ? depthTarget
                                                   : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
     t.integerPlaceholder = render::makeIntegerPlaceholder(c);
@@ -303,12 +304,15 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     // fitLightViews and shadowViewCount must agree: the buffers were sized by the latter.
     if (viewRecords.size() > m.viewCapacity)
         fatal(__FILE__, __LINE__, "SceneRenderer: more shadow views than shadowViewCount counted");
-    const TargetKey key{.width = o.width,
-                        .height = o.height,
-                        .shadowMapSize = o.shadowMapSize,
-                        .shadowViews = static_cast<uint32_t>(views.size()),
-                        .shadowLights = static_cast<uint32_t>(shadowLights.size()),
-                        .technique = &shadows::moduleOf(o.technique)};
+    const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
+    TargetKey key{.width = o.width,
+                  .height = o.height,
+                  .shadowMapSize = o.shadowMapSize,
+                  .shadowViews = static_cast<uint32_t>(views.size()),
+                  .shadowLights = static_cast<uint32_t>(shadowLights.size()),
+                  .technique = &module};
+    for (const shadows::MapDecl& map : module.maps)
+        key.formats.push_back(shadows::formatOf(map, o.parameters));
     if (m.key != key) {
         if (progress)
             progress("creating targets");

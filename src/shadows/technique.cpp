@@ -29,6 +29,7 @@ uint32_t bytesPerTexel(MapFormat format) {
         return 4;
     case MapFormat::RG32F:
     case MapFormat::RG32UI:
+    case MapFormat::RGBA16:
         return 8;
     case MapFormat::RGBA32F:
     case MapFormat::RGBA32UI:
@@ -62,7 +63,8 @@ ParameterInfo GaussianBlur::sizeParameter() const {
 }
 
 std::vector<MapDecl> GaussianBlur::maps() const {
-    return {{.name = "rows", .format = format}, {.name = output, .format = format}};
+    return {{.name = "rows", .format = format},
+            {.name = output, .format = format, .formatFor = outputFormatFor}};
 }
 
 std::vector<PostPassDecl> GaussianBlur::passes() const {
@@ -142,17 +144,15 @@ const TechniqueModule& moduleOf(Technique technique) {
     fatal(__FILE__, __LINE__, "moduleOf: unregistered technique");
 }
 
-MapFormat visibilityMapFormat(const TechniqueModule& module) {
-    for (const MapDecl& map : module.maps)
-        if (map.name == module.visibilityMap)
-            return map.format;
-    return MapFormat::Depth32;
+MapFormat formatOf(const MapDecl& map, const ParameterValues& params) {
+    return map.formatFor ? map.formatFor(params) : map.format;
 }
 
-uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size) {
+uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
+                        const ParameterValues& params) {
     uint64_t perTexel = bytesPerTexel(MapFormat::Depth32);
     for (const MapDecl& map : module.maps)
-        perTexel += bytesPerTexel(map.format);
+        perTexel += bytesPerTexel(formatOf(map, params));
     return perTexel * size * size;
 }
 

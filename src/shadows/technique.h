@@ -15,7 +15,7 @@
 
 namespace penumbra::shadows {
 
-enum class MapFormat { Depth32, R32F, RG32F, RGBA32F, RG32UI, RGBA32UI };
+enum class MapFormat { Depth32, R32F, RG32F, RGBA32F, RG32UI, RGBA32UI, RGBA16 }; // 16: unorm
 uint32_t bytesPerTexel(MapFormat format);
 // Integer maps are read through usamplers: the visibility pass binds its filtered map at
 // VIS_SHADOW_TABLE instead of VIS_SHADOW_MAP when it is one.
@@ -29,7 +29,10 @@ inline constexpr std::string_view kDepthMap = "depth";
 struct MapDecl {
     std::string_view name;
     MapFormat format;
+    // When set, the format follows the parameters (msm.precision); `format` is then the default.
+    MapFormat (*formatFor)(const ParameterValues&) = nullptr;
 };
+MapFormat formatOf(const MapDecl& map, const ParameterValues& params);
 
 // Another depth pass over the casters, into `target` (a Depth32 map), whose fragment shader
 // reads the map `reads` at the fragment's texel (a depth peel, say).
@@ -84,6 +87,7 @@ struct TechniqueModule {
 struct GaussianBlur {
     std::string_view sizeKey, rowsShader, columnsShader, output;
     MapFormat format;
+    MapFormat (*outputFormatFor)(const ParameterValues&) = nullptr; // MapDecl::formatFor
     ParameterInfo sizeParameter() const;
     std::vector<MapDecl> maps() const;
     std::vector<PostPassDecl> passes() const;
@@ -126,11 +130,9 @@ float fixedPointScale(double widestBox);
 std::span<const TechniqueModule* const> allModules();
 const TechniqueModule& moduleOf(Technique technique);
 
-// The format of the map the visibility pass filters.
-MapFormat visibilityMapFormat(const TechniqueModule& module);
-
 // Device memory the technique's maps take per shadow view of size x size texels.
-uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size);
+uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
+                        const ParameterValues& params);
 // The guard band of a point light's cube faces and a sun's cascades (src/core/light_space.h,
 // ViewFitting): the technique's widest footprint, the bilinear tap's reach and the normal offset,
 // in texels, so a kernel near a view's edge reads the geometry across it from the same map.

@@ -206,6 +206,10 @@ DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index) const {
         info.unsuitableReason = "dynamic rendering, synchronization2 or maintenance4 is missing";
     else if (!features.features.depthClamp)
         info.unsuitableReason = "depthClamp is not supported";
+    else if (!features.features.shaderStorageImageExtendedFormats ||
+             !features.features.shaderStorageImageWriteWithoutFormat)
+        info.unsuitableReason =
+            "shaderStorageImageExtendedFormats or shaderStorageImageWriteWithoutFormat is missing";
     else if (!hasDeviceExtension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
         info.unsuitableReason = "VK_KHR_push_descriptor is not supported";
     else if (findQueueFamily(device) == UINT32_MAX)
@@ -270,7 +274,11 @@ Context::Context(const DeviceOptions& options) : mInstance(options.validation) {
         .features = {.imageCubeArray = mInfo.imageCubeArray ? VK_TRUE : VK_FALSE,
                      .depthClamp = VK_TRUE,
                      .depthBiasClamp = VK_TRUE,
-                     .samplerAnisotropy = mInfo.maxSamplerAnisotropy > 0 ? VK_TRUE : VK_FALSE}};
+                     .samplerAnisotropy = mInfo.maxSamplerAnisotropy > 0 ? VK_TRUE : VK_FALSE,
+                     // rg32f / rg32ui post-pass outputs; a map whose format follows a parameter
+                     // (msm.precision) is written without a format qualifier
+                     .shaderStorageImageExtendedFormats = VK_TRUE,
+                     .shaderStorageImageWriteWithoutFormat = VK_TRUE}};
     const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     const VkDeviceCreateInfo info{.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
                                   .pNext = &features,
