@@ -210,8 +210,8 @@ TEST_F(QualityTest, SummedAreaSoftShadowsFollowTheLightsSize) {
             EXPECT_LT(m.leak, 0.01) << light.name << ", " << name;
         }
         // The bound for the rest of the family: lower than hard, acne under 0.1%.
-        for (Technique technique : {Technique::Vsm, Technique::Esm, Technique::Evsm,
-                                    Technique::Savsm, Technique::Msm}) {
+        for (Technique technique :
+             {Technique::Vsm, Technique::Esm, Technique::Evsm, Technique::Savsm, Technique::Msm}) {
             const RenderResult r = renderRow(t, technique, {});
             const double rmse = softRegionRmse(t, r);
             const ErrorMetrics m = errorOf(t, r);

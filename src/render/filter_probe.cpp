@@ -51,11 +51,11 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     const bool derived = module.depthPasses.empty() && !module.postPasses.empty();
     render::FrameTargets t{.views = std::vector<render::ShadowView>(1)};
     t.shadowDepth =
-        render::makeViewMaps(ctx, render::kDepthFormat, size, 1,
+        render::makeViewMaps(ctx, shadows::MapFormat::Depth32, size, 1,
                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
     for (const shadows::MapDecl& decl : derived ? module.maps : std::vector<shadows::MapDecl>{})
         t.maps.push_back(
-            render::makeViewMaps(ctx, render::formatOf(shadows::formatOf(decl, params)), size, 1,
+            render::makeViewMaps(ctx, shadows::formatOf(decl, params), size, 1,
                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT));
     t.integerPlaceholder = render::makeIntegerPlaceholder(ctx);
     const vk::Image& map = t.shadowDepth.image;

@@ -279,15 +279,16 @@ void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
 
 } // namespace
 
-ViewMaps makeViewMaps(const vk::Context& ctx, VkFormat format, uint32_t size, uint32_t views,
-                      VkImageUsageFlags usage) {
+ViewMaps makeViewMaps(const vk::Context& ctx, shadows::MapFormat format, uint32_t size,
+                      uint32_t views, VkImageUsageFlags usage) {
     ViewMaps maps{.image = vk::createImage(ctx, {.name = "--shadow-map-size",
-                                                 .format = format,
+                                                 .format = formatOf(format),
                                                  .width = size,
                                                  .height = size,
                                                  .layers = std::max(views, 1u),
                                                  .usage = usage,
-                                                 .arrayView = true})};
+                                                 .arrayView = true}),
+                  .format = format};
     for (uint32_t layer = 0; layer < maps.image.layers; ++layer)
         maps.layers.push_back(vk::createLayerView(ctx, maps.image, layer));
     return maps;
@@ -338,9 +339,9 @@ vk::Image makeIntegerPlaceholder(const vk::Context& ctx) {
 }
 
 FilteredBindings filteredBindings(const FrameTargets& t, const shadows::TechniqueModule& module) {
-    const vk::Image& filtered = t.named(module, module.visibilityMap).image;
-    const VkImageView map = filtered.view.get();
-    if (filtered.format == VK_FORMAT_R32G32_UINT || filtered.format == VK_FORMAT_R32G32B32A32_UINT)
+    const ViewMaps& filtered = t.named(module, module.visibilityMap);
+    const VkImageView map = filtered.image.view.get();
+    if (shadows::holdsIntegers(filtered.format))
         return {.floats = t.shadowDepth.image.view.get(), .integers = map};
     return {.floats = map, .integers = t.integerPlaceholder.view.get()};
 }

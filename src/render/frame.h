@@ -49,6 +49,7 @@ struct ShadowView {
 struct ViewMaps {
     vk::Image image;
     std::vector<vk::ImageViewHandle> layers;
+    shadows::MapFormat format = shadows::MapFormat::Depth32;
 };
 
 struct FrameTargets {
@@ -93,8 +94,8 @@ struct FilteredBindings {
 FilteredBindings filteredBindings(const FrameTargets& t, const shadows::TechniqueModule& module);
 
 // An array image, one layer per shadow view, and a 2D view of each layer.
-ViewMaps makeViewMaps(const vk::Context& ctx, VkFormat format, uint32_t size, uint32_t views,
-                      VkImageUsageFlags usage);
+ViewMaps makeViewMaps(const vk::Context& ctx, shadows::MapFormat format, uint32_t size,
+                      uint32_t views, VkImageUsageFlags usage);
 
 // The technique's post passes over every view of `targets` (their inputs already filled, in
 // kComputeSampled): what recordFrame runs after the shadow passes, for Renderer::probeTechnique.

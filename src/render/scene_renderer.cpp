@@ -164,9 +164,9 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
         VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     constexpr VkImageUsageFlags depthTarget = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled;
     const uint32_t n = k.shadowMapSize, views = k.shadowViews;
-    t.shadowDepth = render::makeViewMaps(c, render::kDepthFormat, n, views, depthTarget);
+    t.shadowDepth = render::makeViewMaps(c, shadows::MapFormat::Depth32, n, views, depthTarget);
     for (const shadows::MapFormat format : k.formats)
-        t.maps.push_back(render::makeViewMaps(c, render::formatOf(format), n, views,
+        t.maps.push_back(render::makeViewMaps(c, format, n, views,
                                               format == shadows::MapFormat::Depth32
                                                   ? depthTarget
                                                   : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
