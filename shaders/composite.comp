@@ -47,7 +47,7 @@ void main() {
     vec3 color = frame.background.rgb;
     if (!isBackground(depth)) {
         vec3 world = worldPosition(frame.invViewProj, p, size, depth);
-        vec3 normal = normalize(texelFetch(gNormal, p, 0).xyz);
+        vec3 normal = shadingNormal(texelFetch(gNormal, p, 0));
         vec3 albedo = texelFetch(gAlbedo, p, 0).rgb;
         vec3 light = vec3(frame.composite.x);
         for (uint i = 0u; i < frame.imageSize.z; ++i) {

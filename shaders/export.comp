@@ -20,7 +20,7 @@ void main() {
     vec4 position = vec4(nanValue()), normal = vec4(nanValue());
     if (!isBackground(depth)) {
         position = vec4(worldPosition(frame.invViewProj, p, size, depth), 1.0);
-        normal = vec4(normalize(texelFetch(gNormal, p, 0).xyz), 0.0);
+        normal = vec4(shadingNormal(texelFetch(gNormal, p, 0)), 0.0);
     }
     imageStore(outPosition, p, position);
     imageStore(outNormal, p, normal);

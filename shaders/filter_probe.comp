@@ -27,6 +27,8 @@ void main() {
     r.uv = probe.uvDepth.xy;
     r.depth = probe.uvDepth.z;
     r.gradient = probe.gradientPixel.xy;
+    r.uvDx = probe.footprint.xy;
+    r.uvDy = probe.footprint.zw;
     r.layer = 0.0;
     r.kernelScale = 1.0;
     results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, shadowTable, r,

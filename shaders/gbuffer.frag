@@ -1,6 +1,7 @@
 #version 460
 #include "gpu_types.h"
 #include "alpha_test.glsl"
+#include "filter_math.h"
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inWorld;
@@ -17,13 +18,17 @@ layout(location = 1) out vec4 outAlbedo;
 void main() {
     if (coverageHole(material, baseColorTexture, inUv, inColor.a)) discard;
     vec3 n = normalize(inNormal);
+    // The triangle's own plane, turned to face us: what hides part of a light's disc from the
+    // pixel (bias.horizon), where the smooth normal may already point at the light.
+    vec3 face = cross(dFdx(inWorld), dFdy(inWorld));
+    float faceLength = length(face);
+    face = faceLength > 0.0 ? face / faceLength : n;
+    if (dot(face, frame.position.xyz - inWorld) < 0.0) face = -face;
     // Open surfaces are seen from both sides: when we look at a triangle's back, its normal is
-    // flipped to face us. The side is the geometric one (from derivatives), so smooth normals
-    // near a silhouette, which may point slightly away, are left alone.
-    vec3 faceNormal = cross(dFdx(inWorld), dFdy(inWorld));
-    vec3 toCamera = frame.position.xyz - inWorld;
-    if (dot(faceNormal, toCamera) * dot(faceNormal, n) < 0.0) n = -n;
-    outNormal = vec4(n, 1.0);
+    // flipped to face us. The side is the geometric one, so smooth normals near a silhouette,
+    // which may point slightly away, are left alone.
+    if (dot(face, n) < 0.0) n = -n;
+    outNormal = vec4(octahedralEncode(n), octahedralEncode(face));
     // The sRGB image view decodes the texture to linear; mipmapped for the camera's view.
     vec4 albedo = material.baseColor * inColor;
     if (material.hasTexture != 0u) albedo *= texture(baseColorTexture, inUv);

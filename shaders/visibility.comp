@@ -42,6 +42,30 @@ vec3 neighbourOffset(mat4 S, ivec2 p, ivec2 step, vec3 centre, float depth) {
     return best;
 }
 
+// The pixel's footprint on its receiver, in world space: where the rays through the next pixel
+// along x and along y meet the plane of the pixel's triangle, less the pixel's own position.
+// Zero unless the technique reads a mip chain (vsm.filter=mip).
+vec3 footprintDx = vec3(0.0), footprintDy = vec3(0.0);
+
+// The ray through pixel q (from its point on the near plane, reverse-Z depth 1, through its
+// point at `depth`) meeting the plane through `world` with normal `face`; the point at `depth`
+// when the plane is seen edge-on.
+vec3 onReceiverPlane(ivec2 q, float depth, vec3 world, vec3 face) {
+    uvec2 size = frame.imageSize.xy;
+    vec3 near = worldPosition(frame.invViewProj, q, size, 1.0);
+    vec3 along = worldPosition(frame.invViewProj, q, size, depth) - near;
+    float facing = dot(along, face);
+    if (abs(facing) <= 1e-6 * length(along)) return near + along;
+    return near + along * (dot(world - near, face) / facing);
+}
+
+// The change of a view's uv from `world` to world + step.
+vec2 uvStep(ShadowViewData view, vec3 world, vec3 step) {
+    vec4 a = view.shadowMatrix * vec4(world, 1.0);
+    vec4 b = view.shadowMatrix * vec4(world + step, 1.0);
+    return b.xy / b.w - a.xy / a.w;
+}
+
 Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world, vec3 normal,
                       float depth, out bool inside) {
     ShadowCoord c = projectToShadowMap(view, offsetReceiver(light, view, world, normal));
@@ -52,6 +76,12 @@ Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world,
     r.gradient = vec2(0.0);
     r.layer = view.texel.z;
     r.kernelScale = view.cascade.z;
+    r.uvDx = vec2(0.0);
+    r.uvDy = vec2(0.0);
+    if (TECHNIQUE == TECHNIQUE_VSM) {
+        r.uvDx = uvStep(view, world, footprintDx);
+        r.uvDy = uvStep(view, world, footprintDy);
+    }
     if (RECEIVER == RECEIVER_LIGHT) {
         r.gradient = receiverGradientFromNormal(view.shadowMatrix, world, normal);
     } else if (RECEIVER == RECEIVER_SCREEN) {
@@ -137,7 +167,13 @@ void main() {
     float v = nanValue();
     if (!isBackground(depth)) {
         vec3 world = worldPosition(frame.invViewProj, p, size, depth);
-        vec3 normal = normalize(texelFetch(gNormal, p, 0).xyz);
+        vec4 normals = texelFetch(gNormal, p, 0);
+        vec3 normal = shadingNormal(normals);
+        if (TECHNIQUE == TECHNIQUE_VSM && frame.vsmParams.w > 0.0) {
+            vec3 face = faceNormal(normals);
+            footprintDx = onReceiverPlane(p + ivec2(1, 0), depth, world, face) - world;
+            footprintDy = onReceiverPlane(p + ivec2(0, 1), depth, world, face) - world;
+        }
         LightData light = lights[push.light.x];
         uint viewIndex = shadowViewOf(light, world);
         uint cascades = light.positionType.w == float(LIGHT_DIRECTIONAL) ? light.views.y : 1u;
@@ -155,7 +191,7 @@ void main() {
             v = visibilityThrough(viewIndex, light, p, world, normal, depth);
         }
         if (HORIZON != 0u)
-            v *= horizonVisibility(dot(normal, directionToLight(light, world)),
+            v *= horizonVisibility(dot(faceNormal(normals), directionToLight(light, world)),
                                    lightSine(light, views[viewIndex], world));
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));

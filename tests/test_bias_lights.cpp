@@ -78,11 +78,11 @@ TEST_F(BiasTest, EachBiasAloneUnderTheSpot) {
     expectRows({.scene = "builtin:spot", .radius = 0.0f, .width = 640, .height = 360, .samples = 1},
                // Counted: the pixels inside the cone (the metrics' light mask), not the
                // frustum's square around it.
-               {{"none", kNoBias, 0.506077, 0},
-                {"constant 0.00005", alone("bias.constant", "0.00005"), 0.000755, 0},
-                {"slope 0.5", alone("bias.slope", "0.5"), 0.006022, 0},
-                {"normal 2", alone("bias.normal", "2"), 0.017071, 0},
-                {"receiver light", alone("bias.receiver", "light"), 0.419708, 0},
-                {"receiver screen", alone("bias.receiver", "screen"), 0.421310, 0},
+               {{"none", kNoBias, 0.506087, 0},
+                {"constant 0.00005", alone("bias.constant", "0.00005"), 0.000525, 0},
+                {"slope 0.5", alone("bias.slope", "0.5"), 0.005944, 0},
+                {"normal 2", alone("bias.normal", "2"), 0.017085, 0},
+                {"receiver light", alone("bias.receiver", "light"), 0.418202, 0},
+                {"receiver screen", alone("bias.receiver", "screen"), 0.421501, 0},
                 {"defaults", {}, 0, 0}});
 }

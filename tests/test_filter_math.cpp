@@ -6,6 +6,7 @@
 #include "core/projection.h"
 #include "filter_math.h"
 
+#include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -259,6 +260,83 @@ TEST(FilterMath, HorizonVisibilityIsTheDiscAboveTheTangentPlane) {
     EXPECT_NEAR(gpu::horizonVisibility(std::sin(0.05f), s), expected, 1e-4);
     EXPECT_NEAR(gpu::horizonVisibility(-std::sin(0.05f), s), 1.0 - expected, 1e-4);
     EXPECT_EQ(gpu::horizonVisibility(0.01f, 0.0f), 1.0f); // a point light: no change
+}
+
+// The G-buffer's normals: every octant, the poles, the equator and the unfolded seams come back
+// as they went in, so a sign slip in either direction's fold shows.
+TEST(FilterMath, OctahedralNormalsRoundTrip) {
+    for (int i = -4; i <= 4; ++i)
+        for (int j = -4; j <= 4; ++j)
+            for (int k = -4; k <= 4; ++k) {
+                if (i == 0 && j == 0 && k == 0)
+                    continue;
+                const glm::vec3 n = glm::normalize(glm::vec3(i, j, k));
+                const glm::vec2 e = gpu::octahedralEncode(n);
+                // The upper half inside the diamond |x| + |y| <= 1, the lower half outside it,
+                // both within the unit square.
+                EXPECT_LE(std::max(std::abs(e.x), std::abs(e.y)), 1.0f + 1e-6f);
+                if (k > 0) {
+                    EXPECT_LE(std::abs(e.x) + std::abs(e.y), 1.0f + 1e-6f);
+                } else if (k < 0) {
+                    EXPECT_GE(std::abs(e.x) + std::abs(e.y), 1.0f - 1e-6f);
+                }
+                const glm::vec3 back = gpu::octahedralDecode(e);
+                EXPECT_NEAR(back.x, n.x, 1e-6f) << i << ", " << j << ", " << k;
+                EXPECT_NEAR(back.y, n.y, 1e-6f) << i << ", " << j << ", " << k;
+                EXPECT_NEAR(back.z, n.z, 1e-6f) << i << ", " << j << ", " << k;
+            }
+    // Stored as half floats: the direction stays within 1e-3 radians.
+    const glm::vec3 n = glm::normalize(glm::vec3(0.3f, -0.8f, -0.52f));
+    const glm::vec2 half = glm::unpackHalf2x16(glm::packHalf2x16(gpu::octahedralEncode(n)));
+    EXPECT_GT(glm::dot(gpu::octahedralDecode(half), n), std::cos(1e-3f));
+}
+
+// vsm.filter=mip's footprint: a square footprint of 4 texels is level 2 with one tap; one 8 texels
+// long and 2 wide spreads 4 taps of 2 texels (level 1) along its long axis, or, with fewer taps
+// allowed, wider ones; a magnified footprint stays on level 0 with one tap, a huge one on the
+// last level.
+TEST(FilterMath, MipFootprintPicksTheLevelAndTapsOfThePixelsFootprint) {
+    const float size = 256.0f, maxLevel = 8.0f;
+    const float texel = 1.0f / size;
+    glm::vec4 f = gpu::mipFootprint({4 * texel, 0}, {0, 4 * texel}, size, 16, maxLevel);
+    EXPECT_NEAR(f.x, 2.0f, 1e-5f);
+    EXPECT_EQ(f.y, 1.0f);
+    f = gpu::mipFootprint({0, 2 * texel}, {8 * texel, 0}, size, 16, maxLevel);
+    EXPECT_NEAR(f.x, 1.0f, 1e-5f);
+    EXPECT_EQ(f.y, 4.0f);
+    EXPECT_NEAR(f.z, 8 * texel, 1e-9f); // the axis: the longer of the two
+    EXPECT_NEAR(f.w, 0.0f, 1e-9f);
+    f = gpu::mipFootprint({0, 2 * texel}, {8 * texel, 0}, size, 2, maxLevel);
+    EXPECT_NEAR(f.x, 2.0f, 1e-5f);
+    EXPECT_EQ(f.y, 2.0f);
+    // Rotated 45 degrees: lengths, not components, decide.
+    const float d = 8 * texel / std::sqrt(2.0f), e = 2 * texel / std::sqrt(2.0f);
+    f = gpu::mipFootprint({d, d}, {-e, e}, size, 16, maxLevel);
+    EXPECT_NEAR(f.x, 1.0f, 1e-5f);
+    EXPECT_EQ(f.y, 4.0f);
+    EXPECT_NEAR(f.z, d, 1e-9f);
+    // Half-way between levels blends them.
+    f = gpu::mipFootprint({3 * texel, 0}, {0, 3 * texel}, size, 16, maxLevel);
+    EXPECT_NEAR(f.x, std::log2(3.0f), 1e-5f);
+    f = gpu::mipFootprint({0.3f * texel, 0}, {0, 0.1f * texel}, size, 16, maxLevel);
+    EXPECT_EQ(f.x, 0.0f);
+    EXPECT_EQ(f.y, 1.0f); // magnified: one bilinear tap, however thin
+    f = gpu::mipFootprint({1.5f * texel, 0}, {0, 0.5f * texel}, size, 16, maxLevel);
+    EXPECT_EQ(f.x, 0.0f);
+    EXPECT_EQ(f.y, 3.0f);
+    f = gpu::mipFootprint({4.0f, 0}, {0, 4.0f}, size, 16, maxLevel);
+    EXPECT_EQ(f.x, maxLevel);
+    f = gpu::mipFootprint({0, 0}, {0, 0}, size, 16, maxLevel); // no footprint: level 0, one tap
+    EXPECT_EQ(f.x, 0.0f);
+    EXPECT_EQ(f.y, 1.0f);
+    EXPECT_EQ(gpu::mipLevelCount(1u), 1u);
+    EXPECT_EQ(gpu::mipLevelCount(256u), 9u);
+    EXPECT_EQ(gpu::mipLevelCount(300u), 9u);
+    EXPECT_EQ(gpu::mipLevelCount(511u), 9u);
+    EXPECT_EQ(gpu::mipLevelCount(512u), 10u);
+    EXPECT_EQ(gpu::mipTapOffset(0, 1), 0.0f);
+    EXPECT_EQ(gpu::mipTapOffset(0, 4), -0.375f);
+    EXPECT_EQ(gpu::mipTapOffset(3, 4), 0.375f);
 }
 
 // The fixed-point tables: quantising and its inverse, and a backwards box read signed.

@@ -258,6 +258,18 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     sixteen.assign("msm.precision=16");
     EXPECT_EQ(shadows::shadowMapBytes(shadows::msmModule(), 16, defaults), (4u + 32u) * 16 * 16);
     EXPECT_EQ(shadows::shadowMapBytes(shadows::msmModule(), 16, sixteen), (4u + 24u) * 16 * 16);
+    // vsm.filter=mip: the blurred moments' map gains its chain (16, 8, 4, 2, 1: 341 texels of
+    // 8 bytes), the row pass's map stays one level; the chain's reads are vsm.anisotropy taps.
+    ParameterValues mip;
+    mip.assign("vsm.filter=mip");
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::vsmModule(), 16, defaults), (4u + 16u) * 16 * 16);
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::vsmModule(), 16, mip),
+              (4u + 8u) * 16 * 16 + 8u * 341);
+    gpu::FrameData frame{};
+    shadows::vsmModule().pack(mip, frame);
+    EXPECT_EQ(frame.vsmParams.w, 8.0f);
+    shadows::vsmModule().pack(defaults, frame);
+    EXPECT_EQ(frame.vsmParams.w, 0.0f);
     for (double widest : {1.0, 7.0, 40.0, 128.0, 512.0}) {
         const double scale = shadows::fixedPointScale(widest);
         const double hull = std::ceil(widest) + 2.0;

@@ -76,6 +76,11 @@ TEST_F(FilterTest, SummedAreaSoftMembersMatchTheirCpuReference) {
                     ParameterValues params;
                     params.set(family + ".subdivision", subdivision);
                     params.set(family + ".refine", refine);
+                    // Parity, not the default: at vssm.minVariance 1e-7 a variance is a few
+                    // ulps of its second moment, and a bound there follows either side's
+                    // rounding (one probe in a hundred moved by 0.02).
+                    if (technique == Technique::Vssm)
+                        params.set("vssm.minVariance", "0.00001");
                     const std::string what =
                         fmt::format("{} {} subdivision {} refine {}", family,
                                     light.perspective ? "spot" : "sun", subdivision, refine);
@@ -150,9 +155,10 @@ TEST_F(FilterTest, SummedAreaSoftMembersFindTheBlockersOfAStep) {
 // below hard everywhere, acne < 0.1% and leak < 1%, for spot lights from radius 0.1 to 1.5, a
 // 6-degree sun (through its cascades) and a point light's cube; and the blurred members below
 // hard without acne on the same pixels.
-// Measured (192^2, map 2048, 64 rays a pixel), vssm / msm-soft against box7: 0.0274 / 0.0275
-// vs 0.0422 (spot 0.1), 0.0267 / 0.0285 vs 0.0978 (0.5), 0.0459 / 0.0450 vs 0.1528 (1.5),
-// 0.0259 / 0.0269 vs 0.0665 (sun), 0.0397 / 0.0394 vs 0.1331 (point); no acne, no leak.
+// Measured (192^2, map 2048, 64 rays a pixel), vssm / msm-soft against box7: 0.0072 / 0.0075
+// vs 0.0539 (spot 0.1), 0.0200 / 0.0223 vs 0.1005 (0.5), 0.0448 / 0.0439 vs 0.1543 (1.5),
+// 0.0112 / 0.0134 vs 0.0723 (sun), 0.0376 / 0.0373 vs 0.1354 (point); no acne, no leak. The
+// test holds them under 0.4x box7, tighter than the 0.6x.
 TEST_F(QualityTest, SummedAreaSoftShadowsFollowTheLightsSize) {
     const glm::vec3 spotAt{1.0f, 6.0f, 1.5f};
     auto spot = [&](float radius) {
@@ -195,15 +201,11 @@ TEST_F(QualityTest, SummedAreaSoftShadowsFollowTheLightsSize) {
                         "on the ground %.4f, %.2fx box7); acne %.3f%%, leak %.3f%%\n",
                         light.name.c_str(), hard, box7, name.c_str(), rmse, rmse / box7, ground,
                         ground / box7Ground, 100 * m.acne, 100 * m.leak);
-            // On the sphere's terminator a few pixels are shadowed in the truth and lit in
-            // every shadow map's view (the tessellated sphere's facets against its smooth
-            // normals): under a small light they are most of what box7 and the soft members
-            // get wrong (measured: 12 pixels, 99% of the squared error, at radius 0.1). There
-            // the bound holds for the shadow on the ground.
-            EXPECT_LT(ground, 0.6 * box7Ground) << light.name << ", " << name;
-            EXPECT_LT(rmse,
-                      light.radius < 0.2f && light.type == LightType::Spot ? box7 : 0.6 * box7)
-                << light.name << ", " << name;
+            // The sphere's terminator follows its facets in the truth; bias.horizon clips the
+            // light by the triangle's plane (gbuffer.frag), box7 does not. The ground alone is
+            // a second bound, without the terminator.
+            EXPECT_LT(ground, 0.4 * box7Ground) << light.name << ", " << name;
+            EXPECT_LT(rmse, 0.4 * box7) << light.name << ", " << name;
             EXPECT_LT(rmse, 0.07) << light.name << ", " << name;
             EXPECT_LT(rmse, hard) << light.name << ", " << name;
             EXPECT_LT(m.acne, 0.001) << light.name << ", " << name;

@@ -78,12 +78,14 @@ struct RenderResult {
 using ProgressFn = std::function<void(const std::string& stage)>;
 
 // A receiver for Renderer::probeTechnique: where it reads the shadow map, its light depth, its
-// receiver-plane gradient (d depth / d uv; zero for none) and its pixel (rotations use it).
+// receiver-plane gradient (d depth / d uv; zero for none), its pixel (rotations use it) and its
+// pixel's footprint in the map (the uv's change across one pixel along x and y; vsm.filter=mip).
 struct FilterProbe {
     glm::vec2 uv{0.0f};
     float depth = 0.0f;
     glm::vec2 gradient{0.0f};
     glm::uvec2 pixel{0u};
+    glm::vec2 uvDx{0.0f}, uvDy{0.0f};
 };
 
 // The light behind a probed shadow map, for techniques that need its geometry (PCSS).

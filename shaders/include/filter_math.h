@@ -23,6 +23,7 @@ using glm::vec2;
 using glm::vec3;
 using glm::abs;
 using glm::asin;
+using glm::ceil;
 using glm::clamp;
 using glm::cos;
 using glm::cross;
@@ -30,6 +31,8 @@ using glm::dot;
 using glm::exp;
 using glm::floor;
 using glm::fract;
+using glm::length;
+using glm::log2;
 using glm::max;
 using glm::min;
 using glm::mix;
@@ -154,6 +157,34 @@ SHARED float chebyshevUpperBound(vec2 moments, float t, float minVariance) {
 SHARED float reduceLightBleeding(float p, float amount) {
     return clamp((p - amount) / (1.0f - amount), 0.0f, 1.0f);
 }
+
+// vsm.filter=mip [Donnelly and Lauritzen 2006, section 4; the anisotropic footprint of the
+// Vulkan specification's texel filtering]: the levels of a full mip chain over a size^2 map.
+SHARED uint mipLevelCount(uint size) {
+    uint levels = 1u;
+    while ((size >> levels) > 0u) levels += 1u;
+    return levels;
+}
+
+// The footprint of a pixel in a mip chain whose level 0 is size^2, from the shadow-map uv's
+// change across one pixel along x and y: x the level (fractional, 0 .. maxLevel), y the taps
+// spread along the footprint's longer axis (1 .. maxTaps; its length over its width), zw that
+// axis in uv. Each tap filters (major / taps) texels, so the level is log2 of that. A footprint
+// within one texel takes one tap: the bilinear read already spans more than it.
+SHARED vec4 mipFootprint(vec2 uvDx, vec2 uvDy, float size, float maxTaps, float maxLevel) {
+    float lx = length(uvDx) * size;
+    float ly = length(uvDy) * size;
+    float major = max(lx, ly);
+    float minor = min(lx, ly);
+    float taps = major <= 1.0f ? 1.0f
+                               : clamp(ceil(major / max(minor, 1e-6f) - 1e-3f), 1.0f, maxTaps);
+    float level = clamp(log2(max(major / taps, 1e-6f)), 0.0f, maxLevel);
+    vec2 axis = lx >= ly ? uvDx : uvDy;
+    return vec4(level, taps, axis.x, axis.y);
+}
+
+// Where tap k of n sits along the footprint's axis, as a fraction of it: evenly over (-1/2, 1/2).
+SHARED float mipTapOffset(int k, int n) { return (float(k) + 0.5f) / float(n) - 0.5f; }
 
 // What a prefiltered map stores of a moment depth z, by technique (its channels, unused ones 0):
 // vsm (z, z^2); esm e^(c z) [Annen et al. 2008]; evsm [Lauritzen and McCool 2008] the moments of
@@ -351,6 +382,26 @@ SHARED vec4 msmLoad16(vec4 stored) {
 SHARED float gaussianTap(int k, int n) {
     float sigma = max(float(n) / 6.0f, 0.3f);
     return exp(-0.5f * float(k * k) / (sigma * sigma));
+}
+
+// The G-buffer keeps two unit normals in one RGBA16F texel, each folded onto the octahedron
+// |x| + |y| + |z| = 1 and its lower half unfolded over the corners [Cigolle et al. 2014].
+SHARED vec2 octahedralEncode(vec3 n) {
+    vec2 p = vec2(n.x, n.y) / (abs(n.x) + abs(n.y) + abs(n.z));
+    if (n.z >= 0.0f) return p;
+    return vec2((1.0f - abs(p.y)) * (p.x >= 0.0f ? 1.0f : -1.0f),
+                (1.0f - abs(p.x)) * (p.y >= 0.0f ? 1.0f : -1.0f));
+}
+
+SHARED vec3 octahedralDecode(vec2 e) {
+    vec3 n = vec3(e.x, e.y, 1.0f - abs(e.x) - abs(e.y));
+    if (n.z < 0.0f) {
+        float x = (1.0f - abs(e.y)) * (e.x >= 0.0f ? 1.0f : -1.0f);
+        float y = (1.0f - abs(e.x)) * (e.y >= 0.0f ? 1.0f : -1.0f);
+        n.x = x;
+        n.y = y;
+    }
+    return n / sqrt(dot(n, n));
 }
 
 // bias.horizon: the part of a light of angular radius a (sin a = sinRadius) above a receiver's

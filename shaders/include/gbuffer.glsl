@@ -2,6 +2,8 @@
 #ifndef PENUMBRA_GBUFFER_GLSL
 #define PENUMBRA_GBUFFER_GLSL
 
+#include "filter_math.h"
+
 float nanValue() { return uintBitsToFloat(0x7fc00000u); }
 
 // Reverse-Z: the depth buffer is cleared to 0, so 0 means no geometry.
@@ -13,5 +15,9 @@ vec3 worldPosition(mat4 invViewProj, ivec2 p, uvec2 size, float depth) {
     vec4 world = invViewProj * vec4(ndc, depth, 1.0);
     return world.xyz / world.w;
 }
+
+// The G-buffer's normals (gbuffer.frag): the interpolated one that shades, and the triangle's.
+vec3 shadingNormal(vec4 texel) { return octahedralDecode(texel.xy); }
+vec3 faceNormal(vec4 texel) { return octahedralDecode(texel.zw); }
 
 #endif

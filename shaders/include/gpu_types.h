@@ -110,7 +110,8 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     vec4 pcssParams;     // x pcss.maxRadius (texels)
     vec4 cameraForward;  // xyz: the camera's unit view axis (cascades are picked by distance
                          // along it)
-    vec4 vsmParams;      // x vsm.minVariance, y vsm.bleedReduction, z vsm.size (taps)
+    vec4 vsmParams;      // x vsm.minVariance, y vsm.bleedReduction, z vsm.size (taps), w
+                         // vsm.anisotropy with vsm.filter=mip (0: vsm.filter=blur)
     vec4 esmParams;      // x esm.c, y esm.size (taps)
     vec4 evsmParams;     // x evsm.positive, y evsm.negative, z evsm.minVariance,
                          // w evsm.bleedReduction
@@ -188,6 +189,7 @@ struct CasterPush {      // push constants of shadow_mask.frag and shadow_peel.f
 struct ProbeReceiver {   // std430, filter_probe.comp's input (Renderer::probeTechnique)
     vec4 uvDepth;        // u, v, receiver depth
     vec4 gradientPixel;  // d depth / du, d depth / dv, pixel x, pixel y (rotations use it)
+    vec4 footprint;      // xy: d uv / d pixel x, zw: d uv / d pixel y (vsm.filter=mip)
 };
 
 struct ProbePush {       // push constants of filter_probe.comp
@@ -233,7 +235,8 @@ static_assert(sizeof(ShadowViewData) == 112 && offsetof(ShadowViewData, frustum)
               offsetof(ShadowViewData, texel) == 80 && offsetof(ShadowViewData, cascade) == 96);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
               sizeof(PostPassPush) == 16 && sizeof(ProbePush) == 16);
-static_assert(sizeof(ProbeReceiver) == 32 && offsetof(ProbeReceiver, gradientPixel) == 16);
+static_assert(sizeof(ProbeReceiver) == 48 && offsetof(ProbeReceiver, gradientPixel) == 16 &&
+              offsetof(ProbeReceiver, footprint) == 32);
 static_assert(sizeof(MaterialPush) == 32 && offsetof(MaterialPush, alphaCutoff) == 16);
 static_assert(sizeof(CasterPush) == 112 && offsetof(CasterPush, material) == 80);
 } // namespace penumbra::gpu

@@ -22,9 +22,49 @@ vec4 momentsBilinear(sampler2DArray map, vec2 uv, uint mapSize, float layer, int
     return m;
 }
 
+// Mip level `level` of the map (size >> level texels a side) at uv, bilinear over the four
+// texels around it (clamp-to-edge), the weights as momentsBilinear's.
+vec4 momentsAtLevel(sampler2DArray map, vec2 uv, uint mapSize, float layer, int level) {
+    int size = max(int(mapSize) >> level, 1);
+    vec2 p = uv * float(size) - 0.5;
+    vec2 base = floor(p);
+    vec2 f = p - base;
+    ivec2 b = ivec2(base);
+    ivec2 last = ivec2(size - 1);
+    int l = int(layer);
+    vec4 t00 = texelFetch(map, ivec3(clamp(b, ivec2(0), last), l), level);
+    vec4 t10 = texelFetch(map, ivec3(clamp(b + ivec2(1, 0), ivec2(0), last), l), level);
+    vec4 t01 = texelFetch(map, ivec3(clamp(b + ivec2(0, 1), ivec2(0), last), l), level);
+    vec4 t11 = texelFetch(map, ivec3(clamp(b + ivec2(1, 1), ivec2(0), last), l), level);
+    vec4 m;
+    for (int c = 0; c < 4; ++c)
+        m[c] = bilinearMix(vec4(t01[c], t11[c], t10[c], t00[c]), f);
+    return m;
+}
+
+// vsm.filter=mip: the mip chain over the pixel's footprint (mipFootprint), up to
+// vsm.anisotropy trilinear taps along its longer axis, averaged.
+vec2 momentsMip(sampler2DArray map, Receiver r, uint mapSize) {
+    float maxLevel = float(mipLevelCount(mapSize) - 1u);
+    vec4 footprint = mipFootprint(r.uvDx, r.uvDy, float(mapSize), frame.vsmParams.w, maxLevel);
+    int fine = int(floor(footprint.x));
+    int coarse = min(fine + 1, int(maxLevel));
+    float blend = footprint.x - float(fine);
+    int taps = int(footprint.y);
+    vec2 sum = vec2(0.0);
+    for (int k = 0; k < taps; ++k) {
+        vec2 uv = r.uv + mipTapOffset(k, taps) * footprint.zw;
+        vec2 a = momentsAtLevel(map, uv, mapSize, r.layer, fine).xy;
+        vec2 b = momentsAtLevel(map, uv, mapSize, r.layer, coarse).xy;
+        sum += a + (b - a) * blend;
+    }
+    return sum / float(taps);
+}
+
 // x visibility, y z the filtered moments, w the receiver's moment depth.
 vec4 shadowVsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view) {
-    vec2 moments = momentsBilinear(map, r.uv, mapSize, r.layer, 2).xy;
+    vec2 moments = frame.vsmParams.w > 0.0 ? momentsMip(map, r, mapSize)
+                                           : momentsBilinear(map, r.uv, mapSize, r.layer, 2).xy;
     float t = momentDepth(view, r.depth);
     float p = chebyshevUpperBound(moments, t, frame.vsmParams.x);
     return vec4(snapToExtremes(reduceLightBleeding(p, frame.vsmParams.y)), moments, t);

@@ -18,6 +18,7 @@ struct Receiver {
     vec2 gradient;  // d depth / d uv on the receiver's plane (zero: no receiver-plane bias)
     float layer;    // the shadow view's layer in the maps
     float kernelScale; // kernels in texels of the first cascade, in this view's texels
+    vec2 uvDx, uvDy;   // the pixel's footprint: uv's change across it along x and y (mip)
 };
 
 float texelTest(Receiver r, float stored, vec2 texelUv, vec2 dzRange) {

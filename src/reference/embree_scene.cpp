@@ -129,13 +129,14 @@ void EmbreeScene::throwIfFailed(const char* what) const {
         fmt::format("embree: {}: {}", what, mError.empty() ? errorName(code) : mError));
 }
 
-bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar) const {
+bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float tnear,
+                           float tfar) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{.org_x = origin.x,
                .org_y = origin.y,
                .org_z = origin.z,
-               .tnear = 0.0f,
+               .tnear = tnear,
                .dir_x = dir.x,
                .dir_y = dir.y,
                .dir_z = dir.z,
@@ -146,6 +147,33 @@ bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float 
                .flags = 0};
     rtcOccluded1(mScene, &context, &ray);
     return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
+}
+
+glm::vec3 EmbreeScene::surfaceNormal(const glm::vec3& p, const glm::vec3& n, float reach) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    const glm::vec3 origin = p + n * reach;
+    RTCRayHit hit{.ray = {.org_x = origin.x,
+                          .org_y = origin.y,
+                          .org_z = origin.z,
+                          .tnear = 0.0f,
+                          .dir_x = -n.x,
+                          .dir_y = -n.y,
+                          .dir_z = -n.z,
+                          .time = 0.0f,
+                          .tfar = 2.0f * reach,
+                          .mask = std::numeric_limits<unsigned>::max(),
+                          .id = 0,
+                          .flags = 0},
+                  .hit = {.geomID = RTC_INVALID_GEOMETRY_ID}};
+    rtcIntersect1(mScene, &context, &hit);
+    if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+        return n;
+    const glm::vec3 face(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z);
+    const float length = glm::length(face);
+    if (!(length > 0.0f))
+        return n;
+    return glm::dot(face, n) < 0.0f ? -face / length : face / length;
 }
 
 } // namespace penumbra

@@ -21,8 +21,11 @@ public:
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-    // Whether anything blocks the open segment origin + t dir, 0 < t < tfar.
-    bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tfar) const;
+    // Whether anything blocks the open segment origin + t dir, tnear < t < tfar.
+    bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) const;
+    // The geometric normal of the triangle under `p` (the first hit of a ray from p + reach n
+    // towards -n, within 2 reach), turned to n's side; n when no triangle is there.
+    glm::vec3 surfaceNormal(const glm::vec3& p, const glm::vec3& n, float reach) const;
     size_t triangles() const { return mTriangles; }
 
 private:

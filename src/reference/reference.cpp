@@ -25,11 +25,15 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Offsets the shadow-ray origin off the surface: the G-buffer position carries float error
-// that grows with its magnitude, so the offset does too (1e-4 relative, 1e-4 absolute floor).
-glm::dvec3 rayOrigin(const glm::dvec3& p, const glm::dvec3& n) {
-    const double scale = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), 1.0});
-    return p + n * (1e-4 * scale);
+// How far along a shadow ray hits are ignored: the ray leaves the G-buffer position itself,
+// whose float error grows with its magnitude (1e-4 relative, 1e-4 absolute floor), and skips its
+// own surface. Offsetting the origin off the surface instead would let rays that graze a closed
+// mesh's terminator slip past a facet's edge into the light: near the edge the offset origin
+// sits above the facet's plane, and a ray dipping under that plane leaves the facet first.
+// Directions under the receiver's own triangle are blocked by it (an open surface lets no light
+// through from its back).
+double selfHitDistance(const glm::dvec3& p) {
+    return 1e-4 * std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), 1.0});
 }
 
 // Prints a progress bar on stderr once the work has run for a second: redrawn in place on a
@@ -131,7 +135,10 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                                        gbuffer.normal[3 * i + 2]);
                     if (!std::isfinite(p.x) || !std::isfinite(n.x))
                         continue;
-                    const glm::dvec3 origin = rayOrigin(p, n);
+                    const glm::dvec3 origin = p;
+                    const auto tnear = static_cast<float>(selfHitDistance(p));
+                    const glm::dvec3 face = embree.surfaceNormal(
+                        glm::vec3(p), glm::vec3(glm::normalize(n)), 10.0f * tnear);
                     for (uint32_t l = 0; l < lights.size(); ++l) {
                         const LightCone cone = coneTowards(*lights[l], origin);
                         if (cone.inside) {
@@ -144,8 +151,10 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                         for (uint32_t s = 0; s < count; ++s) {
                             const glm::dvec3 dir =
                                 sampleDirection(cone, hammersley(s, count, shift));
+                            if (glm::dot(dir, face) <= 0.0)
+                                continue;
                             const double tfar = distanceToLight(cone, origin, dir);
-                            visible += !embree.occluded(glm::vec3(origin), glm::vec3(dir),
+                            visible += !embree.occluded(glm::vec3(origin), glm::vec3(dir), tnear,
                                                         static_cast<float>(std::min(tfar, 1e30)));
                         }
                         localRays += count;

@@ -24,7 +24,8 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     for (const FilterProbe& p : probes)
         gpuProbes.push_back(
             {{p.uv, p.depth, 0.0f},
-             {p.gradient, static_cast<float>(p.pixel.x), static_cast<float>(p.pixel.y)}});
+             {p.gradient, static_cast<float>(p.pixel.x), static_cast<float>(p.pixel.y)},
+             {p.uvDx, p.uvDy}});
 
     auto upload = [&](std::span<const std::byte> bytes, VkBufferUsageFlags usage,
                       const char* name) {
@@ -56,7 +57,8 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     for (const shadows::MapDecl& decl : derived ? module.maps : std::vector<shadows::MapDecl>{})
         t.maps.push_back(
             render::makeViewMaps(ctx, shadows::formatOf(decl, params), size, 1,
-                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT));
+                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                                 shadows::mipmappedOf(decl, params)));
     t.integerPlaceholder = render::makeIntegerPlaceholder(ctx);
     const vk::Image& map = t.shadowDepth.image;
     const vk::SamplerHandle nearest = vk::createSampler(ctx, {});

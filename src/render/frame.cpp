@@ -1,5 +1,6 @@
 #include "render/frame.h"
 
+#include "filter_math.h"
 #include "penumbra/error.h"
 #include "vk/sync.h"
 
@@ -156,12 +157,48 @@ void recordShadowPasses(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& 
     toSampled.record(cmd);
 }
 
+// A PostDispatch::MipChain pass: levels 1.. of `map`, each from the level above (already in
+// kComputeSampled), one level at a time over every view.
+void recordMipChain(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, const ViewMaps& map,
+                    const shadows::PostPassDecl& pass, vk::GpuTimer* timer) {
+    const uint32_t levels = map.image.mipLevels;
+    if (levels <= 1)
+        return;
+    if (timer)
+        timer->begin(cmd, std::string(pass.shader.substr(0, pass.shader.rfind('.'))));
+    const vk::PipelineLayout& layout = p.postPassLayout(1, 1);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.postPass(pass.shader, 1, 1));
+    for (uint32_t level = 1; level < levels; ++level) {
+        const uint32_t size = std::max(map.image.width >> level, 1u);
+        vk::imageBarrier(cmd, map.image, vk::kUndefined, vk::kComputeWrite, level, 1);
+        for (uint32_t v = 0; v < t.views.size(); ++v) {
+            vk::PushDescriptors writes;
+            writes.sampled(POST_INPUT_BINDING, map.level(v, level - 1), t.nearest)
+                .storageImage(POST_OUTPUT_BINDING, map.level(v, level))
+                .uniformBuffer(POST_FRAME_BINDING, t.frame)
+                .storageBuffer(POST_VIEWS_BINDING, t.viewData);
+            writes.push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
+            const gpu::PostPassPush push{.size = {size, size, v, level}};
+            vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                               &push);
+            vkCmdDispatch(cmd, groups(size), groups(size), 1);
+        }
+        vk::imageBarrier(cmd, map.image, vk::kComputeWrite, vk::kComputeSampled, level, 1);
+    }
+    if (timer)
+        timer->end(cmd);
+}
+
 // The technique's post passes (compute), in order, each over every shadow view.
 // Each pass is timed on its own, named after its shader ("vsm_blur_rows"), when `timer` is given.
 void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
                       const FrameSettings& s, vk::GpuTimer* timer = nullptr) {
     const shadows::TechniqueModule& technique = *s.technique;
     for (const shadows::PostPassDecl& pass : technique.postPasses) {
+        if (pass.dispatch == shadows::PostDispatch::MipChain) {
+            recordMipChain(cmd, p, t, t.named(technique, pass.outputs.at(0)), pass, timer);
+            continue;
+        }
         if (timer)
             timer->begin(cmd, std::string(pass.shader.substr(0, pass.shader.rfind('.'))));
         const auto inputs = static_cast<uint32_t>(pass.inputs.size());
@@ -280,17 +317,23 @@ void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
 } // namespace
 
 ViewMaps makeViewMaps(const vk::Context& ctx, shadows::MapFormat format, uint32_t size,
-                      uint32_t views, VkImageUsageFlags usage) {
-    ViewMaps maps{.image = vk::createImage(ctx, {.name = "--shadow-map-size",
-                                                 .format = formatOf(format),
-                                                 .width = size,
-                                                 .height = size,
-                                                 .layers = std::max(views, 1u),
-                                                 .usage = usage,
-                                                 .arrayView = true}),
-                  .format = format};
+                      uint32_t views, VkImageUsageFlags usage, bool mipmapped) {
+    ViewMaps maps{
+        .image = vk::createImage(ctx, {.name = "--shadow-map-size",
+                                       .format = formatOf(format),
+                                       .width = size,
+                                       .height = size,
+                                       .layers = std::max(views, 1u),
+                                       .usage = usage,
+                                       .arrayView = true,
+                                       .mipLevels = mipmapped ? gpu::mipLevelCount(size) : 1u}),
+        .format = format};
     for (uint32_t layer = 0; layer < maps.image.layers; ++layer)
         maps.layers.push_back(vk::createLayerView(ctx, maps.image, layer));
+    if (maps.image.mipLevels > 1)
+        for (uint32_t layer = 0; layer < maps.image.layers; ++layer)
+            for (uint32_t level = 0; level < maps.image.mipLevels; ++level)
+                maps.levels.push_back(vk::createLayerView(ctx, maps.image, layer, level));
     return maps;
 }
 

@@ -50,6 +50,12 @@ struct ViewMaps {
     vk::Image image;
     std::vector<vk::ImageViewHandle> layers;
     shadows::MapFormat format = shadows::MapFormat::Depth32;
+    // A mipmapped map's level views, layer-major (levels[layer * mipLevels + level]); empty
+    // when it has one level.
+    std::vector<vk::ImageViewHandle> levels;
+    VkImageView level(uint32_t layer, uint32_t mip) const {
+        return levels[size_t{layer} * image.mipLevels + mip].get();
+    }
 };
 
 struct FrameTargets {
@@ -93,9 +99,10 @@ struct FilteredBindings {
 };
 FilteredBindings filteredBindings(const FrameTargets& t, const shadows::TechniqueModule& module);
 
-// An array image, one layer per shadow view, and a 2D view of each layer.
+// An array image, one layer per shadow view, and a 2D view of each layer (of each level too
+// when `mipmapped`: a full chain).
 ViewMaps makeViewMaps(const vk::Context& ctx, shadows::MapFormat format, uint32_t size,
-                      uint32_t views, VkImageUsageFlags usage);
+                      uint32_t views, VkImageUsageFlags usage, bool mipmapped = false);
 
 // The technique's post passes over every view of `targets` (their inputs already filled, in
 // kComputeSampled): what recordFrame runs after the shadow passes, for Renderer::probeTechnique.

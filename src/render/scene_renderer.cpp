@@ -107,6 +107,7 @@ struct TargetKey {
     uint32_t shadowViews, shadowLights;        // map layers, visibility layers
     const shadows::TechniqueModule* technique; // its maps
     std::vector<shadows::MapFormat> formats;   // of its maps, for these parameters
+    std::vector<bool> mipmapped;               // of its maps, for these parameters
     bool operator==(const TargetKey&) const = default;
 };
 
@@ -165,11 +166,14 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
     constexpr VkImageUsageFlags depthTarget = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | sampled;
     const uint32_t n = k.shadowMapSize, views = k.shadowViews;
     t.shadowDepth = render::makeViewMaps(c, shadows::MapFormat::Depth32, n, views, depthTarget);
-    for (const shadows::MapFormat format : k.formats)
+    for (size_t m = 0; m < k.formats.size(); ++m) {
+        const shadows::MapFormat format = k.formats[m];
         t.maps.push_back(render::makeViewMaps(c, format, n, views,
                                               format == shadows::MapFormat::Depth32
                                                   ? depthTarget
-                                                  : VK_IMAGE_USAGE_STORAGE_BIT | sampled));
+                                                  : VK_IMAGE_USAGE_STORAGE_BIT | sampled,
+                                              k.mipmapped[m]));
+    }
     t.integerPlaceholder = render::makeIntegerPlaceholder(c);
     const uint32_t w = k.width, h = k.height;
     t.depth = targetImage(c, "G-buffer depth", render::kDepthFormat, w, h, depthTarget);
@@ -311,8 +315,10 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
                   .shadowViews = static_cast<uint32_t>(views.size()),
                   .shadowLights = static_cast<uint32_t>(shadowLights.size()),
                   .technique = &module};
-    for (const shadows::MapDecl& map : module.maps)
+    for (const shadows::MapDecl& map : module.maps) {
         key.formats.push_back(shadows::formatOf(map, o.parameters));
+        key.mipmapped.push_back(shadows::mipmappedOf(map, o.parameters));
+    }
     if (m.key != key) {
         if (progress)
             progress("creating targets");

@@ -35,7 +35,7 @@ const TechniqueModule& savsmModule() {
                             "are exact)"},
                        {.key = "savsm.minVariance",
                         .type = ParameterType::Float,
-                        .defaultValue = 1e-5,
+                        .defaultValue = 1e-7,
                         .min = 0.0,
                         .max = 0.01,
                         .unit = "(depth range)^2",

@@ -148,12 +148,20 @@ MapFormat formatOf(const MapDecl& map, const ParameterValues& params) {
     return map.formatFor ? map.formatFor(params) : map.format;
 }
 
+bool mipmappedOf(const MapDecl& map, const ParameterValues& params) {
+    return map.mipmappedFor && map.mipmappedFor(params);
+}
+
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
                         const ParameterValues& params) {
-    uint64_t perTexel = bytesPerTexel(MapFormat::Depth32);
+    const uint64_t texels = uint64_t{size} * size;
+    uint64_t chain = 0; // the texels of a full mip chain
+    for (uint32_t level = 0; (size >> level) > 0; ++level)
+        chain += uint64_t{size >> level} * (size >> level);
+    uint64_t bytes = bytesPerTexel(MapFormat::Depth32) * texels;
     for (const MapDecl& map : module.maps)
-        perTexel += bytesPerTexel(formatOf(map, params));
-    return perTexel * size * size;
+        bytes += bytesPerTexel(formatOf(map, params)) * (mipmappedOf(map, params) ? chain : texels);
+    return bytes;
 }
 
 uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params) {

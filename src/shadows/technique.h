@@ -31,8 +31,12 @@ struct MapDecl {
     MapFormat format;
     // When set, the format follows the parameters (msm.precision); `format` is then the default.
     MapFormat (*formatFor)(const ParameterValues&) = nullptr;
+    // When set and true for the parameters, the map has a full mip chain (vsm.filter=mip) that a
+    // PostDispatch::MipChain pass fills; else one level.
+    bool (*mipmappedFor)(const ParameterValues&) = nullptr;
 };
 MapFormat formatOf(const MapDecl& map, const ParameterValues& params);
+bool mipmappedOf(const MapDecl& map, const ParameterValues& params);
 
 // Another depth pass over the casters, into `target` (a Depth32 map), whose fragment shader
 // reads the map `reads` at the fragment's texel (a depth peel, say).
@@ -47,8 +51,10 @@ struct DepthPassDecl {
 // its push constants are gpu::PostPassPush.
 inline constexpr size_t kMaxPostPasses = 12; // each is a GPU timestamp scope of its own
 // Texels: one invocation per texel (GROUP_SIZE x GROUP_SIZE groups); Lines: one per row or column
-// of the (square) map, LINE_GROUP_SIZE a group (scans).
-enum class PostDispatch { Texels, Lines };
+// of the (square) map, LINE_GROUP_SIZE a group (scans); MipChain: levels 1.. of its one output,
+// a dispatch per level over its texels, reading the level above at binding 0 (`inputs` unused;
+// nothing runs when the map has one level).
+enum class PostDispatch { Texels, Lines, MipChain };
 struct PostPassDecl {
     std::string_view shader; // in shaders/
     std::vector<std::string_view> inputs, outputs;

@@ -2,7 +2,9 @@
 // moments (z, z^2) of the light's depth and blur them with a separable Gaussian
 // (shaders/include/moments_blur.glsl); the visibility pass interpolates them bilinearly and
 // bounds the lit fraction by Chebyshev's inequality, with a minimum variance and light-bleeding
-// reduction [Lauritzen 2007] (shaders/include/shadow_moments.glsl). CPU mirror:
+// reduction [Lauritzen 2007] (shaders/include/shadow_moments.glsl). vsm.filter=mip adds the
+// paper's mip chain over the blurred moments (vsm_mip.comp), read trilinearly over the pixel's
+// footprint with up to vsm.anisotropy taps along its longer axis. CPU mirror:
 // src/reference/filter_reference.cpp; derivations in docs/techniques.md.
 #include "shadows/technique.h"
 
@@ -14,6 +16,27 @@ constexpr GaussianBlur kBlur{.sizeKey = "vsm.size",
                              .columnsShader = "vsm_blur_columns.comp",
                              .output = "moments",
                              .format = MapFormat::RG32F};
+
+constexpr double kFilterMip = 1.0; // vsm.filter's second choice
+
+bool filtersThroughMips(const ParameterValues& p) {
+    return p.number("vsm.filter") == kFilterMip;
+}
+
+std::vector<MapDecl> vsmMaps() {
+    std::vector<MapDecl> maps = kBlur.maps();
+    for (MapDecl& map : maps)
+        if (map.name == kBlur.output)
+            map.mipmappedFor = filtersThroughMips;
+    return maps;
+}
+
+std::vector<PostPassDecl> vsmPasses() {
+    std::vector<PostPassDecl> passes = kBlur.passes();
+    passes.push_back(
+        {.shader = "vsm_mip.comp", .outputs = {kBlur.output}, .dispatch = PostDispatch::MipChain});
+    return passes;
+}
 
 } // namespace
 
@@ -27,34 +50,53 @@ const TechniqueModule& vsmModule() {
                  .families = {"bias", "vsm", "csm", "composite"},
                  .variants = {{.label = ""},
                               {.label = "no-bleed-reduction",
-                               .sets = {{"vsm.bleedReduction", "0"}}}}},
-        .parameters = {kBlur.sizeParameter(),
-                       {.key = "vsm.minVariance",
-                        .type = ParameterType::Float,
-                        .defaultValue = 1e-5,
-                        .min = 0.0,
-                        .max = 0.01,
-                        .unit = "(depth range)^2",
-                        .description =
-                            "least variance Chebyshev's bound assumes, in squared units of the "
-                            "view's depth range (keeps flat receivers from shadowing themselves)"},
-                       {.key = "vsm.bleedReduction",
-                        .type = ParameterType::Float,
-                        .defaultValue = 0.2,
-                        .min = 0.0,
-                        .max = 0.99,
-                        .description =
-                            "bounds up to this count as shadow, the rest rescaled: less light "
-                            "bleeding between stacked occluders, darker and harder penumbrae"}},
-        .maps = kBlur.maps(),
-        .postPasses = kBlur.passes(),
+                               .sets = {{"vsm.bleedReduction", "0"}}},
+                              {.label = "mip", .sets = {{"vsm.filter", "mip"}}}}},
+        .parameters =
+            {kBlur.sizeParameter(),
+             {.key = "vsm.minVariance",
+              .type = ParameterType::Float,
+              .defaultValue = 1e-7,
+              .min = 0.0,
+              .max = 0.01,
+              .unit = "(depth range)^2",
+              .description = "least variance Chebyshev's bound assumes, in squared units of the "
+                             "view's depth range (keeps flat receivers from shadowing themselves)"},
+             {.key = "vsm.bleedReduction",
+              .type = ParameterType::Float,
+              .defaultValue = 0.2,
+              .min = 0.0,
+              .max = 0.99,
+              .description = "bounds up to this count as shadow, the rest rescaled: less light "
+                             "bleeding between stacked occluders, darker and harder penumbrae"},
+             {.key = "vsm.filter",
+              .type = ParameterType::Choice,
+              .defaultValue = 0,
+              .choices = {"blur", "mip"},
+              .description = "blur: the blurred moments read bilinearly; mip: a mip chain over "
+                             "them, read trilinearly over the pixel's footprint in the map (wider "
+                             "where the map is minified: less aliasing far from the camera)"},
+             {.key = "vsm.anisotropy",
+              .type = ParameterType::Int,
+              .defaultValue = 8,
+              .min = 1,
+              .max = 16,
+              .unit = "taps",
+              .description = "with vsm.filter=mip: most trilinear taps along a footprint's longer "
+                             "axis (1: isotropic trilinear, blurrier at grazing angles)"}},
+        .maps = vsmMaps(),
+        .postPasses = vsmPasses(),
         .visibilityMap = "moments",
         .pack =
             [](const ParameterValues& p, gpu::FrameData& f) {
-                f.vsmParams = {static_cast<float>(p.number("vsm.minVariance")),
-                               static_cast<float>(p.number("vsm.bleedReduction")),
-                               static_cast<float>(p.number("vsm.size")), 0.0f};
+                f.vsmParams = {
+                    static_cast<float>(p.number("vsm.minVariance")),
+                    static_cast<float>(p.number("vsm.bleedReduction")),
+                    static_cast<float>(p.number("vsm.size")),
+                    filtersThroughMips(p) ? static_cast<float>(p.number("vsm.anisotropy")) : 0.0f};
             },
+        // A footprint the mip chain widens is clipped by the map's edge as any minified texture
+        // is; the guard band keeps the blur's reach.
         .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
     return module;
 }

@@ -24,7 +24,7 @@ std::vector<ParameterInfo> vssmParameters() {
     std::vector<ParameterInfo> parameters = kSearch.parameters();
     parameters.push_back({.key = "vssm.minVariance",
                           .type = ParameterType::Float,
-                          .defaultValue = 1e-5,
+                          .defaultValue = 1e-7,
                           .min = 0.0,
                           .max = 0.01,
                           .unit = "(depth range)^2",

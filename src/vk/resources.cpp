@@ -40,14 +40,15 @@ VkImageAspectFlags aspectOf(VkFormat format) {
 }
 
 ImageViewHandle createView(const Context& ctx, const Image& image, VkImageViewType type,
-                           uint32_t baseLayer, uint32_t layerCount) {
+                           uint32_t baseLayer, uint32_t layerCount, uint32_t baseMip,
+                           uint32_t mipCount) {
     const VkImageViewCreateInfo info{.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
                                      .image = image.get(),
                                      .viewType = type,
                                      .format = image.format,
                                      .subresourceRange = {.aspectMask = image.aspect,
-                                                          .baseMipLevel = 0,
-                                                          .levelCount = image.mipLevels,
+                                                          .baseMipLevel = baseMip,
+                                                          .levelCount = mipCount,
                                                           .baseArrayLayer = baseLayer,
                                                           .layerCount = layerCount}};
     VkImageView view = VK_NULL_HANDLE;
@@ -137,13 +138,15 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
                                                               : VK_IMAGE_VIEW_TYPE_CUBE_ARRAY)
         : desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                                             : VK_IMAGE_VIEW_TYPE_2D;
-    image.view = createView(ctx, image, viewType, 0, desc.layers);
+    image.view = createView(ctx, image, viewType, 0, desc.layers, 0, image.mipLevels);
     return image;
 }
 
-ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer) {
+ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer,
+                                uint32_t level) {
     PENUMBRA_CHECK(layer < image.layers, "layer out of range");
-    return createView(ctx, image, VK_IMAGE_VIEW_TYPE_2D, layer, 1);
+    PENUMBRA_CHECK(level < image.mipLevels, "mip level out of range");
+    return createView(ctx, image, VK_IMAGE_VIEW_TYPE_2D, layer, 1, level, 1);
 }
 
 SamplerHandle createSampler(const Context& ctx, const SamplerDesc& desc) {

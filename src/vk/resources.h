@@ -47,8 +47,10 @@ struct Image {
 Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
                     const std::string& name);
 Image createImage(const Context& ctx, const ImageDesc& desc);
-// A view of one layer of an array image (for rendering into it or sampling it as 2D).
-ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer);
+// A view of one mip level of one layer of an array image (for rendering into it, writing it as
+// a storage image or sampling it as 2D).
+ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer,
+                                uint32_t level = 0);
 
 // A sampler, whole: filters, mips, anisotropy, addressing in three dimensions, comparison.
 struct SamplerDesc {
