@@ -134,11 +134,17 @@ SHARED float cascadeBlendWeight(float z, float blendStart, float splitFar) {
 // Variance shadow maps [Donnelly and Lauritzen 2006] (docs/techniques.md, "vsm"). The depth the
 // moments are taken of: linear in the light's view distance, 0 at the near plane and 1 at the
 // far one (the orthographic depth itself; a perspective view's hyperbolic depth would crowd its
-// far half into a sliver where variances vanish).
+// far half into a sliver where variances vanish), then spread over the part of that range the
+// view's receivers lie in (ShadowViewData::moments: a sun's cascade, a slice of a range that
+// spans the whole scene), casters in front of it at 0.
 SHARED float momentDepth(IN(ShadowViewData) view, float depth) {
-    if (view.texel.y < 0.5f) return depth;
-    float n = view.frustum.x, f = view.frustum.y;
-    return (n * f / (f - depth * (f - n)) - n) / (f - n);
+    float linear = depth;
+    if (view.texel.y >= 0.5f) {
+        float n = view.frustum.x, f = view.frustum.y;
+        linear = (n * f / (f - depth * (f - n)) - n) / (f - n);
+    }
+    return clamp((linear - view.moments.x) / (1.0f - view.moments.x - view.moments.y), 0.0f,
+                 1.0f);
 }
 
 // One-tailed Chebyshev bound on the fraction of the filtered depths at or beyond receiver depth
@@ -284,7 +290,8 @@ SHARED vec2 chebyshevBlockers(vec2 moments, float t, float minVariance) {
 
 // The light view distance of a moment depth (momentDepth's inverse: linear in both projections).
 SHARED float momentDepthDistance(IN(ShadowViewData) view, float z) {
-    return view.frustum.x + z * (view.frustum.y - view.frustum.x);
+    float linear = view.moments.x + z * (1.0f - view.moments.x - view.moments.y);
+    return view.frustum.x + linear * (view.frustum.y - view.frustum.x);
 }
 
 // Moment shadow maps [Peters and Klein 2015], Hamburger reconstruction with four moments: the
@@ -448,6 +455,15 @@ SHARED float blockerSearchRadius(IN(ShadowViewData) view, float zReceiver, uint 
     float n = view.frustum.x, size = view.texel.w;
     float world = view.texel.y > 0.5f ? size * (zReceiver - n) / zReceiver : (zReceiver - n) * size;
     return world * texelsPerWorld(view, view.texel.y > 0.5f ? n : 1.0f, mapSize);
+}
+
+// The summed-area soft members' blocker search (vssm, msm-soft): momentDepth puts every blocker
+// nearer the light than the view's moment range at the range's start, so the search reaches no
+// further towards the light than that (a sun's cascade: its receivers' depths, not the scene's).
+SHARED float momentSearchRadius(IN(ShadowViewData) view, float zReceiver, uint mapSize) {
+    ShadowViewData nearest = view;
+    nearest.frustum.x = momentDepthDistance(view, 0.0f);
+    return blockerSearchRadius(nearest, zReceiver, mapSize);
 }
 
 // Penumbra radius (texels at the receiver): perspective, the seed's

@@ -151,6 +151,9 @@ struct ShadowViewData {  // std430 storage buffer, one per shadow view
     vec4 cascade;        // x the camera view distance where this view's slice ends, y where it
                          // starts blending into the next view (both huge: not a cascade), z the
                          // kernel scale (the first cascade's texel size over this view's)
+    vec4 moments;        // the part of the view's depth range the moment techniques spread
+                         // their [0, 1] over (momentDepth), in the range's linear [0, 1]: from
+                         // x to 1 - y (zero: the whole range)
 };
 
 struct ShadowPush {      // push constants of shadow_depth.vert
@@ -231,8 +234,9 @@ static_assert(sizeof(FrameData) == 976 && offsetof(FrameData, position) == 128 &
               offsetof(FrameData, tableScales) == 448 && offsetof(FrameData, poisson) == 464);
 static_assert(sizeof(LightData) == 96 && offsetof(LightData, cone) == 48 &&
               offsetof(LightData, bias) == 64 && offsetof(LightData, views) == 80);
-static_assert(sizeof(ShadowViewData) == 112 && offsetof(ShadowViewData, frustum) == 64 &&
-              offsetof(ShadowViewData, texel) == 80 && offsetof(ShadowViewData, cascade) == 96);
+static_assert(sizeof(ShadowViewData) == 128 && offsetof(ShadowViewData, frustum) == 64 &&
+              offsetof(ShadowViewData, texel) == 80 && offsetof(ShadowViewData, cascade) == 96 &&
+              offsetof(ShadowViewData, moments) == 112);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
               sizeof(PostPassPush) == 16 && sizeof(ProbePush) == 16);
 static_assert(sizeof(ProbeReceiver) == 48 && offsetof(ProbeReceiver, gradientPixel) == 16 &&

@@ -149,7 +149,7 @@ vec4 shadowSoftDetail(usampler2DArray table, uint kind, Receiver r, uint mapSize
     float size = float(mapSize);
     float zReceiver = viewDistance(view, r.depth);
     vec2 lo, hi;
-    satBox(r, clamp(blockerSearchRadius(view, zReceiver, mapSize), 0.5, s.cap), size, lo, hi);
+    satBox(r, clamp(momentSearchRadius(view, zReceiver, mapSize), 0.5, s.cap), size, lo, hi);
     vec3 found = softKernel(table, s, r, view, lo, hi, size, true);
     if (found.x <= VSSM_NO_BLOCKERS * found.z) return vec4(1.0, 1.0, 0.0, 0.0);
     float radius = penumbraRadius(view, zReceiver, softBlockerDistance(kind, found, view), mapSize);

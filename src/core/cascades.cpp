@@ -134,6 +134,18 @@ std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
         p.viewProj = p.projection * p.view;
         p.texelWorldSize = 2.0f * std::max(half.x, half.y) / n;
         p.splitNear = a, p.splitFar = b;
+        // The slice's corners bound every receiver it serves; the normal offset and a filter's
+        // guard band reach a little past them.
+        float lo = std::numeric_limits<float>::max(), hi = -lo;
+        for (const glm::vec3& c : sliceCorners(frame, a, b)) {
+            const float depth = (-(rotation * glm::vec4(c, 1.0f)).z - p.nearPlane) /
+                                (p.farPlane - p.nearPlane);
+            lo = std::min(lo, depth), hi = std::max(hi, depth);
+        }
+        const float margin = (guard + 2.0f) * p.texelWorldSize / (p.farPlane - p.nearPlane);
+        lo = std::clamp(lo - margin, 0.0f, 1.0f), hi = std::clamp(hi + margin, 0.0f, 1.0f);
+        if (hi - lo > 1e-3f)
+            p.receiverDepths = {lo, hi};
         p.blendStart = i + 1 < s.count ? b - s.blend * (b - d[i]) : b;
         cascades.push_back(p);
     }

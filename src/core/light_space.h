@@ -32,6 +32,10 @@ struct LightProjection {
     float splitNear = 0.0f, splitFar = std::numeric_limits<float>::max();
     float blendStart = std::numeric_limits<float>::max();
     float kernelScale = 1.0f;
+    // The depths (linear, [0, 1] over near..far) the view's receivers can have: what the moment
+    // techniques spread their precision over (gpu::ShadowViewData::moments). A cascade's slice
+    // of the camera's view is a small part of a depth range that spans the whole scene.
+    glm::vec2 receiverDepths{0.0f, 1.0f};
 };
 
 // A point light's cube: face i looks down axis i / 2 (x, y, z), towards + when i is even; the

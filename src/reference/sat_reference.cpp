@@ -157,7 +157,7 @@ glm::vec4 softReference(uint32_t kind, const ShadowMapView& map, const FilterPro
     const float size = static_cast<float>(map.size);
     const float zReceiver = gpu::viewDistance(view, probe.depth);
     glm::vec2 lo, hi;
-    satBox(probe.uv, std::clamp(gpu::blockerSearchRadius(view, zReceiver, map.size), 0.5f, s.cap),
+    satBox(probe.uv, std::clamp(gpu::momentSearchRadius(view, zReceiver, map.size), 0.5f, s.cap),
            size, lo, hi);
     glm::vec3 found = softKernel(table, s, probe, view, f, lo, hi, size, true);
     if (found.x <= VSSM_NO_BLOCKERS * found.z)

@@ -47,7 +47,8 @@ gpu::ShadowViewData viewData(const Light& light, const LightProjection& shadow, 
                           : light.radius},
             .cascade = {std::min(shadow.splitFar, render::kNotACascade),
                         std::min(shadow.blendStart, render::kNotACascade), shadow.kernelScale,
-                        0.0f}};
+                        0.0f},
+            .moments = {shadow.receiverDepths.x, 1.0f - shadow.receiverDepths.y, 0.0f, 0.0f}};
 }
 
 ShadowViewInfo viewInfo(const LightProjection& shadow, uint32_t layer,
