@@ -1,0 +1,64 @@
+#include "reference/distance_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace penumbra {
+
+glm::dvec3 closestPointOnTriangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                  const glm::dvec3& c) {
+    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0)
+        return a;
+    const glm::dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3)
+        return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0)
+        return a + ab * (d1 / (d1 - d3));
+    const glm::dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6)
+        return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0)
+        return a + ac * (d2 / (d2 - d6));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    const double sum = va + vb + vc;
+    if (!(sum > 0)) // a degenerate triangle: its nearest vertex
+        return glm::distance(p, a) <= glm::distance(p, b)
+                   ? (glm::distance(p, a) <= glm::distance(p, c) ? a : c)
+                   : (glm::distance(p, b) <= glm::distance(p, c) ? b : c);
+    return a + ab * (vb / sum) + ac * (vc / sum);
+}
+
+double windingContribution(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                           const glm::dvec3& c) {
+    const glm::dvec3 x = a - p, y = b - p, z = c - p;
+    const double lx = glm::length(x), ly = glm::length(y), lz = glm::length(z);
+    const double numerator = glm::dot(x, glm::cross(y, z));
+    const double denominator =
+        lx * ly * lz + glm::dot(x, y) * lz + glm::dot(y, z) * lx + glm::dot(z, x) * ly;
+    // tan(Omega / 2) = numerator / denominator; atan2 keeps the quadrant.
+    return 2.0 * std::atan2(numerator, denominator) / (4.0 * std::numbers::pi);
+}
+
+FieldSample sampleDistanceField(const Scene& scene, const glm::dvec3& p) {
+    FieldSample s{.distance = std::numeric_limits<double>::infinity()};
+    for (size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
+        const glm::dvec3 a(scene.vertices[scene.indices[t]].position);
+        const glm::dvec3 b(scene.vertices[scene.indices[t + 1]].position);
+        const glm::dvec3 c(scene.vertices[scene.indices[t + 2]].position);
+        s.distance = std::min(s.distance, glm::distance(p, closestPointOnTriangle(p, a, b, c)));
+        s.winding += windingContribution(p, a, b, c);
+    }
+    return s;
+}
+
+} // namespace penumbra
