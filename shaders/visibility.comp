@@ -59,11 +59,13 @@ vec3 onReceiverPlane(ivec2 q, float depth, vec3 world, vec3 face) {
     return near + along * (dot(world - near, face) / facing);
 }
 
-// The change of a view's uv from `world` to world + step.
-vec2 uvStep(ShadowViewData view, vec3 world, vec3 step) {
+// The pixel's footprint in a view's uv: xy across footprintDx, zw across footprintDy.
+vec4 uvFootprint(ShadowViewData view, vec3 world) {
     vec4 a = view.shadowMatrix * vec4(world, 1.0);
-    vec4 b = view.shadowMatrix * vec4(world + step, 1.0);
-    return b.xy / b.w - a.xy / a.w;
+    vec4 x = view.shadowMatrix * vec4(world + footprintDx, 1.0);
+    vec4 y = view.shadowMatrix * vec4(world + footprintDy, 1.0);
+    vec2 centre = a.xy / a.w;
+    return vec4(x.xy / x.w - centre, y.xy / y.w - centre);
 }
 
 Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world, vec3 normal,
@@ -76,12 +78,9 @@ Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world,
     r.gradient = vec2(0.0);
     r.layer = view.texel.z;
     r.kernelScale = view.cascade.z;
-    r.uvDx = vec2(0.0);
-    r.uvDy = vec2(0.0);
-    if (TECHNIQUE == TECHNIQUE_VSM) {
-        r.uvDx = uvStep(view, world, footprintDx);
-        r.uvDy = uvStep(view, world, footprintDy);
-    }
+    vec4 footprint = TECHNIQUE == TECHNIQUE_VSM ? uvFootprint(view, world) : vec4(0.0);
+    r.uvDx = footprint.xy;
+    r.uvDy = footprint.zw;
     if (RECEIVER == RECEIVER_LIGHT) {
         r.gradient = receiverGradientFromNormal(view.shadowMatrix, world, normal);
     } else if (RECEIVER == RECEIVER_SCREEN) {

@@ -280,6 +280,15 @@ TEST(FilterMath, OctahedralNormalsRoundTrip) {
                 } else if (k < 0) {
                     EXPECT_GE(std::abs(e.x) + std::abs(e.y), 1.0f - 1e-6f);
                 }
+                // Either half keeps its quadrant: the fold goes to the corner beyond the edge
+                // facing the point (a fold that is its own inverse the other way round would
+                // still round-trip).
+                if (i != 0) {
+                    EXPECT_EQ(e.x > 0.0f, i > 0) << i << ", " << j << ", " << k;
+                }
+                if (j != 0) {
+                    EXPECT_EQ(e.y > 0.0f, j > 0) << i << ", " << j << ", " << k;
+                }
                 const glm::vec3 back = gpu::octahedralDecode(e);
                 EXPECT_NEAR(back.x, n.x, 1e-6f) << i << ", " << j << ", " << k;
                 EXPECT_NEAR(back.y, n.y, 1e-6f) << i << ", " << j << ", " << k;

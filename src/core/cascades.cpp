@@ -138,8 +138,8 @@ std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
         // guard band reach a little past them.
         float lo = std::numeric_limits<float>::max(), hi = -lo;
         for (const glm::vec3& c : sliceCorners(frame, a, b)) {
-            const float depth = (-(rotation * glm::vec4(c, 1.0f)).z - p.nearPlane) /
-                                (p.farPlane - p.nearPlane);
+            const float depth =
+                (-(rotation * glm::vec4(c, 1.0f)).z - p.nearPlane) / (p.farPlane - p.nearPlane);
             lo = std::min(lo, depth), hi = std::max(hi, depth);
         }
         const float margin = (guard + 2.0f) * p.texelWorldSize / (p.farPlane - p.nearPlane);
