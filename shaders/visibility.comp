@@ -11,6 +11,7 @@ layout(constant_id = SPEC_HORIZON) const uint HORIZON = 0u;
 #include "filter_math.h"
 #include "shadow_common.glsl"
 #include "techniques.glsl"
+#include "shadow_sdf.glsl"
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
@@ -22,6 +23,7 @@ layout(set = 0, binding = VIS_SHADOW_COMPARE) uniform sampler2DArrayShadow shado
 layout(set = 0, binding = VIS_SHADOW_TABLE) uniform usampler2DArray shadowTable;
 layout(set = 0, binding = VIS_OUT, r32f) uniform writeonly image2DArray visibility;
 layout(set = 0, binding = VIS_VIEWS, std430) readonly buffer Views { ShadowViewData views[]; };
+layout(set = 0, binding = VIS_FIELD) uniform sampler3D distanceField;
 layout(push_constant) uniform Push { VisibilityPush push; };
 
 // Light-space (u, v, depth) offset to the neighbour at p + step along one axis, taking the side
@@ -175,6 +177,13 @@ void main() {
         }
         LightData light = lights[push.light.x];
         uint viewIndex = shadowViewOf(light, world);
+        if (TECHNIQUE == TECHNIQUE_SDF) {
+            // No shadow map: the field holds the whole scene, the tracer its own horizon.
+            v = shadowSdf(distanceField, light, world, faceNormal(normals),
+                          lightSine(light, views[viewIndex], world), HORIZON != 0u);
+            imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));
+            return;
+        }
         uint cascades = light.positionType.w == float(LIGHT_DIRECTIONAL) ? light.views.y : 1u;
         if (cascades > 1u) {
             // A sun's cascade: the first whose slice reaches the pixel's view distance.

@@ -41,6 +41,7 @@ using BiasTest = GpuTest;     // acne and peter-panning for each bias and light 
 using LightingTest = GpuTest; // the lit image: composite, attenuation, shadow intensity
 using QualityTest = GpuTest;  // every technique against the ray-traced ground truth
 using MaterialTest = GpuTest; // textures, alpha-tested casters, culling
+using FieldTest = GpuTest;    // the sdf technique's distance field: build, sign, cache
 
 inline glm::vec3 pixelVec(const std::vector<float>& v, size_t i) {
     return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};

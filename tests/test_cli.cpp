@@ -188,6 +188,55 @@ TEST(Cli, RenderWritesTheContractFiles) {
     EXPECT_NE(r.out.find("GPU ms per pass"), std::string::npos);
 }
 
+// sdf draws no shadow map: no shadow pass, the field's slice and its build in stats.json; a
+// malformed --field-slice or a field past its cap is refused with one line and no output.
+TEST(Cli, RenderWithTheDistanceFieldWritesItsSlice) {
+    const fs::path out = scratch("render-sdf");
+    const ProcessResult r = runCli({"render", "builtin:showcase", "-o", out.string(), "--width",
+                                    "64", "--height", "48", "--frames", "1", "--technique", "sdf",
+                                    "--set", "sdf.resolution=48", "--field-slice", "z:0.5"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ASSERT_TRUE(fs::exists(out / "field_slice.png"));
+    const auto stats = nlohmann::json::parse(slurp(out / "stats.json"));
+    EXPECT_FALSE(stats["gpu_ms"].contains("shadow"));
+    EXPECT_TRUE(stats["gpu_ms"].contains("visibility"));
+    const auto& field = stats["distance_field"];
+    ASSERT_TRUE(field.is_object());
+    EXPECT_EQ(field["voxels"].size(), 3u);
+    EXPECT_GT(field["bytes"].get<double>(), 0.0);
+    for (const char* pass : {"sdf_seed", "sdf_flood", "sdf_resolve"})
+        EXPECT_GT(field["build_passes_ms"][pass].get<double>(), 0.0) << pass;
+    // The slice across z: x to the right, y up, the field's voxels.
+    const auto voxels = field["voxels"];
+    const std::string png = slurp(out / "field_slice.png");
+    ASSERT_GT(png.size(), 24u);
+    auto be32 = [&](size_t at) {
+        return (uint32_t(uint8_t(png[at])) << 24) | (uint32_t(uint8_t(png[at + 1])) << 16) |
+               (uint32_t(uint8_t(png[at + 2])) << 8) | uint32_t(uint8_t(png[at + 3]));
+    };
+    EXPECT_EQ(be32(16), voxels[0].get<uint32_t>());
+    EXPECT_EQ(be32(20), voxels[1].get<uint32_t>());
+    EXPECT_NE(r.out.find("distance field"), std::string::npos);
+
+    for (const std::vector<std::string>& bad :
+         {std::vector<std::string>{"--field-slice", "w"},
+          std::vector<std::string>{"--field-slice", "y:high"},
+          std::vector<std::string>{"--field-slice", "y:1e6"},
+          std::vector<std::string>{"--set", "sdf.resolution=1024"},
+          std::vector<std::string>{"--set", "sdf.resolution=8"}}) {
+        const fs::path refused = scratch("render-sdf-bad");
+        std::vector<std::string> args{
+            "render", "builtin:showcase", "-o", refused.string(), "--width", "32", "--height",
+            "32",     "--frames",         "1",  "--technique",    "sdf"};
+        args.insert(args.end(), bad.begin(), bad.end());
+        const ProcessResult e = runCli(args);
+        EXPECT_NE(e.exitCode, 0) << bad[1];
+        EXPECT_EQ(e.err.rfind("error:", 0), 0u) << bad[1] << ": " << e.err;
+        EXPECT_EQ(std::count(e.err.begin(), e.err.end(), '\n'), 1) << e.err;
+        EXPECT_FALSE(fs::exists(refused)) << bad[1];
+    }
+}
+
 TEST(Cli, TechniquesListsEveryParameterWithRange) {
     const ProcessResult r = runCli({"techniques", "--json"});
     ASSERT_EQ(r.exitCode, 0) << r.err;

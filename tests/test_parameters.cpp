@@ -216,14 +216,20 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
         EXPECT_EQ(constants[1].value, uint32_t{RECEIVER_LIGHT}); // the default
         EXPECT_EQ(constants[2].id, uint32_t{SPEC_HORIZON});
         const bool sized = m->info.id == Technique::Pcss || m->info.id == Technique::Vssm ||
-                           m->info.id == Technique::MsmSoft;
+                           m->info.id == Technique::MsmSoft || m->info.id == Technique::Sdf;
         EXPECT_EQ(constants[2].value, sized ? 1u : 0u) << name;
         ParameterValues everywhere, nowhere;
         everywhere.assign("bias.horizon=all");
         nowhere.assign("bias.horizon=off");
         EXPECT_EQ(shadows::visibilityConstants(*m, everywhere)[2].value, 1u) << name;
         EXPECT_EQ(shadows::visibilityConstants(*m, nowhere)[2].value, 0u) << name;
-        EXPECT_GE(m->blurRadiusTexels(ParameterValues()), 0.5) << name;
+        if (m->tracesField) { // no shadow map: no texels to blur over, none to store
+            EXPECT_EQ(m->blurRadiusTexels(ParameterValues()), 0.0) << name;
+            EXPECT_EQ(shadows::shadowMapBytes(*m, 1024, ParameterValues()), 0u) << name;
+            EXPECT_TRUE(m->maps.empty() && m->postPasses.empty() && m->depthPasses.empty()) << name;
+        } else {
+            EXPECT_GE(m->blurRadiusTexels(ParameterValues()), 0.5) << name;
+        }
     }
     // What the techniques keep per texel of a shadow view: depth, plus second-depth's second
     // layer and midpoint; the PCF kernel's filter constant in its key only.

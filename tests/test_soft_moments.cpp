@@ -32,34 +32,6 @@ const ProbeLight kSizedLights[] = {{.perspective = false,
                                     .farPlane = 30.0f,
                                     .worldPerUv = {1.2f, 1.2f}}};
 
-// RMSE over the pixels whose truth is not fully lit, grown by `grow` pixels (a square), among
-// those the light reaches: the soft region, where filtering techniques differ (the issue's
-// measure). groundOnly: only the plane's pixels (not the sphere's own terminator).
-double softRegionRmse(const Truth& t, const RenderResult& r, bool groundOnly = false,
-                      int grow = 8) {
-    const auto w = static_cast<int>(r.width), h = static_cast<int>(r.height);
-    const std::vector<float>& truth = t.reference.visibility[0];
-    auto at = [w](int x, int y) { return static_cast<size_t>(y) * static_cast<size_t>(w) + x; };
-    std::vector<uint8_t> region(truth.size(), 0);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            if (!t.mask[at(x, y)] || !(truth[at(x, y)] < 1.0f))
-                continue;
-            for (int v = std::max(0, y - grow); v <= std::min(h - 1, y + grow); ++v)
-                for (int u = std::max(0, x - grow); u <= std::min(w - 1, x + grow); ++u)
-                    region[at(u, v)] = 1;
-        }
-    double sum = 0;
-    size_t n = 0;
-    for (size_t i = 0; i < truth.size(); ++i)
-        if (region[i] && t.mask[i] && std::isfinite(r.visibility[0][i]) &&
-            (!groundOnly || onGround(t.gbuffer, i))) {
-            const double d = r.visibility[0][i] - truth[i];
-            sum += d * d, ++n;
-        }
-    return n ? std::sqrt(sum / static_cast<double>(n)) : 0.0;
-}
-
 } // namespace
 
 TEST_F(FilterTest, SummedAreaSoftMembersMatchTheirCpuReference) {

@@ -3,7 +3,10 @@
 #include "core/output_dir.h"
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
+#include "report/field_slice.h"
 #include "report/stats.h"
+#include "shadows/sdf_field.h"
+#include "shadows/technique.h"
 
 #include <fmt/format.h>
 
@@ -15,6 +18,7 @@ namespace {
 
 struct RenderArgs {
     std::string scene, output, technique = "hard";
+    std::string fieldSlice = "y";
     std::vector<std::string> sets;
     RenderOptions options;
 };
@@ -33,20 +37,34 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     for (const std::string& set : args.sets)
         options.parameters.assign(set);
     validate(options);
+    const FieldSlice slice = parseFieldSlice(args.fieldSlice);
     const Scene scene = loadSceneReporting(args.scene, global);
     // Created before the long work so an unwritable path fails fast; removed again on error.
     StagedOutputDir out(args.output);
 
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     renderer.check(scene, options);
+    if (shadows::moduleOf(options.technique).tracesField) { // the slice lies in the field
+        const shadows::FieldLayout layout = shadows::fieldLayout(
+            scene.bounds(), static_cast<uint32_t>(options.parameters.number("sdf.resolution")));
+        (void)slicePosition(slice, layout.origin, layout.voxel, layout.size);
+    }
     const DeviceInfo& device = renderer.device();
     std::fprintf(stderr, "penumbra: %s on %s (%s), %ux%u, shadow map %u, technique %s\n",
                  scene.name.c_str(), device.name.c_str(), device.driverName.c_str(), options.width,
                  options.height, options.shadowMapSize, args.technique.c_str());
-    const RenderResult result = renderer.render(scene, options, [](const std::string& stage) {
+    std::fprintf(stderr, "penumbra: uploading scene\n");
+    SceneRenderer sceneRenderer(renderer, scene);
+    const RenderResult result = sceneRenderer.render(options, [](const std::string& stage) {
         std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
     });
     writeOutputs(out, result, {args.scene, scene, options, device, result});
+    if (result.field) { // what the tracer saw
+        DistanceFieldInfo info;
+        const std::vector<float> voxels = sceneRenderer.distanceField(info);
+        const SliceImage image = fieldSlice(voxels, info, slice);
+        out.write("field_slice.png", encodePng(image.width, image.height, 3, image.rgb));
+    }
     if (renderer.validationErrors() > 0)
         throw std::runtime_error(fmt::format("vulkan validation: {} error(s), see messages above; "
                                              "no output written",
@@ -64,6 +82,15 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
         total += p.medianMs;
     }
     std::printf("  | total %.3f\n", total);
+    if (const auto& f = result.field) {
+        std::printf("distance field %ux%ux%u voxels of %.4g (%.1f MiB), built once per scene: "
+                    "%.1f ms CPU, GPU",
+                    f->voxels.x, f->voxels.y, f->voxels.z, f->voxelSize,
+                    static_cast<double>(f->bytes) / (1 << 20), f->buildCpuMs);
+        for (const PassTime& p : f->buildPasses)
+            std::printf("  %s %.3f", p.pass.c_str(), p.medianMs);
+        std::printf("  | total %.3f ms\n", f->buildGpuMs);
+    }
     return 0;
 }
 
@@ -132,6 +159,10 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
         ->capture_default_str();
     addViewOptions(*cmd, args->options);
     addTechniqueOptions(*cmd, args->options, args->sets);
+    cmd->add_option("--field-slice", args->fieldSlice,
+                    "sdf only: the slice of the distance field written to field_slice.png, "
+                    "AXIS or AXIS:POSITION (x, y, z; world units; default the box's middle)")
+        ->capture_default_str();
     return [args, &global] { return runRender(*args, global); };
 }
 

@@ -65,6 +65,21 @@ struct LightShadow {
     uint32_t guardTexels = 0;          // cube faces: texels beyond 90 degrees on each side
 };
 
+// The distance field a render traced (sdf): its grid, memory and what building it cost. A
+// SceneRenderer builds it once per scene and field setting; `built` says whether this render did.
+struct DistanceFieldInfo {
+    glm::uvec3 voxels{0u};
+    float voxelSize = 0.0f;            // world units
+    glm::vec3 origin{0.0f};            // the box's lowest corner
+    uint64_t bytes = 0;                // the field (R32F)
+    uint32_t triangles = 0;            // after alpha-tested ones were cut to their covered parts
+    uint32_t openTriangles = 0;        // unsigned, with sdf.thickness
+    double buildGpuMs = 0.0;           // its three compute passes
+    std::vector<PassTime> buildPasses; // each: sdf_seed, sdf_flood, sdf_resolve
+    double buildCpuMs = 0.0;           // the triangle lists
+    bool built = false;
+};
+
 struct RenderResult {
     uint32_t width = 0, height = 0;
     std::vector<uint8_t> image;                 // RGBA8, sRGB-encoded, rows top to bottom
@@ -73,6 +88,7 @@ struct RenderResult {
     std::vector<float> normal;                  // xyz per pixel, unit; NaN = background
     std::vector<PassTime> passes;
     std::vector<LightShadow> lights;
+    std::optional<DistanceFieldInfo> field; // sdf only
 };
 
 using ProgressFn = std::function<void(const std::string& stage)>;
@@ -164,6 +180,9 @@ public:
     };
     RenderResult render(const RenderOptions& options, const FrameState& state,
                         const ProgressFn& progress = {});
+    // The distance field the last sdf render traced, x fastest, then y, then z (empty before
+    // one); `info` gets its grid.
+    std::vector<float> distanceField(DistanceFieldInfo& info) const;
 
 private:
     struct Impl;

@@ -21,7 +21,8 @@ enum class Technique : uint32_t {
     Savsm = 7,
     Msm = 8,
     Vssm = 9,
-    MsmSoft = 10
+    MsmSoft = 10,
+    Sdf = 11
 };
 
 // A parameter setting worth its own row in `compare`, e.g. label "box7" for pcf: pcf[box7].

@@ -4,7 +4,8 @@
 // reaches both sides at once: the parity tests cannot see it, the closed-form tests
 // (tests/test_filter_closed_forms.cpp) and the ground truth can.
 // Rules for both languages: float literals carry an f, conversions are explicit, `OUT(T)` and
-// `OUT_ARRAY(T, name, n)` mark out parameters, `IN(T)` passes a struct (by value in GLSL, by
+// `OUT_ARRAY(T, name, n)` mark out parameters, `INOUT(T)` in-out ones, `IN(T)` passes a struct
+// (by value in GLSL, by
 // reference in C++).
 // clang-format off
 #ifndef PENUMBRA_FILTER_MATH_H
@@ -39,11 +40,13 @@ using glm::mix;
 using glm::sin;
 using glm::sqrt;
 #define OUT(T) T&
+#define INOUT(T) T&
 #define OUT_ARRAY(T, name, n) T (&name)[n]
 #define IN(T) const T&
 #define SHARED inline
 #else
 #define OUT(T) out T
+#define INOUT(T) inout T
 #define OUT_ARRAY(T, name, n) out T name[n]
 #define IN(T) T
 #define SHARED
@@ -412,14 +415,20 @@ SHARED vec3 octahedralDecode(vec2 e) {
     return n / sqrt(dot(n, n));
 }
 
+// The part of a unit disc on one side of a straight edge at signed distance x from its centre
+// (positive: the centre is uncovered): 1/2 + (x sqrt(1 - x^2) + asin x) / pi, clamped to [-1, 1].
+SHARED float discFraction(float x) {
+    x = clamp(x, -1.0f, 1.0f);
+    return 0.5f + (x * sqrt(1.0f - x * x) + asin(x)) / 3.14159265f;
+}
+
 // bias.horizon: the part of a light of angular radius a (sin a = sinRadius) above a receiver's
 // tangent plane, its centre at elevation h over it (sin h = N.L): the segment of a disc of radius
 // a cut at distance h from its centre (a small light's disc, seen flat). The surface hides the
 // rest itself, which no shadow map holds. 1 for a point-like light.
 SHARED float horizonVisibility(float nDotL, float sinRadius) {
     if (sinRadius <= 0.0f) return 1.0f;
-    float x = clamp(asin(clamp(nDotL, -1.0f, 1.0f)) / asin(min(sinRadius, 1.0f)), -1.0f, 1.0f);
-    return 0.5f + (x * sqrt(1.0f - x * x) + asin(x)) / 3.14159265f;
+    return discFraction(asin(clamp(nDotL, -1.0f, 1.0f)) / asin(min(sinRadius, 1.0f)));
 }
 
 // The face of a point light's cube that holds direction `d` from the light: its major axis, in

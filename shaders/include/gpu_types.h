@@ -33,6 +33,7 @@ using uint = uint32_t;
 #define TECHNIQUE_MSM 8u
 #define TECHNIQUE_VSSM 9u
 #define TECHNIQUE_MSM_SOFT 10u
+#define TECHNIQUE_SDF 11u
 
 // Specialization-constant ids of visibility.comp and filter_probe.comp (the pipeline key is the
 // list of (id, value) pairs: src/shadows/technique.h).
@@ -70,6 +71,8 @@ using uint = uint32_t;
 #define VIS_VIEWS 7              // ShadowViewData[]
 #define VIS_SHADOW_TABLE 8       // the technique's filtered map when it holds integers (a
                                  // placeholder otherwise), every view (nearest)
+#define VIS_FIELD 9              // the scene's distance field (sdf; a 1x1x1 placeholder
+                                 // otherwise), trilinear
 #define COMPOSITE_LIGHTS 1       // composite.comp
 #define COMPOSITE_GBUFFER_DEPTH 2
 #define COMPOSITE_GBUFFER_NORMAL 3
@@ -90,6 +93,19 @@ using uint = uint32_t;
 #define MASK_TEXTURE 0           // shadow_mask.frag: the alpha-tested caster's texture
 #define READ_MAP 0               // a technique's extra depth pass (shadow_peel.frag): the map
 #define READ_TEXTURE 1           // it reads, and the caster's texture
+#define FIELD_TRIANGLES 0        // the distance field's build passes (sdf_seed, sdf_flood,
+#define FIELD_BRICK_STARTS 1     // sdf_resolve): FieldTriangle[], each brick's first entry in
+#define FIELD_BRICK_LIST 2       // the brick list (one past the last brick: its end), the list
+#define FIELD_IDS_IN 3           // of triangle indices; nearest-triangle ids (R32UI, 3D) read
+#define FIELD_IDS_OUT 4          // and written; the field (R32F, 3D) written
+#define FIELD_OUT 5
+#define FIELD_BRICK 4u           // voxels per brick side
+#define FIELD_NO_TRIANGLE 0xffffffffu
+#define FIELD_OPEN 1u            // FieldTriangle flags: open geometry (thickness, no sign)
+#define FIELD_FLIPPED 2u         // a closed surface wound inside out: its crossings count negated
+#define FIELD_OUTLINE_AB 4u      // open geometry: the edge faces a hole (an alpha-tested piece
+#define FIELD_OUTLINE_BC 8u      // whose neighbour across it was cut away), so the slab ends
+#define FIELD_OUTLINE_CA 16u     // there; other edges continue into the next triangle
 
 #define POISSON_MAX_SAMPLES 64u
 #define MAX_CASCADES 8u           // csm.cascades' largest value (src/core/light_space.h)
@@ -125,6 +141,10 @@ struct FrameData {       // std140 uniform block: the camera and every technique
                          // z msm-soft.subdivision, w msm-soft.refine
     vec4 tableScales;    // fixed-point steps per unit of the summed-area tables' moments:
                          // x savsm, y vssm, z msm-soft (src/shadows/technique.h, fixedPointScale)
+    vec4 sdfParams;      // x sdf.steps, y sdf.startOffset (voxels), z sdf.k (0: from the light's
+                         // size), w the smallest step (voxels)
+    vec4 fieldOrigin;    // the distance field's box: xyz its lowest corner, w a voxel's side
+    uvec4 fieldSize;     // xyz its voxels per axis (zero: no field)
     vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
 };
 
@@ -180,6 +200,18 @@ struct MaterialPush {
 #define LINE_GROUP_SIZE 64u     // post passes dispatched one invocation per row or column
 #define POST_VIEWS_BINDING 17   // ShadowViewData[]; PostPassPush.size.z is the view's index
 
+// A triangle of the distance field's build (src/shadows/sdf_input.h): its corners, and in a.w
+// its FIELD_* flags (as float bits).
+struct FieldTriangle {   // std430
+    vec4 a, b, c;
+};
+
+struct FieldPush {       // push constants of the distance field's build passes
+    vec4 origin;         // xyz the box's lowest corner, w a voxel's side
+    uvec4 size;          // xyz voxels per axis, w the flood's step (sdf_flood)
+    vec4 thickness;      // x: open geometry's half-thickness (world units)
+};
+
 struct PostPassPush {    // push constants of every shadow-map post pass
     uvec4 size;          // xy: the shadow map's size in texels, z: the view (ShadowViewData)
 };
@@ -222,7 +254,7 @@ static_assert(RECEIVER_OFF == 0 && RECEIVER_SCREEN == 1 && RECEIVER_LIGHT == 2 &
 static_assert(HORIZON_OFF == 0 && HORIZON_SOFT == 1 && HORIZON_ALL == 2 &&
               std::size(kHorizonChoices) == 3);
 
-static_assert(sizeof(FrameData) == 976 && offsetof(FrameData, position) == 128 &&
+static_assert(sizeof(FrameData) == 1024 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, filterMode) == 192 && offsetof(FrameData, biasParams) == 240 &&
               offsetof(FrameData, pcssMode) == 256 && offsetof(FrameData, cameraForward) == 288 &&
@@ -231,7 +263,8 @@ static_assert(sizeof(FrameData) == 976 && offsetof(FrameData, position) == 128 &
               offsetof(FrameData, vssmParams) == 400 &&
               offsetof(FrameData, msmSoftParams) == 416 &&
               offsetof(FrameData, softMode) == 432 &&
-              offsetof(FrameData, tableScales) == 448 && offsetof(FrameData, poisson) == 464);
+              offsetof(FrameData, tableScales) == 448 && offsetof(FrameData, sdfParams) == 464 &&
+              offsetof(FrameData, fieldSize) == 496 && offsetof(FrameData, poisson) == 512);
 static_assert(sizeof(LightData) == 96 && offsetof(LightData, cone) == 48 &&
               offsetof(LightData, bias) == 64 && offsetof(LightData, views) == 80);
 static_assert(sizeof(ShadowViewData) == 128 && offsetof(ShadowViewData, frustum) == 64 &&
@@ -242,6 +275,7 @@ static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
 static_assert(sizeof(ProbeReceiver) == 48 && offsetof(ProbeReceiver, gradientPixel) == 16 &&
               offsetof(ProbeReceiver, footprint) == 32);
 static_assert(sizeof(MaterialPush) == 32 && offsetof(MaterialPush, alphaCutoff) == 16);
+static_assert(sizeof(FieldTriangle) == 48 && sizeof(FieldPush) == 48);
 static_assert(sizeof(CasterPush) == 112 && offsetof(CasterPush, material) == 80);
 } // namespace penumbra::gpu
 #endif

@@ -1,5 +1,7 @@
 #include "reference/distance_field.h"
 
+#include "sdf_math.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -59,6 +61,61 @@ FieldSample sampleDistanceField(const Scene& scene, const glm::dvec3& p) {
         s.winding += windingContribution(p, a, b, c);
     }
     return s;
+}
+
+float FieldGrid::sample(const glm::vec3& p) const {
+    const glm::vec3 g =
+        glm::clamp((p - origin) / voxel - 0.5f, glm::vec3(0.0f), glm::vec3(size) - 1.0f);
+    const glm::uvec3 lo(glm::floor(g));
+    const glm::uvec3 hi = glm::min(lo + 1u, size - 1u);
+    const glm::vec3 f = g - glm::vec3(lo);
+    auto at = [&](uint32_t x, uint32_t y, uint32_t z) {
+        return values[(size_t{z} * size.y + y) * size.x + x];
+    };
+    auto alongX = [&](uint32_t y, uint32_t z) {
+        return at(lo.x, y, z) + f.x * (at(hi.x, y, z) - at(lo.x, y, z));
+    };
+    const float y0 = alongX(lo.y, lo.z) + f.y * (alongX(hi.y, lo.z) - alongX(lo.y, lo.z));
+    const float y1 = alongX(lo.y, hi.z) + f.y * (alongX(hi.y, hi.z) - alongX(lo.y, hi.z));
+    return y0 + f.z * (y1 - y0);
+}
+
+bool FieldGrid::contains(const glm::vec3& p) const {
+    const glm::vec3 extent = voxel * glm::vec3(size);
+    return glm::all(glm::greaterThanEqual(p, origin)) &&
+           glm::all(glm::lessThanEqual(p, origin + extent));
+}
+
+float traceFieldVisibility(const FieldGrid& field, const Light& light, const glm::vec3& world,
+                           const glm::vec3& face, const TraceSettings& s) {
+    glm::vec3 toLight;
+    float reach = std::numeric_limits<float>::max(), sinRadius = 0.0f;
+    if (light.type == LightType::Directional) {
+        toLight = -glm::normalize(light.direction);
+        sinRadius = std::sin(glm::radians(0.5f * light.angularDiameter));
+    } else {
+        const glm::vec3 offset = light.position - world;
+        const float distance = glm::length(offset);
+        toLight = offset / std::max(distance, 1e-20f);
+        sinRadius = std::min(light.radius / std::max(distance, 1e-6f), 1.0f);
+        reach = distance * (1.0f - sinRadius);
+    }
+    gpu::ConeTrace c{.edge = 1.0f, .t = 0.0f, .previous = -1.0f, .step = 0.0f};
+    if (s.horizon && (sinRadius > 0.0f || s.k > 0.0f))
+        c.edge = gpu::coneEdge(glm::dot(face, toLight), 1.0f, sinRadius, s.k);
+    if (c.edge <= -1.0f)
+        return 0.0f;
+    float apex = 0.0f;
+    const glm::vec3 origin =
+        gpu::traceStart(world, face, toLight, s.startOffset * field.voxel, apex);
+    for (uint32_t i = 0; i < s.steps && c.t < reach - apex; ++i) {
+        const glm::vec3 p = origin + c.t * toLight;
+        if (!field.contains(p))
+            break;
+        if (!gpu::coneTraceStep(c, field.sample(p), apex, sinRadius, s.k, s.minStep * field.voxel))
+            return 0.0f;
+    }
+    return gpu::discFraction(c.edge);
 }
 
 } // namespace penumbra

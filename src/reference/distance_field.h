@@ -7,6 +7,9 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
+#include <vector>
+
 namespace penumbra {
 
 // The point of triangle (a, b, c) closest to p [Ericson, Real-Time Collision Detection, 5.1.5]:
@@ -28,5 +31,30 @@ struct FieldSample {
 };
 
 FieldSample sampleDistanceField(const Scene& scene, const glm::dvec3& p);
+
+// A field sampled on a grid (the GPU's, read back): voxel centres at origin + (i + 1/2) voxel,
+// x fastest. sample() interpolates trilinearly, clamped at the outer voxel centres, as the
+// tracer's sampler does.
+struct FieldGrid {
+    glm::vec3 origin{0.0f};
+    float voxel = 1.0f;
+    glm::uvec3 size{0u};
+    std::vector<float> values;
+    float sample(const glm::vec3& p) const;
+    bool contains(const glm::vec3& p) const;
+};
+
+struct TraceSettings {
+    uint32_t steps = 128;
+    float startOffset = 1.0f; // voxels
+    float k = 0.0f;           // 0: from the light's size
+    float minStep = 0.25f;    // voxels
+    bool horizon = true;
+};
+
+// The CPU mirror of the sdf tracer (shaders/include/shadow_sdf.glsl, the same sdf_math.h
+// steps): the visible fraction of `light` at receiver `world` with triangle normal `face`.
+float traceFieldVisibility(const FieldGrid& field, const Light& light, const glm::vec3& world,
+                           const glm::vec3& face, const TraceSettings& settings);
 
 } // namespace penumbra

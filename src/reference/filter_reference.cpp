@@ -1,6 +1,7 @@
 #include "reference/filter_reference.h"
 
 #include "filter_math.h"
+#include "penumbra/error.h"
 #include "reference/sampling.h"
 #include "reference/sat_reference.h"
 
@@ -383,6 +384,9 @@ glm::vec4 evaluate(Technique technique, const ShadowMapView& map, const FilterPr
         return msm(map, probe, f, view);
     case Technique::SecondDepth: // `map` holds the midpoints; no receiver-plane correction
         return {hard(map, probe, m, glm::vec2(0.0f)), 0.0f, 0.0f, 0.0f};
+    case Technique::Sdf:
+        throw InputError("sdf", "it traces a distance field: there is no shadow-map filter to "
+                                "evaluate");
     case Technique::Hard:
         break;
     }

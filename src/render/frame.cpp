@@ -291,6 +291,7 @@ void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
             .sampled(VIS_SHADOW_COMPARE, t.shadowDepth.image.view.get(), t.compare)
             .storageImage(VIS_OUT, t.visibility.view.get())
             .storageBuffer(VIS_VIEWS, t.viewData)
+            .sampled(VIS_FIELD, t.field, t.fieldSampler)
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
         vkCmdPushConstants(cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                            sizeof push, &push);
@@ -392,11 +393,16 @@ FilteredBindings filteredBindings(const FrameTargets& t, const shadows::Techniqu
 void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene& scene,
                  FrameTargets& targets, const FrameSettings& settings, vk::GpuTimer& timer) {
     timer.reset(cmd);
-    timer.begin(cmd, "shadow");
-    recordShadowPasses(cmd, pipelines, scene, targets, settings);
-    timer.end(cmd);
-    if (!targets.views.empty())
-        recordShadowPost(cmd, pipelines, targets, settings, &timer);
+    if (settings.technique->tracesField) {
+        // No shadow map: the depth map (1x1) is only bound, never drawn.
+        vk::imageBarrier(cmd, targets.shadowDepth.image, vk::kUndefined, vk::kComputeSampled);
+    } else {
+        timer.begin(cmd, "shadow");
+        recordShadowPasses(cmd, pipelines, scene, targets, settings);
+        timer.end(cmd);
+        if (!targets.views.empty())
+            recordShadowPost(cmd, pipelines, targets, settings, &timer);
+    }
     timer.begin(cmd, "gbuffer");
     recordGBuffer(cmd, pipelines, scene, targets);
     timer.end(cmd);

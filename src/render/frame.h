@@ -73,6 +73,9 @@ struct FrameTargets {
     // renderer's samplers.
     VkBuffer frame = VK_NULL_HANDLE, lights = VK_NULL_HANDLE, viewData = VK_NULL_HANDLE;
     VkSampler nearest = VK_NULL_HANDLE, compare = VK_NULL_HANDLE;
+    // Not owned: the scene's distance field (sdf; a placeholder otherwise) and its sampler.
+    VkImageView field = VK_NULL_HANDLE;
+    VkSampler fieldSampler = VK_NULL_HANDLE;
 
     // The map called `name` (kDepthMap or one of the module's).
     const ViewMaps& named(const shadows::TechniqueModule& module, std::string_view name) const;

@@ -56,7 +56,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {VIS_SHADOW_COMPARE, kSampled},
                                   {VIS_OUT, kImage},
                                   {VIS_VIEWS, kStorage},
-                                  {VIS_SHADOW_TABLE, kSampled}},
+                                  {VIS_SHADOW_TABLE, kSampled},
+                                  {VIS_FIELD, kSampled}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     compositeLayout = vk::createPipelineLayout(ctx,
                                                {{BIND_FRAME, kUniform},
@@ -169,6 +170,25 @@ VkPipeline FramePipelines::postPass(std::string_view shader, uint32_t inputs, ui
                           vk::createComputePipeline(ctx, postPassLayout(inputs, outputs), shader))
                  .first;
     return it->second.get();
+}
+
+const FieldPipelines& FramePipelines::field() {
+    if (!mField) {
+        auto f = std::make_unique<FieldPipelines>();
+        f->layout = vk::createPipelineLayout(ctx,
+                                             {{FIELD_TRIANGLES, kStorage},
+                                              {FIELD_BRICK_STARTS, kStorage},
+                                              {FIELD_BRICK_LIST, kStorage},
+                                              {FIELD_IDS_IN, kImage},
+                                              {FIELD_IDS_OUT, kImage},
+                                              {FIELD_OUT, kImage}},
+                                             VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::FieldPush));
+        f->seed = vk::createComputePipeline(ctx, f->layout, "sdf_seed.comp");
+        f->flood = vk::createComputePipeline(ctx, f->layout, "sdf_flood.comp");
+        f->resolve = vk::createComputePipeline(ctx, f->layout, "sdf_resolve.comp");
+        mField = std::move(f);
+    }
+    return *mField;
 }
 
 } // namespace penumbra::render

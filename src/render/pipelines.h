@@ -7,12 +7,19 @@
 #include "vk/pipelines.h"
 
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 namespace penumbra::render {
+
+// The distance field's build passes (src/render/distance_field.h), one layout for the three.
+struct FieldPipelines {
+    vk::PipelineLayout layout;
+    vk::PipelineHandle seed, flood, resolve;
+};
 
 class FramePipelines {
 public:
@@ -38,6 +45,8 @@ public:
     // A technique's post pass and its layout: `inputs` sampled maps, `outputs` storage images.
     VkPipeline postPass(std::string_view shader, uint32_t inputs, uint32_t outputs);
     const vk::PipelineLayout& postPassLayout(uint32_t inputs, uint32_t outputs);
+    // Made on first use: only the sdf technique builds a field.
+    const FieldPipelines& field();
 
 private:
     using Constants = std::vector<shadows::SpecConstant>;
@@ -48,6 +57,7 @@ private:
     std::map<std::pair<std::string, bool>, vk::PipelineHandle> mReadingDepth;
     std::map<std::pair<uint32_t, uint32_t>, vk::PipelineLayout> mPostLayouts;
     std::map<std::string, vk::PipelineHandle, std::less<>> mPost;
+    std::unique_ptr<FieldPipelines> mField;
 };
 
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;

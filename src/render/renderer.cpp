@@ -2,6 +2,7 @@
 
 #include "core/projection.h"
 #include "penumbra/error.h"
+#include "render/distance_field.h"
 #include "render/frame.h"
 #include "render/frame_data.h"
 #include "render/renderer_impl.h"
@@ -90,6 +91,8 @@ void Renderer::check(const Scene& scene, const RenderOptions& o) const {
         throw InputError(scene.name, "the scene has no triangles");
     (void)scene.camera(o.camera); // throws for an unknown camera name
     checkDeviceLimits(mImpl->ctx, o, shadowCount(scene, o));
+    if (shadows::moduleOf(o.technique).tracesField)
+        render::checkDistanceField(mImpl->ctx, scene, o.parameters);
 }
 
 RenderResult Renderer::render(const Scene& scene, const RenderOptions& o,

@@ -10,12 +10,17 @@
 //      passes, its post passes, the G-buffer, visibility and composite; a warm-up frame, then
 //      the timed frames.
 //   5. recordReadback copies colour, visibility, position and normal into one buffer.
+//   A technique that traces the distance field (sdf) draws no shadow map: its field is built
+//   before the first frame that needs it (render/distance_field.h) and kept while the scene
+//   renderer lives and sdf.resolution and sdf.thickness stay the same.
 #include "core/projection.h"
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
+#include "render/distance_field.h"
 #include "render/frame.h"
 #include "render/frame_data.h"
 #include "render/renderer_impl.h"
+#include "vk/sync.h"
 
 #include <fmt/format.h>
 
@@ -151,11 +156,35 @@ struct SceneRenderer::Impl {
     };
     std::array<Slot, kFramesInFlight> slots;
     size_t nextSlot = 0;
-    vk::SamplerHandle nearest, compare;
+    vk::SamplerHandle nearest, compare, linear;
+    // The distance field (sdf) and the settings it was built for; a 1x1x2 placeholder bound in
+    // its place otherwise (every binding a shader uses must be written).
+    std::optional<render::DistanceField> field;
+    std::pair<uint32_t, double> fieldKey{0, 0.0};
+    vk::Image fieldPlaceholder;
+    const render::DistanceField& fieldFor(const ParameterValues& p, const ProgressFn& progress,
+                                          bool& built);
 
     const vk::Context& ctx() const { return renderer.mImpl->ctx; }
     void makeTargets(const TargetKey& k);
 };
+
+const render::DistanceField&
+SceneRenderer::Impl::fieldFor(const ParameterValues& p, const ProgressFn& progress, bool& built) {
+    const std::pair<uint32_t, double> wanted{static_cast<uint32_t>(p.number("sdf.resolution")),
+                                             p.number("sdf.thickness")};
+    built = !field || fieldKey != wanted;
+    if (built) {
+        if (progress)
+            progress(fmt::format("building the distance field ({} voxels on the longest axis)",
+                                 wanted.first));
+        field.reset(); // its memory first
+        field = render::buildDistanceField(ctx(), renderer.mImpl->pipelines, scene, wanted.first,
+                                           static_cast<float>(wanted.second));
+        fieldKey = wanted;
+    }
+    return *field;
+}
 
 void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
     const vk::Context& c = ctx();
@@ -190,6 +219,7 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
     t.exportNormal = targetImage(c, "normal", VK_FORMAT_R32G32B32A32_SFLOAT, w, h, storageOut);
     t.nearest = nearest.get();
     t.compare = compare.get();
+    t.fieldSampler = linear.get();
     const size_t pixels = size_t{w} * h;
     readback =
         vk::createBuffer(c, pixels * (4 + 4 * layers + 16 + 16), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -232,6 +262,28 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
         m.ctx().info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     m.compare = vk::createSampler(
         m.ctx(), {.magFilter = compareFilter, .minFilter = compareFilter, .compare = true});
+    m.linear =
+        vk::createSampler(m.ctx(), {.magFilter = VK_FILTER_LINEAR, .minFilter = VK_FILTER_LINEAR});
+    m.fieldPlaceholder = vk::createImage(m.ctx(), {.name = "distance field placeholder",
+                                                   .format = VK_FORMAT_R32_SFLOAT,
+                                                   .width = 1,
+                                                   .height = 1,
+                                                   .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
+                                                   .depth = 2});
+    m.ctx().submitAndWait([&](VkCommandBuffer cmd) {
+        vk::imageBarrier(cmd, m.fieldPlaceholder, vk::kUndefined, vk::kComputeSampled);
+    });
+}
+
+std::vector<float> SceneRenderer::distanceField(DistanceFieldInfo& info) const {
+    if (!mImpl->field)
+        return {};
+    const render::DistanceField& f = *mImpl->field;
+    info.voxels = f.layout.size;
+    info.voxelSize = f.layout.voxel;
+    info.origin = f.layout.origin;
+    info.bytes = f.bytes();
+    return render::readDistanceField(mImpl->ctx(), f);
 }
 
 SceneRenderer::~SceneRenderer() = default;
@@ -312,7 +364,8 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
     TargetKey key{.width = o.width,
                   .height = o.height,
-                  .shadowMapSize = o.shadowMapSize,
+                  // A technique that draws no shadow map binds a 1x1 one.
+                  .shadowMapSize = module.tracesField ? 1u : o.shadowMapSize,
                   .shadowViews = static_cast<uint32_t>(views.size()),
                   .shadowLights = static_cast<uint32_t>(shadowLights.size()),
                   .technique = &module};
@@ -330,8 +383,26 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
 
     Impl::Slot& slot = m.slots[m.nextSlot];
     m.nextSlot = (m.nextSlot + 1) % m.slots.size();
-    const gpu::FrameData frameBlock =
+    gpu::FrameData frameBlock =
         render::frameData(camera, o, static_cast<uint32_t>(lights.size()), ctx);
+    t.field = m.fieldPlaceholder.view.get();
+    if (module.tracesField) {
+        bool built = false;
+        const render::DistanceField& field = m.fieldFor(o.parameters, progress, built);
+        frameBlock.fieldOrigin = glm::vec4(field.layout.origin, field.layout.voxel);
+        frameBlock.fieldSize = glm::uvec4(field.layout.size, 0u);
+        t.field = field.image.view.get();
+        result.field = DistanceFieldInfo{.voxels = field.layout.size,
+                                         .voxelSize = field.layout.voxel,
+                                         .origin = field.layout.origin,
+                                         .bytes = field.bytes(),
+                                         .triangles = field.triangles,
+                                         .openTriangles = field.openTriangles,
+                                         .buildGpuMs = field.buildMs,
+                                         .buildPasses = field.passMs,
+                                         .buildCpuMs = field.cpuMs,
+                                         .built = built};
+    }
     std::memcpy(slot.frame.mapped, &frameBlock, sizeof frameBlock);
     if (!lights.empty())
         std::memcpy(slot.lights.mapped, lights.data(), lights.size() * sizeof(gpu::LightData));

@@ -49,6 +49,21 @@ nlohmann::json renderStats(const RenderRun& run) {
             params[std::string(p.key)] = o.parameters.number(p.key);
     }
     j["parameters"] = params;
+    if (const auto& f = run.result.field) {
+        nlohmann::json passes = nlohmann::json::object();
+        for (const PassTime& p : f->buildPasses)
+            passes[p.pass] = p.medianMs;
+        j["distance_field"] = {{"voxels", {f->voxels.x, f->voxels.y, f->voxels.z}},
+                               {"voxel_size", f->voxelSize},
+                               {"origin", vec(f->origin)},
+                               {"bytes", f->bytes},
+                               {"triangles", f->triangles},
+                               {"open_triangles", f->openTriangles},
+                               {"build_gpu_ms", f->buildGpuMs},
+                               {"build_cpu_ms", f->buildCpuMs},
+                               {"build_passes_ms", passes},
+                               {"built_for_this_render", f->built}};
+    }
     nlohmann::json lights = nlohmann::json::array();
     for (const LightShadow& s : run.result.lights) {
         const Light& l = run.scene.lights[s.sceneLight];

@@ -19,7 +19,8 @@ static_assert(TECHNIQUE_HARD == uint32_t(Technique::Hard) &&
                   TECHNIQUE_SAVSM == uint32_t(Technique::Savsm) &&
                   TECHNIQUE_MSM == uint32_t(Technique::Msm) &&
                   TECHNIQUE_VSSM == uint32_t(Technique::Vssm) &&
-                  TECHNIQUE_MSM_SOFT == uint32_t(Technique::MsmSoft),
+                  TECHNIQUE_MSM_SOFT == uint32_t(Technique::MsmSoft) &&
+                  TECHNIQUE_SDF == uint32_t(Technique::Sdf),
               "the visibility pass's technique ids are penumbra::Technique's");
 
 uint32_t bytesPerTexel(MapFormat format) {
@@ -44,9 +45,9 @@ bool holdsIntegers(MapFormat format) {
 
 std::span<const TechniqueModule* const> allModules() {
     static const TechniqueModule* const modules[] = {
-        &hardModule(), &pcfModule(),  &pcssModule(),   &secondDepthModule(),
-        &vsmModule(),  &esmModule(),  &evsmModule(),   &savsmModule(),
-        &msmModule(),  &vssmModule(), &msmSoftModule()};
+        &hardModule(), &pcfModule(),  &pcssModule(),    &secondDepthModule(),
+        &vsmModule(),  &esmModule(),  &evsmModule(),    &savsmModule(),
+        &msmModule(),  &vssmModule(), &msmSoftModule(), &sdfModule()};
     return modules;
 }
 
@@ -154,6 +155,8 @@ bool mipmappedOf(const MapDecl& map, const ParameterValues& params) {
 
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
                         const ParameterValues& params) {
+    if (module.tracesField)
+        return 0; // no shadow map: the field's memory is the scene's (src/render/distance_field.h)
     const uint64_t texels = uint64_t{size} * size;
     uint64_t chain = 0; // the texels of a full mip chain
     for (uint32_t level = 0; (size >> level) > 0; ++level)

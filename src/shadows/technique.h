@@ -84,6 +84,10 @@ struct TechniqueModule {
     // The widest footprint the technique filters over, in texels from the receiver: the blur
     // radius a metric may allow at a shadow edge (0 for a single sample).
     double (*blurRadiusTexels)(const ParameterValues&) = nullptr;
+    // Whether it traces the scene's distance field instead of filtering shadow maps (sdf): the
+    // frame draws no shadow map, and the scene renderer builds the field (src/render/
+    // distance_field.h) once per scene and field setting.
+    bool tracesField = false;
 };
 
 // The separable Gaussian blur of the blurred-moment techniques (vsm, esm, evsm, msm;
@@ -159,5 +163,6 @@ const TechniqueModule& savsmModule();
 const TechniqueModule& msmModule();
 const TechniqueModule& vssmModule();
 const TechniqueModule& msmSoftModule();
+const TechniqueModule& sdfModule();
 
 } // namespace penumbra::shadows

@@ -96,11 +96,17 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
 
 Image createImage(const Context& ctx, const ImageDesc& desc) {
     // lavapipe creates images past maxImageDimension2D without complaint: check here.
-    const uint32_t limit = ctx.limits().maxImageDimension2D;
-    if (desc.width == 0 || desc.height == 0 || desc.width > limit || desc.height > limit)
-        throw InputError(desc.name, fmt::format("{}x{} is outside this device's image size range "
-                                                "1..{}",
-                                                desc.width, desc.height, limit));
+    const uint32_t limit =
+        desc.depth > 1 ? ctx.limits().maxImageDimension3D : ctx.limits().maxImageDimension2D;
+    if (desc.width == 0 || desc.height == 0 || desc.width > limit || desc.height > limit ||
+        desc.depth > limit)
+        throw InputError(desc.name,
+                         desc.depth > 1
+                             ? fmt::format("{}x{}x{} is outside this device's 3D image size "
+                                           "range 1..{}",
+                                           desc.width, desc.height, desc.depth, limit)
+                             : fmt::format("{}x{} is outside this device's image size range 1..{}",
+                                           desc.width, desc.height, limit));
     PENUMBRA_CHECK(desc.depth == 1 || (desc.layers == 1 && !desc.cube), "3D images have one layer");
     PENUMBRA_CHECK(!desc.cube || (desc.layers % 6 == 0 && desc.width == desc.height),
                    "cube images have square faces, six layers per cube");

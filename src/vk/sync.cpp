@@ -65,7 +65,7 @@ void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, VkBuffer buffer)
                                                         .mipLevel = 0,
                                                         .baseArrayLayer = 0,
                                                         .layerCount = image.layers},
-                                   .imageExtent = {image.width, image.height, 1}};
+                                   .imageExtent = {image.width, image.height, image.depth}};
     vkCmdCopyImageToBuffer(cmd, image.get(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1,
                            &region);
 }

@@ -1,0 +1,64 @@
+// Technique `sdf` (src/shadows/sdf.cpp): the light's visible fraction at a receiver by sphere
+// tracing the scene's distance field towards it. Each step's free distance h bounds how close the
+// ray passes to the scene; with the previous step's it gives the closest approach d of the ray
+// between them (closestApproach), at a distance t along it. Seen from the receiver, that miss
+// puts the light's edge at coneEdge(d, t): asin(d / t) over the light's angular radius, in light
+// radii from the cone's axis, negative once the ray runs inside a solid. The narrowest over the
+// ray, with the receiver's own horizon (bias.horizon), is the straight edge that cuts the light's
+// disc: discFraction of it is open. Inside a solid the ray keeps going (a step of at least
+// a quarter voxel) until the edge passes the far side of the disc.
+#ifndef PENUMBRA_SHADOW_SDF_GLSL
+#define PENUMBRA_SHADOW_SDF_GLSL
+#include "sdf_math.h"
+
+// The field at world position p (trilinear; the box's voxel centres hold the samples).
+float fieldAt(sampler3D field, vec3 p) {
+    vec3 uvw = (p - frame.fieldOrigin.xyz) / (frame.fieldOrigin.w * vec3(frame.fieldSize.xyz));
+    return texture(field, uvw).r;
+}
+
+bool insideFieldBox(vec3 p) {
+    vec3 extent = frame.fieldOrigin.w * vec3(frame.fieldSize.xyz);
+    return all(greaterThanEqual(p, frame.fieldOrigin.xyz)) &&
+           all(lessThanEqual(p, frame.fieldOrigin.xyz + extent));
+}
+
+// `face`: the receiver's triangle normal (towards the viewer); `sinRadius`: the sine of the
+// light's angular radius at the receiver; `horizon`: whether its tangent plane clips the light.
+float shadowSdf(sampler3D field, LightData light, vec3 world, vec3 face, float sinRadius,
+                bool horizon) {
+    if (frame.fieldSize.x == 0u) return 1.0;
+    float voxel = frame.fieldOrigin.w;
+    vec3 toLight;
+    float reach; // how far the ray may go: to the light's surface, or out of the field's box
+    if (light.positionType.w == float(LIGHT_DIRECTIONAL)) {
+        toLight = -light.directionRange.xyz;
+        reach = 3.4e38;
+    } else {
+        vec3 offset = light.positionType.xyz - world;
+        float distance = length(offset);
+        toLight = offset / max(distance, 1e-20);
+        reach = distance * (1.0 - sinRadius);
+    }
+    float k = frame.sdfParams.z;
+    ConeTrace c;
+    c.edge = horizon && (sinRadius > 0.0 || k > 0.0)
+                 ? coneEdge(dot(face, toLight), 1.0, sinRadius, k)
+                 : 1.0;
+    if (c.edge <= -1.0) return 0.0;
+    c.t = 0.0;
+    c.previous = -1.0;
+    c.step = 0.0;
+    float apex;
+    vec3 origin = traceStart(world, face, toLight, frame.sdfParams.y * voxel, apex);
+    float minStep = frame.sdfParams.w * voxel;
+    uint steps = uint(frame.sdfParams.x);
+    for (uint i = 0u; i < steps && c.t < reach - apex; ++i) {
+        vec3 p = origin + c.t * toLight;
+        if (!insideFieldBox(p)) break;
+        if (!coneTraceStep(c, fieldAt(field, p), apex, sinRadius, k, minStep)) return 0.0;
+    }
+    return discFraction(c.edge);
+}
+
+#endif

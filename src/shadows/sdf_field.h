@@ -1,0 +1,56 @@
+#pragma once
+// What the `sdf` technique's field is built from, prepared on the CPU once per scene and
+// resolution: the field's box and voxels, the triangles (closed surfaces signed by their winding,
+// open ones given a thickness, alpha-tested ones cut down to their covered parts) and a coarse
+// grid of bricks listing the triangles near each. The GPU passes (src/render/distance_field.h)
+// compute the distances from these.
+#include "gpu_types.h"
+#include "penumbra/scene.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace penumbra::shadows {
+
+// The most voxels a field may have (R32F: 512 MiB; the build holds two R32UI id images more).
+inline constexpr uint64_t kMaxFieldVoxels = uint64_t{1} << 27;
+// Voxels of free space around the scene's bounds on each side.
+inline constexpr uint32_t kFieldPadding = 2;
+
+struct FieldLayout {
+    glm::vec3 origin{0.0f}; // the box's lowest corner
+    float voxel = 1.0f;     // a voxel's side, world units
+    glm::uvec3 size{0u};    // voxels per axis, each a multiple of FIELD_BRICK
+    uint64_t voxels() const { return uint64_t{size.x} * size.y * size.z; }
+    glm::uvec3 bricks() const { return size / FIELD_BRICK; }
+    glm::vec3 voxelCentre(glm::uvec3 v) const { return origin + (glm::vec3(v) + 0.5f) * voxel; }
+};
+
+// `resolution` voxels on the bounds' longest axis, cubic voxels, kFieldPadding around, each axis
+// rounded up to whole bricks. Throws InputError("sdf.resolution", ...) past kMaxFieldVoxels.
+FieldLayout fieldLayout(const Bounds& bounds, uint32_t resolution);
+
+struct FieldGeometry {
+    std::vector<gpu::FieldTriangle> triangles;
+    // Brick b lists triangles[brickList[brickStarts[b]] .. brickList[brickStarts[b + 1] - 1]]:
+    // every triangle within one brick of the brick's box (so a voxel's nearest triangle is in its
+    // brick's list whenever it is that close, and every triangle crossing the brick is).
+    std::vector<uint32_t> brickStarts, brickList;
+    uint32_t closedTriangles = 0, openTriangles = 0;
+    uint32_t alphaTriangles = 0; // alpha-tested triangles before they were cut down
+};
+
+// Which of the scene's triangles belong to closed surfaces: welded by position (to a millionth of
+// the scene's size), a connected set of triangles is closed when each of its edges is shared by
+// exactly two of them, wound in opposite directions. Alpha-tested materials are never closed.
+// Also returns, per triangle, whether its closed surface is wound inside out (negative volume).
+struct Closure {
+    std::vector<bool> closed, flipped;
+};
+Closure closedSurfaces(const Scene& scene);
+
+FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout);
+
+} // namespace penumbra::shadows
