@@ -164,8 +164,11 @@ DistanceField buildDistanceField(const vk::Context& ctx, FramePipelines& pipelin
         timer.end(cmd);
         timer.begin(cmd, "sdf_flood");
         // Steps n/2, n/4, ..., 1, then 1 again (JFA+1): ids[0] holds the latest after each swap.
+        // Rounds of steps k, k/2, ..., 1 carry an id up to 2k - 1 voxels: enough to cross the
+        // widest gap between a voxel and the nearest seeded brick.
         uint32_t step = 1;
-        while (step * 2 < std::max({layout.size.x, layout.size.y, layout.size.z}))
+        while (2 * step < geometry.seedGap + 1 &&
+               step * 2 < std::max({layout.size.x, layout.size.y, layout.size.z}))
             step *= 2;
         std::vector<uint32_t> steps;
         for (; step >= 1; step /= 2)

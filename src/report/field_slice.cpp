@@ -76,6 +76,19 @@ SliceImage fieldSlice(const std::vector<float>& voxels, const DistanceFieldInfo&
             for (int k = 0; k < 3; ++k)
                 out[k] = static_cast<uint8_t>(std::lround(255.0f * std::clamp(c[k], 0.0f, 1.0f)));
         }
+    // Each voxel a square of pixels, the longer side at least 512 pixels.
+    const uint32_t longer = std::max(image.width, image.height);
+    const uint32_t scale = (512u + longer - 1) / longer;
+    if (scale > 1) {
+        SliceImage big{.width = image.width * scale, .height = image.height * scale};
+        big.rgb.resize(size_t{big.width} * big.height * 3);
+        for (uint32_t y = 0; y < big.height; ++y)
+            for (uint32_t x = 0; x < big.width; ++x)
+                for (int k = 0; k < 3; ++k)
+                    big.rgb[(size_t{y} * big.width + x) * 3 + k] =
+                        image.rgb[(size_t{y / scale} * image.width + x / scale) * 3 + k];
+        image = std::move(big);
+    }
     return image;
 }
 

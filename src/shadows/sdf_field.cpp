@@ -259,6 +259,41 @@ FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout) {
     std::vector<uint32_t> cursor(g.brickStarts.begin(), g.brickStarts.end() - 1);
     for (uint32_t i = 0; i < g.triangles.size(); ++i)
         visit(g.triangles[i], [&](uint64_t brick) { g.brickList[cursor[brick]++] = i; });
+
+    // Breadth-first over the bricks from those with a list, to their 26 neighbours.
+    std::vector<uint32_t> hops(brickCount, UINT32_MAX);
+    std::vector<uint64_t> frontier;
+    for (uint64_t b = 0; b < brickCount; ++b)
+        if (counts[b] > 0) {
+            hops[b] = 0;
+            frontier.push_back(b);
+        }
+    uint32_t farthest = 0;
+    while (!frontier.empty()) {
+        std::vector<uint64_t> next;
+        for (const uint64_t b : frontier) {
+            const glm::ivec3 c(static_cast<int>(b % bricks.x),
+                               static_cast<int>(b / bricks.x % bricks.y),
+                               static_cast<int>(b / (uint64_t{bricks.x} * bricks.y)));
+            for (int dz = -1; dz <= 1; ++dz)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dx = -1; dx <= 1; ++dx) {
+                        const glm::ivec3 n = c + glm::ivec3(dx, dy, dz);
+                        if (glm::any(glm::lessThan(n, glm::ivec3(0))) ||
+                            glm::any(glm::greaterThanEqual(n, glm::ivec3(bricks))))
+                            continue;
+                        const uint64_t nb = (uint64_t(n.z) * bricks.y + uint64_t(n.y)) * bricks.x +
+                                            uint64_t(n.x);
+                        if (hops[nb] != UINT32_MAX)
+                            continue;
+                        hops[nb] = hops[b] + 1;
+                        farthest = std::max(farthest, hops[nb]);
+                        next.push_back(nb);
+                    }
+        }
+        frontier.swap(next);
+    }
+    g.seedGap = (farthest + 1) * FIELD_BRICK;
     return g;
 }
 

@@ -38,6 +38,9 @@ struct FieldGeometry {
     // every triangle within one brick of the brick's box (so a voxel's nearest triangle is in its
     // brick's list whenever it is that close, and every triangle crossing the brick is).
     std::vector<uint32_t> brickStarts, brickList;
+    // The farthest any voxel is from a brick with a list, in voxels (chessboard distance, a
+    // bound): how far jump flooding has to carry the ids.
+    uint32_t seedGap = 0;
     uint32_t closedTriangles = 0, openTriangles = 0;
     uint32_t alphaTriangles = 0; // alpha-tested triangles before they were cut down
 };
