@@ -4,6 +4,7 @@
 #include "scene/mesh_builder.h"
 
 #include <array>
+#include <string>
 
 namespace penumbra::test {
 
@@ -57,6 +58,32 @@ inline Scene sphereOverPlane(const Light& light) {
                              .znear = 0.1f,
                              .zfar = 100.0f});
     return scene;
+}
+
+// The soft techniques' acceptance lights over sphereOverPlane: a spot of `radius` from above and
+// aside, a sun of `degrees`, a bulb of `radius` low beside the sphere.
+inline Light acceptanceSpot(float radius) {
+    const glm::vec3 at{1.0f, 6.0f, 1.5f};
+    return {.name = "spot radius " + std::to_string(radius).substr(0, 3),
+            .type = LightType::Spot,
+            .position = at,
+            .direction = glm::normalize(-at),
+            .intensity = 40.0f,
+            .outerConeAngle = 0.7f,
+            .radius = radius};
+}
+inline Light acceptanceSun(float degrees) {
+    return {.name = "sun " + std::to_string(degrees).substr(0, 3) + " degrees",
+            .type = LightType::Directional,
+            .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)),
+            .angularDiameter = degrees};
+}
+inline Light acceptancePoint(float radius) {
+    return {.name = "point radius " + std::to_string(radius).substr(0, 3),
+            .type = LightType::Point,
+            .position = {0.6f, 3.5f, 0.4f},
+            .intensity = 8.0f,
+            .radius = radius};
 }
 
 } // namespace penumbra::test

@@ -123,23 +123,7 @@ TEST_F(FieldTest, FieldOfASphereOverAPlaneMatchesTheReference) {
 // The acceptance bounds on a sphere over a plane, for each light type: the soft region's
 // RMSE under 0.6x a 7x7 box PCF's and under 0.07, acne under 0.1%, leak under 1%.
 TEST_F(QualityTest, DistanceFieldShadowsMatchTheTruthForEveryLightType) {
-    const glm::vec3 spotAt{1.0f, 6.0f, 1.5f};
-    const Light lights[] = {{.name = "spot radius 0.5",
-                             .type = LightType::Spot,
-                             .position = spotAt,
-                             .direction = glm::normalize(-spotAt),
-                             .intensity = 40.0f,
-                             .outerConeAngle = 0.7f,
-                             .radius = 0.5f},
-                            {.name = "sun 6 degrees",
-                             .type = LightType::Directional,
-                             .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)),
-                             .angularDiameter = 6.0f},
-                            {.name = "point radius 0.3",
-                             .type = LightType::Point,
-                             .position = {0.6f, 3.5f, 0.4f},
-                             .intensity = 8.0f,
-                             .radius = 0.3f}};
+    const Light lights[] = {acceptanceSpot(0.5f), acceptanceSun(6.0f), acceptancePoint(0.3f)};
     for (const Light& light : lights) {
         const Truth t =
             groundTruth(sphereOverPlane(light),
@@ -164,15 +148,7 @@ TEST_F(QualityTest, DistanceFieldShadowsMatchTheTruthForEveryLightType) {
 // back, at every ground pixel: the same steps, so the same visibility up to the sampler's
 // interpolation precision.
 TEST_F(FieldTest, TracerMatchesItsCpuMirrorOverTheSameField) {
-    const Light lights[] = {{.name = "sun 6 degrees",
-                             .type = LightType::Directional,
-                             .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)),
-                             .angularDiameter = 6.0f},
-                            {.name = "point radius 0.3",
-                             .type = LightType::Point,
-                             .position = {0.6f, 3.5f, 0.4f},
-                             .intensity = 8.0f,
-                             .radius = 0.3f}};
+    const Light lights[] = {acceptanceSun(6.0f), acceptancePoint(0.3f)};
     for (const Light& light : lights) {
         const Scene scene = sphereOverPlane(light);
         SceneRenderer renderer(sharedRenderer(), scene);
@@ -249,12 +225,8 @@ TEST_F(FieldTest, FieldIsBuiltOncePerSceneAndFieldSetting) {
 // A sun of 0.5 degrees: almost hard shadows, which the field must place: misclassified pixels
 // away from edges under 0.5% (the bound), for the default field.
 TEST_F(QualityTest, DistanceFieldPlacesNearlyHardShadows) {
-    const Truth t =
-        groundTruth(sphereOverPlane({.name = "sun 0.5 degrees",
-                                     .type = LightType::Directional,
-                                     .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)),
-                                     .angularDiameter = 0.5f}),
-                    {.width = 192, .height = 192, .samples = 16});
+    const Truth t = groundTruth(sphereOverPlane(acceptanceSun(0.5f)),
+                                {.width = 192, .height = 192, .samples = 16});
     const RenderResult r = renderRow(t, Technique::Sdf, {});
     const ErrorMetrics m = errorOf(t, r);
     std::printf("sun 0.5 degrees: misclassified %.3f%% (%.3f%% away from edges), acne %.3f%%, "

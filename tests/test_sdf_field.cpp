@@ -225,6 +225,13 @@ TEST(SdfMath, ClosestApproachFindsAPointObstacleBetweenTwoSamples) {
         }
         EXPECT_LE(miss.x, freeDistance(t1) + 1e-6f);
     }
+    // A step shorter than the free distance (as the tracer's minimum step inside solids is
+    // longer): the spheres still meet at the obstacle when the two samples straddle it.
+    const float t0 = 1.9f, h0 = freeDistance(t0), t2 = t0 + 0.6f * h0;
+    ASSERT_GT(t2, obstacle.x);
+    const glm::vec2 shorter = gpu::closestApproach(freeDistance(t2), h0, 0.6f * h0, t2);
+    EXPECT_NEAR(shorter.x, obstacle.y, 1e-5f);
+    EXPECT_NEAR(shorter.y, obstacle.x, 1e-5f);
     // No circle: the first step, a sample inside, spheres that do not meet.
     EXPECT_EQ(gpu::closestApproach(0.5f, -1.0f, 0.0f, 1.0f), glm::vec2(0.5f, 1.0f));
     EXPECT_EQ(gpu::closestApproach(-0.1f, 0.2f, 0.2f, 1.0f), glm::vec2(-0.1f, 1.0f));

@@ -132,28 +132,8 @@ TEST_F(FilterTest, SummedAreaSoftMembersFindTheBlockersOfAStep) {
 // 0.0112 / 0.0134 vs 0.0723 (sun), 0.0376 / 0.0373 vs 0.1354 (point); no acne, no leak. The
 // test holds them under 0.4x box7, tighter than the 0.6x.
 TEST_F(QualityTest, SummedAreaSoftShadowsFollowTheLightsSize) {
-    const glm::vec3 spotAt{1.0f, 6.0f, 1.5f};
-    auto spot = [&](float radius) {
-        return Light{.name = fmt::format("spot radius {}", radius),
-                     .type = LightType::Spot,
-                     .position = spotAt,
-                     .direction = glm::normalize(-spotAt),
-                     .intensity = 40.0f,
-                     .outerConeAngle = 0.7f,
-                     .radius = radius};
-    };
-    const Light lights[] = {spot(0.1f),
-                            spot(0.5f),
-                            spot(1.5f),
-                            {.name = "sun 6 degrees",
-                             .type = LightType::Directional,
-                             .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)),
-                             .angularDiameter = 6.0f},
-                            {.name = "point radius 0.3",
-                             .type = LightType::Point,
-                             .position = {0.6f, 3.5f, 0.4f},
-                             .intensity = 8.0f,
-                             .radius = 0.3f}};
+    const Light lights[] = {acceptanceSpot(0.1f), acceptanceSpot(0.5f), acceptanceSpot(1.5f),
+                            acceptanceSun(6.0f), acceptancePoint(0.3f)};
     for (const Light& light : lights) {
         const Truth t =
             groundTruth(sphereOverPlane(light),
