@@ -166,8 +166,8 @@ TEST_F(FieldTest, TracerMatchesItsCpuMirrorOverTheSameField) {
         for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
             if (!onGround(r, i))
                 continue;
-            const float cpu =
-                traceFieldVisibility(grid, light, pixelVec(r.position, i), {0, 1, 0}, {});
+            const float cpu = traceFieldVisibility(grid, light, pixelVec(r.position, i), {0, 1, 0},
+                                                   traceSettingsOf(o.parameters));
             const double d = std::abs(cpu - r.visibility[0][i]);
             ++n;
             sum += d;

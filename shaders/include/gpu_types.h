@@ -71,7 +71,7 @@ using uint = uint32_t;
 #define VIS_VIEWS 7              // ShadowViewData[]
 #define VIS_SHADOW_TABLE 8       // the technique's filtered map when it holds integers (a
                                  // placeholder otherwise), every view (nearest)
-#define VIS_FIELD 9              // the scene's distance field (sdf; a 1x1x1 placeholder
+#define VIS_FIELD 9              // the scene's distance field (sdf; a 1x1x2 placeholder
                                  // otherwise), trilinear
 #define COMPOSITE_LIGHTS 1       // composite.comp
 #define COMPOSITE_GBUFFER_DEPTH 2

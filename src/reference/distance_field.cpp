@@ -1,6 +1,7 @@
 #include "reference/distance_field.h"
 
 #include "sdf_math.h"
+#include "shadows/technique.h"
 
 #include <algorithm>
 #include <cmath>
@@ -84,6 +85,21 @@ bool FieldGrid::contains(const glm::vec3& p) const {
     const glm::vec3 extent = voxel * glm::vec3(size);
     return glm::all(glm::greaterThanEqual(p, origin)) &&
            glm::all(glm::lessThanEqual(p, origin + extent));
+}
+
+TraceSettings traceSettingsOf(const ParameterValues& parameters) {
+    const shadows::TechniqueModule& module = shadows::moduleOf(Technique::Sdf);
+    gpu::FrameData frame{};
+    module.pack(parameters, frame);
+    bool horizon = false;
+    for (const shadows::SpecConstant& c : shadows::visibilityConstants(module, parameters))
+        if (c.id == SPEC_HORIZON)
+            horizon = c.value != 0;
+    return {.steps = static_cast<uint32_t>(frame.sdfParams.x),
+            .startOffset = frame.sdfParams.y,
+            .k = frame.sdfParams.z,
+            .minStep = frame.sdfParams.w,
+            .horizon = horizon};
 }
 
 float traceFieldVisibility(const FieldGrid& field, const Light& light, const glm::vec3& world,

@@ -4,6 +4,7 @@
 // geometry is closed. The GPU field builder is checked against it; it is a brute-force loop over
 // every triangle, for tests and small scenes only.
 #include "penumbra/scene.h"
+#include "penumbra/settings.h"
 
 #include <glm/glm.hpp>
 
@@ -45,12 +46,15 @@ struct FieldGrid {
 };
 
 struct TraceSettings {
-    uint32_t steps = 128;
-    float startOffset = 1.0f; // voxels
+    uint32_t steps = 0;
+    float startOffset = 0.0f; // voxels
     float k = 0.0f;           // 0: from the light's size
-    float minStep = 0.25f;    // voxels
+    float minStep = 0.0f;     // voxels
     bool horizon = true;
 };
+// What the visibility pass gets for `parameters`: the sdf module's own packing into FrameData
+// and its horizon constant, so the mirror cannot drift from the shader's settings.
+TraceSettings traceSettingsOf(const ParameterValues& parameters);
 
 // The CPU mirror of the sdf tracer (shaders/include/shadow_sdf.glsl, the same sdf_math.h
 // steps): the visible fraction of `light` at receiver `world` with triangle normal `face`.

@@ -26,9 +26,9 @@ FieldSlice parseFieldSlice(std::string_view text);
 float slicePosition(const FieldSlice& slice, const glm::vec3& origin, float voxel,
                     const glm::uvec3& voxels);
 
-// RGB rows top to bottom, each voxel a square of pixels (the longer side at least 512). Across y: x to the right, z downwards; across x: z right, y up;
-// across z: x right, y up. Throws InputError("--field-slice", ...) when `position` lies outside
-// the field's box.
+// RGB rows top to bottom, each voxel a square of pixels (the longer side at least 512). Across y: x
+// to the right, z downwards; across x: z right, y up; across z: x right, y up. Throws
+// InputError("--field-slice", ...) when `position` lies outside the field's box.
 struct SliceImage {
     uint32_t width = 0, height = 0;
     std::vector<uint8_t> rgb;

@@ -282,8 +282,8 @@ FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout) {
                         if (glm::any(glm::lessThan(n, glm::ivec3(0))) ||
                             glm::any(glm::greaterThanEqual(n, glm::ivec3(bricks))))
                             continue;
-                        const uint64_t nb = (uint64_t(n.z) * bricks.y + uint64_t(n.y)) * bricks.x +
-                                            uint64_t(n.x);
+                        const uint64_t nb =
+                            (uint64_t(n.z) * bricks.y + uint64_t(n.y)) * bricks.x + uint64_t(n.x);
                         if (hops[nb] != UINT32_MAX)
                             continue;
                         hops[nb] = hops[b] + 1;
