@@ -7,6 +7,7 @@ layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
 layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
 layout(constant_id = SPEC_RECEIVER) const uint RECEIVER = RECEIVER_OFF;
 layout(constant_id = SPEC_HORIZON) const uint HORIZON = 0u;
+layout(constant_id = SPEC_INTERMEDIATES) const bool WRITE_INTERMEDIATES = false;
 #include "gbuffer.glsl"
 #include "filter_math.h"
 #include "shadow_common.glsl"
@@ -24,6 +25,11 @@ layout(set = 0, binding = VIS_SHADOW_TABLE) uniform usampler2DArray shadowTable;
 layout(set = 0, binding = VIS_OUT, r32f) uniform writeonly image2DArray visibility;
 layout(set = 0, binding = VIS_VIEWS, std430) readonly buffer Views { ShadowViewData views[]; };
 layout(set = 0, binding = VIS_FIELD) uniform sampler3D distanceField;
+layout(set = 0, binding = VIS_INTERMEDIATES, rgba32f) uniform writeonly image2DArray intermediates;
+
+// The technique's intermediate results at the last view it was evaluated in (the viewer's
+// blocker-depth and penumbra views): evaluateTechnique's vector.
+vec4 detail = vec4(0.0);
 layout(push_constant) uniform Push { VisibilityPush push; };
 
 // Light-space (u, v, depth) offset to the neighbour at p + step along one axis, taking the side
@@ -101,9 +107,10 @@ float visibilityThrough(uint viewIndex, LightData light, ivec2 p, vec3 world, ve
     ShadowViewData view = views[viewIndex];
     bool inside;
     Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
-    return inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, shadowTable, r,
-                                      push.light.z, view, uvec2(p)).x
-                  : 1.0;
+    detail = inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, shadowTable, r,
+                                        push.light.z, view, uvec2(p))
+                    : vec4(1.0, 1.0, 0.0, 0.0);
+    return detail.x;
 }
 
 // Whether a kernel of `radius` texels around the receiver stays inside its view's map.
@@ -139,17 +146,23 @@ float pcssThroughCascades(uint first, uint i, uint count, LightData light, ivec2
     float turns = rotationTurns(frame.pcssMode.z, uvec2(p));
     Receiver rs = receivers[searchIn];
     vec2 blockers = pcssSearch(shadowMap, rs, mapSize, views[first + uint(searchIn)], turns);
-    if (blockers.x == 0.0) return 1.0;
+    if (blockers.x == 0.0) {
+        detail = vec4(1.0, blockers.y, 0.0, 0.0);
+        return 1.0;
+    }
     float zBlocker = viewDistance(views[first + uint(searchIn)], blockers.y);
     for (uint k = i; k < uint(searchIn); ++k) {
         ShadowViewData view = views[first + k];
         Receiver r = receivers[k];
         float radius = penumbraRadius(view, viewDistance(view, r.depth), zBlocker, mapSize);
-        if (radius <= cap && holds(r, insides[k], radius))
-            return pcssFilter(shadowMap, r, mapSize, view, zBlocker, blockers, turns).x;
+        if (radius <= cap && holds(r, insides[k], radius)) {
+            detail = pcssFilter(shadowMap, r, mapSize, view, zBlocker, blockers, turns);
+            return detail.x;
+        }
     }
-    return pcssFilter(shadowMap, rs, mapSize, views[first + uint(searchIn)], zBlocker, blockers,
-                      turns).x;
+    detail = pcssFilter(shadowMap, rs, mapSize, views[first + uint(searchIn)], zBlocker, blockers,
+                        turns);
+    return detail.x;
 }
 
 // The visibility of a pixel through cascade i of a sun's `count` cascades from view `first`.
@@ -182,6 +195,8 @@ void main() {
             v = shadowSdf(distanceField, light, world, faceNormal(normals),
                           lightSine(light, views[viewIndex], world), HORIZON != 0u);
             imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));
+            if (WRITE_INTERMEDIATES)
+                imageStore(intermediates, ivec3(p, int(push.light.y)), vec4(v, 0.0, 0.0, 0.0));
             return;
         }
         uint cascades = light.positionType.w == float(LIGHT_DIRECTIONAL) ? light.views.y : 1u;
@@ -203,4 +218,6 @@ void main() {
                                    lightSine(light, views[viewIndex], world));
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));
+    if (WRITE_INTERMEDIATES)
+        imageStore(intermediates, ivec3(p, int(push.light.y)), vec4(v, detail.yzw));
 }

@@ -9,6 +9,7 @@
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
 
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -19,6 +20,10 @@ struct ReferenceOptions {
     uint32_t samples = 256;   // rays per pixel and light for lights with a size (1 .. 65536)
     std::string embreeConfig; // rtcNewDevice configuration, e.g. "threads=2"
     bool progress = false;    // a progress bar on stderr when the work runs past a second
+    // For a caller tracing in the background (the viewer): rows done so far are added to
+    // `rowsDone`; once `cancel` is true the remaining rows are skipped (left NaN).
+    std::atomic<uint32_t>* rowsDone = nullptr;
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 struct ReferenceResult {

@@ -13,11 +13,20 @@
 #include <string>
 #include <vector>
 
+// Vulkan's own handle types, for a window system's presentation test (no vulkan.h here).
+struct VkInstance_T;
+struct VkPhysicalDevice_T;
+
 namespace penumbra {
 
 struct DeviceOptions {
     int deviceIndex = -1;    // -1: a GPU when there is one, else the software rasterizer
     bool validation = false; // Khronos validation layer + debug messenger that counts errors
+    // A window to present to (the viewer): the instance extensions its window system needs, and
+    // whether a queue family of a device can present to it. A device whose queue cannot, or that
+    // lacks VK_KHR_swapchain, is unsuitable. Unset: headless.
+    std::vector<std::string> instanceExtensions;
+    std::function<bool(VkInstance_T*, VkPhysicalDevice_T*, uint32_t queueFamily)> canPresent;
 };
 
 struct DeviceInfo {
@@ -145,6 +154,7 @@ public:
 
 private:
     friend class SceneRenderer;
+    friend struct RendererAccess; // the viewer's (src/render/renderer_impl.h)
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };
@@ -185,6 +195,7 @@ public:
     std::vector<float> distanceField(DistanceFieldInfo& info) const;
 
 private:
+    friend struct RendererAccess;
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

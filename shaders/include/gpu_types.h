@@ -41,6 +41,7 @@ using uint = uint32_t;
 #define SPEC_FILTER 1
 #define SPEC_RECEIVER 2
 #define SPEC_HORIZON 3           // 1: the visibility pass applies bias.horizon
+#define SPEC_INTERMEDIATES 15    // 1: the visibility pass also writes VIS_INTERMEDIATES (viewer)
 
 // pcf.filter, pcf.rotation and bias.receiver: indices of their choices in the registry.
 #define FILTER_BILINEAR 0u
@@ -73,6 +74,9 @@ using uint = uint32_t;
                                  // placeholder otherwise), every view (nearest)
 #define VIS_FIELD 9              // the scene's distance field (sdf; a 1x1x2 placeholder
                                  // otherwise), trilinear
+#define VIS_INTERMEDIATES 10     // RGBA32F array, a layer per shadow-casting light: the
+                                 // technique's intermediate results (evaluateTechnique's yzw),
+                                 // written with SPEC_INTERMEDIATES (a 1x1 placeholder otherwise)
 #define COMPOSITE_LIGHTS 1       // composite.comp
 #define COMPOSITE_GBUFFER_DEPTH 2
 #define COMPOSITE_GBUFFER_NORMAL 3
@@ -236,6 +240,34 @@ struct VisibilityPush {  // push constants of visibility.comp
                          // view (the shader picks the view of each pixel: shadowViewOf)
 };
 
+// The viewer's display pass (shaders/viewer_display.comp, apps/viewer/display.cpp): what the
+// window shows, from the frame's targets. DISPLAY_* modes, then bindings.
+#define DISPLAY_SCENE 0u         // the lit image
+#define DISPLAY_VISIBILITY 1u    // one light's visibility as grey
+#define DISPLAY_SHADOW_MAP 2u    // one layer of the depth map, linear depth as grey, letterboxed
+#define DISPLAY_CASCADES 3u      // the lit image tinted by the cascade each pixel reads
+#define DISPLAY_OVERLAY 4u       // an image the host made (the error heat map)
+#define DISPLAY_BLOCKER_DEPTH 5u // the average blocker's depth (PCSS, VSSM, MSM-soft) as grey
+#define DISPLAY_PENUMBRA 6u      // the filter's radius in texels, as a colour ramp
+#define DISPLAY_COLOR 0          // rgba8 storage, the lit image (technique A)
+#define DISPLAY_COLOR_B 1        // rgba8 storage, technique B's (A's when there is no B)
+#define DISPLAY_VISIBILITY_MAP 2 // sampler2DArray, a layer per shadow-casting light
+#define DISPLAY_DEPTH_MAP 3      // sampler2DArray, the shadow depth map
+#define DISPLAY_GBUFFER_DEPTH 4  // sampler2D, reverse-Z
+#define DISPLAY_OVERLAY_IMAGE 5  // rgba8 storage, the host's image
+#define DISPLAY_FRAME 6          // FrameData of the frame
+#define DISPLAY_OUT 7            // rgba8 storage, what is presented
+#define DISPLAY_INTERMEDIATES 8  // sampler2DArray, VIS_INTERMEDIATES
+
+struct DisplayPush {     // push constants of viewer_display.comp
+    uvec4 mode;          // x DISPLAY_*, y layer (visibility or depth map), z split column (A left
+                         // of it, B from it on; >= width: A only), w cascades in `splits`
+    vec4 depthRange;     // x near, y far, z 1: perspective (linearise), w the largest penumbra
+                         // radius in texels (DISPLAY_PENUMBRA's scale)
+    vec4 forward;        // xyz: the camera's unit view axis (cascade distances)
+    vec4 splits[2];      // the cascades' far distances along the view axis, 8 at most
+};
+
 #ifdef __cplusplus
 // The names of pcf.filter, pcf.rotation / pcss.rotation and bias.receiver, in the order of the
 // values above: the registry's choice lists are these arrays, so a name's index is the value the
@@ -276,6 +308,8 @@ static_assert(sizeof(ProbeReceiver) == 48 && offsetof(ProbeReceiver, gradientPix
               offsetof(ProbeReceiver, footprint) == 32);
 static_assert(sizeof(MaterialPush) == 32 && offsetof(MaterialPush, alphaCutoff) == 16);
 static_assert(sizeof(FieldTriangle) == 48 && sizeof(FieldPush) == 48);
+static_assert(sizeof(DisplayPush) == 80 && offsetof(DisplayPush, splits) == 48 &&
+              MAX_CASCADES == 8u, "DisplayPush.splits holds MAX_CASCADES distances");
 static_assert(sizeof(CasterPush) == 112 && offsetof(CasterPush, material) == 80);
 } // namespace penumbra::gpu
 #endif

@@ -127,6 +127,8 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
         tbb::blocked_range<uint32_t>(0, h), [&](const tbb::blocked_range<uint32_t>& rows) {
             uint64_t localRays = 0;
             for (uint32_t y = rows.begin(); y != rows.end(); ++y) {
+                if (options.cancel && options.cancel->load(std::memory_order_relaxed))
+                    break;
                 for (uint32_t x = 0; x < w; ++x) {
                     const size_t i = size_t{y} * w + x;
                     const glm::dvec3 p(gbuffer.position[3 * i], gbuffer.position[3 * i + 1],
@@ -163,6 +165,8 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                     }
                 }
                 progress.advance(1);
+                if (options.rowsDone)
+                    options.rowsDone->fetch_add(1, std::memory_order_relaxed);
             }
             rays.fetch_add(localRays, std::memory_order_relaxed);
         });

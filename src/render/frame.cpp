@@ -276,7 +276,10 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
 // One dispatch per light with shadow views, into its layer of the visibility image.
 void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
                       const FrameSettings& s) {
-    vk::imageBarrier(cmd, t.visibility, vk::kUndefined, vk::kComputeWrite);
+    vk::Barriers()
+        .image(t.visibility, vk::kUndefined, vk::kComputeWrite)
+        .image(t.intermediates, vk::kUndefined, vk::kComputeWrite)
+        .record(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(s.constants));
     const FilteredBindings filtered = filteredBindings(t, *s.technique);
     vk::imageBarrier(cmd, t.integerPlaceholder, vk::kUndefined, vk::kComputeSampled);
@@ -292,12 +295,16 @@ void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
             .storageImage(VIS_OUT, t.visibility.view.get())
             .storageBuffer(VIS_VIEWS, t.viewData)
             .sampled(VIS_FIELD, t.field, t.fieldSampler)
+            .storageImage(VIS_INTERMEDIATES, t.intermediates.view.get())
             .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
         vkCmdPushConstants(cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                            sizeof push, &push);
         vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
     }
-    vk::imageBarrier(cmd, t.visibility, vk::kComputeWrite, vk::kComputeSampled);
+    vk::Barriers()
+        .image(t.visibility, vk::kComputeWrite, vk::kComputeSampled)
+        .image(t.intermediates, vk::kComputeWrite, vk::kComputeSampled)
+        .record(cmd);
 }
 
 void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {

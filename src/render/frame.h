@@ -60,8 +60,10 @@ struct ViewMaps {
 
 struct FrameTargets {
     uint32_t width = 0, height = 0;
-    vk::Image depth, normal, albedo;  // G-buffer; depth is reverse-Z
-    vk::Image visibility;             // R32F array, one layer per shadow-casting light
+    vk::Image depth, normal, albedo; // G-buffer; depth is reverse-Z
+    vk::Image visibility;            // R32F array, one layer per shadow-casting light
+    vk::Image intermediates;         // RGBA32F array like visibility when the viewer asks for the
+                             // technique's intermediate results (SPEC_INTERMEDIATES); else 1x1
     vk::Image color;                  // RGBA8, sRGB-encoded values
     vk::Image position, exportNormal; // RGBA32F, filled for readback only
     std::vector<ShadowView> views;

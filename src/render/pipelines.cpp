@@ -57,7 +57,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {VIS_OUT, kImage},
                                   {VIS_VIEWS, kStorage},
                                   {VIS_SHADOW_TABLE, kSampled},
-                                  {VIS_FIELD, kSampled}},
+                                  {VIS_FIELD, kSampled},
+                                  {VIS_INTERMEDIATES, kImage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     compositeLayout = vk::createPipelineLayout(ctx,
                                                {{BIND_FRAME, kUniform},

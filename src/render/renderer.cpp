@@ -105,7 +105,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderOptions& o,
 }
 
 std::vector<DeviceInfo> listDevices() {
-    vk::Instance instance(false);
+    vk::Instance instance(false, {});
     std::vector<DeviceInfo> infos;
     const auto devices = instance.physicalDevices();
     for (uint32_t i = 0; i < devices.size(); ++i)

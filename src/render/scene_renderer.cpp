@@ -20,6 +20,7 @@
 #include "render/frame.h"
 #include "render/frame_data.h"
 #include "render/renderer_impl.h"
+#include "vk/check.h"
 #include "vk/sync.h"
 
 #include <fmt/format.h>
@@ -114,6 +115,7 @@ struct TargetKey {
     const shadows::TechniqueModule* technique; // its maps
     std::vector<shadows::MapFormat> formats;   // of its maps, for these parameters
     std::vector<bool> mipmapped;               // of its maps, for these parameters
+    bool intermediates;                        // the viewer's: VIS_INTERMEDIATES full size
     bool operator==(const TargetKey&) const = default;
 };
 
@@ -165,8 +167,20 @@ struct SceneRenderer::Impl {
     const render::DistanceField& fieldFor(const ParameterValues& p, const ProgressFn& progress,
                                           bool& built);
 
+    std::vector<glm::vec3> nearestFrom; // the positions nearestSurface was measured from
+
     const vk::Context& ctx() const { return renderer.mImpl->ctx; }
     void makeTargets(const TargetKey& k);
+    // Everything before recording: the lights' views, the targets, the distance field, and
+    // ring slot `slotIndex` filled; what the frame reports besides its pixels and times.
+    struct Prepared {
+        RenderResult result;
+        render::FrameSettings settings;
+    };
+    // `intermediates`: the viewer's; the visibility pass also writes the technique's
+    // intermediate results (targets.intermediates at full size).
+    Prepared prepare(const RenderOptions& o, const FrameState& state, size_t slotIndex,
+                     const ProgressFn& progress, bool intermediates = false);
 };
 
 const render::DistanceField&
@@ -178,7 +192,8 @@ SceneRenderer::Impl::fieldFor(const ParameterValues& p, const ProgressFn& progre
         if (progress)
             progress(fmt::format("building the distance field ({} voxels on the longest axis)",
                                  wanted.first));
-        field.reset(); // its memory first
+        VK_CHECK(vkDeviceWaitIdle(ctx().device())); // a frame in flight may still trace it
+        field.reset();                              // its memory first
         field = render::buildDistanceField(ctx(), renderer.mImpl->pipelines, scene, wanted.first,
                                            static_cast<float>(wanted.second));
         fieldKey = wanted;
@@ -214,6 +229,11 @@ void SceneRenderer::Impl::makeTargets(const TargetKey& k) {
     const uint32_t layers = std::max(1u, k.shadowLights);
     t.visibility =
         targetImage(c, "visibility", VK_FORMAT_R32_SFLOAT, w, h, storageOut | sampled, layers);
+    t.intermediates =
+        k.intermediates ? targetImage(c, "intermediates", VK_FORMAT_R32G32B32A32_SFLOAT, w, h,
+                                      VK_IMAGE_USAGE_STORAGE_BIT | sampled, layers)
+                        : targetImage(c, "intermediates placeholder", VK_FORMAT_R32G32B32A32_SFLOAT,
+                                      1, 1, VK_IMAGE_USAGE_STORAGE_BIT | sampled, 1);
     t.color = targetImage(c, "colour", VK_FORMAT_R8G8B8A8_UNORM, w, h, storageOut);
     t.position = targetImage(c, "position", VK_FORMAT_R32G32B32A32_SFLOAT, w, h, storageOut);
     t.exportNormal = targetImage(c, "normal", VK_FORMAT_R32G32B32A32_SFLOAT, w, h, storageOut);
@@ -242,6 +262,7 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
         m.nearestSurface.push_back(castsShadowMap(light) && light.type != LightType::Directional
                                        ? nearestSurfaceDistance(m.scene, light.position)
                                        : std::numeric_limits<float>::infinity());
+        m.nearestFrom.push_back(light.position);
     }
     m.viewCapacity = viewCount;
     const size_t viewBytes = sizeof(gpu::ShadowViewData) * std::max<size_t>(viewCount, 1);
@@ -300,16 +321,27 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const ProgressFn& pro
     return render(o, FrameState{}, progress);
 }
 
-RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& state,
-                                   const ProgressFn& progress) {
-    check(o);
-    Impl& m = *mImpl;
+SceneRenderer::Impl::Prepared
+SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, size_t slotIndex,
+                             const ProgressFn& progress, bool intermediates) {
+    renderer.check(scene, o);
+    Impl& m = *this;
     const vk::Context& ctx = m.ctx();
     Scene lit; // the lights with the options' sizes; the uploaded geometry stays as it is
     lit.lights = state.lights ? *state.lights : m.scene.lights;
     PENUMBRA_CHECK(lit.lights.size() == m.scene.lights.size(),
                    "a frame state must keep the scene's lights");
     applyLightSizeOverrides(lit, o.lightRadiusOverride, o.lightAngleOverride);
+    for (size_t i = 0; i < lit.lights.size(); ++i) { // a light the viewer moved
+        const Light& light = lit.lights[i];
+        PENUMBRA_CHECK(light.type == m.scene.lights[i].type,
+                       "a frame state must keep the lights' types");
+        if (light.position != m.nearestFrom[i] && castsShadowMap(light) &&
+            light.type != LightType::Directional) {
+            m.nearestSurface[i] = nearestSurfaceDistance(m.scene, light.position);
+            m.nearestFrom[i] = light.position;
+        }
+    }
     const Camera camera = state.camera ? *state.camera : m.scene.camera(o.camera);
 
     RenderResult result{.width = o.width, .height = o.height};
@@ -362,45 +394,46 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     if (viewRecords.size() > m.viewCapacity)
         fatal(__FILE__, __LINE__, "SceneRenderer: more shadow views than shadowViewCount counted");
     const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
-    TargetKey key{.width = o.width,
-                  .height = o.height,
-                  // A technique that draws no shadow map binds a 1x1 one.
-                  .shadowMapSize = module.tracesField ? 1u : o.shadowMapSize,
-                  .shadowViews = static_cast<uint32_t>(views.size()),
-                  .shadowLights = static_cast<uint32_t>(shadowLights.size()),
-                  .technique = &module};
+    TargetKey wanted{.width = o.width,
+                     .height = o.height,
+                     // A technique that draws no shadow map binds a 1x1 one.
+                     .shadowMapSize = module.tracesField ? 1u : o.shadowMapSize,
+                     .shadowViews = static_cast<uint32_t>(views.size()),
+                     .shadowLights = static_cast<uint32_t>(shadowLights.size()),
+                     .technique = &module,
+                     .intermediates = intermediates};
     for (const shadows::MapDecl& map : module.maps) {
-        key.formats.push_back(shadows::formatOf(map, o.parameters));
-        key.mipmapped.push_back(shadows::mipmappedOf(map, o.parameters));
+        wanted.formats.push_back(shadows::formatOf(map, o.parameters));
+        wanted.mipmapped.push_back(shadows::mipmappedOf(map, o.parameters));
     }
-    if (m.key != key) {
+    if (m.key != wanted) {
         if (progress)
             progress("creating targets");
-        m.makeTargets(key);
+        VK_CHECK(vkDeviceWaitIdle(ctx.device())); // a frame in flight may still use the old ones
+        m.makeTargets(wanted);
     }
     render::FrameTargets& t = m.targets;
     t.views = views;
 
-    Impl::Slot& slot = m.slots[m.nextSlot];
-    m.nextSlot = (m.nextSlot + 1) % m.slots.size();
+    Impl::Slot& slot = m.slots[slotIndex % m.slots.size()];
     gpu::FrameData frameBlock =
         render::frameData(camera, o, static_cast<uint32_t>(lights.size()), ctx);
     t.field = m.fieldPlaceholder.view.get();
     if (module.tracesField) {
         bool built = false;
-        const render::DistanceField& field = m.fieldFor(o.parameters, progress, built);
-        frameBlock.fieldOrigin = glm::vec4(field.layout.origin, field.layout.voxel);
-        frameBlock.fieldSize = glm::uvec4(field.layout.size, 0u);
-        t.field = field.image.view.get();
-        result.field = DistanceFieldInfo{.voxels = field.layout.size,
-                                         .voxelSize = field.layout.voxel,
-                                         .origin = field.layout.origin,
-                                         .bytes = field.bytes(),
-                                         .triangles = field.triangles,
-                                         .openTriangles = field.openTriangles,
-                                         .buildGpuMs = field.buildMs,
-                                         .buildPasses = field.passMs,
-                                         .buildCpuMs = field.cpuMs,
+        const render::DistanceField& grid = m.fieldFor(o.parameters, progress, built);
+        frameBlock.fieldOrigin = glm::vec4(grid.layout.origin, grid.layout.voxel);
+        frameBlock.fieldSize = glm::uvec4(grid.layout.size, 0u);
+        t.field = grid.image.view.get();
+        result.field = DistanceFieldInfo{.voxels = grid.layout.size,
+                                         .voxelSize = grid.layout.voxel,
+                                         .origin = grid.layout.origin,
+                                         .bytes = grid.bytes(),
+                                         .triangles = grid.triangles,
+                                         .openTriangles = grid.openTriangles,
+                                         .buildGpuMs = grid.buildMs,
+                                         .buildPasses = grid.passMs,
+                                         .buildCpuMs = grid.cpuMs,
                                          .built = built};
     }
     std::memcpy(slot.frame.mapped, &frameBlock, sizeof frameBlock);
@@ -413,13 +446,27 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     t.lights = slot.lights.get();
     t.viewData = slot.views.get();
 
-    const render::FrameSettings settings{
-        .technique = key.technique,
-        .constants = shadows::visibilityConstants(*key.technique, o.parameters),
-        .shadowLights = shadowLights,
-        .slopeBias = static_cast<float>(o.parameters.number("bias.slope")),
-        .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
-        .shadowMapSize = o.shadowMapSize};
+    std::vector<shadows::SpecConstant> constants =
+        shadows::visibilityConstants(*wanted.technique, o.parameters);
+    if (intermediates)
+        constants.push_back({SPEC_INTERMEDIATES, 1u});
+    return {std::move(result),
+            render::FrameSettings{
+                .technique = wanted.technique,
+                .constants = std::move(constants),
+                .shadowLights = shadowLights,
+                .slopeBias = static_cast<float>(o.parameters.number("bias.slope")),
+                .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
+                .shadowMapSize = o.shadowMapSize}};
+}
+
+RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& state,
+                                   const ProgressFn& progress) {
+    Impl& m = *mImpl;
+    const vk::Context& ctx = m.ctx();
+    auto [result, settings] = m.prepare(o, state, m.nextSlot, progress);
+    m.nextSlot = (m.nextSlot + 1) % m.slots.size();
+    render::FrameTargets& t = m.targets;
     render::FramePipelines& pipelines = m.renderer.mImpl->pipelines;
     vk::GpuTimer timer(ctx, static_cast<uint32_t>(4 + shadows::kMaxPostPasses));
     for (uint32_t frame = 0; frame <= o.frames; ++frame) {
@@ -451,7 +498,7 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     result.image.resize(pixels * 4);
     std::memcpy(result.image.data(), src, pixels * 4);
     src += pixels * 4;
-    for (size_t l = 0; l < shadowLights.size(); ++l) {
+    for (size_t l = 0; l < settings.shadowLights.size(); ++l) {
         std::vector<float>& v = result.visibility.emplace_back(pixels);
         std::memcpy(v.data(), src + l * pixels * 4, pixels * 4);
     }
@@ -465,6 +512,36 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         src += pixels * 16;
     }
     return result;
+}
+
+const vk::Context& RendererAccess::context(const Renderer& renderer) {
+    return renderer.mImpl->ctx;
+}
+
+render::FramePipelines& RendererAccess::pipelines(Renderer& renderer) {
+    return renderer.mImpl->pipelines;
+}
+
+RendererAccess::LiveFrame
+RendererAccess::recordFrame(SceneRenderer& scene, VkCommandBuffer cmd, const RenderOptions& options,
+                            const SceneRenderer::FrameState& state, size_t slot,
+                            vk::GpuTimer& timer, bool intermediates, const ProgressFn& progress) {
+    SceneRenderer::Impl& m = *scene.mImpl;
+    auto [result, settings] = m.prepare(options, state, slot, progress, intermediates);
+    // Frames in flight share the targets: this frame's first writes wait for every command
+    // submitted before it (the frame's own barriers start from "undefined").
+    const VkMemoryBarrier2 previousFrames{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                          .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                          .srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT,
+                                          .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                                          .dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT |
+                                                           VK_ACCESS_2_MEMORY_WRITE_BIT};
+    const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+                                      .memoryBarrierCount = 1,
+                                      .pMemoryBarriers = &previousFrames};
+    vkCmdPipelineBarrier2(cmd, &dependency);
+    render::recordFrame(cmd, m.renderer.mImpl->pipelines, m.gpu, m.targets, settings, timer);
+    return {std::move(result), &m.targets};
 }
 
 } // namespace penumbra

@@ -51,15 +51,18 @@ bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
     });
 }
 
-// The one queue family that does graphics, compute and timestamps; UINT32_MAX if none.
-uint32_t findQueueFamily(VkPhysicalDevice device) {
+// The one queue family that does graphics, compute and timestamps (and presents, when
+// `canPresent` is given); UINT32_MAX if none.
+uint32_t findQueueFamily(VkInstance instance, VkPhysicalDevice device,
+                         const DeviceOptions& options) {
     uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(device, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
     vkGetPhysicalDeviceQueueFamilyProperties(device, &count, families.data());
     for (uint32_t i = 0; i < count; ++i) {
         const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
-        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0)
+        if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0 &&
+            (!options.canPresent || options.canPresent(instance, device, i)))
             return i;
     }
     return UINT32_MAX;
@@ -91,7 +94,7 @@ int typeRank(const std::string& type) {
 
 } // namespace
 
-Instance::Instance(bool validation) {
+Instance::Instance(bool validation, const std::vector<std::string>& windowExtensions) {
     if (validation && !hasLayer(kValidationLayer))
         throw InputError("--validation", "the Khronos validation layer is not installed "
                                          "(Debian package vulkan-validationlayers)");
@@ -105,6 +108,8 @@ Instance::Instance(bool validation) {
         layers.push_back(kValidationLayer);
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
+    for (const std::string& name : windowExtensions)
+        extensions.push_back(name.c_str());
     const VkDebugUtilsMessengerCreateInfoEXT messengerInfo{
         .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
         .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
@@ -160,7 +165,8 @@ std::vector<VkPhysicalDevice> Instance::physicalDevices() const {
     return devices;
 }
 
-DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index) const {
+DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index,
+                              const DeviceOptions& options) const {
     VkPhysicalDeviceDriverProperties driver{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     VkPhysicalDeviceProperties2 props{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
@@ -212,15 +218,21 @@ DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index) const {
             "shaderStorageImageExtendedFormats or shaderStorageImageWriteWithoutFormat is missing";
     else if (!hasDeviceExtension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME))
         info.unsuitableReason = "VK_KHR_push_descriptor is not supported";
-    else if (findQueueFamily(device) == UINT32_MAX)
-        info.unsuitableReason = "no queue does graphics, compute and timestamps";
+    else if (options.canPresent && !hasDeviceExtension(device, VK_KHR_SWAPCHAIN_EXTENSION_NAME))
+        info.unsuitableReason = "VK_KHR_swapchain is not supported (it cannot present to a window)";
+    else if (findQueueFamily(mInstance, device, options) == UINT32_MAX)
+        info.unsuitableReason = options.canPresent
+                                    ? "no queue does graphics, compute, timestamps and presents "
+                                      "to the window"
+                                    : "no queue does graphics, compute and timestamps";
     else if ((depth.optimalTilingFeatures & depthNeeds) != depthNeeds)
         info.unsuitableReason = "D32_SFLOAT cannot be rendered and sampled";
     info.suitable = info.unsuitableReason.empty();
     return info;
 }
 
-Context::Context(const DeviceOptions& options) : mInstance(options.validation) {
+Context::Context(const DeviceOptions& options)
+    : mInstance(options.validation, options.instanceExtensions) {
     const auto devices = mInstance.physicalDevices();
     if (devices.empty())
         throw InputError("vulkan", "no Vulkan device found");
@@ -231,7 +243,7 @@ Context::Context(const DeviceOptions& options) : mInstance(options.validation) {
                                                      "`penumbra info`)",
                                                      options.deviceIndex, devices.size()));
         const DeviceInfo info =
-            mInstance.describe(devices[options.deviceIndex], options.deviceIndex);
+            mInstance.describe(devices[options.deviceIndex], options.deviceIndex, options);
         if (!info.suitable)
             throw InputError("--device",
                              fmt::format("{} ({}) cannot be used: {}", options.deviceIndex,
@@ -240,19 +252,23 @@ Context::Context(const DeviceOptions& options) : mInstance(options.validation) {
     } else {
         int bestRank = 1 << 30;
         for (uint32_t i = 0; i < devices.size(); ++i) {
-            const DeviceInfo info = mInstance.describe(devices[i], i);
+            const DeviceInfo info = mInstance.describe(devices[i], i, options);
             if (info.suitable && typeRank(info.type) < bestRank)
                 bestRank = typeRank(info.type), chosen = static_cast<int>(i);
         }
         if (chosen < 0)
-            throw InputError("vulkan", "no Vulkan device has what Penumbra needs (Vulkan 1.3, "
-                                       "dynamic rendering, push descriptors); see `penumbra info`");
+            throw InputError("vulkan", options.canPresent
+                                           ? "no Vulkan device can present to the window and "
+                                             "has what Penumbra needs; see `penumbra info`"
+                                           : "no Vulkan device has what Penumbra needs (Vulkan "
+                                             "1.3, dynamic rendering, push descriptors); see "
+                                             "`penumbra info`");
     }
     mPhysical = devices[chosen];
-    mInfo = mInstance.describe(mPhysical, static_cast<uint32_t>(chosen));
+    mInfo = mInstance.describe(mPhysical, static_cast<uint32_t>(chosen), options);
     vkGetPhysicalDeviceProperties(mPhysical, &mProperties);
     vkGetPhysicalDeviceMemoryProperties(mPhysical, &mMemory);
-    mQueueFamily = findQueueFamily(mPhysical);
+    mQueueFamily = findQueueFamily(mInstance.get(), mPhysical, options);
 
     const float priority = 1.0f;
     const VkDeviceQueueCreateInfo queueInfo{.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
@@ -279,13 +295,15 @@ Context::Context(const DeviceOptions& options) : mInstance(options.validation) {
                      // (msm.precision) is written without a format qualifier
                      .shaderStorageImageExtendedFormats = VK_TRUE,
                      .shaderStorageImageWriteWithoutFormat = VK_TRUE}};
-    const char* extensions[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    std::vector<const char*> extensions{VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    if (options.canPresent)
+        extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
     const VkDeviceCreateInfo info{.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
                                   .pNext = &features,
                                   .queueCreateInfoCount = 1,
                                   .pQueueCreateInfos = &queueInfo,
-                                  .enabledExtensionCount = 1,
-                                  .ppEnabledExtensionNames = extensions};
+                                  .enabledExtensionCount = static_cast<uint32_t>(extensions.size()),
+                                  .ppEnabledExtensionNames = extensions.data()};
     VK_CHECK(vkCreateDevice(mPhysical, &info, nullptr, &mDevice));
     vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
     cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace penumbra::vk {
@@ -22,7 +23,8 @@ struct ValidationCounters {
 
 class Instance {
 public:
-    explicit Instance(bool validation);
+    // `windowExtensions`: what a window system needs to present (the viewer's; may be empty).
+    Instance(bool validation, const std::vector<std::string>& windowExtensions);
     ~Instance();
     Instance(const Instance&) = delete;
     Instance& operator=(const Instance&) = delete;
@@ -31,7 +33,9 @@ public:
     bool validation() const { return mMessenger != VK_NULL_HANDLE; }
     const ValidationCounters& counters() const { return *mCounters; }
     std::vector<VkPhysicalDevice> physicalDevices() const;
-    DeviceInfo describe(VkPhysicalDevice device, uint32_t index) const;
+    // With `options.canPresent`, a device that cannot present to the window is unsuitable.
+    DeviceInfo describe(VkPhysicalDevice device, uint32_t index,
+                        const DeviceOptions& options = {}) const;
 
 private:
     VkInstance mInstance = VK_NULL_HANDLE;
@@ -47,6 +51,7 @@ public:
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
 
+    VkInstance instance() const { return mInstance.get(); }
     VkDevice device() const { return mDevice; }
     VkPhysicalDevice physicalDevice() const { return mPhysical; }
     VkQueue queue() const { return mQueue; }

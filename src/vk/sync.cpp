@@ -2,25 +2,34 @@
 
 namespace penumbra::vk {
 
+namespace {
+
+VkImageMemoryBarrier2 barrierOf(VkImage image, const ImageState& from, const ImageState& to,
+                                const VkImageSubresourceRange& range) {
+    return {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
+            .srcStageMask = from.stage,
+            .srcAccessMask = from.access,
+            .dstStageMask = to.stage,
+            .dstAccessMask = to.access,
+            .oldLayout = from.layout,
+            .newLayout = to.layout,
+            .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+            .image = image,
+            .subresourceRange = range};
+}
+
+} // namespace
+
 Barriers& Barriers::image(const Image& image, const ImageState& from, const ImageState& to,
                           SubresourceRange range) {
-    mImages.push_back(
-        {.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2,
-         .srcStageMask = from.stage,
-         .srcAccessMask = from.access,
-         .dstStageMask = to.stage,
-         .dstAccessMask = to.access,
-         .oldLayout = from.layout,
-         .newLayout = to.layout,
-         .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-         .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
-         .image = image.get(),
-         .subresourceRange = {
-             .aspectMask = image.aspect,
-             .baseMipLevel = range.baseMip,
-             .levelCount = range.mipCount ? range.mipCount : image.mipLevels - range.baseMip,
-             .baseArrayLayer = range.baseLayer,
-             .layerCount = range.layerCount ? range.layerCount : image.layers - range.baseLayer}});
+    mImages.push_back(barrierOf(
+        image.get(), from, to,
+        {.aspectMask = image.aspect,
+         .baseMipLevel = range.baseMip,
+         .levelCount = range.mipCount ? range.mipCount : image.mipLevels - range.baseMip,
+         .baseArrayLayer = range.baseLayer,
+         .layerCount = range.layerCount ? range.layerCount : image.layers - range.baseLayer}));
     return *this;
 }
 
@@ -38,6 +47,16 @@ void Barriers::record(VkCommandBuffer cmd) {
 void imageBarrier(VkCommandBuffer cmd, const Image& image, const ImageState& from,
                   const ImageState& to, uint32_t baseMip, uint32_t mipCount) {
     Barriers().image(image, from, to, {.baseMip = baseMip, .mipCount = mipCount}).record(cmd);
+}
+
+void colorImageBarrier(VkCommandBuffer cmd, VkImage image, const ImageState& from,
+                       const ImageState& to) {
+    const VkImageMemoryBarrier2 barrier =
+        barrierOf(image, from, to, {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1});
+    const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+                                      .imageMemoryBarrierCount = 1,
+                                      .pImageMemoryBarriers = &barrier};
+    vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
 void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStage,

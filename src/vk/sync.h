@@ -65,6 +65,9 @@ private:
 // baseMip.
 void imageBarrier(VkCommandBuffer cmd, const Image& image, const ImageState& from,
                   const ImageState& to, uint32_t baseMip = 0, uint32_t mipCount = 0);
+// A barrier on the one colour subresource of an image Penumbra does not own (a swapchain's).
+void colorImageBarrier(VkCommandBuffer cmd, VkImage image, const ImageState& from,
+                       const ImageState& to);
 void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStage,
                    VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
                    VkAccessFlags2 dstAccess);

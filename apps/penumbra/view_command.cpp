@@ -1,0 +1,106 @@
+// `penumbra view SCENE [render's options] [--frames N --screenshot FILE] [--hide-ui]`: the
+// interactive viewer (apps/viewer).
+#include "commands.h"
+#include "penumbra/error.h"
+#include "viewer.h"
+
+#include <memory>
+
+namespace penumbra::cli {
+namespace {
+
+struct ViewArgs {
+    std::string scene, technique = "hard";
+    std::vector<std::string> sets;
+    bool noVsync = false;
+    std::string show = "scene", compareWith;
+    viewer::ViewerOptions options;
+};
+
+// --show MODE[:N]: scene, visibility[:LIGHT], shadow-map[:LAYER], cascades, error[:LIGHT],
+// blocker-depth[:LIGHT], penumbra[:LIGHT].
+void parseShow(const std::string& text, viewer::ViewerOptions& options) {
+    const size_t colon = text.find(':');
+    const std::string mode = text.substr(0, colon);
+    using viewer::DisplayMode;
+    const std::pair<const char*, DisplayMode> modes[] = {
+        {"scene", DisplayMode::Scene},          {"visibility", DisplayMode::Visibility},
+        {"shadow-map", DisplayMode::ShadowMap}, {"cascades", DisplayMode::Cascades},
+        {"error", DisplayMode::Error},          {"blocker-depth", DisplayMode::BlockerDepth},
+        {"penumbra", DisplayMode::Penumbra}};
+    bool found = false;
+    for (const auto& [name, value] : modes)
+        if (mode == name)
+            options.show = value, found = true;
+    if (!found)
+        throw InputError("--show", "'" + text +
+                                       "' is not one of scene, visibility[:LIGHT], "
+                                       "shadow-map[:LAYER], cascades, error[:LIGHT], "
+                                       "blocker-depth[:LIGHT], penumbra[:LIGHT]");
+    if (colon != std::string::npos) {
+        const std::string index = text.substr(colon + 1);
+        if (index.empty() || index.size() > 4 ||
+            index.find_first_not_of("0123456789") != std::string::npos)
+            throw InputError("--show", "'" + index + "' is not a light or layer number");
+        options.showIndex = std::stoi(index);
+    }
+}
+
+int runView(const ViewArgs& args, const GlobalOptions& global) {
+    viewer::ViewerOptions options = args.options;
+    options.render.technique = findTechnique(args.technique).id;
+    for (const std::string& set : args.sets)
+        options.render.parameters.assign(set);
+    options.render.frames = 1;
+    validate(options.render);
+    validate(ReferenceOptions{.samples = options.truthSamples});
+    if (!options.screenshot.empty() && options.frames == 0)
+        throw InputError("--screenshot", "needs --frames N (the frames drawn before it)");
+    parseShow(args.show, options);
+    if (!args.compareWith.empty())
+        options.compareWith = findTechnique(args.compareWith).id;
+    options.vsync = !args.noVsync && options.frames == 0; // scripted runs do not wait for vsync
+    options.device = global.device;
+    options.validation = global.validation;
+    const Scene scene = loadSceneReporting(args.scene, global);
+    viewer::runViewer(scene, options);
+    return 0;
+}
+
+} // namespace
+
+Action addViewCommand(CLI::App& app, const GlobalOptions& global) {
+    auto args = std::make_shared<ViewArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "view", "the interactive viewer: SCENE in a window, every technique and parameter live, "
+                "the error against the ground truth (mouse: left drag orbits, right drag looks, "
+                "wheel zooms; WASD QE fly; Tab hides the interface; Esc quits)");
+    cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
+    cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
+        ->capture_default_str();
+    addViewOptions(*cmd, args->options.render);
+    cmd->add_option("--shadow-map-size", args->options.render.shadowMapSize,
+                    "shadow map side in texels")
+        ->capture_default_str();
+    cmd->add_option("--set", args->sets, "technique parameter family.name=value (repeatable)");
+    cmd->add_option("--frames", args->options.frames,
+                    "draw N frames, then exit (0: until the window closes)")
+        ->capture_default_str();
+    cmd->add_option("--screenshot", args->options.screenshot,
+                    "with --frames N: write the last presented image to FILE (PNG)");
+    cmd->add_option("--show", args->show,
+                    "what the window shows: scene, visibility[:LIGHT], shadow-map[:LAYER], "
+                    "cascades, error[:LIGHT] (error traces the ground truth first), "
+                    "blocker-depth[:LIGHT], penumbra[:LIGHT] (pcss, vssm, msm-soft)")
+        ->capture_default_str();
+    cmd->add_option("--compare-with", args->compareWith,
+                    "A/B: this technique right of the split, --technique left of it");
+    cmd->add_option("--samples", args->options.truthSamples,
+                    "ground-truth rays per pixel and light for --show error (1..65536)")
+        ->capture_default_str();
+    cmd->add_flag("--hide-ui", args->options.hideUi, "draw the scene without the interface");
+    cmd->add_flag("--no-vsync", args->noVsync, "present as fast as frames are drawn");
+    return [args, &global] { return runView(*args, global); };
+}
+
+} // namespace penumbra::cli

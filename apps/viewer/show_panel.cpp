@@ -1,0 +1,121 @@
+// The "show" section of the viewer's interface: the lit image, one light's visibility, a layer
+// of the shadow maps, the cascades, or the error against the ground truth of this view.
+#include "viewer_state.h"
+
+#include <fmt/format.h>
+#include <imgui.h>
+
+namespace penumbra::viewer {
+namespace {
+
+const char* const kModes[] = {
+    "lit image",     "visibility",    "shadow map", "cascades", "error vs ground truth",
+    "blocker depth", "penumbra width"};
+
+// "light 0", or for a layer "light 0 +x" / "light 1 cascade 2".
+std::vector<std::string> layerNames(const RenderResult& frame) {
+    std::vector<std::string> names;
+    for (const LightShadow& l : frame.lights) {
+        uint32_t cascade = 0;
+        for (const ShadowViewInfo& v : l.views) {
+            std::string name = fmt::format("light {}", l.sceneLight);
+            if (v.cascade)
+                name += fmt::format(" cascade {}", cascade++);
+            else if (!v.name.empty())
+                name += " " + v.name;
+            names.push_back(name);
+        }
+    }
+    return names;
+}
+
+void metricsTable(const ErrorMetrics& m) {
+    if (!ImGui::BeginTable("metrics", 2))
+        return;
+    auto row = [](const char* name, const std::string& value) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(name);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(value.c_str());
+    };
+    row("RMSE", fmt::format("{:.4f}", m.rmse));
+    row("misclassified", fmt::format("{:.3f}%", 100.0 * m.misclassified));
+    row("  away from edges", fmt::format("{:.3f}%", 100.0 * m.misclassifiedOutsideEdges));
+    row("acne", fmt::format("{:.3f}%", 100.0 * m.acne));
+    row("leak", fmt::format("{:.3f}%", 100.0 * m.leak));
+    row("pixels", fmt::format("{}", m.pixels));
+    ImGui::EndTable();
+}
+
+} // namespace
+
+bool hasBlockerSearch(Technique technique) {
+    return technique == Technique::Pcss || technique == Technique::Vssm ||
+           technique == Technique::MsmSoft;
+}
+
+void showPanel(ViewerState& s) {
+    int mode = static_cast<int>(s.display);
+    ImGui::Combo("show", &mode, kModes, IM_ARRAYSIZE(kModes));
+    s.display = static_cast<DisplayMode>(mode);
+    int shadowLights = 0;
+    for (const LightShadow& l : s.lastFrame.lights)
+        shadowLights += l.visibilityIndex >= 0;
+    const bool search =
+        s.display == DisplayMode::BlockerDepth || s.display == DisplayMode::Penumbra;
+    if (search && !hasBlockerSearch(s.options.technique))
+        ImGui::TextWrapped("%s has no blocker search: pcss, vssm and msm-soft do",
+                           std::string(techniqueName(s.options.technique)).c_str());
+    else if (s.display == DisplayMode::BlockerDepth)
+        ImGui::TextWrapped("the average blocker's depth in the light's view (grey; dark blue: "
+                           "no blocker found)");
+    else if (s.display == DisplayMode::Penumbra)
+        ImGui::TextWrapped("the filter's radius in texels: blue 0 to yellow at the largest "
+                           "(pcss.maxRadius); dark blue: no blocker found");
+    if (s.display == DisplayMode::Visibility || s.display == DisplayMode::Error || search) {
+        if (shadowLights == 0)
+            ImGui::TextUnformatted("no light casts a shadow");
+        else
+            ImGui::SliderInt("shadow-casting light", &s.displayLight, 0, shadowLights - 1);
+    }
+    if (s.display == DisplayMode::Cascades) {
+        bool cascaded = false;
+        for (const LightShadow& l : s.lastFrame.lights)
+            for (const ShadowViewInfo& v : l.views)
+                cascaded = cascaded || v.cascade;
+        ImGui::TextWrapped(cascaded ? "the cascade each pixel reads: red, green, blue, yellow "
+                                      "from near to far"
+                                    : "no light has cascades (csm.cascades > 1 for a sun)");
+    }
+    if (s.display == DisplayMode::ShadowMap) {
+        const std::vector<std::string> names = layerNames(s.lastFrame);
+        if (names.empty() || s.options.technique == Technique::Sdf) {
+            ImGui::TextUnformatted("this technique draws no shadow map");
+        } else {
+            s.displayLayer = std::min(s.displayLayer, static_cast<int>(names.size()) - 1);
+            if (ImGui::BeginCombo("layer", names[s.displayLayer].c_str())) {
+                for (size_t i = 0; i < names.size(); ++i)
+                    if (ImGui::Selectable(names[i].c_str(), static_cast<int>(i) == s.displayLayer))
+                        s.displayLayer = static_cast<int>(i);
+                ImGui::EndCombo();
+            }
+        }
+    }
+    if (s.display != DisplayMode::Error)
+        return;
+    ImGui::SliderInt("rays per pixel", &s.truthSamples, 1, 1024, "%d",
+                     ImGuiSliderFlags_Logarithmic);
+    if (ImGui::Button("compute the ground truth for this view"))
+        s.truthRequested = true;
+    if (s.truthProgress >= 0.0 && s.truthProgress < 1.0)
+        ImGui::ProgressBar(static_cast<float>(s.truthProgress));
+    if (!s.truthStatus.empty())
+        ImGui::TextWrapped("%s", s.truthStatus.c_str());
+    if (s.errorMetrics) {
+        ImGui::TextWrapped("visibility - truth: blue too dark, red too bright, grey not counted");
+        metricsTable(*s.errorMetrics);
+    }
+}
+
+} // namespace penumbra::viewer

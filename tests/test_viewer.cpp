@@ -1,0 +1,316 @@
+// `penumbra view` under a virtual X server (xvfb-run, which `make deps` installs): its screenshot
+// against `render`'s image of the same options for every light type, the interface shown or
+// hidden, the display modes (visibility, A/B split, error against the truth) against the files
+// `render` and `compare` write, and its errors. Every run has the validation layer on.
+#include "core/image_io.h"
+#include "process.h"
+#include "scratch_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <stb/stb_image.h>
+
+#include <cmath>
+#include <filesystem>
+#include <regex>
+#include <set>
+
+namespace penumbra::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kXvfbRun = "/usr/bin/xvfb-run";
+
+struct Rgb {
+    int width = 0, height = 0;
+    std::vector<uint8_t> pixels; // 3 per pixel, rows top to bottom
+    const uint8_t* at(int x, int y) const { return &pixels[3 * (size_t(y) * width + x)]; }
+};
+
+Rgb readPng(const fs::path& path) {
+    const std::vector<uint8_t> bytes = readFileBytes(path);
+    Rgb image;
+    int channels = 0;
+    uint8_t* data = stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()),
+                                          &image.width, &image.height, &channels, 3);
+    EXPECT_NE(data, nullptr) << path;
+    if (data) {
+        image.pixels.assign(data, data + size_t(image.width) * image.height * 3);
+        stbi_image_free(data);
+    }
+    return image;
+}
+
+fs::path scratch(const std::string& name) {
+    return scratchDir("viewer", name, true);
+}
+
+// `penumbra --validation view ARGS` on a fresh virtual X server (24-bit, larger than any window
+// here); any validation message fails the test.
+ProcessResult runViewer(const std::vector<std::string>& args) {
+    EXPECT_TRUE(fs::exists(kXvfbRun)) << "xvfb-run is missing: run `make deps`";
+    std::vector<std::string> full{
+        kXvfbRun, "-a", "-s", "-screen 0 1280x1024x24", PENUMBRA_CLI_PATH, "--validation", "view"};
+    full.insert(full.end(), args.begin(), args.end());
+    ProcessResult result = runProcess(std::move(full));
+    EXPECT_EQ(result.err.find("vulkan validation"), std::string::npos) << result.err;
+    return result;
+}
+
+// The mean absolute difference per channel, in 1/255 units, over columns [x0, x1).
+double meanDifference(const Rgb& a, const Rgb& b, int x0 = 0, int x1 = -1) {
+    if (x1 < 0)
+        x1 = a.width;
+    double sum = 0;
+    size_t n = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = x0; x < x1; ++x)
+            for (int c = 0; c < 3; ++c, ++n)
+                sum += std::abs(int(a.at(x, y)[c]) - int(b.at(x, y)[c]));
+    return n ? sum / double(n) : 0.0;
+}
+
+Rgb renderImage(const std::vector<std::string>& options, const std::string& name) {
+    const fs::path out = scratch(name);
+    std::vector<std::string> args{"render", "-o", out.string(), "--frames", "1"};
+    args.insert(args.end(), options.begin(), options.end());
+    const ProcessResult r = runCli(args);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return readPng(out / "image.png");
+}
+
+Rgb viewImage(const std::vector<std::string>& options, const std::string& name,
+              ProcessResult* result = nullptr) {
+    const fs::path shot = scratch(name) / "shot.png";
+    std::vector<std::string> args{"--frames", "4", "--screenshot", shot.string()};
+    args.insert(args.end(), options.begin(), options.end());
+    const ProcessResult r = runViewer(args);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("wrote " + shot.string()), std::string::npos) << r.out;
+    if (result)
+        *result = r;
+    return readPng(shot);
+}
+
+} // namespace
+
+// What the issue checks: the viewer without its interface draws render's picture, for a sun
+// (showcase, pcss), a spot light (pcf) and a point light (room: its cube faces).
+TEST(ViewerTest, HiddenInterfaceScreenshotIsRendersImage) {
+    const std::vector<std::vector<std::string>> cases{
+        {"builtin:showcase", "--technique", "pcss", "--width", "640", "--height", "360"},
+        {"builtin:spot", "--technique", "pcf", "--width", "320", "--height", "200", "--set",
+         "pcf.size=5", "--light-radius", "0.3"},
+        {"builtin:room", "--technique", "hard", "--width", "320", "--height", "240",
+         "--shadow-map-size", "512"}};
+    for (const auto& options : cases) {
+        SCOPED_TRACE(options[0]);
+        const Rgb rendered = renderImage(options, "render");
+        std::vector<std::string> viewOptions = options;
+        viewOptions.push_back("--hide-ui");
+        const Rgb viewed = viewImage(viewOptions, "view");
+        ASSERT_EQ(viewed.width, rendered.width);
+        ASSERT_EQ(viewed.height, rendered.height);
+        EXPECT_LE(meanDifference(viewed, rendered), 0.5);
+    }
+}
+
+TEST(ViewerTest, InterfaceIsDrawnOverTheTopLeftUnlessHidden) {
+    const std::vector<std::string> options{"builtin:showcase", "--width", "800", "--height", "500"};
+    const Rgb hidden = viewImage(
+        {options[0], options[1], options[2], options[3], options[4], "--hide-ui"}, "hidden");
+    const Rgb shown = viewImage(options, "shown");
+    ASSERT_EQ(shown.width, 800);
+    auto changed = [&](int x0, int y0, int x1, int y1) {
+        size_t n = 0, total = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x, ++total) {
+                int d = 0;
+                for (int c = 0; c < 3; ++c)
+                    d += std::abs(int(shown.at(x, y)[c]) - int(hidden.at(x, y)[c]));
+                n += d > 30;
+            }
+        return double(n) / double(total);
+    };
+    EXPECT_GT(changed(10, 10, 300, 300), 0.5) << "the panel covers the top left";
+    EXPECT_EQ(changed(600, 350, 800, 500), 0.0) << "and nothing else";
+}
+
+// --show visibility draws visibility.pfm as grey; the A/B split shows A left of the split column
+// and B from it on (render's images of each), with a marker line on the column itself.
+TEST(ViewerTest, DisplayModesShowTheFrameTheyName) {
+    const std::vector<std::string> scene{"builtin:spot", "--width",     "256", "--height",
+                                         "160",          "--technique", "pcf"};
+    const fs::path out = scratch("render-vis");
+    std::vector<std::string> args{"render", "-o", out.string(), "--frames", "1"};
+    args.insert(args.end(), scene.begin(), scene.end());
+    ASSERT_EQ(runCli(args).exitCode, 0);
+    const PfmImage visibility = readPfm(out / "visibility.pfm");
+    std::vector<std::string> show = scene;
+    show.insert(show.end(), {"--hide-ui", "--show", "visibility"});
+    const Rgb grey = viewImage(show, "show-vis");
+    ASSERT_EQ(grey.width * grey.height, static_cast<int>(visibility.pixels.size()));
+    size_t finite = 0;
+    for (int i = 0; i < grey.width * grey.height; ++i) {
+        const float v = visibility.pixels[i];
+        const uint8_t* p = &grey.pixels[3 * size_t(i)];
+        if (!std::isfinite(v))
+            continue;
+        ++finite;
+        const double expected = 255.0 * std::clamp(v, 0.0f, 1.0f);
+        ASSERT_NEAR(p[0], expected, 1.01) << "pixel " << i;
+        ASSERT_EQ(p[0], p[1]);
+        ASSERT_EQ(p[1], p[2]);
+    }
+    EXPECT_GT(finite, visibility.pixels.size() / 2);
+
+    // A wide light, so that B's penumbrae differ from A's hard edges.
+    std::vector<std::string> a = scene, b = scene;
+    a.insert(a.end(), {"--light-radius", "0.8"});
+    b.insert(b.end(), {"--light-radius", "0.8"});
+    a[6] = "hard";
+    b[6] = "pcss";
+    const Rgb left = renderImage(a, "render-a"), right = renderImage(b, "render-b");
+    std::vector<std::string> split = a;
+    split.insert(split.end(), {"--hide-ui", "--compare-with", "pcss"});
+    const Rgb both = viewImage(split, "split");
+    const int column = 128; // the default split, half the width
+    EXPECT_LE(meanDifference(both, left, 0, column), 0.5);
+    EXPECT_LE(meanDifference(both, right, column + 1, 256), 0.5);
+    EXPECT_GT(meanDifference(left, right, column + 1, 256), 0.5) << "B differs from A there";
+}
+
+// The cascade tint follows the view distance (red nearest, then green, blue, yellow: the ground
+// from the bottom of the image up), and a shadow-map layer is shown square and centred, its
+// depth as grey (the spot's frustum: nearer casters darker than the ground behind them).
+TEST(ViewerTest, CascadeAndShadowMapViewsShowTheirViews) {
+    const Rgb tint = viewImage({"builtin:showcase", "--width", "320", "--height", "180",
+                                "--hide-ui", "--show", "cascades"},
+                               "cascades");
+    auto dominant = [](const uint8_t* p) { // 0 red, 1 green, 2 blue
+        return p[0] > p[1] && p[0] > p[2] ? 0 : p[1] > p[2] ? 1 : 2;
+    };
+    EXPECT_EQ(dominant(tint.at(160, 178)), 0) << "the nearest ground: cascade 0";
+    int firstGreen = -1;
+    for (int y = 178; y > 60 && firstGreen < 0; --y)
+        if (dominant(tint.at(300, y)) == 1)
+            firstGreen = y;
+    EXPECT_GT(firstGreen, 60) << "cascade 1 further up";
+    for (int y = 178; y > firstGreen; --y)
+        ASSERT_EQ(dominant(tint.at(300, y)), 0) << "row " << y << ": cascade 0 below cascade 1";
+
+    const Rgb map = viewImage({"builtin:spot", "--width", "320", "--height", "200", "--hide-ui",
+                               "--show", "shadow-map:0"},
+                              "shadow-map");
+    for (int y = 0; y < 200; y += 7) { // the letterbox: (320 - 200) / 2 columns each side
+        ASSERT_EQ(map.at(59, y)[0], 26) << y;
+        ASSERT_EQ(map.at(260, y)[0], 26) << y;
+    }
+    int darkest = 255, lightest = 0;
+    for (int y = 0; y < 200; ++y)
+        for (int x = 60; x < 260; ++x) {
+            ASSERT_EQ(map.at(x, y)[0], map.at(x, y)[2]) << "grey";
+            darkest = std::min<int>(darkest, map.at(x, y)[0]);
+            lightest = std::max<int>(lightest, map.at(x, y)[0]);
+        }
+    EXPECT_LT(darkest + 60, lightest) << "casters in front of the ground";
+}
+
+// PCSS's blocker search as the viewer shows it agrees with the visibility render writes: no
+// blocker found (a dark blue) only where the pixel is fully lit, and a grey blocker depth wherever
+// it is not; the penumbra view colours those pixels by width, not all alike. The receiver's
+// horizon is off, so that a pixel is dimmed only by blockers.
+TEST(ViewerTest, BlockerSearchViewsAgreeWithTheVisibility) {
+    const std::vector<std::string> scene{
+        "builtin:spot",   "--width", "256",   "--height",        "160", "--technique", "pcss",
+        "--light-radius", "0.6",     "--set", "bias.horizon=off"};
+    const fs::path out = scratch("render-pcss");
+    std::vector<std::string> args{"render", "-o", out.string(), "--frames", "1"};
+    args.insert(args.end(), scene.begin(), scene.end());
+    ASSERT_EQ(runCli(args).exitCode, 0);
+    const PfmImage visibility = readPfm(out / "visibility.pfm");
+    std::vector<std::string> show = scene;
+    show.insert(show.end(), {"--hide-ui", "--show", "blocker-depth"});
+    const Rgb blockers = viewImage(show, "blockers");
+    show.back() = "penumbra";
+    const Rgb widths = viewImage(show, "penumbra");
+    ASSERT_EQ(blockers.width * blockers.height, static_cast<int>(visibility.pixels.size()));
+    auto noBlocker = [](const uint8_t* p) {
+        return std::abs(p[0] - 26) <= 1 && std::abs(p[1] - 31) <= 1 && std::abs(p[2] - 77) <= 1;
+    };
+    size_t shadowed = 0, lit = 0;
+    std::set<uint32_t> colours;
+    for (int i = 0; i < blockers.width * blockers.height; ++i) {
+        const float v = visibility.pixels[i];
+        if (!std::isfinite(v))
+            continue;
+        const uint8_t* b = &blockers.pixels[3 * size_t(i)];
+        const uint8_t* w = &widths.pixels[3 * size_t(i)];
+        if (noBlocker(b)) {
+            ASSERT_EQ(v, 1.0f) << "pixel " << i << ": no blocker, yet not lit";
+            ASSERT_TRUE(noBlocker(w)) << "pixel " << i;
+            ++lit;
+        }
+        if (v < 1.0f) {
+            ASSERT_FALSE(noBlocker(b)) << "pixel " << i << ": shadowed, yet no blocker";
+            ASSERT_TRUE(b[0] == b[1] && b[1] == b[2]) << "pixel " << i << ": a grey depth";
+            ASSERT_FALSE(noBlocker(w)) << "pixel " << i;
+            colours.insert(uint32_t(w[0]) << 16 | uint32_t(w[1]) << 8 | w[2]);
+            ++shadowed;
+        }
+    }
+    EXPECT_GT(lit, 1000u);
+    EXPECT_GT(shadowed, 500u);
+    EXPECT_GT(colours.size(), 10u) << "penumbra widths vary";
+}
+
+// --show error traces the truth for the view and measures the frame as `compare` does: the same
+// RMSE and misclassified fraction on the same pixels with the same rays.
+TEST(ViewerTest, ErrorViewMeasuresWhatCompareMeasures) {
+    const std::vector<std::string> scene{"builtin:showcase", "--width", "200", "--height", "120",
+                                         "--light-angle",    "4"};
+    const fs::path out = scratch("compare");
+    std::vector<std::string> args{
+        "compare", "-o", out.string(), "--techniques", "pcss", "--samples", "16", "--frames", "1"};
+    args.insert(args.end(), scene.begin(), scene.end());
+    const ProcessResult c = runCli(args);
+    ASSERT_EQ(c.exitCode, 0) << c.err;
+    const auto metrics = nlohmann::json::parse(slurp(out / "metrics.json"));
+    std::vector<std::string> view = scene;
+    view.insert(view.end(),
+                {"--technique", "pcss", "--hide-ui", "--show", "error", "--samples", "16"});
+    ProcessResult r;
+    const Rgb heat = viewImage(view, "error", &r);
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.out, m, std::regex("RMSE ([0-9.]+), misclassified ([0-9.]+)%")))
+        << r.out;
+    ASSERT_TRUE(metrics["techniques"].contains("pcss")) << metrics.dump();
+    const auto& row = metrics["techniques"]["pcss"];
+    EXPECT_NEAR(std::stod(m[1]), row["rmse"].get<double>(), 1e-4) << metrics.dump();
+    EXPECT_NEAR(std::stod(m[2]) / 100.0, row["misclassified"].get<double>(), 2e-5);
+    // The heat map, not the lit image: the sky has no comparison (a dark checker).
+    EXPECT_LT(heat.at(2, 2)[0], 120);
+}
+
+TEST(ViewerTest, BadInputIsOneErrorLineAndNoScreenshot) {
+    const fs::path shot = scratch("bad") / "shot.png";
+    ProcessResult r = runViewer({"builtin:nope", "--frames", "2", "--screenshot", shot.string()});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+    EXPECT_FALSE(fs::exists(shot));
+    r = runViewer({"builtin:showcase", "--show", "depth", "--frames", "1"});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("error: --show"), std::string::npos) << r.err;
+    r = runViewer({"builtin:showcase", "--screenshot", shot.string()});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("--frames"), std::string::npos) << r.err;
+    // No display at all: a clear error, not a crash.
+    r = runProcess({"/usr/bin/env", "-u", "DISPLAY", "-u", "WAYLAND_DISPLAY", PENUMBRA_CLI_PATH,
+                    "view", "builtin:showcase", "--frames", "1", "--screenshot", shot.string()});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("error: display"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(shot));
+}
+
+} // namespace penumbra::test
