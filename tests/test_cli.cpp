@@ -531,3 +531,79 @@ TEST(Cli, CompareRefusesAnUnknownCameraPath) {
     EXPECT_EQ(r.err, "error: --camera-path: 'spiral' is not dolly, orbit or sun\n");
     EXPECT_FALSE(fs::exists(out));
 }
+
+// bench: a run per technique and per swept value of a parameter it reads, each pass's median
+// inside its 10th and 90th percentiles, the frame's total at least any pass, the maps' memory
+// the same for the same maps; bench.html beside the JSON, with a chart of the sweep.
+TEST(Cli, BenchTimesEveryTechniqueAndEverySweptValue) {
+    const fs::path dir = scratch("bench");
+    const ProcessResult r =
+        runCli({"bench", "builtin:showcase", "-o", (dir / "times.json").string(), "--techniques",
+                "hard,pcf,pcss", "--sweep", "pcf.size=3,7,11", "--width", "96", "--height", "64",
+                "--shadow-map-size", "256", "--frames", "3"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const auto j = nlohmann::json::parse(slurp(dir / "times.json"));
+    EXPECT_EQ(j["device"]["name"].get<std::string>().empty(), false);
+    EXPECT_EQ(j["frames"], 3);
+    const auto& runs = j["runs"];
+    ASSERT_EQ(runs.size(), 5u) << j.dump(1);
+    const std::vector<std::string> techniques{"hard", "pcf", "pcf", "pcf", "pcss"};
+    const std::vector<std::string> sizes{"", "3", "7", "11", ""};
+    for (size_t i = 0; i < runs.size(); ++i) {
+        SCOPED_TRACE(i);
+        const auto& run = runs[i];
+        EXPECT_EQ(run["technique"], techniques[i]);
+        if (sizes[i].empty()) {
+            EXPECT_TRUE(run["swept"].empty());
+        } else {
+            EXPECT_EQ(run["swept"]["pcf.size"], sizes[i]);
+            EXPECT_DOUBLE_EQ(run["parameters"]["pcf.size"].get<double>(), std::stod(sizes[i]));
+        }
+        EXPECT_EQ(run["parameters"].contains("pcf.size"), techniques[i] == "pcf");
+        double largest = 0;
+        for (const char* pass : {"shadow", "gbuffer", "visibility", "composite"}) {
+            ASSERT_TRUE(run["gpu_ms"].contains(pass)) << pass;
+            const auto& s = run["gpu_ms"][pass];
+            EXPECT_GT(s["p10"].get<double>(), 0.0) << pass;
+            EXPECT_LE(s["p10"].get<double>(), s["median"].get<double>()) << pass;
+            EXPECT_LE(s["median"].get<double>(), s["p90"].get<double>()) << pass;
+            largest = std::max(largest, s["median"].get<double>());
+        }
+        EXPECT_GE(run["gpu_ms_total"]["median"].get<double>(), largest);
+        // Four cascades of a 256-texel D32 map, and the same screen targets, for every run here.
+        EXPECT_EQ(run["memory"]["shadow_maps"], (techniques[i] == "pcss" || techniques[i] == "pcf"
+                                                     ? runs[0]["memory"]["shadow_maps"]
+                                                     : nlohmann::json(4u * 256u * 256u * 4u)));
+        EXPECT_EQ(run["gpu_memory_bytes"].get<uint64_t>(),
+                  run["memory"]["shadow_maps"].get<uint64_t>() +
+                      run["memory"]["screen_targets"].get<uint64_t>() +
+                      run["memory"]["distance_field"].get<uint64_t>());
+    }
+    const std::string html = slurp(dir / "bench.html");
+    EXPECT_NE(html.find("pcf: cost against pcf.size"), std::string::npos);
+    EXPECT_NE(html.find("<svg"), std::string::npos);
+    EXPECT_EQ(html.find("<script"), std::string::npos);
+    EXPECT_EQ(html.find("http"), std::string::npos) << "self-contained";
+    EXPECT_NE(r.out.find("[3/5] pcf pcf.size=7"), std::string::npos) << r.out;
+}
+
+TEST(Cli, BenchRefusesBadSweepsAndTechniquesBeforeRunning) {
+    const fs::path dir = scratch("bench-bad");
+    const std::string out = (dir / "b.json").string();
+    for (const auto& [args, subject] :
+         std::vector<std::pair<std::vector<std::string>, std::string>>{
+             {{"--sweep", "pcf.size=3,4"}, "error: --sweep"},
+             {{"--sweep", "pcf.nope=3"}, "error: --sweep"},
+             {{"--sweep", "pcf.size"}, "error: --sweep"},
+             {{"--techniques", "hard,nope"}, "error: --technique"},
+             {{"--shadow-map-size", "1000000"}, "error: --shadow-map-size"}}) {
+        std::vector<std::string> full{"bench", "builtin:showcase", "-o", out,        "--width",
+                                      "32",    "--height",         "32", "--frames", "1"};
+        full.insert(full.end(), args.begin(), args.end());
+        const ProcessResult r = runCli(full);
+        EXPECT_NE(r.exitCode, 0) << args[1];
+        EXPECT_EQ(r.err.rfind(subject, 0), 0u) << r.err;
+        EXPECT_FALSE(fs::exists(out)) << args[1];
+        EXPECT_FALSE(fs::exists(dir / "bench.html"));
+    }
+}

@@ -42,6 +42,7 @@ std::span<const uint8_t> bytesOf(const std::string& text);
 Action addRenderCommand(CLI::App& app, const GlobalOptions& global);
 Action addReferenceCommand(CLI::App& app, const GlobalOptions& global);
 Action addCompareCommand(CLI::App& app, const GlobalOptions& global);
+Action addBenchCommand(CLI::App& app, const GlobalOptions& global);
 Action addViewCommand(CLI::App& app, const GlobalOptions& global);
 Action addInfoCommand(CLI::App& app, const GlobalOptions& global);
 Action addTechniquesCommand(CLI::App& app);

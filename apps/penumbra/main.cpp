@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
         {"render", cli::addRenderCommand(app, global)},
         {"reference", cli::addReferenceCommand(app, global)},
         {"compare", cli::addCompareCommand(app, global)},
+        {"bench", cli::addBenchCommand(app, global)},
         {"view", cli::addViewCommand(app, global)},
         {"info", cli::addInfoCommand(app, global)},
         {"techniques", cli::addTechniquesCommand(app)}};

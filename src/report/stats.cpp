@@ -15,19 +15,23 @@ std::string visibilityFileName(size_t index) {
     return index == 0 ? "visibility.pfm" : fmt::format("visibility_{}.pfm", index);
 }
 
+nlohmann::json deviceJson(const DeviceInfo& device) {
+    return {{"index", device.index},
+            {"name", device.name},
+            {"type", device.type},
+            {"driver", device.driverName},
+            {"driver_info", device.driverInfo},
+            {"vulkan", device.apiVersion},
+            // pcf.filter=hardware runs by hand (same maths) without linear depth filtering.
+            {"hardware_depth_filter", device.depthLinearFilter}};
+}
+
 nlohmann::json renderStats(const RenderRun& run) {
     const RenderOptions& o = run.options;
     const Bounds bounds = run.scene.bounds();
     const Camera camera = run.scene.camera(o.camera);
     nlohmann::json j;
-    j["device"] = {{"index", run.device.index},
-                   {"name", run.device.name},
-                   {"type", run.device.type},
-                   {"driver", run.device.driverName},
-                   {"driver_info", run.device.driverInfo},
-                   {"vulkan", run.device.apiVersion},
-                   // pcf.filter=hardware runs by hand (same maths) without linear depth filtering.
-                   {"hardware_depth_filter", run.device.depthLinearFilter}};
+    j["device"] = deviceJson(run.device);
     j["scene"] = {{"source", run.sceneSpec},
                   {"name", run.scene.name},
                   {"triangles", run.scene.triangleCount()},

@@ -18,6 +18,8 @@ struct RenderRun {
 };
 
 nlohmann::json renderStats(const RenderRun& run);
+// The device as stats.json and the bench's JSON name it.
+nlohmann::json deviceJson(const DeviceInfo& device);
 
 // "visibility.pfm" for the first shadow-casting light, "visibility_<i>.pfm" after it.
 std::string visibilityFileName(size_t index);
