@@ -1,5 +1,6 @@
 // The "show" section of the viewer's interface: the lit image, one light's visibility, a layer
 // of the shadow maps, the cascades, or the error against the ground truth of this view.
+#include "shadows/technique.h"
 #include "viewer_state.h"
 
 #include <fmt/format.h>
@@ -51,8 +52,10 @@ void metricsTable(const ErrorMetrics& m) {
 } // namespace
 
 bool hasBlockerSearch(Technique technique) {
-    return technique == Technique::Pcss || technique == Technique::Vssm ||
-           technique == Technique::MsmSoft;
+    // The members that model the light's size with a shadow map search it for blockers (the
+    // distance field traces instead).
+    const shadows::TechniqueModule& module = shadows::moduleOf(technique);
+    return module.modelsLightSize && !module.tracesField;
 }
 
 void showPanel(ViewerState& s) {
@@ -90,7 +93,7 @@ void showPanel(ViewerState& s) {
     }
     if (s.display == DisplayMode::ShadowMap) {
         const std::vector<std::string> names = layerNames(s.lastFrame);
-        if (names.empty() || s.options.technique == Technique::Sdf) {
+        if (names.empty() || shadows::moduleOf(s.options.technique).tracesField) {
             ImGui::TextUnformatted("this technique draws no shadow map");
         } else {
             s.displayLayer = std::min(s.displayLayer, static_cast<int>(names.size()) - 1);

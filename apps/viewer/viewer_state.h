@@ -16,8 +16,8 @@ namespace penumbra::viewer {
 
 enum class DisplayMode { Scene, Visibility, ShadowMap, Cascades, Error, BlockerDepth, Penumbra };
 
-// Whether the technique reports a blocker depth and penumbra width (PCSS and the summed-area
-// soft members: evaluateTechnique's y and w).
+// Whether the technique reports a blocker depth and penumbra width (evaluateTechnique's y and w):
+// the members that model the light's size with a shadow map (pcss, vssm, msm-soft).
 bool hasBlockerSearch(Technique technique);
 
 inline constexpr size_t kHistoryFrames = 120;
