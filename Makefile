@@ -75,6 +75,7 @@ demo: build
 
 bench: build
 	$(BUILDDIR)/bench/penumbra_bench_gltf
+	$(BUILDDIR)/bench/penumbra_bench_frame
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i

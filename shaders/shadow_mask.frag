@@ -10,5 +10,7 @@ layout(set = 0, binding = MASK_TEXTURE) uniform sampler2D baseColorTexture;
 layout(push_constant) uniform Push { ShadowPush push; MaterialPush material; };
 
 void main() {
-    if (coverageHole(material, baseColorTexture, inUv, inAlpha)) discard;
+    if (coverageHole(material, baseColorTexture, inUv, inAlpha, material.alphaTest != 0u,
+                     material.hasTexture != 0u))
+        discard;
 }

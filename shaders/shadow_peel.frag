@@ -12,7 +12,9 @@ layout(set = 0, binding = READ_TEXTURE) uniform sampler2D baseColorTexture;
 layout(push_constant) uniform Push { ShadowPush push; MaterialPush material; };
 
 void main() {
-    if (coverageHole(material, baseColorTexture, inUv, inAlpha)) discard;
+    if (coverageHole(material, baseColorTexture, inUv, inAlpha, material.alphaTest != 0u,
+                     material.hasTexture != 0u))
+        discard;
     float first = texelFetch(firstDepth, ivec2(gl_FragCoord.xy), 0).r;
     // The first layer itself: the same depth, up to a few ulps should another pipeline round
     // differently.

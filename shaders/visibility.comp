@@ -8,6 +8,17 @@ layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
 layout(constant_id = SPEC_RECEIVER) const uint RECEIVER = RECEIVER_OFF;
 layout(constant_id = SPEC_HORIZON) const uint HORIZON = 0u;
 layout(constant_id = SPEC_INTERMEDIATES) const bool WRITE_INTERMEDIATES = false;
+// The dispatch's light: its LIGHT_* kind and how many shadow views it has (a sun's cascades, a
+// point light's 6 faces). Lavapipe runs every branch and loads a uniform record one lane at a
+// time unless its index is uniform: with these constants the other kinds' code goes, the loops
+// over views unroll, and every view record is read at a uniform index (viewOf).
+layout(constant_id = SPEC_LIGHT_TYPE) const uint LIGHT_TYPE = LIGHT_DIRECTIONAL;
+layout(constant_id = SPEC_LIGHT_VIEWS) const uint LIGHT_VIEWS = 1u;
+#define LIGHT_TYPE_OF(light) LIGHT_TYPE
+// The last light's dispatch shades the pixel too (shading.glsl): one pass fewer over the
+// G-buffer, and the pixel's position and normal are reconstructed once.
+layout(constant_id = SPEC_FUSED_COMPOSITE) const bool FUSED_COMPOSITE = false;
+layout(constant_id = SPEC_CASCADE_BLEND) const bool CASCADE_BLEND = true;
 #include "gbuffer.glsl"
 #include "filter_math.h"
 #include "shadow_common.glsl"
@@ -16,21 +27,31 @@ layout(constant_id = SPEC_INTERMEDIATES) const bool WRITE_INTERMEDIATES = false;
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
-layout(set = 0, binding = VIS_LIGHTS, std430) readonly buffer Lights { LightData lights[]; };
+layout(set = 0, binding = VIS_LIGHTS, std140) uniform Lights { LightData lights[MAX_UNIFORM_LIGHTS]; };
 layout(set = 0, binding = VIS_GBUFFER_DEPTH) uniform sampler2D gDepth;
 layout(set = 0, binding = VIS_GBUFFER_NORMAL) uniform sampler2D gNormal;
 layout(set = 0, binding = VIS_SHADOW_MAP) uniform sampler2DArray shadowMap;
 layout(set = 0, binding = VIS_SHADOW_COMPARE) uniform sampler2DArrayShadow shadowMapCmp;
 layout(set = 0, binding = VIS_SHADOW_TABLE) uniform usampler2DArray shadowTable;
-layout(set = 0, binding = VIS_OUT, r32f) uniform writeonly image2DArray visibility;
-layout(set = 0, binding = VIS_VIEWS, std430) readonly buffer Views { ShadowViewData views[]; };
+layout(set = 0, binding = VIS_OUT, r32f) uniform image2DArray visibility;
+layout(set = 0, binding = VIS_VIEWS, std140) uniform Views { ShadowViewData views[MAX_UNIFORM_VIEWS]; };
 layout(set = 0, binding = VIS_FIELD) uniform sampler3D distanceField;
 layout(set = 0, binding = VIS_INTERMEDIATES, rgba32f) uniform writeonly image2DArray intermediates;
+layout(set = 0, binding = VIS_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
+layout(set = 0, binding = VIS_COLOR, rgba8) uniform writeonly image2D outColor;
 
 // The technique's intermediate results at the last view it was evaluated in (the viewer's
 // blocker-depth and penumbra views): evaluateTechnique's vector.
 vec4 detail = vec4(0.0);
 layout(push_constant) uniform Push { VisibilityPush push; };
+
+// View k of the dispatch's light (k < LIGHT_VIEWS; the first view otherwise).
+ShadowViewData viewOf(uint k) {
+    ShadowViewData view = views[push.light.w];
+    for (uint j = 1u; j < LIGHT_VIEWS; ++j)
+        if (k == j) view = views[push.light.w + j];
+    return view;
+}
 
 // Light-space (u, v, depth) offset to the neighbour at p + step along one axis, taking the side
 // whose depth is closer (the neighbour most likely on the same surface); zero if none exists.
@@ -101,16 +122,73 @@ Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world,
     return r;
 }
 
-// The technique's visibility of one pixel through one shadow view.
-float visibilityThrough(uint viewIndex, LightData light, ivec2 p, vec3 world, vec3 normal,
-                        float depth) {
-    ShadowViewData view = views[viewIndex];
+// A sun's cascades share most of what makeReceiver computes: the normal offset's direction and
+// size in texels, the depth (one depth range and orientation: every cascade has the first's
+// depth row), and the receiver plane and footprint, which map from the first cascade's (u, v)
+// to each one's by ShadowViewData::fromFirst. A cascade then costs its (u, v) rows (orthographic
+// views: w is 1).
+struct CascadeBase {
+    vec3 world, normal;
+    float offsetScale; // the normal offset in world units per world unit of a cascade's texel
+    float depth;       // the receiver's light depth before the normal offset ...
+    float depthAlong;  // ... and its change per world unit of offset
+    vec2 gradient;     // the receiver plane's d depth / d uv in the first cascade
+    vec4 footprint;    // the pixel's uv footprint in the first cascade (vsm.filter=mip)
+};
+
+CascadeBase cascadeBase(LightData light, ivec2 p, vec3 world, vec3 normal, float depth) {
+    ShadowViewData first = views[push.light.w];
+    CascadeBase b;
+    b.world = world;
+    b.normal = normal;
+    b.offsetScale = light.bias.z * (1.0 - max(dot(normal, directionToLight(light, world)), 0.0));
+    b.depth = (first.shadowMatrix * vec4(world, 1.0)).z;
+    b.depthAlong = (mat3(first.shadowMatrix) * normal).z;
     bool inside;
-    Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
+    Receiver r = makeReceiver(light, first, p, world, normal, depth, inside);
+    b.gradient = r.gradient;
+    b.footprint = vec4(r.uvDx, r.uvDy);
+    return b;
+}
+
+Receiver cascadeReceiver(CascadeBase b, ShadowViewData view, out bool inside) {
+    float offset = b.offsetScale * view.texel.x;
+    Receiver r;
+    r.uv = (view.shadowMatrix * vec4(b.world + b.normal * offset, 1.0)).xy;
+    r.depth = b.depth + offset * b.depthAlong;
+    inside = all(greaterThanEqual(r.uv, vec2(0.0))) && all(lessThanEqual(r.uv, vec2(1.0))) &&
+             r.depth <= 1.0;
+    r.gradient = b.gradient / view.fromFirst.xy;
+    r.layer = view.texel.z;
+    r.kernelScale = view.cascade.z;
+    r.uvDx = b.footprint.xy * view.fromFirst.xy;
+    r.uvDy = b.footprint.zw * view.fromFirst.xy;
+    return r;
+}
+
+// The technique at a receiver of `view` (lit outside the view's frustum, which nothing in its map
+// can shadow).
+float evaluate(Receiver r, bool inside, ShadowViewData view, ivec2 p) {
     detail = inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, shadowTable, r,
                                         push.light.z, view, uvec2(p))
                     : vec4(1.0, 1.0, 0.0, 0.0);
     return detail.x;
+}
+
+// The technique's visibility of one pixel through the light's shadow view k.
+float visibilityThrough(uint k, LightData light, ivec2 p, vec3 world, vec3 normal, float depth) {
+    ShadowViewData view = viewOf(k);
+    bool inside;
+    Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
+    return evaluate(r, inside, view, p);
+}
+
+// The technique's visibility of one pixel through the sun's cascade i.
+float visibilityThroughCascade(CascadeBase b, uint i, ivec2 p) {
+    ShadowViewData view = viewOf(i);
+    bool inside;
+    Receiver r = cascadeReceiver(b, view, inside);
+    return evaluate(r, inside, view, p);
 }
 
 // Whether a kernel of `radius` texels around the receiver stays inside its view's map.
@@ -120,104 +198,131 @@ bool holds(Receiver r, bool inside, float radius) {
            all(lessThanEqual(r.uv, vec2(1.0 - margin)));
 }
 
-// PCSS for a pixel of a sun's cascade `i` (of `count` from view `first`). Its kernels follow the
-// light's size, and pcss.maxRadius caps them in texels of the map sampled: the blocker search
-// runs in the finest cascade from i whose texels hold it under the cap (else the coarsest that
-// holds the pixel), and the penumbra is filtered in the finest cascade from i that holds it, so
-// contact shadows keep the fine texels and wide penumbrae are not clipped. The cascades share
-// one orientation and depth range (src/core/cascades.cpp): light view distances carry over.
-float pcssThroughCascades(uint first, uint i, uint count, LightData light, ivec2 p, vec3 world,
-                          vec3 normal, float depth) {
+// PCSS for a pixel of a sun's cascade `i`. Its kernels follow the light's size, and
+// pcss.maxRadius caps them in texels of the map sampled: the blocker search runs in the finest
+// cascade from i whose texels hold it under the cap (else the coarsest that holds the pixel, else
+// i), and the penumbra is filtered in the finest cascade from i that holds it (else where the
+// search ran), so contact shadows keep the fine texels and wide penumbrae are not clipped. The
+// cascades share one orientation and depth range (src/core/cascades.cpp): light view distances
+// carry over. One search and one filter run, in the cascades chosen first: the loops over
+// cascades unroll and only pick.
+float pcssThroughCascades(CascadeBase b, uint i, ivec2 p) {
     uint mapSize = push.light.z;
     float cap = frame.pcssParams.x;
-    int searchIn = -1;
-    // Each cascade's receiver, made once: the filter below looks again at those before searchIn.
-    Receiver receivers[MAX_CASCADES];
-    bool insides[MAX_CASCADES];
-    for (uint j = i; j < count; ++j) {
-        ShadowViewData view = views[first + j];
-        receivers[j] = makeReceiver(light, view, p, world, normal, depth, insides[j]);
-        float search = blockerSearchRadius(view, viewDistance(view, receivers[j].depth), mapSize);
-        if (!holds(receivers[j], insides[j], min(search, cap))) continue;
-        searchIn = int(j);
-        if (search <= cap) break;
-    }
-    if (searchIn < 0) return visibilityThrough(first + i, light, p, world, normal, depth);
-    float turns = rotationTurns(frame.pcssMode.z, uvec2(p));
-    Receiver rs = receivers[searchIn];
-    vec2 blockers = pcssSearch(shadowMap, rs, mapSize, views[first + uint(searchIn)], turns);
-    if (blockers.x == 0.0) {
-        detail = vec4(1.0, blockers.y, 0.0, 0.0);
-        return 1.0;
-    }
-    float zBlocker = viewDistance(views[first + uint(searchIn)], blockers.y);
-    for (uint k = i; k < uint(searchIn); ++k) {
-        ShadowViewData view = views[first + k];
-        Receiver r = receivers[k];
-        float radius = penumbraRadius(view, viewDistance(view, r.depth), zBlocker, mapSize);
-        if (radius <= cap && holds(r, insides[k], radius)) {
-            detail = pcssFilter(shadowMap, r, mapSize, view, zBlocker, blockers, turns);
-            return detail.x;
+    uint searchIn = i;
+    bool found = false, settled = false;
+    for (uint j = 0u; j < LIGHT_VIEWS; ++j) {
+        ShadowViewData view = views[push.light.w + j];
+        bool inside;
+        Receiver r = cascadeReceiver(b, view, inside);
+        float search = blockerSearchRadius(view, viewDistance(view, r.depth), mapSize);
+        if (j >= i && !settled && holds(r, inside, min(search, cap))) {
+            searchIn = j;
+            found = true;
+            settled = search <= cap;
         }
     }
-    detail = pcssFilter(shadowMap, rs, mapSize, views[first + uint(searchIn)], zBlocker, blockers,
-                        turns);
+    ShadowViewData searchView = viewOf(searchIn);
+    bool inside;
+    Receiver rs = cascadeReceiver(b, searchView, inside);
+    float turns = rotationTurns(frame.pcssMode.z, uvec2(p));
+    if (!found && !inside) { // outside the light's frustum: lit, as evaluateTechnique says
+        detail = vec4(1.0, 1.0, 0.0, 0.0);
+        return 1.0;
+    }
+    vec2 blockers = pcssSearch(shadowMap, rs, mapSize, searchView, turns);
+    float zBlocker = viewDistance(searchView, blockers.y);
+    uint filterIn = searchIn;
+    bool chosen = false;
+    for (uint k = 0u; k + 1u < LIGHT_VIEWS; ++k) {
+        ShadowViewData view = views[push.light.w + k];
+        bool insideK;
+        Receiver r = cascadeReceiver(b, view, insideK);
+        float radius = penumbraRadius(view, viewDistance(view, r.depth), zBlocker, mapSize);
+        if (k >= i && k < searchIn && !chosen && radius <= cap && holds(r, insideK, radius)) {
+            filterIn = k;
+            chosen = true;
+        }
+    }
+    ShadowViewData filterView = viewOf(filterIn);
+    Receiver rf = cascadeReceiver(b, filterView, inside);
+    detail = blockers.x == 0.0
+                 ? vec4(1.0, blockers.y, 0.0, 0.0)
+                 : pcssFilter(shadowMap, rf, mapSize, filterView, zBlocker, blockers, turns);
     return detail.x;
 }
 
-// The visibility of a pixel through cascade i of a sun's `count` cascades from view `first`.
-float throughCascade(uint first, uint i, uint count, LightData light, ivec2 p, vec3 world,
-                     vec3 normal, float depth) {
-    return TECHNIQUE == TECHNIQUE_PCSS
-               ? pcssThroughCascades(first, i, count, light, p, world, normal, depth)
-               : visibilityThrough(first + i, light, p, world, normal, depth);
+// The visibility of a pixel through cascade i of the sun's.
+float throughCascade(CascadeBase b, uint i, ivec2 p) {
+    return TECHNIQUE == TECHNIQUE_PCSS ? pcssThroughCascades(b, i, p)
+                                       : visibilityThroughCascade(b, i, p);
 }
+
+// Light i's visibility at the pixel, for the fused composite: this dispatch's own in `current`,
+// the earlier dispatches' from their layers.
+float current;
+float visibilityOf(uint i, LightData light) {
+    float layer = light.cone.w;
+    float stored = imageLoad(visibility, ivec3(gl_GlobalInvocationID.xy, max(int(layer), 0))).r;
+    return i == push.light.x ? current : layer >= 0.0 ? stored : 1.0;
+}
+#define LIGHT_VISIBILITY(i, light) visibilityOf(i, light)
+#include "shading.glsl"
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = frame.imageSize.xy;
     if (any(greaterThanEqual(uvec2(p), size))) return;
     float depth = texelFetch(gDepth, p, 0).r;
+    // Lavapipe runs both sides of a branch anyway: the pixel's geometry is reconstructed once,
+    // for the technique and the shading, background or not.
+    vec3 world = worldPosition(frame.invViewProj, p, size, depth);
+    vec4 normals = texelFetch(gNormal, p, 0);
+    vec3 normal = shadingNormal(normals);
     float v = nanValue();
     if (!isBackground(depth)) {
-        vec3 world = worldPosition(frame.invViewProj, p, size, depth);
-        vec4 normals = texelFetch(gNormal, p, 0);
-        vec3 normal = shadingNormal(normals);
         if (TECHNIQUE == TECHNIQUE_VSM && frame.vsmParams.w > 0.0) {
             vec3 face = faceNormal(normals);
             footprintDx = onReceiverPlane(p + ivec2(1, 0), depth, world, face) - world;
             footprintDy = onReceiverPlane(p + ivec2(0, 1), depth, world, face) - world;
         }
         LightData light = lights[push.light.x];
-        uint viewIndex = shadowViewOf(light, world);
+        uint k = lightViewOf(light, world);
         if (TECHNIQUE == TECHNIQUE_SDF) {
             // No shadow map: the field holds the whole scene, the tracer its own horizon.
             v = shadowSdf(distanceField, light, world, faceNormal(normals),
-                          lightSine(light, views[viewIndex], world), HORIZON != 0u);
-            imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));
-            if (WRITE_INTERMEDIATES)
-                imageStore(intermediates, ivec3(p, int(push.light.y)), vec4(v, 0.0, 0.0, 0.0));
-            return;
-        }
-        uint cascades = light.positionType.w == float(LIGHT_DIRECTIONAL) ? light.views.y : 1u;
-        if (cascades > 1u) {
+                          lightSine(light, viewOf(k), world), HORIZON != 0u);
+            detail = vec4(v, 0.0, 0.0, 0.0);
+        } else if (LIGHT_TYPE == LIGHT_DIRECTIONAL && LIGHT_VIEWS > 1u) {
             // A sun's cascade: the first whose slice reaches the pixel's view distance.
             float z = dot(world - frame.position.xyz, frame.cameraForward.xyz);
             uint i = 0u;
-            while (i + 1u < cascades && z > views[viewIndex + i].cascade.x) ++i;
-            v = throughCascade(viewIndex, i, cascades, light, p, world, normal, depth);
-            vec4 c = views[viewIndex + i].cascade;
-            if (i + 1u < cascades && z > c.y) // the blend band: mix into the next cascade
-                v = mix(v, throughCascade(viewIndex, i + 1u, cascades, light, p, world, normal, depth),
-                        cascadeBlendWeight(z, c.y, c.x));
+            bool further = true;
+            for (uint j = 0u; j + 1u < LIGHT_VIEWS; ++j) {
+                further = further && z > views[push.light.w + j].cascade.x;
+                i += further ? 1u : 0u;
+            }
+            CascadeBase b = cascadeBase(light, p, world, normal, depth);
+            v = throughCascade(b, i, p);
+            vec4 c = viewOf(i).cascade;
+            // The blend band: mix into the next cascade (without csm.blend, no band: lavapipe
+            // would still pay for the second cascade's branch).
+            if (CASCADE_BLEND && i + 1u < LIGHT_VIEWS && z > c.y)
+                v = mix(v, throughCascade(b, i + 1u, p), cascadeBlendWeight(z, c.y, c.x));
         } else {
-            v = visibilityThrough(viewIndex, light, p, world, normal, depth);
+            v = visibilityThrough(k, light, p, world, normal, depth);
         }
-        if (HORIZON != 0u)
+        if (HORIZON != 0u && TECHNIQUE != TECHNIQUE_SDF)
             v *= horizonVisibility(dot(faceNormal(normals), directionToLight(light, world)),
-                                   lightSine(light, views[viewIndex], world));
+                                   lightSine(light, viewOf(k), world));
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));
     if (WRITE_INTERMEDIATES)
         imageStore(intermediates, ivec3(p, int(push.light.y)), vec4(v, detail.yzw));
+    if (FUSED_COMPOSITE) {
+        current = v;
+        vec3 color = isBackground(depth) ? frame.background.rgb
+                                         : shadePixel(world, normal, texelFetch(gAlbedo, p, 0).rgb);
+        imageStore(outColor, p, vec4(srgbEncode(color), 1.0));
+    }
 }

@@ -6,10 +6,12 @@
 // point lights; the spot cone's smoothstep from cos(outer) to cos(inner) (docs/architecture.md).
 // Written from those formulas, not from shaders/composite.comp.
 #include "gpu_fixture.h"
+#include "gpu_types.h"
 #include "scene/mesh_builder.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -135,8 +137,11 @@ ImageCheck checkImage(const Scene& scene, const RenderResult& r, const Composite
     return c;
 }
 
-RenderResult renderWith(const Scene& scene, const CompositeKnobs& k) {
+RenderResult renderWith(const Scene& scene, const CompositeKnobs& k,
+                        const std::string& extra = {}) {
     RenderOptions o{.width = 320, .height = 240, .frames = 1};
+    if (!extra.empty())
+        o.parameters.assign(extra);
     o.parameters.set("composite.ambient", std::to_string(k.ambient));
     o.parameters.set("composite.shadowIntensity", std::to_string(k.shadowIntensity));
     o.parameters.set("composite.exposure", std::to_string(k.exposureEv));
@@ -268,4 +273,58 @@ TEST_F(LightingTest, LightsOfEveryTypeAddUp) {
     EXPECT_EQ(r.lights[1].visibilityIndex, 1);
     EXPECT_EQ(r.lights[3].visibilityIndex, -1);
     expectImageFollowsTheContract(scene, r, k, "spot + point + sun", 300);
+}
+
+// The last shadowed light's visibility dispatch shades the pixel (composite.fused, the default);
+// composite.comp does it on its own when asked, or when no light has a shadow map. Both follow
+// the contract, and they agree pixel for pixel.
+TEST_F(LightingTest, SeparateCompositeMatchesTheFusedOne) {
+    Light fill = pointLight();
+    fill.castsShadow = false;
+    fill.position += glm::vec3(1.5f, 0.5f, -1.0f);
+    const Scene scene = groundUnderSlab({spotLight(), pointLight(), sunLight(), fill});
+    const CompositeKnobs k{.ambient = 0.1, .shadowIntensity = 0.8, .exposureEv = -1.0};
+    const RenderResult fused = renderWith(scene, k);
+    const RenderResult separate = renderWith(scene, k, "composite.fused=0");
+    expectImageFollowsTheContract(scene, separate, k, "separate composite", 300);
+    ASSERT_EQ(fused.image.size(), separate.image.size());
+    size_t differ = 0;
+    int worst = 0;
+    for (size_t i = 0; i < fused.image.size(); ++i) {
+        const int d = std::abs(int(fused.image[i]) - int(separate.image[i]));
+        differ += d != 0, worst = std::max(worst, d);
+    }
+    EXPECT_LE(worst, 1);
+    EXPECT_LE(differ, fused.image.size() / 1000);
+    ASSERT_EQ(fused.visibility.size(), separate.visibility.size());
+    for (size_t l = 0; l < fused.visibility.size(); ++l)
+        for (size_t i = 0; i < fused.visibility[l].size(); ++i)
+            ASSERT_TRUE(
+                fused.visibility[l][i] == separate.visibility[l][i] ||
+                (std::isnan(fused.visibility[l][i]) && std::isnan(separate.visibility[l][i])))
+                << "light " << l << ", pixel " << i;
+
+    Scene unshadowed = scene; // composite.comp alone: no visibility dispatch at all
+    for (Light& l : unshadowed.lights)
+        l.castsShadow = false;
+    expectImageFollowsTheContract(unshadowed, renderWith(unshadowed, k), k, "no shadow maps", 300);
+}
+
+// Past MAX_SPECIALIZED_LIGHTS the shading loop reads the lights' count and kinds at run time.
+TEST_F(LightingTest, LightsBeyondTheSpecialisedCountAddUp) {
+    std::vector<Light> lights{spotLight(), sunLight()};
+    for (int i = 0; lights.size() <= MAX_SPECIALIZED_LIGHTS; ++i) {
+        Light l = i % 2 ? spotLight() : pointLight();
+        const float angle = 0.7f * static_cast<float>(i);
+        l.position += glm::vec3(std::cos(angle), 0.2f * static_cast<float>(i % 3), std::sin(angle));
+        l.intensity *= 0.15f;
+        l.castsShadow = false;
+        lights.push_back(l);
+    }
+    const Scene scene = groundUnderSlab(lights);
+    ASSERT_GT(scene.lights.size(), MAX_SPECIALIZED_LIGHTS);
+    const CompositeKnobs k{.ambient = 0.05, .shadowIntensity = 0.9, .exposureEv = -1.5};
+    const RenderResult r = renderWith(scene, k);
+    ASSERT_EQ(r.visibility.size(), 2u);
+    expectImageFollowsTheContract(scene, r, k, "18 lights", 150);
 }

@@ -223,6 +223,13 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
         nowhere.assign("bias.horizon=off");
         EXPECT_EQ(shadows::visibilityConstants(*m, everywhere)[2].value, 1u) << name;
         EXPECT_EQ(shadows::visibilityConstants(*m, nowhere)[2].value, 0u) << name;
+        // Then whether suns blend their cascades (no band, no second cascade to evaluate).
+        ASSERT_GE(constants.size(), 4u) << name;
+        EXPECT_EQ(constants[3].id, uint32_t{SPEC_CASCADE_BLEND});
+        EXPECT_EQ(constants[3].value, 1u) << name;
+        ParameterValues unblended;
+        unblended.assign("csm.blend=0");
+        EXPECT_EQ(shadows::visibilityConstants(*m, unblended)[3].value, 0u) << name;
         if (m->tracesField) { // no shadow map: no texels to blur over, none to store
             EXPECT_EQ(m->blurRadiusTexels(ParameterValues()), 0.0) << name;
             EXPECT_EQ(shadows::shadowMapBytes(*m, 1024, ParameterValues()), 0u) << name;
@@ -240,9 +247,9 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     poisson.assign("pcf.filter=poisson");
     poisson.assign("pcf.radius=6");
     const auto pcf = shadows::visibilityConstants(shadows::pcfModule(), poisson);
-    ASSERT_EQ(pcf.size(), 4u);
-    EXPECT_EQ(pcf[3].id, uint32_t{SPEC_FILTER});
-    EXPECT_EQ(pcf[3].value, uint32_t{FILTER_POISSON});
+    ASSERT_EQ(pcf.size(), 5u);
+    EXPECT_EQ(pcf[4].id, uint32_t{SPEC_FILTER});
+    EXPECT_EQ(pcf[4].value, uint32_t{FILTER_POISSON});
     // Blur radii: how far from the receiver the last texel a kernel reads lies (a bilinear tap
     // reaches one texel past its position).
     EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(poisson), 7.0);
@@ -253,7 +260,7 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(box), 1.0);
     EXPECT_EQ(shadows::pcssModule().blurRadiusTexels(box), 41.0); // pcss.maxRadius 40
     EXPECT_EQ(shadows::hardModule().blurRadiusTexels(box), 0.5);
-    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 3u);
+    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 4u);
     // The summed-area members' memory: two RG32UI maps (savsm, vssm) or two RGBA32UI maps
     // (msm-soft) beside the depth; their fixed-point scales keep the widest box exact.
     EXPECT_EQ(shadows::shadowMapBytes(shadows::vssmModule(), 16, defaults), (4u + 16u) * 16 * 16);

@@ -5,10 +5,13 @@
 #ifndef PENUMBRA_ALPHA_TEST_GLSL
 #define PENUMBRA_ALPHA_TEST_GLSL
 
-bool coverageHole(MaterialPush m, sampler2D baseColorTexture, vec2 uv, float vertexAlpha) {
-    if (m.alphaTest == 0u) return false;
+// `alphaTest`, `hasTexture`: the material's flags, or the G-buffer's specialization constants
+// (lavapipe samples a texture under a false branch all the same).
+bool coverageHole(MaterialPush m, sampler2D baseColorTexture, vec2 uv, float vertexAlpha,
+                  bool alphaTest, bool hasTexture) {
+    if (!alphaTest) return false;
     float alpha = m.baseColor.a * vertexAlpha;
-    if (m.hasTexture != 0u) alpha *= textureLod(baseColorTexture, uv, 0.0).a;
+    if (hasTexture) alpha *= textureLod(baseColorTexture, uv, 0.0).a;
     return alpha < m.alphaCutoff;
 }
 

@@ -41,6 +41,17 @@ using uint = uint32_t;
 #define SPEC_FILTER 1
 #define SPEC_RECEIVER 2
 #define SPEC_HORIZON 3           // 1: the visibility pass applies bias.horizon
+#define SPEC_LIGHT_TYPE 4        // the visibility dispatch's light: LIGHT_*
+#define SPEC_LIGHT_VIEWS 5       // ... and how many shadow views it has
+#define SPEC_SCENE_LIGHTS 6      // shading.glsl: the scene's lights (0: more than
+                                 // MAX_SPECIALIZED_LIGHTS, counted at run time)
+#define SPEC_SCENE_LIGHT_TYPES 7 // ... their LIGHT_* kinds, two bits each
+#define SPEC_FUSED_COMPOSITE 8   // 1: this visibility dispatch (the last light's) also shades
+#define MAX_SPECIALIZED_LIGHTS 16u
+#define SPEC_CASCADE_BLEND 9     // 1: csm.blend > 0 (the blend band evaluates two cascades)
+#define SPEC_MATERIAL_TEXTURE 10 // gbuffer.frag: MaterialPush::hasTexture ...
+#define SPEC_MATERIAL_ALPHA_TEST 11 // ... and alphaTest, fixed per pipeline
+#define SPEC_MATERIAL_VERTEX_COLOR 12 // 0: the batch's vertex colours are all opaque white
 #define SPEC_INTERMEDIATES 15    // 1: the visibility pass also writes VIS_INTERMEDIATES (viewer)
 
 // pcf.filter, pcf.rotation and bias.receiver: indices of their choices in the registry.
@@ -63,13 +74,20 @@ using uint = uint32_t;
 // `layout(binding = X)`, src/render/pipelines.cpp builds each pass's layout from the same names,
 // src/render/frame.cpp writes them.
 #define BIND_FRAME 0             // FrameData, in every pass that reads it
-#define VIS_LIGHTS 1             // visibility.comp
+// Lights and shadow views reach the screen-space passes as uniform buffers, not storage
+// buffers: lavapipe loads a storage buffer one lane at a time even at a uniform index, a uniform
+// buffer with one scalar load (uniform index) or a vector gather. The blocks are declared at
+// these capacities (64 KiB each at most, NVIDIA's and lavapipe's maxUniformBufferRange) and bound
+// at the size used; a device with a smaller range holds fewer (render checks, error: otherwise).
+#define MAX_UNIFORM_LIGHTS 512u  // 96 bytes each
+#define MAX_UNIFORM_VIEWS 448u   // 144 bytes each
+#define VIS_LIGHTS 1             // visibility.comp: LightData[], uniform
 #define VIS_GBUFFER_DEPTH 2
 #define VIS_GBUFFER_NORMAL 3
 #define VIS_SHADOW_MAP 4         // the technique's filtered map, every view (nearest)
 #define VIS_SHADOW_COMPARE 5     // the depth map, every view (comparison sampler)
 #define VIS_OUT 6                // R32F array, a layer per shadow-casting light
-#define VIS_VIEWS 7              // ShadowViewData[]
+#define VIS_VIEWS 7              // ShadowViewData[], uniform
 #define VIS_SHADOW_TABLE 8       // the technique's filtered map when it holds integers (a
                                  // placeholder otherwise), every view (nearest)
 #define VIS_FIELD 9              // the scene's distance field (sdf; a 1x1x2 placeholder
@@ -77,7 +95,9 @@ using uint = uint32_t;
 #define VIS_INTERMEDIATES 10     // RGBA32F array, a layer per shadow-casting light: the
                                  // technique's intermediate results (evaluateTechnique's yzw),
                                  // written with SPEC_INTERMEDIATES (a 1x1 placeholder otherwise)
-#define COMPOSITE_LIGHTS 1       // composite.comp
+#define VIS_GBUFFER_ALBEDO 11    // read and ...
+#define VIS_COLOR 12             // ... written by a dispatch with SPEC_FUSED_COMPOSITE (RGBA8)
+#define COMPOSITE_LIGHTS 1       // composite.comp: LightData[], uniform
 #define COMPOSITE_GBUFFER_DEPTH 2
 #define COMPOSITE_GBUFFER_NORMAL 3
 #define COMPOSITE_GBUFFER_ALBEDO 4
@@ -178,6 +198,10 @@ struct ShadowViewData {  // std430 storage buffer, one per shadow view
     vec4 moments;        // the part of the view's depth range the moment techniques spread
                          // their [0, 1] over (momentDepth), in the range's linear [0, 1]: from
                          // x to 1 - y (zero: the whole range)
+    vec4 fromFirst;      // this view's (u, v) = xy * (u, v) of its light's first view + zw, the
+                         // depth the same: a sun's cascades share one orientation and depth
+                         // range (src/core/cascades.cpp), so the visibility pass projects once
+                         // (cascadeReceiver). (1, 1, 0, 0) for a light's first view.
 };
 
 struct ShadowPush {      // push constants of shadow_depth.vert
@@ -202,7 +226,7 @@ struct MaterialPush {
 #define POST_MAX_MAPS 8
 #define POST_FRAME_BINDING 16   // FrameData (the technique's parameters)
 #define LINE_GROUP_SIZE 64u     // post passes dispatched one invocation per row or column
-#define POST_VIEWS_BINDING 17   // ShadowViewData[]; PostPassPush.size.z is the view's index
+#define POST_VIEWS_BINDING 17   // ShadowViewData[], uniform; PostPassPush.size.z: the view
 
 // A triangle of the distance field's build (src/shadows/sdf_input.h): its corners, and in a.w
 // its FIELD_* flags (as float bits).
@@ -237,7 +261,7 @@ struct ProbePush {       // push constants of filter_probe.comp
 
 struct VisibilityPush {  // push constants of visibility.comp
     uvec4 light;         // x light index, y its visibility layer, z shadow-map size, w its first
-                         // view (the shader picks the view of each pixel: shadowViewOf)
+                         // view (the shader picks the view of each pixel: lightViewOf)
 };
 
 // The viewer's display pass (shaders/viewer_display.comp, apps/viewer/display.cpp): what the
@@ -299,9 +323,12 @@ static_assert(sizeof(FrameData) == 1024 && offsetof(FrameData, position) == 128 
               offsetof(FrameData, fieldSize) == 496 && offsetof(FrameData, poisson) == 512);
 static_assert(sizeof(LightData) == 96 && offsetof(LightData, cone) == 48 &&
               offsetof(LightData, bias) == 64 && offsetof(LightData, views) == 80);
-static_assert(sizeof(ShadowViewData) == 128 && offsetof(ShadowViewData, frustum) == 64 &&
+static_assert(sizeof(ShadowViewData) == 144 && offsetof(ShadowViewData, frustum) == 64 &&
               offsetof(ShadowViewData, texel) == 80 && offsetof(ShadowViewData, cascade) == 96 &&
-              offsetof(ShadowViewData, moments) == 112);
+              offsetof(ShadowViewData, moments) == 112 &&
+              offsetof(ShadowViewData, fromFirst) == 128);
+static_assert(MAX_UNIFORM_VIEWS * sizeof(ShadowViewData) <= 65536 &&
+              MAX_UNIFORM_LIGHTS * sizeof(LightData) <= 65536);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
               sizeof(PostPassPush) == 16 && sizeof(ProbePush) == 16);
 static_assert(sizeof(ProbeReceiver) == 48 && offsetof(ProbeReceiver, gradientPixel) == 16 &&

@@ -5,8 +5,8 @@
 #define PENUMBRA_POST_PASS_GLSL
 #include "gpu_types.h"
 layout(set = 0, binding = POST_FRAME_BINDING, std140) uniform FrameBlock { FrameData frame; };
-layout(set = 0, binding = POST_VIEWS_BINDING, std430) readonly buffer Views {
-    ShadowViewData views[];
+layout(set = 0, binding = POST_VIEWS_BINDING, std140) uniform Views {
+    ShadowViewData views[MAX_UNIFORM_VIEWS];
 };
 layout(push_constant) uniform Push { PostPassPush push; };
 #endif

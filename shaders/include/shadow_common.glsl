@@ -5,6 +5,13 @@
 #include "gpu_types.h"
 #include "filter_math.h"
 
+// The light's LIGHT_* kind. A pass that runs once per light defines LIGHT_TYPE_OF as its
+// specialization constant before including this: lavapipe 22.3 runs both sides of every branch,
+// so a kind known when the pipeline is built drops the other kinds' code.
+#ifndef LIGHT_TYPE_OF
+#define LIGHT_TYPE_OF(light) uint((light).positionType.w)
+#endif
+
 struct ShadowCoord {
     vec2 uv;       // shadow-map texture coordinates, [0,1]^2 inside the map
     float depth;   // d(p), the receiver's light depth in [0,1]
@@ -12,7 +19,7 @@ struct ShadowCoord {
 };
 
 vec3 directionToLight(LightData light, vec3 world) {
-    return light.positionType.w == float(LIGHT_DIRECTIONAL)
+    return LIGHT_TYPE_OF(light) == LIGHT_DIRECTIONAL
                ? -light.directionRange.xyz
                : normalize(light.positionType.xyz - world);
 }
@@ -24,13 +31,10 @@ float lightSine(LightData light, ShadowViewData view, vec3 world) {
     return min(size / max(length(light.positionType.xyz - world), 1e-6), 1.0);
 }
 
-// The light's shadow view that holds `world`: a point light's cube face (by the direction from
-// the light), else the light's only view.
-uint shadowViewOf(LightData light, vec3 world) {
-    uint first = light.views.x;
-    if (light.positionType.w == float(LIGHT_POINT))
-        return first + cubeFace(world - light.positionType.xyz);
-    return first;
+// Which of the light's shadow views holds `world`, counted from its first: a point light's cube
+// face (by the direction from the light), else 0 (a sun's cascade is chosen by view distance).
+uint lightViewOf(LightData light, vec3 world) {
+    return LIGHT_TYPE_OF(light) == LIGHT_POINT ? cubeFace(world - light.positionType.xyz) : 0u;
 }
 
 // Normal offset [Holbert 2010 'Normal offset shadows']: move the receiver along its normal by

@@ -31,7 +31,7 @@ float shadowSdf(sampler3D field, LightData light, vec3 world, vec3 face, float s
     float voxel = frame.fieldOrigin.w;
     vec3 toLight;
     float reach; // how far the ray may go: to the light's surface, or out of the field's box
-    if (light.positionType.w == float(LIGHT_DIRECTIONAL)) {
+    if (LIGHT_TYPE_OF(light) == LIGHT_DIRECTIONAL) {
         toLight = -light.directionRange.xyz;
         reach = 3.4e38;
     } else {

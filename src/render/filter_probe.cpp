@@ -40,8 +40,10 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     const vk::Buffer mapBuffer =
         upload(std::as_bytes(depths), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, "probe shadow map");
     const gpu::ShadowViewData view = render::probeViewData(probeLight);
-    const vk::Buffer viewBuffer = upload(std::as_bytes(std::span(&view, 1)),
-                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probe view");
+    // The probe reads it as storage, the technique's post passes as their uniform view records.
+    const vk::Buffer viewBuffer = upload(
+        std::as_bytes(std::span(&view, 1)),
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "probe view");
     const vk::Buffer results =
         vk::createBuffer(ctx, probes.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          vk::MemoryUse::Readback, "probe results");

@@ -76,8 +76,10 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
         vkCmdSetDepthBias(cmd, 0.0f, 0.0f, s.slopeBias);
     };
-    auto draw = [&](uint32_t first, uint32_t count) {
-        vkCmdDrawIndexed(cmd, count, 1, first, 0, 0);
+    auto draw = [&](uint32_t first, uint32_t count) { // what the view may show of it
+        for (const IndexRange& r :
+             visibleRanges(scene.clusters, first, count, view.projection.viewProj, !perspective))
+            vkCmdDrawIndexed(cmd, r.count, 1, r.first, 0, 0);
     };
     constexpr VkShaderStageFlags kStages =
         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -104,9 +106,13 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
     } else {
         if (scene.opaqueIndexCount > 0) {
             bind(perspective ? p.shadowPerspective.get() : p.shadowOrtho.get());
+            const VkDeviceSize offset = 0;
+            const VkBuffer positions = scene.positions.get();
+            vkCmdBindVertexBuffers(cmd, 0, 1, &positions, &offset);
             vkCmdPushConstants(cmd, p.shadowLayout.get(), VK_SHADER_STAGE_VERTEX_BIT, 0,
                                sizeof push.shadow, &push.shadow);
             draw(0, scene.opaqueIndexCount);
+            bindGeometry(cmd, scene); // the masked casters read whole vertices
         }
         if (scene.indexCount > scene.opaqueIndexCount)
             bind(perspective ? p.shadowMaskPerspective.get() : p.shadowMaskOrtho.get());
@@ -176,7 +182,7 @@ void recordMipChain(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, con
             writes.sampled(POST_INPUT_BINDING, map.level(v, level - 1), t.nearest)
                 .storageImage(POST_OUTPUT_BINDING, map.level(v, level))
                 .uniformBuffer(POST_FRAME_BINDING, t.frame)
-                .storageBuffer(POST_VIEWS_BINDING, t.viewData);
+                .uniformBuffer(POST_VIEWS_BINDING, t.viewData);
             writes.push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
             const gpu::PostPassPush push{.size = {size, size, v, level}};
             vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
@@ -222,7 +228,7 @@ void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
                 writes.storageImage(POST_OUTPUT_BINDING + i,
                                     t.named(technique, pass.outputs[i]).layers[v].get());
             writes.uniformBuffer(POST_FRAME_BINDING, t.frame)
-                .storageBuffer(POST_VIEWS_BINDING, t.viewData);
+                .uniformBuffer(POST_VIEWS_BINDING, t.viewData);
             writes.push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
             const gpu::PostPassPush push{.size = {size.width, size.height, v, 0}};
             vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
@@ -238,7 +244,8 @@ void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
     }
 }
 
-void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene, FrameTargets& t) {
+void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene, FrameTargets& t,
+                   const glm::mat4& cameraViewProj) {
     vk::imageBarrier(cmd, t.depth, vk::kUndefined, vk::kDepthWrite);
     vk::imageBarrier(cmd, t.normal, vk::kUndefined, vk::kColorWrite);
     vk::imageBarrier(cmd, t.albedo, vk::kUndefined, vk::kColorWrite);
@@ -253,10 +260,15 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
                                .pDepthAttachment = &depth};
     vkCmdBeginRendering(cmd, &info);
     setViewport(cmd, t.width, t.height);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbuffer.get());
     bindGeometry(cmd, scene);
+    VkPipeline bound = VK_NULL_HANDLE;
     for (const DrawBatch& batch : scene.batches) {
         const GpuScene::Material& material = scene.materials[batch.material];
+        const VkPipeline pipeline = p.gbuffer({.texture = material.constants.hasTexture != 0u,
+                                               .alphaTest = material.constants.alphaTest != 0u,
+                                               .vertexColors = batch.vertexColors});
+        if (pipeline != bound)
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = pipeline);
         vk::PushDescriptors()
             .uniformBuffer(BIND_FRAME, t.frame)
             .sampled(GBUFFER_TEXTURE, material.texture.view, material.texture.sampler)
@@ -265,7 +277,9 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof material.constants, &material.constants);
         vkCmdSetCullMode(cmd, material.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
-        vkCmdDrawIndexed(cmd, batch.indexCount, 1, batch.firstIndex, 0, 0);
+        for (const IndexRange& r : visibleRanges(scene.clusters, batch.firstIndex, batch.indexCount,
+                                                 cameraViewProj, false))
+            vkCmdDrawIndexed(cmd, r.count, 1, r.first, 0, 0);
     }
     vkCmdEndRendering(cmd);
     vk::imageBarrier(cmd, t.depth, vk::kDepthWrite, vk::kComputeSampled);
@@ -273,46 +287,74 @@ void recordGBuffer(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene
     vk::imageBarrier(cmd, t.albedo, vk::kColorWrite, vk::kComputeSampled);
 }
 
-// One dispatch per light with shadow views, into its layer of the visibility image.
+// The visibility dispatch of one light with shadow views, into its layer of the visibility
+// image; `fused`: it also shades every pixel into t.color (the last light's).
+void dispatchVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
+                        const FrameSettings& s, const LightDispatch& light, bool fused) {
+    std::vector<shadows::SpecConstant> constants = s.constants;
+    constants.push_back({SPEC_LIGHT_TYPE, light.type});
+    constants.push_back({SPEC_LIGHT_VIEWS, light.views});
+    if (fused) {
+        constants.insert(constants.end(), s.sceneLights.begin(), s.sceneLights.end());
+        constants.push_back({SPEC_FUSED_COMPOSITE, 1u});
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(constants));
+    const FilteredBindings filtered = filteredBindings(t, *s.technique);
+    vk::PushDescriptors()
+        .uniformBuffer(BIND_FRAME, t.frame)
+        .uniformBuffer(VIS_LIGHTS, t.lights)
+        .sampled(VIS_GBUFFER_DEPTH, t.depth.view.get(), t.nearest)
+        .sampled(VIS_GBUFFER_NORMAL, t.normal.view.get(), t.nearest)
+        .sampled(VIS_SHADOW_MAP, filtered.floats, t.nearest)
+        .sampled(VIS_SHADOW_TABLE, filtered.integers, t.nearest)
+        .sampled(VIS_SHADOW_COMPARE, t.shadowDepth.image.view.get(), t.compare)
+        .storageImage(VIS_OUT, t.visibility.view.get())
+        .uniformBuffer(VIS_VIEWS, t.viewData)
+        .sampled(VIS_FIELD, t.field, t.fieldSampler)
+        .storageImage(VIS_INTERMEDIATES, t.intermediates.view.get())
+        .sampled(VIS_GBUFFER_ALBEDO, t.albedo.view.get(), t.nearest)
+        .storageImage(VIS_COLOR, t.color.view.get())
+        .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
+    vkCmdPushConstants(cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       sizeof light.push, &light.push);
+    vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
+}
+
+// The visibility dispatches of every light with shadow views but, when the composite is fused,
+// the last (recordComposite runs it).
 void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
                       const FrameSettings& s) {
     vk::Barriers()
         .image(t.visibility, vk::kUndefined, vk::kComputeWrite)
         .image(t.intermediates, vk::kUndefined, vk::kComputeWrite)
+        .image(t.integerPlaceholder, vk::kUndefined, vk::kComputeSampled)
+        .image(t.color, vk::kUndefined, vk::kComputeWrite) // bound by every dispatch
         .record(cmd);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(s.constants));
-    const FilteredBindings filtered = filteredBindings(t, *s.technique);
-    vk::imageBarrier(cmd, t.integerPlaceholder, vk::kUndefined, vk::kComputeSampled);
-    for (const gpu::VisibilityPush& push : s.shadowLights) {
-        vk::PushDescriptors()
-            .uniformBuffer(BIND_FRAME, t.frame)
-            .storageBuffer(VIS_LIGHTS, t.lights)
-            .sampled(VIS_GBUFFER_DEPTH, t.depth.view.get(), t.nearest)
-            .sampled(VIS_GBUFFER_NORMAL, t.normal.view.get(), t.nearest)
-            .sampled(VIS_SHADOW_MAP, filtered.floats, t.nearest)
-            .sampled(VIS_SHADOW_TABLE, filtered.integers, t.nearest)
-            .sampled(VIS_SHADOW_COMPARE, t.shadowDepth.image.view.get(), t.compare)
-            .storageImage(VIS_OUT, t.visibility.view.get())
-            .storageBuffer(VIS_VIEWS, t.viewData)
-            .sampled(VIS_FIELD, t.field, t.fieldSampler)
-            .storageImage(VIS_INTERMEDIATES, t.intermediates.view.get())
-            .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
-        vkCmdPushConstants(cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                           sizeof push, &push);
-        vkCmdDispatch(cmd, groups(t.width), groups(t.height), 1);
+    const size_t separate = s.shadowLights.size() - (s.fuseComposite ? 1 : 0);
+    for (size_t i = 0; i < separate && i < s.shadowLights.size(); ++i)
+        dispatchVisibility(cmd, p, t, s, s.shadowLights[i], false);
+}
+
+void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
+                     const FrameSettings& s) {
+    if (s.fuseComposite && !s.shadowLights.empty()) {
+        // The last light reads the earlier lights' layers as it writes its own.
+        vk::imageBarrier(cmd, t.visibility, vk::kComputeWrite, vk::kComputeReadWrite);
+        dispatchVisibility(cmd, p, t, s, s.shadowLights.back(), true);
+        vk::Barriers()
+            .image(t.visibility, vk::kComputeReadWrite, vk::kComputeSampled)
+            .image(t.intermediates, vk::kComputeWrite, vk::kComputeSampled)
+            .record(cmd);
+        return;
     }
     vk::Barriers()
         .image(t.visibility, vk::kComputeWrite, vk::kComputeSampled)
         .image(t.intermediates, vk::kComputeWrite, vk::kComputeSampled)
         .record(cmd);
-}
-
-void recordComposite(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t) {
-    vk::imageBarrier(cmd, t.color, vk::kUndefined, vk::kComputeWrite);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.composite.get());
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.composite(s.sceneLights));
     vk::PushDescriptors()
         .uniformBuffer(BIND_FRAME, t.frame)
-        .storageBuffer(COMPOSITE_LIGHTS, t.lights)
+        .uniformBuffer(COMPOSITE_LIGHTS, t.lights)
         .sampled(COMPOSITE_GBUFFER_DEPTH, t.depth.view.get(), t.nearest)
         .sampled(COMPOSITE_GBUFFER_NORMAL, t.normal.view.get(), t.nearest)
         .sampled(COMPOSITE_GBUFFER_ALBEDO, t.albedo.view.get(), t.nearest)
@@ -411,13 +453,13 @@ void recordFrame(VkCommandBuffer cmd, FramePipelines& pipelines, const GpuScene&
             recordShadowPost(cmd, pipelines, targets, settings, &timer);
     }
     timer.begin(cmd, "gbuffer");
-    recordGBuffer(cmd, pipelines, scene, targets);
+    recordGBuffer(cmd, pipelines, scene, targets, settings.cameraViewProj);
     timer.end(cmd);
     timer.begin(cmd, "visibility");
     recordVisibility(cmd, pipelines, targets, settings);
     timer.end(cmd);
     timer.begin(cmd, "composite");
-    recordComposite(cmd, pipelines, targets);
+    recordComposite(cmd, pipelines, targets, settings);
     timer.end(cmd);
 }
 
@@ -473,9 +515,13 @@ GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
         for (size_t m = 0; m < materialCount; ++m) {
             if (alphaTested(m) != tested || byMaterial[m].empty())
                 continue;
+            const bool coloured =
+                std::any_of(byMaterial[m].begin(), byMaterial[m].end(),
+                            [&](uint32_t i) { return scene.vertices[i].color != glm::vec4(1.0f); });
             out.batches.push_back({.material = static_cast<uint32_t>(m),
                                    .firstIndex = static_cast<uint32_t>(indices.size()),
-                                   .indexCount = static_cast<uint32_t>(byMaterial[m].size())});
+                                   .indexCount = static_cast<uint32_t>(byMaterial[m].size()),
+                                   .vertexColors = coloured});
             indices.insert(indices.end(), byMaterial[m].begin(), byMaterial[m].end());
             if (!tested)
                 out.opaqueIndexCount = static_cast<uint32_t>(indices.size());
@@ -493,6 +539,16 @@ GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
     }
     out.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.vertices)),
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex buffer");
+    std::vector<glm::vec3> positions;
+    positions.reserve(scene.vertices.size());
+    for (const Vertex& v : scene.vertices)
+        positions.push_back(v.position);
+    out.positions = vk::uploadBuffer(ctx, std::as_bytes(std::span(positions)),
+                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "position buffer");
+    std::vector<uint32_t> batchStarts;
+    for (const DrawBatch& batch : out.batches)
+        batchStarts.push_back(batch.firstIndex);
+    out.clusters = makeClusters(positions, indices, batchStarts);
     out.indices = vk::uploadBuffer(ctx, std::as_bytes(std::span(indices)),
                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index buffer");
     out.indexCount = static_cast<uint32_t>(indices.size());

@@ -3,6 +3,7 @@
 // shadow passes -> G-buffer -> visibility (compute) -> composite (compute), design.md §2.
 #include "core/light_space.h"
 #include "gpu_types.h"
+#include "render/culling.h"
 #include "render/pipelines.h"
 #include "render/textures.h"
 #include "shadows/technique.h"
@@ -18,12 +19,15 @@ namespace penumbra::render {
 struct DrawBatch {
     uint32_t material;
     uint32_t firstIndex, indexCount;
+    bool vertexColors; // some vertex's colour is not opaque white (else the G-buffer skips them)
 };
 
 // Indices are grouped by material, the alpha-tested materials last, so that the shadow pass
 // draws every opaque caster in one call and only the alpha-tested ones per material.
 struct GpuScene {
     vk::Buffer vertices, indices;
+    vk::Buffer positions;          // the vertices' positions alone: the opaque casters' shadow pass
+    std::vector<Cluster> clusters; // of the index buffer, for culling (render/culling.h)
     uint32_t indexCount = 0;
     uint32_t opaqueIndexCount = 0; // indices [0, opaqueIndexCount) have no alpha test
     std::vector<DrawBatch> batches;
@@ -83,10 +87,21 @@ struct FrameTargets {
     const ViewMaps& named(const shadows::TechniqueModule& module, std::string_view name) const;
 };
 
+// One visibility dispatch: a light with shadow views. Its kind and view count specialise the
+// pipeline (SPEC_LIGHT_TYPE, SPEC_LIGHT_VIEWS).
+struct LightDispatch {
+    gpu::VisibilityPush push;
+    uint32_t type;  // LIGHT_*
+    uint32_t views; // how many, from push.light.w
+};
+
 struct FrameSettings {
     const shadows::TechniqueModule* technique;
-    std::vector<shadows::SpecConstant> constants;  // of the visibility pass
-    std::vector<gpu::VisibilityPush> shadowLights; // one visibility dispatch per light with views
+    std::vector<shadows::SpecConstant> constants; // of the visibility pass, but the light's
+    std::vector<LightDispatch> shadowLights;
+    std::vector<shadows::SpecConstant> sceneLights; // shading.glsl's: sceneLightConstants
+    bool fuseComposite;                             // the last visibility dispatch shades
+    glm::mat4 cameraViewProj;                       // the G-buffer's, for culling
     float slopeBias;
     float constantBias;
     uint32_t shadowMapSize;

@@ -54,7 +54,8 @@ gpu::ShadowViewData probeViewData(const ProbeLight& light) {
     return {.shadowMatrix = glm::mat4(1.0f),
             .frustum = {light.nearPlane, light.farPlane, light.worldPerUv.x, light.worldPerUv.y},
             .texel = {0.0f, light.perspective ? 1.0f : 0.0f, 0.0f, light.size},
-            .cascade = {kNotACascade, kNotACascade, 1.0f, 0.0f}};
+            .cascade = {kNotACascade, kNotACascade, 1.0f, 0.0f},
+            .fromFirst = {1.0f, 1.0f, 0.0f, 0.0f}};
 }
 
 } // namespace penumbra::render

@@ -7,6 +7,8 @@
 #include "penumbra/settings.h"
 #include "vk/context.h"
 
+#include <algorithm>
+
 namespace penumbra::render {
 
 gpu::FrameData frameData(const Camera& camera, const RenderOptions& options, uint32_t lightCount,
@@ -15,6 +17,12 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& options, uin
 // filters depth comparisons in hardware (with how many sub-texel bits).
 void setTechniqueSettings(gpu::FrameData& frame, const ParameterValues& params,
                           bool hardwareDepthFilter, uint32_t subTexelBits);
+
+// How many records of `bytes` each the lights' or the views' uniform buffer holds on this device
+// (the shaders declare `declared`, MAX_UNIFORM_LIGHTS or MAX_UNIFORM_VIEWS).
+inline size_t uniformCapacity(const vk::Context& ctx, size_t bytes, size_t declared) {
+    return std::min<size_t>(declared, ctx.limits().maxUniformBufferRange / bytes);
+}
 
 // ShadowViewData::cascade's distances for a view that is not a cascade: it serves them all.
 inline constexpr float kNotACascade = 3.0e38f;

@@ -34,6 +34,17 @@ vk::GraphicsPipelineDesc shadowDesc(bool depthClamp, std::string_view fragment =
             .depthBias = true};
 }
 
+// The opaque casters' pipeline: positions only (GpuScene::positions), no fragment stage.
+vk::GraphicsPipelineDesc positionOnlyDesc(bool depthClamp) {
+    return {.vertexShader = "shadow_position.vert",
+            .vertexStride = sizeof(glm::vec3),
+            .attributes = {attribute(0, VK_FORMAT_R32G32B32_SFLOAT, 0)},
+            .depthFormat = kDepthFormat,
+            .depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL,
+            .depthClamp = depthClamp,
+            .depthBias = true};
+}
+
 } // namespace
 
 FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
@@ -49,20 +60,22 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     visibilityLayout =
         vk::createPipelineLayout(ctx,
                                  {{BIND_FRAME, kUniform},
-                                  {VIS_LIGHTS, kStorage},
+                                  {VIS_LIGHTS, kUniform},
                                   {VIS_GBUFFER_DEPTH, kSampled},
                                   {VIS_GBUFFER_NORMAL, kSampled},
                                   {VIS_SHADOW_MAP, kSampled},
                                   {VIS_SHADOW_COMPARE, kSampled},
                                   {VIS_OUT, kImage},
-                                  {VIS_VIEWS, kStorage},
+                                  {VIS_VIEWS, kUniform},
                                   {VIS_SHADOW_TABLE, kSampled},
                                   {VIS_FIELD, kSampled},
-                                  {VIS_INTERMEDIATES, kImage}},
+                                  {VIS_INTERMEDIATES, kImage},
+                                  {VIS_GBUFFER_ALBEDO, kSampled},
+                                  {VIS_COLOR, kImage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     compositeLayout = vk::createPipelineLayout(ctx,
                                                {{BIND_FRAME, kUniform},
-                                                {COMPOSITE_LIGHTS, kStorage},
+                                                {COMPOSITE_LIGHTS, kUniform},
                                                 {COMPOSITE_GBUFFER_DEPTH, kSampled},
                                                 {COMPOSITE_GBUFFER_NORMAL, kSampled},
                                                 {COMPOSITE_GBUFFER_ALBEDO, kSampled},
@@ -88,26 +101,12 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     readingDepthLayout = vk::createPipelineLayout(
         ctx, {{READ_MAP, kSampled}, {READ_TEXTURE, kSampled}}, kGraphicsStages,
         sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
-    shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(true));
-    shadowPerspective = vk::createGraphicsPipeline(ctx, shadowLayout, shadowDesc(false));
+    shadowOrtho = vk::createGraphicsPipeline(ctx, shadowLayout, positionOnlyDesc(true));
+    shadowPerspective = vk::createGraphicsPipeline(ctx, shadowLayout, positionOnlyDesc(false));
     shadowMaskOrtho =
         vk::createGraphicsPipeline(ctx, shadowMaskLayout, shadowDesc(true, "shadow_mask.frag"));
     shadowMaskPerspective =
         vk::createGraphicsPipeline(ctx, shadowMaskLayout, shadowDesc(false, "shadow_mask.frag"));
-    gbuffer = vk::createGraphicsPipeline(
-        ctx, gbufferLayout,
-        {.vertexShader = "gbuffer.vert",
-         .fragmentShader = "gbuffer.frag",
-         .vertexStride = sizeof(Vertex),
-         .attributes = {attribute(0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)),
-                        attribute(1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)),
-                        attribute(2, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)),
-                        attribute(3, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color))},
-         .colorFormats = {kNormalFormat, kAlbedoFormat},
-         .depthFormat = kDepthFormat,
-         .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL, // reverse-Z
-         .dynamicCullMode = true});
-    composite = vk::createComputePipeline(ctx, compositeLayout, "composite.comp");
     exportGBuffer = vk::createComputePipeline(ctx, exportLayout, "export.comp");
 }
 
@@ -126,6 +125,33 @@ VkPipeline FramePipelines::specialized(std::map<Constants, vk::PipelineHandle>& 
 
 VkPipeline FramePipelines::visibility(const Constants& constants) {
     return specialized(mVisibility, visibilityLayout, "visibility.comp", constants);
+}
+
+VkPipeline FramePipelines::gbuffer(GBufferVariant v) {
+    vk::PipelineHandle& pipeline =
+        mGbuffer[(v.texture ? 4 : 0) + (v.alphaTest ? 2 : 0) + (v.vertexColors ? 1 : 0)];
+    if (!pipeline)
+        pipeline = vk::createGraphicsPipeline(
+            ctx, gbufferLayout,
+            {.vertexShader = "gbuffer.vert",
+             .fragmentShader = "gbuffer.frag",
+             .vertexStride = sizeof(Vertex),
+             .attributes = {attribute(0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)),
+                            attribute(1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)),
+                            attribute(2, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)),
+                            attribute(3, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color))},
+             .colorFormats = {kNormalFormat, kAlbedoFormat},
+             .depthFormat = kDepthFormat,
+             .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL, // reverse-Z
+             .dynamicCullMode = true,
+             .constants = {{SPEC_MATERIAL_TEXTURE, v.texture ? 1u : 0u},
+                           {SPEC_MATERIAL_ALPHA_TEST, v.alphaTest ? 1u : 0u},
+                           {SPEC_MATERIAL_VERTEX_COLOR, v.vertexColors ? 1u : 0u}}});
+    return pipeline.get();
+}
+
+VkPipeline FramePipelines::composite(const Constants& constants) {
+    return specialized(mComposite, compositeLayout, "composite.comp", constants);
 }
 
 VkPipeline FramePipelines::probe(const Constants& constants) {
@@ -153,7 +179,7 @@ const vk::PipelineLayout& FramePipelines::postPassLayout(uint32_t inputs, uint32
         for (uint32_t i = 0; i < outputs; ++i)
             bindings.push_back({POST_OUTPUT_BINDING + i, kImage});
         bindings.push_back({POST_FRAME_BINDING, kUniform});
-        bindings.push_back({POST_VIEWS_BINDING, kStorage});
+        bindings.push_back({POST_VIEWS_BINDING, kUniform});
         it = mPostLayouts
                  .emplace(std::make_pair(inputs, outputs),
                           vk::createPipelineLayout(ctx, bindings, VK_SHADER_STAGE_COMPUTE_BIT,

@@ -6,6 +6,7 @@
 #include "shadows/technique.h"
 #include "vk/pipelines.h"
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -33,12 +34,21 @@ public:
     vk::PipelineHandle shadowOrtho;        // depth clamp on: casters before the near plane clamp
     vk::PipelineHandle shadowPerspective;  // depth clamp off
     vk::PipelineHandle shadowMaskOrtho, shadowMaskPerspective; // alpha-tested casters
-    vk::PipelineHandle gbuffer, composite, exportGBuffer;
+    vk::PipelineHandle exportGBuffer;
+
+    // The G-buffer pass for a batch: its material's flags (MaterialPush::hasTexture, alphaTest)
+    // and whether its vertices are coloured (DrawBatch::vertexColors).
+    struct GBufferVariant {
+        bool texture, alphaTest, vertexColors;
+    };
+    VkPipeline gbuffer(GBufferVariant variant);
 
     // The visibility pass (and the parity tests' probe) for one list of specialization
     // constants (shadows::visibilityConstants), made on first use.
     VkPipeline visibility(const std::vector<shadows::SpecConstant>& constants);
     VkPipeline probe(const std::vector<shadows::SpecConstant>& constants);
+    // The composite on its own, for the scene's lights (sceneLightConstants).
+    VkPipeline composite(const std::vector<shadows::SpecConstant>& constants);
     // A technique's extra depth pass: the shadow pass's vertex stage and state with
     // `fragmentShader`, which reads a map at binding 0 (readingDepthLayout).
     VkPipeline readingDepthPass(std::string_view fragmentShader, bool perspective);
@@ -53,11 +63,12 @@ private:
     VkPipeline specialized(std::map<Constants, vk::PipelineHandle>& cache,
                            const vk::PipelineLayout& layout, std::string_view shader,
                            const Constants& constants);
-    std::map<Constants, vk::PipelineHandle> mVisibility, mProbe;
+    std::map<Constants, vk::PipelineHandle> mVisibility, mProbe, mComposite;
     std::map<std::pair<std::string, bool>, vk::PipelineHandle> mReadingDepth;
     std::map<std::pair<uint32_t, uint32_t>, vk::PipelineLayout> mPostLayouts;
     std::map<std::string, vk::PipelineHandle, std::less<>> mPost;
     std::unique_ptr<FieldPipelines> mField;
+    std::array<vk::PipelineHandle, 8> mGbuffer;
 };
 
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;

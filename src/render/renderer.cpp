@@ -54,6 +54,15 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
                                      "(a point light takes 6, a sun csm.cascades); this device's "
                                      "maxImageArrayLayers is {}",
                                      shadowLights, shadows.views, layers));
+    const size_t viewRecords =
+        render::uniformCapacity(ctx, sizeof(gpu::ShadowViewData), MAX_UNIFORM_VIEWS);
+    if (shadows.views > viewRecords)
+        throw InputError(shadows.scene,
+                         fmt::format("its {} shadow-casting lights need {} shadow views (a point "
+                                     "light takes 6, a sun csm.cascades); this device's uniform "
+                                     "buffers hold {} (maxUniformBufferRange {})",
+                                     shadowLights, shadows.views, viewRecords,
+                                     ctx.limits().maxUniformBufferRange));
     // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
     const double pixels = double(o.width) * double(o.height);
     const double shadowBytes = double(shadows::shadowMapBytes(shadows::moduleOf(o.technique),

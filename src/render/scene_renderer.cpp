@@ -54,7 +54,24 @@ gpu::ShadowViewData viewData(const Light& light, const LightProjection& shadow, 
             .cascade = {std::min(shadow.splitFar, render::kNotACascade),
                         std::min(shadow.blendStart, render::kNotACascade), shadow.kernelScale,
                         0.0f},
-            .moments = {shadow.receiverDepths.x, 1.0f - shadow.receiverDepths.y, 0.0f, 0.0f}};
+            .moments = {shadow.receiverDepths.x, 1.0f - shadow.receiverDepths.y, 0.0f, 0.0f},
+            .fromFirst = {1.0f, 1.0f, 0.0f, 0.0f}};
+}
+
+// A sun's cascade `view` as an affine map of its first cascade's (u, v), the depth shared
+// (gpu_types.h, ShadowViewData::fromFirst): cascades.cpp gives them one orientation and depth
+// range, which this checks rather than assumes.
+glm::vec4 fromFirstCascade(const glm::mat4& first, const glm::mat4& view) {
+    const glm::dmat4 d = glm::dmat4(view) * glm::inverse(glm::dmat4(first));
+    const glm::dmat4 expected(glm::dvec4(d[0][0], 0, 0, 0), glm::dvec4(0, d[1][1], 0, 0),
+                              glm::dvec4(0, 0, 1, 0), glm::dvec4(d[3][0], d[3][1], 0, 1));
+    double off = 0.0;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            off = std::max(off, std::abs(d[c][r] - expected[c][r]));
+    PENUMBRA_CHECK(off <= 1e-4 * std::max({1.0, std::abs(d[0][0]), std::abs(d[1][1])}),
+                   "cascades with different orientations or depth ranges");
+    return glm::vec4(d[0][0], d[1][1], d[3][0], d[3][1]);
 }
 
 ShadowViewInfo viewInfo(const LightProjection& shadow, uint32_t layer,
@@ -74,12 +91,26 @@ ShadowViewInfo viewInfo(const LightProjection& shadow, uint32_t layer,
             .worldToShadow = worldToShadow};
 }
 
+uint32_t lightTypeOf(const Light& light) {
+    return light.type == LightType::Directional ? LIGHT_DIRECTIONAL
+           : light.type == LightType::Spot      ? LIGHT_SPOT
+                                                : LIGHT_POINT;
+}
+
+// shading.glsl's specialisation: the lights' count and kinds when there are few enough.
+std::vector<shadows::SpecConstant> sceneLightConstants(const std::vector<Light>& lights) {
+    if (lights.size() > MAX_SPECIALIZED_LIGHTS)
+        return {{SPEC_SCENE_LIGHTS, 0u}, {SPEC_SCENE_LIGHT_TYPES, 0u}};
+    uint32_t types = 0;
+    for (size_t i = 0; i < lights.size(); ++i)
+        types |= lightTypeOf(lights[i]) << (2 * i);
+    return {{SPEC_SCENE_LIGHTS, static_cast<uint32_t>(lights.size())},
+            {SPEC_SCENE_LIGHT_TYPES, types}};
+}
+
 gpu::LightData lightData(const Light& light, int visibilityLayer, uint32_t firstView,
                          uint32_t viewCount, const ParameterValues& params) {
-    const float type = light.type == LightType::Directional ? LIGHT_DIRECTIONAL
-                       : light.type == LightType::Spot      ? LIGHT_SPOT
-                                                            : LIGHT_POINT;
-    return {.positionType = glm::vec4(light.position, type),
+    return {.positionType = glm::vec4(light.position, static_cast<float>(lightTypeOf(light))),
             .directionRange = glm::vec4(glm::normalize(light.direction), light.range),
             .colorIntensity = glm::vec4(light.color, light.intensity),
             .cone = {std::cos(light.outerConeAngle), std::cos(light.innerConeAngle), 0.0f,
@@ -255,6 +286,14 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
         throw InputError(m.scene.name, "the scene has no valid triangles");
     m.bounds = m.scene.bounds();
     m.gpu = render::uploadScene(m.ctx(), m.scene);
+    const size_t lightRecords =
+        render::uniformCapacity(m.ctx(), sizeof(gpu::LightData), MAX_UNIFORM_LIGHTS);
+    if (m.scene.lights.size() > lightRecords)
+        throw InputError(m.scene.name,
+                         fmt::format("it has {} lights; this device's uniform buffers hold {} "
+                                     "(maxUniformBufferRange {})",
+                                     m.scene.lights.size(), lightRecords,
+                                     m.ctx().limits().maxUniformBufferRange));
     const size_t lightBytes = sizeof(gpu::LightData) * std::max<size_t>(m.scene.lights.size(), 1);
     size_t viewCount = 0;
     for (const Light& light : m.scene.lights) {
@@ -264,17 +303,20 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
                                        : std::numeric_limits<float>::infinity());
         m.nearestFrom.push_back(light.position);
     }
+    // Room for any csm.cascades up to what the device holds: render refuses more views.
+    viewCount = std::min(viewCount, render::uniformCapacity(m.ctx(), sizeof(gpu::ShadowViewData),
+                                                            MAX_UNIFORM_VIEWS));
     m.viewCapacity = viewCount;
     const size_t viewBytes = sizeof(gpu::ShadowViewData) * std::max<size_t>(viewCount, 1);
     for (Impl::Slot& slot : m.slots) {
         slot.frame =
             vk::createBuffer(m.ctx(), sizeof(gpu::FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                              vk::MemoryUse::Upload, "frame buffer");
-        // Storage buffers cannot be empty: a scene without lights still gets one record.
-        slot.lights = vk::createBuffer(m.ctx(), lightBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+        // Buffers cannot be empty: a scene without lights still gets one record.
+        slot.lights = vk::createBuffer(m.ctx(), lightBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                        vk::MemoryUse::Upload, "light buffer");
         std::memset(slot.lights.mapped, 0, lightBytes);
-        slot.views = vk::createBuffer(m.ctx(), viewBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+        slot.views = vk::createBuffer(m.ctx(), viewBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                       vk::MemoryUse::Upload, "shadow view buffer");
         std::memset(slot.views.mapped, 0, viewBytes);
     }
@@ -348,7 +390,7 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
     std::vector<render::ShadowView> views; // every shadow view of every light, in layer order
     std::vector<gpu::ShadowViewData> viewRecords;
     std::vector<gpu::LightData> lights;
-    std::vector<gpu::VisibilityPush> shadowLights;
+    std::vector<render::LightDispatch> shadowLights;
     const uint32_t guard = viewGuardTexels(shadows::moduleOf(o.technique), o.parameters);
     const CascadeSettings cascades{.count =
                                        static_cast<uint32_t>(o.parameters.number("csm.cascades")),
@@ -377,10 +419,16 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
                 const auto layer = static_cast<uint32_t>(views.size());
                 views.push_back({.light = i, .projection = shadow});
                 viewRecords.push_back(viewData(light, shadow, layer));
+                if (cascaded)
+                    viewRecords.back().fromFirst = fromFirstCascade(
+                        viewRecords[firstView].shadowMatrix, viewRecords.back().shadowMatrix);
                 info.views.push_back(viewInfo(shadow, layer, viewRecords.back().shadowMatrix));
             }
-            shadowLights.push_back({.light = {i, static_cast<uint32_t>(info.visibilityIndex),
-                                              o.shadowMapSize, firstView}});
+            shadowLights.push_back(
+                {.push = {.light = {i, static_cast<uint32_t>(info.visibilityIndex), o.shadowMapSize,
+                                    firstView}},
+                 .type = lightTypeOf(light),
+                 .views = static_cast<uint32_t>(views.size()) - firstView});
             info.projection =
                 light.type == LightType::Point ? "cube" : info.views.front().projection;
             info.guardTexels = light.type == LightType::Point ? guard : 0;
@@ -455,6 +503,9 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
                 .technique = wanted.technique,
                 .constants = std::move(constants),
                 .shadowLights = shadowLights,
+                .sceneLights = sceneLightConstants(lit.lights),
+                .fuseComposite = o.parameters.number("composite.fused") != 0.0,
+                .cameraViewProj = frameBlock.viewProj,
                 .slopeBias = static_cast<float>(o.parameters.number("bias.slope")),
                 .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
                 .shadowMapSize = o.shadowMapSize}};

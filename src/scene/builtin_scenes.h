@@ -49,6 +49,13 @@ inline constexpr float kFieldHalfSize = 400.0f;
 inline constexpr float kFieldFarthest = 180.0f;
 inline constexpr glm::vec3 kFieldSunDirection{0.55f, -0.45f, -0.35f};
 
+// Dense: kDenseRows x kDenseColumns cells of a box and a sphere of 2 x slices x (stacks - 1)
+// triangles (about 100k in all), a spot light.
+inline constexpr int kDenseRows = 4, kDenseColumns = 6;
+inline constexpr uint32_t kDenseSphereSlices = 66, kDenseSphereStacks = 32;
+inline constexpr float kDenseHalfSize = 14.0f;
+inline constexpr glm::vec3 kDenseSpotPosition{-4.0f, 14.0f, -5.0f};
+
 // The outdoor scenes' sun: kSunDirection, 0.53 degrees wide (the real sun's size), warm white.
 Light sun();
 
@@ -59,5 +66,6 @@ Scene foliage();
 Scene room();
 Scene field();
 Scene bleeding();
+Scene dense();
 
 } // namespace penumbra::builtin

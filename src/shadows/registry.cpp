@@ -138,7 +138,14 @@ const std::vector<ParameterInfo>& parameterTable() {
          .unit = "EV (stops)",
          .description = "scales every light by 2^EV before the tone curve; glTF intensities "
                         "in lux or candela need negative values (about -16 for a 100000-lux "
-                        "sun)"}};
+                        "sun)"},
+        {.key = "composite.fused",
+         .type = ParameterType::Bool,
+         .defaultValue = 1,
+         .description = "shade in the last shadowed light's visibility dispatch (one pass fewer "
+                        "over the G-buffer): its time then counts under `composite`, and "
+                        "`visibility` holds the other lights' dispatches only; 0 times every "
+                        "light's visibility on its own"}};
     static const std::vector<ParameterInfo> table = [] {
         std::vector<ParameterInfo> t = bias;
         for (const shadows::TechniqueModule* m : shadows::allModules())

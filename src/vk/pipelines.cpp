@@ -101,17 +101,20 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
                                       const GraphicsPipelineDesc& desc) {
     const ShaderModuleHandle vertex = loadShader(ctx, desc.vertexShader);
     ShaderModuleHandle fragment;
+    const Specialization spec(desc.constants);
     std::vector<VkPipelineShaderStageCreateInfo> stages{
         {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
          .stage = VK_SHADER_STAGE_VERTEX_BIT,
          .module = vertex.get(),
-         .pName = "main"}};
+         .pName = "main",
+         .pSpecializationInfo = &spec.info}};
     if (!desc.fragmentShader.empty()) {
         fragment = loadShader(ctx, desc.fragmentShader);
         stages.push_back({.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
                           .stage = VK_SHADER_STAGE_FRAGMENT_BIT,
                           .module = fragment.get(),
-                          .pName = "main"});
+                          .pName = "main",
+                          .pSpecializationInfo = &spec.info});
     }
     const VkVertexInputBindingDescription binding{
         .binding = 0, .stride = desc.vertexStride, .inputRate = VK_VERTEX_INPUT_RATE_VERTEX};

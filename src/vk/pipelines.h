@@ -47,8 +47,9 @@ struct GraphicsPipelineDesc {
     VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
     VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
     bool depthClamp = false;
-    bool depthBias = false;       // values set per draw with vkCmdSetDepthBias
-    bool dynamicCullMode = false; // set per draw with vkCmdSetCullMode (default none)
+    bool depthBias = false;              // values set per draw with vkCmdSetDepthBias
+    bool dynamicCullMode = false;        // set per draw with vkCmdSetCullMode (default none)
+    std::vector<SpecConstant> constants; // for both stages (their ids apart)
 };
 
 PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& layout,

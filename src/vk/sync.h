@@ -33,6 +33,10 @@ inline constexpr ImageState kComputeSampled{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_B
 inline constexpr ImageState kComputeWrite{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
                                           VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
                                           VK_IMAGE_LAYOUT_GENERAL};
+inline constexpr ImageState kComputeReadWrite{VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                              VK_ACCESS_2_SHADER_STORAGE_READ_BIT |
+                                                  VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                              VK_IMAGE_LAYOUT_GENERAL};
 inline constexpr ImageState kTransferRead{VK_PIPELINE_STAGE_2_COPY_BIT,
                                           VK_ACCESS_2_TRANSFER_READ_BIT,
                                           VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
