@@ -214,6 +214,17 @@ Light sunLight() {
             .intensity = 1.4f};
 }
 
+// A shadowing spot, point light and sun (visibility layers 0, 1 and 2) and a point light that
+// casts no shadow (no visibility layer: fully lit).
+Scene everyKindOfLight() {
+    Light fill = pointLight();
+    fill.castsShadow = false;
+    fill.position += glm::vec3(1.5f, 0.5f, -1.0f);
+    return groundUnderSlab({spotLight(), pointLight(), sunLight(), fill});
+}
+constexpr CompositeKnobs kEveryKindKnobs{
+    .ambient = 0.1, .shadowIntensity = 0.8, .exposureEv = -1.0};
+
 } // namespace
 
 TEST_F(LightingTest, SunLightsTheGroundByLambertAndShadowIntensity) {
@@ -260,13 +271,8 @@ TEST_F(LightingTest, PointLightFallsOffWithDistanceAndRange) {
 }
 
 TEST_F(LightingTest, LightsOfEveryTypeAddUp) {
-    // A shadowing spot, point light and sun (visibility layers 0, 1 and 2) and a point light
-    // that casts no shadow (no visibility layer: fully lit).
-    Light fill = pointLight();
-    fill.castsShadow = false;
-    fill.position += glm::vec3(1.5f, 0.5f, -1.0f);
-    const Scene scene = groundUnderSlab({spotLight(), pointLight(), sunLight(), fill});
-    const CompositeKnobs k{.ambient = 0.1, .shadowIntensity = 0.8, .exposureEv = -1.0};
+    const Scene scene = everyKindOfLight();
+    const CompositeKnobs k = kEveryKindKnobs;
     const RenderResult r = renderWith(scene, k);
     ASSERT_EQ(r.visibility.size(), 3u);
     ASSERT_EQ(r.lights.size(), 4u);
@@ -279,11 +285,8 @@ TEST_F(LightingTest, LightsOfEveryTypeAddUp) {
 // composite.comp does it on its own when asked, or when no light has a shadow map. Both follow
 // the contract, and they agree pixel for pixel.
 TEST_F(LightingTest, SeparateCompositeMatchesTheFusedOne) {
-    Light fill = pointLight();
-    fill.castsShadow = false;
-    fill.position += glm::vec3(1.5f, 0.5f, -1.0f);
-    const Scene scene = groundUnderSlab({spotLight(), pointLight(), sunLight(), fill});
-    const CompositeKnobs k{.ambient = 0.1, .shadowIntensity = 0.8, .exposureEv = -1.0};
+    const Scene scene = everyKindOfLight();
+    const CompositeKnobs k = kEveryKindKnobs;
     const RenderResult fused = renderWith(scene, k);
     const RenderResult separate = renderWith(scene, k, "composite.fused=0");
     expectImageFollowsTheContract(scene, separate, k, "separate composite", 300);

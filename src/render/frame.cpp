@@ -330,8 +330,9 @@ void recordVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
         .image(t.integerPlaceholder, vk::kUndefined, vk::kComputeSampled)
         .image(t.color, vk::kUndefined, vk::kComputeWrite) // bound by every dispatch
         .record(cmd);
-    const size_t separate = s.shadowLights.size() - (s.fuseComposite ? 1 : 0);
-    for (size_t i = 0; i < separate && i < s.shadowLights.size(); ++i)
+    const size_t separate = s.fuseComposite && !s.shadowLights.empty() ? s.shadowLights.size() - 1
+                                                                       : s.shadowLights.size();
+    for (size_t i = 0; i < separate; ++i)
         dispatchVisibility(cmd, p, t, s, s.shadowLights[i], false);
 }
 

@@ -34,17 +34,7 @@ Scene dense() {
                           glm::vec3(0.4f, height + radius + 0.3f * static_cast<float>(i % 3), 0.3f),
                       radius, colours[i % 4], kDenseSphereSlices, kDenseSphereStacks);
         }
-    const glm::vec3 target{0.0f, 0.0f, 0.5f};
-    const float distance = glm::length(target - kDenseSpotPosition);
-    scene.lights.push_back({.name = "spot",
-                            .type = LightType::Spot,
-                            .position = kDenseSpotPosition,
-                            .direction = glm::normalize(target - kDenseSpotPosition),
-                            .color = {1.0f, 0.95f, 0.85f},
-                            .intensity = 1.8f * distance * distance, // ~1.8 at the target
-                            .innerConeAngle = 0.55f,
-                            .outerConeAngle = 0.65f,
-                            .radius = 0.2f});
+    scene.lights.push_back(spotLight(kDenseSpotPosition, {0.0f, 0.0f, 0.5f}, 0.55f, 0.65f));
     scene.cameras.push_back({.name = "main",
                              .position = {0.0f, 9.0f, 14.0f},
                              .target = {0.0f, 0.5f, -0.5f},

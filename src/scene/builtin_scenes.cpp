@@ -56,18 +56,23 @@ Scene showcase() {
     return scene;
 }
 
+Light spotLight(const glm::vec3& position, const glm::vec3& target, float innerConeAngle,
+                float outerConeAngle) {
+    const float distance = glm::length(target - position);
+    return {.name = "spot",
+            .type = LightType::Spot,
+            .position = position,
+            .direction = glm::normalize(target - position),
+            .color = {1.0f, 0.95f, 0.85f},
+            .intensity = 1.8f * distance * distance, // ~1.8 at the target
+            .innerConeAngle = innerConeAngle,
+            .outerConeAngle = outerConeAngle,
+            .radius = 0.2f};
+}
+
 Scene spot() {
     Scene scene = showcaseGeometry("spot");
-    const float distance = glm::length(kSpotTarget - kSpotPosition);
-    scene.lights.push_back({.name = "spot",
-                            .type = LightType::Spot,
-                            .position = kSpotPosition,
-                            .direction = glm::normalize(kSpotTarget - kSpotPosition),
-                            .color = {1.0f, 0.95f, 0.85f},
-                            .intensity = 1.8f * distance * distance, // ~1.8 at the target
-                            .innerConeAngle = 0.42f,
-                            .outerConeAngle = 0.52f,
-                            .radius = 0.2f});
+    scene.lights.push_back(spotLight(kSpotPosition, kSpotTarget, 0.42f, 0.52f));
     return scene;
 }
 

@@ -58,6 +58,9 @@ inline constexpr glm::vec3 kDenseSpotPosition{-4.0f, 14.0f, -5.0f};
 
 // The outdoor scenes' sun: kSunDirection, 0.53 degrees wide (the real sun's size), warm white.
 Light sun();
+// The spot scenes' light: warm white, radius 0.2, about 1.8 at `target` (inverse square).
+Light spotLight(const glm::vec3& position, const glm::vec3& target, float innerConeAngle,
+                float outerConeAngle);
 
 Scene showcase();
 Scene grazing();
