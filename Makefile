@@ -71,7 +71,7 @@ mutation-test: deps
 	    $(if $(MUTATION_LABEL),--label $(MUTATION_LABEL))
 
 demo: build
-	$(BUILDDIR)/apps/penumbra/penumbra compare builtin:showcase -o out/showcase
+	$(BUILDDIR)/apps/penumbra/penumbra compare builtin:demo -o out/demo
 
 bench: build
 	$(BUILDDIR)/bench/penumbra_bench_gltf

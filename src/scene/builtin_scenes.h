@@ -49,6 +49,9 @@ inline constexpr float kFieldHalfSize = 400.0f;
 inline constexpr float kFieldFarthest = 180.0f;
 inline constexpr glm::vec3 kFieldSunDirection{0.55f, -0.45f, -0.35f};
 
+// Demo: the sun's angular diameter (degrees) in `make demo`'s scene.
+inline constexpr float kDemoSunDegrees = 4.0f;
+
 // Dense: kDenseRows x kDenseColumns cells of a box and a sphere of 2 x slices x (stacks - 1)
 // triangles (about 100k in all), a spot light.
 inline constexpr int kDenseRows = 4, kDenseColumns = 6;
@@ -70,5 +73,6 @@ Scene room();
 Scene field();
 Scene bleeding();
 Scene dense();
+Scene demo();
 
 } // namespace penumbra::builtin
