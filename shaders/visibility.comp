@@ -156,8 +156,7 @@ Receiver cascadeReceiver(CascadeBase b, ShadowViewData view, out bool inside) {
     Receiver r;
     r.uv = (view.shadowMatrix * vec4(b.world + b.normal * offset, 1.0)).xy;
     r.depth = b.depth + offset * b.depthAlong;
-    inside = all(greaterThanEqual(r.uv, vec2(0.0))) && all(lessThanEqual(r.uv, vec2(1.0))) &&
-             r.depth <= 1.0;
+    inside = insideMap(r.uv, r.depth);
     r.gradient = b.gradient / view.fromFirst.xy;
     r.layer = view.texel.z;
     r.kernelScale = view.cascade.z;

@@ -200,8 +200,10 @@ struct ShadowViewData {  // std430 storage buffer, one per shadow view
                          // x to 1 - y (zero: the whole range)
     vec4 fromFirst;      // this view's (u, v) = xy * (u, v) of its light's first view + zw, the
                          // depth the same: a sun's cascades share one orientation and depth
-                         // range (src/core/cascades.cpp), so the visibility pass projects once
-                         // (cascadeReceiver). (1, 1, 0, 0) for a light's first view.
+                         // range (src/core/cascades.cpp), so the visibility pass maps the first
+                         // cascade's receiver plane and footprint by xy (cascadeReceiver; it
+                         // projects (u, v) itself, which rounds as the shadow pass does).
+                         // (1, 1, 0, 0) for a light's first view.
 };
 
 struct ShadowPush {      // push constants of shadow_depth.vert

@@ -48,14 +48,19 @@ vec3 offsetReceiver(LightData light, ShadowViewData view, vec3 world, vec3 norma
     return world + normal * (light.bias.z * texelWorld * (1.0 - nDotL));
 }
 
+// Whether (uv, depth) lies in a view's map: what its map can shadow.
+bool insideMap(vec2 uv, float depth) {
+    return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) &&
+           depth <= 1.0;
+}
+
 ShadowCoord projectToShadowMap(ShadowViewData view, vec3 world) {
     vec4 s = view.shadowMatrix * vec4(world, 1.0);
     ShadowCoord c;
     c.inside = s.w > 0.0;
     c.uv = s.xy / s.w;
     c.depth = s.z / s.w;
-    c.inside = c.inside && all(greaterThanEqual(c.uv, vec2(0.0))) &&
-               all(lessThanEqual(c.uv, vec2(1.0))) && c.depth <= 1.0;
+    c.inside = c.inside && insideMap(c.uv, c.depth);
     return c;
 }
 

@@ -34,12 +34,7 @@ Scene bleeding() {
     light.direction = glm::normalize(glm::vec3(0.25f, -1.0f, 0.15f));
     scene.lights.push_back(light);
     // Low, looking under the wide plate at the ground in its shadow.
-    scene.cameras.push_back({.name = "main",
-                             .position = {0.4f, 0.55f, 6.5f},
-                             .target = {0.0f, 0.15f, 0.0f},
-                             .yfov = 0.9f,
-                             .znear = 0.1f,
-                             .zfar = 100.0f});
+    scene.cameras.push_back(mainCamera({0.4f, 0.55f, 6.5f}, {0.0f, 0.15f, 0.0f}, 0.9f));
     return scene;
 }
 

@@ -37,12 +37,7 @@ Scene demo() {
     light.direction = glm::normalize(glm::vec3(0.45f, -1.0f, 0.3f));
     light.angularDiameter = kDemoSunDegrees;
     scene.lights.push_back(light);
-    scene.cameras.push_back({.name = "main",
-                             .position = {0.0f, 6.0f, 10.0f},
-                             .target = {0.0f, 0.8f, -1.0f},
-                             .yfov = 0.8f,
-                             .znear = 0.1f,
-                             .zfar = 100.0f});
+    scene.cameras.push_back(mainCamera({0.0f, 6.0f, 10.0f}, {0.0f, 0.8f, -1.0f}, 0.8f));
     return scene;
 }
 

@@ -35,12 +35,7 @@ Scene dense() {
                       radius, colours[i % 4], kDenseSphereSlices, kDenseSphereStacks);
         }
     scene.lights.push_back(spotLight(kDenseSpotPosition, {0.0f, 0.0f, 0.5f}, 0.55f, 0.65f));
-    scene.cameras.push_back({.name = "main",
-                             .position = {0.0f, 9.0f, 14.0f},
-                             .target = {0.0f, 0.5f, -0.5f},
-                             .yfov = 0.75f,
-                             .znear = 0.1f,
-                             .zfar = 100.0f});
+    scene.cameras.push_back(mainCamera({0.0f, 9.0f, 14.0f}, {0.0f, 0.5f, -0.5f}, 0.75f));
     return scene;
 }
 

@@ -63,12 +63,7 @@ Scene field() {
                             .color = {1.0f, 0.95f, 0.85f},
                             .intensity = 2.0f,
                             .angularDiameter = 0.53f});
-    scene.cameras.push_back({.name = "main",
-                             .position = {0.0f, 1.7f, 0.0f},
-                             .target = {0.0f, 0.2f, -12.0f},
-                             .yfov = 0.9f,
-                             .znear = 0.1f,
-                             .zfar = 1000.0f});
+    scene.cameras.push_back(mainCamera({0.0f, 1.7f, 0.0f}, {0.0f, 0.2f, -12.0f}, 0.9f, 1000.0f));
     return scene;
 }
 

@@ -117,12 +117,7 @@ Scene foliage() {
             lattice);
 
     scene.lights.push_back(sun());
-    scene.cameras.push_back({.name = "main",
-                             .position = {0.0f, 8.0f, 11.5f},
-                             .target = {-0.5f, 0.8f, -1.2f},
-                             .yfov = 0.8f,
-                             .znear = 0.1f,
-                             .zfar = 100.0f});
+    scene.cameras.push_back(mainCamera({0.0f, 8.0f, 11.5f}, {-0.5f, 0.8f, -1.2f}, 0.8f));
     return scene;
 }
 

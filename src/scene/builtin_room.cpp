@@ -65,12 +65,7 @@ Scene room() {
                             .color = {1.0f, 0.9f, 0.75f},
                             .intensity = 14.0f,
                             .radius = 0.1f});
-    scene.cameras.push_back({.name = "main",
-                             .position = {0.5f, 2.4f, 12.5f},
-                             .target = {0.0f, 1.9f, -1.0f},
-                             .yfov = 0.85f,
-                             .znear = 0.1f,
-                             .zfar = 100.0f});
+    scene.cameras.push_back(mainCamera({0.5f, 2.4f, 12.5f}, {0.0f, 1.9f, -1.0f}, 0.85f));
     return scene;
 }
 

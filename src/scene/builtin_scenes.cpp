@@ -30,12 +30,7 @@ Scene showcaseGeometry(std::string name) {
         const float x = -2.8f + 0.3f * static_cast<float>(i), z = -3.2f;
         mb.quad({x, 0, z}, {x + 0.12f, 0, z}, {x + 0.12f, 1.4f, z}, {x, 1.4f, z}, wood);
     }
-    scene.cameras.push_back({.name = "main",
-                             .position = {0.0f, 6.5f, 11.0f},
-                             .target = {-0.3f, 0.5f, -0.4f},
-                             .yfov = 0.75f,
-                             .znear = 0.1f,
-                             .zfar = 100.0f});
+    scene.cameras.push_back(mainCamera({0.0f, 6.5f, 11.0f}, {-0.3f, 0.5f, -0.4f}, 0.75f));
     return scene;
 }
 
@@ -94,12 +89,7 @@ Scene grazing() {
                             .type = LightType::Directional,
                             .direction = direction,
                             .intensity = 8.0f});
-    scene.cameras.push_back({.name = "main",
-                             .position = {-2.0f, 7.0f, 9.0f},
-                             .target = {0.5f, 0.0f, -1.0f},
-                             .yfov = 0.9f,
-                             .znear = 0.1f,
-                             .zfar = 100.0f});
+    scene.cameras.push_back(mainCamera({-2.0f, 7.0f, 9.0f}, {0.5f, 0.0f, -1.0f}, 0.9f));
     return scene;
 }
 

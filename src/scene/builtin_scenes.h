@@ -61,6 +61,15 @@ inline constexpr glm::vec3 kDenseSpotPosition{-4.0f, 14.0f, -5.0f};
 
 // The outdoor scenes' sun: kSunDirection, 0.53 degrees wide (the real sun's size), warm white.
 Light sun();
+// A built-in scene's camera: "main", near plane 0.1.
+inline Camera mainCamera(glm::vec3 position, glm::vec3 target, float yfov, float zfar = 100.0f) {
+    return {.name = "main",
+            .position = position,
+            .target = target,
+            .yfov = yfov,
+            .znear = 0.1f,
+            .zfar = zfar};
+}
 // The spot scenes' light: warm white, radius 0.2, about 1.8 at `target` (inverse square).
 Light spotLight(const glm::vec3& position, const glm::vec3& target, float innerConeAngle,
                 float outerConeAngle);
