@@ -9,7 +9,8 @@ export XDG_RUNTIME_DIR ?= /tmp/penumbra-xdg-$(shell id -u)
 PACKAGES := cmake g++ make pkg-config glslc libvulkan-dev mesa-vulkan-drivers \
     vulkan-validationlayers libglm-dev libstb-dev libcli11-dev nlohmann-json3-dev libfmt-dev \
     libgtest-dev libbenchmark-dev libembree-dev libtbb-dev libtinygltf-dev chromium \
-    clang libclang-rt-14-dev python3 libglfw3-dev libimgui-dev xvfb xauth
+    clang libclang-rt-14-dev python3 libglfw3-dev libimgui-dev xvfb xauth \
+    libdraco-dev libmeshoptimizer-dev
 
 # The glTF loader's libFuzzer target (clang, ASan + UBSan: the asan preset). `make fuzz` runs it
 # for FUZZ_SECONDS (0: until interrupted); `make test` runs it for 60 s. New inputs accumulate in

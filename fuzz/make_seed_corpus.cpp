@@ -3,6 +3,7 @@
 // with a data URI, or .glb), and a few malformed ones. Every asset is loaded once here too: a
 // valid seed the loader refuses, or a malformed one it accepts, is reported and fails the run.
 #include "../tests/gltf_builder.h"
+#include "../tests/gltf_compressed.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
 
@@ -17,9 +18,12 @@
 #include <vector>
 
 using namespace penumbra;
+using penumbra::test::bumpyGridAndSlab;
 using penumbra::test::componentTypes;
+using penumbra::test::dracoMesh;
 using penumbra::test::floatingQuad;
 using penumbra::test::GltfBuilder;
+using penumbra::test::meshoptMesh;
 using J = nlohmann::json;
 namespace fs = std::filesystem;
 
@@ -255,12 +259,16 @@ std::vector<Seed> seeds() {
         {"hierarchy.gltf", asset(hierarchy, false), true},
         {"lights-cameras.gltf", asset(lightsAndCameras, false), true},
         {"lights-cameras.glb", asset(lightsAndCameras, true), true},
+        {"meshopt.gltf", asset([] { return meshoptMesh(bumpyGridAndSlab()); }, false), true},
+        {"meshopt.glb", asset([] { return meshoptMesh(bumpyGridAndSlab()); }, true), true},
+        {"draco.gltf", asset([] { return dracoMesh(bumpyGridAndSlab()); }, false), true},
+        {"draco.glb", asset([] { return dracoMesh(bumpyGridAndSlab(), 8); }, true), true},
         {"bare.gltf", asset(bare, false), true},
         {"bare.glb", asset(bare, true), true},
         {"bad-not-json.gltf", raw("{ this is not json"), false},
         {"bad-gltf-1.gltf", raw(R"({"asset":{"version":"1.0"}})"), false},
-        {"bad-draco.gltf",
-         broken([](GltfBuilder& b) { b.j["extensionsRequired"] = {"KHR_draco_mesh_compression"}; }),
+        {"bad-required.gltf",
+         broken([](GltfBuilder& b) { b.j["extensionsRequired"] = {"EXT_mesh_gpu_instancing"}; }),
          false},
         {"bad-uri-parent.gltf", broken([](GltfBuilder& b) {
              b.j["buffers"] =

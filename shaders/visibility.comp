@@ -311,9 +311,10 @@ void main() {
         } else {
             v = visibilityThrough(k, light, p, world, normal, depth);
         }
-        if (HORIZON != 0u && TECHNIQUE != TECHNIQUE_SDF)
-            v *= horizonVisibility(dot(faceNormal(normals), directionToLight(light, world)),
-                                   lightSine(light, viewOf(k), world));
+        float nDotL = dot(faceNormal(normals), directionToLight(light, world));
+        float sinRadius = lightSine(light, viewOf(k), world);
+        if (HORIZON != 0u && TECHNIQUE != TECHNIQUE_SDF) v *= horizonVisibility(nDotL, sinRadius);
+        v = min(v, backFacingVisibility(nDotL, sinRadius));
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));
     if (WRITE_INTERMEDIATES)

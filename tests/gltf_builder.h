@@ -3,6 +3,7 @@
 // as .gltf with a data URI or an external .bin, or as .glb. Tests then break what they test.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -42,8 +43,15 @@ public:
             a["normalized"] = true;
         return push("accessors", a);
     }
+    // A POSITION accessor with the min and max the spec requires.
     int positions(const std::vector<float>& xyz) {
-        return accessor(view(xyz), 5126, xyz.size() / 3, "VEC3");
+        const int a = accessor(view(xyz), 5126, xyz.size() / 3, "VEC3");
+        std::vector<float> lo(xyz.begin(), xyz.begin() + 3), hi = lo;
+        for (size_t i = 0; i < xyz.size(); ++i)
+            lo[i % 3] = std::min(lo[i % 3], xyz[i]), hi[i % 3] = std::max(hi[i % 3], xyz[i]);
+        j["accessors"][a]["min"] = lo;
+        j["accessors"][a]["max"] = hi;
+        return a;
     }
     int mesh(int position, int indices = -1, int mode = 4) {
         nlohmann::json prim = {{"attributes", {{"POSITION", position}}}, {"mode", mode}};

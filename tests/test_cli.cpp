@@ -131,6 +131,29 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"compare_unknown_technique",
                  {"compare", "builtin:showcase", "-o", "{out}", "--techniques", "hard,fuzzy"},
                  "--techniques: unknown technique or variant 'fuzzy'"},
+        BadInput{"sun_dir_two_numbers",
+                 {"render", "builtin:showcase", "-o", "{out}", "--sun-dir", "1,2"},
+                 "--sun-dir: '1,2' is not three numbers X,Y,Z"},
+        BadInput{"sun_dir_zero",
+                 {"render", "builtin:showcase", "-o", "{out}", "--sun-dir", "0,0,0"},
+                 "--sun-dir: a direction needs a non-zero length"},
+        BadInput{"light_pos_unknown_light",
+                 {"render", "builtin:spot", "-o", "{out}", "--light-pos", "lamp=0,3,0"},
+                 "--light-pos: scene 'spot' has no light named 'lamp' (lights: 'spot')"},
+        BadInput{"light_dir_on_a_point_light",
+                 {"reference", "builtin:room", "-o", "{out}", "--light-dir", "bulb=0,-1,0"},
+                 "--light-dir: 'bulb' is a point light"},
+        BadInput{"camera_pos_without_look_at",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--camera-pos", "0,5,5"},
+                 "--camera-pos and --look-at go together"},
+        BadInput{"fov_out_of_range",
+                 {"render", "builtin:showcase", "-o", "{out}", "--camera-pos", "0,5,5", "--look-at",
+                  "0,0,0", "--fov", "180"},
+                 "--fov: 180 degrees is outside [1, 170]"},
+        BadInput{"camera_and_camera_pos",
+                 {"render", "builtin:showcase", "-o", "{out}", "--camera", "main", "--camera-pos",
+                  "0,5,5", "--look-at", "0,0,0"},
+                 "excludes"},
         BadInput{"compare_bad_set",
                  {"compare", "builtin:showcase", "-o", "{out}", "--set", "bias.slope=x"},
                  "bias.slope=x"}),
@@ -186,6 +209,57 @@ TEST(Cli, RenderWritesTheContractFiles) {
             sum += ms.get<double>();
     EXPECT_NEAR(stats["gpu_ms"]["total"].get<double>(), sum, 1e-9 * sum);
     EXPECT_NE(r.out.find("GPU ms per pass"), std::string::npos);
+}
+
+// Scene control: render and reference take the same options and so see the same view and
+// lights; stats.json records the lights as edited, the camera and the edits as given.
+TEST(Cli, SceneControlGivesRenderAndReferenceTheSameViewAndLights) {
+    const std::vector<std::string> scene = {"--width",      "64",
+                                            "--height",     "48",
+                                            "--sun-dir",    "0.2,-1,0.3",
+                                            "--light-pos",  "spot=1,5,2",
+                                            "--light-dir",  "spot=-1,-5,-2",
+                                            "--camera-pos", "0,6,9",
+                                            "--look-at",    "0,0.5,0",
+                                            "--fov",        "40"};
+    const fs::path rendered = scratch("scene-control-render"),
+                   traced = scratch("scene-control-reference");
+    std::vector<std::string> render = {
+        "render", "builtin:spot", "-o", rendered.string(), "--shadow-map-size",
+        "256",    "--frames",     "1"};
+    std::vector<std::string> reference = {"reference",     "builtin:spot", "-o",
+                                          traced.string(), "--samples",    "4"};
+    render.insert(render.end(), scene.begin(), scene.end());
+    reference.insert(reference.end(), scene.begin(), scene.end());
+    const ProcessResult r = runCli(render);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const ProcessResult t = runCli(reference);
+    ASSERT_EQ(t.exitCode, 0) << t.err;
+
+    const auto stats = nlohmann::json::parse(slurp(rendered / "stats.json"));
+    EXPECT_EQ(stats["camera"]["name"], "command line");
+    EXPECT_EQ(stats["camera"]["position"], nlohmann::json::array({0.0, 6.0, 9.0}));
+    EXPECT_EQ(stats["camera"]["target"], nlohmann::json::array({0.0, 0.5, 0.0}));
+    EXPECT_NEAR(stats["camera"]["yfov_degrees"].get<double>(), 40.0, 1e-4);
+    ASSERT_EQ(stats["lights"].size(), 2u) << "the spot and the added sun";
+    EXPECT_EQ(stats["lights"][0]["position"], nlohmann::json::array({1.0, 5.0, 2.0}));
+    const auto spotDir = stats["lights"][0]["direction"].get<std::vector<double>>();
+    EXPECT_NEAR(spotDir[1], -5.0 / std::sqrt(30.0), 1e-6);
+    EXPECT_EQ(stats["lights"][1]["type"], "directional");
+    EXPECT_NEAR(stats["lights"][1]["direction"][1].get<double>(), -1.0 / std::sqrt(1.13), 1e-6);
+    EXPECT_EQ(stats["scene"]["edits"]["light_pos"]["spot"], nlohmann::json::array({1, 5, 2}));
+    EXPECT_DOUBLE_EQ(stats["scene"]["edits"]["fov_degrees"].get<double>(), 40.0);
+    EXPECT_FALSE(stats["scene"]["default_light"].get<bool>());
+
+    const auto info = nlohmann::json::parse(slurp(traced / "reference.json"));
+    EXPECT_EQ(info["camera"], "command line");
+    EXPECT_EQ(info["scene_edits"], stats["scene"]["edits"]);
+    EXPECT_EQ(slurp(rendered / "position.pfm"), slurp(traced / "position.pfm"))
+        << "the same camera sees the same surfaces";
+    for (const char* f : {"visibility.pfm", "visibility_1.pfm"}) {
+        EXPECT_TRUE(fs::exists(rendered / f)) << f;
+        EXPECT_TRUE(fs::exists(traced / f)) << f;
+    }
 }
 
 // sdf draws no shadow map: no shadow pass, the field's slice and its build in stats.json; a

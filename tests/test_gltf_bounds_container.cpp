@@ -73,7 +73,7 @@ std::vector<Boundary> containerBoundaries() {
                      v.insert(v.end(), header.begin(), header.end() - (past ? 1 : 0));
                      setU32(v, 8, uint32_t(v.size()));
                  }),
-         "GLB: truncated chunk header", "Insufficient storage space for Chunk1"},
+         "GLB: truncated chunk header"},
         {"glb_bin_chunk_inside_file",
          glbFile(glbWithBin,
                  [](auto& v, bool past) {
@@ -81,17 +81,6 @@ std::vector<Boundary> containerBoundaries() {
                      setU32(v, at, u32At(v, at) + (past ? 1 : 0));
                  }),
          "GLB: BIN chunk length"},
-        {"glb_buffer_inside_bin_chunk",
-         [](const fs::path& d, bool past) {
-             GltfBuilder b = floatingQuad();
-             while (b.bin.size() % 4)
-                 b.bin.push_back(0);
-             b.j["buffers"] = J::array({{{"byteLength", b.bin.size() + (past ? 1 : 0)}}});
-             writeBytes(d / "a.glb", glb(b.j.dump(), b.bin));
-             return Asset{d / "a.glb"};
-         },
-         "Must be equal or less than binary size"},
-
         // ---- URIs: data URIs and percent-encoding (gltf_container.cpp) ----
         {"data_uri_byte_length", // decodes to exactly the buffer's byteLength (tinygltf's check)
          gltf(floatingQuad,

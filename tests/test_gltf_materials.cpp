@@ -222,7 +222,7 @@ std::vector<BadMaterial> badMaterials() {
         badData[k] ^= 0xff;
     return {
         {"not_png_or_jpeg", replaceImage({'G', 'I', 'F', '8', '9', 'a', 0, 0}),
-         "images[0]: not a PNG or JPEG image"},
+         "images[0]: not a PNG, JPEG, KTX2 or WebP image"},
         {"huge_image", replaceImage(huge), "images[0]: 20000x2 pixels is outside 1..16384"},
         {"truncated_png", replaceImage(truncated),
          "images[0]: a PNG chunk runs past the end of the image"},

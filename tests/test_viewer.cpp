@@ -6,6 +6,7 @@
 #include "process.h"
 #include "scratch_dir.h"
 
+#include <glm/glm.hpp>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 #include <stb/stb_image.h>
@@ -230,6 +231,18 @@ TEST(ViewerTest, BlockerSearchViewsAgreeWithTheVisibility) {
     args.insert(args.end(), scene.begin(), scene.end());
     ASSERT_EQ(runCli(args).exitCode, 0);
     const PfmImage visibility = readPfm(out / "visibility.pfm");
+    // A surface facing away from the light hides it itself, no blocker needed (visibility.pfm's
+    // convention): those pixels, and the terminator's, are left out.
+    const PfmImage position = readPfm(out / "position.pfm"), normal = readPfm(out / "normal.pfm");
+    const auto stats = nlohmann::json::parse(slurp(out / "stats.json"));
+    const auto at = stats["lights"][0]["position"].get<std::vector<float>>();
+    auto facesLight = [&](int i) {
+        const glm::vec3 p(position.pixels[3 * size_t(i)], position.pixels[3 * size_t(i) + 1],
+                          position.pixels[3 * size_t(i) + 2]);
+        const glm::vec3 n(normal.pixels[3 * size_t(i)], normal.pixels[3 * size_t(i) + 1],
+                          normal.pixels[3 * size_t(i) + 2]);
+        return glm::dot(n, glm::normalize(glm::vec3(at[0], at[1], at[2]) - p)) > 0.05f;
+    };
     std::vector<std::string> show = scene;
     show.insert(show.end(), {"--hide-ui", "--show", "blocker-depth"});
     const Rgb blockers = viewImage(show, "blockers");
@@ -243,7 +256,7 @@ TEST(ViewerTest, BlockerSearchViewsAgreeWithTheVisibility) {
     std::set<uint32_t> colours;
     for (int i = 0; i < blockers.width * blockers.height; ++i) {
         const float v = visibility.pixels[i];
-        if (!std::isfinite(v))
+        if (!std::isfinite(v) || !facesLight(i))
             continue;
         const uint8_t* b = &blockers.pixels[3 * size_t(i)];
         const uint8_t* w = &widths.pixels[3 * size_t(i)];

@@ -17,6 +17,7 @@ namespace penumbra::cli {
 namespace {
 
 struct BenchArgs {
+    SceneOptions sceneOptions;
     std::string scene, output, techniques;
     std::vector<std::string> sweeps, sets;
     RenderOptions options;
@@ -115,7 +116,7 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
     if (path.filename().empty() || path.filename() == "bench.html")
         throw InputError(args.output,
                          "-o needs a JSON file name (bench.html is written beside it)");
-    const Scene scene = loadSceneReporting(args.scene, global);
+    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
     StagedOutputDir out(path.has_parent_path() ? path.parent_path() : ".");
 
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
@@ -184,7 +185,7 @@ Action addBenchCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("--sweep", args->sweeps,
                     "key=v1,v2,...: run each technique that reads the key once per value "
                     "(repeatable: every combination)");
-    addViewOptions(*cmd, args->options);
+    addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     return [args, &global] { return runBench(*args, global); };
 }

@@ -9,6 +9,7 @@
 #include "penumbra/settings.h"
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,13 +23,24 @@ struct GlobalOptions {
     uint64_t maxTriangles = 100'000'000;
 };
 
-// loadScene with the global options; loader warnings go to stderr as `penumbra: warning:`.
-Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global);
+// Scene control (--sun-dir, --light-pos, --light-dir, --camera-pos, --look-at, --fov) as typed;
+// parsed and applied by loadSceneReporting, where a mistake is an `error:` line.
+struct SceneOptions {
+    std::string sunDirection, cameraPosition, lookAt;
+    std::vector<std::string> lightPositions, lightDirections;
+    std::optional<float> fovDegrees;
+};
+
+// loadScene with the global options, then the scene options applied; loader warnings go to
+// stderr as `penumbra: warning:`.
+Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
+                         const SceneOptions& sceneOptions);
 
 using Action = std::function<int()>;
 
-// Options that fix what is seen: image size, camera, light sizes (render, reference, compare).
-void addViewOptions(CLI::App& cmd, RenderOptions& options);
+// Options that fix what is seen: image size, camera, lights and their sizes (every command that
+// takes a scene).
+void addViewOptions(CLI::App& cmd, RenderOptions& options, SceneOptions& scene);
 // --shadow-map-size, --frames and --set (render, compare).
 void addTechniqueOptions(CLI::App& cmd, RenderOptions& options, std::vector<std::string>& sets);
 // --samples and --embree-config (reference, compare).

@@ -21,6 +21,7 @@ namespace penumbra::cli {
 namespace {
 
 struct CompareArgs {
+    SceneOptions sceneOptions;
     std::string scene, output, techniques;
     std::vector<std::string> sets;
     RenderOptions options;
@@ -64,7 +65,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     if (!args.cameraPath.empty() && !cameraPathFromName(args.cameraPath, path))
         throw InputError("--camera-path",
                          fmt::format("'{}' is not dolly, orbit or sun", args.cameraPath));
-    Scene scene = loadSceneReporting(args.scene, global);
+    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     for (const RenderOptions& o : rowOptions)
@@ -184,7 +185,7 @@ Action addCompareCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("-o,--output", args->output, "output directory")->required();
     cmd->add_option("--techniques", args->techniques,
                     "comma-separated techniques or variants, e.g. hard,pcf[box7] (default: all)");
-    addViewOptions(*cmd, args->options);
+    addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     addReferenceOptions(*cmd, args->reference);
     cmd->add_option("--camera-path", args->cameraPath,

@@ -14,6 +14,7 @@ namespace penumbra::cli {
 namespace {
 
 struct ReferenceArgs {
+    SceneOptions sceneOptions;
     std::string scene, output;
     RenderOptions options;
     ReferenceOptions reference{.progress = true};
@@ -25,7 +26,7 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
     options.shadowMapSize = 64; // only the G-buffer is used; keep the shadow pass cheap
     validate(options);
     validate(args.reference);
-    Scene scene = loadSceneReporting(args.scene, global);
+    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     renderer.check(scene, options);
@@ -45,7 +46,9 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
                                  {"seconds", truth.seconds},
                                  {"rays_per_second", raysPerSecond},
                                  {"triangles", truth.triangles},
-                                 {"embree", embreeVersion()}};
+                                 {"embree", embreeVersion()},
+                                 {"camera", scene.camera(options.camera).name},
+                                 {"scene_edits", sceneEditsJson(scene.edits)}};
     out.write("reference.json", bytesOf(info.dump(2) + "\n"));
     if (renderer.validationErrors() > 0)
         throw std::runtime_error(fmt::format("vulkan validation: {} error(s); no output written",
@@ -65,7 +68,7 @@ Action addReferenceCommand(CLI::App& app, const GlobalOptions& global) {
         "reference", "ray-traced ground-truth visibility (Embree) for the same view as render");
     cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
     cmd->add_option("-o,--output", args->output, "output directory")->required();
-    addViewOptions(*cmd, args->options);
+    addViewOptions(*cmd, args->options, args->sceneOptions);
     addReferenceOptions(*cmd, args->reference);
     return [args, &global] { return runReference(*args, global); };
 }

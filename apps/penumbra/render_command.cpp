@@ -17,6 +17,7 @@ namespace penumbra::cli {
 namespace {
 
 struct RenderArgs {
+    SceneOptions sceneOptions;
     std::string scene, output, technique = "hard";
     std::string fieldSlice = "y";
     std::vector<std::string> sets;
@@ -38,7 +39,7 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
         options.parameters.assign(set);
     validate(options);
     const FieldSlice slice = parseFieldSlice(args.fieldSlice);
-    const Scene scene = loadSceneReporting(args.scene, global);
+    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
     // Created before the long work so an unwritable path fails fast; removed again on error.
     StagedOutputDir out(args.output);
 
@@ -96,10 +97,26 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
 
 } // namespace
 
-void addViewOptions(CLI::App& cmd, RenderOptions& o) {
+void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
     cmd.add_option("--width", o.width, "image width in pixels")->capture_default_str();
     cmd.add_option("--height", o.height, "image height in pixels")->capture_default_str();
-    cmd.add_option("--camera", o.camera, "glTF camera name (default: the first, else automatic)");
+    CLI::Option* camera = cmd.add_option("--camera", o.camera,
+                                         "glTF camera name (default: the first, else automatic)");
+    cmd.add_option("--camera-pos", scene.cameraPosition,
+                   "X,Y,Z: an ad-hoc camera at this world position (needs --look-at)")
+        ->excludes(camera);
+    cmd.add_option("--look-at", scene.lookAt, "X,Y,Z: the point the ad-hoc camera looks at")
+        ->excludes(camera);
+    cmd.add_option("--fov", scene.fovDegrees,
+                   "the ad-hoc camera's vertical field of view in degrees (default 45.8)")
+        ->excludes(camera);
+    cmd.add_option("--sun-dir", scene.sunDirection,
+                   "X,Y,Z: the direction a sun's light travels (world space); replaces the "
+                   "default light of a scene without lights, else adds a sun");
+    cmd.add_option("--light-pos", scene.lightPositions,
+                   "NAME=X,Y,Z: move the spot or point light NAME (repeatable)");
+    cmd.add_option("--light-dir", scene.lightDirections,
+                   "NAME=X,Y,Z: aim the spot or sun NAME (repeatable)");
     cmd.add_option("--light-radius", o.lightRadiusOverride,
                    "spot/point light radius in world units (overrides the scene)")
         ->check(CLI::NonNegativeNumber);
@@ -132,13 +149,27 @@ void addReferenceOptions(CLI::App& cmd, ReferenceOptions& options) {
                    "Embree device configuration, e.g. threads=2");
 }
 
-Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global) {
+Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
+                         const SceneOptions& o) {
+    SceneEdits edits{.fovDegrees = o.fovDegrees};
+    // Parsed before the scene loads: a typing mistake costs no loading time.
+    if (!o.sunDirection.empty())
+        edits.sunDirection = parseVector3(o.sunDirection, "--sun-dir");
+    if (!o.cameraPosition.empty())
+        edits.cameraPosition = parseVector3(o.cameraPosition, "--camera-pos");
+    if (!o.lookAt.empty())
+        edits.lookAt = parseVector3(o.lookAt, "--look-at");
+    for (const std::string& text : o.lightPositions)
+        edits.lightPositions.push_back(parseNamedVector3(text, "--light-pos"));
+    for (const std::string& text : o.lightDirections)
+        edits.lightDirections.push_back(parseNamedVector3(text, "--light-dir"));
     std::vector<std::string> warnings;
     Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
                                    .maxTriangles = global.maxTriangles,
                                    .warnings = &warnings});
     for (const std::string& w : warnings)
         std::fprintf(stderr, "penumbra: warning: %s\n", w.c_str());
+    applySceneEdits(scene, edits);
     return scene;
 }
 
@@ -157,7 +188,7 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("-o,--output", args->output, "output directory")->required();
     cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
         ->capture_default_str();
-    addViewOptions(*cmd, args->options);
+    addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     cmd->add_option("--field-slice", args->fieldSlice,
                     "sdf only: the slice of the distance field written to field_slice.png, "

@@ -10,6 +10,7 @@ namespace penumbra::cli {
 namespace {
 
 struct ViewArgs {
+    SceneOptions sceneOptions;
     std::string scene, technique = "hard";
     std::vector<std::string> sets;
     bool noVsync = false;
@@ -62,7 +63,7 @@ int runView(const ViewArgs& args, const GlobalOptions& global) {
     options.vsync = !args.noVsync && options.frames == 0; // scripted runs do not wait for vsync
     options.device = global.device;
     options.validation = global.validation;
-    const Scene scene = loadSceneReporting(args.scene, global);
+    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
     viewer::runViewer(scene, options);
     return 0;
 }
@@ -78,7 +79,7 @@ Action addViewCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
     cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
         ->capture_default_str();
-    addViewOptions(*cmd, args->options.render);
+    addViewOptions(*cmd, args->options.render, args->sceneOptions);
     cmd->add_option("--shadow-map-size", args->options.render.shadowMapSize,
                     "shadow map side in texels")
         ->capture_default_str();

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace penumbra {
@@ -96,6 +97,17 @@ struct Bounds {
     bool empty() const { return min.x > max.x; }
 };
 
+// Scene control from the command line (issue 16), applied to the loaded scene by every command
+// that takes one, so that the render and the ground truth see the same lights and view.
+struct SceneEdits {
+    std::optional<glm::vec3> sunDirection; // --sun-dir: the direction the light travels
+    std::vector<std::pair<std::string, glm::vec3>> lightPositions;  // --light-pos NAME=X,Y,Z
+    std::vector<std::pair<std::string, glm::vec3>> lightDirections; // --light-dir NAME=X,Y,Z
+    std::optional<glm::vec3> cameraPosition, lookAt;                // --camera-pos, --look-at
+    std::optional<float> fovDegrees;                                // --fov, vertical
+    bool empty() const;
+};
+
 struct Scene {
     std::string name;
     std::vector<Vertex> vertices;  // world space
@@ -105,6 +117,8 @@ struct Scene {
     std::vector<TextureImage> images;
     std::vector<Light> lights;
     std::vector<Camera> cameras;
+    bool defaultLight = false; // lights[0] is the loader's stand-in for an asset without lights
+    SceneEdits edits;          // what applySceneEdits changed
 
     size_t triangleCount() const { return indices.size() / 3; }
     // The coverage (alpha) of `material` at a texture coordinate and vertex alpha, as the
@@ -168,6 +182,15 @@ ViewFrustum viewFrustum(const Camera& camera, float aspect);
 // (image aspect `aspect`, between znear and zfar), as {nearest, farthest}; empty (x > y) when no
 // triangle is in view. What a sun's cascades must cover, and no more.
 glm::vec2 visibleDepthRange(const Scene& scene, const Camera& camera, float aspect);
+// --sun-dir (replaces the loader's default light, else adds a sun named "sun"), --light-pos and
+// --light-dir (a light by name: a position for spots and point lights, a direction for spots and
+// suns), --camera-pos with --look-at and --fov (a camera named "command line" that becomes the
+// scene's first). Throws InputError naming the option.
+void applySceneEdits(Scene& scene, const SceneEdits& edits);
+// "X,Y,Z" as three finite numbers, and "NAME=X,Y,Z"; InputError(option, ...) otherwise.
+glm::vec3 parseVector3(std::string_view text, std::string_view option);
+using NamedVector = std::pair<std::string, glm::vec3>;
+NamedVector parseNamedVector3(std::string_view text, std::string_view option);
 // --light-radius / --light-angle: negative values leave the scene's sizes alone.
 void applyLightSizeOverrides(Scene& scene, float radius, float angleDegrees);
 std::vector<std::string_view> builtinSceneNames();

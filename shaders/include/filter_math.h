@@ -431,6 +431,15 @@ SHARED float horizonVisibility(float nDotL, float sinRadius) {
     return discFraction(asin(clamp(nDotL, -1.0f, 1.0f)) / asin(min(sinRadius, 1.0f)));
 }
 
+// A receiver that faces away from the light (N.L <= 0, N its triangle's own normal) hides the
+// light itself: 0 for a point-like light, else the part of the light's disc still above its
+// tangent plane. One convention for render and reference (the truth counts every ray under the
+// surface as blocked), whatever a shadow map says there; 1 where the receiver faces the light.
+SHARED float backFacingVisibility(float nDotL, float sinRadius) {
+    if (nDotL > 0.0f) return 1.0f;
+    return sinRadius <= 0.0f ? 0.0f : horizonVisibility(nDotL, sinRadius);
+}
+
 // The face of a point light's cube that holds direction `d` from the light: its major axis, in
 // the order of src/core/light_space.h (+x, -x, +y, -y, +z, -z). Ties go to the earlier axis;
 // the faces' guard bands make either choice correct.

@@ -26,6 +26,24 @@ nlohmann::json deviceJson(const DeviceInfo& device) {
             {"hardware_depth_filter", device.depthLinearFilter}};
 }
 
+// The command line's scene control, as given (stats.json's scene.edits; empty: none).
+nlohmann::json sceneEditsJson(const SceneEdits& e) {
+    nlohmann::json j = nlohmann::json::object();
+    if (e.sunDirection)
+        j["sun_dir"] = vec(*e.sunDirection);
+    for (const auto& [name, position] : e.lightPositions)
+        j["light_pos"][name] = vec(position);
+    for (const auto& [name, direction] : e.lightDirections)
+        j["light_dir"][name] = vec(direction);
+    if (e.cameraPosition)
+        j["camera_pos"] = vec(*e.cameraPosition);
+    if (e.lookAt)
+        j["look_at"] = vec(*e.lookAt);
+    if (e.fovDegrees)
+        j["fov_degrees"] = *e.fovDegrees;
+    return j;
+}
+
 nlohmann::json renderStats(const RenderRun& run) {
     const RenderOptions& o = run.options;
     const Bounds bounds = run.scene.bounds();
@@ -42,6 +60,8 @@ nlohmann::json renderStats(const RenderRun& run) {
                    {"position", vec(camera.position)},
                    {"target", vec(camera.target)},
                    {"yfov_degrees", glm::degrees(camera.yfov)}};
+    j["scene"]["default_light"] = run.scene.defaultLight;
+    j["scene"]["edits"] = sceneEditsJson(run.scene.edits);
     j["image"] = {{"width", o.width}, {"height", o.height}};
     j["shadow_map_size"] = o.shadowMapSize;
     j["technique"] = techniqueName(o.technique);
@@ -75,6 +95,10 @@ nlohmann::json renderStats(const RenderRun& run) {
                                 {"type", lightTypeName(l.type)},
                                 {"casts_shadow", s.visibilityIndex >= 0},
                                 {"projection", s.projection}};
+        if (l.type != LightType::Point)
+            light["direction"] = vec(l.direction); // the direction light travels
+        if (l.type != LightType::Directional)
+            light["position"] = vec(l.position);
         if (l.type == LightType::Directional)
             light["angular_diameter_degrees"] =
                 o.lightAngleOverride >= 0 ? o.lightAngleOverride : l.angularDiameter;

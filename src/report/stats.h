@@ -18,6 +18,8 @@ struct RenderRun {
 };
 
 nlohmann::json renderStats(const RenderRun& run);
+// The command line's scene control as applied (stats.json's and reference.json's scene edits).
+nlohmann::json sceneEditsJson(const SceneEdits& edits);
 // The device as stats.json and the bench's JSON name it.
 nlohmann::json deviceJson(const DeviceInfo& device);
 

@@ -12,5 +12,7 @@ namespace penumbra::gltf {
 // count x components floats.
 std::vector<float> readFloats(const tinygltf::Model& model, int accessor);
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor);
+// count x components values as stored (normalized integers not scaled): what min and max bound.
+std::vector<double> readRawComponents(const tinygltf::Model& model, int accessor);
 
 } // namespace penumbra::gltf

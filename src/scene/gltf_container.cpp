@@ -7,8 +7,10 @@
 #include <optional>
 
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 namespace penumbra::gltf {
 namespace {
@@ -18,8 +20,13 @@ constexpr uint32_t kChunkJson = 0x4E4F534A; // "JSON"
 constexpr uint32_t kChunkBin = 0x004E4942;  // "BIN\0"
 // KHR_texture_transform is not here: texture coordinates are used untransformed, so an asset
 // that requires it would render (and cast alpha-tested shadows) wrongly.
-constexpr std::array<std::string_view, 3> kSupportedRequired = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_unlit"};
+// KHR_texture_basisu and EXT_texture_webp: their images are not decoded, and their textures
+// fall back to the colour factor with a warning (shadows do not depend on them).
+constexpr std::array<std::string_view, 8> kSupportedRequired = {
+    "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+    "KHR_materials_unlit",        "KHR_mesh_quantization",
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+    "KHR_texture_basisu",         "EXT_texture_webp"};
 
 uint32_t readU32(const std::vector<uint8_t>& b, size_t at) {
     uint32_t v = 0;
@@ -101,6 +108,10 @@ void checkReferences(const std::filesystem::path& file, const nlohmann::json& j)
             checkIndex(file, j, path + ".mesh", n["mesh"], "meshes");
         if (n.contains("camera"))
             checkIndex(file, j, path + ".camera", n["camera"], "cameras");
+        // The parser reads a matrix and drops TRS beside it without a word.
+        if (n.contains("matrix") &&
+            (n.contains("translation") || n.contains("rotation") || n.contains("scale")))
+            refuse(file, path + ": has both a matrix and translation, rotation or scale");
         if (n.contains("children")) {
             if (!n["children"].is_array())
                 refuse(file, path + ".children: wrong JSON type");
@@ -203,7 +214,79 @@ void checkReferences(const std::filesystem::path& file, const nlohmann::json& j)
     });
 }
 
+// EXT_meshopt_compression's fallback buffer: no data, so no URI (prepareMeshopt stands it in).
+bool meshoptFallback(const nlohmann::json& buffer) {
+    return buffer.is_object() && buffer.contains("extensions") &&
+           buffer["extensions"].is_object() &&
+           buffer["extensions"].contains("EXT_meshopt_compression") &&
+           buffer["extensions"]["EXT_meshopt_compression"].is_object() &&
+           buffer["extensions"]["EXT_meshopt_compression"].contains("fallback") &&
+           buffer["extensions"]["EXT_meshopt_compression"]["fallback"] == true;
+}
+
+// JSON Schema's "integer" admits 1.0; the parser wants an integer. A float that is a whole
+// number inside +-2^53 becomes one (a float field reads an integer just as well).
+void integralNumbersAsIntegers(nlohmann::json& j) {
+    if (j.is_structured()) {
+        for (auto& item : j)
+            integralNumbersAsIntegers(item);
+    } else if (j.is_number_float()) {
+        const double v = j.get<double>();
+        if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 9007199254740992.0)
+            j = v >= 0 ? nlohmann::json(static_cast<uint64_t>(v))
+                       : nlohmann::json(static_cast<int64_t>(v));
+    }
+}
+
+// A GLB's buffer 0 (no uri) is the BIN chunk; one declared longer than the chunk (a placeholder)
+// is read as the chunk's bytes, and any view past them is refused later by its own path.
+void glbBufferWithinItsChunk(const std::filesystem::path& file, const Container& c,
+                             nlohmann::json& j, std::vector<std::string>* warnings) {
+    if (!c.binary || !j.contains("buffers") || !j["buffers"].is_array() || j["buffers"].empty())
+        return;
+    nlohmann::json& buffer = j["buffers"][0];
+    if (!buffer.is_object() || buffer.contains("uri") || !buffer.contains("byteLength") ||
+        !buffer["byteLength"].is_number_unsigned())
+        return;
+    const uint64_t declared = buffer["byteLength"].get<uint64_t>();
+    if (declared <= c.binChunkLength)
+        return;
+    if (warnings)
+        warnings->push_back(fmt::format("{}: buffers[0].byteLength: {} bytes declared but the BIN "
+                                        "chunk holds {}; read as {}",
+                                        file.string(), declared, c.binChunkLength,
+                                        c.binChunkLength));
+    buffer["byteLength"] = c.binChunkLength;
+}
+
 } // namespace
+
+std::vector<uint8_t> parserInput(const Container& c, const std::string& json) {
+    if (!c.binary)
+        return {json.begin(), json.end()};
+    std::string padded = json;
+    while (padded.size() % 4)
+        padded += ' ';
+    const uint64_t bin = c.binChunkOffset ? c.binChunkLength : 0;
+    std::vector<uint8_t> out;
+    auto u32 = [&](uint64_t v) {
+        for (int k = 0; k < 4; ++k)
+            out.push_back(static_cast<uint8_t>(v >> (8 * k)));
+    };
+    const uint64_t total = 12 + 8 + padded.size() + (bin ? 8 + bin : 0);
+    if (total > std::numeric_limits<uint32_t>::max())
+        throw InputError("GLB", "the rewritten container passes 4 GiB");
+    out.reserve(total);
+    u32(kGlbMagic), u32(2), u32(total);
+    u32(padded.size()), u32(kChunkJson);
+    out.insert(out.end(), padded.begin(), padded.end());
+    if (bin) {
+        u32(bin), u32(kChunkBin);
+        out.insert(out.end(), c.bytes.begin() + static_cast<long>(c.binChunkOffset),
+                   c.bytes.begin() + static_cast<long>(c.binChunkOffset + bin));
+    }
+    return out;
+}
 
 std::optional<std::string> percentDecode(std::string_view text) {
     auto hex = [](char c) -> int {
@@ -315,6 +398,7 @@ Container readContainer(const std::filesystem::path& file, uint64_t maxFileSize)
             if (at + 8 + c.binChunkLength > size)
                 refuse(file, fmt::format("GLB: BIN chunk length {} runs past the file",
                                          c.binChunkLength));
+            c.binChunkOffset = at + 8;
         }
     } else {
         c.json.assign(reinterpret_cast<const char*>(c.bytes.data()), size);
@@ -322,10 +406,26 @@ Container readContainer(const std::filesystem::path& file, uint64_t maxFileSize)
     return c;
 }
 
-nlohmann::json checkJson(const std::filesystem::path& file, const std::string& text) {
-    nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-    if (j.is_discarded() || !j.is_object())
-        refuse(file, "not valid JSON");
+nlohmann::json checkJson(const std::filesystem::path& file, const Container& container,
+                         std::vector<std::string>* warnings) {
+    const std::string& text = container.json;
+    if (text.rfind("\xEF\xBB\xBF", 0) == 0)
+        refuse(file, "the JSON starts with a byte-order mark (glTF's JSON is UTF-8 without one)");
+    const size_t first = text.find_first_not_of(" \t\r\n");
+    if (first == std::string::npos || text[first] != '{')
+        refuse(file, container.binary ? "GLB: the JSON chunk does not hold a JSON object"
+                                      : "not a glTF file: neither a JSON object nor a GLB");
+    nlohmann::json j;
+    try {
+        j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::parse_error& e) {
+        refuse(file, fmt::format("not valid JSON: a syntax error at byte {}", e.byte));
+    } catch (const nlohmann::json::exception&) { // a number past double's range, ...
+        refuse(file, "not valid JSON: a number out of range");
+    }
+    if (!j.is_object())
+        refuse(file, "not a glTF file: neither a JSON object nor a GLB");
+    integralNumbersAsIntegers(j);
     if (!j.contains("asset") || !j["asset"].is_object() || !j["asset"].contains("version") ||
         !j["asset"]["version"].is_string())
         refuse(file, "asset.version: missing");
@@ -344,6 +444,7 @@ nlohmann::json checkJson(const std::filesystem::path& file, const std::string& t
                 refuse(file, "extensionsRequired: '" + name + "' is not supported");
         }
     }
+    glbBufferWithinItsChunk(file, container, j, warnings);
     checkReferences(file, j);
     for (const char* array : {"buffers", "images"}) {
         if (!j.contains(array))
@@ -356,7 +457,16 @@ nlohmann::json checkJson(const std::filesystem::path& file, const std::string& t
             if (item.is_object() && item.contains("uri")) {
                 if (!item["uri"].is_string())
                     refuse(file, path + ": not a string");
-                checkUri(file, path, item["uri"]);
+                const std::string uri = item["uri"];
+                checkUri(file, path, uri);
+                // (A missing image is refused by readTextures, only when a material uses it.)
+                if (std::string_view(array) == "buffers" && uri.rfind("data:", 0) != 0 &&
+                    !std::filesystem::is_regular_file(file.parent_path() / *percentDecode(uri)))
+                    refuse(file, fmt::format("{}: '{}' is not a file beside the asset", path, uri));
+            } else if (std::string_view(array) == "buffers" && (!container.binary || i > 0) &&
+                       !meshoptFallback(item)) {
+                refuse(file, path + ": missing (only a GLB's first buffer, its BIN chunk, may "
+                                    "leave it out)");
             }
         }
     }

@@ -21,6 +21,7 @@ struct Container {
     bool binary = false;        // GLB
     std::string json;           // the JSON text (the JSON chunk for GLB)
     uint64_t binChunkLength = 0;
+    uint64_t binChunkOffset = 0; // of the BIN chunk's data; 0: no BIN chunk
 };
 
 // Reads and checks the container; throws InputError(file, ...).
@@ -30,7 +31,15 @@ Container readContainer(const std::filesystem::path& file, uint64_t maxFileSize)
 // RFC 3986 percent-decoding; nullopt when a '%' is not followed by two hex digits.
 std::optional<std::string> percentDecode(std::string_view text);
 
-nlohmann::json checkJson(const std::filesystem::path& file, const std::string& json);
+// Also makes the JSON say what the spec means before a parser reads it: an integer written as a
+// float (`"mesh": 1.0`, valid JSON Schema) becomes an integer, and a GLB buffer declared longer
+// than its BIN chunk is read as the chunk (a warning). A byte-order mark is refused.
+nlohmann::json checkJson(const std::filesystem::path& file, const Container& container,
+                         std::vector<std::string>* warnings);
+
+// The bytes the parser reads: `json` (checkJson's, serialised) and, for a GLB, the original BIN
+// chunk in a new container.
+std::vector<uint8_t> parserInput(const Container& container, const std::string& json);
 
 // Decodes a data URI's base64 payload strictly (alphabet, padding, length); false if malformed.
 bool decodeBase64(std::string_view text, std::vector<uint8_t>& out);

@@ -36,6 +36,18 @@ bool isJpeg(const unsigned char* b, int size) {
     return size >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff;
 }
 
+// Image formats glTF extensions bring that we recognise but do not decode (shadows do not depend
+// on them): the format's name, or nullptr.
+const char* otherImageFormat(const unsigned char* b, int size) {
+    static constexpr unsigned char kKtx2[12] = {0xAB, 'K',  'T',  'X',  ' ',  '2',
+                                                '0',  0xBB, '\r', '\n', 0x1A, '\n'};
+    if (size >= 12 && std::memcmp(b, kKtx2, 12) == 0)
+        return "KTX2 (KHR_texture_basisu)";
+    if (size >= 12 && std::memcmp(b, "RIFF", 4) == 0 && std::memcmp(b + 8, "WEBP", 4) == 0)
+        return "WebP (EXT_texture_webp)";
+    return nullptr;
+}
+
 TextureWrap wrapOf(int mode) {
     if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE)
         return TextureWrap::ClampToEdge;
@@ -76,8 +88,12 @@ bool decodeImage(tinygltf::Image* image, int index, std::string* err, std::strin
     };
     if (!bytes || size <= 0)
         return refuse("no image bytes");
+    if (const char* format = otherImageFormat(bytes, size)) {
+        policy.undecodable[index] = format;
+        return true;
+    }
     if (!isPng(bytes, size) && !isJpeg(bytes, size))
-        return refuse("not a PNG or JPEG image");
+        return refuse("not a PNG, JPEG, KTX2 or WebP image");
     if (isPng(bytes, size) && !pngChunksFit(bytes, size))
         return refuse("a PNG chunk runs past the end of the image (truncated or hostile)");
     int width = 0, height = 0, channels = 0;
@@ -110,12 +126,28 @@ bool decodeImage(tinygltf::Image* image, int index, std::string* err, std::strin
     return true;
 }
 
+namespace {
+// A texture whose only image comes through KHR_texture_basisu or EXT_texture_webp.
+bool usesOtherSource(const tinygltf::Texture& texture) {
+    return texture.extensions.contains("KHR_texture_basisu") ||
+           texture.extensions.contains("EXT_texture_webp");
+}
+} // namespace
+
 std::vector<int32_t> readTextures(const std::filesystem::path& file, tinygltf::Model& model,
                                   const ImageDecodePolicy& policy, Scene& scene,
                                   std::vector<std::string>* warnings) {
     std::vector<int32_t> textureOf(model.textures.size(), -1);
     std::map<int, uint32_t> sceneImage;
     for (int i : policy.wanted) {
+        if (const auto other = policy.undecodable.find(i); other != policy.undecodable.end()) {
+            if (warnings)
+                warnings->push_back(fmt::format("{}: images[{}]: {} is not decoded here; its "
+                                                "materials use their base colour factor (and "
+                                                "alpha-tested ones cast no holes)",
+                                                file.string(), i, other->second));
+            continue;
+        }
         tinygltf::Image& image = model.images[static_cast<size_t>(i)];
         const size_t expected = static_cast<size_t>(image.width) * image.height * 4;
         if (image.image.empty() || image.width <= 0 || image.height <= 0 ||
@@ -136,9 +168,11 @@ std::vector<int32_t> readTextures(const std::filesystem::path& file, tinygltf::M
         const auto image = sceneImage.find(texture.source);
         if (image == sceneImage.end()) {
             if (texture.source < 0 && warnings)
-                warnings->push_back(fmt::format("{}: textures[{}] has no PNG or JPEG source; "
-                                                "its materials use their colour factor",
-                                                file.string(), t));
+                warnings->push_back(fmt::format(
+                    "{}: textures[{}] has no PNG or JPEG source{}; "
+                    "its materials use their colour factor",
+                    file.string(), t,
+                    usesOtherSource(texture) ? " (KTX2 and WebP are not decoded here)" : ""));
             continue;
         }
         Texture out{.image = image->second};

@@ -8,6 +8,7 @@
 #include <tiny_gltf.h>
 
 #include <filesystem>
+#include <map>
 #include <set>
 #include <string>
 
@@ -19,6 +20,9 @@ struct ImageDecodePolicy {
     std::set<int> wanted; // images a base-colour texture uses; the others are never decoded
     uint64_t maxDecodedBytes = uint64_t{4} << 30; // RGBA8 bytes of all images together
     uint64_t decodedBytes = 0;
+    // Wanted images in a format we do not decode (KTX2 / Basis Universal, WebP) and its name:
+    // their textures fall back to the material's colour factor with a warning.
+    std::map<int, std::string> undecodable;
 };
 
 // The images that base-colour textures use, from the checked JSON.

@@ -5,9 +5,11 @@
 
 #include "penumbra/error.h"
 #include "scene/gltf_accessors.h"
+#include "scene/gltf_compression.h"
 #include "scene/gltf_container.h"
 #include "scene/gltf_images.h"
 #include "scene/gltf_validate.h"
+#include "scene/interior.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -123,6 +125,8 @@ struct Flattener {
     }
 
     void primitive(const tinygltf::Primitive& p, const glm::mat4& world, size_t meshIndex) {
+        if (!gltf::hasPositions(p))
+            return; // validateModel said so
         if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             warn(fmt::format("meshes[{}]: a primitive of points or lines is skipped", meshIndex));
@@ -317,7 +321,11 @@ struct Flattener {
 
 Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
     const gltf::Container container = gltf::readContainer(file, options.maxFileSize);
-    const nlohmann::json json = gltf::checkJson(file, container.json);
+    nlohmann::json json = gltf::checkJson(file, container, options.warnings);
+    // Decoded geometry counts against the same cap as decoded images.
+    const std::vector<gltf::MeshoptView> meshopt =
+        gltf::prepareMeshopt(file, json, options.maxImageBytes);
+    const std::vector<gltf::DetachedIndices> detached = gltf::detachViewlessIndices(json);
     gltf::ImageDecodePolicy images = gltf::baseColorImages(json);
     images.maxDecodedBytes = options.maxImageBytes;
     FsPolicy policy{.folder = std::filesystem::absolute(file).parent_path(),
@@ -332,17 +340,21 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
     tinygltf::Model model;
     std::string err, warn;
     const std::string base = policy.folder.string();
-    const bool ok =
-        container.binary
-            ? loader.LoadBinaryFromMemory(&model, &err, &warn, container.bytes.data(),
-                                          static_cast<unsigned>(container.bytes.size()), base)
-            : loader.LoadASCIIFromString(&model, &err, &warn, container.json.data(),
-                                         static_cast<unsigned>(container.json.size()), base);
+    const std::vector<uint8_t> input = gltf::parserInput(container, json.dump());
+    const bool ok = container.binary
+                        ? loader.LoadBinaryFromMemory(&model, &err, &warn, input.data(),
+                                                      static_cast<unsigned>(input.size()), base)
+                        : loader.LoadASCIIFromString(&model, &err, &warn,
+                                                     reinterpret_cast<const char*>(input.data()),
+                                                     static_cast<unsigned>(input.size()), base);
     if (!ok) {
         const std::string first = err.substr(0, err.find('\n'));
         throw InputError(file.string(), first.empty() ? "cannot parse the asset" : first);
     }
-    gltf::validateModel(file, model);
+    gltf::restoreIndices(model, detached);
+    gltf::decodeMeshopt(file, model, meshopt);
+    gltf::decodeDraco(file, model, options.maxImageBytes);
+    gltf::validateModel(file, model, options.warnings);
 
     Scene scene;
     scene.name = file.stem().string();
@@ -374,14 +386,16 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
     flat.texCoordSet.push_back(0);
     if (!model.scenes.empty())
         flat.walk(model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes);
-    if (scene.lights.empty()) // no light: a default sun, from above and slightly behind
-        scene.lights.push_back({.name = "default sun",
-                                .type = LightType::Directional,
-                                .direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f)),
-                                .intensity = 2.0f});
     dropInvalidTriangles(scene);
     if (scene.triangleCount() == 0)
         throw InputError(file.string(), "the default scene has no triangles");
+    // Stand-ins that suit interiors as well as objects (scene/interior.h has the rule).
+    if (scene.lights.empty()) {
+        scene.lights.push_back(defaultLightFor(scene));
+        scene.defaultLight = true;
+    }
+    if (scene.cameras.empty() && isInterior(scene))
+        scene.cameras.push_back(interiorCamera(scene));
     return scene;
 }
 

@@ -1,6 +1,7 @@
 #include "scene/gltf_validate.h"
 
 #include "penumbra/error.h"
+#include "scene/gltf_accessors.h"
 
 #include <fmt/format.h>
 
@@ -8,14 +9,28 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <set>
 #include <vector>
 
 namespace penumbra::gltf {
 namespace {
 
+// |q| - 1 of a node's rotation past which it is not a unit quaternion (the glTF-Validator's).
+constexpr double kUnitTolerance = 0.00769;
+constexpr double kHalfPi = 1.5707963267948966;
+
 struct Checker {
     const std::filesystem::path& file;
     const tinygltf::Model& m;
+    OnceWarnings& warnings;
+
+    void warnOnce(const std::string& cls, const std::string& path, const std::string& what) const {
+        warnings.add(cls, path, what);
+    }
+    bool uses(const char* extension) const {
+        return std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), extension) !=
+               m.extensionsUsed.end();
+    }
 
     [[noreturn]] void fail(const std::string& path, const std::string& what) const {
         throw InputError(file.string(), path + ": " + what);
@@ -140,20 +155,24 @@ struct Checker {
                 const auto& prim = m.meshes[i].primitives[p];
                 const std::string path = fmt::format("meshes[{}].primitives[{}]", i, p);
                 const auto pos = prim.attributes.find("POSITION");
-                if (pos == prim.attributes.end())
-                    fail(path + ".attributes", "POSITION is missing");
-                accessorOfType(path + ".attributes.POSITION", pos->second, TINYGLTF_TYPE_VEC3,
-                               true);
+                if (pos == prim.attributes.end()) {
+                    warnOnce("no POSITION", path + ".attributes",
+                             "POSITION is missing; such primitives are skipped");
+                    continue;
+                }
+                const bool quantized = uses("KHR_mesh_quantization");
+                vertexAttribute(path + ".attributes.POSITION", pos->second,
+                                quantized ? kQuantizedPosition : kFloatOnly);
                 if (const auto n = prim.attributes.find("NORMAL"); n != prim.attributes.end())
-                    accessorOfType(path + ".attributes.NORMAL", n->second, TINYGLTF_TYPE_VEC3,
-                                   true);
+                    vertexAttribute(path + ".attributes.NORMAL", n->second,
+                                    quantized ? kQuantizedNormal : kFloatOnly);
                 for (const auto& [name, accessor] : prim.attributes) {
                     const std::string at = path + ".attributes." + name;
                     index(at, accessor, m.accessors.size(), "accessor");
                     if (name.rfind("TEXCOORD_", 0) == 0)
-                        attributeOf(at, accessor, {TINYGLTF_TYPE_VEC2});
+                        attributeOf(at, accessor, {TINYGLTF_TYPE_VEC2}, quantized);
                     else if (name.rfind("COLOR_", 0) == 0)
-                        attributeOf(at, accessor, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4});
+                        attributeOf(at, accessor, {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, false);
                     if (m.accessors[accessor].count != m.accessors[pos->second].count)
                         fail(at, fmt::format("has {} elements but POSITION has {}",
                                              m.accessors[accessor].count,
@@ -171,17 +190,66 @@ struct Checker {
                     index(path + ".material", prim.material, m.materials.size(), "material");
                 if (prim.mode < 0 || prim.mode > 6)
                     fail(path + ".mode", "not a glTF mode");
+                morphTargets(path, prim, m.accessors[pos->second].count);
             }
     }
 
-    // TEXCOORD_n and COLOR_n: float, or normalized unsigned byte / short.
-    void attributeOf(const std::string& path, int i, std::initializer_list<int> types) const {
+    // Morph targets are not applied (the mesh is drawn as its base shape); their references are
+    // still checked, and a bad one is reported, not followed.
+    void morphTargets(const std::string& path, const tinygltf::Primitive& prim,
+                      size_t vertices) const {
+        for (size_t t = 0; t < prim.targets.size(); ++t)
+            for (const auto& [name, accessor] : prim.targets[t]) {
+                const std::string at = fmt::format("{}.targets[{}].{}", path, t, name);
+                if (accessor < 0 || static_cast<size_t>(accessor) >= m.accessors.size() ||
+                    m.accessors[accessor].count != vertices)
+                    warnOnce("morph target reference", at,
+                             "does not name an accessor of the primitive's vertex count; morph "
+                             "targets are ignored");
+            }
+        if (!prim.targets.empty())
+            warnOnce("morph targets", path + ".targets",
+                     "morph targets are ignored (meshes are drawn in their base shape)");
+    }
+
+    // POSITION and NORMAL: float, or the integer types KHR_mesh_quantization allows.
+    enum class Quantization { FloatOnly, Position, Normal };
+    static constexpr Quantization kFloatOnly = Quantization::FloatOnly;
+    static constexpr Quantization kQuantizedPosition = Quantization::Position;
+    static constexpr Quantization kQuantizedNormal = Quantization::Normal;
+    void vertexAttribute(const std::string& path, int i, Quantization q) const {
+        index(path, i, m.accessors.size(), "accessor");
+        const auto& a = m.accessors[i];
+        const int ct = a.componentType;
+        const bool isFloat = ct == TINYGLTF_COMPONENT_TYPE_FLOAT;
+        const bool signedSmall =
+            ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT;
+        const bool unsignedSmall = ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                   ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+        const bool ok = isFloat ||
+                        (q == Quantization::Position && (signedSmall || unsignedSmall)) ||
+                        (q == Quantization::Normal && signedSmall && a.normalized);
+        if (a.type != TINYGLTF_TYPE_VEC3 || !ok)
+            fail(path, q == Quantization::FloatOnly
+                           ? "wrong accessor type or componentType (VEC3 of floats; integer "
+                             "types need KHR_mesh_quantization)"
+                           : "wrong accessor type or componentType for KHR_mesh_quantization");
+    }
+
+    // TEXCOORD_n and COLOR_n: float, or normalized unsigned byte / short; with
+    // KHR_mesh_quantization, texture coordinates of any byte or short type.
+    void attributeOf(const std::string& path, int i, std::initializer_list<int> types,
+                     bool quantized) const {
         const auto& a = m.accessors[i];
         const bool typeOk = std::find(types.begin(), types.end(), a.type) != types.end();
-        const bool componentOk =
-            a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-            (a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                              a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+        const int ct = a.componentType;
+        const bool small = ct == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                           ct == TINYGLTF_COMPONENT_TYPE_SHORT ||
+                           ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                           ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+        const bool componentOk = ct == TINYGLTF_COMPONENT_TYPE_FLOAT || (quantized && small) ||
+                                 (a.normalized && (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                                   ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
         if (!typeOk || !componentOk)
             fail(path, "wrong accessor type or componentType");
     }
@@ -220,6 +288,18 @@ struct Checker {
             finite(path + ".translation", n.translation);
             finite(path + ".rotation", n.rotation);
             finite(path + ".scale", n.scale);
+            if (n.rotation.size() == 4) {
+                const double length =
+                    std::sqrt(n.rotation[0] * n.rotation[0] + n.rotation[1] * n.rotation[1] +
+                              n.rotation[2] * n.rotation[2] + n.rotation[3] * n.rotation[3]);
+                if (std::abs(length - 1.0) > kUnitTolerance)
+                    fail(path + ".rotation",
+                         fmt::format("not a unit quaternion (length {:.6g})", length));
+            }
+            if (n.skin >= 0 && static_cast<size_t>(n.skin) >= m.skins.size())
+                warnOnce("skin reference", path + ".skin",
+                         fmt::format("index {} is out of range ({} skins); skins are ignored",
+                                     n.skin, m.skins.size()));
             for (size_t c = 0; c < n.children.size(); ++c) {
                 const std::string childPath = fmt::format("{}.children[{}]", path, c);
                 index(childPath, n.children[c], m.nodes.size(), "node");
@@ -254,9 +334,71 @@ struct Checker {
         if (m.defaultScene >= 0)
             index("scene", m.defaultScene, m.scenes.size(), "scene");
     }
+
+    void lights() const {
+        for (size_t i = 0; i < m.lights.size(); ++i) {
+            const auto& l = m.lights[i];
+            if (l.type != "spot")
+                continue;
+            const std::string path =
+                fmt::format("extensions.KHR_lights_punctual.lights[{}].spot", i);
+            const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+            if (!(outer > 0.0 && outer <= kHalfPi + 1e-6))
+                fail(path + ".outerConeAngle", fmt::format("{} is outside (0, pi/2]", outer));
+            if (!(inner >= 0.0 && inner < outer))
+                fail(path + ".innerConeAngle",
+                     fmt::format("{} must be at least 0 and less than outerConeAngle {}", inner,
+                                 outer));
+        }
+    }
+
+    // An accessor's min and max, where given, are its data's (the spec: exactly, in its
+    // component type); POSITION must give them.
+    void bounds() const {
+        for (size_t i = 0; i < m.accessors.size(); ++i) {
+            const auto& a = m.accessors[i];
+            const std::string path = fmt::format("accessors[{}]", i);
+            const size_t n = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
+            if (a.minValues.empty() && a.maxValues.empty())
+                continue;
+            if ((!a.minValues.empty() && a.minValues.size() != n) ||
+                (!a.maxValues.empty() && a.maxValues.size() != n))
+                fail(path, fmt::format("min and max need {} numbers each", n));
+            finite(path + ".min", a.minValues);
+            finite(path + ".max", a.maxValues);
+            const std::vector<double> data = readRawComponents(m, static_cast<int>(i));
+            std::vector<double> lo(n, std::numeric_limits<double>::infinity()), hi(n, -lo[0]);
+            for (size_t k = 0; k < data.size(); ++k)
+                lo[k % n] = std::min(lo[k % n], data[k]), hi[k % n] = std::max(hi[k % n], data[k]);
+            const auto differs = [](double declared, double actual) {
+                return std::abs(declared - actual) > 1e-6 + 1e-5 * std::abs(actual);
+            };
+            for (size_t c = 0; c < n; ++c) {
+                if (!a.minValues.empty() && differs(a.minValues[c], lo[c]))
+                    fail(fmt::format("{}.min[{}]", path, c),
+                         fmt::format("{} but the data's minimum is {}", a.minValues[c], lo[c]));
+                if (!a.maxValues.empty() && differs(a.maxValues[c], hi[c]))
+                    fail(fmt::format("{}.max[{}]", path, c),
+                         fmt::format("{} but the data's maximum is {}", a.maxValues[c], hi[c]));
+            }
+        }
+        for (size_t i = 0; i < m.meshes.size(); ++i)
+            for (size_t p = 0; p < m.meshes[i].primitives.size(); ++p) {
+                const auto& prim = m.meshes[i].primitives[p];
+                const auto pos = prim.attributes.find("POSITION");
+                if (pos != prim.attributes.end() && (m.accessors[pos->second].minValues.empty() ||
+                                                     m.accessors[pos->second].maxValues.empty()))
+                    warnOnce("POSITION bounds", fmt::format("accessors[{}]", pos->second),
+                             "a POSITION accessor without min and max (the spec requires them)");
+            }
+    }
 };
 
 } // namespace
+
+bool hasPositions(const tinygltf::Primitive& primitive) {
+    return primitive.attributes.contains("POSITION");
+}
 
 uint64_t elementBytes(int componentType, int type) {
     const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(componentType));
@@ -264,13 +406,26 @@ uint64_t elementBytes(int componentType, int type) {
     return size > 0 && count > 0 ? uint64_t(size) * uint64_t(count) : 0;
 }
 
-void validateModel(const std::filesystem::path& file, const tinygltf::Model& model) {
-    const Checker c{file, model};
+void validateModel(const std::filesystem::path& file, const tinygltf::Model& model,
+                   std::vector<std::string>* warnings) {
+    OnceWarnings once(file, warnings);
+    const Checker c{file, model, once};
     c.bufferViews();
     c.accessors();
     c.meshes();
+    c.bounds();
     c.nodes();
     c.materials();
+    c.lights();
+    reportUnusedParts(model, once);
+}
+
+OnceWarnings::OnceWarnings(const std::filesystem::path& file, std::vector<std::string>* out)
+    : mFile(file), mOut(out) {}
+
+void OnceWarnings::add(const std::string& cls, const std::string& path, const std::string& what) {
+    if (mOut && mClasses.insert(cls).second)
+        mOut->push_back(mFile.string() + ": " + path + ": " + what);
 }
 
 } // namespace penumbra::gltf

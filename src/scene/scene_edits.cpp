@@ -1,0 +1,140 @@
+// Scene control from the command line (issue 16): the edits change the loaded scene itself, so
+// that render, the ground truth, the report and stats.json all see the same lights and camera.
+#include "penumbra/error.h"
+#include "penumbra/scene.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace penumbra {
+namespace {
+
+std::string lightNames(const Scene& scene) {
+    std::string names;
+    for (const Light& l : scene.lights)
+        names += (names.empty() ? "'" : ", '") + l.name + "'";
+    return names.empty() ? "none" : names;
+}
+
+Light& lightNamed(Scene& scene, const std::string& name, const char* option) {
+    for (Light& l : scene.lights)
+        if (l.name == name)
+            return l;
+    throw InputError(option, fmt::format("scene '{}' has no light named '{}' (lights: {})",
+                                         scene.name, name, lightNames(scene)));
+}
+
+glm::vec3 unitDirection(const glm::vec3& d, const char* option) {
+    if (!(glm::length(d) > 1e-12f))
+        throw InputError(option, "a direction needs a non-zero length");
+    return glm::normalize(d);
+}
+
+// Near and far planes that hold the whole scene seen from `position`.
+glm::vec2 depthRangeFrom(const Scene& scene, const glm::vec3& position) {
+    const Bounds b = scene.bounds();
+    float farthest = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 c(corner & 1 ? b.max.x : b.min.x, corner & 2 ? b.max.y : b.min.y,
+                          corner & 4 ? b.max.z : b.min.z);
+        farthest = std::max(farthest, glm::length(c - position));
+    }
+    const float zfar = std::max(1.1f * farthest, 1e-3f);
+    return {zfar * 1e-4f, zfar};
+}
+
+} // namespace
+
+glm::vec3 parseVector3(std::string_view text, std::string_view option) {
+    glm::vec3 v(0.0f);
+    std::string rest(text);
+    for (int i = 0; i < 3; ++i) {
+        const size_t comma = rest.find(',');
+        if ((i < 2) != (comma != std::string::npos))
+            throw InputError(std::string(option),
+                             fmt::format("'{}' is not three numbers X,Y,Z", text));
+        const std::string part = rest.substr(0, comma);
+        rest = comma == std::string::npos ? "" : rest.substr(comma + 1);
+        char* end = nullptr;
+        errno = 0;
+        const double value = std::strtod(part.c_str(), &end);
+        if (part.empty() || end != part.c_str() + part.size() || errno == ERANGE ||
+            !std::isfinite(value) || std::abs(value) > kMaxCoordinate)
+            throw InputError(std::string(option),
+                             fmt::format("'{}' is not three finite numbers X,Y,Z", text));
+        v[i] = static_cast<float>(value);
+    }
+    return v;
+}
+
+NamedVector parseNamedVector3(std::string_view text, std::string_view option) {
+    const size_t eq = text.rfind('=');
+    if (eq == std::string_view::npos || eq == 0)
+        throw InputError(std::string(option), fmt::format("'{}' is not NAME=X,Y,Z", text));
+    return {std::string(text.substr(0, eq)), parseVector3(text.substr(eq + 1), option)};
+}
+
+bool SceneEdits::empty() const {
+    return !sunDirection && lightPositions.empty() && lightDirections.empty() && !cameraPosition &&
+           !lookAt && !fovDegrees;
+}
+
+void applySceneEdits(Scene& scene, const SceneEdits& e) {
+    if (e.sunDirection) {
+        const glm::vec3 direction = unitDirection(*e.sunDirection, "--sun-dir");
+        if (scene.defaultLight)
+            scene.lights.clear(); // the loader's stand-in: --sun-dir replaces it
+        const bool taken = std::any_of(scene.lights.begin(), scene.lights.end(),
+                                       [](const Light& l) { return l.name == "sun"; });
+        scene.lights.push_back({.name = taken ? "sun (--sun-dir)" : "sun",
+                                .type = LightType::Directional,
+                                .direction = direction,
+                                .intensity = 2.0f});
+        scene.defaultLight = false;
+    }
+    for (const auto& [name, position] : e.lightPositions) {
+        Light& l = lightNamed(scene, name, "--light-pos");
+        if (l.type == LightType::Directional)
+            throw InputError("--light-pos", fmt::format("'{}' is a directional light: it has a "
+                                                        "direction (--light-dir), no position",
+                                                        name));
+        l.position = position;
+    }
+    for (const auto& [name, direction] : e.lightDirections) {
+        Light& l = lightNamed(scene, name, "--light-dir");
+        if (l.type == LightType::Point)
+            throw InputError("--light-dir", fmt::format("'{}' is a point light: it has a "
+                                                        "position (--light-pos), no direction",
+                                                        name));
+        l.direction = unitDirection(direction, "--light-dir");
+    }
+    if (e.cameraPosition || e.lookAt || e.fovDegrees) {
+        if (!e.cameraPosition || !e.lookAt)
+            throw InputError(e.cameraPosition ? "--camera-pos"
+                             : e.lookAt       ? "--look-at"
+                                              : "--fov",
+                             "--camera-pos and --look-at go together (--fov needs both)");
+        const float fov = e.fovDegrees.value_or(glm::degrees(Camera{}.yfov));
+        if (!(fov >= 1.0f && fov <= 170.0f))
+            throw InputError("--fov", fmt::format("{} degrees is outside [1, 170]", fov));
+        const glm::vec3 forward = unitDirection(*e.lookAt - *e.cameraPosition, "--look-at");
+        const glm::vec2 depth = depthRangeFrom(scene, *e.cameraPosition);
+        // World up, unless the camera looks straight up or down.
+        const glm::vec3 up =
+            std::abs(forward.y) > 0.999f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(0, 1, 0);
+        scene.cameras.insert(scene.cameras.begin(), Camera{.name = "command line",
+                                                           .position = *e.cameraPosition,
+                                                           .target = *e.lookAt,
+                                                           .up = up,
+                                                           .yfov = glm::radians(fov),
+                                                           .znear = depth.x,
+                                                           .zfar = depth.y});
+    }
+    scene.edits = e;
+}
+
+} // namespace penumbra

@@ -1,0 +1,321 @@
+// glTF conformance (issue 16), one minimal asset per case: constructs the specification calls
+// valid load (however unusual), each error class of the glTF-Validator that we handle refuses the
+// file with its JSON path, and each part Penumbra does not use loads with one warning naming it.
+#include "expect_refused.h"
+#include "gltf_builder.h"
+#include "penumbra/scene.h"
+#include "scratch_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <functional>
+
+using namespace penumbra;
+using namespace penumbra::test;
+namespace fs = std::filesystem;
+using J = nlohmann::json;
+
+namespace {
+
+struct Case {
+    const char* name;
+    std::function<fs::path(GltfBuilder&, const fs::path&)> make; // returns the file to load
+    const char* expected; // the refusal, or the warning (empty: loads without a word)
+};
+
+using Edit = std::function<void(GltfBuilder&)>;
+
+// The ground quad, changed, as .gltf (data URI).
+auto gltf(Edit change) {
+    return [change](GltfBuilder& b, const fs::path& d) {
+        b.ground();
+        change(b);
+        return b.writeGltf(d / "a.gltf");
+    };
+}
+// ... as .glb (buffer 0 the BIN chunk, declared as its length before `change`, which may say
+// otherwise), then its bytes changed.
+auto glb(Edit change, std::function<void(std::vector<uint8_t>&)> bytes = {}) {
+    return [change, bytes](GltfBuilder& b, const fs::path& d) {
+        b.ground();
+        while (b.bin.size() % 4)
+            b.bin.push_back(0);
+        b.j["buffers"] = J::array({{{"byteLength", b.bin.size()}}});
+        change(b);
+        std::string json = b.j.dump();
+        while (json.size() % 4)
+            json += ' ';
+        std::vector<uint8_t> v;
+        auto u32 = [&](size_t x) {
+            for (int k = 0; k < 4; ++k)
+                v.push_back(static_cast<uint8_t>(x >> (8 * k)));
+        };
+        u32(0x46546C67), u32(2), u32(12 + 8 + json.size() + 8 + b.bin.size());
+        u32(json.size()), u32(0x4E4F534A);
+        v.insert(v.end(), json.begin(), json.end());
+        u32(b.bin.size()), u32(0x004E4942);
+        v.insert(v.end(), b.bin.begin(), b.bin.end());
+        if (bytes)
+            bytes(v);
+        const fs::path f = d / "a.glb";
+        std::ofstream(f, std::ios::binary)
+            .write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size()));
+        return f;
+    };
+}
+// The ground's JSON text changed by `replace(text)` (what JSON objects cannot say).
+auto text(std::function<void(std::string&)> replace) {
+    return [replace](GltfBuilder& b, const fs::path& d) {
+        b.ground();
+        const fs::path f = b.writeGltf(d / "a.gltf");
+        std::ifstream in(f);
+        std::string t((std::istreambuf_iterator<char>(in)), {});
+        replace(t);
+        std::ofstream(f) << t;
+        return f;
+    };
+}
+
+J spot(double inner, double outer) {
+    return {
+        {"lights", J::array({{{"type", "spot"},
+                              {"spot", {{"innerConeAngle", inner}, {"outerConeAngle", outer}}}}})}};
+}
+void addLight(GltfBuilder& b, const J& lights) {
+    b.j["extensionsUsed"] = {"KHR_lights_punctual"};
+    b.j["extensions"] = {{"KHR_lights_punctual", lights}};
+    b.node({{"translation", {0, 4, 0}},
+            {"rotation", {-0.7071068, 0, 0, 0.7071068}},
+            {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+}
+
+fs::path caseDir(const char* table, const char* name) {
+    return scratchDir("conformance", std::string(table) + "-" + name, true);
+}
+
+class GltfValid : public ::testing::TestWithParam<Case> {};
+class GltfInvalid : public ::testing::TestWithParam<Case> {};
+class GltfIgnoredPart : public ::testing::TestWithParam<Case> {};
+
+} // namespace
+
+TEST_P(GltfValid, LoadsWithoutAWord) {
+    GltfBuilder b;
+    const fs::path f = GetParam().make(b, caseDir("valid", GetParam().name));
+    std::vector<std::string> warnings;
+    const Scene s = loadScene(f.string(), {.warnings = &warnings});
+    EXPECT_EQ(s.triangleCount(), 2u) << "the ground";
+    EXPECT_NEAR(s.bounds().max.x, 5.0f, 1e-6f);
+    if (std::string(GetParam().expected).empty())
+        EXPECT_TRUE(warnings.empty()) << warnings.front();
+    else
+        ASSERT_EQ(warnings.size(), 1u) << GetParam().expected;
+    for (const std::string& w : warnings)
+        EXPECT_NE(w.find(GetParam().expected), std::string::npos) << w;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Spec, GltfValid,
+    ::testing::Values(
+        Case{"integers_written_as_floats", // JSON Schema's integer admits 1.0
+             text([](std::string& json) {
+                 for (const char* key : {"\"mesh\":0", "\"indices\":1", "\"count\":4",
+                                         "\"componentType\":5126", "\"buffer\":0"}) {
+                     const size_t at = json.find(key);
+                     ASSERT_NE(at, std::string::npos) << key;
+                     json.insert(at + std::strlen(key), ".0");
+                 }
+             }),
+             ""},
+        Case{"primitive_without_position", // the spec: skip the primitive
+             gltf([](GltfBuilder& b) {
+                 b.j["meshes"][0]["primitives"].push_back({{"attributes", {{"NORMAL", 0}}}});
+             }),
+             "meshes[0].primitives[1].attributes: POSITION is missing; such primitives are "
+             "skipped"},
+        Case{"accessor_without_buffer_view", // zeros, here replaced by sparse values
+             gltf([](GltfBuilder& b) {
+                 const std::vector<float> xyz = {-5, 0, -5, 5, 0, -5, 5, 0, 5, -5, 0, 5};
+                 const int values = b.view(xyz);
+                 const int indices = b.view(std::vector<uint8_t>{0, 1, 2, 3});
+                 b.j["accessors"][0].erase("bufferView");
+                 b.j["accessors"][0]["sparse"] = {
+                     {"count", 4},
+                     {"indices", {{"bufferView", indices}, {"componentType", 5121}}},
+                     {"values", {{"bufferView", values}}}};
+             }),
+             ""},
+        Case{"glb_with_trailing_bytes", // after its chunks, inside the header's length
+             glb([](GltfBuilder&) {},
+                 [](std::vector<uint8_t>& v) {
+                     v.insert(v.end(), 8, 0);
+                     const uint32_t length = static_cast<uint32_t>(v.size());
+                     std::memcpy(v.data() + 8, &length, 4);
+                 }),
+             ""},
+        Case{"glb_placeholder_buffer_longer_than_its_chunk", glb([](GltfBuilder& b) {
+                 b.j["buffers"] = J::array({{{"byteLength", 4096}}});
+             }),
+             "buffers[0].byteLength: 4096 bytes declared but the BIN chunk holds"},
+        Case{"mesh_quantization", // normalized shorts scaled back by the node: the same ground
+             gltf([](GltfBuilder& b) {
+                 b.j["extensionsUsed"] = {"KHR_mesh_quantization"};
+                 b.j["extensionsRequired"] = {"KHR_mesh_quantization"};
+                 const std::vector<int16_t> q = {-32767, 0, -32767, 32767,  0, -32767,
+                                                 32767,  0, 32767,  -32767, 0, 32767};
+                 b.j["accessors"][0] = {{"bufferView", b.view(q)}, {"componentType", 5122},
+                                        {"normalized", true},      {"count", 4},
+                                        {"type", "VEC3"},          {"min", {-32767, 0, -32767}},
+                                        {"max", {32767, 0, 32767}}};
+                 b.j["nodes"][0]["scale"] = {5, 1, 5};
+             }),
+             ""},
+        Case{"basisu_texture", // not decoded: the factor stands in, with a warning
+             gltf([](GltfBuilder& b) {
+                 b.j["extensionsUsed"] = {"KHR_texture_basisu"};
+                 b.j["extensionsRequired"] = {"KHR_texture_basisu"};
+                 const std::vector<uint8_t> ktx2 = {0xAB, 'K',  'T',  'X',  ' ', '2', '0', 0xBB,
+                                                    '\r', '\n', 0x1A, '\n', 0,   0,   0,   0};
+                 b.j["images"] = {{{"bufferView", b.view(ktx2)}, {"mimeType", "image/ktx2"}}};
+                 b.j["textures"] = {
+                     {{"extensions", {{"KHR_texture_basisu", {{"source", 0}}}}}, {"source", 0}}};
+                 b.j["materials"] = {{{"pbrMetallicRoughness",
+                                       {{"baseColorTexture", {{"index", 0}}},
+                                        {"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}}};
+                 b.j["meshes"][0]["primitives"][0]["material"] = 0;
+             }),
+             "images[0]: KTX2 (KHR_texture_basisu) is not decoded here"}),
+    [](const auto& row) { return std::string(row.param.name); });
+
+TEST_P(GltfInvalid, IsRefusedWithItsJsonPath) {
+    GltfBuilder b;
+    const fs::path f = GetParam().make(b, caseDir("invalid", GetParam().name));
+    expectRefused(f, GetParam().expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    ValidatorErrors, GltfInvalid,
+    ::testing::Values(
+        Case{"byte_order_mark", text([](std::string& json) { json.insert(0, "\xEF\xBB\xBF"); }),
+             "the JSON starts with a byte-order mark"},
+        Case{"not_gltf_at_all",
+             text([](std::string& json) { json = "solid cube\nfacet normal 0 0 1\n"; }),
+             "not a glTF file: neither a JSON object nor a GLB"},
+        Case{"spot_inner_not_below_outer",
+             gltf([](GltfBuilder& b) { addLight(b, spot(0.6, 0.6)); }),
+             "extensions.KHR_lights_punctual.lights[0].spot.innerConeAngle: 0.6 must be at least "
+             "0 and less than outerConeAngle 0.6"},
+        Case{"spot_outer_past_half_pi", gltf([](GltfBuilder& b) { addLight(b, spot(0.1, 1.6)); }),
+             "extensions.KHR_lights_punctual.lights[0].spot.outerConeAngle: 1.6 is outside (0, "
+             "pi/2]"},
+        Case{"matrix_and_trs", gltf([](GltfBuilder& b) {
+                 b.j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+                 b.j["nodes"][0]["scale"] = {2, 2, 2};
+             }),
+             "nodes[0]: has both a matrix and translation, rotation or scale"},
+        Case{"rotation_not_unit", gltf([](GltfBuilder& b) {
+                 b.j["nodes"][0]["rotation"] = {0, 0, 0, 1.01};
+             }),
+             "nodes[0].rotation: not a unit quaternion (length 1.01)"},
+        Case{"min_not_the_data_minimum", gltf([](GltfBuilder& b) {
+                 b.j["accessors"][0]["min"] = {-5, 0, -4};
+             }),
+             "accessors[0].min[2]: -4 but the data's minimum is -5"},
+        Case{"max_not_the_data_maximum", gltf([](GltfBuilder& b) {
+                 b.j["accessors"][0]["max"] = {5, 0.5, 5};
+             }),
+             "accessors[0].max[1]: 0.5 but the data's maximum is 0"},
+        Case{"bounds_of_the_wrong_length", gltf([](GltfBuilder& b) {
+                 b.j["accessors"][0]["min"] = {-5, 0};
+             }),
+             "accessors[0]: min and max need 3 numbers each"},
+        Case{"quantized_without_the_extension", gltf([](GltfBuilder& b) {
+                 b.j["accessors"][0]["componentType"] = 5122; // shorts: 24 bytes of the 48
+                 b.j["accessors"][0].erase("min");
+                 b.j["accessors"][0].erase("max");
+             }),
+             "integer types need KHR_mesh_quantization"},
+        Case{"required_extension_unsupported",
+             gltf([](GltfBuilder& b) { b.j["extensionsRequired"] = {"KHR_materials_volume"}; }),
+             "extensionsRequired: 'KHR_materials_volume' is not supported"},
+        Case{"buffer_without_uri_outside_a_glb", gltf([](GltfBuilder& b) {
+                 b.j["buffers"] = J::array({J::object(), {{"byteLength", 4}}});
+             }),
+             "buffers[1].uri: missing (only a GLB's first buffer"},
+        Case{"buffer_file_missing", gltf([](GltfBuilder& b) {
+                 b.j["buffers"] = J::array({J::object(), {{"byteLength", 4}, {"uri", "gone.bin"}}});
+             }),
+             "buffers[1].uri: 'gone.bin' is not a file beside the asset"},
+        Case{"view_past_a_placeholder_chunk", glb([](GltfBuilder& b) {
+                 b.j["buffers"] = J::array({{{"byteLength", 4096}}});
+                 b.j["bufferViews"][1]["byteOffset"] = 4000;
+             }),
+             "bufferViews[1]"}),
+    [](const auto& row) { return std::string(row.param.name); });
+
+TEST_P(GltfIgnoredPart, LoadsWithOneWarningNamingIt) {
+    GltfBuilder b;
+    const fs::path f = GetParam().make(b, caseDir("ignored", GetParam().name));
+    std::vector<std::string> warnings;
+    const Scene s = loadScene(f.string(), {.warnings = &warnings});
+    EXPECT_EQ(s.triangleCount(), 2u);
+    bool named = false;
+    for (const std::string& w : warnings) {
+        named = named || w.find(GetParam().expected) != std::string::npos;
+        EXPECT_EQ(w.rfind(f.string() + ": ", 0), 0u) << "names the file: " << w;
+    }
+    EXPECT_TRUE(named) << GetParam().expected << "\nwarnings:\n"
+                       << (warnings.empty() ? "none" : warnings.front());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    UnusedParts, GltfIgnoredPart,
+    ::testing::Values(
+        Case{"animation", gltf([](GltfBuilder& b) {
+                 b.j["animations"] = {
+                     {{"channels",
+                       {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "scale"}}}}}},
+                      {"samplers", {{{"input", 1}, {"output", 0}}}}}};
+             }),
+             "animations: 1 animation(s) ignored; the scene is drawn at rest"},
+        Case{"animation_bad_reference", gltf([](GltfBuilder& b) {
+                 b.j["animations"] = {
+                     {{"channels",
+                       {{{"sampler", 3}, {"target", {{"node", 0}, {"path", "scale"}}}}}},
+                      {"samplers", {{{"input", 1}, {"output", 0}}}}}};
+             }),
+             "animations[0].channels[0].sampler: index 3 is out of range (1 samplers); "
+             "animations are ignored"},
+        Case{"skin", gltf([](GltfBuilder& b) {
+                 b.j["skins"] = {{{"joints", {0}}}};
+             }),
+             "skins: 1 skin(s) ignored; skinned meshes are drawn in their bind pose"},
+        Case{"skin_bad_reference", gltf([](GltfBuilder& b) {
+                 b.j["skins"] = {{{"joints", {0, 9}}}};
+             }),
+             "skins[0].joints[1]: index 9 is out of range (1 nodes); skins are ignored"},
+        Case{"morph_targets", gltf([](GltfBuilder& b) {
+                 b.j["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 0}}};
+             }),
+             "meshes[0].primitives[0].targets: morph targets are ignored"},
+        Case{"camera_aspect_ratio", gltf([](GltfBuilder& b) {
+                 b.j["cameras"] = {
+                     {{"type", "perspective"},
+                      {"perspective", {{"yfov", 0.7}, {"znear", 0.1}, {"aspectRatio", 2.0}}}}};
+                 b.node({{"camera", 0}, {"translation", {0, 3, 9}}});
+             }),
+             "cameras[0].perspective.aspectRatio: ignored"},
+        Case{"material_extension", gltf([](GltfBuilder& b) {
+                 b.j["materials"] = {
+                     {{"extensions", {{"KHR_materials_transmission", J::object()}}}}};
+                 b.j["meshes"][0]["primitives"][0]["material"] = 0;
+             }),
+             "materials[0].extensions.KHR_materials_transmission: not used"},
+        Case{"position_without_bounds", gltf([](GltfBuilder& b) {
+                 b.j["accessors"][0].erase("min");
+                 b.j["accessors"][0].erase("max");
+             }),
+             "accessors[0]: a POSITION accessor without min and max"}),
+    [](const auto& row) { return std::string(row.param.name); });
