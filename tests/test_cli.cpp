@@ -480,6 +480,7 @@ fs::path threeLightAsset(const fs::path& where) {
     light(0, {{"rotation", {-0.6, 0.2, 0.1, 0.77}}});
     light(1, {{"translation", {3, 6, 3}}, {"rotation", {-0.38, 0.2, 0.08, 0.9}}});
     light(2, {{"translation", {-2, 3, 1}}});
+    b.j["extensionsUsed"] = {"KHR_lights_punctual"};
     b.j["extensions"] = {
         {"KHR_lights_punctual",
          {{"lights",

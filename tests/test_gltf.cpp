@@ -118,6 +118,7 @@ TEST(Gltf, DeepHierarchiesAreWalkedWithoutRecursion) {
 TEST(Gltf, SpotAndPointLightsCamerasAndDefaults) {
     GltfBuilder b;
     b.ground();
+    b.j["extensionsUsed"] = {"KHR_lights_punctual"};
     b.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}},
             {"translation", {0, 5, 0}},
             {"rotation", {-0.7071, 0, 0, 0.7071}}});
@@ -303,6 +304,7 @@ std::vector<Malformed> malformedAssets() {
          }),
          "GLB: BIN chunk length"},
         {"light_type", edit([](GltfBuilder& b) {
+             b.j["extensionsUsed"] = {"KHR_lights_punctual"};
              b.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
              b.j["extensions"] = {{"KHR_lights_punctual", {{"lights", {{{"type", "laser"}}}}}}};
          }),

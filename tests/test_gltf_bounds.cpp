@@ -325,15 +325,15 @@ std::vector<Boundary> contentBoundaries() {
               }),
          "nodes[0].matrix: needs 16 numbers"},
         {"camera_znear_positive", gltf(floatingQuad, cameraValue("znear", kTinyPositive, 0.0)),
-         "cameras: 'eye' has invalid parameters"},
+         "cameras[0]: perspective: yfov and znear must be positive"},
         {"camera_zfar_above_znear", // znear 0.1 (as a float)
          gltf(floatingQuad, cameraValue("zfar", floatAbove(0.1f), double(0.1f))),
          "cameras: 'eye' has invalid parameters"},
         {"camera_zfar_zero_is_infinite", // 0 means absent (infinite); any positive one is used
          gltf(floatingQuad, cameraValue("zfar", 0.0, kTinyPositive)),
-         "cameras: 'eye' has invalid parameters"},
+         "cameras[0]: perspective: yfov and znear must be positive, zfar past znear"},
         {"camera_yfov_positive", gltf(floatingQuad, cameraValue("yfov", kTinyPositive, 0.0)),
-         "cameras: 'eye' has invalid parameters"},
+         "cameras[0]: perspective: yfov and znear must be positive"},
         {"camera_yfov_below_3_1", gltf(floatingQuad, cameraValue("yfov", floatBelow(3.1f), 3.1f)),
          "cameras: 'eye' has invalid parameters"},
         {"camera_ymag_positive",
@@ -347,7 +347,7 @@ std::vector<Boundary> contentBoundaries() {
                                          {"znear", 0.1},
                                          {"zfar", 10.0}}}};
               }),
-         "cameras: 'eye' has invalid parameters"},
+         "cameras[0]: orthographic: xmag and ymag must not be 0"},
         {"light_intensity_minimum",
          gltf(floatingQuad,
               lightValue([](J& l) -> J& { return l["intensity"]; }, 0.0, -kTinyPositive)),

@@ -138,7 +138,8 @@ std::vector<Boundary> containerBoundaries() {
               [](GltfBuilder& b, bool past) {
                   b.j["scenes"][0]["nodes"].push_back(lastOr(b.j["nodes"], past));
               }),
-         "scenes[0].nodes[4]: index 4 is out of range (4 nodes)"},
+         "scenes[0].nodes[4]: index 4 is out of range (4 nodes)",
+         "scenes[0].nodes[4]: node 3 is listed twice"},
         {"node_mesh_index",
          gltf(floatingQuad,
               [](GltfBuilder& b, bool past) {
@@ -155,12 +156,13 @@ std::vector<Boundary> containerBoundaries() {
                   b.j["nodes"][2]["camera"] = lastOr(b.j["cameras"], past);
               }),
          "nodes[2].camera: index 1 is out of range (1 cameras)"},
-        {"node_child_index", // the light node, also a root: a second instance of the light
+        {"node_child_index", // the light node, listed as a root too: refused as not a root
          gltf(floatingQuad,
               [](GltfBuilder& b, bool past) {
                   b.j["nodes"][0]["children"] = {lastOr(b.j["nodes"], past)};
               }),
-         "nodes[0].children[0]: index 4 is out of range (4 nodes)"},
+         "nodes[0].children[0]: index 4 is out of range (4 nodes)",
+         "node 3 is not a root (its parent is node 0)"},
         {"attribute_accessor_index",
          gltf(floatingQuad,
               [](GltfBuilder& b, bool past) {

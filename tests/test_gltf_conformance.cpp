@@ -248,6 +248,66 @@ INSTANTIATE_TEST_SUITE_P(
                  b.j["buffers"] = J::array({J::object(), {{"byteLength", 4}, {"uri", "gone.bin"}}});
              }),
              "buffers[1].uri: 'gone.bin' is not a file beside the asset"},
+        Case{"sampler_filter_not_an_enum", gltf([](GltfBuilder& b) {
+                 b.j["samplers"] = {{{"magFilter", 9986}}}; // a min filter
+             }),
+             "samplers[0].magFilter: 9986 is not a glTF magFilter value"},
+        Case{"metallic_factor_past_one", gltf([](GltfBuilder& b) {
+                 b.j["materials"] = {{{"pbrMetallicRoughness", {{"metallicFactor", 1.5}}}}};
+             }),
+             "materials[0].pbrMetallicRoughness.metallicFactor: 1.5 is outside [0, 1]"},
+        Case{"normalized_floats",
+             gltf([](GltfBuilder& b) { b.j["accessors"][0]["normalized"] = true; }),
+             "accessors[0].normalized: only byte and short components can be normalized"},
+        Case{"light_colour_past_one", gltf([](GltfBuilder& b) {
+                 J lights = spot(0.2, 0.6);
+                 lights["lights"][0]["color"] = {1.0, 2.0, 1.0};
+                 addLight(b, lights);
+             }),
+             "extensions.KHR_lights_punctual.lights[0].color: 2 is outside [0, 1]"},
+        Case{"camera_in_use_without_a_field_of_view", gltf([](GltfBuilder& b) {
+                 b.j["cameras"] = {{{"type", "perspective"}, {"perspective", {{"znear", 0.1}}}}};
+                 b.node({{"camera", 0}});
+             }),
+             "cameras[0].perspective.yfov: missing (required)"},
+        Case{"scene_lists_a_child", gltf([](GltfBuilder& b) {
+                 const int child = b.node({{"translation", {0, 1, 0}}}, false);
+                 b.j["nodes"][0]["children"] = {child};
+                 b.j["scenes"][0]["nodes"].push_back(child);
+             }),
+             "scenes[0].nodes[1]: node 1 is not a root (its parent is node 0)"},
+        Case{"scene_lists_a_node_twice",
+             gltf([](GltfBuilder& b) { b.j["scenes"][0]["nodes"].push_back(0); }),
+             "scenes[0].nodes[1]: node 0 is listed twice"},
+        Case{"extension_not_declared", gltf([](GltfBuilder& b) {
+                 b.j["nodes"][0]["extensions"] = {{"EXT_example", J::object()}};
+             }),
+             "nodes[0].extensions.EXT_example: not declared in extensionsUsed"},
+        Case{"required_but_not_used",
+             gltf([](GltfBuilder& b) { b.j["extensionsRequired"] = {"KHR_mesh_quantization"}; }),
+             "extensionsRequired: 'KHR_mesh_quantization' is not in extensionsUsed"},
+        Case{"primitive_restart_index", gltf([](GltfBuilder& b) {
+                 const std::vector<float> xyz(3 * 300, 0.0f);
+                 b.j["accessors"][0] = {{"bufferView", b.view(xyz)},
+                                        {"componentType", 5126},
+                                        {"count", 300},
+                                        {"type", "VEC3"},
+                                        {"min", {0, 0, 0}},
+                                        {"max", {0, 0, 0}}};
+                 b.j["accessors"][1] = {
+                     {"bufferView", b.view(std::vector<uint8_t>{0, 255, 1, 0, 0, 0})},
+                     {"componentType", 5121},
+                     {"count", 6},
+                     {"type", "SCALAR"}};
+             }),
+             "meshes[0]: index 255 is the primitive-restart value"},
+        Case{"name_not_a_string", gltf([](GltfBuilder& b) { b.j["scenes"][0]["name"] = 42; }),
+             "scenes[0].name: wrong JSON type (a string is expected)"},
+        Case{"extension_not_an_object", gltf([](GltfBuilder& b) {
+                 b.j["extensionsUsed"] = {"KHR_texture_transform"};
+                 b.j["nodes"][0]["extensions"] = {{"KHR_texture_transform", "Not an object"}};
+             }),
+             "nodes[0].extensions.KHR_texture_transform: wrong JSON type (an object is expected)"},
         Case{"view_past_a_placeholder_chunk", glb([](GltfBuilder& b) {
                  b.j["buffers"] = J::array({{{"byteLength", 4096}}});
                  b.j["bufferViews"][1]["byteOffset"] = 4000;
@@ -308,11 +368,32 @@ INSTANTIATE_TEST_SUITE_P(
              }),
              "cameras[0].perspective.aspectRatio: ignored"},
         Case{"material_extension", gltf([](GltfBuilder& b) {
+                 b.j["extensionsUsed"] = {"KHR_materials_transmission"};
                  b.j["materials"] = {
                      {{"extensions", {{"KHR_materials_transmission", J::object()}}}}};
                  b.j["meshes"][0]["primitives"][0]["material"] = 0;
              }),
              "materials[0].extensions.KHR_materials_transmission: not used"},
+        Case{"unused_camera_without_a_field_of_view", gltf([](GltfBuilder& b) {
+                 b.j["cameras"] = {
+                     {{"type", "perspective"}, {"perspective", {{"yfov", 0}, {"znear", 0.1}}}}};
+             }),
+             "cameras[0]: perspective: yfov and znear must be positive, zfar past znear; the "
+             "camera is not used"},
+        Case{"texture_transform", gltf([](GltfBuilder& b) {
+                 b.j["extensionsUsed"] = {"KHR_texture_transform"};
+                 const std::vector<uint8_t> ktx2 = {0xAB, 'K',  'T',  'X',  ' ', '2', '0', 0xBB,
+                                                    '\r', '\n', 0x1A, '\n', 0,   0,   0,   0};
+                 b.j["images"] = {{{"bufferView", b.view(ktx2)}, {"mimeType", "image/ktx2"}}};
+                 b.j["textures"] = {{{"source", 0}}};
+                 b.j["materials"] = {
+                     {{"pbrMetallicRoughness",
+                       {{"baseColorTexture",
+                         {{"index", 0},
+                          {"extensions", {{"KHR_texture_transform", {{"scale", {2, 2}}}}}}}}}}}};
+             }),
+             "materials[0].pbrMetallicRoughness.baseColorTexture.extensions.KHR_texture_"
+             "transform: ignored"},
         Case{"position_without_bounds", gltf([](GltfBuilder& b) {
                  b.j["accessors"][0].erase("min");
                  b.j["accessors"][0].erase("max");

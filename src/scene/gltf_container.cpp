@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <set>
 
 namespace penumbra::gltf {
 namespace {
@@ -226,15 +227,68 @@ bool meshoptFallback(const nlohmann::json& buffer) {
 
 // JSON Schema's "integer" admits 1.0; the parser wants an integer. A float that is a whole
 // number inside +-2^53 becomes one (a float field reads an integer just as well).
-void integralNumbersAsIntegers(nlohmann::json& j) {
-    if (j.is_structured()) {
-        for (auto& item : j)
-            integralNumbersAsIntegers(item);
-    } else if (j.is_number_float()) {
-        const double v = j.get<double>();
-        if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 9007199254740992.0)
-            j = v >= 0 ? nlohmann::json(static_cast<uint64_t>(v))
-                       : nlohmann::json(static_cast<int64_t>(v));
+// (Iterative, as every walk of the whole document here: a hostile file nests arrays as deep as
+// its length allows.)
+void integralNumbersAsIntegers(nlohmann::json& root) {
+    std::vector<nlohmann::json*> pending{&root};
+    while (!pending.empty()) {
+        nlohmann::json& j = *pending.back();
+        pending.pop_back();
+        if (j.is_structured()) {
+            for (auto& item : j)
+                pending.push_back(&item);
+        } else if (j.is_number_float()) {
+            const double v = j.get<double>();
+            if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 9007199254740992.0)
+                j = v >= 0 ? nlohmann::json(static_cast<uint64_t>(v))
+                           : nlohmann::json(static_cast<int64_t>(v));
+        }
+    }
+}
+
+// Every extension an object carries is declared in extensionsUsed, and every required one is
+// among them (the validator's UNDECLARED_EXTENSION and its required twin). Extras are the
+// user's: not walked.
+void checkDeclaredExtensions(const std::filesystem::path& file, const nlohmann::json& root) {
+    std::set<std::string> used;
+    if (root.contains("extensionsUsed")) {
+        if (!root["extensionsUsed"].is_array())
+            refuse(file, "extensionsUsed: not an array");
+        for (const auto& e : root["extensionsUsed"]) {
+            if (!e.is_string())
+                refuse(file, "extensionsUsed: not a string");
+            used.insert(e.get<std::string>());
+        }
+    }
+    if (root.contains("extensionsRequired"))
+        for (const auto& e : root["extensionsRequired"]) // strings: checkJson checked them
+            if (!used.contains(e.get<std::string>()))
+                refuse(file, fmt::format("extensionsRequired: '{}' is not in extensionsUsed",
+                                         e.get<std::string>()));
+    std::vector<std::pair<const nlohmann::json*, std::string>> pending{{&root, ""}};
+    while (!pending.empty()) {
+        const auto [j, path] = pending.back();
+        pending.pop_back();
+        if (j->is_array()) {
+            for (size_t i = 0; i < j->size(); ++i)
+                pending.emplace_back(&(*j)[i], fmt::format("{}[{}]", path, i));
+            continue;
+        }
+        if (!j->is_object())
+            continue;
+        for (const auto& [key, value] : j->items()) {
+            const std::string at = path.empty() ? key : path + "." + key;
+            if (key == "extras")
+                continue;
+            if (key == "extensions" && value.is_object())
+                for (const auto& [name, body] : value.items()) {
+                    if (!used.contains(name))
+                        refuse(file, at + "." + name + ": not declared in extensionsUsed");
+                    if (!body.is_object())
+                        refuse(file, at + "." + name + ": wrong JSON type (an object is expected)");
+                }
+            pending.emplace_back(&value, at);
+        }
     }
 }
 
@@ -445,6 +499,8 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
         }
     }
     glbBufferWithinItsChunk(file, container, j, warnings);
+    checkDeclaredExtensions(file, j);
+    checkRequiredProperties(file, j);
     checkReferences(file, j);
     for (const char* array : {"buffers", "images"}) {
         if (!j.contains(array))

@@ -37,6 +37,10 @@ std::optional<std::string> percentDecode(std::string_view text);
 nlohmann::json checkJson(const std::filesystem::path& file, const Container& container,
                          std::vector<std::string>* warnings);
 
+// The schema's required properties and their JSON types (accessors, views, buffers, cameras,
+// animations, skins, nodes, samplers, materials, lights), by JSON path (gltf_schema.cpp).
+void checkRequiredProperties(const std::filesystem::path& file, const nlohmann::json& json);
+
 // The bytes the parser reads: `json` (checkJson's, serialised) and, for a GLB, the original BIN
 // chunk in a new container.
 std::vector<uint8_t> parserInput(const Container& container, const std::string& json);

@@ -154,6 +154,16 @@ struct Flattener {
         std::vector<uint32_t> idx;
         if (p.indices >= 0) {
             idx = readIndices(m, p.indices);
+            // The largest value of the index type restarts a strip elsewhere; glTF forbids it.
+            const int size = tinygltf::GetComponentSizeInBytes(
+                static_cast<uint32_t>(m.accessors[p.indices].componentType));
+            const uint32_t restart = size >= 4 ? 0xFFFFFFFFu : (1u << (8 * size)) - 1u;
+            for (uint32_t i : idx)
+                if (i == restart)
+                    throw InputError(file.string(),
+                                     fmt::format("meshes[{}]: index {} is the primitive-restart "
+                                                 "value, which glTF does not allow",
+                                                 meshIndex, i));
             for (uint32_t i : idx)
                 if (i >= count)
                     throw InputError(file.string(),

@@ -8,6 +8,16 @@
 namespace penumbra::gltf {
 
 void reportUnusedParts(const tinygltf::Model& m, OnceWarnings& once) {
+    for (size_t i = 0; i < m.materials.size(); ++i) {
+        const auto& pbr = m.materials[i].pbrMetallicRoughness;
+        if (pbr.baseColorTexture.extensions.contains("KHR_texture_transform"))
+            once.add(
+                "texture transform",
+                fmt::format("materials[{}].pbrMetallicRoughness.baseColorTexture.extensions."
+                            "KHR_texture_transform",
+                            i),
+                "ignored; texture coordinates (and alpha-tested holes) are used untransformed");
+    }
     const auto accessorRef = [&](const std::string& path, int i, bool required, const char* cls,
                                  const char* part) {
         if ((i < 0 && !required) || (i >= 0 && static_cast<size_t>(i) < m.accessors.size()))

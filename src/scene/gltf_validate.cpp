@@ -417,6 +417,7 @@ void validateModel(const std::filesystem::path& file, const tinygltf::Model& mod
     c.nodes();
     c.materials();
     c.lights();
+    checkSchemaValues(file, model, once);
     reportUnusedParts(model, once);
 }
 

@@ -33,6 +33,11 @@ private:
     std::set<std::string> mClasses;
 };
 
+// The schema's enumerations and ranges: samplers, material factors, normalized accessors, light
+// colours, cameras, scene roots (gltf_values.cpp).
+void checkSchemaValues(const std::filesystem::path& file, const tinygltf::Model& model,
+                       OnceWarnings& once);
+
 // Animations, skins, camera aspect ratios, material extensions (gltf_unused.cpp).
 void reportUnusedParts(const tinygltf::Model& model, OnceWarnings& once);
 
