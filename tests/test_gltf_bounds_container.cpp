@@ -82,7 +82,7 @@ std::vector<Boundary> containerBoundaries() {
                  }),
          "GLB: BIN chunk length"},
         // ---- URIs: data URIs and percent-encoding (gltf_container.cpp) ----
-        {"data_uri_byte_length", // decodes to exactly the buffer's byteLength (tinygltf's check)
+        {"data_uri_byte_length", // decodes to exactly the buffer's byteLength
          gltf(floatingQuad,
               [](GltfBuilder& b, bool past) {
                   b.j["buffers"] =
@@ -90,7 +90,7 @@ std::vector<Boundary> containerBoundaries() {
                                 {{"uri", "data:application/octet-stream;base64,AAAAAA=="},
                                  {"byteLength", past ? 5 : 4}}});
               }),
-         "Failed to decode 'uri'"},
+         "buffers[1].uri: the data URI holds 4 bytes but byteLength says 5"},
         {"base64_length_multiple_of_4", gltf(floatingQuad, dataUri("AAAAAA==", "AAAAAA=", 4)),
          "buffers[1].uri: data URI has malformed base64"},
         {"base64_padding_from_third_character", gltf(floatingQuad, dataUri("AA==", "A===", 1)),

@@ -73,6 +73,18 @@ void checkUri(const std::filesystem::path& file, const std::string& path, const 
                                             c == '\0' ? std::string("\\0") : std::string(1, c)));
 }
 
+// A buffer's data URI decodes to exactly its byteLength (the validator's
+// BUFFER_EMBEDDED_BYTELENGTH_MISMATCH); checkUri has checked the base64.
+void dataUriHoldsByteLength(const std::filesystem::path& file, const std::string& path,
+                            const std::string& uri, const nlohmann::json& byteLength) {
+    std::vector<uint8_t> bytes;
+    decodeBase64(std::string_view(uri).substr(uri.find(',') + 1), bytes);
+    if (!byteLength.is_number_integer() || byteLength.get<int64_t>() < 0 ||
+        bytes.size() != byteLength.get<uint64_t>())
+        refuse(file, fmt::format("{}: the data URI holds {} bytes but byteLength says {}", path,
+                                 bytes.size(), byteLength.dump()));
+}
+
 // An index field: must be an integer naming an element of `target` (the JSON path says where).
 void checkIndex(const std::filesystem::path& file, const nlohmann::json& j, const std::string& path,
                 const nlohmann::json& value, const char* target) {
@@ -515,6 +527,8 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
                     refuse(file, path + ": not a string");
                 const std::string uri = item["uri"];
                 checkUri(file, path, uri);
+                if (std::string_view(array) == "buffers" && uri.rfind("data:", 0) == 0)
+                    dataUriHoldsByteLength(file, path, uri, item["byteLength"]);
                 // (A missing image is refused by readTextures, only when a material uses it.)
                 if (std::string_view(array) == "buffers" && uri.rfind("data:", 0) != 0 &&
                     !std::filesystem::is_regular_file(file.parent_path() / *percentDecode(uri)))

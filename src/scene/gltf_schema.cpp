@@ -113,6 +113,15 @@ void checkRequiredProperties(const std::filesystem::path& file, const nlohmann::
                   {"min", Kind::Array, false},
                   {"max", Kind::Array, false},
                   {"sparse", Kind::Object, false}});
+        const int componentType = a["componentType"].get<int>();
+        if (componentType != 5120 && componentType != 5121 && componentType != 5122 &&
+            componentType != 5123 && componentType != 5125 && componentType != 5126)
+            s.refuse(fmt::format("{}.componentType: {} is not a glTF component type", path,
+                                 componentType));
+        const std::string type = a["type"];
+        if (type != "SCALAR" && type != "VEC2" && type != "VEC3" && type != "VEC4" &&
+            type != "MAT2" && type != "MAT3" && type != "MAT4")
+            s.refuse(fmt::format("{}.type: '{}' is not a glTF accessor type", path, type));
         if (!a.contains("sparse"))
             return;
         const auto& sparse = a["sparse"];
@@ -132,7 +141,12 @@ void checkRequiredProperties(const std::filesystem::path& file, const nlohmann::
                  {{"buffer", Kind::Integer, true},
                   {"byteLength", Kind::Integer, true},
                   {"byteOffset", Kind::Integer, false},
-                  {"byteStride", Kind::Integer, false}});
+                  {"byteStride", Kind::Integer, false},
+                  {"target", Kind::Integer, false}});
+        if (v.contains("target") && v["target"] != 34962 && v["target"] != 34963)
+            s.refuse(fmt::format("{}.target: {} is not ARRAY_BUFFER (34962) or "
+                                 "ELEMENT_ARRAY_BUFFER (34963)",
+                                 path, v["target"].dump()));
     });
     s.each("", j, "buffers", [&](const std::string& path, const nlohmann::json& b) {
         s.object(path, b, {{"byteLength", Kind::Integer, true}, {"uri", Kind::String, false}});
