@@ -272,7 +272,7 @@ std::vector<Malformed> malformedAssets() {
              b.j["accessors"][0]["bufferView"] =
                  b.view(std::vector<float>{-5, 0, -5, nan, 0, -5, 5, 0, 5, -5, 0, 5});
          }),
-         "POSITION contains NaN or infinity"},
+         "attributes.POSITION: element 1 is NaN or infinite"},
         {"missing_position", // the spec: skip the primitive; it was the only one
          edit([](GltfBuilder& b) {
              b.j["meshes"][0]["primitives"][0]["attributes"] = {{"NORMAL", 0}};

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <limits>
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -185,6 +186,8 @@ INSTANTIATE_TEST_SUITE_P(
                                        {{"baseColorTexture", {{"index", 0}}},
                                         {"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}}};
                  b.j["meshes"][0]["primitives"][0]["material"] = 0;
+                 b.j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = b.accessor(
+                     b.view(std::vector<float>{0, 0, 1, 0, 1, 1, 0, 1}), 5126, 4, "VEC2");
              }),
              "images[0]: KTX2 (KHR_texture_basisu) is not decoded here"}),
     [](const auto& row) { return std::string(row.param.name); });
@@ -308,6 +311,63 @@ INSTANTIATE_TEST_SUITE_P(
                  b.j["nodes"][0]["extensions"] = {{"KHR_texture_transform", "Not an object"}};
              }),
              "nodes[0].extensions.KHR_texture_transform: wrong JSON type (an object is expected)"},
+        Case{"normal_not_unit_length", gltf([](GltfBuilder& b) {
+                 const std::vector<float> n = {0, 1, 0, 0, 1, 0, 0, 1.1f, 0, 0, 1, 0};
+                 b.j["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
+                     b.accessor(b.view(n), 5126, 4, "VEC3");
+             }),
+             "meshes[0].primitives[0].attributes.NORMAL: normal 2 has length 1.1, not 1"},
+        Case{"texture_coordinate_not_finite", gltf([](GltfBuilder& b) {
+                 const float inf = std::numeric_limits<float>::infinity();
+                 const std::vector<float> uv = {0, 0, 1, 0, inf, 1, 0, 1};
+                 b.j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] =
+                     b.accessor(b.view(uv), 5126, 4, "VEC2");
+             }),
+             "attributes.TEXCOORD_0: element 2 is NaN or infinite"},
+        Case{"texcoord_set_missing", gltf([](GltfBuilder& b) {
+                 b.j["images"] = {{{"uri", "data:image/png;base64,AAAA"}}};
+                 b.j["textures"] = {{{"source", 0}}};
+                 b.j["materials"] = {{{"normalTexture", {{"index", 0}, {"texCoord", 1}}}}};
+                 b.j["meshes"][0]["primitives"][0]["material"] = 0;
+             }),
+             "meshes[0].primitives[0].attributes: no TEXCOORD_1 for materials[0].normalTexture"},
+        Case{"shared_vertex_view_without_stride", gltf([](GltfBuilder& b) {
+                 b.j["accessors"].push_back(b.j["accessors"][0]);
+                 b.j["accessors"].back().erase("min");
+                 b.j["accessors"].back().erase("max");
+                 b.j["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] =
+                     b.j["accessors"].size() - 1;
+             }),
+             "bufferViews[0].byteStride: required: 2 vertex accessors share the view"},
+        Case{"index_view_with_stride", gltf([](GltfBuilder& b) {
+                 const std::vector<uint16_t> strided = {0, 0, 2, 0, 1, 0, 0, 0, 3, 0, 2, 0};
+                 b.j["accessors"][1]["bufferView"] = b.view(strided, 4);
+             }),
+             "meshes[0].primitives[0].indices: its bufferView must not have a byteStride"},
+        Case{"accessor_misaligned_in_its_buffer", gltf([](GltfBuilder& b) {
+                 b.bin.insert(b.bin.begin(), 2, 0); // every view moves by 2 bytes
+                 for (auto& v : b.j["bufferViews"])
+                     v["byteOffset"] = v.value("byteOffset", 0) + 2;
+             }),
+             "accessors[0]: starts at buffer byte 2, not a multiple of its component size 4"},
+        Case{"sparse_indices_not_increasing", gltf([](GltfBuilder& b) {
+                 const std::vector<float> xyz = {-5, 0, -5, 5, 0, -5};
+                 b.j["accessors"][0]["sparse"] = {
+                     {"count", 2},
+                     {"indices",
+                      {{"bufferView", b.view(std::vector<uint8_t>{1, 1})},
+                       {"componentType", 5121}}},
+                     {"values", {{"bufferView", b.view(xyz)}}}};
+             }),
+             "accessors[0].sparse.indices[1]: 1 does not follow 1"},
+        Case{"translation_of_two_numbers", gltf([](GltfBuilder& b) {
+                 b.j["nodes"][0]["translation"] = {1, 2};
+             }),
+             "nodes[0].translation: needs 3 numbers"},
+        Case{"matrix_with_a_projection", gltf([](GltfBuilder& b) {
+                 b.j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5, 0, 0, 0, 1};
+             }),
+             "nodes[0].matrix: is not a translation, rotation and scale"},
         Case{"view_past_a_placeholder_chunk", glb([](GltfBuilder& b) {
                  b.j["buffers"] = J::array({{{"byteLength", 4096}}});
                  b.j["bufferViews"][1]["byteOffset"] = 4000;

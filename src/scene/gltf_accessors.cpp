@@ -84,16 +84,15 @@ std::vector<float> readFloats(const tinygltf::Model& m, int index) {
     return out;
 }
 
-std::vector<double> readRawComponents(const tinygltf::Model& m, int index) {
+void visitRawComponents(const tinygltf::Model& m, int index,
+                        const std::function<void(size_t, size_t, double)>& visit) {
     const tinygltf::Accessor& a = m.accessors[index];
     const int n = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(a.type));
     const int size = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
-    std::vector<double> out(a.count * static_cast<size_t>(n), 0.0);
     forEachElement(m, index, [&](size_t i, const uint8_t* p) {
         for (int c = 0; c < n; ++c)
-            out[i * n + c] = component(p + c * size, a.componentType, false);
+            visit(i, static_cast<size_t>(c), component(p + c * size, a.componentType, false));
     });
-    return out;
 }
 
 std::vector<uint32_t> readIndices(const tinygltf::Model& m, int index) {

@@ -5,6 +5,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace penumbra::gltf {
@@ -12,7 +13,10 @@ namespace penumbra::gltf {
 // count x components floats.
 std::vector<float> readFloats(const tinygltf::Model& model, int accessor);
 std::vector<uint32_t> readIndices(const tinygltf::Model& model, int accessor);
-// count x components values as stored (normalized integers not scaled): what min and max bound.
-std::vector<double> readRawComponents(const tinygltf::Model& model, int accessor);
+// The values as stored (normalized integers not scaled: what min and max bound), one by one
+// without allocating: (element, component, value) for the elements that have data (an accessor
+// without a bufferView: only its sparse ones; the rest are zeros).
+void visitRawComponents(const tinygltf::Model& model, int accessor,
+                        const std::function<void(size_t, size_t, double)>& visit);
 
 } // namespace penumbra::gltf

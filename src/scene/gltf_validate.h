@@ -38,6 +38,11 @@ private:
 void checkSchemaValues(const std::filesystem::path& file, const tinygltf::Model& model,
                        OnceWarnings& once);
 
+// Data errors in what is drawn: non-finite attributes, non-unit normals, sparse index order,
+// accessor alignment, strides of shared and index views, missing TEXCOORD sets, node transform
+// shapes (gltf_mesh_checks.cpp).
+void checkMeshData(const std::filesystem::path& file, const tinygltf::Model& model);
+
 // Animations, skins, camera aspect ratios, material extensions (gltf_unused.cpp).
 void reportUnusedParts(const tinygltf::Model& model, OnceWarnings& once);
 
