@@ -312,11 +312,11 @@ INSTANTIATE_TEST_SUITE_P(
              }),
              "nodes[0].extensions.KHR_texture_transform: wrong JSON type (an object is expected)"},
         Case{"normal_not_unit_length", gltf([](GltfBuilder& b) {
-                 const std::vector<float> n = {0, 1, 0, 0, 1, 0, 0, 1.1f, 0, 0, 1, 0};
+                 const std::vector<float> n = {0, 1, 0, 0, 1, 0, 0, 1.01f, 0, 0, 1, 0};
                  b.j["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] =
                      b.accessor(b.view(n), 5126, 4, "VEC3");
              }),
-             "meshes[0].primitives[0].attributes.NORMAL: normal 2 has length 1.1, not 1"},
+             "meshes[0].primitives[0].attributes.NORMAL: normal 2 has length 1.01, not 1"},
         Case{"texture_coordinate_not_finite", gltf([](GltfBuilder& b) {
                  const float inf = std::numeric_limits<float>::infinity();
                  const std::vector<float> uv = {0, 0, 1, 0, inf, 1, 0, 1};
