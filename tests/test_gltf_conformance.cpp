@@ -368,6 +368,9 @@ INSTANTIATE_TEST_SUITE_P(
                  b.j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0.5, 0, 0, 0, 1};
              }),
              "nodes[0].matrix: is not a translation, rotation and scale"},
+        Case{"only_lines", // valid, and nothing to draw: said so
+             gltf([](GltfBuilder& b) { b.j["meshes"][0]["primitives"][0]["mode"] = 1; }),
+             "the default scene has no triangles, only points or lines"},
         Case{"view_past_a_placeholder_chunk", glb([](GltfBuilder& b) {
                  b.j["buffers"] = J::array({{{"byteLength", 4096}}});
                  b.j["bufferViews"][1]["byteOffset"] = 4000;

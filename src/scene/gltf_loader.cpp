@@ -118,6 +118,7 @@ struct Flattener {
     const GltfOptions& options;
     std::vector<int> texCoordSet; // per material: the TEXCOORD_n its base-colour texture reads
     uint32_t defaultMaterial = 0; // for primitives without one
+    size_t skippedPointsOrLines = 0;
 
     void warn(const std::string& w) const {
         if (options.warnings)
@@ -130,6 +131,7 @@ struct Flattener {
         if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
             warn(fmt::format("meshes[{}]: a primitive of points or lines is skipped", meshIndex));
+            ++skippedPointsOrLines;
             return;
         }
         // The caps come first, from the accessors' counts: an accessor without a bufferView
@@ -398,7 +400,11 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
         flat.walk(model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes);
     dropInvalidTriangles(scene);
     if (scene.triangleCount() == 0)
-        throw InputError(file.string(), "the default scene has no triangles");
+        throw InputError(file.string(),
+                         flat.skippedPointsOrLines
+                             ? "the default scene has no triangles, only points or lines: "
+                               "nothing in it would cast or receive a shadow"
+                             : "the default scene has no triangles");
     // Stand-ins that suit interiors as well as objects (scene/interior.h has the rule).
     if (scene.lights.empty()) {
         scene.lights.push_back(defaultLightFor(scene));
