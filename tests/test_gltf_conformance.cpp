@@ -148,6 +148,11 @@ INSTANTIATE_TEST_SUITE_P(
                      {"values", {{"bufferView", values}}}};
              }),
              ""},
+        Case{"unused_image_with_a_name_too_long", // never read: no file-system error (fuzzer)
+             gltf([](GltfBuilder& b) {
+                 b.j["images"] = {{{"uri", std::string(5000, 'b') + ".png"}}};
+             }),
+             ""},
         Case{"glb_with_trailing_bytes", // after its chunks, inside the header's length
              glb([](GltfBuilder&) {},
                  [](std::vector<uint8_t>& v) {
@@ -247,6 +252,12 @@ INSTANTIATE_TEST_SUITE_P(
                  b.j["buffers"] = J::array({J::object(), {{"byteLength", 4}}});
              }),
              "buffers[1].uri: missing (only a GLB's first buffer"},
+        Case{"buffer_file_name_too_long", // ENAMETOOLONG: refused, not thrown (fuzzer)
+             gltf([](GltfBuilder& b) {
+                 b.j["buffers"] =
+                     J::array({J::object(), {{"byteLength", 4}, {"uri", std::string(5000, 'a')}}});
+             }),
+             "buffers[1].uri: 'aaaa"},
         Case{"buffer_file_missing", gltf([](GltfBuilder& b) {
                  b.j["buffers"] = J::array({J::object(), {{"byteLength", 4}, {"uri", "gone.bin"}}});
              }),

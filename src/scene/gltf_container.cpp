@@ -529,9 +529,11 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
                 checkUri(file, path, uri);
                 if (std::string_view(array) == "buffers" && uri.rfind("data:", 0) == 0)
                     dataUriHoldsByteLength(file, path, uri, item["byteLength"]);
-                // (A missing image is refused by readTextures, only when a material uses it.)
+                // (A missing image is refused by readTextures, only when a material uses it.
+                // A name the file system cannot hold is a missing file, not a throw.)
+                std::error_code ec;
                 if (std::string_view(array) == "buffers" && uri.rfind("data:", 0) != 0 &&
-                    !std::filesystem::is_regular_file(file.parent_path() / *percentDecode(uri)))
+                    !std::filesystem::is_regular_file(file.parent_path() / *percentDecode(uri), ec))
                     refuse(file, fmt::format("{}: '{}' is not a file beside the asset", path, uri));
             } else if (std::string_view(array) == "buffers" && (!container.binary || i > 0) &&
                        !meshoptFallback(item)) {

@@ -43,7 +43,8 @@ bool insideFolder(const std::string& path, const FsPolicy& policy) {
 
 bool fileExists(const std::string& path, void* user) {
     const auto& policy = *static_cast<const FsPolicy*>(user);
-    return insideFolder(path, policy) && std::filesystem::is_regular_file(path);
+    std::error_code ec; // a name too long for the file system is a missing file, not a throw
+    return insideFolder(path, policy) && std::filesystem::is_regular_file(path, ec);
 }
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
