@@ -26,6 +26,9 @@ struct MeshoptView {
     std::string mode, filter; // "ATTRIBUTES", "TRIANGLES", "INDICES"; "NONE", "OCTAHEDRAL", ...
 };
 
+// A buffer marked as EXT_meshopt_compression's fallback: it holds no data (and needs no URI).
+bool isMeshoptFallback(const nlohmann::json& buffer);
+
 // JSON stage (after checkJson): checks each EXT_meshopt_compression view's fields by JSON path
 // and points the view at its compressed bytes; empties fallback buffers (no view may read them).
 std::vector<MeshoptView> prepareMeshopt(const std::filesystem::path& file, nlohmann::json& json,

@@ -1,6 +1,7 @@
 #include "scene/gltf_container.h"
 
 #include "penumbra/error.h"
+#include "scene/gltf_compression.h"
 
 #include <fmt/format.h>
 
@@ -227,16 +228,6 @@ void checkReferences(const std::filesystem::path& file, const nlohmann::json& j)
     });
 }
 
-// EXT_meshopt_compression's fallback buffer: no data, so no URI (prepareMeshopt stands it in).
-bool meshoptFallback(const nlohmann::json& buffer) {
-    return buffer.is_object() && buffer.contains("extensions") &&
-           buffer["extensions"].is_object() &&
-           buffer["extensions"].contains("EXT_meshopt_compression") &&
-           buffer["extensions"]["EXT_meshopt_compression"].is_object() &&
-           buffer["extensions"]["EXT_meshopt_compression"].contains("fallback") &&
-           buffer["extensions"]["EXT_meshopt_compression"]["fallback"] == true;
-}
-
 // JSON Schema's "integer" admits 1.0; the parser wants an integer. A float that is a whole
 // number inside +-2^53 becomes one (a float field reads an integer just as well).
 // (Iterative, as every walk of the whole document here: a hostile file nests arrays as deep as
@@ -258,25 +249,30 @@ void integralNumbersAsIntegers(nlohmann::json& root) {
     }
 }
 
+// extensionsUsed or extensionsRequired as a set of names: an array of strings, else refused.
+std::set<std::string> extensionList(const std::filesystem::path& file, const nlohmann::json& j,
+                                    const char* key) {
+    std::set<std::string> names;
+    if (!j.contains(key))
+        return names;
+    if (!j[key].is_array())
+        refuse(file, std::string(key) + ": not an array");
+    for (const auto& e : j[key]) {
+        if (!e.is_string())
+            refuse(file, std::string(key) + ": not a string");
+        names.insert(e.get<std::string>());
+    }
+    return names;
+}
+
 // Every extension an object carries is declared in extensionsUsed, and every required one is
 // among them (the validator's UNDECLARED_EXTENSION and its required twin). Extras are the
 // user's: not walked.
 void checkDeclaredExtensions(const std::filesystem::path& file, const nlohmann::json& root) {
-    std::set<std::string> used;
-    if (root.contains("extensionsUsed")) {
-        if (!root["extensionsUsed"].is_array())
-            refuse(file, "extensionsUsed: not an array");
-        for (const auto& e : root["extensionsUsed"]) {
-            if (!e.is_string())
-                refuse(file, "extensionsUsed: not a string");
-            used.insert(e.get<std::string>());
-        }
-    }
-    if (root.contains("extensionsRequired"))
-        for (const auto& e : root["extensionsRequired"]) // strings: checkJson checked them
-            if (!used.contains(e.get<std::string>()))
-                refuse(file, fmt::format("extensionsRequired: '{}' is not in extensionsUsed",
-                                         e.get<std::string>()));
+    const std::set<std::string> used = extensionList(file, root, "extensionsUsed");
+    for (const std::string& name : extensionList(file, root, "extensionsRequired"))
+        if (!used.contains(name))
+            refuse(file, fmt::format("extensionsRequired: '{}' is not in extensionsUsed", name));
     std::vector<std::pair<const nlohmann::json*, std::string>> pending{{&root, ""}};
     while (!pending.empty()) {
         const auto [j, path] = pending.back();
@@ -498,18 +494,10 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
     const std::string version = j["asset"]["version"];
     if (version.rfind("2.", 0) != 0)
         refuse(file, "asset.version: '" + version + "' is not supported (glTF 2.x is)");
-    if (j.contains("extensionsRequired")) {
-        if (!j["extensionsRequired"].is_array())
-            refuse(file, "extensionsRequired: not an array");
-        for (const auto& e : j["extensionsRequired"]) {
-            if (!e.is_string())
-                refuse(file, "extensionsRequired: not a string");
-            const std::string name = e;
-            if (std::find(kSupportedRequired.begin(), kSupportedRequired.end(), name) ==
-                kSupportedRequired.end())
-                refuse(file, "extensionsRequired: '" + name + "' is not supported");
-        }
-    }
+    for (const std::string& name : extensionList(file, j, "extensionsRequired"))
+        if (std::find(kSupportedRequired.begin(), kSupportedRequired.end(), name) ==
+            kSupportedRequired.end())
+            refuse(file, "extensionsRequired: '" + name + "' is not supported");
     glbBufferWithinItsChunk(file, container, j, warnings);
     checkDeclaredExtensions(file, j);
     checkRequiredProperties(file, j);
@@ -536,7 +524,7 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
                     !std::filesystem::is_regular_file(file.parent_path() / *percentDecode(uri), ec))
                     refuse(file, fmt::format("{}: '{}' is not a file beside the asset", path, uri));
             } else if (std::string_view(array) == "buffers" && (!container.binary || i > 0) &&
-                       !meshoptFallback(item)) {
+                       !isMeshoptFallback(item)) {
                 refuse(file, path + ": missing (only a GLB's first buffer, its BIN chunk, may "
                                     "leave it out)");
             }

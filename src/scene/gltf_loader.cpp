@@ -149,11 +149,7 @@ struct Flattener {
                                          "after instancing (--max-triangles raises the cap)",
                                          meshIndex, options.maxTriangles));
         const std::vector<float> pos = readFloats(m, p.attributes.at("POSITION"));
-        for (float v : pos)
-            if (!std::isfinite(v))
-                throw InputError(file.string(), fmt::format("meshes[{}]: POSITION contains NaN or "
-                                                            "infinity",
-                                                            meshIndex));
+        // (validateModel refused non-finite attribute values.)
         std::vector<uint32_t> idx;
         if (p.indices >= 0) {
             idx = readIndices(m, p.indices);
@@ -241,12 +237,7 @@ struct Flattener {
         if (a == p.attributes.end())
             return {};
         std::vector<float> values = readFloats(m, a->second);
-        if (values.size() != count * size)
-            return {};
-        for (float& v : values)
-            if (!std::isfinite(v))
-                v = 0.0f;
-        return values;
+        return values.size() == count * size ? values : std::vector<float>{};
     }
 
     void node(const tinygltf::Node& n, const glm::mat4& world) {

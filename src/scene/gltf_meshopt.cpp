@@ -26,11 +26,6 @@ const nlohmann::json* extensionOf(const nlohmann::json& owner) {
     return &owner["extensions"][kMeshopt];
 }
 
-bool isFallback(const nlohmann::json& buffer) {
-    const nlohmann::json* e = extensionOf(buffer);
-    return e && e->is_object() && e->contains("fallback") && (*e)["fallback"] == true;
-}
-
 std::optional<uint64_t> unsignedField(const std::filesystem::path& file, const std::string& path,
                                       const nlohmann::json& o, const char* key, bool required) {
     if (!o.contains(key)) {
@@ -68,6 +63,11 @@ void checkLayout(const std::filesystem::path& file, const std::string& path, con
 
 } // namespace
 
+bool isMeshoptFallback(const nlohmann::json& buffer) {
+    const nlohmann::json* e = extensionOf(buffer);
+    return e && e->is_object() && e->contains("fallback") && (*e)["fallback"] == true;
+}
+
 std::vector<MeshoptView> prepareMeshopt(const std::filesystem::path& file, nlohmann::json& j,
                                         uint64_t maxDecodedBytes) {
     std::vector<MeshoptView> out;
@@ -81,7 +81,7 @@ std::vector<MeshoptView> prepareMeshopt(const std::filesystem::path& file, nlohm
         const nlohmann::json* e = extensionOf(view);
         if (!e) {
             // checkReferences has checked view.buffer's index.
-            if (isFallback(buffers[view["buffer"].get<size_t>()]))
+            if (isMeshoptFallback(buffers[view["buffer"].get<size_t>()]))
                 refuse(file, fmt::format("{}.buffer: buffer {} is a meshopt fallback and holds "
                                          "no data",
                                          viewPath, view["buffer"].dump()));
@@ -91,7 +91,7 @@ std::vector<MeshoptView> prepareMeshopt(const std::filesystem::path& file, nlohm
         if (!e->is_object())
             refuse(file, path + ": not an object");
         const uint64_t buffer = *unsignedField(file, path, *e, "buffer", true);
-        if (buffer >= buffers.size() || isFallback(buffers[buffer]))
+        if (buffer >= buffers.size() || isMeshoptFallback(buffers[buffer]))
             refuse(file, fmt::format("{}.buffer: {} is not a buffer with data", path, buffer));
         const uint64_t offset = unsignedField(file, path, *e, "byteOffset", false).value_or(0);
         const uint64_t length = *unsignedField(file, path, *e, "byteLength", true);
@@ -123,7 +123,7 @@ std::vector<MeshoptView> prepareMeshopt(const std::filesystem::path& file, nlohm
         out.push_back(std::move(v));
     }
     for (auto& buffer : buffers)
-        if (isFallback(buffer)) // no view reads it now: a one-byte stand-in for the parser
+        if (isMeshoptFallback(buffer)) // no view reads it now: a one-byte stand-in for the parser
             buffer = {{"byteLength", 1}, {"uri", "data:application/octet-stream;base64,AA=="}};
     return out;
 }
