@@ -31,6 +31,8 @@ void main() {
     r.uvDy = probe.footprint.zw;
     r.layer = 0.0;
     r.kernelScale = 1.0;
+    r.curve = probe.adaptive.xy;
+    r.planeRange = probe.adaptive.zw;
     results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, shadowTable, r,
                                    push.counts.y, view, uvec2(probe.gradientPixel.zw));
 }

@@ -19,6 +19,7 @@ layout(constant_id = SPEC_LIGHT_VIEWS) const uint LIGHT_VIEWS = 1u;
 // G-buffer, and the pixel's position and normal are reconstructed once.
 layout(constant_id = SPEC_FUSED_COMPOSITE) const bool FUSED_COMPOSITE = false;
 layout(constant_id = SPEC_CASCADE_BLEND) const bool CASCADE_BLEND = true;
+layout(constant_id = SPEC_ADAPTIVE_BIAS) const bool ADAPTIVE = false;
 #include "gbuffer.glsl"
 #include "filter_math.h"
 #include "shadow_common.glsl"
@@ -76,6 +77,45 @@ vec3 neighbourOffset(mat4 S, ivec2 p, ivec2 step, vec3 centre, float depth) {
 // Zero unless the technique reads a mip chain (vsm.filter=mip).
 vec3 footprintDx = vec3(0.0), footprintDy = vec3(0.0);
 
+// bias.mode=adaptive: the pixel's own triangle's normal and how fast its surface's shading
+// normal turns (radians per world unit), set by main.
+vec3 receiverFace = vec3(0.0);
+float receiverCurvature = 0.0;
+
+// The shading normal's turn per world unit towards the neighbour along each axis on the side
+// nearer in depth (the one likely on the same surface), the larger of the two axes.
+float surfaceCurvature(ivec2 p, float depth, vec3 world, vec3 normal) {
+    uvec2 size = frame.imageSize.xy;
+    float curvature = 0.0;
+    for (int axis = 0; axis < 2; ++axis) {
+        ivec2 step = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+        float bestGap = 1e30, turn = 0.0;
+        for (int side = -1; side <= 1; side += 2) {
+            ivec2 q = p + side * step;
+            if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), size))) continue;
+            float d = texelFetch(gDepth, q, 0).r;
+            if (isBackground(d) || abs(d - depth) >= bestGap) continue;
+            bestGap = abs(d - depth);
+            vec3 along = worldPosition(frame.invViewProj, q, size, d) - world;
+            vec3 bend = shadingNormal(texelFetch(gNormal, q, 0)) - normal;
+            turn = length(bend) / max(length(along), 1e-20);
+        }
+        curvature = max(curvature, turn);
+    }
+    return curvature;
+}
+
+// bias.mode=adaptive's terms at a receiver of `view` (filter_math.h, adaptiveBiasTerms): the
+// lift comes off its depth; the curvature terms go with it to every tap.
+void applyAdaptiveBias(inout Receiver r, float texelWorld, float depthPerWorld, float cosine) {
+    vec4 t = adaptiveBiasTerms(texelWorld, float(push.light.z), depthPerWorld, cosine,
+                               receiverCurvature, frame.biasParams.z, frame.biasParams.w,
+                               length(r.gradient));
+    r.depth -= t.x;
+    r.curve = t.yz;
+    r.planeRange = vec2(-1e30, t.w);
+}
+
 // The ray through pixel q (from its point on the near plane, reverse-Z depth 1, through its
 // point at `depth`) meeting the plane through `world` with normal `face`; the point at `depth`
 // when the plane is seen edge-on.
@@ -110,7 +150,18 @@ Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world,
     vec4 footprint = TECHNIQUE == TECHNIQUE_VSM ? uvFootprint(view, world) : vec4(0.0);
     r.uvDx = footprint.xy;
     r.uvDy = footprint.zw;
-    if (RECEIVER == RECEIVER_LIGHT) {
+    noAdaptiveTerms(r);
+    if (ADAPTIVE) {
+        // [Dou et al. 2014]: the tangent plane of the pixel's own triangle, the one the map
+        // rasterized; the smooth normal would tilt it off the stored depths.
+        r.gradient = receiverGradientFromNormal(view.shadowMatrix, world, receiverFace);
+        vec3 toLight = directionToLight(light, world);
+        float texelWorld = view.texel.x;
+        if (view.texel.y > 0.5) texelWorld *= max((view.shadowMatrix * vec4(world, 1.0)).w, 0.0);
+        applyAdaptiveBias(r, texelWorld,
+                          abs(dot(lightDepthGradient(view.shadowMatrix, world), toLight)),
+                          dot(receiverFace, toLight));
+    } else if (RECEIVER == RECEIVER_LIGHT) {
         r.gradient = receiverGradientFromNormal(view.shadowMatrix, world, normal);
     } else if (RECEIVER == RECEIVER_SCREEN) {
         vec4 s = view.shadowMatrix * vec4(world, 1.0);
@@ -134,6 +185,7 @@ struct CascadeBase {
     float depthAlong;  // ... and its change per world unit of offset
     vec2 gradient;     // the receiver plane's d depth / d uv in the first cascade
     vec4 footprint;    // the pixel's uv footprint in the first cascade (vsm.filter=mip)
+    float depthPerWorld, cosine; // bias.mode=adaptive: shared by every cascade
 };
 
 CascadeBase cascadeBase(LightData light, ivec2 p, vec3 world, vec3 normal, float depth) {
@@ -148,6 +200,10 @@ CascadeBase cascadeBase(LightData light, ivec2 p, vec3 world, vec3 normal, float
     Receiver r = makeReceiver(light, first, p, world, normal, depth, inside);
     b.gradient = r.gradient;
     b.footprint = vec4(r.uvDx, r.uvDy);
+    vec3 toLight = directionToLight(light, world);
+    b.depthPerWorld = ADAPTIVE ? abs(dot(lightDepthGradient(first.shadowMatrix, world), toLight))
+                               : 0.0;
+    b.cosine = dot(receiverFace, toLight);
     return b;
 }
 
@@ -162,6 +218,8 @@ Receiver cascadeReceiver(CascadeBase b, ShadowViewData view, out bool inside) {
     r.kernelScale = view.cascade.z;
     r.uvDx = b.footprint.xy * view.fromFirst.xy;
     r.uvDy = b.footprint.zw * view.fromFirst.xy;
+    noAdaptiveTerms(r);
+    if (ADAPTIVE) applyAdaptiveBias(r, view.texel.x, b.depthPerWorld, b.cosine);
     return r;
 }
 
@@ -284,6 +342,10 @@ void main() {
             vec3 face = faceNormal(normals);
             footprintDx = onReceiverPlane(p + ivec2(1, 0), depth, world, face) - world;
             footprintDy = onReceiverPlane(p + ivec2(0, 1), depth, world, face) - world;
+        }
+        if (ADAPTIVE) {
+            receiverFace = faceNormal(normals);
+            receiverCurvature = surfaceCurvature(p, depth, world, normal);
         }
         LightData light = lights[push.light.x];
         uint k = lightViewOf(light, world);

@@ -18,4 +18,11 @@ inline std::filesystem::path scratchDir(const std::string& suite, const std::str
     return d;
 }
 
+// A path for an output folder the CLI creates: its parent exists, the folder itself does not.
+inline std::filesystem::path outputScratch(const std::string& name) {
+    const std::filesystem::path p = scratchDir("test", name, true);
+    std::filesystem::remove(p);
+    return p;
+}
+
 } // namespace penumbra::test

@@ -24,11 +24,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// A path for an output folder the CLI creates: its parent exists, the folder itself does not.
 fs::path scratch(const std::string& name) {
-    const fs::path p = scratchDir("test", name, true);
-    fs::remove(p);
-    return p;
+    return outputScratch(name);
 }
 
 // The file-name prefix compare gives a row: "pcf[box7]" is written "pcf-box7".

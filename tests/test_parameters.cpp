@@ -247,9 +247,15 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     poisson.assign("pcf.filter=poisson");
     poisson.assign("pcf.radius=6");
     const auto pcf = shadows::visibilityConstants(shadows::pcfModule(), poisson);
-    ASSERT_EQ(pcf.size(), 5u);
-    EXPECT_EQ(pcf[4].id, uint32_t{SPEC_FILTER});
-    EXPECT_EQ(pcf[4].value, uint32_t{FILTER_POISSON});
+    ASSERT_EQ(pcf.size(), 6u);
+    EXPECT_EQ(pcf[4].id, uint32_t{SPEC_ADAPTIVE_BIAS}); // every technique's: bias.mode
+    EXPECT_EQ(pcf[4].value, ParameterValues().number("bias.mode") == BIAS_ADAPTIVE ? 1u : 0u);
+    EXPECT_EQ(pcf[5].id, uint32_t{SPEC_FILTER});
+    EXPECT_EQ(pcf[5].value, uint32_t{FILTER_POISSON});
+    poisson.assign("bias.mode=adaptive");
+    EXPECT_EQ(shadows::visibilityConstants(shadows::pcfModule(), poisson)[4].value, 1u);
+    poisson.assign("bias.mode=fixed");
+    EXPECT_EQ(shadows::visibilityConstants(shadows::pcfModule(), poisson)[4].value, 0u);
     // Blur radii: how far from the receiver the last texel a kernel reads lies (a bilinear tap
     // reaches one texel past its position).
     EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(poisson), 7.0);
@@ -260,7 +266,7 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(box), 1.0);
     EXPECT_EQ(shadows::pcssModule().blurRadiusTexels(box), 41.0); // pcss.maxRadius 40
     EXPECT_EQ(shadows::hardModule().blurRadiusTexels(box), 0.5);
-    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 4u);
+    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 5u);
     // The summed-area members' memory: two RG32UI maps (savsm, vssm) or two RGBA32UI maps
     // (msm-soft) beside the depth; their fixed-point scales keep the widest box exact.
     EXPECT_EQ(shadows::shadowMapBytes(shadows::vssmModule(), 16, defaults), (4u + 16u) * 16 * 16);

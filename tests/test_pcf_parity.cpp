@@ -36,7 +36,10 @@ std::vector<float> syntheticMap(uint32_t seed) {
     return depth;
 }
 
-std::vector<FilterProbe> syntheticProbes(uint32_t seed, bool withGradient) {
+// withAdaptive: bias.mode=adaptive's per-tap terms too (a curvature lift of up to ~3e-3 light
+// depth a few texels out, and a reach that clamps the plane's correction).
+std::vector<FilterProbe> syntheticProbes(uint32_t seed, bool withGradient,
+                                         bool withAdaptive = false) {
     std::mt19937 engine(seed);
     auto rng = [&] { return static_cast<uint32_t>(engine()); };
     auto unit = [&] { return float(rng() >> 8) / 16777216.0f; };
@@ -48,6 +51,10 @@ std::vector<FilterProbe> syntheticProbes(uint32_t seed, bool withGradient) {
         if (withGradient)
             p.gradient = {unit() - 0.5f, unit() - 0.5f};
         p.pixel = {rng() % 1920, rng() % 1080};
+        if (withAdaptive) {
+            p.curve = {60.0f * unit(), 0.5f * unit()};
+            p.planeRange = {-1e30f, 0.02f * unit()};
+        }
     }
     return probes;
 }
@@ -59,10 +66,13 @@ struct Variant {
 };
 
 std::vector<Variant> everyVariant() {
-    std::vector<Variant> v{{"hard", Technique::Hard, {}},
-                           {"second-depth", Technique::SecondDepth, {}},
-                           {"bilinear", Technique::Pcf, {"pcf.filter=bilinear"}},
-                           {"hardware", Technique::Pcf, {"pcf.filter=hardware"}}};
+    std::vector<Variant> v{
+        {"hard", Technique::Hard, {}},
+        {"second-depth", Technique::SecondDepth, {}},
+        {"bilinear", Technique::Pcf, {"pcf.filter=bilinear"}},
+        {"hardware", Technique::Pcf, {"pcf.filter=hardware"}},
+        // Adaptive bias lifts the hardware tap's one reference depth.
+        {"hardware-adaptive", Technique::Pcf, {"pcf.filter=hardware", "bias.mode=adaptive"}}};
     for (int n = 3; n <= 15; n += 2) {
         v.push_back({"box" + std::to_string(n),
                      Technique::Pcf,
@@ -95,8 +105,10 @@ TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
     const DeviceInfo& device = sharedRenderer().device();
     const std::vector<float> depth = syntheticMap(11);
     const ShadowMapView map{depth, kMapSize};
-    for (bool gradient : {false, true}) {
-        const std::vector<FilterProbe> probes = syntheticProbes(gradient ? 5 : 3, gradient);
+    for (int kind = 0; kind < 3; ++kind) {
+        const bool gradient = kind > 0, adaptive = kind == 2;
+        const std::vector<FilterProbe> probes =
+            syntheticProbes(gradient ? 5 + kind : 3, gradient, adaptive);
         for (const Variant& variant : everyVariant()) {
             ParameterValues params;
             for (const std::string& set : variant.sets)
@@ -107,7 +119,8 @@ TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
             gpu::FrameData frame{};
             // The subTexelPrecisionBits the CPU emulates only matter with hardware filtering.
             render::setTechniqueSettings(frame, params, device.depthLinearFilter, 8);
-            const bool hardwareTap = variant.name == "hardware" && device.depthLinearFilter;
+            const bool hardwareTap =
+                variant.name.rfind("hardware", 0) == 0 && device.depthLinearFilter;
             const float tolerance = hardwareTap ? 1e-3f + 1.0f / 256.0f : 1e-3f;
             float worst = 0.0f;
             size_t compared = 0;
@@ -123,7 +136,8 @@ TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
             }
             EXPECT_GT(compared, probes.size() * 9 / 10) << variant.name;
             EXPECT_LE(worst, tolerance)
-                << variant.name << (gradient ? " with" : " without") << " receiver-plane gradient";
+                << variant.name << (gradient ? " with" : " without") << " receiver-plane gradient"
+                << (adaptive ? " and adaptive terms" : "");
         }
     }
 }
@@ -166,7 +180,10 @@ TEST_F(FilterTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
             ParameterValues params;
             params.set("pcss.rotation", rotation);
             params.assign("pcss.maxRadius=24");
-            const std::vector<FilterProbe> probes = syntheticProbes(23, true);
+            // The blocker search and the filter both test taps: with the adaptive mode's
+            // per-tap terms on the rotated runs.
+            const std::vector<FilterProbe> probes =
+                syntheticProbes(23, true, std::string(rotation) == "ign");
             const std::vector<glm::vec4> gpuResult = sharedRenderer().probeTechnique(
                 Technique::Pcss, params, depth, kMapSize, probes, probeLight);
             gpu::FrameData frame{};

@@ -38,7 +38,7 @@ TEST_F(BiasTest, ReceiverPlaneBiasLetsA9x9KernelGoWithoutConstantBias) {
     const Scene scene = loadScene("builtin:grazing");
     auto acne = [&](const char* receiver) {
         RenderOptions o{.width = 640, .height = 360, .frames = 1, .technique = Technique::Pcf};
-        for (const char* s : {"pcf.filter=box", "pcf.size=9", "bias.constant=0"})
+        for (const char* s : {"pcf.filter=box", "pcf.size=9", "bias.mode=fixed", "bias.constant=0"})
             o.parameters.assign(s);
         o.parameters.set("bias.receiver", receiver);
         const RenderResult r = sharedRenderer().render(scene, o);

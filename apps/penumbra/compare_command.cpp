@@ -6,11 +6,13 @@
 #include "penumbra/error.h"
 #include "penumbra/reference.h"
 #include "penumbra/renderer.h"
+#include "report/blur_band.h"
 #include "report/heatmap.h"
 #include "report/html_report.h"
 #include "report/light_mask.h"
 #include "report/metrics.h"
 #include "report/stats.h"
+#include "shadows/technique.h"
 
 #include <fmt/format.h>
 
@@ -45,6 +47,11 @@ std::string describeLight(const Light& l) {
     return l.type == LightType::Directional
                ? fmt::format("{}: directional, angular diameter {} deg", l.name, l.angularDiameter)
                : fmt::format("{}: {}, radius {}", l.name, lightTypeName(l.type), l.radius);
+}
+
+double blurRadiusTexels(const RenderOptions& o) {
+    const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
+    return module.blurRadiusTexels ? module.blurRadiusTexels(o.parameters) : 0.0;
 }
 
 int runCompare(const CompareArgs& args, const GlobalOptions& global) {
@@ -119,12 +126,10 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
 
     for (size_t r = 0; r < rows.size(); ++r) {
         const RenderResult& result = results[r];
-        std::vector<MetricLayer> layers;
-        for (size_t l = 0; l < truth.visibility.size(); ++l)
-            layers.push_back({result.visibility[l], truth.visibility[l], masks[l]});
         ReportRow row{.name = rows[r].name,
                       .technique = std::string(techniqueName(rows[r].technique)),
-                      .metrics = computeMetrics(w, h, layers),
+                      .metrics = metricsAgainstTruth(lit, result, truth.visibility, masks,
+                                                     blurRadiusTexels(rowOptions[r])),
                       .shimmer = shimmer.empty() ? NAN : shimmer[r]};
         for (const auto& [key, value] : rows[r].sets)
             row.parameters.emplace_back(key, value);
@@ -155,15 +160,17 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                                              renderer.validationErrors()));
     out.commit();
 
-    std::printf("%-22s %9s %9s %11s %8s %8s %10s%s\n", "technique", "RMSE", "MAE", "misclass.%",
-                "acne%", "leak%", "GPU ms", shimmer.empty() ? "" : "    shimmer");
+    std::printf("%-22s %9s %9s %11s %8s %8s %8s %8s %10s%s\n", "technique", "RMSE", "MAE",
+                "misclass.%", "acne%", "leak%", "acne>b%", "leak>b%", "GPU ms",
+                shimmer.empty() ? "" : "    shimmer");
     for (const ReportRow& row : report.rows) {
         double total = 0;
         for (const auto& [pass, ms] : row.gpuMs)
             total += ms;
-        std::printf("%-22s %9.5f %9.5f %11.3f %8.3f %8.3f %10.3f", row.name.c_str(),
+        std::printf("%-22s %9.5f %9.5f %11.3f %8.3f %8.3f %8.3f %8.3f %10.3f", row.name.c_str(),
                     row.metrics.rmse, row.metrics.mae, 100 * row.metrics.misclassified,
-                    100 * row.metrics.acne, 100 * row.metrics.leak, total);
+                    100 * row.metrics.acne, 100 * row.metrics.leak,
+                    100 * row.metrics.acneBeyondBlur, 100 * row.metrics.leakBeyondBlur, total);
         if (!shimmer.empty())
             std::printf(" %10.5f", row.shimmer);
         std::printf("\n");

@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
         {"reference", cli::addReferenceCommand(app, global)},
         {"compare", cli::addCompareCommand(app, global)},
         {"bench", cli::addBenchCommand(app, global)},
+        {"tune", cli::addTuneCommand(app, global)},
         {"view", cli::addViewCommand(app, global)},
         {"info", cli::addInfoCommand(app, global)},
         {"techniques", cli::addTechniquesCommand(app)}};

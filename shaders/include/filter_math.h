@@ -69,6 +69,53 @@ SHARED float receiverDepthAt(float depth, vec2 gradient, vec2 offset, vec2 dzRan
 
 SHARED float depthTest(float receiver, float stored) { return receiver <= stored ? 1.0f : 0.0f; }
 
+// A tap's reference depth under bias.mode=adaptive [Dou et al. 2014]: the receiver-plane depth
+// at the texel's centre (the paper's adaptive offset, for every tap of a kernel), its correction
+// clamped to dzRange, lifted towards the light by what the surface's curvature can bring within
+// the tap's distance |offset| (uv): min(curve.x |offset|^2, curve.y |offset|), light depth (see
+// adaptiveBiasTerms). curve = 0 leaves receiverDepthAt's value.
+SHARED float tapDepth(float depth, vec2 gradient, vec2 offset, vec2 dzRange, vec2 curve) {
+    float s2 = dot(offset, offset);
+    return receiverDepthAt(depth, gradient, offset, dzRange) -
+           min(curve.x * s2, curve.y * sqrt(s2));
+}
+
+// A comparison tap of the texture unit (pcf.filter=hardware) tests its four texels against one
+// depth: under bias.mode=adaptive the receiver comes nearer the light by its plane's largest rise
+// over the tap's footprint (texel centres within a texel of it on each axis, `size` texels per
+// uv), at most `limit` (bias.receiverClamp): the receiver's own slope-scaled bias.
+SHARED float footprintLift(vec2 gradient, float size, float limit) {
+    return min((abs(gradient.x) + abs(gradient.y)) / size, limit);
+}
+
+// The per-receiver terms of bias.mode=adaptive, from the receiver's geometry: texelWorld, a
+// shadow-map texel's world size at the receiver (across the light's rays); mapSize, texels per
+// uv; depthPerWorld, the light depth's change per world unit along the ray; cosine, N.L of the
+// receiver's own triangle; curvature, how fast the surface's normal turns (radians per world
+// unit; 0: flat); epsilonTexels (bias.adaptive) and curvatureScale (bias.curvature); gradient,
+// the receiver plane's |d depth / d uv|. Returns x: the constant lift (light depth), the
+// paper's adaptive epsilon, here a fraction of a texel's footprint along the ray (texelWorld /
+// cosine) so that it scales with the map's resolution and the surface's slope; yz: curve for
+// tapDepth: a surface of curvature k leaves its tangent plane by k L^2 / 2 over a distance L
+// along it, L = s / cosine for a distance s across the rays, which the ray sees stretched by
+// 1 / cosine again (y, per uv^2), never more than the tap's own distance across the rays (z, per
+// uv: a 45-degree bound); w: the plane's reach, how far its correction is trusted (|gradient|
+// times the distance across the rays where the surface has turned by one radian,
+// cosine / curvature), the clamp that adapts to curvature (1e30: flat). curvatureScale scales
+// the curvature in both.
+SHARED vec4 adaptiveBiasTerms(float texelWorld, float mapSize, float depthPerWorld, float cosine,
+                              float curvature, float epsilonTexels, float curvatureScale,
+                              float gradient) {
+    float c = clamp(cosine, 0.05f, 1.0f);
+    float worldPerUv = texelWorld * mapSize;
+    float lift = depthPerWorld * epsilonTexels * texelWorld / c;
+    float k = curvature * curvatureScale;
+    float curve = 0.5f * depthPerWorld * k * worldPerUv * worldPerUv / (c * c * c);
+    float cap = depthPerWorld * worldPerUv;
+    float reach = k > 0.0f ? gradient * c / (k * worldPerUv) : 1e30f;
+    return vec4(lift, curve, cap, reach);
+}
+
 // A bilinear comparison tap from its four tests in textureGather order (x (i, j+1), y (i+1, j+1),
 // z (i+1, j), w (i, j)) and the tap's sub-texel fraction.
 SHARED float bilinearMix(vec4 t, vec2 f) {
@@ -510,6 +557,13 @@ SHARED vec2 receiverGradientFromNormal(IN(mat4) S, vec3 world, vec3 normal) {
     float nz = dot(cross(du, dv), normal);
     if (abs(nz) <= 1e-6f * (abs(nu) + abs(nv))) return vec2(0.0f); // edge-on to the light
     return vec2(-nu, -nv) / nz;
+}
+
+// The world-space gradient of the light depth of the projective map S at `world`.
+SHARED vec3 lightDepthGradient(IN(mat4) S, vec3 world) {
+    vec4 s = S * vec4(world, 1.0f);
+    vec3 rowW = vec3(S[0][3], S[1][3], S[2][3]);
+    return (vec3(S[0][2], S[1][2], S[2][2]) - (s.z / s.w) * rowW) / s.w;
 }
 
 // `screen`: from the light-space offsets to two neighbouring pixels (seed 000's 2x2 solve):

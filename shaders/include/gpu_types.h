@@ -52,6 +52,7 @@ using uint = uint32_t;
 #define SPEC_MATERIAL_TEXTURE 10 // gbuffer.frag: MaterialPush::hasTexture ...
 #define SPEC_MATERIAL_ALPHA_TEST 11 // ... and alphaTest, fixed per pipeline
 #define SPEC_MATERIAL_VERTEX_COLOR 12 // 0: the batch's vertex colours are all opaque white
+#define SPEC_ADAPTIVE_BIAS 13    // 1: bias.mode=adaptive (the visibility pass's receiver terms)
 #define SPEC_INTERMEDIATES 15    // 1: the visibility pass also writes VIS_INTERMEDIATES (viewer)
 
 // pcf.filter, pcf.rotation and bias.receiver: indices of their choices in the registry.
@@ -66,6 +67,8 @@ using uint = uint32_t;
 #define RECEIVER_OFF 0u
 #define RECEIVER_SCREEN 1u
 #define RECEIVER_LIGHT 2u
+#define BIAS_FIXED 0u             // bias.mode
+#define BIAS_ADAPTIVE 1u
 #define HORIZON_OFF 0u            // bias.horizon
 #define HORIZON_SOFT 1u
 #define HORIZON_ALL 2u
@@ -144,8 +147,10 @@ struct FrameData {       // std140 uniform block: the camera and every technique
     vec4 background;     // rgb: colour of pixels with no geometry
     uvec4 filterMode;    // x pcf.filter, y pcf.size, z pcf.samples, w pcf.rotation
     vec4 filterParams;   // x pcf.radius (texels), y Gaussian sigma (texels), z pcf.adaptive
-    uvec4 biasMode;      // x bias.receiver, y 1: hardware linear depth compare, z sub-texel bits
-    vec4 biasParams;     // xy: range of a tap's receiver-plane depth correction (light depth)
+    uvec4 biasMode;      // x bias.receiver, y 1: hardware linear depth compare, z sub-texel bits,
+                         // w bias.mode
+    vec4 biasParams;     // xy: range of a tap's receiver-plane depth correction (light depth),
+                         // z bias.adaptive (texels), w bias.curvature
     uvec4 pcssMode;      // x pcss.blockerSamples, y pcss.filterSamples, z pcss.rotation
     vec4 pcssParams;     // x pcss.maxRadius (texels)
     vec4 cameraForward;  // xyz: the camera's unit view axis (cascades are picked by distance
@@ -255,6 +260,8 @@ struct ProbeReceiver {   // std430, filter_probe.comp's input (Renderer::probeTe
     vec4 uvDepth;        // u, v, receiver depth
     vec4 gradientPixel;  // d depth / du, d depth / dv, pixel x, pixel y (rotations use it)
     vec4 footprint;      // xy: d uv / d pixel x, zw: d uv / d pixel y (vsm.filter=mip)
+    vec4 adaptive;       // bias.mode=adaptive's per-tap terms: xy Receiver::curve, zw
+                         // Receiver::planeRange (zeros with zw = (-1e30, 1e30): none)
 };
 
 struct ProbePush {       // push constants of filter_probe.comp
@@ -303,6 +310,8 @@ inline constexpr const char* kFilterChoices[] = {"bilinear", "hardware", "box", 
 inline constexpr const char* kRotationChoices[] = {"none", "random", "ign"};
 inline constexpr const char* kReceiverChoices[] = {"off", "screen", "light"};
 inline constexpr const char* kHorizonChoices[] = {"off", "soft", "all"};
+inline constexpr const char* kBiasModeChoices[] = {"fixed", "adaptive"};
+static_assert(BIAS_FIXED == 0 && BIAS_ADAPTIVE == 1 && std::size(kBiasModeChoices) == 2);
 static_assert(FILTER_BILINEAR == 0 && FILTER_HARDWARE == 1 && FILTER_BOX == 2 &&
               FILTER_GAUSSIAN == 3 && FILTER_POISSON == 4 && std::size(kFilterChoices) == 5);
 static_assert(ROTATION_NONE == 0 && ROTATION_RANDOM == 1 && ROTATION_IGN == 2 &&
@@ -333,8 +342,8 @@ static_assert(MAX_UNIFORM_VIEWS * sizeof(ShadowViewData) <= 65536 &&
               MAX_UNIFORM_LIGHTS * sizeof(LightData) <= 65536);
 static_assert(sizeof(ShadowPush) == 80 && sizeof(VisibilityPush) == 16 &&
               sizeof(PostPassPush) == 16 && sizeof(ProbePush) == 16);
-static_assert(sizeof(ProbeReceiver) == 48 && offsetof(ProbeReceiver, gradientPixel) == 16 &&
-              offsetof(ProbeReceiver, footprint) == 32);
+static_assert(sizeof(ProbeReceiver) == 64 && offsetof(ProbeReceiver, gradientPixel) == 16 &&
+              offsetof(ProbeReceiver, footprint) == 32 && offsetof(ProbeReceiver, adaptive) == 48);
 static_assert(sizeof(MaterialPush) == 32 && offsetof(MaterialPush, alphaCutoff) == 16);
 static_assert(sizeof(FieldTriangle) == 48 && sizeof(FieldPush) == 48);
 static_assert(sizeof(DisplayPush) == 80 && offsetof(DisplayPush, splits) == 48 &&

@@ -19,10 +19,20 @@ struct Receiver {
     float layer;    // the shadow view's layer in the maps
     float kernelScale; // kernels in texels of the first cascade, in this view's texels
     vec2 uvDx, uvDy;   // the pixel's footprint: uv's change across it along x and y (mip)
+    // bias.mode=adaptive (adaptiveBiasTerms): the per-tap curvature lift (tapDepth) and the
+    // receiver's own range for the plane's correction, within the frame's dzRange.
+    vec2 curve, planeRange;
 };
 
+// The receiver's fields that bias.mode=adaptive leaves alone otherwise.
+void noAdaptiveTerms(inout Receiver r) {
+    r.curve = vec2(0.0);
+    r.planeRange = vec2(-1e30, 1e30);
+}
+
 float texelTest(Receiver r, float stored, vec2 texelUv, vec2 dzRange) {
-    return depthTest(receiverDepthAt(r.depth, r.gradient, texelUv - r.uv, dzRange), stored);
+    vec2 range = vec2(max(dzRange.x, r.planeRange.x), min(dzRange.y, r.planeRange.y));
+    return depthTest(tapDepth(r.depth, r.gradient, texelUv - r.uv, range, r.curve), stored);
 }
 
 // Tests of the 2x2 texels whose first texel is `base`, in textureGather order:
@@ -112,10 +122,18 @@ float shadowPcfUnsnapped(sampler2DArray map, sampler2DArrayShadow mapCompare, Re
         // One comparison-sampler tap (SampleCmpLevelZero). Without linear depth filtering
         // (lavapipe) the same bilinear comparison is done by hand.
         // A comparison sampler compares every texel with one reference depth, so receiver-plane
-        // bias cannot apply per texel here; the by-hand version drops it the same way.
-        if (frame.biasMode.y != 0u) return texture(mapCompare, vec4(r.uv, r.layer, r.depth));
+        // bias cannot apply per texel here (nor the adaptive mode's per-tap lift: it lifts the
+        // receiver by its plane's rise over the footprint instead); the by-hand version does the
+        // same.
+        float lift = frame.biasMode.w == BIAS_ADAPTIVE
+                         ? footprintLift(r.gradient, float(mapSize), -dzRange.x)
+                         : 0.0;
+        if (frame.biasMode.y != 0u)
+            return texture(mapCompare, vec4(r.uv, r.layer, r.depth - lift));
         Receiver noPlane = r;
+        noPlane.depth -= lift;
         noPlane.gradient = vec2(0.0);
+        noPlane.curve = vec2(0.0);
         return bilinearTap(map, r.uv * float(mapSize), float(mapSize), noPlane, dzRange);
     }
     float early;

@@ -16,6 +16,7 @@ struct Receiver {
     glm::vec2 uv;
     float depth;
     glm::vec2 gradient;
+    glm::vec2 curve{0.0f}, planeRange{-1e30f, 1e30f}; // bias.mode=adaptive (FilterProbe's)
 };
 
 // Records how close each comparison comes to a tie, when asked.
@@ -29,7 +30,8 @@ struct MarginTracker {
 
 float texelTest(const Receiver& r, float stored, glm::vec2 texelUv, glm::vec2 dzRange,
                 const MarginTracker& m) {
-    const float receiver = gpu::receiverDepthAt(r.depth, r.gradient, texelUv - r.uv, dzRange);
+    const glm::vec2 range(std::max(dzRange.x, r.planeRange.x), std::min(dzRange.y, r.planeRange.y));
+    const float receiver = gpu::tapDepth(r.depth, r.gradient, texelUv - r.uv, range, r.curve);
     m.see(receiver, stored);
     return gpu::depthTest(receiver, stored);
 }
@@ -117,7 +119,7 @@ bool probeDecides(const ShadowMapView& map, const Receiver& r, const gpu::FrameD
 }
 
 Receiver receiverOf(const FilterProbe& p) {
-    return {p.uv, p.depth, p.gradient};
+    return {p.uv, p.depth, p.gradient, p.curve, p.planeRange};
 }
 
 float pcfUnsnapped(const ShadowMapView& map, const FilterProbe& probe, const gpu::FrameData& f,
@@ -126,9 +128,12 @@ float pcfUnsnapped(const ShadowMapView& map, const FilterProbe& probe, const gpu
     const uint32_t filterKind = f.filterMode.x;
     const glm::vec2 dzRange(f.biasParams.x, f.biasParams.y);
     const float size = static_cast<float>(map.size);
-    if (filterKind == FILTER_HARDWARE)
-        return bilinearTap(map, r.uv * size, size, Receiver{r.uv, r.depth, glm::vec2(0.0f)},
+    if (filterKind == FILTER_HARDWARE) {
+        const float lift =
+            f.biasMode.w == BIAS_ADAPTIVE ? gpu::footprintLift(r.gradient, size, -dzRange.x) : 0.0f;
+        return bilinearTap(map, r.uv * size, size, Receiver{r.uv, r.depth - lift, glm::vec2(0.0f)},
                            dzRange, m, f.biasMode.y != 0u ? f.biasMode.z : 0u);
+    }
     float early = 0.0f;
     if (f.filterParams.z != 0.0f && filterKind != FILTER_BILINEAR &&
         probeDecides(map, r, f, dzRange, m, early))

@@ -31,9 +31,17 @@ using Clock = std::chrono::steady_clock;
 // mesh's terminator slip past a facet's edge into the light: near the edge the offset origin
 // sits above the facet's plane, and a ray dipping under that plane leaves the facet first.
 // Directions under the receiver's own triangle are blocked by it (an open surface lets no light
-// through from its back).
+// through from its back). A ray rising at a shallow angle must travel further to clear an origin
+// that lies that far under its surface (the rasterizer's depth error has either sign, and
+// differs between devices): rayStart divides by the sine of the ray's angle above the face.
 double selfHitDistance(const glm::dvec3& p) {
     return 1e-4 * std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), 1.0});
+}
+
+// Where a ray leaving at `sine` (dir . face > 0) above its surface starts: clear of the surface by
+// selfHitDistance, at most 64 times that far (rays under a degree above the surface).
+float rayStart(double selfHit, double sine) {
+    return static_cast<float>(selfHit / std::max(sine, 1.0 / 64.0));
 }
 
 // Prints a progress bar on stderr once the work has run for a second: redrawn in place on a
@@ -153,10 +161,12 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                         for (uint32_t s = 0; s < count; ++s) {
                             const glm::dvec3 dir =
                                 sampleDirection(cone, hammersley(s, count, shift));
-                            if (glm::dot(dir, face) <= 0.0)
+                            const double sine = glm::dot(dir, face);
+                            if (sine <= 0.0)
                                 continue;
                             const double tfar = distanceToLight(cone, origin, dir);
-                            visible += !embree.occluded(glm::vec3(origin), glm::vec3(dir), tnear,
+                            visible += !embree.occluded(glm::vec3(origin), glm::vec3(dir),
+                                                        rayStart(tnear, sine),
                                                         static_cast<float>(std::min(tfar, 1e30)));
                         }
                         localRays += count;

@@ -25,7 +25,8 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         gpuProbes.push_back(
             {{p.uv, p.depth, 0.0f},
              {p.gradient, static_cast<float>(p.pixel.x), static_cast<float>(p.pixel.y)},
-             {p.uvDx, p.uvDy}});
+             {p.uvDx, p.uvDy},
+             {p.curve, p.planeRange}});
 
     auto upload = [&](std::span<const std::byte> bytes, VkBufferUsageFlags usage,
                       const char* name) {

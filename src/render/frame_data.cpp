@@ -11,11 +11,14 @@ namespace penumbra::render {
 void setTechniqueSettings(gpu::FrameData& f, const ParameterValues& p, bool hardwareDepthFilter,
                           uint32_t subTexelBits) {
     auto index = [&](const char* key) { return static_cast<uint32_t>(p.number(key)); };
-    f.biasMode = {index("bias.receiver"), hardwareDepthFilter ? 1u : 0u, subTexelBits, 0u};
+    const uint32_t mode = index("bias.mode");
+    f.biasMode = {index("bias.receiver"), hardwareDepthFilter ? 1u : 0u, subTexelBits, mode};
     // Corrections bring a tap's reference depth nearer the light (negative) up to the clamp;
     // with bias.receiverSides=near none may push it away (see docs/techniques.md).
     const auto limit = static_cast<float>(p.number("bias.receiverClamp"));
-    f.biasParams = {-limit, index("bias.receiverSides") == 0 ? limit : 0.0f, 0.0f, 0.0f};
+    f.biasParams = {-limit, index("bias.receiverSides") == 0 ? limit : 0.0f,
+                    static_cast<float>(p.number("bias.adaptive")),
+                    static_cast<float>(p.number("bias.curvature"))};
     const auto& disk = poissonDisk();
     for (size_t i = 0; i < kPoissonPoints / 2; ++i)
         f.poisson[i] = {disk[2 * i].x, disk[2 * i].y, disk[2 * i + 1].x, disk[2 * i + 1].y};

@@ -108,17 +108,27 @@ std::vector<shadows::SpecConstant> sceneLightConstants(const std::vector<Light>&
             {SPEC_SCENE_LIGHT_TYPES, types}};
 }
 
+// The shadow pass's depth offsets, bias.constant and bias.slope (x, y): none with
+// bias.mode=adaptive, whose map holds exact depths [Dou et al. 2014] (measured: a slope-scaled
+// offset of even 0.5 brings back the light leaks of thin casters at grazing angles that the mode
+// removes; docs/techniques.md, "Adaptive depth bias").
+glm::vec2 casterDepthBias(const ParameterValues& params) {
+    if (params.number("bias.mode") == BIAS_ADAPTIVE)
+        return glm::vec2(0.0f);
+    return {static_cast<float>(params.number("bias.constant")),
+            static_cast<float>(params.number("bias.slope"))};
+}
+
 gpu::LightData lightData(const Light& light, int visibilityLayer, uint32_t firstView,
                          uint32_t viewCount, const ParameterValues& params) {
-    return {.positionType = glm::vec4(light.position, static_cast<float>(lightTypeOf(light))),
-            .directionRange = glm::vec4(glm::normalize(light.direction), light.range),
-            .colorIntensity = glm::vec4(light.color, light.intensity),
-            .cone = {std::cos(light.outerConeAngle), std::cos(light.innerConeAngle), 0.0f,
-                     static_cast<float>(visibilityLayer)},
-            .bias = {static_cast<float>(params.number("bias.constant")),
-                     static_cast<float>(params.number("bias.slope")),
-                     static_cast<float>(params.number("bias.normal")), 0.0f},
-            .views = {firstView, viewCount, 0u, 0u}};
+    return {
+        .positionType = glm::vec4(light.position, static_cast<float>(lightTypeOf(light))),
+        .directionRange = glm::vec4(glm::normalize(light.direction), light.range),
+        .colorIntensity = glm::vec4(light.color, light.intensity),
+        .cone = {std::cos(light.outerConeAngle), std::cos(light.innerConeAngle), 0.0f,
+                 static_cast<float>(visibilityLayer)},
+        .bias = {casterDepthBias(params), static_cast<float>(params.number("bias.normal")), 0.0f},
+        .views = {firstView, viewCount, 0u, 0u}};
 }
 
 vk::Image targetImage(const vk::Context& ctx, const char* name, VkFormat format, uint32_t w,
@@ -499,16 +509,15 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
     if (intermediates)
         constants.push_back({SPEC_INTERMEDIATES, 1u});
     return {std::move(result),
-            render::FrameSettings{
-                .technique = wanted.technique,
-                .constants = std::move(constants),
-                .shadowLights = shadowLights,
-                .sceneLights = sceneLightConstants(lit.lights),
-                .fuseComposite = o.parameters.number("composite.fused") != 0.0,
-                .cameraViewProj = frameBlock.viewProj,
-                .slopeBias = static_cast<float>(o.parameters.number("bias.slope")),
-                .constantBias = static_cast<float>(o.parameters.number("bias.constant")),
-                .shadowMapSize = o.shadowMapSize}};
+            render::FrameSettings{.technique = wanted.technique,
+                                  .constants = std::move(constants),
+                                  .shadowLights = shadowLights,
+                                  .sceneLights = sceneLightConstants(lit.lights),
+                                  .fuseComposite = o.parameters.number("composite.fused") != 0.0,
+                                  .cameraViewProj = frameBlock.viewProj,
+                                  .slopeBias = casterDepthBias(o.parameters).y,
+                                  .constantBias = casterDepthBias(o.parameters).x,
+                                  .shadowMapSize = o.shadowMapSize}};
 }
 
 RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& state,

@@ -11,7 +11,6 @@
 #include <string_view>
 
 namespace penumbra {
-namespace {
 
 std::string escapeHtml(std::string_view text) {
     std::string out;
@@ -30,6 +29,8 @@ std::string escapeHtml(std::string_view text) {
     }
     return out;
 }
+
+namespace {
 
 std::string base64(std::span<const uint8_t> bytes) {
     static constexpr char kAlphabet[] =
@@ -234,7 +235,8 @@ void writeTable(std::string& s, const ReportData& d) {
     const std::vector<std::string> passes = passNames(d.rows);
     s += "<h2>Error against the reference</h2>\n<section class=\"card table-wrap\"><table>\n"
          "<thead><tr><th>Technique</th><th>Parameters</th><th>RMSE</th><th>MAE</th><th>Max</th>"
-         "<th>Misclassified</th><th>Misclassified outside edges</th><th>Acne</th><th>Leak</th>";
+         "<th>Misclassified</th><th>Misclassified outside edges</th><th>Acne</th><th>Leak</th>"
+         "<th>Acne beyond blur</th><th>Leak beyond blur</th>";
     const bool shimmer = !d.cameraPath.empty();
     if (shimmer)
         fmt::format_to(out, "<th>Shimmer ({}, {} frames)</th>", escapeHtml(d.cameraPath),
@@ -270,6 +272,8 @@ void writeTable(std::string& s, const ReportData& d) {
         cell(row, &ErrorMetrics::misclassifiedOutsideEdges, true);
         cell(row, &ErrorMetrics::acne, true);
         cell(row, &ErrorMetrics::leak, true);
+        cell(row, &ErrorMetrics::acneBeyondBlur, true);
+        cell(row, &ErrorMetrics::leakBeyondBlur, true);
         if (shimmer)
             fmt::format_to(out, "<td>{:.5f}</td>", row.shimmer);
         for (const std::string& pass : passes) {
@@ -284,7 +288,10 @@ void writeTable(std::string& s, const ReportData& d) {
          "pixels (facing a light, inside its frustum). Acne: fully lit in the reference but "
          "visibility &lt; 0.9; leak: fully shadowed but visibility &gt; 0.1; both, like "
          "misclassified outside edges, more than 2 pixels from the reference's shadow "
-         "edges.</p>\n";
+         "edges. Beyond blur: the same, more than the technique's blur radius from those "
+         "edges (its declared filter reach, in texels, projected to the screen at each pixel; "
+         "at least 2 and at most 8 pixels), so what remains is self-shadowing and missing "
+         "shadow rather than the blur a wide kernel makes.</p>\n";
 }
 
 void writeImages(std::string& s, const ReportData& d) {
@@ -361,6 +368,8 @@ nlohmann::json metricsJson(const ReportData& data) {
                                 {"misclassified_outside_edges", m.misclassifiedOutsideEdges},
                                 {"acne", m.acne},
                                 {"leak", m.leak},
+                                {"acne_beyond_blur", m.acneBeyondBlur},
+                                {"leak_beyond_blur", m.leakBeyondBlur},
                                 {"pixels", m.pixels},
                                 {"gpu_ms", gpu}};
         if (!data.cameraPath.empty())

@@ -8,10 +8,14 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
 namespace penumbra {
+
+// Text made safe inside HTML elements and quoted attributes.
+std::string escapeHtml(std::string_view text);
 
 // One technique's results, as shown in one table row and one figure of the report.
 struct ReportRow {

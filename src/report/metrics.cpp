@@ -10,21 +10,16 @@
 namespace penumbra {
 namespace {
 
-// Bits of the per-pixel scratch byte used while building the edge band.
-constexpr uint8_t kBoundary = 1; // truth class differs from a 4-neighbour's
-constexpr uint8_t kRowBand = 2;  // within edgeBand of a boundary pixel along the row
-constexpr uint8_t kBand = 4;     // within edgeBand in Chebyshev distance
-
 bool isLit(float truth) {
     return truth >= 0.5f;
 }
 
-// Marks the pixels within Chebyshev distance `band` of a truth-class boundary. The square
-// dilation is separable (rows, then columns), and each 1-D pass tracks the nearest marked pixel
-// on either side, so the cost is O(pixels) whatever the band width.
-std::vector<uint8_t> edgeBandMask(uint32_t width, uint32_t height, std::span<const float> truth,
-                                  int band) {
-    std::vector<uint8_t> bits(size_t{width} * height, 0);
+// Per pixel, the Chebyshev distance to the nearest boundary pixel (one whose lit/shadowed truth
+// class differs from a 4-neighbour's), saturated at `cap`. Two raster sweeps of the 3x3
+// chamfer with unit weights give the exact Chebyshev distance in O(pixels).
+std::vector<uint8_t> edgeDistance(uint32_t width, uint32_t height, std::span<const float> truth,
+                                  uint8_t cap) {
+    std::vector<uint8_t> d(size_t{width} * height, cap);
     for (uint32_t y = 0; y < height; ++y) {
         for (uint32_t x = 0; x < width; ++x) {
             size_t i = size_t{y} * width + x;
@@ -32,61 +27,52 @@ std::vector<uint8_t> edgeBandMask(uint32_t width, uint32_t height, std::span<con
                 continue;
             // Checking the right and lower neighbours visits every 4-neighbour pair once.
             if (x + 1 < width && std::isfinite(truth[i + 1]) &&
-                isLit(truth[i]) != isLit(truth[i + 1])) {
-                bits[i] |= kBoundary;
-                bits[i + 1] |= kBoundary;
-            }
+                isLit(truth[i]) != isLit(truth[i + 1]))
+                d[i] = d[i + 1] = 0;
             size_t below = i + width;
             if (y + 1 < height && std::isfinite(truth[below]) &&
-                isLit(truth[i]) != isLit(truth[below])) {
-                bits[i] |= kBoundary;
-                bits[below] |= kBoundary;
+                isLit(truth[i]) != isLit(truth[below]))
+                d[i] = d[below] = 0;
+        }
+    }
+    const auto relax = [&](size_t i, size_t from) {
+        d[i] = std::min<uint8_t>(d[i], static_cast<uint8_t>(std::min<int>(d[from] + 1, cap)));
+    };
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            size_t i = size_t{y} * width + x;
+            if (x > 0)
+                relax(i, i - 1);
+            if (y > 0) {
+                relax(i, i - width);
+                if (x > 0)
+                    relax(i, i - width - 1);
+                if (x + 1 < width)
+                    relax(i, i - width + 1);
             }
         }
-    }
+    for (uint32_t y = height; y-- > 0;)
+        for (uint32_t x = width; x-- > 0;) {
+            size_t i = size_t{y} * width + x;
+            if (x + 1 < width)
+                relax(i, i + 1);
+            if (y + 1 < height) {
+                relax(i, i + width);
+                if (x + 1 < width)
+                    relax(i, i + width + 1);
+                if (x > 0)
+                    relax(i, i + width - 1);
+            }
+        }
+    return d;
+}
 
-    const int64_t reach = band;
-    constexpr int64_t kFar = std::numeric_limits<int32_t>::max();
-    for (uint32_t y = 0; y < height; ++y) {
-        uint8_t* row = bits.data() + size_t{y} * width;
-        int64_t last = -kFar;
-        for (int64_t x = 0; x < int64_t{width}; ++x) {
-            if (row[x] & kBoundary)
-                last = x;
-            if (x - last <= reach)
-                row[x] |= kRowBand;
-        }
-        int64_t next = kFar;
-        for (int64_t x = int64_t{width} - 1; x >= 0; --x) {
-            if (row[x] & kBoundary)
-                next = x;
-            if (next - x <= reach)
-                row[x] |= kRowBand;
-        }
-    }
-
-    // Columns are swept a whole row at a time so memory is read in order.
-    std::vector<int64_t> nearest(width, -kFar);
-    for (int64_t y = 0; y < int64_t{height}; ++y) {
-        uint8_t* row = bits.data() + size_t(y) * width;
-        for (uint32_t x = 0; x < width; ++x) {
-            if (row[x] & kRowBand)
-                nearest[x] = y;
-            if (y - nearest[x] <= reach)
-                row[x] |= kBand;
-        }
-    }
-    std::fill(nearest.begin(), nearest.end(), kFar);
-    for (int64_t y = int64_t{height} - 1; y >= 0; --y) {
-        uint8_t* row = bits.data() + size_t(y) * width;
-        for (uint32_t x = 0; x < width; ++x) {
-            if (row[x] & kRowBand)
-                nearest[x] = y;
-            if (nearest[x] - y <= reach)
-                row[x] |= kBand;
-        }
-    }
-    return bits;
+// The blur band's radius at a pixel, in whole pixels (a distance on the pixel grid is whole).
+int blurRadiusAt(std::span<const float> blurBand, size_t i) {
+    if (blurBand.empty() || std::isnan(blurBand[i]))
+        return static_cast<int>(kMinBlurBand);
+    return static_cast<int>(
+        std::floor(std::clamp(double{blurBand[i]}, kMinBlurBand, kMaxBlurBand)));
 }
 
 double fraction(uint64_t count, uint64_t total) {
@@ -97,16 +83,22 @@ double fraction(uint64_t count, uint64_t total) {
 
 ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const MetricLayer> layers,
                             int edgeBand) {
-    PENUMBRA_CHECK(edgeBand >= 0, "edge band must not be negative");
+    PENUMBRA_CHECK(edgeBand >= 0 && edgeBand < 255, "edge band must lie in [0, 254]");
     const uint64_t count = uint64_t{width} * height;
     double sumSquared = 0, sumAbsolute = 0, maxAbsolute = 0;
     uint64_t misclassified = 0, misclassifiedOutside = 0, acne = 0, leak = 0;
+    uint64_t acneBeyondBlur = 0, leakBeyondBlur = 0;
     ErrorMetrics m;
     for (const MetricLayer& layer : layers) {
         PENUMBRA_CHECK(layer.visibility.size() == count, "visibility size != width * height");
         PENUMBRA_CHECK(layer.truth.size() == count, "truth size != width * height");
         PENUMBRA_CHECK(layer.mask.size() == count, "mask size != width * height");
-        const std::vector<uint8_t> bits = edgeBandMask(width, height, layer.truth, edgeBand);
+        PENUMBRA_CHECK(layer.blurBand.empty() || layer.blurBand.size() == count,
+                       "blur band size != width * height");
+        // Distances past both bands all read the same: saturate just beyond the wider.
+        const int cap = std::max(edgeBand, static_cast<int>(kMaxBlurBand)) + 1;
+        const std::vector<uint8_t> distance =
+            edgeDistance(width, height, layer.truth, static_cast<uint8_t>(std::min(cap, 255)));
         for (size_t i = 0; i < count; ++i) {
             const float v = layer.visibility[i], t = layer.truth[i];
             if (layer.mask[i] == 0 || !std::isfinite(v) || !std::isfinite(t))
@@ -119,21 +111,24 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
             sumAbsolute += absolute;
             maxAbsolute = std::max(maxAbsolute, absolute);
             misclassified += wrongClass;
-            if (!(bits[i] & kBand)) {
-                ++m.pixelsOutsideEdges;
-                misclassifiedOutside += wrongClass;
-            }
             // Acne and leak are errors away from shadow edges (self-shadowing, missing
             // shadow): on an edge, a filter's blur or a hard map's aliasing would swamp them.
             // Tolerances absorb float round-off in "fully lit" / "fully shadowed" truth.
-            if (bits[i] & kBand)
-                continue;
-            if (t >= 1.0f - 1e-6f) {
-                ++m.truthLit;
-                acne += v < 0.9f;
-            } else if (t <= 1e-6f) {
-                ++m.truthShadowed;
-                leak += v > 0.1f;
+            const bool lit = t >= 1.0f - 1e-6f, shadowed = t <= 1e-6f;
+            if (distance[i] > edgeBand) {
+                ++m.pixelsOutsideEdges;
+                misclassifiedOutside += wrongClass;
+                m.truthLit += lit;
+                acne += lit && v < 0.9f;
+                m.truthShadowed += shadowed;
+                leak += shadowed && v > 0.1f;
+            }
+            if (distance[i] > blurRadiusAt(layer.blurBand, i)) {
+                ++m.pixelsBeyondBlur;
+                m.truthLitBeyondBlur += lit;
+                acneBeyondBlur += lit && v < 0.9f;
+                m.truthShadowedBeyondBlur += shadowed;
+                leakBeyondBlur += shadowed && v > 0.1f;
             }
         }
     }
@@ -146,6 +141,8 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
     m.misclassifiedOutsideEdges = fraction(misclassifiedOutside, m.pixelsOutsideEdges);
     m.acne = fraction(acne, m.truthLit);
     m.leak = fraction(leak, m.truthShadowed);
+    m.acneBeyondBlur = fraction(acneBeyondBlur, m.truthLitBeyondBlur);
+    m.leakBeyondBlur = fraction(leakBeyondBlur, m.truthShadowedBeyondBlur);
     return m;
 }
 

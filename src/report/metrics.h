@@ -14,19 +14,34 @@ struct ErrorMetrics {
     // Both outside the edge band, where filtering and aliasing cannot explain them:
     double acne = 0; // among counted pixels with truth == 1: fraction with v < 0.9
     double leak = 0; // among counted pixels with truth == 0: fraction with v > 0.1
+    // The same outside the blur band, whose radius per pixel is the technique's blur radius on
+    // the screen (MetricLayer::blurBand) clamped to [kMinBlurBand, kMaxBlurBand]: what is left
+    // is self-shadowing and missing shadow, not the blur a wide kernel is meant to make.
+    double acneBeyondBlur = 0, leakBeyondBlur = 0;
     uint64_t pixels = 0, pixelsOutsideEdges = 0, truthLit = 0, truthShadowed = 0;
+    uint64_t pixelsBeyondBlur = 0, truthLitBeyondBlur = 0, truthShadowedBeyondBlur = 0;
 };
+
+// The blur band's radius never falls below the fixed edge band nor exceeds 8 pixels (a blur
+// wider than that on the screen is a soft shadow the truth has too, or a scene seen at grazing
+// angles, where a wider band would leave little to judge).
+inline constexpr double kMinBlurBand = 2.0, kMaxBlurBand = 8.0;
 
 // One light's images, each width * height values, rows top to bottom.
 struct MetricLayer {
     std::span<const float> visibility, truth;
     std::span<const uint8_t> mask; // 1 = counted (faces the light and lies in its frustum)
+    // Per pixel, how far (pixels) the technique's filter reaches on the screen there
+    // (report/blur_band.h); empty: no blur beyond the fixed band (beyond-blur = outside edges).
+    std::span<const float> blurBand = {};
 };
 
 // Pools the counted pixels of every layer (several lights -> one set of numbers). A pixel counts
 // when its mask is non-zero and both values are finite; the edge band is every pixel within
 // Chebyshev distance edgeBand (>= 0) of a pixel whose lit/shadowed truth class differs from a
-// 4-neighbour's. Span sizes that disagree with width * height are a programmer error.
+// 4-neighbour's; the blur band every pixel p within clamp(blurBand[p], 2, 8) of one (a
+// NaN blurBand counts as 2, an infinite one as 8). Span sizes that disagree with width * height are
+// a programmer error.
 ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const MetricLayer> layers,
                             int edgeBand = 2);
 

@@ -83,5 +83,6 @@ Scene field();
 Scene bleeding();
 Scene dense();
 Scene demo();
+Scene figure();
 
 } // namespace penumbra::builtin

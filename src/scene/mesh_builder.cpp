@@ -92,4 +92,74 @@ void MeshBuilder::sphere(const glm::vec3& center, float radius, uint32_t materia
         }
 }
 
+namespace {
+
+// Two unit vectors completing `axis` (unit) to an orthonormal basis.
+void basisAround(const glm::vec3& axis, glm::vec3& u, glm::vec3& v) {
+    const glm::vec3 helper =
+        std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    u = glm::normalize(glm::cross(helper, axis));
+    v = glm::cross(axis, u);
+}
+
+} // namespace
+
+void MeshBuilder::tube(const glm::vec3& from, const glm::vec3& to, float radius, uint32_t material,
+                       uint32_t slices) {
+    const glm::vec3 axis = glm::normalize(to - from);
+    glm::vec3 u, v;
+    basisAround(axis, u, v);
+    const float pi = 3.14159265358979f;
+    const uint32_t base = static_cast<uint32_t>(mScene.vertices.size());
+    for (uint32_t j = 0; j <= slices; ++j) {
+        const float phi = 2.0f * pi * static_cast<float>(j) / static_cast<float>(slices);
+        const glm::vec3 n = std::cos(phi) * u + std::sin(phi) * v;
+        vertex(from + radius * n, n, material);
+        vertex(to + radius * n, n, material);
+    }
+    for (uint32_t j = 0; j < slices; ++j) {
+        const uint32_t a = base + 2 * j; // a: from, a + 1: to; a + 2, a + 3 the next slice's
+        mScene.indices.insert(mScene.indices.end(), {a, a + 2, a + 1, a + 1, a + 2, a + 3});
+    }
+    for (int end = 0; end < 2; ++end) { // flat caps, fanned about their centres
+        const glm::vec3 centre = end == 0 ? from : to, n = end == 0 ? -axis : axis;
+        const uint32_t hub = static_cast<uint32_t>(mScene.vertices.size());
+        vertex(centre, n, material);
+        for (uint32_t j = 0; j <= slices; ++j) {
+            const float phi = 2.0f * pi * static_cast<float>(j) / static_cast<float>(slices);
+            vertex(centre + radius * (std::cos(phi) * u + std::sin(phi) * v), n, material);
+        }
+        for (uint32_t j = 0; j < slices; ++j) {
+            const uint32_t a = hub + 1 + j;
+            if (end == 0)
+                mScene.indices.insert(mScene.indices.end(), {hub, a + 1, a});
+            else
+                mScene.indices.insert(mScene.indices.end(), {hub, a, a + 1});
+        }
+    }
+}
+
+void MeshBuilder::torus(const glm::vec3& center, const glm::vec3& axis, float major, float minor,
+                        uint32_t material, uint32_t segments, uint32_t sides) {
+    glm::vec3 u, v;
+    basisAround(glm::normalize(axis), u, v);
+    const glm::vec3 w = glm::normalize(axis);
+    const float pi = 3.14159265358979f;
+    const uint32_t base = static_cast<uint32_t>(mScene.vertices.size());
+    for (uint32_t i = 0; i <= segments; ++i) {
+        const float theta = 2.0f * pi * static_cast<float>(i) / static_cast<float>(segments);
+        const glm::vec3 radial = std::cos(theta) * u + std::sin(theta) * v;
+        for (uint32_t j = 0; j <= sides; ++j) {
+            const float phi = 2.0f * pi * static_cast<float>(j) / static_cast<float>(sides);
+            const glm::vec3 n = std::cos(phi) * radial + std::sin(phi) * w;
+            vertex(center + major * radial + minor * n, n, material);
+        }
+    }
+    for (uint32_t i = 0; i < segments; ++i)
+        for (uint32_t j = 0; j < sides; ++j) {
+            const uint32_t a = base + i * (sides + 1) + j, b = a + sides + 1;
+            mScene.indices.insert(mScene.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+        }
+}
+
 } // namespace penumbra

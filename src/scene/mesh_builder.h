@@ -25,6 +25,14 @@ public:
     void beam(const glm::vec3& from, const glm::vec3& to, float thickness, uint32_t material);
     void sphere(const glm::vec3& center, float radius, uint32_t material, uint32_t slices = 64,
                 uint32_t stacks = 32);
+    // A closed cylinder from `from` to `to`: smooth-shaded sides of `slices` facets (the
+    // shading normal then differs from each facet's own, as on real assets) and flat caps.
+    void tube(const glm::vec3& from, const glm::vec3& to, float radius, uint32_t material,
+              uint32_t slices = 12);
+    // A smooth-shaded torus around `axis` (unit) through `center`: a ring of `segments` x
+    // `sides` facets, tube radius `minor` about a circle of radius `major`.
+    void torus(const glm::vec3& center, const glm::vec3& axis, float major, float minor,
+               uint32_t material, uint32_t segments = 32, uint32_t sides = 10);
 
 private:
     uint32_t vertex(const glm::vec3& p, const glm::vec3& n, uint32_t material,

@@ -18,7 +18,8 @@ struct BuiltinEntry {
 constexpr BuiltinEntry kBuiltins[] = {
     {"showcase", builtin::showcase}, {"grazing", builtin::grazing}, {"spot", builtin::spot},
     {"foliage", builtin::foliage},   {"room", builtin::room},       {"field", builtin::field},
-    {"bleeding", builtin::bleeding}, {"dense", builtin::dense},     {"demo", builtin::demo}};
+    {"bleeding", builtin::bleeding}, {"dense", builtin::dense},     {"demo", builtin::demo},
+    {"figure", builtin::figure}};
 
 } // namespace
 

@@ -31,6 +31,33 @@ const std::vector<TechniqueInfo>& techniqueTable() {
 // The families every technique reads (bias, csm, composite) and each module's own.
 const std::vector<ParameterInfo>& parameterTable() {
     static const std::vector<ParameterInfo> bias{
+        {.key = "bias.mode",
+         .type = ParameterType::Choice,
+         .defaultValue = 1, // measured: docs/techniques.md, "Adaptive depth bias"
+         .choices = {std::begin(gpu::kBiasModeChoices), std::end(gpu::kBiasModeChoices)},
+         .description = "fixed: bias.constant and bias.slope offset the casters in the shadow "
+                        "pass; adaptive [Dou et al. 2014]: the map stores exact depths and each "
+                        "receiver is biased from its own triangle's plane at every tap (whatever "
+                        "bias.receiver says), lifted by bias.adaptive texels and by what its "
+                        "curvature (bias.curvature) can bring within each tap's reach"},
+        {.key = "bias.adaptive",
+         .type = ParameterType::Float,
+         .defaultValue = 0.25,
+         .min = 0.0,
+         .max = 10.0,
+         .unit = "texels (of the receiver's texel footprint along the light's ray)",
+         .description = "bias.mode=adaptive: the receiver's constant lift towards the light, "
+                        "the paper's adaptive epsilon, in world units of the receiver's texel "
+                        "over N.L"},
+        {.key = "bias.curvature",
+         .type = ParameterType::Float,
+         .defaultValue = 1.0,
+         .min = 0.0,
+         .max = 10.0,
+         .unit = "",
+         .description = "bias.mode=adaptive: scales the surface's measured curvature in each "
+                        "tap's lift and in the reach of the receiver plane's correction (0: "
+                        "flat surfaces everywhere)"},
         {.key = "bias.constant",
          .type = ParameterType::Float,
          .defaultValue = 0.0005,

@@ -185,6 +185,8 @@ std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
         {SPEC_HORIZON,
          horizon == HORIZON_ALL || (horizon == HORIZON_SOFT && module.modelsLightSize) ? 1u : 0u});
     constants.push_back({SPEC_CASCADE_BLEND, params.number("csm.blend") > 0.0 ? 1u : 0u});
+    constants.push_back(
+        {SPEC_ADAPTIVE_BIAS, params.number("bias.mode") == BIAS_ADAPTIVE ? 1u : 0u});
     if (module.constants)
         for (const SpecConstant& c : module.constants(params))
             constants.push_back(c);

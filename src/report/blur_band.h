@@ -1,0 +1,42 @@
+#pragma once
+// How far a technique's filter reaches on the screen, per pixel: the radius of the blur band
+// that acne_beyond_blur and leak_beyond_blur leave out (report/metrics.h), so that the blur a
+// wide kernel is meant to make is not counted as self-shadowing or missing shadow.
+#include "penumbra/renderer.h"
+#include "penumbra/scene.h"
+#include "report/metrics.h"
+
+#include <span>
+
+#include <vector>
+
+namespace penumbra {
+
+// One value per pixel of `gbuffer` (its positions): `blurTexels` (the technique's declared blur
+// radius, TechniqueModule::blurRadiusTexels, in texels of the light's first view, which a
+// sun's cascades scale their kernels to) as a world distance across the light's rays at the
+// pixel, over the smallest stretch of the pixel's footprint across those rays: the widest the
+// blur's disc can appear on the screen, in pixels. The footprint comes from the neighbour on
+// each axis nearer in world space (the one likely on the same surface); a pixel with no
+// neighbour, the background, and a light that casts no shadow give NaN (the metric's minimum).
+std::vector<float> blurBandPixels(const Light& light, const LightShadow& shadow,
+                                  const RenderResult& gbuffer, double blurTexels);
+
+// One view's render, its truth (one image per visibility layer, as the render's) and each
+// layer's mask of counted pixels.
+struct TruthView {
+    const RenderResult* result = nullptr;
+    std::span<const std::vector<float>> truth;
+    std::span<const std::vector<uint8_t>> masks;
+};
+
+// The metrics of the views' renders against their truth, pooled (every view the same size),
+// with the blur band of a technique whose declared blur radius is `blurTexels`; `lit`: the scene
+// with the light sizes the truth used.
+ErrorMetrics metricsAgainstTruth(const Scene& lit, std::span<const TruthView> views,
+                                 double blurTexels);
+ErrorMetrics metricsAgainstTruth(const Scene& lit, const RenderResult& result,
+                                 std::span<const std::vector<float>> truth,
+                                 std::span<const std::vector<uint8_t>> masks, double blurTexels);
+
+} // namespace penumbra
