@@ -16,8 +16,9 @@ const TechniqueModule& secondDepthModule() {
                  .reference = "Wang and Molnar 1994, 'Second-depth shadow mapping'",
                  .families = {"bias", "csm", "composite"},
                  .variants = {{.label = ""},
-                              {.label = "nobias",
-                               .sets = {{"bias.constant", "0"},
+                              {.label = "nobias", // the paper's claim: no bias at all
+                               .sets = {{"bias.mode", "fixed"},
+                                        {"bias.constant", "0"},
                                         {"bias.slope", "0"},
                                         {"bias.normal", "0"},
                                         {"bias.receiver", "off"}}}}},
