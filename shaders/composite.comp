@@ -1,7 +1,9 @@
 #version 460
 // Composite on its own (a frame whose lights have no shadow map; otherwise the last visibility
 // dispatch shades, SPEC_FUSED_COMPOSITE): shading.glsl for every pixel.
-#include "gpu_types.h"
+#include "light_geometry.h"
+#include "frame_block.h"
+#include "bindings.h"
 #include "gbuffer.glsl"
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;

@@ -1,7 +1,8 @@
 #version 460
 // Readback helper (not part of the timed frame): world position and unit normal per pixel,
 // NaN where there is no geometry, for position.pfm / normal.pfm and the ground truth.
-#include "gpu_types.h"
+#include "frame_block.h"
+#include "bindings.h"
 #include "gbuffer.glsl"
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;

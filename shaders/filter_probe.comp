@@ -1,7 +1,11 @@
 #version 460
 // Evaluates the technique's shadow-map filter for given receivers on a given map: the GPU side
 // of the CPU/GPU parity tests (src/reference/filter_reference.cpp is the CPU side).
-#include "gpu_types.h"
+#include "kernels.h"
+#include "light_geometry.h"
+#include "frame_block.h"
+#include "bindings.h"
+#include "pass_types.h"
 layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
 layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
 layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;

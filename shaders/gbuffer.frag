@@ -1,7 +1,9 @@
 #version 460
-#include "gpu_types.h"
+#include "gbuffer_encoding.h"
+#include "frame_block.h"
+#include "bindings.h"
+#include "pass_types.h"
 #include "alpha_test.glsl"
-#include "filter_math.h"
 
 layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inWorld;

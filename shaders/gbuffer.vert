@@ -1,5 +1,6 @@
 #version 460
-#include "gpu_types.h"
+#include "frame_block.h"
+#include "bindings.h"
 
 layout(location = 0) in vec3 inPosition;
 layout(location = 1) in vec3 inNormal;

@@ -4,7 +4,8 @@
 // behind it) gets a midpoint halfway to the far plane (depth 1, the clear value): a receiver
 // behind that surface but nearer than the midpoint is wrongly lit. Hence the method's demand
 // for watertight geometry, whose every front face has a back face behind it.
-#include "gpu_types.h"
+#include "bindings.h"
+#include "pass_types.h"
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 layout(set = 0, binding = POST_INPUT_BINDING) uniform sampler2D firstDepth;
 layout(set = 0, binding = POST_INPUT_BINDING + 1) uniform sampler2D secondDepth;

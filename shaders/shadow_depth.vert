@@ -1,7 +1,7 @@
 #version 460
 // Shadow pass of the casters that read their material (alpha-tested casters, depth peels): the
 // vertex's texture coordinates and alpha go on to the fragment shader.
-#include "gpu_types.h"
+#include "pass_types.h"
 #include "shadow_clip.glsl"
 
 layout(location = 0) in vec3 inPosition;

@@ -1,6 +1,7 @@
 #version 460
 // Alpha-tested casters (glTF alphaMode MASK) in the shadow pass: holes let the light through.
-#include "gpu_types.h"
+#include "bindings.h"
+#include "pass_types.h"
 #include "alpha_test.glsl"
 
 layout(location = 0) in vec2 inUv;

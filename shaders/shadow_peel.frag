@@ -1,7 +1,8 @@
 #version 460
 // Depth peel for second-depth shadow maps [Wang and Molnar 1994]: keeps, per texel, the nearest
 // surface behind the one the first shadow pass stored. Alpha-tested casters keep their holes.
-#include "gpu_types.h"
+#include "bindings.h"
+#include "pass_types.h"
 #include "alpha_test.glsl"
 
 layout(location = 0) in vec2 inUv;

@@ -1,7 +1,9 @@
 #version 460
 // The viewer's display pass: what the window shows, one invocation per pixel, from the frame's
-// targets (apps/viewer/display.cpp). Modes DISPLAY_* in gpu_types.h.
-#include "gpu_types.h"
+// targets (apps/viewer/display.cpp). Modes DISPLAY_* in viewer_types.h.
+#include "frame_block.h"
+#include "bindings.h"
+#include "viewer_types.h"
 #include "gbuffer.glsl"
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;

@@ -1,7 +1,12 @@
 #version 460
 // Visibility pass: per pixel, reconstruct the world position from the G-buffer and evaluate the
 // technique chosen by TECHNIQUE for one light, into that light's layer of the visibility image.
-#include "gpu_types.h"
+#include "kernels.h"
+#include "bias.h"
+#include "light_geometry.h"
+#include "frame_block.h"
+#include "bindings.h"
+#include "pass_types.h"
 layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
 layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
 layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
@@ -21,7 +26,6 @@ layout(constant_id = SPEC_FUSED_COMPOSITE) const bool FUSED_COMPOSITE = false;
 layout(constant_id = SPEC_CASCADE_BLEND) const bool CASCADE_BLEND = true;
 layout(constant_id = SPEC_ADAPTIVE_BIAS) const bool ADAPTIVE = false;
 #include "gbuffer.glsl"
-#include "filter_math.h"
 #include "shadow_common.glsl"
 #include "techniques.glsl"
 #include "shadow_sdf.glsl"
@@ -105,7 +109,7 @@ float surfaceCurvature(ivec2 p, float depth, vec3 world, vec3 normal) {
     return curvature;
 }
 
-// bias.mode=adaptive's terms at a receiver of `view` (filter_math.h, adaptiveBiasTerms): the
+// bias.mode=adaptive's terms at a receiver of `view` (bias.h, adaptiveBiasTerms): the
 // lift comes off its depth; the curvature terms go with it to every tap.
 void applyAdaptiveBias(inout Receiver r, float texelWorld, float depthPerWorld, float cosine) {
     vec4 t = adaptiveBiasTerms(texelWorld, float(push.light.z), depthPerWorld, cosine,

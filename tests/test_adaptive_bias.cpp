@@ -1,10 +1,10 @@
-// bias.mode=adaptive's maths (shaders/include/filter_math.h: adaptiveBiasTerms, tapDepth,
+// bias.mode=adaptive's maths (shaders/include/bias.h: adaptiveBiasTerms, tapDepth,
 // lightDepthGradient), which the visibility pass and the CPU reference share, against answers
 // derived independently: a circle's departure from its tangent line measured along the light's
 // rays, a projection's depth derivative by finite differences.
 #include "core/light_space.h"
 #include "core/projection.h"
-#include "filter_math.h"
+#include "bias.h"
 
 #include <gtest/gtest.h>
 

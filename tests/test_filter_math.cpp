@@ -1,10 +1,15 @@
-// The filter maths the shaders and the CPU reference share (shaders/include/filter_math.h),
+// The filter maths the shaders and the CPU reference share (shaders/include: kernels.h, bias.h,
+// moments.h, light_geometry.h, gbuffer_encoding.h),
 // against answers derived independently: a plane's gradient from the inverse Jacobian and from
 // finite differences, weights that sum to one, rotations that keep lengths, the depth mappings'
 // end points.
 #include "core/light_space.h"
 #include "core/projection.h"
-#include "filter_math.h"
+#include "kernels.h"
+#include "bias.h"
+#include "gbuffer_encoding.h"
+#include "light_geometry.h"
+#include "moments.h"
 
 #include <glm/gtc/packing.hpp>
 #include <gtest/gtest.h>

@@ -6,7 +6,7 @@
 // point lights; the spot cone's smoothstep from cos(outer) to cos(inner) (docs/architecture.md).
 // Written from those formulas, not from shaders/composite.comp.
 #include "gpu_fixture.h"
-#include "gpu_types.h"
+#include "bindings.h"
 #include "scene/mesh_builder.h"
 
 #include <glm/gtc/matrix_transform.hpp>

@@ -2,7 +2,8 @@
 // bounds against the CPU reference, the bounds against their closed forms on a step edge, and the
 // results against the ray-traced truth for every light type.
 #include "analytic_scenes.h"
-#include "filter_math.h"
+#include "light_geometry.h"
+#include "frame_block.h"
 #include "moment_maps.h"
 #include "reference/filter_reference.h"
 #include "render/frame_data.h"

@@ -1,3 +1,4 @@
+#include "bias.h"
 #include "penumbra/error.h"
 #include "penumbra/settings.h"
 #include "shadows/technique.h"

@@ -2,7 +2,7 @@
 // faces' borders, and several shadowed lights of every kind in one frame.
 #include "analytic_scenes.h"
 #include "core/light_space.h"
-#include "filter_math.h"
+#include "light_geometry.h"
 #include "penumbra/error.h"
 #include "scene/mesh_builder.h"
 #include "truth_fixture.h"

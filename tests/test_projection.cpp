@@ -1,7 +1,7 @@
 // The conventions of src/core/projection.h, tested by where points of each view volume land.
 #include "core/light_space.h"
 #include "core/projection.h"
-#include "filter_math.h"
+#include "light_geometry.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
 // The CPU side of the `sdf` technique: the field's grid, which surfaces are closed, the column
 // crossings that sign the field, the brick lists, and the tracer's maths (sdf_math.h) against
 // closed forms.
+#include "bias.h"
 #include "penumbra/error.h"
 #include "reference/distance_field.h"
 #include "scene/mesh_builder.h"

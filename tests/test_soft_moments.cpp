@@ -3,7 +3,8 @@
 // the ray-traced truth on a sphere over a plane, for every light type and for light sizes from
 // almost hard to wide.
 #include "analytic_scenes.h"
-#include "filter_math.h"
+#include "light_geometry.h"
+#include "frame_block.h"
 #include "moment_maps.h"
 #include "reference/filter_reference.h"
 #include "render/frame_data.h"

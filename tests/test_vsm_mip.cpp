@@ -2,7 +2,9 @@
 // moments and its trilinear, anisotropic reads against the CPU reference and a closed form, and
 // in a whole frame the footprint the visibility pass gives each pixel, against a ground truth
 // averaged over each pixel's area (what a minified map's filtering is for).
-#include "filter_math.h"
+#include "light_geometry.h"
+#include "moments.h"
+#include "frame_block.h"
 #include "moment_maps.h"
 #include "reference/filter_reference.h"
 #include "render/frame_data.h"

@@ -3,7 +3,7 @@
 // the window shows: the lit image (split between techniques A and B), one light's visibility, a
 // layer of the depth map, the cascade each pixel reads, or an image the host made (the error heat
 // map). Its output is left ready to blit into the swapchain image.
-#include "gpu_types.h"
+#include "viewer_types.h"
 #include "render/frame.h"
 #include "vk/pipelines.h"
 #include "vk/resources.h"

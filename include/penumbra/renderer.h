@@ -111,7 +111,7 @@ struct FilterProbe {
     glm::vec2 gradient{0.0f};
     glm::uvec2 pixel{0u};
     glm::vec2 uvDx{0.0f}, uvDy{0.0f};
-    // bias.mode=adaptive's per-tap terms (filter_math.h, tapDepth): the curvature lift and the
+    // bias.mode=adaptive's per-tap terms (bias.h, tapDepth): the curvature lift and the
     // receiver's own range for the plane's correction.
     glm::vec2 curve{0.0f};
     glm::vec2 planeRange{-1e30f, 1e30f};

@@ -2,7 +2,7 @@
 #ifndef PENUMBRA_GBUFFER_GLSL
 #define PENUMBRA_GBUFFER_GLSL
 
-#include "filter_math.h"
+#include "gbuffer_encoding.h"
 
 float nanValue() { return uintBitsToFloat(0x7fc00000u); }
 

@@ -1,12 +1,15 @@
 // The separable Gaussian blur of the prefiltered family's maps [Donnelly and Lauritzen 2006], one
 // axis a pass: AXIS 0 runs along rows, reading the light's depth and storing what the technique
-// keeps of it (warpedMoments of momentDepth: MOMENTS, one of MOMENTS_* in filter_math.h, in maps
+// keeps of it (warpedMoments of momentDepth: MOMENTS, one of MOMENTS_* in moments.h, in maps
 // of image format FORMAT); AXIS 1 runs along columns over the row pass's result. Texels past the
 // map's edge repeat the edge (clamp-to-edge, as the CPU reference does). The kernel is the
 // technique's size in taps, in texels of a sun's first cascade, scaled in the farther ones
 // (scaledKernelSize).
 #include "post_pass.glsl"
-#include "filter_math.h"
+#include "kernels.h"
+#include "light_geometry.h"
+#include "moments.h"
+#include "bindings.h"
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 layout(set = 0, binding = POST_INPUT_BINDING) uniform sampler2D source;
 #ifdef FORMAT

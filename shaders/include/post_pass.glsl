@@ -3,7 +3,10 @@
 // Inputs and outputs are the pass's own (POST_INPUT_BINDING + i, POST_OUTPUT_BINDING + i).
 #ifndef PENUMBRA_POST_PASS_GLSL
 #define PENUMBRA_POST_PASS_GLSL
-#include "gpu_types.h"
+#include "light_geometry.h"
+#include "frame_block.h"
+#include "bindings.h"
+#include "pass_types.h"
 layout(set = 0, binding = POST_FRAME_BINDING, std140) uniform FrameBlock { FrameData frame; };
 layout(set = 0, binding = POST_VIEWS_BINDING, std140) uniform Views {
     ShadowViewData views[MAX_UNIFORM_VIEWS];

@@ -1,12 +1,14 @@
 // Summed-area tables of fixed-point moments [Lauritzen 2007, GPU Gems 3 ch. 8], one axis a pass,
 // one invocation per line (rows, then columns; lines run in parallel, each scanned in order):
-// AXIS 0 sums tableMoments (filter_math.h) of each texel's momentDepth along its row, AXIS 1 sums
+// AXIS 0 sums tableMoments (moments.h) of each texel's momentDepth along its row, AXIS 1 sums
 // those row sums down each column. Texel (i, j) of the table then holds the sum over every texel
 // (a <= i, b <= j), modulo 2^32: the sums wrap, and a box's sum, a difference of corners, is
 // still exact (docs/techniques.md, "savsm"). MOMENTS: MOMENTS_VSM (offset moments, FORMAT rg32ui)
 // or MOMENTS_MSM (four moments, rgba32ui); SCALE: the technique's field of frame.tableScales.
 #include "post_pass.glsl"
-#include "filter_math.h"
+#include "light_geometry.h"
+#include "moments.h"
+#include "bindings.h"
 layout(local_size_x = LINE_GROUP_SIZE) in;
 #if AXIS == 0
 layout(set = 0, binding = POST_INPUT_BINDING) uniform sampler2D source;

@@ -2,7 +2,8 @@
 // bricks' triangle lists, the nearest-triangle ids and the field, bound the same way in each.
 #ifndef PENUMBRA_SDF_BUILD_GLSL
 #define PENUMBRA_SDF_BUILD_GLSL
-#include "gpu_types.h"
+#include "bindings.h"
+#include "pass_types.h"
 #include "sdf_math.h"
 
 layout(set = 0, binding = FIELD_TRIANGLES, std430) readonly buffer Triangles {

@@ -1,4 +1,4 @@
-// The maths of the `sdf` technique, written once and compiled twice like filter_math.h: as GLSL by
+// The maths of the `sdf` technique, written once and compiled twice like kernels.h: as GLSL by
 // the field's build passes (shaders/sdf_*.comp) and its tracer (shadow_sdf.glsl), as C++ by the
 // CPU mirror (src/reference/distance_field.cpp). The CPU references of the field itself
 // (closestPointOnTriangle, windingContribution) are written separately in double precision, so a
@@ -6,7 +6,7 @@
 // clang-format off
 #ifndef PENUMBRA_SDF_MATH_H
 #define PENUMBRA_SDF_MATH_H
-#include "filter_math.h"
+#include "pass_types.h"
 
 #ifdef __cplusplus
 namespace penumbra::gpu {

@@ -6,7 +6,8 @@
 // visibility at the pixel.
 #ifndef PENUMBRA_SHADING_GLSL
 #define PENUMBRA_SHADING_GLSL
-#include "gpu_types.h"
+#include "light_geometry.h"
+#include "bindings.h"
 
 // The scene's lights as the pipeline was built for them: their count when at most
 // MAX_SPECIALIZED_LIGHTS (0: more, counted at run time in frame.imageSize.z) and their LIGHT_*

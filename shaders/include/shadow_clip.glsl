@@ -6,7 +6,7 @@
 // validator flags.)
 #ifndef PENUMBRA_SHADOW_CLIP_GLSL
 #define PENUMBRA_SHADOW_CLIP_GLSL
-#include "gpu_types.h"
+#include "pass_types.h"
 
 vec4 shadowClip(ShadowPush push, vec3 position) {
     precise vec4 clip = push.viewProj * vec4(position, 1.0);

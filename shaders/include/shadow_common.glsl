@@ -2,8 +2,7 @@
 // shadow map, and the frustum test.
 #ifndef PENUMBRA_SHADOW_COMMON_GLSL
 #define PENUMBRA_SHADOW_COMMON_GLSL
-#include "gpu_types.h"
-#include "filter_math.h"
+#include "light_geometry.h"
 
 // The light's LIGHT_* kind. A pass that runs once per light defines LIGHT_TYPE_OF as its
 // specialization constant before including this: lavapipe 22.3 runs both sides of every branch,

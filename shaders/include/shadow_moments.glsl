@@ -1,10 +1,12 @@
 // The prefiltered family's visibility: `vsm` [Donnelly and Lauritzen 2006], `esm` [Annen et al.
 // 2008; Salvi 2008] and `evsm` [Lauritzen and McCool 2008] read their blurred maps
 // (shaders/include/moments_blur.glsl) bilinearly at the receiver and bound or estimate the lit
-// fraction (filter_math.h). The CPU mirror is src/reference/filter_reference.cpp.
+// fraction (moments.h). The CPU mirror is src/reference/filter_reference.cpp.
 #ifndef PENUMBRA_SHADOW_MOMENTS_GLSL
 #define PENUMBRA_SHADOW_MOMENTS_GLSL
-#include "filter_math.h"
+#include "kernels.h"
+#include "light_geometry.h"
+#include "moments.h"
 
 // The first `channels` channels at uv, bilinear over the four texels around it (clamp-to-edge),
 // interpolated here rather than by the sampler so that the CPU reference can repeat it exactly.

@@ -10,7 +10,8 @@
 // made even the simplest one 2x slower on lavapipe.
 #ifndef PENUMBRA_SHADOW_PCF_GLSL
 #define PENUMBRA_SHADOW_PCF_GLSL
-#include "filter_math.h"
+#include "kernels.h"
+#include "bias.h"
 
 struct Receiver {
     vec2 uv;        // shadow-map texture coordinates

@@ -1,7 +1,7 @@
 // Percentage-closer soft shadows [Fernando 2005; seed 001]: blocker search, penumbra estimate,
 // then PCF over a kernel of the estimated width. Distances are light view distances (world
 // units along the light's axis); see docs/techniques.md for the derivations.
-// Its geometry (the search and penumbra radii) is in filter_math.h, shared with the CPU
+// Its geometry (the search and penumbra radii) is in light_geometry.h, shared with the CPU
 // reference; src/reference/filter_reference.cpp mirrors the loops.
 #ifndef PENUMBRA_SHADOW_PCSS_GLSL
 #define PENUMBRA_SHADOW_PCSS_GLSL

@@ -5,7 +5,10 @@
 // src/reference/filter_reference.cpp; the derivations are in docs/techniques.md.
 #ifndef PENUMBRA_SHADOW_SAT_GLSL
 #define PENUMBRA_SHADOW_SAT_GLSL
-#include "filter_math.h"
+#include "kernels.h"
+#include "bias.h"
+#include "light_geometry.h"
+#include "moments.h"
 
 // The table's sum up to integer corner c: texel c - 1 (0 along the first row and column).
 uvec4 tableCorner(usampler2DArray table, ivec2 c, float layer) {

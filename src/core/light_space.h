@@ -39,7 +39,7 @@ struct LightProjection {
 };
 
 // A point light's cube: face i looks down axis i / 2 (x, y, z), towards + when i is even; the
-// shaders pick a face with cubeFace() (shaders/include/filter_math.h), which uses this order.
+// shaders pick a face with cubeFace() (shaders/include/light_geometry.h), which uses this order.
 inline constexpr uint32_t kCubeFaces = 6;
 
 // csm.* (src/core/cascades.h).
@@ -49,7 +49,7 @@ struct CascadeSettings {
     float blend = 0.1f;    // csm.blend: fraction of a cascade blended into the next
     bool stabilize = true; // csm.stabilize
 };
-inline constexpr uint32_t kMaxCascades = 8; // MAX_CASCADES in shaders/include/gpu_types.h
+inline constexpr uint32_t kMaxCascades = 8; // MAX_CASCADES in shaders/include/light_geometry.h
 
 // What a light's views need beyond the scene bounds.
 struct ViewFitting {

@@ -1,5 +1,6 @@
 #include "reference/distance_field.h"
 
+#include "bias.h"
 #include "sdf_math.h"
 #include "shadows/technique.h"
 

@@ -1,6 +1,10 @@
 #include "reference/filter_reference.h"
 
-#include "filter_math.h"
+#include "kernels.h"
+#include "bias.h"
+#include "light_geometry.h"
+#include "moments.h"
+#include "frame_block.h"
 #include "penumbra/error.h"
 #include "reference/sampling.h"
 #include "reference/sat_reference.h"
@@ -158,7 +162,7 @@ float hard(const ShadowMapView& map, const FilterProbe& probe, const MarginTrack
     return texelTest(receiverOf(probe), map.texel(texel.x, texel.y), centre, dzRange, m);
 }
 
-// shadow_pcss.glsl's loops, transcribed; its geometry is filter_math.h's.
+// shadow_pcss.glsl's loops, transcribed; its geometry is light_geometry.h's.
 float searchBlockers(const ShadowMapView& map, const Receiver& r, const gpu::FrameData& f,
                      uint32_t n, float radius, float turns, glm::vec2 dzRange,
                      const MarginTracker& m, float& averageDepth) {

@@ -3,7 +3,8 @@
 // transcribed operation for operation (float arithmetic, the same texel clamping as
 // textureGather with clamp-to-edge), reading the same FrameData block the GPU reads. The parity
 // tests compare them with Renderer::probeTechnique on synthetic shadow maps.
-#include "gpu_types.h"
+#include "light_geometry.h"
+#include "frame_block.h"
 #include "penumbra/renderer.h"
 #include "penumbra/settings.h"
 

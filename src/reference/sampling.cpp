@@ -1,6 +1,6 @@
 #include "reference/sampling.h"
 
-#include "filter_math.h"
+#include "kernels.h"
 
 #include <cmath>
 #include <limits>
@@ -22,7 +22,7 @@ double radicalInverse2(uint32_t i) {
 } // namespace
 
 uint32_t hashU32(uint32_t v) {
-    return gpu::hashU32(v); // the shaders' own (filter_math.h)
+    return gpu::hashU32(v); // the shaders' own (kernels.h)
 }
 
 LightCone coneTowards(const Light& light, const glm::dvec3& p) {

@@ -1,6 +1,10 @@
 #include "reference/sat_reference.h"
 
-#include "filter_math.h"
+#include "kernels.h"
+#include "bias.h"
+#include "light_geometry.h"
+#include "moments.h"
+#include "frame_block.h"
 
 #include <algorithm>
 #include <vector>

@@ -1,6 +1,8 @@
 #include "render/frame.h"
 
-#include "filter_math.h"
+#include "moments.h"
+#include "bindings.h"
+#include "pass_types.h"
 #include "penumbra/error.h"
 #include "vk/sync.h"
 

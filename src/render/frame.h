@@ -2,7 +2,7 @@
 // The images one render needs, sized for its options, and the recording of one frame:
 // shadow passes -> G-buffer -> visibility (compute) -> composite (compute), design.md §2.
 #include "core/light_space.h"
-#include "gpu_types.h"
+#include "pass_types.h"
 #include "render/culling.h"
 #include "render/pipelines.h"
 #include "render/textures.h"

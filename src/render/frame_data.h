@@ -1,7 +1,8 @@
 #pragma once
 // Fills the FrameData uniform block: the camera, the composite knobs, and every technique
 // setting the visibility pass reads (the same block feeds the filter probe of the tests).
-#include "gpu_types.h"
+#include "light_geometry.h"
+#include "frame_block.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"

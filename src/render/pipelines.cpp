@@ -1,6 +1,7 @@
 #include "render/pipelines.h"
 
-#include "gpu_types.h"
+#include "bindings.h"
+#include "pass_types.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
 
@@ -50,7 +51,7 @@ vk::GraphicsPipelineDesc positionOnlyDesc(bool depthClamp) {
 FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     shadowLayout =
         vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
-    // Binding numbers: gpu_types.h, shared with the shaders.
+    // Binding numbers: bindings.h, shared with the shaders.
     shadowMaskLayout =
         vk::createPipelineLayout(ctx, {{MASK_TEXTURE, kSampled}}, kGraphicsStages,
                                  sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));

@@ -13,6 +13,7 @@
 //   A technique that traces the distance field (sdf) draws no shadow map: its field is built
 //   before the first frame that needs it (render/distance_field.h) and kept while the scene
 //   renderer lives and sdf.resolution and sdf.thickness stay the same.
+#include "bias.h"
 #include "core/projection.h"
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
@@ -59,7 +60,7 @@ gpu::ShadowViewData viewData(const Light& light, const LightProjection& shadow, 
 }
 
 // A sun's cascade `view` as an affine map of its first cascade's (u, v), the depth shared
-// (gpu_types.h, ShadowViewData::fromFirst): cascades.cpp gives them one orientation and depth
+// (light_geometry.h, ShadowViewData::fromFirst): cascades.cpp gives them one orientation and depth
 // range, which this checks rather than assumes.
 glm::vec4 fromFirstCascade(const glm::mat4& first, const glm::mat4& view) {
     const glm::dmat4 d = glm::dmat4(view) * glm::inverse(glm::dmat4(first));

@@ -1,7 +1,7 @@
 // Technique `msm` [Peters and Klein 2015, 'Moment shadow mapping']: four moments (z, z^2, z^3,
 // z^4) of the depth mapped to [-1, 1], blurred like VSM's (shaders/include/moments_blur.glsl);
 // the visibility pass reconstructs the smallest occluded fraction these moments allow (the
-// Hamburger problem: momentOcclusion in filter_math.h, shaders/include/shadow_moments.glsl).
+// Hamburger problem: momentOcclusion in moments.h, shaders/include/shadow_moments.glsl).
 // msm.precision=16: the paper's optimised quantisation in 16-bit unorm maps. CPU mirror:
 // src/reference/filter_reference.cpp; derivations in docs/techniques.md.
 #include "shadows/technique.h"

@@ -2,7 +2,7 @@
 // moment shadow maps for single scattering, soft shadows and translucent occluders']: PCSS's
 // three steps on a summed-area table of four fixed-point moments. The blocker search takes the
 // blockers' weight and mean depth from the Hamburger reconstruction's atoms in front of the
-// receiver (momentBlockers in filter_math.h), the filter is moment shadow mapping's bound over a
+// receiver (momentBlockers in moments.h), the filter is moment shadow mapping's bound over a
 // box of the penumbra's width. Shared with vssm: shaders/include/shadow_sat.glsl
 // (shadowSoftDetail); CPU mirror: src/reference/sat_reference.cpp; derivations in
 // docs/techniques.md.

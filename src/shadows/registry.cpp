@@ -3,7 +3,7 @@
 // parameter family; the families every technique reads (bias, csm, composite) are registered
 // here.
 // The renderer reads values by key, so a new family adds rows, not plumbing.
-#include "gpu_types.h"
+#include "bias.h"
 #include "penumbra/error.h"
 #include "penumbra/settings.h"
 #include "shadows/technique.h"

@@ -4,7 +4,7 @@
 // open ones given a thickness, alpha-tested ones cut down to their covered parts) and a coarse
 // grid of bricks listing the triangles near each. The GPU passes (src/render/distance_field.h)
 // compute the distances from these.
-#include "gpu_types.h"
+#include "pass_types.h"
 #include "penumbra/scene.h"
 
 #include <glm/glm.hpp>

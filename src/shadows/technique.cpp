@@ -1,7 +1,9 @@
 // The module list and what the frame asks of any module.
 #include "shadows/technique.h"
 
-#include "filter_math.h"
+#include "bias.h"
+#include "moments.h"
+#include "bindings.h"
 #include "penumbra/error.h"
 
 #include <algorithm>

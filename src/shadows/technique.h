@@ -5,7 +5,8 @@
 // frame (src/render) runs what a module declares and never asks which technique it is; each
 // technique is one module in this folder plus its shader include (docs/architecture.md, "Adding a
 // technique").
-#include "gpu_types.h"
+#include "bindings.h"
+#include "frame_block.h"
 #include "penumbra/settings.h"
 
 #include <cstdint>
@@ -62,7 +63,7 @@ struct PostPassDecl {
 };
 
 struct SpecConstant {
-    uint32_t id; // SPEC_* in shaders/include/gpu_types.h
+    uint32_t id; // SPEC_* in shaders/include/bindings.h
     uint32_t value;
     auto operator<=>(const SpecConstant&) const = default;
 };

@@ -1,7 +1,7 @@
 // Technique `vssm` [Yang, Dong, Feng, Peng, Wang and Peng 2010, 'Variance soft shadow mapping']:
 // PCSS's three steps on savsm's summed-area table of offset moments, each at a constant cost
 // whatever the light's size: the blocker search reads the moments over the search box and takes
-// the average blocker depth from Chebyshev's bound (chebyshevBlockers in filter_math.h), the
+// the average blocker depth from Chebyshev's bound (chebyshevBlockers in moments.h), the
 // penumbra follows from similar triangles, and the filter is the bound over a box of that width.
 // The paper's answer to non-planar receivers, kernel subdivision, is `vssm.subdivision`: each
 // sub-kernel is compared with the receiver's plane at its centre. Shader:

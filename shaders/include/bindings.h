@@ -1,0 +1,100 @@
+// The binding contract of every pass: descriptor bindings (set 0, push descriptors; the shaders
+// declare `layout(binding = X)`, src/render/pipelines.cpp builds each pass's layout from the
+// same names, the passes in src/render write them), specialization-constant ids, and workgroup
+// sizes. Compiled as GLSL and as C++.
+// clang-format off
+#ifndef PENUMBRA_BINDINGS_H
+#define PENUMBRA_BINDINGS_H
+
+// Specialization constant TECHNIQUE of visibility.comp; equals penumbra::Technique.
+#define TECHNIQUE_HARD 0u
+#define TECHNIQUE_PCF 1u
+#define TECHNIQUE_PCSS 2u
+#define TECHNIQUE_SECOND_DEPTH 3u
+#define TECHNIQUE_VSM 4u
+#define TECHNIQUE_ESM 5u
+#define TECHNIQUE_EVSM 6u
+#define TECHNIQUE_SAVSM 7u
+#define TECHNIQUE_MSM 8u
+#define TECHNIQUE_VSSM 9u
+#define TECHNIQUE_MSM_SOFT 10u
+#define TECHNIQUE_SDF 11u
+
+// Specialization-constant ids of visibility.comp and filter_probe.comp (the pipeline key is the
+// list of (id, value) pairs: src/shadows/technique.h).
+#define SPEC_TECHNIQUE 0
+#define SPEC_FILTER 1
+#define SPEC_RECEIVER 2
+#define SPEC_HORIZON 3           // 1: the visibility pass applies bias.horizon
+#define SPEC_LIGHT_TYPE 4        // the visibility dispatch's light: LIGHT_*
+#define SPEC_LIGHT_VIEWS 5       // ... and how many shadow views it has
+#define SPEC_SCENE_LIGHTS 6      // shading.glsl: the scene's lights (0: more than
+                                 // MAX_SPECIALIZED_LIGHTS, counted at run time)
+#define SPEC_SCENE_LIGHT_TYPES 7 // ... their LIGHT_* kinds, two bits each
+#define SPEC_FUSED_COMPOSITE 8   // 1: this visibility dispatch (the last light's) also shades
+#define MAX_SPECIALIZED_LIGHTS 16u
+#define SPEC_CASCADE_BLEND 9     // 1: csm.blend > 0 (the blend band evaluates two cascades)
+#define SPEC_MATERIAL_TEXTURE 10 // gbuffer.frag: MaterialPush::hasTexture ...
+#define SPEC_MATERIAL_ALPHA_TEST 11 // ... and alphaTest, fixed per pipeline
+#define SPEC_MATERIAL_VERTEX_COLOR 12 // 0: the batch's vertex colours are all opaque white
+#define SPEC_ADAPTIVE_BIAS 13    // 1: bias.mode=adaptive (the visibility pass's receiver terms)
+#define SPEC_INTERMEDIATES 15    // 1: the visibility pass also writes VIS_INTERMEDIATES (viewer)
+
+// Descriptor bindings, pass by pass.
+#define BIND_FRAME 0             // FrameData, in every pass that reads it
+#define VIS_LIGHTS 1             // visibility.comp: LightData[], uniform
+#define VIS_GBUFFER_DEPTH 2
+#define VIS_GBUFFER_NORMAL 3
+#define VIS_SHADOW_MAP 4         // the technique's filtered map, every view (nearest)
+#define VIS_SHADOW_COMPARE 5     // the depth map, every view (comparison sampler)
+#define VIS_OUT 6                // R32F array, a layer per shadow-casting light
+#define VIS_VIEWS 7              // ShadowViewData[], uniform
+#define VIS_SHADOW_TABLE 8       // the technique's filtered map when it holds integers (a
+                                 // placeholder otherwise), every view (nearest)
+#define VIS_FIELD 9              // the scene's distance field (sdf; a 1x1x2 placeholder
+                                 // otherwise), trilinear
+#define VIS_INTERMEDIATES 10     // RGBA32F array, a layer per shadow-casting light: the
+                                 // technique's intermediate results (evaluateTechnique's yzw),
+                                 // written with SPEC_INTERMEDIATES (a 1x1 placeholder otherwise)
+#define VIS_GBUFFER_ALBEDO 11    // read and ...
+#define VIS_COLOR 12             // ... written by a dispatch with SPEC_FUSED_COMPOSITE (RGBA8)
+#define COMPOSITE_LIGHTS 1       // composite.comp: LightData[], uniform
+#define COMPOSITE_GBUFFER_DEPTH 2
+#define COMPOSITE_GBUFFER_NORMAL 3
+#define COMPOSITE_GBUFFER_ALBEDO 4
+#define COMPOSITE_VISIBILITY 5
+#define COMPOSITE_OUT 6
+#define EXPORT_GBUFFER_DEPTH 1   // export.comp
+#define EXPORT_GBUFFER_NORMAL 2
+#define EXPORT_POSITION 3
+#define EXPORT_NORMAL 4
+#define PROBE_RECEIVERS 1        // filter_probe.comp
+#define PROBE_SHADOW_MAP 2
+#define PROBE_SHADOW_COMPARE 3
+#define PROBE_RESULTS 4
+#define PROBE_VIEW 5
+#define PROBE_SHADOW_TABLE 6
+#define GBUFFER_TEXTURE 1        // gbuffer.frag: the material's base colour
+#define MASK_TEXTURE 0           // shadow_mask.frag: the alpha-tested caster's texture
+#define READ_MAP 0               // a technique's extra depth pass (shadow_peel.frag): the map
+#define READ_TEXTURE 1           // it reads, and the caster's texture
+#define FIELD_TRIANGLES 0        // the distance field's build passes (sdf_seed, sdf_flood,
+#define FIELD_BRICK_STARTS 1     // sdf_resolve): FieldTriangle[], each brick's first entry in
+#define FIELD_BRICK_LIST 2       // the brick list (one past the last brick: its end), the list
+#define FIELD_IDS_IN 3           // of triangle indices; nearest-triangle ids (R32UI, 3D) read
+#define FIELD_IDS_OUT 4          // and written; the field (R32F, 3D) written
+#define FIELD_OUT 5
+
+// A shadow-map post pass samples its inputs at bindings POST_INPUT_BINDING + i and writes its
+// outputs at POST_OUTPUT_BINDING + i (src/shadows/technique.h, PostPassDecl).
+#define POST_INPUT_BINDING 0
+#define POST_OUTPUT_BINDING 8
+#define POST_MAX_MAPS 8
+#define POST_FRAME_BINDING 16   // FrameData (the technique's parameters)
+#define POST_VIEWS_BINDING 17   // ShadowViewData[], uniform; PostPassPush.size.z: the view
+
+#define GROUP_SIZE 8u           // screen-space and per-texel passes: GROUP_SIZE^2 invocations
+#define LINE_GROUP_SIZE 64u     // post passes dispatched one invocation per row or column
+
+#endif
+// clang-format on
