@@ -3,4 +3,6 @@
 #define AXIS 1
 #define MOMENTS MOMENTS_ESM
 #define FORMAT r32f
+#define PARAMS esm
+#define EXPONENTS vec2(esm.c)
 #include "moments_blur.glsl"

@@ -3,4 +3,6 @@
 #define AXIS 0
 #define MOMENTS MOMENTS_EVSM
 #define FORMAT rgba32f
+#define PARAMS evsm
+#define EXPONENTS vec2(evsm.positive, evsm.negative)
 #include "moments_blur.glsl"

@@ -1,14 +1,14 @@
 #version 460
 // Evaluates the technique's shadow-map filter for given receivers on a given map: the GPU side
-// of the CPU/GPU parity tests (src/reference/filter_reference.cpp is the CPU side).
+// of the CPU/GPU parity tests (each module's CPU reference, src/shadows/<name>.cpp, is the
+// other side). The same entry point as the visibility pass's (techniques.glsl).
 #include "kernels.h"
 #include "light_geometry.h"
 #include "frame_block.h"
 #include "bindings.h"
 #include "pass_types.h"
 layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
-layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
-layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
+layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = 0u;
 #include "techniques.glsl"
 
 layout(local_size_x = 64) in;
@@ -16,9 +16,6 @@ layout(local_size_x = 64) in;
 layout(set = 0, binding = PROBE_RECEIVERS, std430) readonly buffer Probes {
     ProbeReceiver probes[];
 };
-layout(set = 0, binding = PROBE_SHADOW_MAP) uniform sampler2DArray shadowMap; // one layer
-layout(set = 0, binding = PROBE_SHADOW_COMPARE) uniform sampler2DArrayShadow shadowMapCmp;
-layout(set = 0, binding = PROBE_SHADOW_TABLE) uniform usampler2DArray shadowTable;
 layout(set = 0, binding = PROBE_RESULTS, std430) writeonly buffer Results { vec4 results[]; };
 layout(set = 0, binding = PROBE_VIEW, std430) readonly buffer Views { ShadowViewData view; };
 layout(push_constant) uniform Push { ProbePush push; };
@@ -27,16 +24,25 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= push.counts.x) return;
     ProbeReceiver probe = probes[i];
-    Receiver r;
-    r.uv = probe.uvDepth.xy;
-    r.depth = probe.uvDepth.z;
-    r.gradient = probe.gradientPixel.xy;
-    r.uvDx = probe.footprint.xy;
-    r.uvDy = probe.footprint.zw;
-    r.layer = 0.0;
-    r.kernelScale = 1.0;
-    r.curve = probe.adaptive.xy;
-    r.planeRange = probe.adaptive.zw;
-    results[i] = evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, shadowTable, r,
-                                   push.counts.y, view, uvec2(probe.gradientPixel.zw));
+    TechniqueInput at;
+    at.r.uv = probe.uvDepth.xy;
+    at.r.depth = probe.uvDepth.z;
+    at.r.gradient = probe.gradientPixel.xy;
+    at.r.uvDx = probe.footprint.xy;
+    at.r.uvDy = probe.footprint.zw;
+    at.r.layer = 0.0;
+    at.r.kernelScale = 1.0;
+    at.r.curve = probe.adaptive.xy;
+    at.r.planeRange = probe.adaptive.zw;
+    at.view = view;
+    at.mapSize = push.counts.y;
+    at.pixel = uvec2(probe.gradientPixel.zw);
+    at.stage = STAGE_WHOLE;
+    at.blockers = vec2(0.0);
+    at.zBlocker = 0.0;
+    at.world = vec3(0.0);
+    at.face = vec3(0.0);
+    at.sinRadius = 0.0;
+    at.horizon = false;
+    results[i] = evaluateTechnique(TECHNIQUE, at);
 }

@@ -3,4 +3,6 @@
 #define AXIS 0
 #define MOMENTS MOMENTS_MSM
 #define FORMAT rgba32f
+#define PARAMS msm
+#define STORE16 (msm.bits == 16u)
 #include "moments_blur.glsl"

@@ -3,5 +3,5 @@
 #define AXIS 0
 #define MOMENTS MOMENTS_MSM
 #define FORMAT rgba32ui
-#define SCALE frame.tableScales.z
+#define SCALE msmSoft.tableScale
 #include "sat_scan.glsl"

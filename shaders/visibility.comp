@@ -1,6 +1,8 @@
 #version 460
 // Visibility pass: per pixel, reconstruct the world position from the G-buffer and evaluate the
 // technique chosen by TECHNIQUE for one light, into that light's layer of the visibility image.
+// The pass knows no technique by name: what differs between them comes from capabilities their
+// modules declare (src/shadows/technique.h), as specialization constants.
 #include "kernels.h"
 #include "bias.h"
 #include "light_geometry.h"
@@ -8,8 +10,7 @@
 #include "bindings.h"
 #include "pass_types.h"
 layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
-layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = TECHNIQUE_HARD;
-layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
+layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = 0u;
 layout(constant_id = SPEC_RECEIVER) const uint RECEIVER = RECEIVER_OFF;
 layout(constant_id = SPEC_HORIZON) const uint HORIZON = 0u;
 layout(constant_id = SPEC_INTERMEDIATES) const bool WRITE_INTERMEDIATES = false;
@@ -25,22 +26,23 @@ layout(constant_id = SPEC_LIGHT_VIEWS) const uint LIGHT_VIEWS = 1u;
 layout(constant_id = SPEC_FUSED_COMPOSITE) const bool FUSED_COMPOSITE = false;
 layout(constant_id = SPEC_CASCADE_BLEND) const bool CASCADE_BLEND = true;
 layout(constant_id = SPEC_ADAPTIVE_BIAS) const bool ADAPTIVE = false;
+// Capabilities: the technique reads the pixel's footprint in the map; searches blockers (a sun's
+// search and filter may then run in different cascades); traces the scene's distance field
+// instead of reading a map (and clips the light at the receiver's horizon itself).
+layout(constant_id = SPEC_FOOTPRINT) const bool FOOTPRINT = false;
+layout(constant_id = SPEC_BLOCKER_SEARCH) const bool BLOCKER_SEARCH = false;
+layout(constant_id = SPEC_TRACES_FIELD) const bool TRACES_FIELD = false;
 #include "gbuffer.glsl"
 #include "shadow_common.glsl"
 #include "techniques.glsl"
-#include "shadow_sdf.glsl"
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 
 layout(set = 0, binding = VIS_LIGHTS, std140) uniform Lights { LightData lights[MAX_UNIFORM_LIGHTS]; };
 layout(set = 0, binding = VIS_GBUFFER_DEPTH) uniform sampler2D gDepth;
 layout(set = 0, binding = VIS_GBUFFER_NORMAL) uniform sampler2D gNormal;
-layout(set = 0, binding = VIS_SHADOW_MAP) uniform sampler2DArray shadowMap;
-layout(set = 0, binding = VIS_SHADOW_COMPARE) uniform sampler2DArrayShadow shadowMapCmp;
-layout(set = 0, binding = VIS_SHADOW_TABLE) uniform usampler2DArray shadowTable;
 layout(set = 0, binding = VIS_OUT, r32f) uniform image2DArray visibility;
 layout(set = 0, binding = VIS_VIEWS, std140) uniform Views { ShadowViewData views[MAX_UNIFORM_VIEWS]; };
-layout(set = 0, binding = VIS_FIELD) uniform sampler3D distanceField;
 layout(set = 0, binding = VIS_INTERMEDIATES, rgba32f) uniform writeonly image2DArray intermediates;
 layout(set = 0, binding = VIS_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
 layout(set = 0, binding = VIS_COLOR, rgba8) uniform writeonly image2D outColor;
@@ -78,7 +80,7 @@ vec3 neighbourOffset(mat4 S, ivec2 p, ivec2 step, vec3 centre, float depth) {
 
 // The pixel's footprint on its receiver, in world space: where the rays through the next pixel
 // along x and along y meet the plane of the pixel's triangle, less the pixel's own position.
-// Zero unless the technique reads a mip chain (vsm.filter=mip).
+// Zero unless the technique reads its footprint (FOOTPRINT).
 vec3 footprintDx = vec3(0.0), footprintDy = vec3(0.0);
 
 // bias.mode=adaptive: the pixel's own triangle's normal and how fast its surface's shading
@@ -151,7 +153,7 @@ Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world,
     r.gradient = vec2(0.0);
     r.layer = view.texel.z;
     r.kernelScale = view.cascade.z;
-    vec4 footprint = TECHNIQUE == TECHNIQUE_VSM ? uvFootprint(view, world) : vec4(0.0);
+    vec4 footprint = FOOTPRINT ? uvFootprint(view, world) : vec4(0.0);
     r.uvDx = footprint.xy;
     r.uvDy = footprint.zw;
     noAdaptiveTerms(r);
@@ -188,7 +190,7 @@ struct CascadeBase {
     float depth;       // the receiver's light depth before the normal offset ...
     float depthAlong;  // ... and its change per world unit of offset
     vec2 gradient;     // the receiver plane's d depth / d uv in the first cascade
-    vec4 footprint;    // the pixel's uv footprint in the first cascade (vsm.filter=mip)
+    vec4 footprint;    // the pixel's uv footprint in the first cascade (FOOTPRINT)
     float depthPerWorld, cosine; // bias.mode=adaptive: shared by every cascade
 };
 
@@ -227,11 +229,27 @@ Receiver cascadeReceiver(CascadeBase b, ShadowViewData view, out bool inside) {
     return r;
 }
 
+// What the technique is handed at a receiver of `view`.
+TechniqueInput techniqueInput(Receiver r, ShadowViewData view, ivec2 p, uint stage) {
+    TechniqueInput at;
+    at.r = r;
+    at.view = view;
+    at.mapSize = push.light.z;
+    at.pixel = uvec2(p);
+    at.stage = stage;
+    at.blockers = vec2(0.0);
+    at.zBlocker = 0.0;
+    at.world = vec3(0.0);
+    at.face = vec3(0.0);
+    at.sinRadius = 0.0;
+    at.horizon = false;
+    return at;
+}
+
 // The technique at a receiver of `view` (lit outside the view's frustum, which nothing in its map
 // can shadow).
 float evaluate(Receiver r, bool inside, ShadowViewData view, ivec2 p) {
-    detail = inside ? evaluateTechnique(TECHNIQUE, shadowMap, shadowMapCmp, shadowTable, r,
-                                        push.light.z, view, uvec2(p))
+    detail = inside ? evaluateTechnique(TECHNIQUE, techniqueInput(r, view, p, STAGE_WHOLE))
                     : vec4(1.0, 1.0, 0.0, 0.0);
     return detail.x;
 }
@@ -259,17 +277,17 @@ bool holds(Receiver r, bool inside, float radius) {
            all(lessThanEqual(r.uv, vec2(1.0 - margin)));
 }
 
-// PCSS for a pixel of a sun's cascade `i`. Its kernels follow the light's size, and
-// pcss.maxRadius caps them in texels of the map sampled: the blocker search runs in the finest
-// cascade from i whose texels hold it under the cap (else the coarsest that holds the pixel, else
-// i), and the penumbra is filtered in the finest cascade from i that holds it (else where the
-// search ran), so contact shadows keep the fine texels and wide penumbrae are not clipped. The
-// cascades share one orientation and depth range (src/core/cascades.cpp): light view distances
-// carry over. One search and one filter run, in the cascades chosen first: the loops over
-// cascades unroll and only pick.
-float pcssThroughCascades(CascadeBase b, uint i, ivec2 p) {
+// A technique that searches blockers (BLOCKER_SEARCH) for a pixel of a sun's cascade `i`. Its
+// kernels follow the light's size, and frame.search.x caps them in texels of the map sampled: the
+// blocker search runs in the finest cascade from i whose texels hold it under the cap (else the
+// coarsest that holds the pixel, else i), and the penumbra is filtered in the finest cascade from
+// i that holds it (else where the search ran), so contact shadows keep the fine texels and wide
+// penumbrae are not clipped. The cascades share one orientation and depth range
+// (src/core/cascades.cpp): light view distances carry over. One search and one filter run, in the
+// cascades chosen first: the loops over cascades unroll and only pick.
+float searchThroughCascades(CascadeBase b, uint i, ivec2 p) {
     uint mapSize = push.light.z;
-    float cap = frame.pcssParams.x;
+    float cap = frame.search.x;
     uint searchIn = i;
     bool found = false, settled = false;
     for (uint j = 0u; j < LIGHT_VIEWS; ++j) {
@@ -286,12 +304,11 @@ float pcssThroughCascades(CascadeBase b, uint i, ivec2 p) {
     ShadowViewData searchView = viewOf(searchIn);
     bool inside;
     Receiver rs = cascadeReceiver(b, searchView, inside);
-    float turns = rotationTurns(frame.pcssMode.z, uvec2(p));
-    if (!found && !inside) { // outside the light's frustum: lit, as evaluateTechnique says
+    if (!found && !inside) { // outside the light's frustum: lit, as evaluate says
         detail = vec4(1.0, 1.0, 0.0, 0.0);
         return 1.0;
     }
-    vec2 blockers = pcssSearch(shadowMap, rs, mapSize, searchView, turns);
+    vec2 blockers = evaluateTechnique(TECHNIQUE, techniqueInput(rs, searchView, p, STAGE_SEARCH)).xy;
     float zBlocker = viewDistance(searchView, blockers.y);
     uint filterIn = searchIn;
     bool chosen = false;
@@ -307,16 +324,20 @@ float pcssThroughCascades(CascadeBase b, uint i, ivec2 p) {
     }
     ShadowViewData filterView = viewOf(filterIn);
     Receiver rf = cascadeReceiver(b, filterView, inside);
-    detail = blockers.x == 0.0
-                 ? vec4(1.0, blockers.y, 0.0, 0.0)
-                 : pcssFilter(shadowMap, rf, mapSize, filterView, zBlocker, blockers, turns);
+    if (blockers.x == 0.0) {
+        detail = vec4(1.0, blockers.y, 0.0, 0.0);
+    } else {
+        TechniqueInput at = techniqueInput(rf, filterView, p, STAGE_FILTER);
+        at.blockers = blockers;
+        at.zBlocker = zBlocker;
+        detail = evaluateTechnique(TECHNIQUE, at);
+    }
     return detail.x;
 }
 
 // The visibility of a pixel through cascade i of the sun's.
 float throughCascade(CascadeBase b, uint i, ivec2 p) {
-    return TECHNIQUE == TECHNIQUE_PCSS ? pcssThroughCascades(b, i, p)
-                                       : visibilityThroughCascade(b, i, p);
+    return BLOCKER_SEARCH ? searchThroughCascades(b, i, p) : visibilityThroughCascade(b, i, p);
 }
 
 // Light i's visibility at the pixel, for the fused composite: this dispatch's own in `current`,
@@ -342,7 +363,7 @@ void main() {
     vec3 normal = shadingNormal(normals);
     float v = nanValue();
     if (!isBackground(depth)) {
-        if (TECHNIQUE == TECHNIQUE_VSM && frame.vsmParams.w > 0.0) {
+        if (FOOTPRINT) {
             vec3 face = faceNormal(normals);
             footprintDx = onReceiverPlane(p + ivec2(1, 0), depth, world, face) - world;
             footprintDy = onReceiverPlane(p + ivec2(0, 1), depth, world, face) - world;
@@ -353,11 +374,19 @@ void main() {
         }
         LightData light = lights[push.light.x];
         uint k = lightViewOf(light, world);
-        if (TECHNIQUE == TECHNIQUE_SDF) {
+        if (TRACES_FIELD) {
             // No shadow map: the field holds the whole scene, the tracer its own horizon.
-            v = shadowSdf(distanceField, light, world, faceNormal(normals),
-                          lightSine(light, viewOf(k), world), HORIZON != 0u);
-            detail = vec4(v, 0.0, 0.0, 0.0);
+            TechniqueInput at = techniqueInput(Receiver(vec2(0.0), 0.0, vec2(0.0), 0.0, 1.0,
+                                                        vec2(0.0), vec2(0.0), vec2(0.0),
+                                                        vec2(-1e30, 1e30)),
+                                               viewOf(k), p, STAGE_WHOLE);
+            at.light = light;
+            at.world = world;
+            at.face = faceNormal(normals);
+            at.sinRadius = lightSine(light, viewOf(k), world);
+            at.horizon = HORIZON != 0u;
+            detail = evaluateTechnique(TECHNIQUE, at);
+            v = detail.x;
         } else if (LIGHT_TYPE == LIGHT_DIRECTIONAL && LIGHT_VIEWS > 1u) {
             // A sun's cascade: the first whose slice reaches the pixel's view distance.
             float z = dot(world - frame.position.xyz, frame.cameraForward.xyz);
@@ -379,7 +408,7 @@ void main() {
         }
         float nDotL = dot(faceNormal(normals), directionToLight(light, world));
         float sinRadius = lightSine(light, viewOf(k), world);
-        if (HORIZON != 0u && TECHNIQUE != TECHNIQUE_SDF) v *= horizonVisibility(nDotL, sinRadius);
+        if (HORIZON != 0u && !TRACES_FIELD) v *= horizonVisibility(nDotL, sinRadius);
         v = min(v, backFacingVisibility(nDotL, sinRadius));
     }
     imageStore(visibility, ivec3(p, int(push.light.y)), vec4(v));

@@ -3,4 +3,5 @@
 #define AXIS 1
 #define MOMENTS MOMENTS_VSM
 #define FORMAT rg32f
+#define PARAMS vsm
 #include "moments_blur.glsl"

@@ -3,5 +3,5 @@
 #define AXIS 0
 #define MOMENTS MOMENTS_VSM
 #define FORMAT rg32ui
-#define SCALE frame.tableScales.y
+#define SCALE vssm.tableScale
 #include "sat_scan.glsl"

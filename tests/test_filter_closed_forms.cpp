@@ -10,9 +10,9 @@
 // texel centres); an n-tap box of such taps one texel apart, centred on x, reads
 // clamp((x - k + 1/2 + (n - 1)/2) / n, 0, 1), the unit ramps tiling a ramp n texels wide.
 #include "gpu_fixture.h"
-#include "reference/filter_reference.h"
 #include "render/frame_data.h"
 #include "shadows/poisson.h"
+#include "shadows/technique.h"
 
 #include <cmath>
 #include <cstdio>
@@ -82,11 +82,11 @@ Evaluated evaluate(Technique technique, const ParameterValues& params,
                    const ProbeLight& light = {}) {
     Evaluated e;
     e.gpu = sharedRenderer().probeTechnique(technique, params, map, kSize, probes, light);
-    gpu::FrameData frame{};
-    render::setTechniqueSettings(frame, params, sharedRenderer().device().depthLinearFilter, 8);
+    const shadows::FilterSettings frame = shadows::filterSettings(
+        shadows::moduleOf(technique), params, sharedRenderer().device().depthLinearFilter, 8);
     const gpu::ShadowViewData viewData = render::probeViewData(light);
     for (const FilterProbe& p : probes)
-        e.cpu.push_back(techniqueReference(technique, {map, kSize}, p, frame, viewData));
+        e.cpu.push_back(shadows::techniqueReference(technique, {map, kSize}, p, frame, viewData));
     return e;
 }
 

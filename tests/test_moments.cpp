@@ -2,11 +2,11 @@
 // bounds against the CPU reference, the bounds against their closed forms on a step edge, and the
 // results against the ray-traced truth for every light type.
 #include "analytic_scenes.h"
-#include "light_geometry.h"
 #include "frame_block.h"
+#include "light_geometry.h"
 #include "moment_maps.h"
-#include "reference/filter_reference.h"
 #include "render/frame_data.h"
+#include "shadows/technique.h"
 #include "truth_fixture.h"
 
 #include <fmt/format.h>
@@ -67,7 +67,7 @@ std::vector<FamilyCase> familyCases() {
 
 TEST_F(FilterTest, PrefilteredFamilyMatchesItsCpuReference) {
     const std::vector<float> depth = boxesOverAWave(5);
-    const ShadowMapView map{depth, kSize};
+    const shadows::ShadowMapView map{depth, kSize};
     const std::vector<FilterProbe> probes = probesOver(9);
     for (const ProbeLight& light : kLights)
         for (const FamilyCase& c : familyCases()) {
@@ -80,13 +80,14 @@ TEST_F(FilterTest, PrefilteredFamilyMatchesItsCpuReference) {
             }
             const std::vector<glm::vec4> gpuResult =
                 sharedRenderer().probeTechnique(c.technique, params, depth, kSize, probes, light);
-            gpu::FrameData frame{};
-            render::setTechniqueSettings(frame, params, false, 8);
+            const shadows::FilterSettings frame =
+                shadows::filterSettings(shadows::moduleOf(c.technique), params, false, 8);
             const gpu::ShadowViewData view = render::probeViewData(light);
             glm::vec4 worst(0.0f);
             size_t between = 0;
             for (size_t i = 0; i < probes.size(); ++i) {
-                const glm::vec4 cpu = techniqueReference(c.technique, map, probes[i], frame, view);
+                const glm::vec4 cpu =
+                    shadows::techniqueReference(c.technique, map, probes[i], frame, view);
                 // Filtered values relative to their size (exponentials span many decades).
                 const glm::vec4 scale = glm::max(glm::abs(cpu), glm::vec4(1.0f));
                 worst = glm::max(worst, glm::abs(cpu - gpuResult[i]) /

@@ -1,4 +1,5 @@
 #include "bias.h"
+#include "params_moments.h"
 #include "penumbra/error.h"
 #include "penumbra/settings.h"
 #include "shadows/technique.h"
@@ -248,11 +249,41 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     poisson.assign("pcf.filter=poisson");
     poisson.assign("pcf.radius=6");
     const auto pcf = shadows::visibilityConstants(shadows::pcfModule(), poisson);
-    ASSERT_EQ(pcf.size(), 6u);
+    ASSERT_EQ(pcf.size(), 9u);
     EXPECT_EQ(pcf[4].id, uint32_t{SPEC_ADAPTIVE_BIAS}); // every technique's: bias.mode
     EXPECT_EQ(pcf[4].value, ParameterValues().number("bias.mode") == BIAS_ADAPTIVE ? 1u : 0u);
-    EXPECT_EQ(pcf[5].id, uint32_t{SPEC_FILTER});
-    EXPECT_EQ(pcf[5].value, uint32_t{FILTER_POISSON});
+    // Then the capabilities, then the module's own.
+    EXPECT_EQ(pcf[5].id, uint32_t{SPEC_FOOTPRINT});
+    EXPECT_EQ(pcf[6].id, uint32_t{SPEC_BLOCKER_SEARCH});
+    EXPECT_EQ(pcf[7].id, uint32_t{SPEC_TRACES_FIELD});
+    EXPECT_EQ(pcf[8].id, uint32_t{SPEC_FILTER});
+    EXPECT_EQ(pcf[8].value, uint32_t{FILTER_POISSON});
+    // Each capability is the module's own declaration, and only the modules that need one have
+    // it: the footprint (vsm.filter=mip), the blocker search across cascades (pcss), the field.
+    auto capability = [](const shadows::TechniqueModule& m, const ParameterValues& p, int id) {
+        for (const shadows::SpecConstant& c : shadows::visibilityConstants(m, p))
+            if (c.id == uint32_t(id))
+                return c.value;
+        return ~0u;
+    };
+    ParameterValues mipmapped;
+    mipmapped.assign("vsm.filter=mip");
+    for (const shadows::TechniqueModule* m : shadows::allModules()) {
+        const bool vsm = m == &shadows::vsmModule();
+        EXPECT_EQ(capability(*m, defaults, SPEC_FOOTPRINT), 0u) << m->info.name;
+        EXPECT_EQ(capability(*m, mipmapped, SPEC_FOOTPRINT), vsm ? 1u : 0u) << m->info.name;
+        EXPECT_EQ(capability(*m, defaults, SPEC_BLOCKER_SEARCH),
+                  m == &shadows::pcssModule() ? 1u : 0u)
+            << m->info.name;
+        EXPECT_EQ(capability(*m, defaults, SPEC_TRACES_FIELD), m->tracesField ? 1u : 0u)
+            << m->info.name;
+        // The shared settings carry the blocker search's cap where there is one, else 0.
+        const shadows::FilterSettings s = shadows::filterSettings(*m, defaults, false, 8);
+        EXPECT_EQ(s.frame.search.x, m == &shadows::pcssModule()
+                                        ? static_cast<float>(defaults.number("pcss.maxRadius"))
+                                        : 0.0f)
+            << m->info.name;
+    }
     poisson.assign("bias.mode=adaptive");
     EXPECT_EQ(shadows::visibilityConstants(shadows::pcfModule(), poisson)[4].value, 1u);
     poisson.assign("bias.mode=fixed");
@@ -267,7 +298,7 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(box), 1.0);
     EXPECT_EQ(shadows::pcssModule().blurRadiusTexels(box), 41.0); // pcss.maxRadius 40
     EXPECT_EQ(shadows::hardModule().blurRadiusTexels(box), 0.5);
-    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 5u);
+    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 8u);
     // The summed-area members' memory: two RG32UI maps (savsm, vssm) or two RGBA32UI maps
     // (msm-soft) beside the depth; their fixed-point scales keep the widest box exact.
     EXPECT_EQ(shadows::shadowMapBytes(shadows::vssmModule(), 16, defaults), (4u + 16u) * 16 * 16);
@@ -285,11 +316,11 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(shadows::shadowMapBytes(shadows::vsmModule(), 16, defaults), (4u + 16u) * 16 * 16);
     EXPECT_EQ(shadows::shadowMapBytes(shadows::vsmModule(), 16, mip),
               (4u + 8u) * 16 * 16 + 8u * 341);
-    gpu::FrameData frame{};
-    shadows::vsmModule().pack(mip, frame);
-    EXPECT_EQ(frame.vsmParams.w, 8.0f);
-    shadows::vsmModule().pack(defaults, frame);
-    EXPECT_EQ(frame.vsmParams.w, 0.0f);
+    shadows::ParamBlock block;
+    shadows::vsmModule().pack(mip, block);
+    EXPECT_EQ(block.get<gpu::VsmParams>().anisotropy, 8.0f);
+    shadows::vsmModule().pack(defaults, block);
+    EXPECT_EQ(block.get<gpu::VsmParams>().anisotropy, 0.0f);
     for (double widest : {1.0, 7.0, 40.0, 128.0, 512.0}) {
         const double scale = shadows::fixedPointScale(widest);
         const double hull = std::ceil(widest) + 2.0;

@@ -1,8 +1,8 @@
 // CPU reference vs GPU for every shadow-map filter, on synthetic shadow maps: the visibility
 // pass's own filter code (Renderer::probeTechnique) against src/reference/filter_reference.cpp.
 #include "gpu_fixture.h"
-#include "reference/filter_reference.h"
 #include "render/frame_data.h"
+#include "shadows/technique.h"
 
 #include <cmath>
 #include <cstdio>
@@ -104,7 +104,7 @@ std::vector<Variant> everyVariant() {
 TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
     const DeviceInfo& device = sharedRenderer().device();
     const std::vector<float> depth = syntheticMap(11);
-    const ShadowMapView map{depth, kMapSize};
+    const shadows::ShadowMapView map{depth, kMapSize};
     for (int kind = 0; kind < 3; ++kind) {
         const bool gradient = kind > 0, adaptive = kind == 2;
         const std::vector<FilterProbe> probes =
@@ -116,9 +116,9 @@ TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
             const std::vector<glm::vec4> gpu =
                 sharedRenderer().probeTechnique(variant.technique, params, depth, kMapSize, probes);
             const gpu::ShadowViewData light = render::probeViewData({});
-            gpu::FrameData frame{};
             // The subTexelPrecisionBits the CPU emulates only matter with hardware filtering.
-            render::setTechniqueSettings(frame, params, device.depthLinearFilter, 8);
+            const shadows::FilterSettings frame = shadows::filterSettings(
+                shadows::moduleOf(variant.technique), params, device.depthLinearFilter, 8);
             const bool hardwareTap =
                 variant.name.rfind("hardware", 0) == 0 && device.depthLinearFilter;
             const float tolerance = hardwareTap ? 1e-3f + 1.0f / 256.0f : 1e-3f;
@@ -126,12 +126,12 @@ TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
             size_t compared = 0;
             for (size_t i = 0; i < probes.size(); ++i) {
                 // A tie within float rounding may flip one comparison on either side.
-                if (smallestComparisonMargin(variant.technique, map, probes[i], frame, light) <
-                    1e-5f)
+                if (shadows::smallestComparisonMargin(variant.technique, map, probes[i], frame,
+                                                      light) < 1e-5f)
                     continue;
                 ++compared;
                 const float cpu =
-                    techniqueReference(variant.technique, map, probes[i], frame, light).x;
+                    shadows::techniqueReference(variant.technique, map, probes[i], frame, light).x;
                 worst = std::max(worst, std::abs(cpu - gpu[i].x));
             }
             EXPECT_GT(compared, probes.size() * 9 / 10) << variant.name;
@@ -164,7 +164,7 @@ TEST_F(FilterTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
     // Both light models, both sizes of light, with and without rotation: the average blocker
     // depth, the number of blocking texels and the filter radius agree, not only the result.
     const std::vector<float> depth = syntheticMap(17);
-    const ShadowMapView map{depth, kMapSize};
+    const shadows::ShadowMapView map{depth, kMapSize};
     const ProbeLight lights[] = {{.perspective = false,
                                   .size = std::tan(0.5f * 0.2f),
                                   .nearPlane = 1.0f,
@@ -186,17 +186,18 @@ TEST_F(FilterTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
                 syntheticProbes(23, true, std::string(rotation) == "ign");
             const std::vector<glm::vec4> gpuResult = sharedRenderer().probeTechnique(
                 Technique::Pcss, params, depth, kMapSize, probes, probeLight);
-            gpu::FrameData frame{};
-            render::setTechniqueSettings(frame, params, false, 8);
+            const shadows::FilterSettings frame =
+                shadows::filterSettings(shadows::moduleOf(Technique::Pcss), params, false, 8);
             const gpu::ShadowViewData light = render::probeViewData(probeLight);
             glm::vec4 worst(0.0f);
             size_t compared = 0, searched = 0;
             for (size_t i = 0; i < probes.size(); ++i) {
-                if (smallestComparisonMargin(Technique::Pcss, map, probes[i], frame, light) < 1e-5f)
+                if (shadows::smallestComparisonMargin(Technique::Pcss, map, probes[i], frame,
+                                                      light) < 1e-5f)
                     continue;
                 ++compared;
                 const glm::vec4 cpu =
-                    techniqueReference(Technique::Pcss, map, probes[i], frame, light);
+                    shadows::techniqueReference(Technique::Pcss, map, probes[i], frame, light);
                 searched += cpu.z > 0.0f;
                 // Depths and radii relative to their size; counts exactly.
                 worst = glm::max(worst, glm::abs(cpu - gpuResult[i]) /

@@ -3,11 +3,11 @@
 // the ray-traced truth on a sphere over a plane, for every light type and for light sizes from
 // almost hard to wide.
 #include "analytic_scenes.h"
-#include "light_geometry.h"
 #include "frame_block.h"
+#include "light_geometry.h"
 #include "moment_maps.h"
-#include "reference/filter_reference.h"
 #include "render/frame_data.h"
+#include "shadows/technique.h"
 #include "truth_fixture.h"
 
 #include <fmt/format.h>
@@ -37,7 +37,7 @@ const ProbeLight kSizedLights[] = {{.perspective = false,
 
 TEST_F(FilterTest, SummedAreaSoftMembersMatchTheirCpuReference) {
     const std::vector<float> depth = boxesOverAWave(5);
-    const ShadowMapView map{depth, kSize};
+    const shadows::ShadowMapView map{depth, kSize};
     std::vector<FilterProbe> probes = probesOver(9);
     for (size_t i = 0; i < probes.size(); i += 3) // some receivers on a tilted plane
         probes[i].gradient = {0.04f, -0.03f};
@@ -59,13 +59,13 @@ TEST_F(FilterTest, SummedAreaSoftMembersMatchTheirCpuReference) {
                                     light.perspective ? "spot" : "sun", subdivision, refine);
                     const std::vector<glm::vec4> gpuResult = sharedRenderer().probeTechnique(
                         technique, params, depth, kSize, probes, light);
-                    gpu::FrameData frame{};
-                    render::setTechniqueSettings(frame, params, false, 8);
+                    const shadows::FilterSettings frame =
+                        shadows::filterSettings(shadows::moduleOf(technique), params, false, 8);
                     const gpu::ShadowViewData view = render::probeViewData(light);
                     size_t between = 0, off = 0;
                     for (size_t i = 0; i < probes.size(); ++i) {
                         const glm::vec4 cpu =
-                            techniqueReference(technique, map, probes[i], frame, view);
+                            shadows::techniqueReference(technique, map, probes[i], frame, view);
                         const glm::vec4 d = glm::abs(cpu - gpuResult[i]);
                         // Under a perspective light the GPU's moment depths may round a texel's
                         // quantised moments one step away from the CPU's; a box's variance is a

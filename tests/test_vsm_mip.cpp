@@ -2,13 +2,14 @@
 // moments and its trilinear, anisotropic reads against the CPU reference and a closed form, and
 // in a whole frame the footprint the visibility pass gives each pixel, against a ground truth
 // averaged over each pixel's area (what a minified map's filtering is for).
-#include "light_geometry.h"
-#include "moments.h"
 #include "frame_block.h"
+#include "light_geometry.h"
 #include "moment_maps.h"
-#include "reference/filter_reference.h"
+#include "moments.h"
+#include "params_moments.h"
 #include "render/frame_data.h"
 #include "scene/mesh_builder.h"
+#include "shadows/technique.h"
 #include "truth_fixture.h"
 
 #include <fmt/format.h>
@@ -23,7 +24,7 @@ using namespace penumbra::test;
 // footprints from under a texel to the whole map, any orientation, for both light projections.
 TEST_F(FilterTest, VsmMipChainMatchesItsCpuReference) {
     const std::vector<float> depth = boxesOverAWave(7);
-    const ShadowMapView map{depth, kSize};
+    const shadows::ShadowMapView map{depth, kSize};
     std::vector<FilterProbe> probes = probesOver(11);
     std::mt19937 rng(12);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -50,15 +51,15 @@ TEST_F(FilterTest, VsmMipChainMatchesItsCpuReference) {
                     anisotropy, size);
                 const std::vector<glm::vec4> gpuResult = sharedRenderer().probeTechnique(
                     Technique::Vsm, params, depth, kSize, probes, light);
-                gpu::FrameData frame{};
-                render::setTechniqueSettings(frame, params, false, 8);
-                ASSERT_EQ(frame.vsmParams.w, std::stof(anisotropy));
+                const shadows::FilterSettings frame =
+                    shadows::filterSettings(shadows::moduleOf(Technique::Vsm), params, false, 8);
+                ASSERT_EQ(frame.params.get<gpu::VsmParams>().anisotropy, std::stof(anisotropy));
                 const gpu::ShadowViewData view = render::probeViewData(light);
                 glm::vec4 worst(0.0f);
                 size_t between = 0;
                 for (size_t i = 0; i < probes.size(); ++i) {
                     const glm::vec4 cpu =
-                        techniqueReference(Technique::Vsm, map, probes[i], frame, view);
+                        shadows::techniqueReference(Technique::Vsm, map, probes[i], frame, view);
                     worst = glm::max(worst, glm::abs(cpu - gpuResult[i]));
                     between += cpu.x > 0.0f && cpu.x < 1.0f;
                 }

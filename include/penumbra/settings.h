@@ -10,19 +10,11 @@
 
 namespace penumbra {
 
+// Every technique, from the technique list (shaders/include/technique_list.h, which the shaders
+// read too): Hard, Pcf, Pcss, SecondDepth, Vsm, Esm, Evsm, Savsm, Msm, Vssm, MsmSoft, Sdf.
 enum class Technique : uint32_t {
-    Hard = 0,
-    Pcf = 1,
-    Pcss = 2,
-    SecondDepth = 3,
-    Vsm = 4,
-    Esm = 5,
-    Evsm = 6,
-    Savsm = 7,
-    Msm = 8,
-    Vssm = 9,
-    MsmSoft = 10,
-    Sdf = 11
+#define PENUMBRA_TECHNIQUE(id, Name, module) Name = id,
+#include "technique_list.h"
 };
 
 // A parameter setting worth its own row in `compare`, e.g. label "box7" for pcf: pcf[box7].

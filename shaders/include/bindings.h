@@ -6,24 +6,10 @@
 #ifndef PENUMBRA_BINDINGS_H
 #define PENUMBRA_BINDINGS_H
 
-// Specialization constant TECHNIQUE of visibility.comp; equals penumbra::Technique.
-#define TECHNIQUE_HARD 0u
-#define TECHNIQUE_PCF 1u
-#define TECHNIQUE_PCSS 2u
-#define TECHNIQUE_SECOND_DEPTH 3u
-#define TECHNIQUE_VSM 4u
-#define TECHNIQUE_ESM 5u
-#define TECHNIQUE_EVSM 6u
-#define TECHNIQUE_SAVSM 7u
-#define TECHNIQUE_MSM 8u
-#define TECHNIQUE_VSSM 9u
-#define TECHNIQUE_MSM_SOFT 10u
-#define TECHNIQUE_SDF 11u
-
 // Specialization-constant ids of visibility.comp and filter_probe.comp (the pipeline key is the
 // list of (id, value) pairs: src/shadows/technique.h).
-#define SPEC_TECHNIQUE 0
-#define SPEC_FILTER 1
+#define SPEC_TECHNIQUE 0         // the technique's id (shaders/include/technique_list.h)
+#define SPEC_FILTER 1            // pcf.filter (pcf's own, shadow_pcf.glsl)
 #define SPEC_RECEIVER 2
 #define SPEC_HORIZON 3           // 1: the visibility pass applies bias.horizon
 #define SPEC_LIGHT_TYPE 4        // the visibility dispatch's light: LIGHT_*
@@ -38,21 +24,31 @@
 #define SPEC_MATERIAL_ALPHA_TEST 11 // ... and alphaTest, fixed per pipeline
 #define SPEC_MATERIAL_VERTEX_COLOR 12 // 0: the batch's vertex colours are all opaque white
 #define SPEC_ADAPTIVE_BIAS 13    // 1: bias.mode=adaptive (the visibility pass's receiver terms)
+#define SPEC_FOOTPRINT 14        // 1: the technique reads the pixel's footprint in the map
+                                 // (TechniqueModule::readsFootprint: vsm.filter=mip)
 #define SPEC_INTERMEDIATES 15    // 1: the visibility pass also writes VIS_INTERMEDIATES (viewer)
+#define SPEC_BLOCKER_SEARCH 16   // 1: the technique searches blockers, in a sun's cascades as its
+                                 // kernel follows the light's size (TechniqueModule::searchCap)
+#define SPEC_TRACES_FIELD 17     // 1: the technique traces the scene's distance field, not a map
+                                 // (TechniqueModule::tracesField)
 
 // Descriptor bindings, pass by pass.
 #define BIND_FRAME 0             // FrameData, in every pass that reads it
+// What a technique reads, at the same bindings in every pass that evaluates one (visibility.comp,
+// filter_probe.comp; shaders/include/technique_input.glsl declares them) and, for its parameter
+// block, in its post passes.
+#define TECH_MAP 4               // the technique's filtered map, every view (nearest)
+#define TECH_COMPARE 5           // the depth map, every view (comparison sampler)
+#define TECH_TABLE 8             // the technique's filtered map when it holds integers (a
+                                 // placeholder otherwise), every view (nearest)
+#define TECH_FIELD 9             // the scene's distance field (a 1x1x2 placeholder when the
+                                 // technique traces none), trilinear
+#define TECH_PARAMS 18           // the technique's parameter block (technique_block.h)
 #define VIS_LIGHTS 1             // visibility.comp: LightData[], uniform
 #define VIS_GBUFFER_DEPTH 2
 #define VIS_GBUFFER_NORMAL 3
-#define VIS_SHADOW_MAP 4         // the technique's filtered map, every view (nearest)
-#define VIS_SHADOW_COMPARE 5     // the depth map, every view (comparison sampler)
 #define VIS_OUT 6                // R32F array, a layer per shadow-casting light
 #define VIS_VIEWS 7              // ShadowViewData[], uniform
-#define VIS_SHADOW_TABLE 8       // the technique's filtered map when it holds integers (a
-                                 // placeholder otherwise), every view (nearest)
-#define VIS_FIELD 9              // the scene's distance field (sdf; a 1x1x2 placeholder
-                                 // otherwise), trilinear
 #define VIS_INTERMEDIATES 10     // RGBA32F array, a layer per shadow-casting light: the
                                  // technique's intermediate results (evaluateTechnique's yzw),
                                  // written with SPEC_INTERMEDIATES (a 1x1 placeholder otherwise)
@@ -68,12 +64,9 @@
 #define EXPORT_GBUFFER_NORMAL 2
 #define EXPORT_POSITION 3
 #define EXPORT_NORMAL 4
-#define PROBE_RECEIVERS 1        // filter_probe.comp
-#define PROBE_SHADOW_MAP 2
-#define PROBE_SHADOW_COMPARE 3
-#define PROBE_RESULTS 4
-#define PROBE_VIEW 5
-#define PROBE_SHADOW_TABLE 6
+#define PROBE_RECEIVERS 1        // filter_probe.comp (and the TECH_* bindings)
+#define PROBE_RESULTS 2
+#define PROBE_VIEW 3
 #define GBUFFER_TEXTURE 1        // gbuffer.frag: the material's base colour
 #define MASK_TEXTURE 0           // shadow_mask.frag: the alpha-tested caster's texture
 #define READ_MAP 0               // a technique's extra depth pass (shadow_peel.frag): the map
@@ -86,11 +79,11 @@
 #define FIELD_OUT 5
 
 // A shadow-map post pass samples its inputs at bindings POST_INPUT_BINDING + i and writes its
-// outputs at POST_OUTPUT_BINDING + i (src/shadows/technique.h, PostPassDecl).
+// outputs at POST_OUTPUT_BINDING + i (src/shadows/technique.h, PostPassDecl); its technique's
+// parameter block is at TECH_PARAMS.
 #define POST_INPUT_BINDING 0
 #define POST_OUTPUT_BINDING 8
 #define POST_MAX_MAPS 8
-#define POST_FRAME_BINDING 16   // FrameData (the technique's parameters)
 #define POST_VIEWS_BINDING 17   // ShadowViewData[], uniform; PostPassPush.size.z: the view
 
 #define GROUP_SIZE 8u           // screen-space and per-texel passes: GROUP_SIZE^2 invocations

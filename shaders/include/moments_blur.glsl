@@ -1,7 +1,9 @@
 // The separable Gaussian blur of the prefiltered family's maps [Donnelly and Lauritzen 2006], one
 // axis a pass: AXIS 0 runs along rows, reading the light's depth and storing what the technique
 // keeps of it (warpedMoments of momentDepth: MOMENTS, one of MOMENTS_* in moments.h, in maps
-// of image format FORMAT); AXIS 1 runs along columns over the row pass's result. Texels past the
+// of image format FORMAT); AXIS 1 runs along columns over the row pass's result. PARAMS is the
+// technique's parameter block (params_moments.h; its `size`: the blur's taps), EXPONENTS its
+// warps' exponents (esm, evsm) and STORE16 whether the column pass quantises to 16 bits (msm). Texels past the
 // map's edge repeat the edge (clamp-to-edge, as the CPU reference does). The kernel is the
 // technique's size in taps, in texels of a sun's first cascade, scaled in the farther ones
 // (scaledKernelSize).
@@ -10,6 +12,13 @@
 #include "light_geometry.h"
 #include "moments.h"
 #include "bindings.h"
+#include "params_moments.h"
+#ifndef EXPONENTS
+#define EXPONENTS vec2(0.0)
+#endif
+#ifndef STORE16
+#define STORE16 false
+#endif
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
 layout(set = 0, binding = POST_INPUT_BINDING) uniform sampler2D source;
 #ifdef FORMAT
@@ -20,7 +29,7 @@ layout(set = 0, binding = POST_OUTPUT_BINDING) uniform writeonly image2D blurred
 
 vec4 momentsAt(ivec2 q, ShadowViewData view) {
 #if AXIS == 0
-    vec2 exponents = MOMENTS == MOMENTS_ESM ? frame.esmParams.xx : frame.evsmParams.xy;
+        vec2 exponents = EXPONENTS;
     return warpedMoments(MOMENTS, momentDepth(view, texelFetch(source, q, 0).r), exponents);
 #else
     return texelFetch(source, q, 0);
@@ -32,10 +41,7 @@ void main() {
     ivec2 size = ivec2(push.size.xy);
     if (any(greaterThanEqual(p, size))) return;
     ShadowViewData view = views[push.size.z];
-    uint taps = MOMENTS == MOMENTS_VSM    ? uint(frame.vsmParams.z)
-                : MOMENTS == MOMENTS_ESM  ? uint(frame.esmParams.y)
-                : MOMENTS == MOMENTS_EVSM ? frame.evsmMode.y
-                                          : uint(frame.msmParams.y);
+    uint taps = PARAMS.size;
     int n = scaledKernelSize(taps, view.cascade.z);
     int reach = (n - 1) / 2;
     ivec2 axis = AXIS == 0 ? ivec2(1, 0) : ivec2(0, 1);
@@ -47,7 +53,6 @@ void main() {
         weights += w;
     }
     vec4 result = sum / weights;
-    if (AXIS == 1 && MOMENTS == MOMENTS_MSM && frame.msmParams.z == 16.0)
-        result = msmStore16(result); // msm.precision=16: what a 16-bit unorm map holds
+    if (AXIS == 1 && STORE16) result = msmStore16(result); // what a 16-bit unorm map holds
     imageStore(blurred, p, result);
 }

@@ -4,11 +4,12 @@
 // those row sums down each column. Texel (i, j) of the table then holds the sum over every texel
 // (a <= i, b <= j), modulo 2^32: the sums wrap, and a box's sum, a difference of corners, is
 // still exact (docs/techniques.md, "savsm"). MOMENTS: MOMENTS_VSM (offset moments, FORMAT rg32ui)
-// or MOMENTS_MSM (four moments, rgba32ui); SCALE: the technique's field of frame.tableScales.
+// or MOMENTS_MSM (four moments, rgba32ui); SCALE: the technique's table scale (params_tables.h).
 #include "post_pass.glsl"
 #include "light_geometry.h"
 #include "moments.h"
 #include "bindings.h"
+#include "params_tables.h"
 layout(local_size_x = LINE_GROUP_SIZE) in;
 #if AXIS == 0
 layout(set = 0, binding = POST_INPUT_BINDING) uniform sampler2D source;

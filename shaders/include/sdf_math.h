@@ -6,6 +6,7 @@
 // clang-format off
 #ifndef PENUMBRA_SDF_MATH_H
 #define PENUMBRA_SDF_MATH_H
+#include "bias.h"
 #include "pass_types.h"
 
 #ifdef __cplusplus

@@ -2,12 +2,16 @@
 // taken at the texel's centre when receiver-plane bias is on.
 #ifndef PENUMBRA_SHADOW_HARD_GLSL
 #define PENUMBRA_SHADOW_HARD_GLSL
-#include "shadow_pcf.glsl"
+#include "technique_input.glsl"
 
-float shadowHard(sampler2DArray shadowMap, Receiver r, uint mapSize, vec2 dzRange) {
+float shadowHard(sampler2DArray map, Receiver r, uint mapSize, vec2 dzRange) {
     ivec2 texel = clamp(ivec2(floor(r.uv * float(mapSize))), ivec2(0), ivec2(int(mapSize) - 1));
     vec2 centre = (vec2(texel) + 0.5) / float(mapSize);
-    return texelTest(r, texelFetch(shadowMap, ivec3(texel, int(r.layer)), 0).r, centre, dzRange);
+    return texelTest(r, texelFetch(map, ivec3(texel, int(r.layer)), 0).r, centre, dzRange);
+}
+
+vec4 evaluateHard(TechniqueInput at) {
+    return vec4(shadowHard(shadowMap, at.r, at.mapSize, frame.biasParams.xy), vec3(0.0));
 }
 
 #endif

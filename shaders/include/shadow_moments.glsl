@@ -1,12 +1,15 @@
 // The prefiltered family's visibility: `vsm` [Donnelly and Lauritzen 2006], `esm` [Annen et al.
 // 2008; Salvi 2008] and `evsm` [Lauritzen and McCool 2008] read their blurred maps
 // (shaders/include/moments_blur.glsl) bilinearly at the receiver and bound or estimate the lit
-// fraction (moments.h). The CPU mirror is src/reference/filter_reference.cpp.
+// fraction (moments.h). The CPU mirrors are in
+// src/shadows/vsm.cpp, esm.cpp, evsm.cpp and msm.cpp (src/shadows/cpu_moments.cpp: the blur).
 #ifndef PENUMBRA_SHADOW_MOMENTS_GLSL
 #define PENUMBRA_SHADOW_MOMENTS_GLSL
 #include "kernels.h"
 #include "light_geometry.h"
 #include "moments.h"
+#include "params_moments.h"
+#include "technique_input.glsl"
 
 // The first `channels` channels at uv, bilinear over the four texels around it (clamp-to-edge),
 // interpolated here rather than by the sampler so that the CPU reference can repeat it exactly.
@@ -48,7 +51,7 @@ vec4 momentsAtLevel(sampler2DArray map, vec2 uv, uint mapSize, float layer, int 
 // vsm.anisotropy trilinear taps along its longer axis, averaged.
 vec2 momentsMip(sampler2DArray map, Receiver r, uint mapSize) {
     float maxLevel = float(mipLevelCount(mapSize) - 1u);
-    vec4 footprint = mipFootprint(r.uvDx, r.uvDy, float(mapSize), frame.vsmParams.w, maxLevel);
+    vec4 footprint = mipFootprint(r.uvDx, r.uvDy, float(mapSize), vsm.anisotropy, maxLevel);
     int fine = int(floor(footprint.x));
     int coarse = min(fine + 1, int(maxLevel));
     float blend = footprint.x - float(fine);
@@ -65,18 +68,18 @@ vec2 momentsMip(sampler2DArray map, Receiver r, uint mapSize) {
 
 // x visibility, y z the filtered moments, w the receiver's moment depth.
 vec4 shadowVsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view) {
-    vec2 moments = frame.vsmParams.w > 0.0 ? momentsMip(map, r, mapSize)
+    vec2 moments = vsm.anisotropy > 0.0 ? momentsMip(map, r, mapSize)
                                            : momentsBilinear(map, r.uv, mapSize, r.layer, 2).xy;
     float t = momentDepth(view, r.depth);
-    float p = chebyshevUpperBound(moments, t, frame.vsmParams.x);
-    return vec4(snapToExtremes(reduceLightBleeding(p, frame.vsmParams.y)), moments, t);
+    float p = chebyshevUpperBound(moments, t, vsm.minVariance);
+    return vec4(snapToExtremes(reduceLightBleeding(p, vsm.bleedReduction)), moments, t);
 }
 
 // x visibility, y the filtered e^(c z), z the receiver's moment depth.
 vec4 shadowEsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view) {
     float filtered = momentsBilinear(map, r.uv, mapSize, r.layer, 1).x;
     float t = momentDepth(view, r.depth);
-    return vec4(snapToExtremes(exponentialVisibility(filtered, t, frame.esmParams.x)), filtered,
+    return vec4(snapToExtremes(exponentialVisibility(filtered, t, esm.c)), filtered,
                 t, 0.0);
 }
 
@@ -85,19 +88,24 @@ vec4 shadowEsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDat
 vec4 shadowEvsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view) {
     vec4 moments = momentsBilinear(map, r.uv, mapSize, r.layer, 4);
     float t = momentDepth(view, r.depth);
-    float p = exponentialVarianceVisibility(moments, t, frame.evsmParams.xy, frame.evsmParams.z,
-                                            frame.evsmMode.x);
-    return vec4(snapToExtremes(reduceLightBleeding(p, frame.evsmParams.w)), moments.x, moments.z,
+    float p = exponentialVarianceVisibility(moments, t, vec2(evsm.positive, evsm.negative), evsm.minVariance,
+                                            evsm.components);
+    return vec4(snapToExtremes(reduceLightBleeding(p, evsm.bleedReduction)), moments.x, moments.z,
                 t);
 }
 
 // x visibility, y z the filtered first two moments, w the receiver's depth in [-1, 1].
 vec4 shadowMsmDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view) {
     vec4 moments = momentsBilinear(map, r.uv, mapSize, r.layer, 4);
-    if (frame.msmParams.z == 16.0) moments = msmLoad16(moments);
+    if (msm.bits == 16u) moments = msmLoad16(moments);
     float d = 2.0 * momentDepth(view, r.depth) - 1.0;
-    float v = clamp(1.0 - momentOcclusion(moments, d, frame.msmParams.x), 0.0, 1.0);
+    float v = clamp(1.0 - momentOcclusion(moments, d, msm.momentBias), 0.0, 1.0);
     return vec4(snapToExtremes(v), moments.x, moments.y, d);
 }
+
+vec4 evaluateVsm(TechniqueInput at) { return shadowVsmDetail(shadowMap, at.r, at.mapSize, at.view); }
+vec4 evaluateEsm(TechniqueInput at) { return shadowEsmDetail(shadowMap, at.r, at.mapSize, at.view); }
+vec4 evaluateEvsm(TechniqueInput at) { return shadowEvsmDetail(shadowMap, at.r, at.mapSize, at.view); }
+vec4 evaluateMsm(TechniqueInput at) { return shadowMsmDetail(shadowMap, at.r, at.mapSize, at.view); }
 
 #endif

@@ -2,10 +2,13 @@
 // then PCF over a kernel of the estimated width. Distances are light view distances (world
 // units along the light's axis); see docs/techniques.md for the derivations.
 // Its geometry (the search and penumbra radii) is in light_geometry.h, shared with the CPU
-// reference; src/reference/filter_reference.cpp mirrors the loops.
+// reference; src/shadows/pcss.cpp mirrors the loops. With SPEC_BLOCKER_SEARCH the visibility
+// pass may run the search and the filter in different cascades of a sun (STAGE_SEARCH,
+// STAGE_FILTER).
 #ifndef PENUMBRA_SHADOW_PCSS_GLSL
 #define PENUMBRA_SHADOW_PCSS_GLSL
-#include "shadow_pcf.glsl"
+#include "params_pcf.h"
+#include "technique_input.glsl"
 
 // Average depth of the texels that block the receiver over `n` gathers on the Poisson disk of
 // `radius` texels; returns how many of the 4 n texels block.
@@ -31,9 +34,9 @@ float searchBlockers(sampler2DArray map, Receiver r, uint mapSize, uint n, float
 // texels of this view: x blocking texels found, y their average depth in this view (1: none).
 vec2 pcssSearch(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, float turns) {
     float search = min(blockerSearchRadius(view, viewDistance(view, r.depth), mapSize),
-                       frame.pcssParams.x);
+                       pcss.maxRadius);
     float blockerDepth;
-    float blockers = searchBlockers(map, r, mapSize, frame.pcssMode.x, max(search, 0.5), turns,
+    float blockers = searchBlockers(map, r, mapSize, pcss.blockerSamples, max(search, 0.5), turns,
                                     frame.biasParams.xy, blockerDepth);
     return vec2(blockers, blockerDepth);
 }
@@ -44,22 +47,31 @@ vec2 pcssSearch(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData vie
 vec4 pcssFilter(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, float zBlocker,
                 vec2 blockers, float turns) {
     float radius = clamp(penumbraRadius(view, viewDistance(view, r.depth), zBlocker, mapSize),
-                         0.5, frame.pcssParams.x);
+                         0.5, pcss.maxRadius);
     // Only blockers and a penumbra under a texel: inside the umbra.
-    if (blockers.x == 4.0 * float(frame.pcssMode.x) && radius <= 1.0)
+    if (blockers.x == 4.0 * float(pcss.blockerSamples) && radius <= 1.0)
         return vec4(0.0, blockers.y, blockers.x, radius);
-    float v = poissonTaps(map, r, mapSize, frame.pcssMode.y, radius, turns, frame.biasParams.xy);
+    float v = poissonTaps(map, r, mapSize, pcss.filterSamples, radius, turns, frame.biasParams.xy);
     return vec4(snapToExtremes(v), blockers.y, blockers.x, radius);
 }
 
 // x visibility, y average blocker depth, z blocking texels found, w filter radius (texels).
-// pcss.maxRadius is in texels of the view sampled; visibility.comp spreads a sun's PCSS over
+// pcss.maxRadius is in texels of the view sampled; the visibility pass spreads a sun's PCSS over
 // its cascades so that the cap does not clip what a coarser cascade can hold.
 vec4 shadowPcssDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, uvec2 pixel) {
-    float turns = rotationTurns(frame.pcssMode.z, pixel);
+    float turns = rotationTurns(pcss.rotation, pixel);
     vec2 blockers = pcssSearch(map, r, mapSize, view, turns);
     if (blockers.x == 0.0) return vec4(1.0, blockers.y, 0.0, 0.0); // nothing in the way: lit
     return pcssFilter(map, r, mapSize, view, viewDistance(view, blockers.y), blockers, turns);
+}
+
+vec4 evaluatePcss(TechniqueInput at) {
+    float turns = rotationTurns(pcss.rotation, at.pixel);
+    if (at.stage == STAGE_SEARCH)
+        return vec4(pcssSearch(shadowMap, at.r, at.mapSize, at.view, turns), 0.0, 0.0);
+    if (at.stage == STAGE_FILTER)
+        return pcssFilter(shadowMap, at.r, at.mapSize, at.view, at.zBlocker, at.blockers, turns);
+    return shadowPcssDetail(shadowMap, at.r, at.mapSize, at.view, at.pixel);
 }
 
 #endif

@@ -1,14 +1,16 @@
 // The summed-area members of the prefiltered family: `savsm` [Lauritzen 2007, GPU Gems 3 ch. 8],
 // `vssm` [Yang et al. 2010] and `msm-soft` [Peters et al. 2016] read a table of fixed-point
 // moments that shaders/include/sat_scan.glsl builds, as exact box means of any size at a
-// constant cost. The CPU mirror is
-// src/reference/filter_reference.cpp; the derivations are in docs/techniques.md.
+// constant cost. The CPU mirrors are in
+// src/shadows/savsm.cpp, vssm.cpp and msm_soft.cpp (src/shadows/cpu_tables.cpp: the table); the derivations are in docs/techniques.md.
 #ifndef PENUMBRA_SHADOW_SAT_GLSL
 #define PENUMBRA_SHADOW_SAT_GLSL
 #include "kernels.h"
 #include "bias.h"
 #include "light_geometry.h"
 #include "moments.h"
+#include "params_tables.h"
+#include "technique_input.glsl"
 
 // The table's sum up to integer corner c: texel c - 1 (0 along the first row and column).
 uvec4 tableCorner(usampler2DArray table, ivec2 c, float layer) {
@@ -57,12 +59,12 @@ void satBox(Receiver r, float reach, float size, out vec2 lo, out vec2 hi) {
 // receiver, cut to the map (averaged over the part inside).
 vec4 shadowSavsmDetail(usampler2DArray table, Receiver r, uint mapSize, ShadowViewData view) {
     vec2 lo, hi;
-    satBox(r, 0.5 * max(frame.savsmParams.x * r.kernelScale, 1.0), float(mapSize), lo, hi);
-    vec2 moments = tableBoxMean(table, MOMENTS_VSM, frame.tableScales.x, lo, hi, int(mapSize),
+    satBox(r, 0.5 * max(savsm.size * r.kernelScale, 1.0), float(mapSize), lo, hi);
+    vec2 moments = tableBoxMean(table, MOMENTS_VSM, savsm.tableScale, lo, hi, int(mapSize),
                                 r.layer).xy;
     float t = momentDepth(view, r.depth) - 0.5;
-    float v = chebyshevUpperBound(moments, t, frame.savsmParams.y);
-    return vec4(snapToExtremes(reduceLightBleeding(v, frame.savsmParams.z)), moments, t);
+    float v = chebyshevUpperBound(moments, t, savsm.minVariance);
+    return vec4(snapToExtremes(reduceLightBleeding(v, savsm.bleedReduction)), moments, t);
 }
 
 // The receiver's depth at texel position c as `kind`'s table holds depths (MOMENTS_VSM: offset
@@ -87,10 +89,10 @@ struct SoftSettings {
 
 SoftSettings softSettings(uint kind) {
     return kind == MOMENTS_MSM
-               ? SoftSettings(kind, frame.msmSoftParams.x, frame.tableScales.z,
-                              int(frame.softMode.z), frame.softMode.w != 0u)
-               : SoftSettings(kind, frame.vssmParams.x, frame.tableScales.y,
-                              int(frame.softMode.x), frame.softMode.y != 0u);
+               ? SoftSettings(kind, msmSoft.maxRadius, msmSoft.tableScale,
+                              int(msmSoft.subdivision), msmSoft.refine != 0u)
+               : SoftSettings(kind, vssm.maxRadius, vssm.tableScale, int(vssm.subdivision),
+                              vssm.refine != 0u);
 }
 
 // The box [lo, hi] cut into up to subdivision^2 sub-kernels (none under VSSM_MIN_CELL texels
@@ -112,15 +114,15 @@ vec3 softKernel(usampler2DArray table, SoftSettings s, Receiver r, ShadowViewDat
             float t = planeTableDepth(s.kind, r, view, 0.5 * (from + to), size);
             vec2 result;
             if (s.kind == MOMENTS_MSM) {
-                float bias = frame.msmSoftParams.y;
+                float bias = msmSoft.momentBias;
                 result = search ? momentBlockers(moments, t, bias)
                                 : vec2(clamp(1.0 - momentOcclusion(moments, t, bias), 0.0, 1.0), 0.0);
             } else {
-                float minVariance = frame.vssmParams.y;
+                float minVariance = vssm.minVariance;
                 result = search ? chebyshevBlockers(moments.xy, t, minVariance)
                                 : vec2(reduceLightBleeding(chebyshevUpperBound(moments.xy, t,
                                                                                minVariance),
-                                                           frame.vssmParams.z),
+                                                           vssm.bleedReduction),
                                        0.0);
             }
             total += vec3(result, 1.0) * (cell.x * cell.y);
@@ -168,6 +170,16 @@ vec4 shadowSoftDetail(usampler2DArray table, uint kind, Receiver r, uint mapSize
     vec3 lit = softKernel(table, s, r, view, lo, hi, size, false);
     return vec4(snapToExtremes(lit.x / max(lit.z, 1e-6)), found.y / found.x, found.x / found.z,
                 radius);
+}
+
+vec4 evaluateSavsm(TechniqueInput at) {
+    return shadowSavsmDetail(shadowTable, at.r, at.mapSize, at.view);
+}
+vec4 evaluateVssm(TechniqueInput at) {
+    return shadowSoftDetail(shadowTable, MOMENTS_VSM, at.r, at.mapSize, at.view);
+}
+vec4 evaluateMsmSoft(TechniqueInput at) {
+    return shadowSoftDetail(shadowTable, MOMENTS_MSM, at.r, at.mapSize, at.view);
 }
 
 #endif

@@ -9,7 +9,11 @@
 // a quarter voxel) until the edge passes the far side of the disc.
 #ifndef PENUMBRA_SHADOW_SDF_GLSL
 #define PENUMBRA_SHADOW_SDF_GLSL
+#include "bias.h"
+#include "params_sdf.h"
+#include "shadow_common.glsl"
 #include "sdf_math.h"
+#include "technique_input.glsl"
 
 // The field at world position p (trilinear; the box's voxel centres hold the samples).
 float fieldAt(sampler3D field, vec3 p) {
@@ -40,7 +44,7 @@ float shadowSdf(sampler3D field, LightData light, vec3 world, vec3 face, float s
         toLight = offset / max(distance, 1e-20);
         reach = distance * (1.0 - sinRadius);
     }
-    float k = frame.sdfParams.z;
+    float k = sdf.k;
     ConeTrace c;
     c.edge = horizon && (sinRadius > 0.0 || k > 0.0)
                  ? coneEdge(dot(face, toLight), 1.0, sinRadius, k)
@@ -50,15 +54,22 @@ float shadowSdf(sampler3D field, LightData light, vec3 world, vec3 face, float s
     c.previous = -1.0;
     c.step = 0.0;
     float apex;
-    vec3 origin = traceStart(world, face, toLight, frame.sdfParams.y * voxel, apex);
-    float minStep = frame.sdfParams.w * voxel;
-    uint steps = uint(frame.sdfParams.x);
+    vec3 origin = traceStart(world, face, toLight, sdf.startOffset * voxel, apex);
+    float minStep = sdf.minStep * voxel;
+    uint steps = uint(sdf.steps);
     for (uint i = 0u; i < steps && c.t < reach - apex; ++i) {
         vec3 p = origin + c.t * toLight;
         if (!insideFieldBox(p)) break;
         if (!coneTraceStep(c, fieldAt(field, p), apex, sinRadius, k, minStep)) return 0.0;
     }
     return discFraction(c.edge);
+}
+
+// No shadow map: the field holds the whole scene, and the tracer clips the light at the
+// receiver's own horizon itself (at.horizon).
+vec4 evaluateSdf(TechniqueInput at) {
+    float v = shadowSdf(distanceField, at.light, at.world, at.face, at.sinRadius, at.horizon);
+    return vec4(v, 0.0, 0.0, 0.0);
 }
 
 #endif

@@ -1,6 +1,7 @@
 #include "reference/distance_field.h"
 
 #include "bias.h"
+#include "params_sdf.h"
 #include "sdf_math.h"
 #include "shadows/technique.h"
 
@@ -90,16 +91,17 @@ bool FieldGrid::contains(const glm::vec3& p) const {
 
 TraceSettings traceSettingsOf(const ParameterValues& parameters) {
     const shadows::TechniqueModule& module = shadows::moduleOf(Technique::Sdf);
-    gpu::FrameData frame{};
-    module.pack(parameters, frame);
+    shadows::ParamBlock block;
+    module.pack(parameters, block);
+    const gpu::SdfParams sdf = block.get<gpu::SdfParams>();
     bool horizon = false;
     for (const shadows::SpecConstant& c : shadows::visibilityConstants(module, parameters))
         if (c.id == SPEC_HORIZON)
             horizon = c.value != 0;
-    return {.steps = static_cast<uint32_t>(frame.sdfParams.x),
-            .startOffset = frame.sdfParams.y,
-            .k = frame.sdfParams.z,
-            .minStep = frame.sdfParams.w,
+    return {.steps = static_cast<uint32_t>(sdf.steps),
+            .startOffset = sdf.startOffset,
+            .k = sdf.k,
+            .minStep = sdf.minStep,
             .horizon = horizon};
 }
 

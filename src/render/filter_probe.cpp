@@ -17,9 +17,9 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
                                                 const ProbeLight& probeLight) {
     const vk::Context& ctx = mImpl->ctx;
     PENUMBRA_CHECK(depths.size() == size_t{size} * size && !probes.empty(), "probe input sizes");
-    gpu::FrameData frame{};
-    render::setTechniqueSettings(frame, params, ctx.info().depthLinearFilter,
-                                 ctx.limits().subTexelPrecisionBits);
+    const shadows::TechniqueModule& module = shadows::moduleOf(technique);
+    const shadows::FilterSettings settings = shadows::filterSettings(
+        module, params, ctx.info().depthLinearFilter, ctx.limits().subTexelPrecisionBits);
     std::vector<gpu::ProbeReceiver> gpuProbes;
     for (const FilterProbe& p : probes)
         gpuProbes.push_back(
@@ -34,8 +34,10 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         std::memcpy(b.mapped, bytes.data(), bytes.size());
         return b;
     };
-    const vk::Buffer frameBuffer = upload(std::as_bytes(std::span(&frame, 1)),
+    const vk::Buffer frameBuffer = upload(std::as_bytes(std::span(&settings.frame, 1)),
                                           VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "probe frame");
+    const vk::Buffer paramsBuffer =
+        upload(settings.params.bytes(), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, "probe parameters");
     const vk::Buffer probeBuffer =
         upload(std::as_bytes(std::span(gpuProbes)), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "probes");
     const vk::Buffer mapBuffer =
@@ -51,7 +53,6 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     // The technique's own maps, filled from the depth map by its post passes as in a frame; a
     // technique whose passes also need another depth pass (second-depth's peel) is probed on
     // the given map as its filtered map instead.
-    const shadows::TechniqueModule& module = shadows::moduleOf(technique);
     const bool derived = module.depthPasses.empty() && !module.postPasses.empty();
     render::FrameTargets t{.views = std::vector<render::ShadowView>(1)};
     t.shadowDepth =
@@ -63,9 +64,11 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
                                  VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                                  shadows::mipmappedOf(decl, params)));
     t.integerPlaceholder = render::makeIntegerPlaceholder(ctx);
+    const vk::Image fieldPlaceholder = render::makeFieldPlaceholder(ctx);
     const vk::Image& map = t.shadowDepth.image;
     const vk::SamplerHandle nearest = vk::createSampler(ctx, {});
     t.frame = frameBuffer.get(), t.viewData = viewBuffer.get(), t.nearest = nearest.get();
+    t.params = paramsBuffer.get();
     const VkFilter compareFilter =
         ctx.info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     const vk::SamplerHandle compare = vk::createSampler(
@@ -86,6 +89,7 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         if (derived)
             render::recordPostPasses(cmd, p, t, module);
         vk::imageBarrier(cmd, t.integerPlaceholder, vk::kUndefined, vk::kComputeSampled);
+        vk::imageBarrier(cmd, fieldPlaceholder, vk::kUndefined, vk::kComputeSampled);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                           p.probe(shadows::visibilityConstants(module, params)));
         // A technique probed on the given map (no post passes) filters the depth map itself.
@@ -95,9 +99,11 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         vk::PushDescriptors()
             .uniformBuffer(BIND_FRAME, frameBuffer.get())
             .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
-            .sampled(PROBE_SHADOW_MAP, filtered.floats, nearest.get())
-            .sampled(PROBE_SHADOW_TABLE, filtered.integers, nearest.get())
-            .sampled(PROBE_SHADOW_COMPARE, map.view.get(), compare.get())
+            .sampled(TECH_MAP, filtered.floats, nearest.get())
+            .sampled(TECH_TABLE, filtered.integers, nearest.get())
+            .sampled(TECH_COMPARE, map.view.get(), compare.get())
+            .sampled(TECH_FIELD, fieldPlaceholder.view.get(), nearest.get())
+            .uniformBuffer(TECH_PARAMS, paramsBuffer.get())
             .storageBuffer(PROBE_RESULTS, results.get())
             .storageBuffer(PROBE_VIEW, viewBuffer.get())
             .push(ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.probeLayout);

@@ -1,7 +1,7 @@
 #include "render/frame.h"
 
-#include "moments.h"
 #include "bindings.h"
+#include "moments.h"
 #include "pass_types.h"
 #include "penumbra/error.h"
 #include "vk/sync.h"
@@ -183,7 +183,7 @@ void recordMipChain(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t, con
             vk::PushDescriptors writes;
             writes.sampled(POST_INPUT_BINDING, map.level(v, level - 1), t.nearest)
                 .storageImage(POST_OUTPUT_BINDING, map.level(v, level))
-                .uniformBuffer(POST_FRAME_BINDING, t.frame)
+                .uniformBuffer(TECH_PARAMS, t.params)
                 .uniformBuffer(POST_VIEWS_BINDING, t.viewData);
             writes.push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
             const gpu::PostPassPush push{.size = {size, size, v, level}};
@@ -229,7 +229,7 @@ void recordShadowPost(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
             for (uint32_t i = 0; i < outputs; ++i)
                 writes.storageImage(POST_OUTPUT_BINDING + i,
                                     t.named(technique, pass.outputs[i]).layers[v].get());
-            writes.uniformBuffer(POST_FRAME_BINDING, t.frame)
+            writes.uniformBuffer(TECH_PARAMS, t.params)
                 .uniformBuffer(POST_VIEWS_BINDING, t.viewData);
             writes.push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
             const gpu::PostPassPush push{.size = {size.width, size.height, v, 0}};
@@ -307,12 +307,13 @@ void dispatchVisibility(VkCommandBuffer cmd, FramePipelines& p, FrameTargets& t,
         .uniformBuffer(VIS_LIGHTS, t.lights)
         .sampled(VIS_GBUFFER_DEPTH, t.depth.view.get(), t.nearest)
         .sampled(VIS_GBUFFER_NORMAL, t.normal.view.get(), t.nearest)
-        .sampled(VIS_SHADOW_MAP, filtered.floats, t.nearest)
-        .sampled(VIS_SHADOW_TABLE, filtered.integers, t.nearest)
-        .sampled(VIS_SHADOW_COMPARE, t.shadowDepth.image.view.get(), t.compare)
+        .sampled(TECH_MAP, filtered.floats, t.nearest)
+        .sampled(TECH_TABLE, filtered.integers, t.nearest)
+        .sampled(TECH_COMPARE, t.shadowDepth.image.view.get(), t.compare)
+        .uniformBuffer(TECH_PARAMS, t.params)
         .storageImage(VIS_OUT, t.visibility.view.get())
         .uniformBuffer(VIS_VIEWS, t.viewData)
-        .sampled(VIS_FIELD, t.field, t.fieldSampler)
+        .sampled(TECH_FIELD, t.field, t.fieldSampler)
         .storageImage(VIS_INTERMEDIATES, t.intermediates.view.get())
         .sampled(VIS_GBUFFER_ALBEDO, t.albedo.view.get(), t.nearest)
         .storageImage(VIS_COLOR, t.color.view.get())
@@ -432,6 +433,15 @@ vk::Image makeIntegerPlaceholder(const vk::Context& ctx) {
                                  .height = 1,
                                  .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
                                  .arrayView = true});
+}
+
+vk::Image makeFieldPlaceholder(const vk::Context& ctx) {
+    return vk::createImage(ctx, {.name = "distance field placeholder",
+                                 .format = VK_FORMAT_R32_SFLOAT,
+                                 .width = 1,
+                                 .height = 1,
+                                 .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
+                                 .depth = 2});
 }
 
 FilteredBindings filteredBindings(const FrameTargets& t, const shadows::TechniqueModule& module) {

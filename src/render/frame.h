@@ -73,11 +73,12 @@ struct FrameTargets {
     std::vector<ShadowView> views;
     ViewMaps shadowDepth;       // shadows::kDepthMap: D32_SFLOAT, the seeds' depth (near 0, far 1)
     std::vector<ViewMaps> maps; // the technique's own, as its module declares them
-    vk::Image integerPlaceholder; // makeIntegerPlaceholder: VIS_SHADOW_TABLE when the filtered
+    vk::Image integerPlaceholder; // makeIntegerPlaceholder: TECH_TABLE when the filtered
                                   // map holds floats
-    // Not owned: this frame's ring slot (FrameData, LightData[], ShadowViewData[]) and the
-    // renderer's samplers.
+    // Not owned: this frame's ring slot (FrameData, LightData[], ShadowViewData[], the
+    // technique's parameter block) and the renderer's samplers.
     VkBuffer frame = VK_NULL_HANDLE, lights = VK_NULL_HANDLE, viewData = VK_NULL_HANDLE;
+    VkBuffer params = VK_NULL_HANDLE;
     VkSampler nearest = VK_NULL_HANDLE, compare = VK_NULL_HANDLE;
     // Not owned: the scene's distance field (sdf; a placeholder otherwise) and its sampler.
     VkImageView field = VK_NULL_HANDLE;
@@ -112,6 +113,9 @@ VkFormat formatOf(shadows::MapFormat format);
 // A 1x1 RGBA32UI array image: what the visibility and probe passes bind at their integer-map
 // binding when the technique filters a float map (every binding a shader uses must be written).
 vk::Image makeIntegerPlaceholder(const vk::Context& ctx);
+// A 1x1x2 R32F 3D image: what a pass that may trace the distance field binds at TECH_FIELD when
+// no field is built.
+vk::Image makeFieldPlaceholder(const vk::Context& ctx);
 // What a pass that filters the technique's map binds: the float map (the depth map when the
 // filtered map holds integers) and the integer one (the placeholder when it holds floats).
 struct FilteredBindings {

@@ -1,32 +1,11 @@
 #include "render/frame_data.h"
 
 #include "core/projection.h"
-#include "shadows/poisson.h"
 #include "shadows/technique.h"
 
 #include <cmath>
 
 namespace penumbra::render {
-
-void setTechniqueSettings(gpu::FrameData& f, const ParameterValues& p, bool hardwareDepthFilter,
-                          uint32_t subTexelBits) {
-    auto index = [&](const char* key) { return static_cast<uint32_t>(p.number(key)); };
-    const uint32_t mode = index("bias.mode");
-    f.biasMode = {index("bias.receiver"), hardwareDepthFilter ? 1u : 0u, subTexelBits, mode};
-    // Corrections bring a tap's reference depth nearer the light (negative) up to the clamp;
-    // with bias.receiverSides=near none may push it away (see docs/techniques.md).
-    const auto limit = static_cast<float>(p.number("bias.receiverClamp"));
-    f.biasParams = {-limit, index("bias.receiverSides") == 0 ? limit : 0.0f,
-                    static_cast<float>(p.number("bias.adaptive")),
-                    static_cast<float>(p.number("bias.curvature"))};
-    const auto& disk = poissonDisk();
-    for (size_t i = 0; i < kPoissonPoints / 2; ++i)
-        f.poisson[i] = {disk[2 * i].x, disk[2 * i].y, disk[2 * i + 1].x, disk[2 * i + 1].y};
-    // Each technique packs its own family (the frame block holds them all).
-    for (const shadows::TechniqueModule* module : shadows::allModules())
-        if (module->pack)
-            module->pack(p, f);
-}
 
 gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t lightCount,
                          const vk::Context& ctx) {
@@ -48,8 +27,8 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
                       std::exp2(static_cast<float>(params.number("composite.exposure"))), 0},
         .background = {0.55f, 0.65f, 0.8f, 1.0f}};
     f.cameraForward = glm::vec4(glm::normalize(camera.target - camera.position), 0.0f);
-    setTechniqueSettings(f, params, ctx.info().depthLinearFilter,
-                         ctx.limits().subTexelPrecisionBits);
+    shadows::setSharedSettings(f, shadows::moduleOf(o.technique), params,
+                               ctx.info().depthLinearFilter, ctx.limits().subTexelPrecisionBits);
     return f;
 }
 

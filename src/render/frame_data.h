@@ -1,8 +1,8 @@
 #pragma once
-// Fills the FrameData uniform block: the camera, the composite knobs, and every technique
-// setting the visibility pass reads (the same block feeds the filter probe of the tests).
-#include "light_geometry.h"
+// Fills the FrameData uniform block: the camera, the composite knobs, and the settings every
+// technique reads (shadows::setSharedSettings; the technique's own go in its parameter block).
 #include "frame_block.h"
+#include "light_geometry.h"
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
@@ -14,10 +14,6 @@ namespace penumbra::render {
 
 gpu::FrameData frameData(const Camera& camera, const RenderOptions& options, uint32_t lightCount,
                          const vk::Context& ctx);
-// The technique part alone: pcf.*, bias.receiver*, the Poisson disk, and whether the device
-// filters depth comparisons in hardware (with how many sub-texel bits).
-void setTechniqueSettings(gpu::FrameData& frame, const ParameterValues& params,
-                          bool hardwareDepthFilter, uint32_t subTexelBits);
 
 // How many records of `bytes` each the lights' or the views' uniform buffer holds on this device
 // (the shaders declare `declared`, MAX_UNIFORM_LIGHTS or MAX_UNIFORM_VIEWS).

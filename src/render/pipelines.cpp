@@ -64,12 +64,13 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {VIS_LIGHTS, kUniform},
                                   {VIS_GBUFFER_DEPTH, kSampled},
                                   {VIS_GBUFFER_NORMAL, kSampled},
-                                  {VIS_SHADOW_MAP, kSampled},
-                                  {VIS_SHADOW_COMPARE, kSampled},
+                                  {TECH_MAP, kSampled},
+                                  {TECH_COMPARE, kSampled},
                                   {VIS_OUT, kImage},
                                   {VIS_VIEWS, kUniform},
-                                  {VIS_SHADOW_TABLE, kSampled},
-                                  {VIS_FIELD, kSampled},
+                                  {TECH_TABLE, kSampled},
+                                  {TECH_FIELD, kSampled},
+                                  {TECH_PARAMS, kUniform},
                                   {VIS_INTERMEDIATES, kImage},
                                   {VIS_GBUFFER_ALBEDO, kSampled},
                                   {VIS_COLOR, kImage}},
@@ -93,11 +94,13 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     probeLayout = vk::createPipelineLayout(ctx,
                                            {{BIND_FRAME, kUniform},
                                             {PROBE_RECEIVERS, kStorage},
-                                            {PROBE_SHADOW_MAP, kSampled},
-                                            {PROBE_SHADOW_COMPARE, kSampled},
                                             {PROBE_RESULTS, kStorage},
                                             {PROBE_VIEW, kStorage},
-                                            {PROBE_SHADOW_TABLE, kSampled}},
+                                            {TECH_MAP, kSampled},
+                                            {TECH_COMPARE, kSampled},
+                                            {TECH_TABLE, kSampled},
+                                            {TECH_FIELD, kSampled},
+                                            {TECH_PARAMS, kUniform}},
                                            VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::ProbePush));
     readingDepthLayout = vk::createPipelineLayout(
         ctx, {{READ_MAP, kSampled}, {READ_TEXTURE, kSampled}}, kGraphicsStages,
@@ -179,7 +182,7 @@ const vk::PipelineLayout& FramePipelines::postPassLayout(uint32_t inputs, uint32
             bindings.push_back({POST_INPUT_BINDING + i, kSampled});
         for (uint32_t i = 0; i < outputs; ++i)
             bindings.push_back({POST_OUTPUT_BINDING + i, kImage});
-        bindings.push_back({POST_FRAME_BINDING, kUniform});
+        bindings.push_back({TECH_PARAMS, kUniform});
         bindings.push_back({POST_VIEWS_BINDING, kUniform});
         it = mPostLayouts
                  .emplace(std::make_pair(inputs, outputs),

@@ -196,7 +196,8 @@ struct SceneRenderer::Impl {
     render::FrameTargets targets;
     vk::Buffer readback;
     struct Slot {
-        vk::Buffer frame, lights, views; // FrameData, LightData[], ShadowViewData[] (mapped)
+        // FrameData, LightData[], ShadowViewData[], the technique's parameter block (mapped)
+        vk::Buffer frame, lights, views, params;
     };
     std::array<Slot, kFramesInFlight> slots;
     size_t nextSlot = 0;
@@ -330,6 +331,9 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
         slot.views = vk::createBuffer(m.ctx(), viewBytes, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                       vk::MemoryUse::Upload, "shadow view buffer");
         std::memset(slot.views.mapped, 0, viewBytes);
+        slot.params =
+            vk::createBuffer(m.ctx(), TECHNIQUE_BLOCK_BYTES, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                             vk::MemoryUse::Upload, "technique parameter buffer");
     }
     m.nearest = vk::createSampler(m.ctx(), {});
     const VkFilter compareFilter =
@@ -338,12 +342,7 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
         m.ctx(), {.magFilter = compareFilter, .minFilter = compareFilter, .compare = true});
     m.linear =
         vk::createSampler(m.ctx(), {.magFilter = VK_FILTER_LINEAR, .minFilter = VK_FILTER_LINEAR});
-    m.fieldPlaceholder = vk::createImage(m.ctx(), {.name = "distance field placeholder",
-                                                   .format = VK_FORMAT_R32_SFLOAT,
-                                                   .width = 1,
-                                                   .height = 1,
-                                                   .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
-                                                   .depth = 2});
+    m.fieldPlaceholder = render::makeFieldPlaceholder(m.ctx());
     m.ctx().submitAndWait([&](VkCommandBuffer cmd) {
         vk::imageBarrier(cmd, m.fieldPlaceholder, vk::kUndefined, vk::kComputeSampled);
     });
@@ -496,6 +495,10 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
                                          .built = built};
     }
     std::memcpy(slot.frame.mapped, &frameBlock, sizeof frameBlock);
+    shadows::ParamBlock params;
+    if (module.pack)
+        module.pack(o.parameters, params);
+    std::memcpy(slot.params.mapped, params.bytes().data(), params.bytes().size());
     if (!lights.empty())
         std::memcpy(slot.lights.mapped, lights.data(), lights.size() * sizeof(gpu::LightData));
     if (!viewRecords.empty())
@@ -504,6 +507,7 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
     t.frame = slot.frame.get();
     t.lights = slot.lights.get();
     t.viewData = slot.views.get();
+    t.params = slot.params.get();
 
     std::vector<shadows::SpecConstant> constants =
         shadows::visibilityConstants(*wanted.technique, o.parameters);

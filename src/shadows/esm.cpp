@@ -1,8 +1,12 @@
 // Technique `esm` [Annen et al. 2008, 'Exponential shadow maps'; Salvi 2008, 'Rendering filtered
 // shadows with exponential shadow maps']: the map keeps e^(c z) of the moment depth, blurred
 // like VSM's moments (shaders/include/moments_blur.glsl); the visibility is the filtered value
-// over e^(c t), at most 1 (shaders/include/shadow_moments.glsl). CPU mirror:
-// src/reference/filter_reference.cpp; derivations in docs/techniques.md.
+// over e^(c t), at most 1 (shaders/include/shadow_moments.glsl; its block params_moments.h). CPU
+// mirror: esmReference below; derivations in docs/techniques.md.
+#include "moments.h"
+#include "params_moments.h"
+#include "penumbra/renderer.h"
+#include "shadows/cpu_moments.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
@@ -13,6 +17,15 @@ constexpr GaussianBlur kBlur{.sizeKey = "esm.size",
                              .columnsShader = "esm_blur_columns.comp",
                              .output = "exponentials",
                              .format = MapFormat::R32F};
+
+// shadowEsmDetail: x visibility, y the filtered e^(c z), z the receiver's moment depth.
+glm::vec4 esmReference(const FilterInput& in) {
+    const gpu::EsmParams p = in.params.get<gpu::EsmParams>();
+    const float filtered =
+        momentsAt(in.map, MOMENTS_ESM, p.size, glm::vec2(p.c), in.view, in.probe.uv).x;
+    const float t = gpu::momentDepth(in.view, in.probe.depth);
+    return {gpu::snapToExtremes(gpu::exponentialVisibility(filtered, t, p.c)), filtered, t, 0.0f};
+}
 
 } // namespace
 
@@ -38,10 +51,11 @@ const TechniqueModule& esmModule() {
         .postPasses = kBlur.passes(),
         .visibilityMap = "exponentials",
         .pack =
-            [](const ParameterValues& p, gpu::FrameData& f) {
-                f.esmParams = {static_cast<float>(p.number("esm.c")),
-                               static_cast<float>(p.number("esm.size")), 0.0f, 0.0f};
+            [](const ParameterValues& p, ParamBlock& block) {
+                block.set(gpu::EsmParams{.c = static_cast<float>(p.number("esm.c")),
+                                         .size = static_cast<uint32_t>(p.number("esm.size"))});
             },
+        .reference = esmReference,
         .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
     return module;
 }

@@ -2,8 +2,12 @@
 // warp)]: the moments of two exponential warps of the moment depth, e^(c+ z) and -e^(-c- z),
 // blurred like VSM's (shaders/include/moments_blur.glsl); Chebyshev's bound in each warp, the
 // smaller one wins (shaders/include/shadow_moments.glsl). The warps squeeze the depths an
-// occluder's far side spreads, which is what makes VSM bleed. CPU mirror:
-// src/reference/filter_reference.cpp; derivations in docs/techniques.md.
+// occluder's far side spreads, which is what makes VSM bleed. Its block: params_moments.h; CPU
+// mirror: evsmReference below; derivations in docs/techniques.md.
+#include "moments.h"
+#include "params_moments.h"
+#include "penumbra/renderer.h"
+#include "shadows/cpu_moments.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
@@ -14,6 +18,20 @@ constexpr GaussianBlur kBlur{.sizeKey = "evsm.size",
                              .columnsShader = "evsm_blur_columns.comp",
                              .output = "moments",
                              .format = MapFormat::RGBA32F};
+
+// shadowEvsmDetail: x visibility, y the positive warp's filtered first moment, z the negative
+// warp's, w the receiver's moment depth.
+glm::vec4 evsmReference(const FilterInput& in) {
+    const gpu::EvsmParams p = in.params.get<gpu::EvsmParams>();
+    const glm::vec2 exponents(p.positive, p.negative);
+    const glm::vec4 moments =
+        momentsAt(in.map, MOMENTS_EVSM, p.size, exponents, in.view, in.probe.uv);
+    const float t = gpu::momentDepth(in.view, in.probe.depth);
+    const float v =
+        gpu::exponentialVarianceVisibility(moments, t, exponents, p.minVariance, p.components);
+    return {gpu::snapToExtremes(gpu::reduceLightBleeding(v, p.bleedReduction)), moments.x,
+            moments.z, t};
+}
 
 } // namespace
 
@@ -65,14 +83,16 @@ const TechniqueModule& evsmModule() {
         .postPasses = kBlur.passes(),
         .visibilityMap = "moments",
         .pack =
-            [](const ParameterValues& p, gpu::FrameData& f) {
-                f.evsmParams = {static_cast<float>(p.number("evsm.positive")),
-                                static_cast<float>(p.number("evsm.negative")),
-                                static_cast<float>(p.number("evsm.minVariance")),
-                                static_cast<float>(p.number("evsm.bleedReduction"))};
-                f.evsmMode = {p.number("evsm.components") == 0.0 ? 2u : 4u,
-                              static_cast<uint32_t>(p.number("evsm.size")), 0u, 0u};
+            [](const ParameterValues& p, ParamBlock& block) {
+                block.set(gpu::EvsmParams{
+                    .positive = static_cast<float>(p.number("evsm.positive")),
+                    .negative = static_cast<float>(p.number("evsm.negative")),
+                    .minVariance = static_cast<float>(p.number("evsm.minVariance")),
+                    .bleedReduction = static_cast<float>(p.number("evsm.bleedReduction")),
+                    .components = p.number("evsm.components") == 0.0 ? 2u : 4u,
+                    .size = static_cast<uint32_t>(p.number("evsm.size"))});
             },
+        .reference = evsmReference,
         .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
     return module;
 }

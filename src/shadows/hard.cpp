@@ -1,5 +1,6 @@
 // Technique `hard` [Williams 1978]: one nearest-texel sample of the light's depth map; lit when
 // d(p) <= s(p). Shader: shaders/include/shadow_hard.glsl. Parameters: the `bias` family only.
+#include "shadows/cpu_filters.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
@@ -12,6 +13,11 @@ const TechniqueModule& hardModule() {
                  .reference = "Williams 1978, 'Casting curved shadows on curved surfaces'",
                  .families = {"bias", "csm", "composite"},
                  .variants = {{.label = ""}}},
+        .reference =
+            [](const FilterInput& in) {
+                const glm::vec2 dzRange(in.frame.biasParams.x, in.frame.biasParams.y);
+                return glm::vec4(hardTest(in.map, in.probe, in.margins, dzRange), 0.0f, 0.0f, 0.0f);
+            },
         .blurRadiusTexels = [](const ParameterValues&) { return 0.5; }};
     return module;
 }

@@ -2,8 +2,14 @@
 // z^4) of the depth mapped to [-1, 1], blurred like VSM's (shaders/include/moments_blur.glsl);
 // the visibility pass reconstructs the smallest occluded fraction these moments allow (the
 // Hamburger problem: momentOcclusion in moments.h, shaders/include/shadow_moments.glsl).
-// msm.precision=16: the paper's optimised quantisation in 16-bit unorm maps. CPU mirror:
-// src/reference/filter_reference.cpp; derivations in docs/techniques.md.
+// msm.precision=16: the paper's optimised quantisation in 16-bit unorm maps. Its block:
+// params_moments.h; CPU mirror: msmReference below; derivations in docs/techniques.md.
+#include <algorithm>
+
+#include "moments.h"
+#include "params_moments.h"
+#include "penumbra/renderer.h"
+#include "shadows/cpu_moments.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
@@ -22,6 +28,24 @@ constexpr GaussianBlur kBlur{.sizeKey = "msm.size",
                              .output = "moments",
                              .format = MapFormat::RGBA32F,
                              .outputFormatFor = momentsFormat};
+
+glm::vec4 storedIn16Bits(glm::vec4 moments) {
+    return gpu::msmStore16(moments);
+}
+
+// shadowMsmDetail: x visibility, yz the filtered first two moments, w the receiver's depth in
+// [-1, 1].
+glm::vec4 msmReference(const FilterInput& in) {
+    const gpu::MsmParams p = in.params.get<gpu::MsmParams>();
+    const bool sixteen = p.bits == 16u;
+    glm::vec4 moments = momentsAt(in.map, MOMENTS_MSM, p.size, glm::vec2(0.0f), in.view,
+                                  in.probe.uv, sixteen ? &storedIn16Bits : nullptr);
+    if (sixteen)
+        moments = gpu::msmLoad16(moments);
+    const float d = 2.0f * gpu::momentDepth(in.view, in.probe.depth) - 1.0f;
+    const float v = std::clamp(1.0f - gpu::momentOcclusion(moments, d, p.momentBias), 0.0f, 1.0f);
+    return {gpu::snapToExtremes(v), moments.x, moments.y, d};
+}
 
 } // namespace
 
@@ -59,11 +83,13 @@ const TechniqueModule& msmModule() {
         .postPasses = kBlur.passes(),
         .visibilityMap = "moments",
         .pack =
-            [](const ParameterValues& p, gpu::FrameData& f) {
-                f.msmParams = {static_cast<float>(p.number("msm.bias")),
-                               static_cast<float>(p.number("msm.size")),
-                               momentsFormat(p) == MapFormat::RGBA16 ? 16.0f : 32.0f, 0.0f};
+            [](const ParameterValues& p, ParamBlock& block) {
+                block.set(
+                    gpu::MsmParams{.momentBias = static_cast<float>(p.number("msm.bias")),
+                                   .size = static_cast<uint32_t>(p.number("msm.size")),
+                                   .bits = momentsFormat(p) == MapFormat::RGBA16 ? 16u : 32u});
             },
+        .reference = msmReference,
         .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
     return module;
 }

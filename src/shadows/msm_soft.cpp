@@ -4,8 +4,13 @@
 // blockers' weight and mean depth from the Hamburger reconstruction's atoms in front of the
 // receiver (momentBlockers in moments.h), the filter is moment shadow mapping's bound over a
 // box of the penumbra's width. Shared with vssm: shaders/include/shadow_sat.glsl
-// (shadowSoftDetail); CPU mirror: src/reference/sat_reference.cpp; derivations in
+// (shadowSoftDetail), its block params_tables.h; CPU mirror: softReference
+// (src/shadows/cpu_tables.cpp); derivations in
 // docs/techniques.md.
+#include "moments.h"
+#include "params_tables.h"
+#include "penumbra/renderer.h"
+#include "shadows/cpu_tables.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
@@ -47,13 +52,14 @@ const TechniqueModule& msmSoftModule() {
         .postPasses = kTable.passes(),
         .visibilityMap = kMomentTable,
         .pack =
-            [](const ParameterValues& p, gpu::FrameData& f) {
-                const SoftSearch::Packed s = kSearch.pack(p);
-                f.msmSoftParams = {s.maxRadius, static_cast<float>(p.number("msm-soft.bias")), 0.0f,
-                                   0.0f};
-                f.softMode.z = s.subdivision;
-                f.softMode.w = s.refine;
-                f.tableScales.z = s.tableScale;
+            [](const ParameterValues& p, ParamBlock& block) {
+                gpu::SoftParams s = kSearch.pack(p);
+                s.momentBias = static_cast<float>(p.number("msm-soft.bias"));
+                block.set(s);
+            },
+        .reference =
+            [](const FilterInput& in) {
+                return softReference(MOMENTS_MSM, in.params.get<gpu::SoftParams>(), in);
             },
         .modelsLightSize = true,
         .blurRadiusTexels = [](const ParameterValues& p) { return kSearch.radiusTexels(p); }};

@@ -1,7 +1,11 @@
 // Technique `pcf` [Reeves, Salesin, Cook 1987]: the fraction of shadow-map tests a kernel passes,
 // every kernel built from bilinear comparison taps; edge-only PCF [Isidoro 2006]. Shader:
-// shaders/include/shadow_pcf.glsl (the kernel is the specialization constant FILTER); CPU mirror:
-// src/reference/filter_reference.cpp.
+// shaders/include/shadow_pcf.glsl (the kernel is the specialization constant FILTER), its block
+// shaders/include/params_pcf.h; its CPU mirror is pcfReference below.
+#include "bias.h"
+#include "params_pcf.h"
+#include "penumbra/renderer.h"
+#include "shadows/cpu_filters.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
@@ -13,6 +17,50 @@ uint32_t choice(const ParameterValues& p, const char* key) {
 
 float number(const ParameterValues& p, const char* key) {
     return static_cast<float>(p.number(key));
+}
+
+// [Isidoro 2006]: four taps at the kernel's corners decide when they agree fully.
+bool probeDecides(const FilterInput& in, const gpu::PcfParams& p, const CpuReceiver& r,
+                  glm::vec2 dzRange, float& result) {
+    const float reach = p.kernel == FILTER_POISSON ? p.radius * 0.70710678f
+                                                   : 0.5f * static_cast<float>(p.size - 1u);
+    const float size = static_cast<float>(in.map.size);
+    const glm::vec2 centre = r.uv * size;
+    const MarginTracker& m = in.margins;
+    const float sum = bilinearTap(in.map, centre + glm::vec2(-reach, -reach), size, r, dzRange, m) +
+                      bilinearTap(in.map, centre + glm::vec2(reach, -reach), size, r, dzRange, m) +
+                      bilinearTap(in.map, centre + glm::vec2(-reach, reach), size, r, dzRange, m) +
+                      bilinearTap(in.map, centre + glm::vec2(reach, reach), size, r, dzRange, m);
+    result = sum * 0.25f;
+    return sum == 0.0f || sum == 4.0f;
+}
+
+// shadowPcfUnsnapped, transcribed (a probe's kernel scale is 1).
+float pcfUnsnapped(const FilterInput& in) {
+    const gpu::PcfParams p = in.params.get<gpu::PcfParams>();
+    const gpu::FrameData& f = in.frame;
+    const CpuReceiver r = receiverOf(in.probe);
+    const glm::vec2 dzRange(f.biasParams.x, f.biasParams.y);
+    const float size = static_cast<float>(in.map.size);
+    if (p.kernel == FILTER_HARDWARE) {
+        const float lift =
+            f.biasMode.w == BIAS_ADAPTIVE ? gpu::footprintLift(r.gradient, size, -dzRange.x) : 0.0f;
+        return bilinearTap(in.map, r.uv * size, size,
+                           CpuReceiver{r.uv, r.depth - lift, glm::vec2(0.0f)}, dzRange, in.margins,
+                           f.biasMode.y != 0u ? f.biasMode.z : 0u);
+    }
+    float early = 0.0f;
+    if (p.edgeOnly != 0u && p.kernel != FILTER_BILINEAR && probeDecides(in, p, r, dzRange, early))
+        return early;
+    if (p.kernel == FILTER_POISSON)
+        return poissonTaps(in.map, r, f, p.samples, p.radius,
+                           gpu::rotationTurns(p.rotation, in.probe.pixel), dzRange, in.margins);
+    const int n = p.kernel == FILTER_BILINEAR ? 1 : static_cast<int>(p.size);
+    return pcfGrid(in.map, r, p.kernel, n, p.sigma, dzRange, in.margins);
+}
+
+glm::vec4 pcfReference(const FilterInput& in) {
+    return {gpu::snapToExtremes(pcfUnsnapped(in)), 0.0f, 0.0f, 0.0f};
 }
 
 } // namespace
@@ -92,14 +140,19 @@ const TechniqueModule& pcfModule() {
                 return std::vector<SpecConstant>{{SPEC_FILTER, choice(p, "pcf.filter")}};
             },
         .pack =
-            [](const ParameterValues& p, gpu::FrameData& f) {
+            [](const ParameterValues& p, ParamBlock& block) {
                 const uint32_t size = choice(p, "pcf.size");
                 const float sigma =
                     number(p, "pcf.sigma") > 0.0f ? number(p, "pcf.sigma") : 0.25f * float(size);
-                f.filterMode = {choice(p, "pcf.filter"), size, choice(p, "pcf.samples"),
-                                choice(p, "pcf.rotation")};
-                f.filterParams = {number(p, "pcf.radius"), sigma, number(p, "pcf.adaptive"), 0.0f};
+                block.set(gpu::PcfParams{.kernel = choice(p, "pcf.filter"),
+                                         .size = size,
+                                         .samples = choice(p, "pcf.samples"),
+                                         .rotation = choice(p, "pcf.rotation"),
+                                         .radius = number(p, "pcf.radius"),
+                                         .sigma = sigma,
+                                         .edgeOnly = choice(p, "pcf.adaptive")});
             },
+        .reference = pcfReference,
         .blurRadiusTexels =
             [](const ParameterValues& p) {
                 // A bilinear tap reaches one texel past its centre.

@@ -5,9 +5,16 @@
 // is built once per scene (src/render/distance_field.h, shaders/sdf_*.comp), the tracer is
 // shaders/include/shadow_sdf.glsl, their shared maths shaders/include/sdf_math.h; the CPU
 // references are src/reference/distance_field.h. Derivations in docs/techniques.md.
+#include "params_sdf.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
+namespace {
+
+// The march's smallest step, in voxels: inside a solid the ray keeps going by at least this.
+constexpr float kMinStepVoxels = 0.25f;
+
+} // namespace
 
 const TechniqueModule& sdfModule() {
     static const TechniqueModule module{
@@ -63,10 +70,12 @@ const TechniqueModule& sdfModule() {
                              "(Quilez's k); 0 derives it from the light's size, the cone the "
                              "ground truth integrates over"}},
         .pack =
-            [](const ParameterValues& p, gpu::FrameData& f) {
-                f.sdfParams = {static_cast<float>(p.number("sdf.steps")),
-                               static_cast<float>(p.number("sdf.startOffset")),
-                               static_cast<float>(p.number("sdf.k")), 0.25f};
+            [](const ParameterValues& p, ParamBlock& block) {
+                block.set(
+                    gpu::SdfParams{.steps = static_cast<float>(p.number("sdf.steps")),
+                                   .startOffset = static_cast<float>(p.number("sdf.startOffset")),
+                                   .k = static_cast<float>(p.number("sdf.k")),
+                                   .minStep = kMinStepVoxels});
             },
         .modelsLightSize = true,
         .blurRadiusTexels = [](const ParameterValues&) { return 0.0; },

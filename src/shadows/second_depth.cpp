@@ -1,7 +1,9 @@
 // Technique `second-depth` [Wang and Molnar 1994]: a depth peel keeps the second-nearest caster
 // per texel, a post pass stores the midpoint of the two layers, and the visibility pass tests
 // against it with the hard technique's one sample: a surface never shadows itself, with no bias,
-// as long as the geometry is watertight (shaders/shadow_peel.frag, second_depth_mid.comp).
+// as long as the geometry is watertight (shaders/shadow_peel.frag, second_depth_mid.comp,
+// shaders/include/shadow_second_depth.glsl).
+#include "shadows/cpu_filters.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
@@ -31,6 +33,12 @@ const TechniqueModule& secondDepthModule() {
                         .inputs = {kDepthMap, "second"},
                         .outputs = {"midpoint"}}},
         .visibilityMap = "midpoint",
+        // The probe's map holds the midpoints; no receiver-plane correction.
+        .reference =
+            [](const FilterInput& in) {
+                return glm::vec4(hardTest(in.map, in.probe, in.margins, glm::vec2(0.0f)), 0.0f,
+                                 0.0f, 0.0f);
+            },
         .blurRadiusTexels = [](const ParameterValues&) { return 0.5; }};
     return module;
 }

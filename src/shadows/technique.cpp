@@ -2,28 +2,15 @@
 #include "shadows/technique.h"
 
 #include "bias.h"
-#include "moments.h"
 #include "bindings.h"
+#include "moments.h"
 #include "penumbra/error.h"
+#include "shadows/poisson.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace penumbra::shadows {
-
-static_assert(TECHNIQUE_HARD == uint32_t(Technique::Hard) &&
-                  TECHNIQUE_PCF == uint32_t(Technique::Pcf) &&
-                  TECHNIQUE_PCSS == uint32_t(Technique::Pcss) &&
-                  TECHNIQUE_SECOND_DEPTH == uint32_t(Technique::SecondDepth) &&
-                  TECHNIQUE_VSM == uint32_t(Technique::Vsm) &&
-                  TECHNIQUE_ESM == uint32_t(Technique::Esm) &&
-                  TECHNIQUE_EVSM == uint32_t(Technique::Evsm) &&
-                  TECHNIQUE_SAVSM == uint32_t(Technique::Savsm) &&
-                  TECHNIQUE_MSM == uint32_t(Technique::Msm) &&
-                  TECHNIQUE_VSSM == uint32_t(Technique::Vssm) &&
-                  TECHNIQUE_MSM_SOFT == uint32_t(Technique::MsmSoft) &&
-                  TECHNIQUE_SDF == uint32_t(Technique::Sdf),
-              "the visibility pass's technique ids are penumbra::Technique's");
 
 uint32_t bytesPerTexel(MapFormat format) {
     switch (format) {
@@ -47,9 +34,9 @@ bool holdsIntegers(MapFormat format) {
 
 std::span<const TechniqueModule* const> allModules() {
     static const TechniqueModule* const modules[] = {
-        &hardModule(), &pcfModule(),  &pcssModule(),    &secondDepthModule(),
-        &vsmModule(),  &esmModule(),  &evsmModule(),    &savsmModule(),
-        &msmModule(),  &vssmModule(), &msmSoftModule(), &sdfModule()};
+#define PENUMBRA_TECHNIQUE(id, Name, module) &module##Module(),
+#include "technique_list.h"
+    };
     return modules;
 }
 
@@ -121,12 +108,12 @@ std::vector<ParameterInfo> SoftSearch::parameters() const {
                             "off to the side do not widen it"}};
 }
 
-SoftSearch::Packed SoftSearch::pack(const ParameterValues& p) const {
+gpu::SoftParams SoftSearch::pack(const ParameterValues& p) const {
     const double cap = p.number(maxRadiusKey);
     return {.maxRadius = static_cast<float>(cap),
+            .tableScale = fixedPointScale(2.0 * cap),
             .subdivision = static_cast<uint32_t>(p.number(subdivisionKey)),
-            .refine = p.number(refineKey) != 0.0 ? 1u : 0u,
-            .tableScale = fixedPointScale(2.0 * cap)};
+            .refine = p.number(refineKey) != 0.0 ? 1u : 0u};
 }
 
 double SoftSearch::radiusTexels(const ParameterValues& p) const {
@@ -145,6 +132,77 @@ const TechniqueModule& moduleOf(Technique technique) {
         if (m->info.id == technique)
             return *m;
     fatal(__FILE__, __LINE__, "moduleOf: unregistered technique");
+}
+
+void setSharedSettings(gpu::FrameData& f, const TechniqueModule& module, const ParameterValues& p,
+                       bool hardwareDepthFilter, uint32_t subTexelBits) {
+    auto index = [&](const char* key) { return static_cast<uint32_t>(p.number(key)); };
+    f.biasMode = {index("bias.receiver"), hardwareDepthFilter ? 1u : 0u, subTexelBits,
+                  index("bias.mode")};
+    // Corrections bring a tap's reference depth nearer the light (negative) up to the clamp;
+    // with bias.receiverSides=near none may push it away (see docs/techniques.md).
+    const auto limit = static_cast<float>(p.number("bias.receiverClamp"));
+    f.biasParams = {-limit, index("bias.receiverSides") == 0 ? limit : 0.0f,
+                    static_cast<float>(p.number("bias.adaptive")),
+                    static_cast<float>(p.number("bias.curvature"))};
+    f.search = {module.searchCap ? static_cast<float>(module.searchCap(p)) : 0.0f, 0.0f, 0.0f,
+                0.0f};
+    const auto& disk = poissonDisk();
+    for (size_t i = 0; i < kPoissonPoints / 2; ++i)
+        f.poisson[i] = {disk[2 * i].x, disk[2 * i].y, disk[2 * i + 1].x, disk[2 * i + 1].y};
+}
+
+FilterSettings filterSettings(const TechniqueModule& module, const ParameterValues& params,
+                              bool hardwareDepthFilter, uint32_t subTexelBits) {
+    FilterSettings s;
+    setSharedSettings(s.frame, module, params, hardwareDepthFilter, subTexelBits);
+    if (module.pack)
+        module.pack(params, s.params);
+    return s;
+}
+
+float ShadowMapView::texel(int i, int j) const {
+    const int last = static_cast<int>(size) - 1;
+    return depth[static_cast<size_t>(std::clamp(j, 0, last)) * size +
+                 static_cast<size_t>(std::clamp(i, 0, last))];
+}
+
+void MarginTracker::see(float a, float b) const {
+    if (margin)
+        *margin = std::min(*margin, std::abs(a - b));
+}
+
+namespace {
+
+glm::vec4 evaluateReference(Technique technique, const ShadowMapView& map, const FilterProbe& probe,
+                            const FilterSettings& s, const gpu::ShadowViewData& view,
+                            MarginTracker margins) {
+    const TechniqueModule& module = moduleOf(technique);
+    if (!module.reference)
+        throw InputError(std::string(module.info.name),
+                         "it traces a distance field: there is no shadow-map filter to evaluate");
+    return module.reference({.map = map,
+                             .probe = probe,
+                             .frame = s.frame,
+                             .params = s.params,
+                             .view = view,
+                             .margins = margins});
+}
+
+} // namespace
+
+glm::vec4 techniqueReference(Technique technique, const ShadowMapView& map,
+                             const FilterProbe& probe, const FilterSettings& settings,
+                             const gpu::ShadowViewData& view) {
+    return evaluateReference(technique, map, probe, settings, view, {});
+}
+
+float smallestComparisonMargin(Technique technique, const ShadowMapView& map,
+                               const FilterProbe& probe, const FilterSettings& settings,
+                               const gpu::ShadowViewData& view) {
+    float margin = 1e30f;
+    evaluateReference(technique, map, probe, settings, view, MarginTracker{&margin});
+    return margin;
 }
 
 MapFormat formatOf(const MapDecl& map, const ParameterValues& params) {
@@ -189,6 +247,10 @@ std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
     constants.push_back({SPEC_CASCADE_BLEND, params.number("csm.blend") > 0.0 ? 1u : 0u});
     constants.push_back(
         {SPEC_ADAPTIVE_BIAS, params.number("bias.mode") == BIAS_ADAPTIVE ? 1u : 0u});
+    constants.push_back(
+        {SPEC_FOOTPRINT, module.readsFootprint && module.readsFootprint(params) ? 1u : 0u});
+    constants.push_back({SPEC_BLOCKER_SEARCH, module.searchCap ? 1u : 0u});
+    constants.push_back({SPEC_TRACES_FIELD, module.tracesField ? 1u : 0u});
     if (module.constants)
         for (const SpecConstant& c : module.constants(params))
             constants.push_back(c);

@@ -1,18 +1,32 @@
 #pragma once
 // A shadow technique as the frame sees it: what it keeps per shadow view beside the light's depth
 // map, the passes that fill it, the map the visibility pass filters, its specialization
-// constants, its parameters and how they pack into FrameData, and what it costs in memory. The
-// frame (src/render) runs what a module declares and never asks which technique it is; each
-// technique is one module in this folder plus its shader include (docs/architecture.md, "Adding a
+// constants and capabilities, its parameters and how they pack into its parameter block, what it
+// costs in memory, and its CPU reference. The frame (src/render) runs what a module declares and
+// never asks which technique it is; each technique is one module in this folder, a line in
+// shaders/include/technique_list.h and its shader include (docs/architecture.md, "Adding a
 // technique").
 #include "bindings.h"
 #include "frame_block.h"
+#include "light_geometry.h"
+#include "params_tables.h"
 #include "penumbra/settings.h"
+#include "technique_block.h"
 
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string_view>
+#include <type_traits>
 #include <vector>
+
+namespace penumbra {
+struct FilterProbe; // penumbra/renderer.h
+}
 
 namespace penumbra::shadows {
 
@@ -68,6 +82,53 @@ struct SpecConstant {
     auto operator<=>(const SpecConstant&) const = default;
 };
 
+// A technique's parameter block as the shaders read it at TECH_PARAMS: its module packs its own
+// std140 struct (shaders/include/params_<family>.h) into the first bytes.
+class ParamBlock {
+public:
+    template <class Params>
+    void set(const Params& params) {
+        static_assert(std::is_trivially_copyable_v<Params> && sizeof(Params) <= sizeof mBytes);
+        std::memcpy(mBytes.data(), &params, sizeof params);
+    }
+    template <class Params>
+    Params get() const {
+        static_assert(std::is_trivially_copyable_v<Params> && sizeof(Params) <= sizeof mBytes);
+        Params params;
+        std::memcpy(&params, mBytes.data(), sizeof params);
+        return params;
+    }
+    std::span<const std::byte> bytes() const { return mBytes; }
+
+private:
+    alignas(16) std::array<std::byte, TECHNIQUE_BLOCK_BYTES> mBytes{};
+};
+
+// A square shadow map on the CPU, rows top to bottom: what the CPU references read.
+struct ShadowMapView {
+    std::span<const float> depth; // size x size
+    uint32_t size = 0;
+    float texel(int i, int j) const; // clamp-to-edge
+};
+
+// Records how close each depth comparison comes to a tie, when asked (the parity tests skip
+// probes a float rounding could flip).
+struct MarginTracker {
+    float* margin = nullptr;
+    void see(float a, float b) const;
+};
+
+// What a module's CPU reference reads: the shader's inputs (src/shadows/cpu_filters.h has the
+// taps they are built from).
+struct FilterInput {
+    const ShadowMapView& map;
+    const FilterProbe& probe;
+    const gpu::FrameData& frame;     // the shared settings: bias, the Poisson disk
+    const ParamBlock& params;        // the module's own, as it packed them
+    const gpu::ShadowViewData& view; // only what the filters read is filled
+    MarginTracker margins;
+};
+
 struct TechniqueModule {
     TechniqueInfo info;                         // name, summary, paper, parameter families, rows
     std::vector<ParameterInfo> parameters;      // the technique's own family (`pcf.*`, ...)
@@ -75,20 +136,35 @@ struct TechniqueModule {
     std::vector<DepthPassDecl> depthPasses;     // beyond the light's depth pass
     std::vector<PostPassDecl> postPasses;       // in order
     std::string_view visibilityMap = kDepthMap; // what the visibility pass filters
-    // Specialization constants of the visibility pass beyond TECHNIQUE (the module's id) and
-    // RECEIVER (bias.receiver, every technique's).
+    // Its own specialization constants of the visibility pass (SPEC_FILTER: pcf.filter).
     std::vector<SpecConstant> (*constants)(const ParameterValues&) = nullptr;
-    // Writes the module's parameters into the frame block (its own fields).
-    void (*pack)(const ParameterValues&, gpu::FrameData&) = nullptr;
+    // Writes the module's parameters into its block (its struct, params_<family>.h).
+    void (*pack)(const ParameterValues&, ParamBlock&) = nullptr;
+    // Its CPU reference: the shader include's operations transcribed (float arithmetic, the same
+    // texel clamping as the texture unit's clamp-to-edge). x visibility, yzw what the shader's
+    // entry point returns there. The parity tests compare it with Renderer::probeTechnique.
+    glm::vec4 (*reference)(const FilterInput&) = nullptr;
     // Whether it models the light's size (its penumbra follows it): bias.horizon=soft applies.
     bool modelsLightSize = false;
     // The widest footprint the technique filters over, in texels from the receiver: the blur
     // radius a metric may allow at a shadow edge (0 for a single sample).
     double (*blurRadiusTexels)(const ParameterValues&) = nullptr;
-    // Whether it traces the scene's distance field instead of filtering shadow maps (sdf): the
-    // frame draws no shadow map, and the scene renderer builds the field (src/render/
-    // distance_field.h) once per scene and field setting.
+
+    // Capabilities: what the frame and the visibility pass do differently for it, as
+    // specialization constants (visibilityConstants), never by its name.
+    // It traces the scene's distance field instead of filtering shadow maps (SPEC_TRACES_FIELD;
+    // sdf): the frame draws no shadow map, the scene renderer builds the field (src/render/
+    // distance_field.h) once per scene and field setting, and the technique clips the light at
+    // the receiver's horizon itself.
     bool tracesField = false;
+    // When set and true, it reads the pixel's footprint in the map (SPEC_FOOTPRINT: the receiver's
+    // uvDx, uvDy; vsm.filter=mip).
+    bool (*readsFootprint)(const ParameterValues&) = nullptr;
+    // When set, it searches blockers (SPEC_BLOCKER_SEARCH): its kernels follow the light's size,
+    // this many texels wide at most in the view sampled (FrameData::search), and in a sun's
+    // cascades the visibility pass runs its search (STAGE_SEARCH) and its filter (STAGE_FILTER)
+    // in the finest cascades that hold them (pcss).
+    double (*searchCap)(const ParameterValues&) = nullptr;
 };
 
 // The separable Gaussian blur of the blurred-moment techniques (vsm, esm, evsm, msm;
@@ -121,13 +197,9 @@ struct SummedAreaTable {
 struct SoftSearch {
     std::string_view maxRadiusKey, subdivisionKey, refineKey;
     std::vector<ParameterInfo> parameters() const;
-    // The cap, the two gpu::FrameData::softMode fields and the table's fixed-point scale.
-    struct Packed {
-        float maxRadius;
-        uint32_t subdivision, refine;
-        float tableScale;
-    };
-    Packed pack(const ParameterValues& p) const;
+    // The cap, the subdivision, the refining search and the table's fixed-point scale (the
+    // member fills in its own bound's settings).
+    gpu::SoftParams pack(const ParameterValues& p) const;
     double radiusTexels(const ParameterValues& p) const; // the widest footprint
 };
 
@@ -152,18 +224,32 @@ uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& p
 std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
                                               const ParameterValues& params);
 
-// The modules, one per file of this folder.
-const TechniqueModule& hardModule();
-const TechniqueModule& pcfModule();
-const TechniqueModule& pcssModule();
-const TechniqueModule& secondDepthModule();
-const TechniqueModule& vsmModule();
-const TechniqueModule& esmModule();
-const TechniqueModule& evsmModule();
-const TechniqueModule& savsmModule();
-const TechniqueModule& msmModule();
-const TechniqueModule& vssmModule();
-const TechniqueModule& msmSoftModule();
-const TechniqueModule& sdfModule();
+// The shared settings and the module's packed block for these parameters: what the visibility
+// pass and the probe read (FrameData's technique-independent part: bias, the Poisson disk, the
+// device's hardware depth filtering and its sub-texel bits).
+struct FilterSettings {
+    gpu::FrameData frame{};
+    ParamBlock params;
+};
+FilterSettings filterSettings(const TechniqueModule& module, const ParameterValues& params,
+                              bool hardwareDepthFilter, uint32_t subTexelBits);
+// The technique-independent part alone, into an existing frame block.
+void setSharedSettings(gpu::FrameData& frame, const TechniqueModule& module,
+                       const ParameterValues& params, bool hardwareDepthFilter,
+                       uint32_t subTexelBits);
+
+// The module's CPU reference at `probe` (its `reference`); InputError for a technique without
+// one (sdf traces a field: there is no shadow-map filter to evaluate).
+glm::vec4 techniqueReference(Technique technique, const ShadowMapView& map,
+                             const FilterProbe& probe, const FilterSettings& settings,
+                             const gpu::ShadowViewData& view);
+// The smallest |receiver depth + correction - stored depth| over every texel the filter reads.
+float smallestComparisonMargin(Technique technique, const ShadowMapView& map,
+                               const FilterProbe& probe, const FilterSettings& settings,
+                               const gpu::ShadowViewData& view);
+
+// The modules, one per file of this folder, from the technique list.
+#define PENUMBRA_TECHNIQUE(id, Name, module) const TechniqueModule& module##Module();
+#include "technique_list.h"
 
 } // namespace penumbra::shadows

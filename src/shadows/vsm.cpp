@@ -5,7 +5,12 @@
 // reduction [Lauritzen 2007] (shaders/include/shadow_moments.glsl). vsm.filter=mip adds the
 // paper's mip chain over the blurred moments (vsm_mip.comp), read trilinearly over the pixel's
 // footprint with up to vsm.anisotropy taps along its longer axis. CPU mirror:
-// src/reference/filter_reference.cpp; derivations in docs/techniques.md.
+// vsmReference below (src/shadows/cpu_moments.cpp: the blur and the chain); derivations in
+// docs/techniques.md. Its block: shaders/include/params_moments.h.
+#include "moments.h"
+#include "params_moments.h"
+#include "penumbra/renderer.h"
+#include "shadows/cpu_moments.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
@@ -36,6 +41,19 @@ std::vector<PostPassDecl> vsmPasses() {
     passes.push_back(
         {.shader = "vsm_mip.comp", .outputs = {kBlur.output}, .dispatch = PostDispatch::MipChain});
     return passes;
+}
+
+// shadowVsmDetail: x visibility, yz the filtered moments, w the receiver's moment depth.
+glm::vec4 vsmReference(const FilterInput& in) {
+    const gpu::VsmParams p = in.params.get<gpu::VsmParams>();
+    const glm::vec2 moments = p.anisotropy > 0.0f
+                                  ? vsmMomentsMip(vsmMipChain(in.map, p.size, in.view), in.map.size,
+                                                  in.probe, p.anisotropy)
+                                  : glm::vec2(momentsAt(in.map, MOMENTS_VSM, p.size,
+                                                        glm::vec2(0.0f), in.view, in.probe.uv));
+    const float t = gpu::momentDepth(in.view, in.probe.depth);
+    const float bound = gpu::chebyshevUpperBound(moments, t, p.minVariance);
+    return {gpu::snapToExtremes(gpu::reduceLightBleeding(bound, p.bleedReduction)), moments, t};
 }
 
 } // namespace
@@ -88,16 +106,20 @@ const TechniqueModule& vsmModule() {
         .postPasses = vsmPasses(),
         .visibilityMap = "moments",
         .pack =
-            [](const ParameterValues& p, gpu::FrameData& f) {
-                f.vsmParams = {
-                    static_cast<float>(p.number("vsm.minVariance")),
-                    static_cast<float>(p.number("vsm.bleedReduction")),
-                    static_cast<float>(p.number("vsm.size")),
-                    filtersThroughMips(p) ? static_cast<float>(p.number("vsm.anisotropy")) : 0.0f};
+            [](const ParameterValues& p, ParamBlock& block) {
+                block.set(gpu::VsmParams{
+                    .minVariance = static_cast<float>(p.number("vsm.minVariance")),
+                    .bleedReduction = static_cast<float>(p.number("vsm.bleedReduction")),
+                    .size = static_cast<uint32_t>(p.number("vsm.size")),
+                    .anisotropy = filtersThroughMips(p)
+                                      ? static_cast<float>(p.number("vsm.anisotropy"))
+                                      : 0.0f});
             },
+        .reference = vsmReference,
         // A footprint the mip chain widens is clipped by the map's edge as any minified texture
         // is; the guard band keeps the blur's reach.
-        .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
+        .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); },
+        .readsFootprint = filtersThroughMips};
     return module;
 }
 

@@ -5,8 +5,13 @@
 // penumbra follows from similar triangles, and the filter is the bound over a box of that width.
 // The paper's answer to non-planar receivers, kernel subdivision, is `vssm.subdivision`: each
 // sub-kernel is compared with the receiver's plane at its centre. Shader:
-// shaders/include/shadow_sat.glsl (shadowSoftDetail, shared with msm-soft); CPU mirror:
-// src/reference/sat_reference.cpp; derivations in docs/techniques.md.
+// shaders/include/shadow_sat.glsl (shadowSoftDetail, shared with msm-soft), its block
+// params_tables.h; CPU mirror: softReference (src/shadows/cpu_tables.cpp); derivations in
+// docs/techniques.md.
+#include "moments.h"
+#include "params_tables.h"
+#include "penumbra/renderer.h"
+#include "shadows/cpu_tables.h"
 #include "shadows/technique.h"
 
 namespace penumbra::shadows {
@@ -55,13 +60,15 @@ const TechniqueModule& vssmModule() {
         .postPasses = kTable.passes(),
         .visibilityMap = kMomentTable,
         .pack =
-            [](const ParameterValues& p, gpu::FrameData& f) {
-                const SoftSearch::Packed s = kSearch.pack(p);
-                f.vssmParams = {s.maxRadius, static_cast<float>(p.number("vssm.minVariance")),
-                                static_cast<float>(p.number("vssm.bleedReduction")), 0.0f};
-                f.softMode.x = s.subdivision;
-                f.softMode.y = s.refine;
-                f.tableScales.y = s.tableScale;
+            [](const ParameterValues& p, ParamBlock& block) {
+                gpu::SoftParams s = kSearch.pack(p);
+                s.minVariance = static_cast<float>(p.number("vssm.minVariance"));
+                s.bleedReduction = static_cast<float>(p.number("vssm.bleedReduction"));
+                block.set(s);
+            },
+        .reference =
+            [](const FilterInput& in) {
+                return softReference(MOMENTS_VSM, in.params.get<gpu::SoftParams>(), in);
             },
         .modelsLightSize = true,
         .blurRadiusTexels = [](const ParameterValues& p) { return kSearch.radiusTexels(p); }};

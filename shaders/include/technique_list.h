@@ -1,0 +1,25 @@
+// The technique list, read by C++ and by GLSL: one line per technique, the only place that
+// enumerates them. Every reader defines PENUMBRA_TECHNIQUE(id, Name, module) before including
+// this file and gets it undefined after:
+//   id      the value of penumbra::Technique::Name (include/penumbra/settings.h) and of the
+//           visibility pass's TECHNIQUE specialization constant
+//   Name    the enum value, and the suffix of the technique's GLSL entry point
+//           `vec4 evaluate<Name>(TechniqueInput at)` (shaders/include/techniques.glsl)
+//   module  its module, `const TechniqueModule& <module>Module()` (src/shadows/technique.h),
+//           which holds everything else: name, parameters, maps, passes, capabilities, packing
+//           and CPU reference
+// The order is `penumbra techniques`' order. Adding a technique: docs/architecture.md.
+// (No include guard: each reader expands it its own way.)
+PENUMBRA_TECHNIQUE(0, Hard, hard)
+PENUMBRA_TECHNIQUE(1, Pcf, pcf)
+PENUMBRA_TECHNIQUE(2, Pcss, pcss)
+PENUMBRA_TECHNIQUE(3, SecondDepth, secondDepth)
+PENUMBRA_TECHNIQUE(4, Vsm, vsm)
+PENUMBRA_TECHNIQUE(5, Esm, esm)
+PENUMBRA_TECHNIQUE(6, Evsm, evsm)
+PENUMBRA_TECHNIQUE(7, Savsm, savsm)
+PENUMBRA_TECHNIQUE(8, Msm, msm)
+PENUMBRA_TECHNIQUE(9, Vssm, vssm)
+PENUMBRA_TECHNIQUE(10, MsmSoft, msmSoft)
+PENUMBRA_TECHNIQUE(11, Sdf, sdf)
+#undef PENUMBRA_TECHNIQUE
