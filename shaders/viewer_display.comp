@@ -17,6 +17,7 @@ layout(set = 0, binding = DISPLAY_OVERLAY_IMAGE, rgba8) uniform readonly image2D
 layout(set = 0, binding = DISPLAY_FRAME, std140) uniform FrameBlock { FrameData frame; };
 layout(set = 0, binding = DISPLAY_OUT, rgba8) uniform writeonly image2D outColor;
 layout(set = 0, binding = DISPLAY_INTERMEDIATES) uniform sampler2DArray intermediates;
+layout(set = 0, binding = DISPLAY_LAYER_RESULTS) uniform sampler2DArray layerResults;
 layout(push_constant) uniform Push { DisplayPush display; };
 
 const vec3 kBackground = vec3(0.55, 0.65, 0.8);
@@ -62,6 +63,11 @@ void main() {
     if (mode == DISPLAY_VISIBILITY) {
         float v = texelFetch(visibility, ivec3(p, int(display.mode.y)), 0).r;
         color = isnan(v) ? vec4(kBackground, 1.0) : vec4(vec3(clamp(v, 0.0, 1.0)), 1.0);
+    } else if (mode == DISPLAY_LAYER) {
+        float v = isBackground(texelFetch(gDepth, p, 0).r)
+                      ? 1.0
+                      : texelFetch(layerResults, ivec3(p, int(display.mode.y)), 0).r;
+        color = vec4(vec3(v), 1.0);
     } else if (mode == DISPLAY_SHADOW_MAP) {
         color = shadowMapTexel(p, size);
     } else if (mode == DISPLAY_CASCADES) {

@@ -1,6 +1,7 @@
 #pragma once
 // Scenes whose shadows the tests know by construction, shared by several test files.
 #include "penumbra/scene.h"
+#include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
 
 #include <array>
@@ -57,6 +58,13 @@ inline Scene sphereOverPlane(const Light& light) {
                              .yfov = 0.9f,
                              .znear = 0.1f,
                              .zfar = 100.0f});
+    return scene;
+}
+
+// builtin:resting's objects resting on a plane under `light`.
+inline Scene restingObjects(const Light& light) {
+    Scene scene = builtin::restingGeometry();
+    scene.lights.push_back(light);
     return scene;
 }
 

@@ -42,6 +42,8 @@ using LightingTest = GpuTest; // the lit image: composite, attenuation, shadow i
 using QualityTest = GpuTest;  // every technique against the ray-traced ground truth
 using MaterialTest = GpuTest; // textures, alpha-tested casters, culling
 using FieldTest = GpuTest;    // the sdf technique's distance field: build, sign, cache
+using FrameTest = GpuTest;    // the frame graph: order, barriers, the resource pool
+using LayerTest = GpuTest;    // layers on a light's evaluation (contact shadows)
 
 inline glm::vec3 pixelVec(const std::vector<float>& v, size_t i) {
     return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};

@@ -28,11 +28,12 @@ fs::path scratch(const std::string& name) {
     return outputScratch(name);
 }
 
-// The file-name prefix compare gives a row: "pcf[box7]" is written "pcf-box7".
+// The file-name prefix compare gives a row: "pcf[box7]" is written "pcf-box7", a layer after it
+// ("pcf[box3]+contact") "pcf-box3-contact".
 std::string rowFilePrefix(const std::string& row) {
     std::string prefix;
     for (char c : row)
-        prefix += c == '[' ? "-" : c == ']' ? "" : std::string(1, c);
+        prefix += c == '[' || c == '+' ? "-" : c == ']' ? "" : std::string(1, c);
     return prefix;
 }
 

@@ -1,8 +1,8 @@
 // Every filter against answers that do not come from its CPU mirror: closed forms on synthetic
 // maps (a straight occluder edge, a constant map, a checkerboard, a receiver tilted against a flat
 // occluder) and equalities that must hold between variants. A bug written into both the shader
-// and src/reference/filter_reference.cpp passes the parity test; it fails these, which check
-// both sides.
+// and its module's CPU reference (src/shadows/) passes the parity test; it fails these, which
+// check both sides.
 //
 // Texel coordinates: texel i spans [i, i + 1) and has its centre at i + 1/2; a probe at texel
 // position x has u = x / size. A bilinear comparison tap at x over a step whose tests change

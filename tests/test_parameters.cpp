@@ -63,6 +63,44 @@ TEST(Techniques, ComparisonRowsNameEachRowOnce) {
     EXPECT_EQ(names, (std::vector<std::string>{"pcf[box7]", "pcf[box3]"}));
 }
 
+TEST(Techniques, ComparisonRowsCarryTheLayersNamedAfterThem) {
+    const std::vector<TechniqueRow> rows = comparisonRows("pcf[box3]+contact,hard");
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0].name, "pcf[box3]+contact");
+    EXPECT_EQ(rows[0].layers, std::vector<std::string>{"contact"});
+    EXPECT_EQ(rows[1].name, "hard");
+    EXPECT_TRUE(rows[1].layers.empty());
+    // A technique's name with a layer: each of its rows with the layer.
+    for (const TechniqueRow& row : comparisonRows("pcf+contact")) {
+        EXPECT_TRUE(row.name.starts_with("pcf[")) << row.name;
+        EXPECT_TRUE(row.name.ends_with("]+contact")) << row.name;
+    }
+    EXPECT_THROW(comparisonRows("hard+nonsense"), InputError);
+    EXPECT_THROW(comparisonRows("hard+"), InputError);
+    // The default list: every row, then each layer's own rows with it.
+    std::vector<std::string> names;
+    for (const TechniqueRow& row : comparisonRows(""))
+        names.push_back(row.name);
+    EXPECT_NE(std::find(names.begin(), names.end(), "hard+contact"), names.end());
+    EXPECT_NE(std::find(names.begin(), names.end(), "pcf[box3]+contact"), names.end());
+    EXPECT_EQ(std::find(names.begin(), names.end(), "hard+contact"), names.end() - 2);
+}
+
+TEST(Techniques, ARowRunsExactlyTheLayersItNames) {
+    const TechniqueRow plain = comparisonRows("hard")[0];
+    const TechniqueRow layered = comparisonRows("hard+contact")[0];
+    // Named, the layer gets its row setting when the caller left it off (a share of the scene's
+    // radius), and keeps the caller's otherwise; not named, it is off.
+    ParameterValues v;
+    applyRow(layered, v, 10.0);
+    EXPECT_NEAR(v.number("contact.length"), 0.2, 1e-9);
+    v.assign("contact.length=0.5");
+    applyRow(layered, v, 10.0);
+    EXPECT_EQ(v.number("contact.length"), 0.5);
+    applyRow(plain, v, 10.0);
+    EXPECT_EQ(v.number("contact.length"), 0.0);
+}
+
 TEST(RenderOptions, ValidateRefusesZeroSizes) {
     RenderOptions o;
     EXPECT_NO_THROW(validate(o));

@@ -1,5 +1,6 @@
 // CPU reference vs GPU for every shadow-map filter, on synthetic shadow maps: the visibility
-// pass's own filter code (Renderer::probeTechnique) against src/reference/filter_reference.cpp.
+// pass's own filter code (Renderer::probeTechnique) against each module's CPU reference
+// (src/shadows/).
 #include "gpu_fixture.h"
 #include "render/frame_data.h"
 #include "shadows/technique.h"

@@ -152,6 +152,8 @@ ReportRow makeRow(std::string name, double rmse, std::vector<std::pair<std::stri
     row.metrics.leak = 0.5;
     row.metrics.acneBeyondBlur = 0.03125;
     row.metrics.leakBeyondBlur = 0.015625;
+    row.metrics.leakNearContact = 0.375;
+    row.metrics.nearContact = 321;
     row.metrics.pixels = 1234;
     row.gpuMs = std::move(gpu);
     row.imagePng = encodePng(visibilityImage(2, 2, std::vector<float>{0, 1, 0.5f, kNaN}));
@@ -198,10 +200,10 @@ TEST(MetricsJson, HasExactlyTheContractKeys) {
     EXPECT_EQ(ref["device"], d.device);
     EXPECT_EQ(keysOf(j["techniques"]), (std::set<std::string>{"hard", "a<b&\"c\""}));
     nlohmann::json& t = j["techniques"]["a<b&\"c\""];
-    EXPECT_EQ(keysOf(t),
-              (std::set<std::string>{"rmse", "mae", "max", "misclassified",
-                                     "misclassified_outside_edges", "acne", "leak",
-                                     "acne_beyond_blur", "leak_beyond_blur", "pixels", "gpu_ms"}));
+    EXPECT_EQ(keysOf(t), (std::set<std::string>{
+                             "rmse", "mae", "max", "misclassified", "misclassified_outside_edges",
+                             "acne", "leak", "acne_beyond_blur", "leak_beyond_blur",
+                             "leak_near_contact", "near_contact_pixels", "pixels", "gpu_ms"}));
     EXPECT_EQ(t["rmse"], 0.1);
     EXPECT_EQ(t["mae"], 0.05);
     EXPECT_EQ(t["max"], 1.0);
@@ -211,6 +213,8 @@ TEST(MetricsJson, HasExactlyTheContractKeys) {
     EXPECT_EQ(t["leak"], 0.5);
     EXPECT_EQ(t["acne_beyond_blur"], 0.03125);
     EXPECT_EQ(t["leak_beyond_blur"], 0.015625);
+    EXPECT_EQ(t["leak_near_contact"], 0.375);
+    EXPECT_EQ(t["near_contact_pixels"], 321);
     EXPECT_EQ(t["pixels"], 1234);
     EXPECT_EQ(keysOf(t["gpu_ms"]), (std::set<std::string>{"shadow", "blur", "main", "total"}));
     EXPECT_EQ(t["gpu_ms"]["blur"], 0.25);

@@ -182,6 +182,45 @@ TEST(ViewerTest, DisplayModesShowTheFrameTheyName) {
     EXPECT_GT(meanDifference(left, right, column + 1, 256), 0.5) << "B differs from A there";
 }
 
+// --show contact draws the contact layer's own result: where it is black the layer put the pixel
+// in shadow, so render's visibility with the layer is the visibility without it times that. On
+// the resting objects at a bias that detaches their shadows, it finds pixels the map left lit.
+TEST(ViewerTest, ContactViewShowsWhatTheLayerMultipliesIn) {
+    const std::vector<std::string> scene{
+        "builtin:resting",   "--width", "256",   "--height",        "160",
+        "--technique",       "hard",    "--set", "bias.mode=fixed", "--set",
+        "bias.constant=0.02"};
+    auto visibilityOf = [&](const std::string& length, const std::string& name) {
+        const fs::path out = scratch(name);
+        std::vector<std::string> args{"render", "-o", out.string(), "--frames", "1"};
+        args.insert(args.end(), scene.begin(), scene.end());
+        args.insert(args.end(), {"--set", "contact.length=" + length});
+        EXPECT_EQ(runCli(args).exitCode, 0);
+        return readPfm(out / "visibility.pfm");
+    };
+    const PfmImage without = visibilityOf("0", "render-no-contact");
+    const PfmImage with = visibilityOf("0.3", "render-contact");
+    std::vector<std::string> show = scene;
+    show.insert(show.end(), {"--set", "contact.length=0.3", "--hide-ui", "--show", "contact"});
+    const Rgb contact = viewImage(show, "show-contact");
+    ASSERT_EQ(contact.width * contact.height, static_cast<int>(with.pixels.size()));
+    size_t found = 0, finite = 0;
+    for (int i = 0; i < contact.width * contact.height; ++i) {
+        const uint8_t* p = &contact.pixels[3 * size_t(i)];
+        ASSERT_EQ(p[0], p[1]);
+        ASSERT_EQ(p[1], p[2]);
+        ASSERT_TRUE(p[0] == 0 || p[0] == 255) << "pixel " << i << ": " << int(p[0]);
+        if (!std::isfinite(with.pixels[i]))
+            continue;
+        ++finite;
+        const float c = p[0] == 255 ? 1.0f : 0.0f;
+        ASSERT_NEAR(with.pixels[i], without.pixels[i] * c, 1e-6f) << "pixel " << i;
+        found += c == 0.0f && without.pixels[i] > 0.5f;
+    }
+    EXPECT_GT(finite, with.pixels.size() / 2);
+    EXPECT_GE(found, 8u) << "the layer shadows pixels the detached map left lit"; // 14 here
+}
+
 // The cascade tint follows the view distance (red nearest, then green, blue, yellow: the ground
 // from the bottom of the image up), and a shadow-map layer is shown square and centred, its
 // depth as grey (the spot's frustum: nearer casters darker than the ground behind them).

@@ -105,6 +105,17 @@ inline ErrorMetrics measure(const Truth& t, Technique technique,
     return errorOf(t, renderRow(t, technique, sets));
 }
 
+// A compare row as `compare` renders it on this truth's scene (its layers sized to the scene).
+inline ErrorMetrics measure(const Truth& t, const TechniqueRow& row) {
+    RenderOptions o{.width = t.setup.width,
+                    .height = t.setup.height,
+                    .shadowMapSize = t.setup.shadowMapSize,
+                    .frames = 1,
+                    .technique = row.technique};
+    applyRow(row, o.parameters, t.scene.bounds().radius());
+    return errorOf(t, sharedRenderer().render(t.scene, o));
+}
+
 // How far a measurement may move from the value stored beside its check. Lavapipe renders
 // bit-identically run after run, so the tables are tight there (a 20% worse error must fail);
 // another device rasterizes and filters a little differently, so they only catch gross changes.

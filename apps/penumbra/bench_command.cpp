@@ -30,11 +30,8 @@ std::vector<Technique> parseTechniques(const std::string& list) {
             out.push_back(t.id);
         return out;
     }
-    for (size_t start = 0; start <= list.size();) {
-        const size_t comma = std::min(list.find(',', start), list.size());
-        out.push_back(findTechnique(list.substr(start, comma - start)).id);
-        start = comma + 1;
-    }
+    for (const std::string& name : splitList(list, "--techniques"))
+        out.push_back(findTechnique(name).id);
     return out;
 }
 
@@ -42,29 +39,24 @@ std::vector<Technique> parseTechniques(const std::string& list) {
 std::vector<BenchRun> runsOf(Technique technique, const RenderOptions& base,
                              const std::vector<Sweep>& sweeps) {
     const TechniqueInfo& info = findTechnique(techniqueName(technique));
-    std::vector<BenchRun> runs{{.technique = technique, .parameters = base.parameters}};
-    for (const Sweep& s : sweeps) {
-        const std::string family = s.key.substr(0, s.key.find('.'));
-        if (std::find(info.families.begin(), info.families.end(), family) == info.families.end())
-            continue;
-        std::vector<BenchRun> next;
-        for (const BenchRun& r : runs)
-            for (const std::string& value : s.values) {
-                BenchRun run = r;
-                run.parameters.set(s.key, value);
-                run.swept.emplace_back(s.key, value);
-                next.push_back(std::move(run));
-            }
-        runs = std::move(next);
+    std::vector<Sweep> read;
+    for (const Sweep& s : sweeps)
+        if (std::find(info.families.begin(), info.families.end(),
+                      s.key.substr(0, s.key.find('.'))) != info.families.end())
+            read.push_back(s);
+    std::vector<BenchRun> runs;
+    for (Assignment& swept : sweepProduct(read)) {
+        BenchRun run{.technique = technique, .parameters = base.parameters};
+        for (const auto& [key, value] : swept)
+            run.parameters.set(key, value);
+        run.swept = std::move(swept);
+        runs.push_back(std::move(run));
     }
     return runs;
 }
 
 int runBench(const BenchArgs& args, const GlobalOptions& global) {
-    RenderOptions base = args.options;
-    for (const std::string& set : args.sets)
-        base.parameters.assign(set);
-    validate(base);
+    const RenderOptions base = optionsFor(args.options, {}, args.sets);
     std::vector<Sweep> sweeps;
     BenchData data{.scene = args.scene,
                    .width = base.width,
@@ -145,34 +137,13 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
 
 } // namespace
 
-// "key=v1,v2,...": a registered key and values in its range (checked now, not mid-run).
-Sweep parseSweep(const std::string& text) {
-    const size_t eq = text.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
-        throw InputError("--sweep", "'" + text + "' is not key=value1,value2,...");
-    Sweep sweep{.key = text.substr(0, eq)};
-    ParameterValues check;
-    for (size_t start = eq + 1; start <= text.size();) {
-        const size_t comma = std::min(text.find(',', start), text.size());
-        const std::string value = text.substr(start, comma - start);
-        try {
-            check.set(sweep.key, value);
-        } catch (const InputError& e) { // "--set: <what>": the same problem, under its option
-            throw InputError("--sweep", std::string(e.what()).substr(e.subject().size() + 2));
-        }
-        sweep.values.push_back(value);
-        start = comma + 1;
-    }
-    return sweep;
-}
-
 Action addBenchCommand(CLI::App& app, const GlobalOptions& global) {
     auto args = std::make_shared<BenchArgs>();
     args->options.frames = 20;
     CLI::App* cmd = app.add_subcommand(
         "bench", "GPU time per pass of each technique and swept parameter value: FILE.json and "
                  "bench.html beside it");
-    cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
+    addSceneArgument(*cmd, args->scene);
     cmd->add_option("-o,--output", args->output, "the JSON file (bench.html is written beside it)")
         ->required();
     cmd->add_option("--techniques", args->techniques,

@@ -32,13 +32,13 @@ struct CompareArgs {
     uint32_t pathFrames = 8;
 };
 
-// File-name prefix of a row: "pcf[box7]" -> "pcf-box7".
+// File-name prefix of a row: "pcf[box7]" -> "pcf-box7", "pcf[box3]+contact" -> "pcf-box3-contact".
 std::string filePrefix(const std::string& row) {
     std::string out;
     for (char c : row)
         if (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_')
             out += c;
-        else if (c == '[')
+        else if (c == '[' || c == '+')
             out += '-';
     return out;
 }
@@ -57,22 +57,17 @@ double blurRadiusTexels(const RenderOptions& o) {
 int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     const std::vector<TechniqueRow> rows = comparisonRows(args.techniques);
     std::vector<RenderOptions> rowOptions;
-    for (const TechniqueRow& row : rows) {
-        RenderOptions o = args.options;
-        o.technique = row.technique;
-        for (const std::string& set : args.sets)
-            o.parameters.assign(set);
-        for (const auto& [key, value] : row.sets)
-            o.parameters.set(key, value);
-        validate(o);
-        rowOptions.push_back(std::move(o));
-    }
+    for (const TechniqueRow& row : rows)
+        rowOptions.push_back(optionsFor(args.options, row, args.sets));
     validate(args.reference);
     CameraPath path{};
     if (!args.cameraPath.empty() && !cameraPathFromName(args.cameraPath, path))
         throw InputError("--camera-path",
                          fmt::format("'{}' is not dolly, orbit or sun", args.cameraPath));
     Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
+    // A row's layers that the settings leave off take the layer's settings for this scene's size.
+    for (size_t i = 0; i < rows.size(); ++i)
+        applyRow(rows[i], rowOptions[i].parameters, scene.bounds().radius());
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     for (const RenderOptions& o : rowOptions)
@@ -113,6 +108,9 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     if (!truth.visibility.empty())
         report.referenceVisibilityPng = encodePng(visibilityImage(w, h, truth.visibility[0]));
     writeViewFiles(out, gbuffer, truth.visibility); // the reference's files at the top level
+    for (size_t l = 0; l < truth.occluderDistance.size(); ++l) // how far each pixel's occluder is
+        out.write(l == 0 ? "occluder.pfm" : fmt::format("occluder_{}.pfm", l),
+                  encodePfm(w, h, 1, truth.occluderDistance[l]));
     std::vector<double> shimmer;
     if (!args.cameraPath.empty()) {
         std::vector<std::string> names;
@@ -129,7 +127,8 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         ReportRow row{.name = rows[r].name,
                       .technique = std::string(techniqueName(rows[r].technique)),
                       .metrics = metricsAgainstTruth(lit, result, truth.visibility, masks,
-                                                     blurRadiusTexels(rowOptions[r])),
+                                                     blurRadiusTexels(rowOptions[r]),
+                                                     truth.occluderDistance),
                       .shimmer = shimmer.empty() ? NAN : shimmer[r]};
         for (const auto& [key, value] : rows[r].sets)
             row.parameters.emplace_back(key, value);
@@ -160,17 +159,18 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                                              renderer.validationErrors()));
     out.commit();
 
-    std::printf("%-22s %9s %9s %11s %8s %8s %8s %8s %10s%s\n", "technique", "RMSE", "MAE",
-                "misclass.%", "acne%", "leak%", "acne>b%", "leak>b%", "GPU ms",
+    std::printf("%-22s %9s %9s %11s %8s %8s %8s %8s %8s %10s%s\n", "technique", "RMSE", "MAE",
+                "misclass.%", "acne%", "leak%", "acne>b%", "leak>b%", "leak@c%", "GPU ms",
                 shimmer.empty() ? "" : "    shimmer");
     for (const ReportRow& row : report.rows) {
         double total = 0;
         for (const auto& [pass, ms] : row.gpuMs)
             total += ms;
-        std::printf("%-22s %9.5f %9.5f %11.3f %8.3f %8.3f %8.3f %8.3f %10.3f", row.name.c_str(),
-                    row.metrics.rmse, row.metrics.mae, 100 * row.metrics.misclassified,
-                    100 * row.metrics.acne, 100 * row.metrics.leak,
-                    100 * row.metrics.acneBeyondBlur, 100 * row.metrics.leakBeyondBlur, total);
+        std::printf("%-22s %9.5f %9.5f %11.3f %8.3f %8.3f %8.3f %8.3f %8.2f %10.3f",
+                    row.name.c_str(), row.metrics.rmse, row.metrics.mae,
+                    100 * row.metrics.misclassified, 100 * row.metrics.acne, 100 * row.metrics.leak,
+                    100 * row.metrics.acneBeyondBlur, 100 * row.metrics.leakBeyondBlur,
+                    100 * row.metrics.leakNearContact, total);
         if (!shimmer.empty())
             std::printf(" %10.5f", row.shimmer);
         std::printf("\n");
@@ -188,7 +188,7 @@ Action addCompareCommand(CLI::App& app, const GlobalOptions& global) {
     CLI::App* cmd = app.add_subcommand(
         "compare",
         "render each technique and the ground truth; write report.html and metrics.json");
-    cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
+    addSceneArgument(*cmd, args->scene);
     cmd->add_option("-o,--output", args->output, "output directory")->required();
     cmd->add_option("--techniques", args->techniques,
                     "comma-separated techniques or variants, e.g. hard,pcf[box7] (default: all)");

@@ -66,7 +66,7 @@ Action addReferenceCommand(CLI::App& app, const GlobalOptions& global) {
     auto args = std::make_shared<ReferenceArgs>();
     CLI::App* cmd = app.add_subcommand(
         "reference", "ray-traced ground-truth visibility (Embree) for the same view as render");
-    cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
+    addSceneArgument(*cmd, args->scene);
     cmd->add_option("-o,--output", args->output, "output directory")->required();
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addReferenceOptions(*cmd, args->reference);

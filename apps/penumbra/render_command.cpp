@@ -33,11 +33,8 @@ void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& 
 }
 
 int runRender(const RenderArgs& args, const GlobalOptions& global) {
-    RenderOptions options = args.options;
-    options.technique = findTechnique(args.technique).id;
-    for (const std::string& set : args.sets)
-        options.parameters.assign(set);
-    validate(options);
+    const RenderOptions options =
+        optionsFor(args.options, {.technique = findTechnique(args.technique).id}, args.sets);
     const FieldSlice slice = parseFieldSlice(args.fieldSlice);
     const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
     // Created before the long work so an unwritable path fails fast; removed again on error.
@@ -97,94 +94,10 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
 
 } // namespace
 
-void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
-    cmd.add_option("--width", o.width, "image width in pixels")->capture_default_str();
-    cmd.add_option("--height", o.height, "image height in pixels")->capture_default_str();
-    CLI::Option* camera = cmd.add_option("--camera", o.camera,
-                                         "glTF camera name (default: the first, else automatic)");
-    cmd.add_option("--camera-pos", scene.cameraPosition,
-                   "X,Y,Z: an ad-hoc camera at this world position (needs --look-at)")
-        ->excludes(camera);
-    cmd.add_option("--look-at", scene.lookAt, "X,Y,Z: the point the ad-hoc camera looks at")
-        ->excludes(camera);
-    cmd.add_option("--fov", scene.fovDegrees,
-                   "the ad-hoc camera's vertical field of view in degrees (default 45.8)")
-        ->excludes(camera);
-    cmd.add_option("--sun-dir", scene.sunDirection,
-                   "X,Y,Z: the direction a sun's light travels (world space); replaces the "
-                   "default light of a scene without lights, else adds a sun");
-    cmd.add_option("--light-pos", scene.lightPositions,
-                   "NAME=X,Y,Z: move the spot or point light NAME (repeatable)");
-    cmd.add_option("--light-dir", scene.lightDirections,
-                   "NAME=X,Y,Z: aim the spot or sun NAME (repeatable)");
-    cmd.add_option("--light-radius", o.lightRadiusOverride,
-                   "spot/point light radius in world units (overrides the scene)")
-        ->check(CLI::NonNegativeNumber);
-    cmd.add_option("--light-angle", o.lightAngleOverride,
-                   "directional light angular diameter in degrees (overrides the scene)")
-        ->check(CLI::Range(0.0, 30.0));
-}
-
-void writeViewFiles(StagedOutputDir& out, const RenderResult& g,
-                    const std::vector<std::vector<float>>& visibility) {
-    for (size_t i = 0; i < visibility.size(); ++i)
-        out.write(visibilityFileName(i), encodePfm(g.width, g.height, 1, visibility[i]));
-    out.write("position.pfm", encodePfm(g.width, g.height, 3, g.position));
-    out.write("normal.pfm", encodePfm(g.width, g.height, 3, g.normal));
-}
-
-void addTechniqueOptions(CLI::App& cmd, RenderOptions& o, std::vector<std::string>& sets) {
-    cmd.add_option("--shadow-map-size", o.shadowMapSize, "shadow map side in texels")
-        ->capture_default_str();
-    cmd.add_option("--set", sets, "technique parameter family.name=value (repeatable)");
-    cmd.add_option("--frames", o.frames, "timed frames after one warm-up frame")
-        ->capture_default_str();
-}
-
-void addReferenceOptions(CLI::App& cmd, ReferenceOptions& options) {
-    cmd.add_option("--samples", options.samples,
-                   "ground-truth rays per pixel and light for lights with a size (1..65536)")
-        ->capture_default_str();
-    cmd.add_option("--embree-config", options.embreeConfig,
-                   "Embree device configuration, e.g. threads=2");
-}
-
-Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
-                         const SceneOptions& o) {
-    SceneEdits edits{.fovDegrees = o.fovDegrees};
-    // Parsed before the scene loads: a typing mistake costs no loading time.
-    if (!o.sunDirection.empty())
-        edits.sunDirection = parseVector3(o.sunDirection, "--sun-dir");
-    if (!o.cameraPosition.empty())
-        edits.cameraPosition = parseVector3(o.cameraPosition, "--camera-pos");
-    if (!o.lookAt.empty())
-        edits.lookAt = parseVector3(o.lookAt, "--look-at");
-    for (const std::string& text : o.lightPositions)
-        edits.lightPositions.push_back(parseNamedVector3(text, "--light-pos"));
-    for (const std::string& text : o.lightDirections)
-        edits.lightDirections.push_back(parseNamedVector3(text, "--light-dir"));
-    std::vector<std::string> warnings;
-    Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
-                                   .maxTriangles = global.maxTriangles,
-                                   .warnings = &warnings});
-    for (const std::string& w : warnings)
-        std::fprintf(stderr, "penumbra: warning: %s\n", w.c_str());
-    applySceneEdits(scene, edits);
-    return scene;
-}
-
-std::span<const uint8_t> bytesOf(const std::string& text) {
-    return {reinterpret_cast<const uint8_t*>(text.data()), text.size()};
-}
-
 Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "render SCENE with one shadow technique into DIR");
-    std::string builtins;
-    for (std::string_view name : builtinSceneNames())
-        builtins += (builtins.empty() ? "" : ", ") + std::string(name);
-    cmd->add_option("scene", args->scene, "builtin:NAME (" + builtins + ") or a glTF file")
-        ->required();
+    addSceneArgument(*cmd, args->scene);
     cmd->add_option("-o,--output", args->output, "output directory")->required();
     cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
         ->capture_default_str();

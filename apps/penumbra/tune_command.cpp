@@ -41,32 +41,14 @@ std::vector<Sweep> modeGrid(const std::string& mode) {
             {"bias.normal", {"0", "0.3", "1"}}};
 }
 
-// The technique row `name` names: a variant ("pcf[box7]") or a technique at its defaults.
-TechniqueRow techniqueRow(const std::string& name) {
-    if (name.find('[') == std::string::npos)
-        return {.name = name, .technique = findTechnique(name).id, .sets = {}};
-    for (TechniqueRow& row : comparisonRows(name))
-        if (row.name == name)
-            return row;
-    throw InputError("--technique", fmt::format("unknown variant '{}'", name));
-}
-
 // Every combination of the sweeps' values over `base`.
 void addProduct(std::vector<TuneCandidate>& out, std::vector<ParameterValues>& values,
                 const ParameterValues& base, const std::vector<Sweep>& sweeps) {
-    std::vector<std::pair<TuneCandidate, ParameterValues>> runs{{TuneCandidate{}, base}};
-    for (const Sweep& s : sweeps) {
-        std::vector<std::pair<TuneCandidate, ParameterValues>> next;
-        for (const auto& [candidate, params] : runs)
-            for (const std::string& value : s.values) {
-                auto run = std::pair(candidate, params);
-                run.first.sets.emplace_back(s.key, value);
-                run.second.set(s.key, value);
-                next.push_back(std::move(run));
-            }
-        runs = std::move(next);
-    }
-    for (auto& [candidate, params] : runs) {
+    for (Assignment& sets : sweepProduct(sweeps)) {
+        TuneCandidate candidate{.sets = std::move(sets)};
+        ParameterValues params = base;
+        for (const auto& [key, value] : candidate.sets)
+            params.set(key, value);
         for (const auto& [key, value] : candidate.sets)
             if (params.number(key) != base.number(key))
                 candidate.setLine +=
@@ -101,14 +83,8 @@ struct ViewTruth {
 };
 
 int runTune(const TuneArgs& args, const GlobalOptions& global) {
-    const TechniqueRow row = techniqueRow(args.technique);
-    RenderOptions base = args.options;
-    base.technique = row.technique;
-    for (const auto& [key, value] : row.sets)
-        base.parameters.set(key, value);
-    for (const std::string& set : args.sets)
-        base.parameters.assign(set);
-    validate(base);
+    const TechniqueRow row = rowNamed(args.technique, "--technique");
+    RenderOptions base = optionsFor(args.options, row, args.sets);
     validate(args.reference);
 
     std::vector<TuneCandidate> candidates{TuneCandidate{.isDefault = true}};
@@ -119,13 +95,10 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
             sweeps.push_back(parseSweep(text));
         addProduct(candidates, values, base.parameters, sweeps);
     } else {
-        for (size_t start = 0; start <= args.modes.size();) {
-            const size_t comma = std::min(args.modes.find(',', start), args.modes.size());
-            const std::string mode = args.modes.substr(start, comma - start);
+        for (const std::string& mode : splitList(args.modes, "--modes")) {
             if (mode != "fixed" && mode != "adaptive")
                 throw InputError("--modes", fmt::format("'{}' is not fixed or adaptive", mode));
             addProduct(candidates, values, base.parameters, modeGrid(mode));
-            start = comma + 1;
         }
     }
     // Each candidate's swept keys as the defaults have them: the table's first row.
@@ -136,6 +109,10 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
                 candidates[0].sets.emplace_back(key, base.parameters.text(key));
 
     Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
+    // The row's layers, sized to the scene as compare sizes them (a row runs exactly those).
+    applyRow(row, base.parameters, scene.bounds().radius());
+    for (ParameterValues& v : values)
+        applyRow(row, v, scene.bounds().radius());
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     auto optionsOf = [&](size_t i) {
@@ -232,7 +209,7 @@ Action addTuneCommand(CLI::App& app, const GlobalOptions& global) {
     CLI::App* cmd = app.add_subcommand(
         "tune", "sweep the bias settings against the ground truth; write tune.json and tune.html "
                 "and print the recommended --set line");
-    cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
+    addSceneArgument(*cmd, args->scene);
     cmd->add_option("--technique", args->technique,
                     "the technique or variant to tune, e.g. hard, pcf[box7]")
         ->required();

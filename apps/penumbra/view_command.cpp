@@ -19,7 +19,7 @@ struct ViewArgs {
 };
 
 // --show MODE[:N]: scene, visibility[:LIGHT], shadow-map[:LAYER], cascades, error[:LIGHT],
-// blocker-depth[:LIGHT], penumbra[:LIGHT].
+// blocker-depth[:LIGHT], penumbra[:LIGHT], contact[:LIGHT].
 void parseShow(const std::string& text, viewer::ViewerOptions& options) {
     const size_t colon = text.find(':');
     const std::string mode = text.substr(0, colon);
@@ -28,7 +28,7 @@ void parseShow(const std::string& text, viewer::ViewerOptions& options) {
         {"scene", DisplayMode::Scene},          {"visibility", DisplayMode::Visibility},
         {"shadow-map", DisplayMode::ShadowMap}, {"cascades", DisplayMode::Cascades},
         {"error", DisplayMode::Error},          {"blocker-depth", DisplayMode::BlockerDepth},
-        {"penumbra", DisplayMode::Penumbra}};
+        {"penumbra", DisplayMode::Penumbra},    {"contact", DisplayMode::Contact}};
     bool found = false;
     for (const auto& [name, value] : modes)
         if (mode == name)
@@ -37,7 +37,8 @@ void parseShow(const std::string& text, viewer::ViewerOptions& options) {
         throw InputError("--show", "'" + text +
                                        "' is not one of scene, visibility[:LIGHT], "
                                        "shadow-map[:LAYER], cascades, error[:LIGHT], "
-                                       "blocker-depth[:LIGHT], penumbra[:LIGHT]");
+                                       "blocker-depth[:LIGHT], penumbra[:LIGHT], "
+                                       "contact[:LIGHT]");
     if (colon != std::string::npos) {
         const std::string index = text.substr(colon + 1);
         if (index.empty() || index.size() > 4 ||
@@ -49,11 +50,9 @@ void parseShow(const std::string& text, viewer::ViewerOptions& options) {
 
 int runView(const ViewArgs& args, const GlobalOptions& global) {
     viewer::ViewerOptions options = args.options;
-    options.render.technique = findTechnique(args.technique).id;
-    for (const std::string& set : args.sets)
-        options.render.parameters.assign(set);
     options.render.frames = 1;
-    validate(options.render);
+    options.render =
+        optionsFor(options.render, {.technique = findTechnique(args.technique).id}, args.sets);
     validate(ReferenceOptions{.samples = options.truthSamples});
     if (!options.screenshot.empty() && options.frames == 0)
         throw InputError("--screenshot", "needs --frames N (the frames drawn before it)");
@@ -76,7 +75,7 @@ Action addViewCommand(CLI::App& app, const GlobalOptions& global) {
         "view", "the interactive viewer: SCENE in a window, every technique and parameter live, "
                 "the error against the ground truth (mouse: left drag orbits, right drag looks, "
                 "wheel zooms; WASD QE fly; Tab hides the interface; Esc quits)");
-    cmd->add_option("scene", args->scene, "builtin:NAME or a glTF file")->required();
+    addSceneArgument(*cmd, args->scene);
     cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
         ->capture_default_str();
     addViewOptions(*cmd, args->options.render, args->sceneOptions);
@@ -92,7 +91,8 @@ Action addViewCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("--show", args->show,
                     "what the window shows: scene, visibility[:LIGHT], shadow-map[:LAYER], "
                     "cascades, error[:LIGHT] (error traces the ground truth first), "
-                    "blocker-depth[:LIGHT], penumbra[:LIGHT] (pcss, vssm, msm-soft)")
+                    "blocker-depth[:LIGHT], penumbra[:LIGHT] (pcss, vssm, msm-soft), "
+                    "contact[:LIGHT] (the contact layer's result; with contact.length > 0)")
         ->capture_default_str();
     cmd->add_option("--compare-with", args->compareWith,
                     "A/B: this technique right of the split, --technique left of it");

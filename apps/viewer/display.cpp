@@ -28,7 +28,8 @@ DisplayPass::DisplayPass(const vk::Context& ctx) : mCtx(ctx) {
          {DISPLAY_OVERLAY_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
          {DISPLAY_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
          {DISPLAY_OUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE},
-         {DISPLAY_INTERMEDIATES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
+         {DISPLAY_INTERMEDIATES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+         {DISPLAY_LAYER_RESULTS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}},
         VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::DisplayPush));
     mPipeline = vk::createComputePipeline(ctx, mLayout, "viewer_display.comp");
     mNearest = vk::createSampler(ctx, {});
@@ -61,8 +62,8 @@ void DisplayPass::setOverlay(std::span<const uint8_t> rgba) {
     mOverlayPending = true;
 }
 
-void DisplayPass::record(VkCommandBuffer cmd, const render::FrameTargets& a,
-                         const render::FrameTargets* b, const gpu::DisplayPush& push) {
+void DisplayPass::record(VkCommandBuffer cmd, const render::FrameOutputs& a,
+                         const render::FrameOutputs* b, const gpu::DisplayPush& push) {
     if (mOverlayPending) {
         vk::imageBarrier(cmd, mOverlay, vk::kUndefined, vk::kCopyWrite);
         const VkBufferImageCopy region{.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1},
@@ -73,22 +74,23 @@ void DisplayPass::record(VkCommandBuffer cmd, const render::FrameTargets& a,
         mOverlayPending = false;
     }
     vk::Barriers toRead;
-    toRead.image(a.color, vk::kComputeWrite, kComputeLoad);
+    toRead.image(*a.color, vk::kComputeWrite, kComputeLoad);
     if (b)
-        toRead.image(b->color, vk::kComputeWrite, kComputeLoad);
+        toRead.image(*b->color, vk::kComputeWrite, kComputeLoad);
     toRead.image(mOutput, vk::kUndefined, vk::kComputeWrite);
     toRead.record(cmd);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mPipeline.get());
     vk::PushDescriptors()
-        .storageImage(DISPLAY_COLOR, a.color.view.get())
-        .storageImage(DISPLAY_COLOR_B, (b ? b : &a)->color.view.get())
-        .sampled(DISPLAY_VISIBILITY_MAP, a.visibility.view.get(), mNearest.get())
-        .sampled(DISPLAY_DEPTH_MAP, a.shadowDepth.image.view.get(), mNearest.get())
-        .sampled(DISPLAY_GBUFFER_DEPTH, a.depth.view.get(), mNearest.get())
+        .storageImage(DISPLAY_COLOR, a.color->view.get())
+        .storageImage(DISPLAY_COLOR_B, (b ? b : &a)->color->view.get())
+        .sampled(DISPLAY_VISIBILITY_MAP, a.visibility->view.get(), mNearest.get())
+        .sampled(DISPLAY_DEPTH_MAP, a.depthMap->view.get(), mNearest.get())
+        .sampled(DISPLAY_GBUFFER_DEPTH, a.gbufferDepth->view.get(), mNearest.get())
         .storageImage(DISPLAY_OVERLAY_IMAGE, mOverlay.view.get())
         .uniformBuffer(DISPLAY_FRAME, a.frame)
         .storageImage(DISPLAY_OUT, mOutput.view.get())
-        .sampled(DISPLAY_INTERMEDIATES, a.intermediates.view.get(), mNearest.get())
+        .sampled(DISPLAY_INTERMEDIATES, a.intermediates->view.get(), mNearest.get())
+        .sampled(DISPLAY_LAYER_RESULTS, a.layerResults->view.get(), mNearest.get())
         .push(mCtx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, mLayout);
     vkCmdPushConstants(cmd, mLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
     vkCmdDispatch(cmd, groups(mOutput.width), groups(mOutput.height), 1);

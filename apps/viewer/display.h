@@ -3,8 +3,8 @@
 // the window shows: the lit image (split between techniques A and B), one light's visibility, a
 // layer of the depth map, the cascade each pixel reads, or an image the host made (the error heat
 // map). Its output is left ready to blit into the swapchain image.
-#include "viewer_types.h"
 #include "render/frame.h"
+#include "viewer_types.h"
 #include "vk/pipelines.h"
 #include "vk/resources.h"
 
@@ -21,8 +21,8 @@ public:
     // The overlay (RGBA8, the output's size, rows top to bottom), copied in by the next record.
     // The device must be idle.
     void setOverlay(std::span<const uint8_t> rgba);
-    // `b`: technique B's targets, or null. Leaves the output in vk::kBlitRead.
-    void record(VkCommandBuffer cmd, const render::FrameTargets& a, const render::FrameTargets* b,
+    // `b`: technique B's frame, or null. Leaves the output in vk::kBlitRead.
+    void record(VkCommandBuffer cmd, const render::FrameOutputs& a, const render::FrameOutputs* b,
                 const gpu::DisplayPush& push);
     const vk::Image& output() const { return mOutput; }
 

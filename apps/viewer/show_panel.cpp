@@ -10,8 +10,8 @@ namespace penumbra::viewer {
 namespace {
 
 const char* const kModes[] = {
-    "lit image",     "visibility",    "shadow map", "cascades", "error vs ground truth",
-    "blocker depth", "penumbra width"};
+    "lit image",     "visibility",     "shadow map",     "cascades", "error vs ground truth",
+    "blocker depth", "penumbra width", "contact shadows"};
 
 // "light 0", or for a layer "light 0 +x" / "light 1 cascade 2".
 std::vector<std::string> layerNames(const RenderResult& frame) {
@@ -76,7 +76,15 @@ void showPanel(ViewerState& s) {
     else if (s.display == DisplayMode::Penumbra)
         ImGui::TextWrapped("the filter's radius in texels: blue 0 to yellow at the largest "
                            "(pcss.maxRadius); dark blue: no blocker found");
-    if (s.display == DisplayMode::Visibility || s.display == DisplayMode::Error || search) {
+    const bool contact = s.display == DisplayMode::Contact;
+    if (contact && s.options.parameters.number("contact.length") <= 0.0)
+        ImGui::TextWrapped("the contact layer is off: set contact.length (world units) under "
+                           "\"contact\"");
+    else if (contact)
+        ImGui::TextWrapped("what the contact layer finds: black where a surface within "
+                           "contact.length hides the light, multiplied into the visibility");
+    if (s.display == DisplayMode::Visibility || s.display == DisplayMode::Error || search ||
+        contact) {
         if (shadowLights == 0)
             ImGui::TextUnformatted("no light casts a shadow");
         else

@@ -126,7 +126,7 @@ void runViewer(const Scene& scene, const ViewerOptions& options) {
                        .canPresent = [](VkInstance_T* i, VkPhysicalDevice_T* d, uint32_t f) {
                            return Window::canPresent(i, d, f);
                        }});
-    const vk::Context& ctx = RendererAccess::context(renderer);
+    const vk::Context& ctx = renderer.context();
     Surface surface(ctx, window);
     Swapchain swapchain =
         createSwapchain(ctx, surface.get(), window.framebufferSize(), options.vsync);

@@ -156,7 +156,7 @@ void ViewerSession::update(const CameraInput& input, float seconds, DisplayPass&
 }
 
 RenderResult ViewerSession::renderNow() {
-    VK_CHECK(vkDeviceWaitIdle(RendererAccess::context(mRenderer).device()));
+    VK_CHECK(vkDeviceWaitIdle(mRenderer.context().device()));
     RenderOptions o = checkedOptions(mState.options.technique);
     o.frames = 1;
     return mA->render(o, frameState(), printProgress);
@@ -247,6 +247,11 @@ gpu::DisplayPush ViewerSession::displayPush(uint32_t width) const {
         if (mErrorShown)
             push.mode.x = DISPLAY_OVERLAY;
         break;
+    case DisplayMode::Contact:
+        if (shadowLights > 0 && s.options.parameters.number("contact.length") > 0.0)
+            push.mode.x = DISPLAY_LAYER,
+            push.mode.y = std::min(static_cast<uint32_t>(s.displayLight), shadowLights - 1);
+        break;
     case DisplayMode::BlockerDepth:
     case DisplayMode::Penumbra:
         if (shadowLights > 0 && hasBlockerSearch(s.options.technique)) {
@@ -263,13 +268,15 @@ gpu::DisplayPush ViewerSession::displayPush(uint32_t width) const {
 
 void ViewerSession::record(FrameSlot& slot, uint64_t frame, DisplayPass& display) {
     const RenderOptions a = checkedOptions(mState.options.technique);
+    // The passes' own results, written only when shown: the search's, or the contact layer's.
     const bool intermediates =
-        (mState.display == DisplayMode::BlockerDepth || mState.display == DisplayMode::Penumbra) &&
-        hasBlockerSearch(a.technique);
-    RendererAccess::LiveFrame liveA = RendererAccess::recordFrame(
-        *mA, slot.cmd, a, frameState(), frame % 2, *slot.timerA, intermediates, printProgress);
+        ((mState.display == DisplayMode::BlockerDepth || mState.display == DisplayMode::Penumbra) &&
+         hasBlockerSearch(a.technique)) ||
+        mState.display == DisplayMode::Contact;
+    SceneRenderer::RecordedFrame liveA = mA->record(slot.cmd, a, frameState(), frame % 2,
+                                                    *slot.timerA, intermediates, printProgress);
     mState.lastFrame = std::move(liveA.result);
-    const render::FrameTargets* targetsB = nullptr;
+    const render::FrameOutputs* outputsB = nullptr;
     slot.timedB = false;
     if (mState.compare) {
         if (!mB) {
@@ -277,12 +284,12 @@ void ViewerSession::record(FrameSlot& slot, uint64_t frame, DisplayPass& display
             mB = std::make_unique<SceneRenderer>(mRenderer, mScene);
         }
         const RenderOptions b = checkedOptions(mState.techniqueB);
-        targetsB = RendererAccess::recordFrame(*mB, slot.cmd, b, frameState(), frame % 2,
-                                               *slot.timerB, false, printProgress)
-                       .targets;
+        outputsB =
+            mB->record(slot.cmd, b, frameState(), frame % 2, *slot.timerB, false, printProgress)
+                .outputs;
         slot.timedB = true;
     }
-    display.record(slot.cmd, *liveA.targets, targetsB, displayPush(a.width));
+    display.record(slot.cmd, *liveA.outputs, outputsB, displayPush(a.width));
 }
 
 void ViewerSession::printTimes() const {

@@ -14,7 +14,16 @@
 
 namespace penumbra::viewer {
 
-enum class DisplayMode { Scene, Visibility, ShadowMap, Cascades, Error, BlockerDepth, Penumbra };
+enum class DisplayMode {
+    Scene,
+    Visibility,
+    ShadowMap,
+    Cascades,
+    Error,
+    BlockerDepth,
+    Penumbra,
+    Contact // the contact layer's own result for one light (what it multiplies in)
+};
 
 // Whether the technique reports a blocker depth and penumbra width (evaluateTechnique's y and w):
 // the members that model the light's size with a shadow map (pcss, vssm, msm-soft).

@@ -29,6 +29,10 @@ struct ReferenceOptions {
 struct ReferenceResult {
     uint32_t width = 0, height = 0;
     std::vector<std::vector<float>> visibility; // per shadow-casting light, as RenderResult
+    // Per shadow-casting light: how far along the ray to the light's centre the nearest occluder
+    // lies (world units; infinity: none; NaN: background), what tells a contact shadow, whose
+    // caster is near, from a long one.
+    std::vector<std::vector<float>> occluderDistance;
     uint64_t rays = 0;
     double seconds = 0.0;      // everything: scene build and tracing
     double traceSeconds = 0.0; // tracing alone: rays / traceSeconds is the ray rate

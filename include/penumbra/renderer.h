@@ -13,11 +13,21 @@
 #include <string>
 #include <vector>
 
-// Vulkan's own handle types, for a window system's presentation test (no vulkan.h here).
+// Vulkan's own handle types, for a window system's presentation test and a caller that records
+// frames into its own command buffers (no vulkan.h here).
 struct VkInstance_T;
 struct VkPhysicalDevice_T;
+struct VkCommandBuffer_T;
 
 namespace penumbra {
+
+namespace vk {
+class Context;  // src/vk/context.h
+class GpuTimer; // src/vk/timestamps.h
+} // namespace vk
+namespace render {
+struct FrameOutputs; // src/render/frame.h
+} // namespace render
 
 struct DeviceOptions {
     int deviceIndex = -1;    // -1: a GPU when there is one, else the software rasterizer
@@ -95,6 +105,7 @@ struct RenderResult {
     std::vector<std::vector<float>> visibility; // per shadow-casting light; NaN = background
     std::vector<float> position;                // xyz per pixel, world space; NaN = background
     std::vector<float> normal;                  // xyz per pixel, unit; NaN = background
+    std::vector<float> faceNormal; // xyz per pixel: the triangle's own unit normal; NaN as above
     std::vector<PassTime> passes;
     std::vector<LightShadow> lights;
     std::optional<DistanceFieldInfo> field; // sdf only
@@ -155,10 +166,12 @@ public:
     uint32_t validationErrors() const;
     // Every validation-layer message so far, warnings and performance warnings included.
     uint32_t validationMessages() const;
+    // The Vulkan context (src/vk/context.h): for a caller that records its own passes around
+    // the frame and submits them (the viewer's swapchain and display pass).
+    const vk::Context& context() const;
 
 private:
     friend class SceneRenderer;
-    friend struct RendererAccess; // the viewer's (src/render/renderer_impl.h)
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };
@@ -198,8 +211,22 @@ public:
     // one); `info` gets its grid.
     std::vector<float> distanceField(DistanceFieldInfo& info) const;
 
+    // One frame recorded into the caller's command buffer, for a caller that submits frames
+    // itself (the viewer: frames in flight, presentation). `slot`: a ring slot the caller knows
+    // the frame that used it last has completed; `timer` is read after the frame's fence;
+    // `intermediates`: the technique's and the layers' intermediate results too. The frame hands
+    // its outputs over for the caller's own passes (render::FrameOutputs: colour in storage
+    // layout, the rest sampled), valid until the next frame is recorded. Remaking targets or the
+    // distance field waits for the device to go idle.
+    struct RecordedFrame {
+        RenderResult result; // lights, views and distance field; no pixels, no times
+        const render::FrameOutputs* outputs;
+    };
+    RecordedFrame record(VkCommandBuffer_T* commandBuffer, const RenderOptions& options,
+                         const FrameState& state, size_t slot, vk::GpuTimer& timer,
+                         bool intermediates, const ProgressFn& progress = {});
+
 private:
-    friend struct RendererAccess;
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };

@@ -94,6 +94,7 @@ struct Bounds {
     void grow(const glm::vec3& p) { min = glm::min(min, p), max = glm::max(max, p); }
     glm::vec3 center() const { return 0.5f * (min + max); }
     glm::vec3 extent() const { return max - min; }
+    float radius() const { return 0.5f * glm::length(extent()); } // the bounding sphere's
     bool empty() const { return min.x > max.x; }
 };
 

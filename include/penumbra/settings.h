@@ -32,16 +32,27 @@ struct TechniqueInfo {
     std::vector<TechniqueVariant> variants; // the rows `compare` shows by default
 };
 
-// One row of a comparison: a technique with its variant's parameters.
+// One row of a comparison: a technique with its variant's parameters, and the layers it runs on
+// top (src/shadows/layer.h), e.g. "pcf[box3]+contact".
 struct TechniqueRow {
-    std::string name; // "hard", "pcf[box7]"
+    std::string name; // "hard", "pcf[box7]", "pcf[box3]+contact"
     Technique technique;
     std::vector<std::pair<std::string, std::string>> sets;
+    std::vector<std::string> layers; // "contact"
 };
 
+class ParameterValues;
+
 // Expands `--techniques`: a comma-separated list of technique names (each gives all its
-// variants) or row names; empty gives every variant of every technique. Throws InputError.
+// variants) or row names, each optionally followed by layers ("pcf[box3]+contact", "pcf+contact":
+// every pcf row with the layer); empty gives every variant of every technique and the rows each
+// layer shows by default. Throws InputError.
 std::vector<TechniqueRow> comparisonRows(std::string_view list);
+// Applies a row to `params` (the caller's own settings already in): its variant's settings, then
+// its layers: a row runs exactly the layers it names (the others are switched off), each with
+// the caller's settings, or where they leave it off, the layer's row settings for a scene of
+// `sceneRadius` (its bounding sphere's, world units).
+void applyRow(const TechniqueRow& row, ParameterValues& params, double sceneRadius);
 
 std::span<const TechniqueInfo> allTechniques();
 std::string_view techniqueName(Technique technique);

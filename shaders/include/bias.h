@@ -17,11 +17,6 @@
 #define HORIZON_ALL 2u
 
 PENUMBRA_GPU_BEGIN
-#ifdef __cplusplus
-#define SHARED inline
-#else
-#define SHARED
-#endif
 
 // The comparison of one texel [Williams 1978]: lit (1) when the receiver's depth, corrected by
 // receiver-plane bias to the texel's centre (`offset` = texel centre - receiver, in uv), lies at or
@@ -137,7 +132,6 @@ SHARED vec2 receiverGradientFromOffsets(vec3 alongX, vec3 alongY) {
                 alongX.x * alongY.z - alongY.x * alongX.z) / det;
 }
 
-#undef SHARED
 PENUMBRA_GPU_END
 
 #ifdef __cplusplus

@@ -60,10 +60,20 @@
 #define COMPOSITE_GBUFFER_ALBEDO 4
 #define COMPOSITE_VISIBILITY 5
 #define COMPOSITE_OUT 6
+// A layer's pass (src/shadows/layer.h; contact.comp): per shadow-casting light, multiplies what
+// it finds into the light's visibility layer. Push constants: VisibilityPush.
+#define LAYER_LIGHTS 1           // LightData[], uniform
+#define LAYER_GBUFFER_DEPTH 2
+#define LAYER_GBUFFER_NORMAL 3
+#define LAYER_VISIBILITY 4       // R32F array, a layer per shadow-casting light, read and written
+#define LAYER_PARAMS 5           // the layer's parameter block (uniform)
+#define LAYER_RESULTS 6          // R32F array: the layer's own factor, with SPEC_INTERMEDIATES (a
+                                 // 1x1 placeholder otherwise; the viewer's debug view)
 #define EXPORT_GBUFFER_DEPTH 1   // export.comp
 #define EXPORT_GBUFFER_NORMAL 2
 #define EXPORT_POSITION 3
 #define EXPORT_NORMAL 4
+#define EXPORT_FACE_NORMAL 5     // the triangle's own normal (the contact layer's CPU reference)
 #define PROBE_RECEIVERS 1        // filter_probe.comp (and the TECH_* bindings)
 #define PROBE_RESULTS 2
 #define PROBE_VIEW 3

@@ -6,11 +6,6 @@
 #include "shared_prelude.h"
 
 PENUMBRA_GPU_BEGIN
-#ifdef __cplusplus
-#define SHARED inline
-#else
-#define SHARED
-#endif
 
 // The G-buffer keeps two unit normals in one RGBA16F texel, each folded onto the octahedron
 // |x| + |y| + |z| = 1 and its lower half unfolded over the corners [Cigolle et al. 2014].
@@ -33,7 +28,6 @@ SHARED vec3 octahedralDecode(vec2 e) {
     return n / sqrt(dot(n, n));
 }
 
-#undef SHARED
 PENUMBRA_GPU_END
 
 #endif

@@ -20,11 +20,6 @@
 #define POISSON_MAX_SAMPLES 64u
 
 PENUMBRA_GPU_BEGIN
-#ifdef __cplusplus
-#define SHARED inline
-#else
-#define SHARED
-#endif
 
 #define PCF_MAX_SIZE 15
 
@@ -96,7 +91,6 @@ SHARED float gaussianTap(int k, int n) {
 // fully lit must read exactly 1 (and fully shadowed 0), so round-off snaps.
 SHARED float snapToExtremes(float v) { return v >= 0.99999f ? 1.0f : (v <= 0.00001f ? 0.0f : v); }
 
-#undef SHARED
 PENUMBRA_GPU_END
 
 #ifdef __cplusplus

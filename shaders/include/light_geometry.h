@@ -20,11 +20,6 @@
 #define MAX_UNIFORM_VIEWS 448u   // 144 bytes each
 
 PENUMBRA_GPU_BEGIN
-#ifdef __cplusplus
-#define SHARED inline
-#else
-#define SHARED
-#endif
 
 struct LightData {       // std140 uniform record, one per scene light
     vec4 positionType;   // xyz position (spot, point), w: LIGHT_* type
@@ -109,7 +104,6 @@ SHARED float penumbraRadius(IN(ShadowViewData) view, float zReceiver, float zBlo
     return world * texelsPerWorld(view, zReceiver, mapSize);
 }
 
-#undef SHARED
 PENUMBRA_GPU_END
 
 #ifdef __cplusplus

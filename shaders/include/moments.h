@@ -8,11 +8,6 @@
 #include "light_geometry.h"
 
 PENUMBRA_GPU_BEGIN
-#ifdef __cplusplus
-#define SHARED inline
-#else
-#define SHARED
-#endif
 
 #define VSSM_MAX_SUBDIVISION 4    // vssm.subdivision's and msm-soft.subdivision's largest value
 #define VSSM_NO_BLOCKERS 1e-4f    // a blocking fraction at most this: nothing in the way
@@ -283,7 +278,6 @@ SHARED float momentSearchRadius(IN(ShadowViewData) view, float zReceiver, uint m
     return blockerSearchRadius(nearest, zReceiver, mapSize);
 }
 
-#undef SHARED
 PENUMBRA_GPU_END
 
 #endif

@@ -9,12 +9,7 @@
 #include "bias.h"
 #include "pass_types.h"
 
-#ifdef __cplusplus
-namespace penumbra::gpu {
-#define SHARED inline
-#else
-#define SHARED
-#endif
+PENUMBRA_GPU_BEGIN
 
 // The point of triangle (a, b, c) nearest to p, by p's Voronoi region among its vertices, edges
 // and face [Ericson 2004, Real-Time Collision Detection 5.1.5].
@@ -174,9 +169,6 @@ SHARED bool coneTraceStep(INOUT(ConeTrace) c, float h, float apex, float sinRadi
     return c.edge > -1.0f;
 }
 
-#ifdef __cplusplus
-} // namespace penumbra::gpu
-#endif
-#undef SHARED
+PENUMBRA_GPU_END
 #endif
 // clang-format on

@@ -3,7 +3,7 @@
 // float literals carry an f, conversions are explicit, `OUT(T)` and `OUT_ARRAY(T, name, n)` mark
 // out parameters, `INOUT(T)` in-out ones, `IN(T)` passes a struct (by value in GLSL, by reference
 // in C++). Each shared header wraps its functions in PENUMBRA_GPU_BEGIN / PENUMBRA_GPU_END and
-// marks them SHARED (inline in C++), defined at the header's start and undefined at its end.
+// marks them SHARED (inline in C++).
 // clang-format off
 #ifndef PENUMBRA_SHARED_PRELUDE_H
 #define PENUMBRA_SHARED_PRELUDE_H
@@ -48,6 +48,7 @@ using glm::sqrt;
 #define INOUT(T) T&
 #define OUT_ARRAY(T, name, n) T (&name)[n]
 #define IN(T) const T&
+#define SHARED inline
 #else
 #define PENUMBRA_GPU_BEGIN
 #define PENUMBRA_GPU_END
@@ -55,6 +56,7 @@ using glm::sqrt;
 #define INOUT(T) inout T
 #define OUT_ARRAY(T, name, n) out T name[n]
 #define IN(T) T
+#define SHARED
 #endif
 
 #endif

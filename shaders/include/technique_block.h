@@ -17,9 +17,13 @@
     static_assert(sizeof(penumbra::gpu::Params) % 16 == 0 &&                                       \
                       sizeof(penumbra::gpu::Params) <= TECHNIQUE_BLOCK_BYTES,                      \
                   #Params " must fill whole std140 vec4s within the technique block");
+#define PENUMBRA_LAYER_BLOCK(Block, Params, name) PENUMBRA_TECHNIQUE_BLOCK(Block, Params, name)
 #else
 #define PENUMBRA_TECHNIQUE_BLOCK(Block, Params, name)                                             \
     layout(set = 0, binding = TECH_PARAMS, std140) uniform Block { Params name; };
+// A layer's block (src/shadows/layer.h), the same size, at LAYER_PARAMS.
+#define PENUMBRA_LAYER_BLOCK(Block, Params, name)                                                 \
+    layout(set = 0, binding = LAYER_PARAMS, std140) uniform Block { Params name; };
 #endif
 
 #endif

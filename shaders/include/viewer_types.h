@@ -13,6 +13,8 @@
 #define DISPLAY_OVERLAY 4u       // an image the host made (the error heat map)
 #define DISPLAY_BLOCKER_DEPTH 5u // the average blocker's depth (PCSS, VSSM, MSM-soft) as grey
 #define DISPLAY_PENUMBRA 6u      // the filter's radius in texels, as a colour ramp
+#define DISPLAY_LAYER 7u         // one light's layer result (contact shadows: 0 where a surface
+                                 // in the depth buffer hides the light) as grey
 #define DISPLAY_COLOR 0          // rgba8 storage, the lit image (technique A)
 #define DISPLAY_COLOR_B 1        // rgba8 storage, technique B's (A's when there is no B)
 #define DISPLAY_VISIBILITY_MAP 2 // sampler2DArray, a layer per shadow-casting light
@@ -22,6 +24,7 @@
 #define DISPLAY_FRAME 6          // FrameData of the frame
 #define DISPLAY_OUT 7            // rgba8 storage, what is presented
 #define DISPLAY_INTERMEDIATES 8  // sampler2DArray, VIS_INTERMEDIATES
+#define DISPLAY_LAYER_RESULTS 9  // sampler2DArray, LAYER_RESULTS
 
 PENUMBRA_GPU_BEGIN
 struct DisplayPush {     // push constants of viewer_display.comp

@@ -129,42 +129,50 @@ void EmbreeScene::throwIfFailed(const char* what) const {
         fmt::format("embree: {}: {}", what, mError.empty() ? errorName(code) : mError));
 }
 
+namespace {
+
+RTCRay rayOf(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) {
+    return {.org_x = origin.x,
+            .org_y = origin.y,
+            .org_z = origin.z,
+            .tnear = tnear,
+            .dir_x = dir.x,
+            .dir_y = dir.y,
+            .dir_z = dir.z,
+            .time = 0.0f,
+            .tfar = tfar,
+            .mask = std::numeric_limits<unsigned>::max(),
+            .id = 0,
+            .flags = 0};
+}
+
+} // namespace
+
 bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float tnear,
                            float tfar) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRay ray{.org_x = origin.x,
-               .org_y = origin.y,
-               .org_z = origin.z,
-               .tnear = tnear,
-               .dir_x = dir.x,
-               .dir_y = dir.y,
-               .dir_z = dir.z,
-               .time = 0.0f,
-               .tfar = tfar,
-               .mask = std::numeric_limits<unsigned>::max(),
-               .id = 0,
-               .flags = 0};
+    RTCRay ray = rayOf(origin, dir, tnear, tfar);
     rtcOccluded1(mScene, &context, &ray);
     return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
+}
+
+float EmbreeScene::hitDistance(const glm::vec3& origin, const glm::vec3& dir, float tnear,
+                               float tfar) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit hit{.ray = rayOf(origin, dir, tnear, tfar),
+                  .hit = {.geomID = RTC_INVALID_GEOMETRY_ID}};
+    rtcIntersect1(mScene, &context, &hit);
+    return hit.hit.geomID == RTC_INVALID_GEOMETRY_ID ? std::numeric_limits<float>::infinity()
+                                                     : hit.ray.tfar;
 }
 
 glm::vec3 EmbreeScene::surfaceNormal(const glm::vec3& p, const glm::vec3& n, float reach) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     const glm::vec3 origin = p + n * reach;
-    RTCRayHit hit{.ray = {.org_x = origin.x,
-                          .org_y = origin.y,
-                          .org_z = origin.z,
-                          .tnear = 0.0f,
-                          .dir_x = -n.x,
-                          .dir_y = -n.y,
-                          .dir_z = -n.z,
-                          .time = 0.0f,
-                          .tfar = 2.0f * reach,
-                          .mask = std::numeric_limits<unsigned>::max(),
-                          .id = 0,
-                          .flags = 0},
+    RTCRayHit hit{.ray = rayOf(origin, -n, 0.0f, 2.0f * reach),
                   .hit = {.geomID = RTC_INVALID_GEOMETRY_ID}};
     rtcIntersect1(mScene, &context, &hit);
     if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)

@@ -23,6 +23,8 @@ public:
 
     // Whether anything blocks the open segment origin + t dir, tnear < t < tfar.
     bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) const;
+    // The distance along the ray to its first hit in (tnear, tfar); infinity when there is none.
+    float hitDistance(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) const;
     // The geometric normal of the triangle under `p` (the first hit of a ray from p + reach n
     // towards -n, within 2 reach), turned to n's side; n when no triangle is there.
     glm::vec3 surfaceNormal(const glm::vec3& p, const glm::vec3& n, float reach) const;

@@ -126,6 +126,7 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
     ReferenceResult result{.width = w, .height = h, .triangles = embree.triangles()};
     result.visibility.assign(lights.size(),
                              std::vector<float>(pixels, std::numeric_limits<float>::quiet_NaN()));
+    result.occluderDistance = result.visibility;
     const uint32_t samples = std::max(options.samples, 1u);
     const auto traceStart = Clock::now();
     std::atomic<uint64_t> rays{0};
@@ -153,7 +154,19 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                         const LightCone cone = coneTowards(*lights[l], origin);
                         if (cone.inside) {
                             result.visibility[l][i] = 1.0f;
+                            result.occluderDistance[l][i] = std::numeric_limits<float>::infinity();
                             continue;
+                        }
+                        { // the ray to the light's centre (its axis): the nearest occluder
+                            const double sine = glm::dot(cone.axis, face);
+                            result.occluderDistance[l][i] =
+                                sine <= 0.0
+                                    ? 0.0f // the surface itself hides the light
+                                    : embree.hitDistance(
+                                          glm::vec3(origin), glm::vec3(cone.axis),
+                                          rayStart(tnear, sine),
+                                          static_cast<float>(std::min(
+                                              distanceToLight(cone, origin, cone.axis), 1e30)));
                         }
                         const uint32_t count = cone.single ? 1 : samples;
                         const glm::dvec2 shift = pixelShift(x, y, l);

@@ -1,5 +1,6 @@
-// Renderer::probeTechnique: uploads a synthetic shadow map into a D32_SFLOAT image and runs
-// filter_probe.comp, which calls the visibility pass's technique code at the given receivers.
+// Renderer::probeTechnique: uploads a synthetic shadow map into a D32_SFLOAT image and runs, as a
+// small frame graph, the technique's post passes over it (as a frame does) and filter_probe.comp,
+// which calls the visibility pass's technique code at the given receivers.
 #include "penumbra/error.h"
 #include "render/frame.h"
 #include "render/frame_data.h"
@@ -9,7 +10,6 @@
 #include <cstring>
 
 namespace penumbra {
-namespace {} // namespace
 
 std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const ParameterValues& params,
                                                 std::span<const float> depths, uint32_t size,
@@ -50,71 +50,97 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     const vk::Buffer results =
         vk::createBuffer(ctx, probes.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          vk::MemoryUse::Readback, "probe results");
-    // The technique's own maps, filled from the depth map by its post passes as in a frame; a
-    // technique whose passes also need another depth pass (second-depth's peel) is probed on
-    // the given map as its filtered map instead.
-    const bool derived = module.depthPasses.empty() && !module.postPasses.empty();
-    render::FrameTargets t{.views = std::vector<render::ShadowView>(1)};
-    t.shadowDepth =
-        render::makeViewMaps(ctx, shadows::MapFormat::Depth32, size, 1,
-                             VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
-    for (const shadows::MapDecl& decl : derived ? module.maps : std::vector<shadows::MapDecl>{})
-        t.maps.push_back(
-            render::makeViewMaps(ctx, shadows::formatOf(decl, params), size, 1,
-                                 VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
-                                 shadows::mipmappedOf(decl, params)));
-    t.integerPlaceholder = render::makeIntegerPlaceholder(ctx);
     const vk::Image fieldPlaceholder = render::makeFieldPlaceholder(ctx);
-    const vk::Image& map = t.shadowDepth.image;
     const vk::SamplerHandle nearest = vk::createSampler(ctx, {});
-    t.frame = frameBuffer.get(), t.viewData = viewBuffer.get(), t.nearest = nearest.get();
-    t.params = paramsBuffer.get();
     const VkFilter compareFilter =
         ctx.info().depthLinearFilter ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
     const vk::SamplerHandle compare = vk::createSampler(
         ctx, {.magFilter = compareFilter, .minFilter = compareFilter, .compare = true});
-
-    render::FramePipelines& p = mImpl->pipelines;
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
-        constexpr vk::ImageState transferWrite{VK_PIPELINE_STAGE_2_COPY_BIT,
-                                               VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
-        vk::imageBarrier(cmd, map, vk::kUndefined, transferWrite);
-        const VkBufferImageCopy region{
-            .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT, .layerCount = 1},
-            .imageExtent = {size, size, 1}};
-        vkCmdCopyBufferToImage(cmd, mapBuffer.get(), map.get(),
-                               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
-        vk::imageBarrier(cmd, map, transferWrite, vk::kComputeSampled);
-        if (derived)
-            render::recordPostPasses(cmd, p, t, module);
-        vk::imageBarrier(cmd, t.integerPlaceholder, vk::kUndefined, vk::kComputeSampled);
         vk::imageBarrier(cmd, fieldPlaceholder, vk::kUndefined, vk::kComputeSampled);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                          p.probe(shadows::visibilityConstants(module, params)));
-        // A technique probed on the given map (no post passes) filters the depth map itself.
-        const render::FilteredBindings filtered =
-            derived ? render::filteredBindings(t, module)
-                    : render::FilteredBindings{map.view.get(), t.integerPlaceholder.view.get()};
-        vk::PushDescriptors()
-            .uniformBuffer(BIND_FRAME, frameBuffer.get())
-            .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
-            .sampled(TECH_MAP, filtered.floats, nearest.get())
-            .sampled(TECH_TABLE, filtered.integers, nearest.get())
-            .sampled(TECH_COMPARE, map.view.get(), compare.get())
-            .sampled(TECH_FIELD, fieldPlaceholder.view.get(), nearest.get())
-            .uniformBuffer(TECH_PARAMS, paramsBuffer.get())
-            .storageBuffer(PROBE_RESULTS, results.get())
-            .storageBuffer(PROBE_VIEW, viewBuffer.get())
-            .push(ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.probeLayout);
-        const gpu::ProbePush push{.counts = {static_cast<uint32_t>(probes.size()), size, 0, 0}};
-        vkCmdPushConstants(cmd, p.probeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
-                           &push);
-        vkCmdDispatch(cmd, static_cast<uint32_t>((probes.size() + 63) / 64), 1, 1);
-        vk::bufferBarrier(cmd, results.get(), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
-                          VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT,
-                          VK_ACCESS_2_HOST_READ_BIT);
     });
+
+    // The technique's own maps, filled from the depth map by its post passes as in a frame; a
+    // technique whose passes also need another depth pass (second-depth's peel) is probed on
+    // the given map as its filtered map instead.
+    const bool derived = module.depthPasses.empty() && !module.postPasses.empty();
+    render::ResourcePool pool(ctx);
+    render::FrameGraph graph(pool, {.shadowMapSize = size, .shadowViews = 1});
+    render::FrameResources r;
+    std::vector<render::ImageDecl> maps = render::shadowMapDecls(module, params);
+    maps.front().usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT; // the given depths go in by a copy
+    r.depthMap = graph.declare(maps.front());
+    for (size_t m = 1; m < maps.size() && derived; ++m)
+        r.maps.push_back(graph.declare(maps[m]));
+    r.integerPlaceholder =
+        graph.declare(render::ImageDecl{.name = std::string(render::target::kIntegerPlaceholder),
+                                        .size = render::SizeClass::Fixed,
+                                        .format = VK_FORMAT_R32G32B32A32_UINT,
+                                        .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
+                                        .lifetime = render::Lifetime::Persistent});
+    r.field = graph.importImage("probe.field", fieldPlaceholder, render::Access::ComputeSampled);
+    r.params = graph.importBuffer("probe.params", paramsBuffer.get());
+    r.views = graph.importBuffer("probe.views", viewBuffer.get());
+    using ResourceIdPair = std::pair<render::ResourceId, render::ResourceId>;
+    const ResourceIdPair filtered = [&] {
+        if (!derived) // the depth map itself is filtered
+            return ResourceIdPair{r.depthMap, r.integerPlaceholder};
+        for (size_t m = 0; m < module.maps.size(); ++m)
+            if (module.maps[m].name == module.visibilityMap)
+                return shadows::holdsIntegers(shadows::formatOf(module.maps[m], params))
+                           ? ResourceIdPair{r.depthMap, r.maps[m]}
+                           : ResourceIdPair{r.maps[m], r.integerPlaceholder};
+        return ResourceIdPair{r.depthMap, r.integerPlaceholder};
+    }();
+    const render::FrameInputs inputs{
+        .views = viewBuffer.get(), .params = paramsBuffer.get(), .nearest = nearest.get()};
+    render::FramePipelines& p = mImpl->pipelines;
+    graph.addPass(
+        {.name = "",
+         .phase = render::Phase::LightSpace,
+         .uses = {{r.depthMap, render::Access::TransferWrite}},
+         .record = [&](render::PassContext& c) {
+             const VkBufferImageCopy region{
+                 .imageSubresource = {.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT, .layerCount = 1},
+                 .imageExtent = {size, size, 1}};
+             vkCmdCopyBufferToImage(c.cmd, mapBuffer.get(), c.image(r.depthMap).get().get(),
+                                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+         }});
+    if (derived)
+        render::addPostPasses(graph, p, module, params, 1, inputs, r);
+    graph.addPass({.name = "",
+                   .phase = render::Phase::PerLight,
+                   .uses = {{filtered.first, render::Access::ComputeSampled},
+                            {filtered.second, render::Access::ComputeSampled},
+                            {r.depthMap, render::Access::ComputeSampled},
+                            {r.field, render::Access::ComputeSampled},
+                            {r.params, render::Access::UniformRead},
+                            {r.views, render::Access::ComputeRead}},
+                   .record = [&](render::PassContext& c) {
+                       vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                                         p.probe(shadows::visibilityConstants(module, params)));
+                       vk::PushDescriptors()
+                           .uniformBuffer(BIND_FRAME, frameBuffer.get())
+                           .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
+                           .sampled(TECH_MAP, c.image(filtered.first).view(), nearest.get())
+                           .sampled(TECH_TABLE, c.image(filtered.second).view(), nearest.get())
+                           .sampled(TECH_COMPARE, c.image(r.depthMap).view(), compare.get())
+                           .sampled(TECH_FIELD, fieldPlaceholder.view.get(), nearest.get())
+                           .uniformBuffer(TECH_PARAMS, paramsBuffer.get())
+                           .storageBuffer(PROBE_RESULTS, results.get())
+                           .storageBuffer(PROBE_VIEW, viewBuffer.get())
+                           .push(ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.probeLayout);
+                       const gpu::ProbePush push{
+                           .counts = {static_cast<uint32_t>(probes.size()), size, 0, 0}};
+                       vkCmdPushConstants(c.cmd, p.probeLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT,
+                                          0, sizeof push, &push);
+                       vkCmdDispatch(c.cmd, static_cast<uint32_t>((probes.size() + 63) / 64), 1, 1);
+                       vk::bufferBarrier(c.cmd, results.get(),
+                                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                                         VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT,
+                                         VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+                   }});
+    ctx.submitAndWait([&](VkCommandBuffer cmd) { graph.record(cmd, nullptr); });
     const auto* out = static_cast<const glm::vec4*>(results.mapped);
     return {out, out + probes.size()};
 }

@@ -89,7 +89,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                              {EXPORT_GBUFFER_DEPTH, kSampled},
                                              {EXPORT_GBUFFER_NORMAL, kSampled},
                                              {EXPORT_POSITION, kImage},
-                                             {EXPORT_NORMAL, kImage}},
+                                             {EXPORT_NORMAL, kImage},
+                                             {EXPORT_FACE_NORMAL, kImage}},
                                             VK_SHADER_STAGE_COMPUTE_BIT, 0);
     probeLayout = vk::createPipelineLayout(ctx,
                                            {{BIND_FRAME, kUniform},
@@ -102,6 +103,16 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                             {TECH_FIELD, kSampled},
                                             {TECH_PARAMS, kUniform}},
                                            VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::ProbePush));
+    layerLayout =
+        vk::createPipelineLayout(ctx,
+                                 {{BIND_FRAME, kUniform},
+                                  {LAYER_LIGHTS, kUniform},
+                                  {LAYER_GBUFFER_DEPTH, kSampled},
+                                  {LAYER_GBUFFER_NORMAL, kSampled},
+                                  {LAYER_VISIBILITY, kImage},
+                                  {LAYER_PARAMS, kUniform},
+                                  {LAYER_RESULTS, kImage}},
+                                 VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     readingDepthLayout = vk::createPipelineLayout(
         ctx, {{READ_MAP, kSampled}, {READ_TEXTURE, kSampled}}, kGraphicsStages,
         sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
@@ -156,6 +167,19 @@ VkPipeline FramePipelines::gbuffer(GBufferVariant v) {
 
 VkPipeline FramePipelines::composite(const Constants& constants) {
     return specialized(mComposite, compositeLayout, "composite.comp", constants);
+}
+
+VkPipeline FramePipelines::layer(std::string_view shader, const Constants& constants) {
+    const auto key = std::make_pair(std::string(shader), constants);
+    auto it = mLayers.find(key);
+    if (it == mLayers.end()) {
+        std::vector<vk::SpecConstant> values;
+        for (const shadows::SpecConstant& c : constants)
+            values.push_back({.id = c.id, .value = c.value});
+        it =
+            mLayers.emplace(key, vk::createComputePipeline(ctx, layerLayout, shader, values)).first;
+    }
+    return it->second.get();
 }
 
 VkPipeline FramePipelines::probe(const Constants& constants) {

@@ -30,6 +30,7 @@ public:
     vk::PipelineLayout shadowLayout, gbufferLayout, visibilityLayout, compositeLayout, exportLayout,
         probeLayout;
     vk::PipelineLayout readingDepthLayout; // extra depth passes that read a map (depth peels)
+    vk::PipelineLayout layerLayout;        // the layers' passes (LAYER_* bindings)
     vk::PipelineLayout shadowMaskLayout;   // alpha-tested casters
     vk::PipelineHandle shadowOrtho;        // depth clamp on: casters before the near plane clamp
     vk::PipelineHandle shadowPerspective;  // depth clamp off
@@ -49,6 +50,8 @@ public:
     VkPipeline probe(const std::vector<shadows::SpecConstant>& constants);
     // The composite on its own, for the scene's lights (sceneLightConstants).
     VkPipeline composite(const std::vector<shadows::SpecConstant>& constants);
+    // A layer's pass (src/shadows/layer.h) for one list of specialization constants.
+    VkPipeline layer(std::string_view shader, const std::vector<shadows::SpecConstant>& constants);
     // A technique's extra depth pass: the shadow pass's vertex stage and state with
     // `fragmentShader`, which reads a map at binding 0 (readingDepthLayout).
     VkPipeline readingDepthPass(std::string_view fragmentShader, bool perspective);
@@ -64,6 +67,7 @@ private:
                            const vk::PipelineLayout& layout, std::string_view shader,
                            const Constants& constants);
     std::map<Constants, vk::PipelineHandle> mVisibility, mProbe, mComposite;
+    std::map<std::pair<std::string, Constants>, vk::PipelineHandle, std::less<>> mLayers;
     std::map<std::pair<std::string, bool>, vk::PipelineHandle> mReadingDepth;
     std::map<std::pair<uint32_t, uint32_t>, vk::PipelineLayout> mPostLayouts;
     std::map<std::string, vk::PipelineHandle, std::less<>> mPost;

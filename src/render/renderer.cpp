@@ -5,6 +5,7 @@
 #include "render/distance_field.h"
 #include "render/frame.h"
 #include "render/frame_data.h"
+#include "render/frame_targets.h"
 #include "render/renderer_impl.h"
 #include "shadows/technique.h"
 #include "vk/context.h"
@@ -63,13 +64,18 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
                                      "buffers hold {} (maxUniformBufferRange {})",
                                      shadowLights, shadows.views, viewRecords,
                                      ctx.limits().maxUniformBufferRange));
-    // Bytes per pixel: G-buffer 16, visibility 4 per light, colour 4, export 32, readback copy.
+    // The frame's targets as it declares them (render/frame_targets.h), the readback included.
+    const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
+    const render::TargetBytes bytes =
+        render::targetBytes(module, o.parameters,
+                            {.width = o.width,
+                             .height = o.height,
+                             .shadowMapSize = module.tracesField ? 1u : o.shadowMapSize,
+                             .shadowViews = static_cast<uint32_t>(shadows.views),
+                             .shadowLights = static_cast<uint32_t>(shadowLights)});
     const double pixels = double(o.width) * double(o.height);
-    const double shadowBytes = double(shadows::shadowMapBytes(shadows::moduleOf(o.technique),
-                                                              o.shadowMapSize, o.parameters)) *
-                               double(shadows.views);
-    const double need =
-        pixels * (16 + 36 + 2 * 4.0 * double(std::max<size_t>(shadowLights, 1)) + 36) + shadowBytes;
+    const auto shadowBytes = static_cast<double>(bytes.shadowMaps);
+    const double need = static_cast<double>(bytes.screen) + shadowBytes;
     const double have = static_cast<double>(ctx.deviceLocalHeapBytes());
     if (need > 0.8 * have)
         throw InputError(shadowBytes > pixels * 100 ? "--shadow-map-size" : "--width",
@@ -92,6 +98,9 @@ uint32_t Renderer::validationErrors() const {
 }
 uint32_t Renderer::validationMessages() const {
     return mImpl->ctx.validationErrors() + mImpl->ctx.validationWarnings();
+}
+const vk::Context& Renderer::context() const {
+    return mImpl->ctx;
 }
 
 void Renderer::check(const Scene& scene, const RenderOptions& o) const {

@@ -3,6 +3,7 @@
 #include <glm/glm.hpp>
 
 #include "penumbra/error.h"
+#include "shadows/contact.h"
 
 #include <cmath>
 #include <limits>
@@ -123,19 +124,33 @@ ErrorMetrics metricsAgainstTruth(const Scene& lit, std::span<const TruthView> vi
         for (std::vector<float>& b : viewBands)
             bands.push_back(std::move(b));
         for (size_t l = 0; l < view.truth.size(); ++l)
-            layers.push_back({.visibility = result.visibility[l],
-                              .truth = view.truth[l],
-                              .mask = view.masks[l],
-                              .blurBand = bands[bands.size() - view.truth.size() + l]});
+            layers.push_back(
+                {.visibility = result.visibility[l],
+                 .truth = view.truth[l],
+                 .mask = view.masks[l],
+                 .blurBand = bands[bands.size() - view.truth.size() + l],
+                 .occluderDistance = l < view.occluderDistance.size()
+                                         ? std::span<const float>(view.occluderDistance[l])
+                                         : std::span<const float>(),
+                 .contactBand = view.contactBand});
     }
     return computeMetrics(width, height, layers);
 }
 
 ErrorMetrics metricsAgainstTruth(const Scene& lit, const RenderResult& result,
                                  std::span<const std::vector<float>> truth,
-                                 std::span<const std::vector<uint8_t>> masks, double blurTexels) {
-    const TruthView view{.result = &result, .truth = truth, .masks = masks};
+                                 std::span<const std::vector<uint8_t>> masks, double blurTexels,
+                                 std::span<const std::vector<float>> occluderDistance) {
+    const TruthView view{.result = &result,
+                         .truth = truth,
+                         .masks = masks,
+                         .occluderDistance = occluderDistance,
+                         .contactBand = contactBand(lit)};
     return metricsAgainstTruth(lit, std::span(&view, 1), blurTexels);
+}
+
+double contactBand(const Scene& scene) {
+    return shadows::kContactRowFraction * double(scene.bounds().radius());
 }
 
 } // namespace penumbra

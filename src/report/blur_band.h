@@ -28,7 +28,15 @@ struct TruthView {
     const RenderResult* result = nullptr;
     std::span<const std::vector<float>> truth;
     std::span<const std::vector<uint8_t>> masks;
+    // The truth's occluder distances (ReferenceResult::occluderDistance, one image per layer)
+    // and the contact band (world units; contactBand()) for leak_near_contact; empty: none.
+    std::span<const std::vector<float>> occluderDistance = {};
+    double contactBand = 0.0;
 };
+
+// The distance from a caster within which its shadow counts as a contact shadow: 2% of the
+// scene's bounding radius (shadows::kContactRowFraction: the contact layer's rows march as far).
+double contactBand(const Scene& scene);
 
 // The metrics of the views' renders against their truth, pooled (every view the same size),
 // with the blur band of a technique whose declared blur radius is `blurTexels`; `lit`: the scene
@@ -37,6 +45,7 @@ ErrorMetrics metricsAgainstTruth(const Scene& lit, std::span<const TruthView> vi
                                  double blurTexels);
 ErrorMetrics metricsAgainstTruth(const Scene& lit, const RenderResult& result,
                                  std::span<const std::vector<float>> truth,
-                                 std::span<const std::vector<uint8_t>> masks, double blurTexels);
+                                 std::span<const std::vector<uint8_t>> masks, double blurTexels,
+                                 std::span<const std::vector<float>> occluderDistance = {});
 
 } // namespace penumbra

@@ -370,6 +370,8 @@ nlohmann::json metricsJson(const ReportData& data) {
                                 {"leak", m.leak},
                                 {"acne_beyond_blur", m.acneBeyondBlur},
                                 {"leak_beyond_blur", m.leakBeyondBlur},
+                                {"leak_near_contact", m.leakNearContact},
+                                {"near_contact_pixels", m.nearContact},
                                 {"pixels", m.pixels},
                                 {"gpu_ms", gpu}};
         if (!data.cameraPath.empty())

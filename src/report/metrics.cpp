@@ -87,7 +87,7 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
     const uint64_t count = uint64_t{width} * height;
     double sumSquared = 0, sumAbsolute = 0, maxAbsolute = 0;
     uint64_t misclassified = 0, misclassifiedOutside = 0, acne = 0, leak = 0;
-    uint64_t acneBeyondBlur = 0, leakBeyondBlur = 0;
+    uint64_t acneBeyondBlur = 0, leakBeyondBlur = 0, leakNearContact = 0;
     ErrorMetrics m;
     for (const MetricLayer& layer : layers) {
         PENUMBRA_CHECK(layer.visibility.size() == count, "visibility size != width * height");
@@ -95,6 +95,8 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
         PENUMBRA_CHECK(layer.mask.size() == count, "mask size != width * height");
         PENUMBRA_CHECK(layer.blurBand.empty() || layer.blurBand.size() == count,
                        "blur band size != width * height");
+        PENUMBRA_CHECK(layer.occluderDistance.empty() || layer.occluderDistance.size() == count,
+                       "occluder distance size != width * height");
         // Distances past both bands all read the same: saturate just beyond the wider.
         const int cap = std::max(edgeBand, static_cast<int>(kMaxBlurBand)) + 1;
         const std::vector<uint8_t> distance =
@@ -123,6 +125,11 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
                 m.truthShadowed += shadowed;
                 leak += shadowed && v > 0.1f;
             }
+            if (!layer.occluderDistance.empty() && t < 0.5f &&
+                layer.occluderDistance[i] <= layer.contactBand) {
+                ++m.nearContact;
+                leakNearContact += v >= 0.5f;
+            }
             if (distance[i] > blurRadiusAt(layer.blurBand, i)) {
                 ++m.pixelsBeyondBlur;
                 m.truthLitBeyondBlur += lit;
@@ -143,6 +150,7 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
     m.leak = fraction(leak, m.truthShadowed);
     m.acneBeyondBlur = fraction(acneBeyondBlur, m.truthLitBeyondBlur);
     m.leakBeyondBlur = fraction(leakBeyondBlur, m.truthShadowedBeyondBlur);
+    m.leakNearContact = fraction(leakNearContact, m.nearContact);
     return m;
 }
 

@@ -18,6 +18,12 @@ struct ErrorMetrics {
     // the screen (MetricLayer::blurBand) clamped to [kMinBlurBand, kMaxBlurBand]: what is left
     // is self-shadowing and missing shadow, not the blur a wide kernel is meant to make.
     double acneBeyondBlur = 0, leakBeyondBlur = 0;
+    // Near contacts: among counted pixels the truth shadows (truth < 0.5) from an occluder within
+    // the contact band along the ray to the light's centre (MetricLayer::occluderDistance), the
+    // fraction the technique leaves lit (v >= 0.5): what a bias that detaches shadows from their
+    // casters (peter-panning) loses, and contact shadows give back.
+    double leakNearContact = 0;
+    uint64_t nearContact = 0;
     uint64_t pixels = 0, pixelsOutsideEdges = 0, truthLit = 0, truthShadowed = 0;
     uint64_t pixelsBeyondBlur = 0, truthLitBeyondBlur = 0, truthShadowedBeyondBlur = 0;
 };
@@ -34,6 +40,11 @@ struct MetricLayer {
     // Per pixel, how far (pixels) the technique's filter reaches on the screen there
     // (report/blur_band.h); empty: no blur beyond the fixed band (beyond-blur = outside edges).
     std::span<const float> blurBand = {};
+    // Per pixel, the truth's distance to the nearest occluder towards the light's centre
+    // (ReferenceResult::occluderDistance), and the band (world units) within which it counts as
+    // a contact; empty: no near-contact measure.
+    std::span<const float> occluderDistance = {};
+    double contactBand = 0.0;
 };
 
 // Pools the counted pixels of every layer (several lights -> one set of numbers). A pixel counts

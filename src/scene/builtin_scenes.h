@@ -84,5 +84,8 @@ Scene bleeding();
 Scene dense();
 Scene demo();
 Scene figure();
+// Objects resting on a plane (the contact layer's scene): without lights, and with its sun.
+Scene restingGeometry();
+Scene resting();
 
 } // namespace penumbra::builtin

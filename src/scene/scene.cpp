@@ -19,7 +19,7 @@ constexpr BuiltinEntry kBuiltins[] = {
     {"showcase", builtin::showcase}, {"grazing", builtin::grazing}, {"spot", builtin::spot},
     {"foliage", builtin::foliage},   {"room", builtin::room},       {"field", builtin::field},
     {"bleeding", builtin::bleeding}, {"dense", builtin::dense},     {"demo", builtin::demo},
-    {"figure", builtin::figure}};
+    {"figure", builtin::figure},     {"resting", builtin::resting}};
 
 } // namespace
 

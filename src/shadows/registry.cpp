@@ -6,6 +6,7 @@
 #include "bias.h"
 #include "penumbra/error.h"
 #include "penumbra/settings.h"
+#include "shadows/layer.h"
 #include "shadows/technique.h"
 
 #include <fmt/format.h>
@@ -18,11 +19,15 @@
 namespace penumbra {
 namespace {
 
+// Every technique reads the layers' families too: any layer runs on top of any technique.
 const std::vector<TechniqueInfo>& techniqueTable() {
     static const std::vector<TechniqueInfo> table = [] {
         std::vector<TechniqueInfo> t;
-        for (const shadows::TechniqueModule* m : shadows::allModules())
+        for (const shadows::TechniqueModule* m : shadows::allModules()) {
             t.push_back(m->info);
+            for (const shadows::LayerModule* layer : shadows::allLayers())
+                t.back().families.push_back(layer->name);
+        }
         return t;
     }();
     return table;
@@ -177,6 +182,8 @@ const std::vector<ParameterInfo>& parameterTable() {
         std::vector<ParameterInfo> t = bias;
         for (const shadows::TechniqueModule* m : shadows::allModules())
             t.insert(t.end(), m->parameters.begin(), m->parameters.end());
+        for (const shadows::LayerModule* layer : shadows::allLayers())
+            t.insert(t.end(), layer->parameters.begin(), layer->parameters.end());
         t.insert(t.end(), csm.begin(), csm.end());
         t.insert(t.end(), composite.begin(), composite.end());
         return t;
@@ -257,7 +264,10 @@ std::span<const ParameterInfo> allParameters() {
     return parameterTable();
 }
 
-std::vector<TechniqueRow> comparisonRows(std::string_view list) {
+namespace {
+
+// Every variant of every technique, without layers.
+std::vector<TechniqueRow> variantRows() {
     std::vector<TechniqueRow> all;
     for (const TechniqueInfo& t : techniqueTable())
         for (const TechniqueVariant& v : t.variants) {
@@ -268,37 +278,99 @@ std::vector<TechniqueRow> comparisonRows(std::string_view list) {
                 row.sets.emplace_back(key, value);
             all.push_back(std::move(row));
         }
-    if (list.empty())
-        return all;
+    return all;
+}
+
+std::string rowNames(const std::vector<TechniqueRow>& rows) {
+    std::string names;
+    for (const TechniqueRow& row : rows)
+        names += (names.empty() ? "" : ", ") + row.name;
+    std::string layers;
+    for (const shadows::LayerModule* layer : shadows::allLayers())
+        layers += (layers.empty() ? "" : ", ") + std::string(layer->name);
+    return fmt::format("{}; each may take +LAYER: {}", names, layers);
+}
+
+// `row` with the layers named after it in `item` ("pcf[box3]+contact").
+TechniqueRow withLayers(TechniqueRow row, const std::vector<std::string>& layers) {
+    for (const std::string& layer : layers) {
+        row.name += "+" + layer;
+        row.layers.push_back(layer);
+    }
+    return row;
+}
+
+} // namespace
+
+std::vector<TechniqueRow> comparisonRows(std::string_view list) {
+    const std::vector<TechniqueRow> all = variantRows();
+    if (list.empty()) {
+        std::vector<TechniqueRow> rows = all;
+        for (const shadows::LayerModule* layer : shadows::allLayers())
+            for (std::string_view base : layer->rows)
+                for (const TechniqueRow& row : all)
+                    if (row.name == base)
+                        rows.push_back(withLayers(row, {std::string(layer->name)}));
+        return rows;
+    }
     std::vector<TechniqueRow> rows;
     size_t start = 0;
     while (start <= list.size()) {
         const size_t comma = std::min(list.find(',', start), list.size());
-        const std::string_view item = list.substr(start, comma - start);
+        std::string_view item = list.substr(start, comma - start);
         start = comma + 1;
         if (item.empty())
             continue;
+        // "row+layer+layer": the row, then its layers in order.
+        std::vector<std::string> layers;
+        if (const size_t plus = item.find('+'); plus != std::string_view::npos) {
+            std::string_view rest = item.substr(plus + 1);
+            for (size_t next = 0; next != std::string_view::npos; rest = rest.substr(next + 1)) {
+                next = rest.find('+');
+                const std::string_view name = rest.substr(0, next);
+                if (!shadows::findLayer(name))
+                    throw InputError("--techniques",
+                                     fmt::format("unknown layer '{}' in '{}' (available: {})", name,
+                                                 item, rowNames(all)));
+                layers.emplace_back(name);
+                if (next == std::string_view::npos)
+                    break;
+            }
+            item = item.substr(0, plus);
+        }
         bool found = false;
         for (const TechniqueRow& row : all)
             if (row.name == item || row.name.starts_with(std::string(item) + "[")) {
                 found = true;
+                const TechniqueRow layered = withLayers(row, layers);
                 // A technique's name brings all its rows: a row named again is not repeated.
                 if (std::none_of(rows.begin(), rows.end(),
-                                 [&](const TechniqueRow& r) { return r.name == row.name; }))
-                    rows.push_back(row);
+                                 [&](const TechniqueRow& r) { return r.name == layered.name; }))
+                    rows.push_back(layered);
             }
-        if (!found) {
-            std::string names;
-            for (const TechniqueRow& row : all)
-                names += (names.empty() ? "" : ", ") + row.name;
+        if (!found)
             throw InputError("--techniques", fmt::format("unknown technique or variant '{}' "
                                                          "(available: {})",
-                                                         item, names));
-        }
+                                                         item, rowNames(all)));
     }
     if (rows.empty())
         throw InputError("--techniques", "the list is empty");
     return rows;
+}
+
+void applyRow(const TechniqueRow& row, ParameterValues& params, double sceneRadius) {
+    for (const auto& [key, value] : row.sets)
+        params.set(key, value);
+    // A row runs exactly the layers it names: the caller's settings configure those.
+    for (const shadows::LayerModule* layer : shadows::allLayers()) {
+        const bool named =
+            std::find(row.layers.begin(), row.layers.end(), layer->name) != row.layers.end();
+        if (!named)
+            params.set(layer->off.first, layer->off.second);
+        else if (!layer->enabled(params) && layer->rowSettings)
+            for (const auto& [key, value] : layer->rowSettings(sceneRadius))
+                params.set(key, value);
+    }
 }
 
 ParameterValues::ParameterValues() {

@@ -215,9 +215,10 @@ PushDescriptors& PushDescriptors::storageImage(uint32_t binding, VkImageView vie
     return *this;
 }
 
-PushDescriptors& PushDescriptors::uniformBuffer(uint32_t binding, VkBuffer buffer) {
+PushDescriptors& PushDescriptors::uniformBuffer(uint32_t binding, VkBuffer buffer,
+                                                VkDeviceSize offset, VkDeviceSize range) {
     PENUMBRA_CHECK(mBufferCount < kMax, "too many descriptors");
-    mBuffers[mBufferCount] = {.buffer = buffer, .offset = 0, .range = VK_WHOLE_SIZE};
+    mBuffers[mBufferCount] = {.buffer = buffer, .offset = offset, .range = range};
     mWrites.push_back({.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                        .dstBinding = binding,
                        .descriptorCount = 1,

@@ -60,7 +60,10 @@ class PushDescriptors {
 public:
     PushDescriptors& sampled(uint32_t binding, VkImageView view, VkSampler sampler);
     PushDescriptors& storageImage(uint32_t binding, VkImageView view);
-    PushDescriptors& uniformBuffer(uint32_t binding, VkBuffer buffer);
+    // The whole buffer, or `range` bytes from `offset` (a multiple of the device's
+    // minUniformBufferOffsetAlignment, at most 256 by the specification).
+    PushDescriptors& uniformBuffer(uint32_t binding, VkBuffer buffer, VkDeviceSize offset = 0,
+                                   VkDeviceSize range = VK_WHOLE_SIZE);
     PushDescriptors& storageBuffer(uint32_t binding, VkBuffer buffer);
     void push(const Context& ctx, VkCommandBuffer cmd, VkPipelineBindPoint point,
               const PipelineLayout& layout);

@@ -33,15 +33,32 @@ Barriers& Barriers::image(const Image& image, const ImageState& from, const Imag
     return *this;
 }
 
+Barriers& Barriers::buffer(VkBuffer buffer, const BufferState& from, const BufferState& to) {
+    mBuffers.push_back({.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2,
+                        .srcStageMask = from.stage,
+                        .srcAccessMask = from.access,
+                        .dstStageMask = to.stage,
+                        .dstAccessMask = to.access,
+                        .srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                        .dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED,
+                        .buffer = buffer,
+                        .offset = 0,
+                        .size = VK_WHOLE_SIZE});
+    return *this;
+}
+
 void Barriers::record(VkCommandBuffer cmd) {
-    if (mImages.empty())
+    if (empty())
         return;
-    const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
-                                      .imageMemoryBarrierCount =
-                                          static_cast<uint32_t>(mImages.size()),
-                                      .pImageMemoryBarriers = mImages.data()};
+    const VkDependencyInfo dependency{
+        .sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+        .bufferMemoryBarrierCount = static_cast<uint32_t>(mBuffers.size()),
+        .pBufferMemoryBarriers = mBuffers.data(),
+        .imageMemoryBarrierCount = static_cast<uint32_t>(mImages.size()),
+        .pImageMemoryBarriers = mImages.data()};
     vkCmdPipelineBarrier2(cmd, &dependency);
     mImages.clear();
+    mBuffers.clear();
 }
 
 void imageBarrier(VkCommandBuffer cmd, const Image& image, const ImageState& from,

@@ -54,15 +54,24 @@ struct SubresourceRange {
     uint32_t baseMip = 0, mipCount = 0;
 };
 
-// Image barriers recorded together, in one vkCmdPipelineBarrier2.
+// The stages and accesses on one side of a buffer barrier.
+struct BufferState {
+    VkPipelineStageFlags2 stage;
+    VkAccessFlags2 access;
+};
+
+// Image and buffer barriers recorded together, in one vkCmdPipelineBarrier2.
 class Barriers {
 public:
     Barriers& image(const Image& image, const ImageState& from, const ImageState& to,
                     SubresourceRange range = {});
+    Barriers& buffer(VkBuffer buffer, const BufferState& from, const BufferState& to);
+    bool empty() const { return mImages.empty() && mBuffers.empty(); }
     void record(VkCommandBuffer cmd);
 
 private:
     std::vector<VkImageMemoryBarrier2> mImages;
+    std::vector<VkBufferMemoryBarrier2> mBuffers;
 };
 
 // One barrier: mip levels [baseMip, baseMip + mipCount) of every layer; mipCount 0: all from

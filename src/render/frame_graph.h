@@ -1,0 +1,106 @@
+#pragma once
+// The frame as a small render graph (after Granite's render graph [Arntzen 2017], much smaller:
+// one queue, one renderer). Passes declare their phase and the resources they read and write;
+// the graph orders them and places every barrier. Resources are declared by kind (image or
+// buffer), size class and lifetime and live in a ResourcePool that outlasts the frame: a
+// per-frame resource is kept while its declaration stays the same (its contents are not), a
+// persistent one keeps its contents too while its invalidation key does (what a cache needs).
+//
+// Order: by phase; within a phase, a pass that reads or writes what an earlier-declared pass
+// writes comes after it (declaration order, which must respect that: a pass reading what only a
+// later pass of its phase writes is a programmer error), and phases run in this order:
+//   LightSpace   shadow maps and what is filtered from them (before the G-buffer)
+//   GBuffer      the camera's G-buffer
+//   ScreenSpace  passes after the G-buffer that per-light evaluation reads (and, for a cache
+//                such as virtual shadow maps, light-space work they decide)
+//   PerLight     each light's evaluation: its base technique, then its layers
+//   Composite    shading from every light's visibility
+//   Readback     copies for the host (not timed)
+// Barriers: before each pass, every resource it uses goes from the state its last use left it in
+// (kept in the pool across frames and submissions) to the one this use needs; two reads in the
+// same state need none. A per-frame resource's first use in a frame that only writes it starts
+// from "undefined" (its old contents are not kept).
+#include "render/resource_pool.h"
+#include "vk/timestamps.h"
+
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra::render {
+
+enum class Phase { LightSpace, GBuffer, ScreenSpace, PerLight, Composite, Readback };
+std::string_view phaseName(Phase phase);
+
+struct Use {
+    ResourceId resource;
+    Access access;
+};
+
+class FrameGraph;
+
+// What a pass records with: the command buffer, and its resources by id.
+struct PassContext {
+    VkCommandBuffer cmd;
+    FrameGraph& graph;
+    const PooledImage& image(ResourceId id) const;
+    VkBuffer buffer(ResourceId id) const;
+};
+
+struct PassDecl {
+    std::string name; // its GPU timestamp scope (passes with one name add up); "" untimed
+    Phase phase;
+    std::vector<Use> uses;
+    std::function<void(PassContext&)> record;
+};
+
+// A pass as the graph will record it: its barriers first (resource, from, to).
+struct PlannedBarrier {
+    ResourceId resource;
+    Access from; // meaningful when !fromUndefined and the resource was used before
+    Access to;
+    bool fromUndefined;
+};
+struct PlannedPass {
+    size_t pass; // index into the declared passes
+    std::vector<PlannedBarrier> barriers;
+};
+
+class FrameGraph {
+public:
+    FrameGraph(ResourcePool& pool, const FrameSizes& sizes);
+
+    // Resources: declared to the pool for this frame (made, or kept, when the frame is planned:
+    // their images and buffers exist from then on); `import` names one the caller owns.
+    ResourceId declare(const ImageDecl& decl);
+    ResourceId declare(const BufferDecl& decl);
+    ResourceId importImage(std::string name, const vk::Image& image, Access current);
+    ResourceId importBuffer(std::string name, VkBuffer buffer);
+    // Whether a persistent resource holds what its producer wrote under the same key (a producer
+    // may skip its pass then).
+    bool holdsContents(ResourceId id) const;
+
+    void addPass(PassDecl pass);
+
+    // The order and barriers the frame will have (the tests read it); fatal on a pass that reads
+    // a per-frame resource nothing wrote before it in this frame.
+    const std::vector<PlannedPass>& plan();
+    // Records every pass in plan order, each timed under its name by `timer` (if any). The pool
+    // then knows the state each resource was left in, and that persistent ones hold contents.
+    void record(VkCommandBuffer cmd, vk::GpuTimer* timer);
+
+    const PooledImage& image(ResourceId id) const;
+    VkBuffer buffer(ResourceId id) const;
+    const std::vector<PassDecl>& passes() const { return mPasses; }
+    const FrameSizes& sizes() const { return mSizes; }
+
+private:
+    ResourcePool& mPool;
+    FrameSizes mSizes;
+    std::vector<PassDecl> mPasses;
+    std::vector<PlannedPass> mPlan;
+    bool mPlanned = false;
+};
+
+} // namespace penumbra::render

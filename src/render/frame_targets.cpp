@@ -1,0 +1,142 @@
+#include "render/frame_targets.h"
+
+#include "render/pipelines.h"
+
+namespace penumbra::render {
+
+std::string target::shadowMap(std::string_view name) {
+    return "shadow." + std::string(name);
+}
+
+VkFormat formatOf(shadows::MapFormat format) {
+    switch (format) {
+    case shadows::MapFormat::Depth32:
+        return kDepthFormat;
+    case shadows::MapFormat::R32F:
+        return VK_FORMAT_R32_SFLOAT;
+    case shadows::MapFormat::RG32F:
+        return VK_FORMAT_R32G32_SFLOAT;
+    case shadows::MapFormat::RG32UI:
+        return VK_FORMAT_R32G32_UINT;
+    case shadows::MapFormat::RGBA32UI:
+        return VK_FORMAT_R32G32B32A32_UINT;
+    case shadows::MapFormat::RGBA16:
+        return VK_FORMAT_R16G16B16A16_UNORM;
+    case shadows::MapFormat::RGBA32F:
+        break;
+    }
+    return VK_FORMAT_R32G32B32A32_SFLOAT;
+}
+
+namespace {
+
+constexpr VkImageUsageFlags kSampled = VK_IMAGE_USAGE_SAMPLED_BIT;
+constexpr VkImageUsageFlags kDepthTarget =
+    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+constexpr VkImageUsageFlags kStorageOut =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+
+// A map of every shadow view: a layer each, a 2D view of each layer (and level) to render into
+// or write in a post pass.
+ImageDecl viewMap(std::string_view name, shadows::MapFormat format, bool mipmapped) {
+    return {.name = target::shadowMap(name),
+            .size = SizeClass::ShadowView,
+            .format = formatOf(format),
+            .usage = format == shadows::MapFormat::Depth32 ? kDepthTarget
+                                                           : VK_IMAGE_USAGE_STORAGE_BIT | kSampled,
+            .mipmapped = mipmapped,
+            .layerViews = true};
+}
+
+ImageDecl screen(std::string_view name, VkFormat format, VkImageUsageFlags usage,
+                 bool perLight = false) {
+    return {.name = std::string(name),
+            .size = SizeClass::Screen,
+            .format = format,
+            .usage = usage,
+            .perLight = perLight,
+            .arrayView = perLight};
+}
+
+} // namespace
+
+std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
+                                      const ParameterValues& params) {
+    std::vector<ImageDecl> decls{viewMap(shadows::kDepthMap, shadows::MapFormat::Depth32, false)};
+    for (const shadows::MapDecl& map : module.maps)
+        decls.push_back(
+            viewMap(map.name, shadows::formatOf(map, params), shadows::mipmappedOf(map, params)));
+    return decls;
+}
+
+std::vector<ImageDecl> screenDecls(bool intermediates) {
+    std::vector<ImageDecl> decls{
+        screen(target::kGBufferDepth, kDepthFormat, kDepthTarget),
+        screen(target::kGBufferNormal, kNormalFormat,
+               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled),
+        screen(target::kGBufferAlbedo, kAlbedoFormat,
+               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled),
+        screen(target::kVisibility, VK_FORMAT_R32_SFLOAT, kStorageOut | kSampled, true),
+        screen(target::kColor, VK_FORMAT_R8G8B8A8_UNORM, kStorageOut),
+        screen(target::kPosition, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut),
+        screen(target::kNormal, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut),
+        screen(target::kFaceNormal, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut)};
+    // The viewer's intermediate results (the technique's, and each layer's own) at full size,
+    // else 1x1 stand-ins: every binding a shader uses must be written. Persistent: a frame may
+    // hand them over unwritten (no layer ran), their layout set.
+    for (auto [name, format] : {std::pair{target::kIntermediates, VK_FORMAT_R32G32B32A32_SFLOAT},
+                                std::pair{target::kLayerResults, VK_FORMAT_R32_SFLOAT}})
+        decls.push_back(intermediates
+                            ? screen(name, format, VK_IMAGE_USAGE_STORAGE_BIT | kSampled, true)
+                            : ImageDecl{.name = std::string(name),
+                                        .size = SizeClass::Fixed,
+                                        .format = format,
+                                        .usage = VK_IMAGE_USAGE_STORAGE_BIT | kSampled});
+    for (ImageDecl& decl : decls)
+        if (decl.name == target::kIntermediates || decl.name == target::kLayerResults)
+            decl.lifetime = Lifetime::Persistent;
+    // Bound where the technique's filtered map holds floats (TECH_TABLE); never written.
+    decls.push_back({.name = std::string(target::kIntegerPlaceholder),
+                     .size = SizeClass::Fixed,
+                     .format = VK_FORMAT_R32G32B32A32_UINT,
+                     .usage = kSampled,
+                     .lifetime = Lifetime::Persistent});
+    return decls;
+}
+
+ReadbackLayout::ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers) {
+    const VkDeviceSize pixels = VkDeviceSize{width} * height;
+    VkDeviceSize offset = 0;
+    auto part = [&](std::string_view target, VkDeviceSize size) {
+        const Part p{target, offset, size};
+        offset += size;
+        return p;
+    };
+    color = part(target::kColor, pixels * 4);
+    visibility = part(target::kVisibility, pixels * 4 * std::max(visibilityLayers, 1u));
+    position = part(target::kPosition, pixels * 16);
+    normal = part(target::kNormal, pixels * 16);
+    faceNormal = part(target::kFaceNormal, pixels * 16);
+    bytes = offset;
+}
+
+BufferDecl ReadbackLayout::decl() const {
+    return {.name = std::string(target::kReadback),
+            .size = SizeClass::Fixed,
+            .bytes = bytes,
+            .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+            .memory = vk::MemoryUse::Readback};
+}
+
+TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterValues& params,
+                        const FrameSizes& sizes) {
+    TargetBytes bytes{0, 0};
+    for (const ImageDecl& decl : shadowMapDecls(module, params))
+        bytes.shadowMaps += ResourcePool::bytesOf(decl, sizes);
+    for (const ImageDecl& decl : screenDecls(false))
+        bytes.screen += ResourcePool::bytesOf(decl, sizes);
+    bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights).bytes;
+    return bytes;
+}
+
+} // namespace penumbra::render

@@ -1,0 +1,79 @@
+#pragma once
+// The frame's targets in one place: their names, what each one is (its declaration to the frame
+// graph), the shadow views they hold a layer for, the readback buffer's layout (one struct that
+// the pass writing it and SceneRenderer::render reading it both use) and what they all take in
+// device memory (Renderer::check).
+#include "core/light_space.h"
+#include "render/resource_pool.h"
+#include "shadows/technique.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra::render {
+
+// Resource names of the frame graph.
+namespace target {
+inline constexpr std::string_view kGBufferDepth = "gbuffer.depth"; // reverse-Z, D32
+inline constexpr std::string_view kGBufferNormal = "gbuffer.normal";
+inline constexpr std::string_view kGBufferAlbedo = "gbuffer.albedo";
+inline constexpr std::string_view kVisibility = "visibility";        // R32F, a layer per light
+inline constexpr std::string_view kIntermediates = "intermediates";  // RGBA32F (1x1 unless asked)
+inline constexpr std::string_view kLayerResults = "layer.results";   // R32F (1x1 unless asked)
+inline constexpr std::string_view kColor = "color";                  // RGBA8, sRGB-encoded values
+inline constexpr std::string_view kPosition = "export.position";     // RGBA32F, for the host
+inline constexpr std::string_view kNormal = "export.normal";         // RGBA32F, for the host
+inline constexpr std::string_view kFaceNormal = "export.faceNormal"; // RGBA32F, for the host
+inline constexpr std::string_view kReadback = "readback";            // host-visible buffer
+inline constexpr std::string_view kIntegerPlaceholder = "placeholder.integer";
+inline constexpr std::string_view kField = "field"; // the distance field, or its placeholder
+// The ring slot's uniform buffers (written by the host before the frame).
+inline constexpr std::string_view kFrameBlock = "slot.frame";
+inline constexpr std::string_view kLights = "slot.lights";
+inline constexpr std::string_view kViews = "slot.views";
+inline constexpr std::string_view kParams = "slot.params";
+inline constexpr std::string_view kLayerParams = "slot.layerParams";
+// A technique's map `name` of every shadow view: "shadow.depth", "shadow.moments", ...
+std::string shadowMap(std::string_view name);
+} // namespace target
+
+// A shadow view as the frame draws it: the light it belongs to and its projection. Its index is
+// its layer in every map (ShadowViewData::texel.z).
+struct ShadowView {
+    uint32_t light; // index into the scene's lights
+    LightProjection projection;
+};
+
+VkFormat formatOf(shadows::MapFormat format);
+
+// What a frame with this technique, these parameters and sizes declares of its targets: the
+// depth map and the module's maps (a layer per view), the G-buffer, visibility, the
+// intermediates (full size for the viewer's `intermediates`, else 1x1), colour and the export
+// images. The map declarations alone: shadowMapDecls.
+std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
+                                      const ParameterValues& params);
+std::vector<ImageDecl> screenDecls(bool intermediates);
+
+// The readback buffer: colour, every visibility layer, position, normal and face normal, tightly
+// packed in that order.
+struct ReadbackLayout {
+    struct Part {
+        std::string_view target;
+        VkDeviceSize offset, bytes;
+    };
+    ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers);
+    Part color, visibility, position, normal, faceNormal;
+    VkDeviceSize bytes;
+    BufferDecl decl() const;
+};
+
+// Device memory the frame's targets take for these sizes (declared images and the readback
+// buffer): what Renderer::check compares with the device's.
+struct TargetBytes {
+    uint64_t shadowMaps, screen;
+};
+TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterValues& params,
+                        const FrameSizes& sizes);
+
+} // namespace penumbra::render

@@ -1,0 +1,163 @@
+// The PerLight and Composite phases (render/frame.h). Each shadow-casting light is evaluated by
+// the base technique (one visibility dispatch, "visibility") and then by each enabled layer (one
+// dispatch of the layer's shader, timed under the layer's name), which multiplies into the
+// light's visibility layer. The composite shades every pixel from the lights' layers: fused into
+// the last light's visibility dispatch ("composite", composite.fused) when no layer runs after
+// it, else composite.comp on its own.
+#include "render/frame.h"
+#include "render/pass_utils.h"
+#include "vk/pipelines.h"
+#include "vk/sync.h"
+
+#include <algorithm>
+
+namespace penumbra::render {
+namespace {
+
+size_t layerIndex(const shadows::LayerModule& layer) {
+    const auto all = shadows::allLayers();
+    return static_cast<size_t>(std::find(all.begin(), all.end(), &layer) - all.begin());
+}
+
+// The visibility dispatch of one light with shadow views, into its layer of the visibility
+// image; `fused`: it also shades every pixel into the colour image (the last light's).
+void dispatchVisibility(PassContext& c, FramePipelines& p, const FrameSettings& s,
+                        const FrameInputs& in, const FrameResources& r, const LightDispatch& light,
+                        bool fused) {
+    std::vector<shadows::SpecConstant> constants = s.constants;
+    constants.push_back({SPEC_LIGHT_TYPE, light.type});
+    constants.push_back({SPEC_LIGHT_VIEWS, light.views});
+    if (fused) {
+        constants.insert(constants.end(), s.sceneLights.begin(), s.sceneLights.end());
+        constants.push_back({SPEC_FUSED_COMPOSITE, 1u});
+    }
+    vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(constants));
+    const FilteredBindings filtered = r.filtered;
+    vk::PushDescriptors()
+        .uniformBuffer(BIND_FRAME, in.frame)
+        .uniformBuffer(VIS_LIGHTS, in.lights)
+        .sampled(VIS_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
+        .sampled(VIS_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
+        .sampled(TECH_MAP, c.image(filtered.floats).view(), in.nearest)
+        .sampled(TECH_TABLE, c.image(filtered.integers).view(), in.nearest)
+        .sampled(TECH_COMPARE, c.image(r.depthMap).view(), in.compare)
+        .uniformBuffer(TECH_PARAMS, in.params)
+        .storageImage(VIS_OUT, c.image(r.visibility).view())
+        .uniformBuffer(VIS_VIEWS, in.views)
+        .sampled(TECH_FIELD, c.image(r.field).view(), in.fieldSampler)
+        .storageImage(VIS_INTERMEDIATES, c.image(r.intermediates).view())
+        .sampled(VIS_GBUFFER_ALBEDO, c.image(r.gbufferAlbedo).view(), in.nearest)
+        .storageImage(VIS_COLOR, c.image(r.color).view())
+        .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
+    vkCmdPushConstants(c.cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       sizeof light.push, &light.push);
+    vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+}
+
+// One layer's dispatch for one light: reads the G-buffer and the light's visibility layer and
+// writes it back multiplied by what the layer finds.
+void dispatchLayer(PassContext& c, FramePipelines& p, const FrameSettings& s, const FrameInputs& in,
+                   const FrameResources& r, const shadows::LayerModule& layer,
+                   const LightDispatch& light) {
+    const std::vector<shadows::SpecConstant> constants{
+        {SPEC_LIGHT_TYPE, light.type}, {SPEC_INTERMEDIATES, s.intermediates ? 1u : 0u}};
+    vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layer(layer.shader, constants));
+    vk::PushDescriptors()
+        .uniformBuffer(BIND_FRAME, in.frame)
+        .uniformBuffer(LAYER_LIGHTS, in.lights)
+        .sampled(LAYER_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
+        .sampled(LAYER_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
+        .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
+        .uniformBuffer(LAYER_PARAMS, in.layerParams, TECHNIQUE_BLOCK_BYTES * layerIndex(layer),
+                       TECHNIQUE_BLOCK_BYTES)
+        .storageImage(LAYER_RESULTS, c.image(r.layerResults).view())
+        .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layerLayout);
+    vkCmdPushConstants(c.cmd, p.layerLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       sizeof light.push, &light.push);
+    vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+}
+
+// What every visibility dispatch binds; `visibility` as the pass uses it.
+std::vector<Use> visibilityUses(const FrameResources& r, Access visibility) {
+    const FilteredBindings filtered = r.filtered;
+    return {{r.frame, Access::UniformRead},
+            {r.lights, Access::UniformRead},
+            {r.views, Access::UniformRead},
+            {r.params, Access::UniformRead},
+            {r.gbufferDepth, Access::ComputeSampled},
+            {r.gbufferNormal, Access::ComputeSampled},
+            {r.gbufferAlbedo, Access::ComputeSampled},
+            {filtered.floats, Access::ComputeSampled},
+            {filtered.integers, Access::ComputeSampled},
+            {r.depthMap, Access::ComputeSampled},
+            {r.field, Access::ComputeSampled},
+            {r.visibility, visibility},
+            {r.intermediates, Access::ComputeWrite},
+            {r.color, Access::ComputeWrite}}; // bound by every dispatch
+}
+
+} // namespace
+
+void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
+                    const FrameInputs& in, const FrameResources& r) {
+    // With no layer after it, the last light's visibility dispatch shades too: one pass fewer
+    // over the G-buffer, and its position and normal reconstructed once.
+    const bool fused = s.fuseComposite && !s.shadowLights.empty() && s.layers.empty();
+    const size_t separate = fused ? s.shadowLights.size() - 1 : s.shadowLights.size();
+    graph.addPass({.name = "visibility",
+                   .phase = Phase::PerLight,
+                   .uses = visibilityUses(r, Access::ComputeWrite),
+                   .record = [&p, &s, &in, r, separate](PassContext& c) {
+                       for (size_t i = 0; i < separate; ++i)
+                           dispatchVisibility(c, p, s, in, r, s.shadowLights[i], false);
+                   }});
+    for (const shadows::LayerModule* layer : s.layers)
+        graph.addPass({.name = std::string(layer->name),
+                       .phase = Phase::PerLight,
+                       .uses = {{r.frame, Access::UniformRead},
+                                {r.lights, Access::UniformRead},
+                                {r.layerParams, Access::UniformRead},
+                                {r.gbufferDepth, Access::ComputeSampled},
+                                {r.gbufferNormal, Access::ComputeSampled},
+                                {r.visibility, Access::ComputeReadWrite},
+                                {r.layerResults, Access::ComputeWrite}},
+                       .record = [&p, &s, &in, r, layer](PassContext& c) {
+                           for (const LightDispatch& light : s.shadowLights)
+                               dispatchLayer(c, p, s, in, r, *layer, light);
+                       }});
+    if (fused) {
+        // The last light reads the earlier lights' layers as it writes its own.
+        graph.addPass({.name = "composite",
+                       .phase = Phase::Composite,
+                       .uses = visibilityUses(r, Access::ComputeReadWrite),
+                       .record = [&p, &s, &in, r](PassContext& c) {
+                           dispatchVisibility(c, p, s, in, r, s.shadowLights.back(), true);
+                       }});
+        return;
+    }
+    graph.addPass(
+        {.name = "composite",
+         .phase = Phase::Composite,
+         .uses = {{r.frame, Access::UniformRead},
+                  {r.lights, Access::UniformRead},
+                  {r.gbufferDepth, Access::ComputeSampled},
+                  {r.gbufferNormal, Access::ComputeSampled},
+                  {r.gbufferAlbedo, Access::ComputeSampled},
+                  {r.visibility, Access::ComputeSampled},
+                  {r.color, Access::ComputeWrite}},
+         .record = [&p, &s, &in, r](PassContext& c) {
+             vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.composite(s.sceneLights));
+             vk::PushDescriptors()
+                 .uniformBuffer(BIND_FRAME, in.frame)
+                 .uniformBuffer(COMPOSITE_LIGHTS, in.lights)
+                 .sampled(COMPOSITE_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
+                 .sampled(COMPOSITE_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
+                 .sampled(COMPOSITE_GBUFFER_ALBEDO, c.image(r.gbufferAlbedo).view(), in.nearest)
+                 .sampled(COMPOSITE_VISIBILITY, c.image(r.visibility).view(), in.nearest)
+                 .storageImage(COMPOSITE_OUT, c.image(r.color).view())
+                 .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.compositeLayout);
+             vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+         }});
+}
+
+} // namespace penumbra::render

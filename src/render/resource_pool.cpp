@@ -1,0 +1,332 @@
+#include "render/resource_pool.h"
+
+#include "penumbra/error.h"
+#include "vk/check.h"
+
+#include <algorithm>
+#include <variant>
+
+namespace penumbra::render {
+
+bool writes(Access access) {
+    switch (access) {
+    case Access::DepthAttachment:
+    case Access::ColorAttachment:
+    case Access::ComputeWrite:
+    case Access::ComputeReadWrite:
+    case Access::TransferWrite:
+        return true;
+    default:
+        return false;
+    }
+}
+
+// Whether the use reads what it finds (the frame's attachments are cleared on load).
+bool reads(Access access) {
+    return access != Access::DepthAttachment && access != Access::ColorAttachment &&
+           access != Access::ComputeWrite && access != Access::TransferWrite;
+}
+
+struct ResourcePool::Entry {
+    std::string name;
+    bool pending = false;                                     // declared, not made yet (realize)
+    std::variant<std::monostate, ImageDecl, BufferDecl> decl; // monostate: imported
+    FrameSizes sizes;     // what the declaration resolved against
+    vk::Image ownedImage; // the pool's
+    vk::Buffer ownedBuffer;
+    PooledImage image; // points at ownedImage, or at the imported image
+    VkBuffer buffer = VK_NULL_HANDLE;
+    std::optional<Access> last;
+    bool holds = false;    // persistent: written under the current key
+    bool declared = false; // in this frame
+};
+
+namespace {
+
+// The extent and layers a declaration resolves to.
+struct Resolved {
+    uint32_t width, height, depth, layers;
+};
+
+Resolved resolve(const ImageDecl& d, const FrameSizes& s) {
+    switch (d.size) {
+    case SizeClass::ShadowView:
+        return {s.shadowMapSize, s.shadowMapSize, 1, std::max(s.shadowViews, 1u)};
+    case SizeClass::Screen:
+        return {s.width, s.height, 1, d.perLight ? std::max(s.shadowLights, 1u) : 1u};
+    case SizeClass::Scene:
+    case SizeClass::Fixed:
+        break;
+    }
+    return {d.width, d.height, d.depth, d.layers};
+}
+
+uint32_t mipLevels(uint32_t size) {
+    uint32_t levels = 1;
+    while ((size >> levels) > 0)
+        ++levels;
+    return levels;
+}
+
+// Whether two declarations of the same shape, resolved against their frames' sizes, make
+// resources of the same size.
+bool sameExtent(const ImageDecl&, const ImageDecl& d, const FrameSizes& a, const FrameSizes& b) {
+    const Resolved x = resolve(d, a), y = resolve(d, b);
+    return x.width == y.width && x.height == y.height && x.depth == y.depth && x.layers == y.layers;
+}
+
+// The same resource but, perhaps, for its invalidation key.
+template <class Decl>
+bool sameShape(Decl a, const Decl& b) {
+    a.key = b.key;
+    return a == b;
+}
+
+VkDeviceSize bufferBytes(const BufferDecl& d, const FrameSizes& s) {
+    switch (d.size) {
+    case SizeClass::ShadowView:
+        return d.bytes * std::max(s.shadowViews, 1u);
+    case SizeClass::Screen:
+        return d.bytes * s.width * s.height;
+    case SizeClass::Scene:
+    case SizeClass::Fixed:
+        break;
+    }
+    return d.bytes;
+}
+
+bool sameExtent(const BufferDecl& old, const BufferDecl& d, const FrameSizes& a,
+                const FrameSizes& b) {
+    return bufferBytes(old, a) == bufferBytes(d, b);
+}
+
+} // namespace
+
+ResourcePool::ResourcePool(const vk::Context& ctx) : mCtx(ctx) {}
+
+// Keeps entry `e` for this frame's `decl`: a persistent resource whose key changed no longer
+// holds what was written under the old one.
+template <class Decl>
+void ResourcePool::keep(Entry& e, const Decl& decl, uint64_t oldKey) {
+    PENUMBRA_CHECK(!e.declared || oldKey == decl.key,
+                   "ResourcePool: " + decl.name + " declared twice with different keys");
+    if (oldKey != decl.key)
+        e.holds = false;
+    e.decl = decl;
+    e.declared = true;
+}
+ResourcePool::~ResourcePool() = default;
+
+ResourcePool::Entry& ResourcePool::entry(ResourceId id) const {
+    PENUMBRA_CHECK(id < mEntries.size() && mEntries[id],
+                   "ResourcePool: not a resource of this frame");
+    return *mEntries[id];
+}
+
+void ResourcePool::waitIdle() {
+    VK_CHECK(vkDeviceWaitIdle(mCtx.device())); // a frame in flight may still use it
+}
+
+void ResourcePool::beginFrame() {
+    // Imports are the caller's, for one frame; ids are a frame's: the list closes up.
+    std::erase_if(mEntries, [](const std::unique_ptr<Entry>& e) {
+        return !e || std::holds_alternative<std::monostate>(e->decl);
+    });
+    for (auto& e : mEntries)
+        e->declared = false;
+}
+
+// The entry a declaration names, kept when it declares the same resource at the same size,
+// else a new one (made by realize; the old one, renamed, is freed there as undeclared).
+template <class Decl>
+ResourceId ResourcePool::acquireAs(const Decl& decl, const FrameSizes& sizes) {
+    for (ResourceId id = 0; id < mEntries.size(); ++id) {
+        if (!mEntries[id] || mEntries[id]->name != decl.name)
+            continue;
+        Entry& e = *mEntries[id];
+        const auto* old = std::get_if<Decl>(&e.decl);
+        if (old && sameShape(*old, decl) && sameExtent(*old, decl, e.sizes, sizes)) {
+            keep(e, decl, old->key);
+            e.sizes = sizes;
+            return id;
+        }
+        PENUMBRA_CHECK(!e.declared, "ResourcePool: " + decl.name + " declared twice differently");
+        e.name.clear();
+        break;
+    }
+    auto e = std::make_unique<Entry>();
+    e->name = decl.name;
+    e->decl = decl;
+    e->sizes = sizes;
+    e->declared = true;
+    e->pending = true;
+    mEntries.push_back(std::move(e));
+    return static_cast<ResourceId>(mEntries.size() - 1);
+}
+
+ResourceId ResourcePool::acquire(const ImageDecl& decl, const FrameSizes& sizes) {
+    return acquireAs(decl, sizes);
+}
+
+ResourceId ResourcePool::acquire(const BufferDecl& decl, const FrameSizes& sizes) {
+    return acquireAs(decl, sizes);
+}
+
+void ResourcePool::make(Entry& e) {
+    const ImageDecl& decl = std::get<ImageDecl>(e.decl);
+    const Resolved r = resolve(decl, e.sizes);
+    e.ownedImage = vk::createImage(
+        mCtx, {.name = decl.size == SizeClass::ShadowView ? "--shadow-map-size" : decl.name,
+               .format = decl.format,
+               .width = r.width,
+               .height = r.height,
+               .layers = r.layers,
+               .usage = decl.usage,
+               .arrayView = decl.arrayView && r.depth == 1,
+               .mipLevels = decl.mipmapped ? mipLevels(std::max(r.width, r.height)) : 1u,
+               .depth = r.depth});
+    e.image.image = &e.ownedImage;
+    if (decl.layerViews) {
+        const vk::Image& image = e.ownedImage;
+        for (uint32_t l = 0; l < image.layers; ++l)
+            e.image.layers.push_back(vk::createLayerView(mCtx, image, l));
+        if (image.mipLevels > 1)
+            for (uint32_t l = 0; l < image.layers; ++l)
+                for (uint32_t m = 0; m < image.mipLevels; ++m)
+                    e.image.levels.push_back(vk::createLayerView(mCtx, image, l, m));
+    }
+}
+
+ResourceId ResourcePool::importImage(std::string name, const vk::Image& image, Access current) {
+    auto e = std::make_unique<Entry>();
+    e->name = std::move(name);
+    e->image.image = &image;
+    e->last = current;
+    e->declared = true;
+    mEntries.push_back(std::move(e));
+    return static_cast<ResourceId>(mEntries.size() - 1);
+}
+
+ResourceId ResourcePool::importBuffer(std::string name, VkBuffer buffer) {
+    auto e = std::make_unique<Entry>();
+    e->name = std::move(name);
+    e->buffer = buffer;
+    e->declared = true;
+    mEntries.push_back(std::move(e));
+    return static_cast<ResourceId>(mEntries.size() - 1);
+}
+
+void ResourcePool::realize() {
+    auto unused = [](const std::unique_ptr<Entry>& e) {
+        return e && !e->declared && !std::holds_alternative<std::monostate>(e->decl);
+    };
+    if (std::any_of(mEntries.begin(), mEntries.end(), unused)) {
+        waitIdle();
+        for (auto& e : mEntries) // freed, their ids kept for the frame
+            if (unused(e))
+                e.reset();
+    }
+    for (auto& e : mEntries) {
+        if (!e || !e->pending)
+            continue;
+        if (std::holds_alternative<ImageDecl>(e->decl)) {
+            make(*e);
+        } else {
+            const BufferDecl& decl = std::get<BufferDecl>(e->decl);
+            e->ownedBuffer =
+                vk::createBuffer(mCtx, std::max<VkDeviceSize>(bufferBytes(decl, e->sizes), 16),
+                                 decl.usage, decl.memory, decl.name);
+            e->buffer = e->ownedBuffer.get();
+        }
+        e->pending = false;
+        ++mCreations;
+    }
+}
+
+const PooledImage& ResourcePool::image(ResourceId id) const {
+    const Entry& e = entry(id);
+    PENUMBRA_CHECK(!e.pending, "ResourcePool: " + e.name + " used before realize");
+    PENUMBRA_CHECK(e.image.image != nullptr, "ResourcePool: " + e.name + " is not an image");
+    return e.image;
+}
+
+VkBuffer ResourcePool::buffer(ResourceId id) const {
+    const Entry& e = entry(id);
+    PENUMBRA_CHECK(!e.pending, "ResourcePool: " + e.name + " used before realize");
+    PENUMBRA_CHECK(e.buffer != VK_NULL_HANDLE, "ResourcePool: " + e.name + " is not a buffer");
+    return e.buffer;
+}
+
+std::string_view ResourcePool::name(ResourceId id) const {
+    return entry(id).name;
+}
+
+bool ResourcePool::isImage(ResourceId id) const {
+    const Entry& e = entry(id);
+    return e.image.image != nullptr || std::holds_alternative<ImageDecl>(e.decl);
+}
+
+bool ResourcePool::isImported(ResourceId id) const {
+    return std::holds_alternative<std::monostate>(entry(id).decl);
+}
+
+bool ResourcePool::persistent(ResourceId id) const {
+    const Entry& e = entry(id);
+    if (const auto* i = std::get_if<ImageDecl>(&e.decl))
+        return i->lifetime == Lifetime::Persistent;
+    if (const auto* b = std::get_if<BufferDecl>(&e.decl))
+        return b->lifetime == Lifetime::Persistent;
+    return true; // imported: the caller's contents
+}
+
+std::optional<Access> ResourcePool::lastAccess(ResourceId id) const {
+    return entry(id).last;
+}
+
+void ResourcePool::setLastAccess(ResourceId id, std::optional<Access> access) {
+    entry(id).last = access;
+}
+
+bool ResourcePool::holdsContents(ResourceId id) const {
+    return entry(id).holds;
+}
+
+void ResourcePool::setHoldsContents(ResourceId id) {
+    entry(id).holds = true;
+}
+
+const PooledImage* ResourcePool::findImage(std::string_view name) const {
+    for (const auto& e : mEntries)
+        if (e && e->declared && e->name == name && e->image.image)
+            return &e->image;
+    return nullptr;
+}
+
+VkBuffer ResourcePool::findBuffer(std::string_view name) const {
+    for (const auto& e : mEntries)
+        if (e && e->declared && e->name == name && e->buffer)
+            return e->buffer;
+    return VK_NULL_HANDLE;
+}
+
+void* ResourcePool::mapped(std::string_view name) const {
+    for (const auto& e : mEntries)
+        if (e && e->declared && e->name == name)
+            return e->ownedBuffer.mapped;
+    return nullptr;
+}
+
+uint64_t ResourcePool::bytesOf(const ImageDecl& decl, const FrameSizes& sizes) {
+    const Resolved r = resolve(decl, sizes);
+    uint64_t texels = 0;
+    const uint32_t levels = decl.mipmapped ? mipLevels(std::max(r.width, r.height)) : 1u;
+    for (uint32_t m = 0; m < levels; ++m)
+        texels += uint64_t{std::max(r.width >> m, 1u)} * std::max(r.height >> m, 1u) * r.depth;
+    return texels * r.layers * vk::formatBytes(decl.format);
+}
+
+uint64_t ResourcePool::bytesOf(const BufferDecl& decl, const FrameSizes& sizes) {
+    return bufferBytes(decl, sizes);
+}
+
+} // namespace penumbra::render

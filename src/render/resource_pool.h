@@ -1,0 +1,154 @@
+#pragma once
+// The frame graph's resources (render/frame_graph.h), kept across frames. A resource is declared
+// by kind (an image or a buffer), size class and lifetime; the pool keeps it while later frames
+// declare it the same way, and when a frame has declared all it uses (realize) frees what it did
+// not declare, then makes what is new: a render that changes technique never holds both sets of
+// maps. Before it destroys anything it waits for the device (a frame in flight may still use
+// it). It also remembers how each resource was last used, so that the next frame's barriers
+// start from there.
+#include "vk/resources.h"
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra::render {
+
+// What size classes resolve against.
+struct FrameSizes {
+    uint32_t width = 1, height = 1; // the camera's image
+    uint32_t shadowMapSize = 1;     // texels a side of every shadow view
+    uint32_t shadowViews = 0;       // shadow views of every light together
+    uint32_t shadowLights = 0;      // lights with a shadow map (a visibility layer each)
+};
+
+// ShadowView: shadowMapSize^2, a layer per shadow view; Screen: width x height, one layer or a
+// layer per shadow-casting light; Scene and Fixed: a size of their own (the scene's, or none).
+enum class SizeClass { ShadowView, Screen, Scene, Fixed };
+// PerFrame: its contents are rewritten every frame; Persistent: they survive across frames
+// while the declaration's invalidation key stays the same.
+enum class Lifetime { PerFrame, Persistent };
+
+struct ImageDecl {
+    std::string name;
+    SizeClass size;
+    VkFormat format;
+    VkImageUsageFlags usage;
+    bool perLight = false;          // Screen: a layer per shadow-casting light
+    uint32_t width = 1, height = 1; // Scene and Fixed
+    uint32_t depth = 1;             // Scene and Fixed: > 1, a 3D image
+    uint32_t layers = 1;            // Scene and Fixed
+    bool mipmapped = false;         // a full mip chain
+    bool layerViews = false;        // a 2D view per layer (and per level when mipmapped)
+    bool arrayView = true;          // the whole image as a 2D array (image2DArray, ...)
+    Lifetime lifetime = Lifetime::PerFrame;
+    uint64_t key = 0; // Persistent: what the contents depend on
+    bool operator==(const ImageDecl&) const = default;
+};
+
+struct BufferDecl {
+    std::string name;
+    SizeClass size;
+    VkDeviceSize bytes; // ShadowView: per view; Screen: per pixel; else in all
+    VkBufferUsageFlags usage;
+    vk::MemoryUse memory = vk::MemoryUse::DeviceLocal;
+    Lifetime lifetime = Lifetime::PerFrame;
+    uint64_t key = 0;
+    bool operator==(const BufferDecl&) const = default;
+};
+
+// An image of the pool (or imported): the image with its whole view, and views of each layer
+// (layers[l]) and of each layer's levels (levels[l * mipLevels + m]) when declared.
+struct PooledImage {
+    const vk::Image* image = nullptr;
+    std::vector<vk::ImageViewHandle> layers, levels;
+    const vk::Image& get() const { return *image; }
+    VkImageView view() const { return image->view.get(); }
+    VkImageView layer(uint32_t l) const { return layers[l].get(); }
+    VkImageView level(uint32_t l, uint32_t mip) const {
+        return levels[size_t{l} * image->mipLevels + mip].get();
+    }
+};
+
+using ResourceId = uint32_t;
+
+// How a pass uses a resource: the pipeline stage, access and (for images) layout it needs.
+enum class Access {
+    DepthAttachment,  // depth test and write
+    ColorAttachment,  // colour write
+    FragmentSampled,  // sampled in a fragment shader
+    ComputeSampled,   // sampled in a compute shader
+    ComputeWrite,     // a storage image or buffer written by a compute shader
+    ComputeReadWrite, // ... read and written
+    TransferRead,     // copied from
+    TransferWrite,    // copied to
+    UniformRead,      // a uniform buffer read by any shader stage
+    ComputeRead,      // a storage buffer read by a compute shader
+    IndirectRead,     // indirect dispatch or draw arguments
+    HostRead,         // read by the host after the submission (a readback buffer)
+};
+bool writes(Access access);
+bool reads(Access access); // what it finds (attachments are cleared on load: they do not)
+
+class ResourcePool {
+public:
+    explicit ResourcePool(const vk::Context& ctx);
+    ~ResourcePool();
+    ResourcePool(const ResourcePool&) = delete;
+    ResourcePool& operator=(const ResourcePool&) = delete;
+
+    // A frame's declarations: each returns the resource's id for this frame (ids hold until
+    // the next frame begins). A name declared twice in one frame must be declared the same way.
+    void beginFrame();
+    ResourceId acquire(const ImageDecl& decl, const FrameSizes& sizes);
+    ResourceId acquire(const BufferDecl& decl, const FrameSizes& sizes);
+    // An image the caller owns, in the state `current` (its barriers start from there).
+    ResourceId importImage(std::string name, const vk::Image& image, Access current);
+    ResourceId importBuffer(std::string name, VkBuffer buffer);
+    // Frees the pool's resources this frame did not declare (after the device is idle), then
+    // makes the ones it declared anew. Before it, the frame's images and buffers do not exist.
+    void realize();
+
+    const PooledImage& image(ResourceId id) const;
+    VkBuffer buffer(ResourceId id) const;
+    std::string_view name(ResourceId id) const;
+    bool isImage(ResourceId id) const;
+    bool isImported(ResourceId id) const;
+    bool persistent(ResourceId id) const;
+    // The last use's access (nullopt: not used since it was made, or its contents dropped).
+    std::optional<Access> lastAccess(ResourceId id) const;
+    void setLastAccess(ResourceId id, std::optional<Access> access);
+    // Persistent resources: whether they hold what a producer wrote under their current key.
+    bool holdsContents(ResourceId id) const;
+    void setHoldsContents(ResourceId id);
+    // By name, after a frame (readback, the viewer): null when this frame did not declare it.
+    const PooledImage* findImage(std::string_view name) const;
+    VkBuffer findBuffer(std::string_view name) const;
+    // A host-visible buffer's mapped memory, by name (null unless declared and mapped).
+    void* mapped(std::string_view name) const;
+
+    // What an image or buffer of this declaration takes in device memory (texel and mip sums;
+    // the device's own padding aside): what Renderer::check counts.
+    static uint64_t bytesOf(const ImageDecl& decl, const FrameSizes& sizes);
+    static uint64_t bytesOf(const BufferDecl& decl, const FrameSizes& sizes);
+    // Resources made (not kept) since the pool was created: what tests of the cache read.
+    uint64_t creations() const { return mCreations; }
+
+private:
+    struct Entry;
+    Entry& entry(ResourceId id) const;
+    template <class Decl>
+    void keep(Entry& e, const Decl& decl, uint64_t oldKey);
+    template <class Decl>
+    ResourceId acquireAs(const Decl& decl, const FrameSizes& sizes);
+    void make(Entry& e);
+    void waitIdle();
+    const vk::Context& mCtx;
+    std::vector<std::unique_ptr<Entry>> mEntries;
+    uint64_t mCreations = 0;
+};
+
+} // namespace penumbra::render

@@ -1,0 +1,29 @@
+// The layer list (src/shadows/layer.h): one line per layer, in the order a light's evaluation
+// runs them.
+#include "shadows/layer.h"
+
+#include <algorithm>
+
+namespace penumbra::shadows {
+
+std::span<const LayerModule* const> allLayers() {
+    static const LayerModule* const layers[] = {&contactLayer()};
+    return layers;
+}
+
+const LayerModule* findLayer(std::string_view name) {
+    for (const LayerModule* layer : allLayers())
+        if (layer->name == name)
+            return layer;
+    return nullptr;
+}
+
+std::vector<const LayerModule*> enabledLayers(const ParameterValues& params) {
+    std::vector<const LayerModule*> on;
+    for (const LayerModule* layer : allLayers())
+        if (layer->enabled && layer->enabled(params))
+            on.push_back(layer);
+    return on;
+}
+
+} // namespace penumbra::shadows

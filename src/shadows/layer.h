@@ -1,0 +1,45 @@
+#pragma once
+// A layer on a light's evaluation: a screen-space pass that runs after the light's base technique
+// (PerLight phase, src/render/frame_graph.h), reads the G-buffer and the light's visibility so
+// far and multiplies in what it finds (screen-space contact shadows, the first). A light is
+// evaluated by one base technique and the layers whose parameters switch them on; every layer
+// works on top of every technique and for every light type. Each layer is one module in this
+// folder, its shader in shaders/ and a line in allLayers() (docs/architecture.md).
+#include "shadows/technique.h"
+
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace penumbra::shadows {
+
+struct LayerModule {
+    std::string_view name;                 // "contact": compare rows "<row>+contact"; its
+                                           // GPU timestamp scope
+    std::string_view summary, reference;   // one line; the paper or text it implements
+    std::vector<ParameterInfo> parameters; // its own family (`contact.*`)
+    bool (*enabled)(const ParameterValues&) = nullptr; // on for these parameters
+    std::pair<std::string_view, std::string_view> off; // the setting that switches it off
+    std::string_view shader; // in shaders/: one dispatch per shadow-casting light
+    // Writes its parameters into its block (LAYER_PARAMS; its struct in shaders/include).
+    void (*pack)(const ParameterValues&, ParamBlock&) = nullptr;
+    // What a compare row "<row>+<name>" sets where the row's own settings leave the layer off:
+    // sizes from the scene's bounding radius (world units), so the row means the same on any
+    // scene.
+    std::vector<std::pair<std::string, std::string>> (*rowSettings)(double sceneRadius) = nullptr;
+    // The rows `compare` shows with this layer by default ("pcf[box3]": "pcf[box3]+contact").
+    std::vector<std::string_view> rows;
+};
+
+// The registered layers, in the order a light's evaluation runs them.
+std::span<const LayerModule* const> allLayers();
+// The layer called `name`, or null.
+const LayerModule* findLayer(std::string_view name);
+// The layers these parameters switch on, in order.
+std::vector<const LayerModule*> enabledLayers(const ParameterValues& params);
+
+const LayerModule& contactLayer();
+
+} // namespace penumbra::shadows

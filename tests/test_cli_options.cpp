@@ -1,0 +1,82 @@
+// The CLI's shared options (apps/penumbra/cli_options.cpp): list splitting, sweeps and their
+// products, `--set` assembly onto a row, and the row one `--technique` names.
+#include "cli_options.h"
+#include "penumbra/error.h"
+
+#include <gtest/gtest.h>
+
+using namespace penumbra;
+using namespace penumbra::cli;
+
+namespace {
+
+// The subject of the InputError `f` throws ("" when it throws none).
+template <class F>
+std::string subjectOf(F&& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.subject();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(CliOptions, ListsSplitAtEveryCommaAndRefuseEmptyItems) {
+    EXPECT_EQ(splitList("hard", "--x"), std::vector<std::string>{"hard"});
+    EXPECT_EQ(splitList("hard,pcf,pcss", "--x"), (std::vector<std::string>{"hard", "pcf", "pcss"}));
+    for (const char* bad : {"", ",", "hard,", ",hard", "hard,,pcf"})
+        EXPECT_EQ(subjectOf([&] { splitList(bad, "--techniques"); }), "--techniques") << bad;
+}
+
+TEST(CliOptions, SweepsAreCheckedAgainstTheParameterTableBeforeAnyRun) {
+    const Sweep s = parseSweep("pcf.size=3,7,11");
+    EXPECT_EQ(s.key, "pcf.size");
+    EXPECT_EQ(s.values, (std::vector<std::string>{"3", "7", "11"}));
+    for (const char* bad : {"pcf.size", "pcf.size=", "=3", "pcf.size=3,,7", "pcf.size=3,4",
+                            "pcf.nope=3", "bias.constant=1"})
+        EXPECT_EQ(subjectOf([&] { parseSweep(bad); }), "--sweep") << bad;
+}
+
+TEST(CliOptions, TheSweepProductHoldsEveryCombinationOnceTheFirstSweepSlowest) {
+    EXPECT_EQ(sweepProduct({}), std::vector<Assignment>{{}});
+    const Sweep sweeps[] = {{.key = "a", .values = {"1", "2"}},
+                            {.key = "b", .values = {"x", "y", "z"}}};
+    const std::vector<Assignment> runs = sweepProduct(sweeps);
+    ASSERT_EQ(runs.size(), 6u);
+    for (size_t i = 0; i < runs.size(); ++i) {
+        ASSERT_EQ(runs[i].size(), 2u);
+        EXPECT_EQ(runs[i][0].first, "a");
+        EXPECT_EQ(runs[i][0].second, i < 3 ? "1" : "2") << i;
+        EXPECT_EQ(runs[i][1].second, std::string(1, "xyz"[i % 3])) << i;
+    }
+}
+
+TEST(CliOptions, ARowsOwnSettingsWinOverTheUsersSets) {
+    const TechniqueRow row = rowNamed("pcf[box3]", "--technique");
+    const std::string sets[] = {"pcf.size=7", "bias.slope=1.5"};
+    const RenderOptions o = optionsFor({}, row, sets);
+    EXPECT_EQ(o.technique, Technique::Pcf);
+    EXPECT_EQ(o.parameters.number("pcf.size"), 3.0); // the row is what its name says
+    EXPECT_EQ(o.parameters.number("bias.slope"), 1.5);
+    const std::string bad[] = {"bias.slope=-1"};
+    EXPECT_EQ(subjectOf([&] { optionsFor({}, row, bad); }), "--set");
+    RenderOptions zero;
+    zero.width = 0;
+    EXPECT_THROW(optionsFor(zero, row, {}), InputError);
+}
+
+TEST(CliOptions, OneTechniqueNamesOneRowWithItsLayers) {
+    const TechniqueRow plain = rowNamed("pcf", "--technique");
+    EXPECT_EQ(plain.technique, Technique::Pcf);
+    EXPECT_TRUE(plain.sets.empty()); // the technique at its defaults, not its first variant
+    const TechniqueRow layered = rowNamed("pcf[box3]+contact", "--technique");
+    EXPECT_EQ(layered.name, "pcf[box3]+contact");
+    EXPECT_EQ(layered.layers, std::vector<std::string>{"contact"});
+    EXPECT_FALSE(layered.sets.empty());
+    EXPECT_EQ(rowNamed("hard+contact", "--technique").layers, std::vector<std::string>{"contact"});
+    // "pcf+contact" is every pcf row with the layer: not one row.
+    for (const char* bad : {"nope", "pcf[nope]", "hard+nope", "pcf+contact", "hard,pcf"})
+        EXPECT_EQ(subjectOf([&] { rowNamed(bad, "--tech"); }), "--tech") << bad;
+}
