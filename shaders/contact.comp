@@ -43,7 +43,6 @@ float contactVisibility(ivec2 p, vec3 world, vec3 face, LightData light) {
         if (!contactProject(frame.viewProj, q, size, ndc, pixel)) break; // off the image
         float tolerance =
             contactTolerance(frame.invViewProj, ndc, size.x, reach / float(contact.steps));
-        if (!contactClearOfReceiver(t, nDotL, tolerance)) continue;
         vec3 near = unprojectNdc(frame.invViewProj, vec3(ndc.xy, 1.0));
         // Hidden where the pixels around q that hide it hold most of its bilinear weight: just
         // past an object's edge, those beyond it show what lies behind.

@@ -67,14 +67,6 @@ SHARED float contactTexelWeight(vec2 pixel, ivec2 base, int k) {
     return wx * wy;
 }
 
-// Whether a sample `t` along the ray from a receiver whose own triangle faces the light at
-// `nDotL` has risen off the receiver's plane by `tolerance`: closer, the test cannot tell it from
-// the receiver's own surface, and a neighbouring face of the same body (across a convex edge
-// the ray grazes) would hide it.
-SHARED bool contactClearOfReceiver(float t, float nDotL, float tolerance) {
-    return t * nDotL >= tolerance;
-}
-
 // How far along the ray sample i of `steps` lies: evenly spaced, the first offset by
 // `jitter` (in [0, 1), per pixel) of a step, so that the steps' banding becomes noise.
 SHARED float contactSampleDistance(uint i, uint steps, float marchLength, float jitter) {

@@ -73,8 +73,6 @@ std::vector<float> contactReference(const ScreenGBuffer& g, const gpu::FrameData
                     break;
                 const float tolerance = gpu::contactTolerance(
                     frame.invViewProj, ndc, size.x, reach / static_cast<float>(params.steps));
-                if (!gpu::contactClearOfReceiver(t, nDotL, tolerance))
-                    continue;
                 const glm::vec3 near = gpu::unprojectNdc(frame.invViewProj, {ndc.x, ndc.y, 1.0f});
                 const glm::ivec2 base = gpu::contactTexels(pixel, {g.width, g.height});
                 float hidden = 0.0f;
