@@ -51,6 +51,7 @@ layout(set = 0, binding = VIS_COLOR, rgba8) uniform writeonly image2D outColor;
 // blocker-depth and penumbra views): evaluateTechnique's vector.
 vec4 detail = vec4(0.0);
 layout(push_constant) uniform Push { VisibilityPush push; };
+#include "virtual_levels.glsl"
 
 // View k of the dispatch's light (k < LIGHT_VIEWS; the first view otherwise).
 ShadowViewData viewOf(uint k) {
@@ -234,7 +235,7 @@ TechniqueInput techniqueInput(Receiver r, ShadowViewData view, ivec2 p, uint sta
     TechniqueInput at;
     at.r = r;
     at.view = view;
-    at.mapSize = push.light.z;
+    at.mapSize = VIRTUAL_MAPS ? virtualSize(view) : push.light.z;
     at.pixel = uvec2(p);
     at.stage = stage;
     at.blockers = vec2(0.0);
@@ -268,6 +269,28 @@ float visibilityThroughCascade(CascadeBase b, uint i, ivec2 p) {
     bool inside;
     Receiver r = cascadeReceiver(b, view, inside);
     return evaluate(r, inside, view, p);
+}
+
+// Virtual maps: the technique through the level the pixel wants (virtualChoice), or the first
+// coarser one whose page at the receiver is resident (a page not yet rendered, or one a full pool
+// could not hold); lit outside a spot's or a face's frustum, or when no level holds it.
+float visibilityThroughVirtual(LightData light, ivec2 p, vec3 world, vec3 normal, float depth) {
+    VirtualChoice c = virtualChoice(light, world, pixelWorldSize(p, depth, world));
+    for (uint l = c.level; l < c.count; ++l) {
+        ShadowViewData view = views[c.first + l];
+        bool inside;
+        Receiver r = makeReceiver(light, view, p, world, normal, depth, inside);
+        if (!inside) {
+            if (LIGHT_TYPE != LIGHT_DIRECTIONAL) break;
+            continue; // a finer clipmap level's window ends before the receiver
+        }
+        uint size = virtualSize(view);
+        ivec2 texel = clamp(ivec2(floor(r.uv * float(size))), ivec2(0), ivec2(int(size) - 1));
+        if (virtualEntry(texel, size, uint(view.texel.z)) != VIRTUAL_NOT_RESIDENT)
+            return evaluate(r, true, view, p);
+    }
+    detail = vec4(1.0, 1.0, 0.0, 0.0);
+    return 1.0;
 }
 
 // Whether a kernel of `radius` texels around the receiver stays inside its view's map.
@@ -387,6 +410,8 @@ void main() {
             at.horizon = HORIZON != 0u;
             detail = evaluateTechnique(TECHNIQUE, at);
             v = detail.x;
+        } else if (VIRTUAL_MAPS) {
+            v = visibilityThroughVirtual(light, p, world, normal, depth);
         } else if (LIGHT_TYPE == LIGHT_DIRECTIONAL && LIGHT_VIEWS > 1u) {
             // A sun's cascade: the first whose slice reaches the pixel's view distance.
             float z = dot(world - frame.position.xyz, frame.cameraForward.xyz);
@@ -407,7 +432,9 @@ void main() {
             v = visibilityThrough(k, light, p, world, normal, depth);
         }
         float nDotL = dot(faceNormal(normals), directionToLight(light, world));
-        float sinRadius = lightSine(light, viewOf(k), world);
+        // (every view of a light has its size and kind: a virtual map's first, read directly)
+        float sinRadius = VIRTUAL_MAPS ? lightSine(light, views[push.light.w], world)
+                                       : lightSine(light, viewOf(k), world);
         if (HORIZON != 0u && !TRACES_FIELD) v *= horizonVisibility(nDotL, sinRadius);
         v = min(v, backFacingVisibility(nDotL, sinRadius));
     }

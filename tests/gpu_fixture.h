@@ -44,6 +44,7 @@ using MaterialTest = GpuTest; // textures, alpha-tested casters, culling
 using FieldTest = GpuTest;    // the sdf technique's distance field: build, sign, cache
 using FrameTest = GpuTest;    // the frame graph: order, barriers, the resource pool
 using LayerTest = GpuTest;    // layers on a light's evaluation (contact shadows)
+using VirtualTest = GpuTest;  // virtual shadow maps: pages, their cache, against the truth
 
 inline glm::vec3 pixelVec(const std::vector<float>& v, size_t i) {
     return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};

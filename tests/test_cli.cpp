@@ -154,7 +154,19 @@ INSTANTIATE_TEST_SUITE_P(
                  "excludes"},
         BadInput{"compare_bad_set",
                  {"compare", "builtin:showcase", "-o", "{out}", "--set", "bias.slope=x"},
-                 "bias.slope=x"}),
+                 "bias.slope=x"},
+        BadInput{"virtual_moments",
+                 {"render", "builtin:showcase", "-o", "{out}", "--technique", "vsm", "--set",
+                  "virtual.enabled=1"},
+                 "virtual maps serve hard, pcf and pcss"},
+        BadInput{"virtual_size_not_a_power_of_two",
+                 {"render", "builtin:spot", "-o", "{out}", "--set", "virtual.enabled=1", "--set",
+                  "virtual.size=3000"},
+                 "virtual.size: 3000 is not a power of two"},
+        BadInput{"virtual_pool_not_whole_pages",
+                 {"render", "builtin:room", "-o", "{out}", "--set", "virtual.enabled=1", "--set",
+                  "virtual.poolSize=1000"},
+                 "not a multiple of virtual.pageSize"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
 
 TEST(Cli, RenderWritesTheContractFiles) {

@@ -287,15 +287,17 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     poisson.assign("pcf.filter=poisson");
     poisson.assign("pcf.radius=6");
     const auto pcf = shadows::visibilityConstants(shadows::pcfModule(), poisson);
-    ASSERT_EQ(pcf.size(), 9u);
+    ASSERT_EQ(pcf.size(), 10u);
     EXPECT_EQ(pcf[4].id, uint32_t{SPEC_ADAPTIVE_BIAS}); // every technique's: bias.mode
     EXPECT_EQ(pcf[4].value, ParameterValues().number("bias.mode") == BIAS_ADAPTIVE ? 1u : 0u);
     // Then the capabilities, then the module's own.
     EXPECT_EQ(pcf[5].id, uint32_t{SPEC_FOOTPRINT});
     EXPECT_EQ(pcf[6].id, uint32_t{SPEC_BLOCKER_SEARCH});
     EXPECT_EQ(pcf[7].id, uint32_t{SPEC_TRACES_FIELD});
-    EXPECT_EQ(pcf[8].id, uint32_t{SPEC_FILTER});
-    EXPECT_EQ(pcf[8].value, uint32_t{FILTER_POISSON});
+    EXPECT_EQ(pcf[8].id, uint32_t{SPEC_VIRTUAL});
+    EXPECT_EQ(pcf[8].value, 0u);
+    EXPECT_EQ(pcf[9].id, uint32_t{SPEC_FILTER});
+    EXPECT_EQ(pcf[9].value, uint32_t{FILTER_POISSON});
     // Each capability is the module's own declaration, and only the modules that need one have
     // it: the footprint (vsm.filter=mip), the blocker search across cascades (pcss), the field.
     auto capability = [](const shadows::TechniqueModule& m, const ParameterValues& p, int id) {
@@ -306,6 +308,8 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     };
     ParameterValues mipmapped;
     mipmapped.assign("vsm.filter=mip");
+    ParameterValues virtualMaps;
+    virtualMaps.assign("virtual.enabled=1");
     for (const shadows::TechniqueModule* m : shadows::allModules()) {
         const bool vsm = m == &shadows::vsmModule();
         EXPECT_EQ(capability(*m, defaults, SPEC_FOOTPRINT), 0u) << m->info.name;
@@ -314,6 +318,13 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
                   m == &shadows::pcssModule() ? 1u : 0u)
             << m->info.name;
         EXPECT_EQ(capability(*m, defaults, SPEC_TRACES_FIELD), m->tracesField ? 1u : 0u)
+            << m->info.name;
+        // Virtual maps: only where asked for, and only for the modules that read them.
+        EXPECT_EQ(capability(*m, defaults, SPEC_VIRTUAL), 0u) << m->info.name;
+        EXPECT_EQ(capability(*m, virtualMaps, SPEC_VIRTUAL), m->readsVirtualMaps ? 1u : 0u)
+            << m->info.name;
+        EXPECT_EQ(m->readsVirtualMaps, m == &shadows::hardModule() || m == &shadows::pcfModule() ||
+                                           m == &shadows::pcssModule())
             << m->info.name;
         // The shared settings carry the blocker search's cap where there is one, else 0.
         const shadows::FilterSettings s = shadows::filterSettings(*m, defaults, false, 8);
@@ -336,7 +347,7 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(box), 1.0);
     EXPECT_EQ(shadows::pcssModule().blurRadiusTexels(box), 41.0); // pcss.maxRadius 40
     EXPECT_EQ(shadows::hardModule().blurRadiusTexels(box), 0.5);
-    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 8u);
+    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 9u);
     // The summed-area members' memory: two RG32UI maps (savsm, vssm) or two RGBA32UI maps
     // (msm-soft) beside the depth; their fixed-point scales keep the widest box exact.
     EXPECT_EQ(shadows::shadowMapBytes(shadows::vssmModule(), 16, defaults), (4u + 16u) * 16 * 16);

@@ -73,7 +73,8 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     for (const std::string& f : out.staged())
         files += (files.empty() ? "" : ", ") + f;
     std::printf("wrote %s/{%s}\n", out.path().c_str(), files.c_str());
-    std::printf("GPU ms per pass (median of %u frames after 1 warm-up):", options.frames);
+    std::printf("GPU ms per pass (median of %u frames after %s):", options.frames,
+                result.virtualMaps ? "2 warm-ups" : "1 warm-up");
     double total = 0;
     for (const PassTime& p : result.passes) {
         std::printf("  %s %.3f", p.pass.c_str(), p.medianMs);

@@ -99,6 +99,23 @@ struct DistanceFieldInfo {
     bool built = false;
 };
 
+// Virtual shadow maps (virtual.enabled): the page cache over a render's frames. The counts are
+// the last frame's: its requests are those of the frame before it (the host reads them back
+// after each frame), the pages it rendered those that were not resident.
+struct VirtualMapInfo {
+    uint32_t requested = 0; // distinct pages asked for
+    uint32_t resident = 0;  // in the pool after the frame's allocation
+    uint32_t rendered = 0;  // rendered in the last frame
+    uint32_t cached = 0;    // of the requested, resident already
+    uint32_t dropped = 0;   // asked for but the pool was full (pixels read coarser pages)
+    uint32_t evicted = 0;   // resident pages given to others, least recently used first
+    uint32_t poolPages = 0; // the pool's capacity
+    uint64_t poolBytes = 0, tableBytes = 0;
+    uint32_t pageSize = 0, virtualSize = 0;
+    std::vector<uint32_t> renderedPerFrame; // every frame's, the warm-up first
+    uint32_t droppedFrames = 0;             // frames whose pool was too small for their view
+};
+
 struct RenderResult {
     uint32_t width = 0, height = 0;
     std::vector<uint8_t> image;                 // RGBA8, sRGB-encoded, rows top to bottom
@@ -109,6 +126,7 @@ struct RenderResult {
     std::vector<PassTime> passes;
     std::vector<LightShadow> lights;
     std::optional<DistanceFieldInfo> field; // sdf only
+    std::optional<VirtualMapInfo> virtualMaps; // virtual.enabled only
 };
 
 using ProgressFn = std::function<void(const std::string& stage)>;

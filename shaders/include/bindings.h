@@ -31,6 +31,8 @@
                                  // kernel follows the light's size (TechniqueModule::searchCap)
 #define SPEC_TRACES_FIELD 17     // 1: the technique traces the scene's distance field, not a map
                                  // (TechniqueModule::tracesField)
+#define SPEC_VIRTUAL 18          // 1: the maps are virtual (virtual.enabled): TECH_MAP is the
+                                 // page pool, read through the page table (virtual_pages.h)
 
 // Descriptor bindings, pass by pass.
 #define BIND_FRAME 0             // FrameData, in every pass that reads it
@@ -44,6 +46,13 @@
 #define TECH_FIELD 9             // the scene's distance field (a 1x1x2 placeholder when the
                                  // technique traces none), trilinear
 #define TECH_PARAMS 18           // the technique's parameter block (technique_block.h)
+#define TECH_PAGE_TABLE 19       // virtual maps' page table: uint[], an entry per page
+#define MARK_LIGHTS 1            // page_marking.comp: LightData[], uniform
+#define MARK_GBUFFER_DEPTH 2
+#define MARK_VIEWS 3             // ShadowViewData[], uniform
+#define MARK_REQUESTS 4          // uint[], an entry per page (page-table layout): 1 requested
+#define MARK_GBUFFER_NORMAL 5
+#define MARK_BLOCK 4u            // the page marking reads one pixel of MARK_BLOCK^2
 #define VIS_LIGHTS 1             // visibility.comp: LightData[], uniform
 #define VIS_GBUFFER_DEPTH 2
 #define VIS_GBUFFER_NORMAL 3

@@ -26,6 +26,11 @@ struct FrameData {       // std140 uniform block: the camera, the image and the 
     vec4 fieldOrigin;    // the scene's distance field when one is built: xyz its lowest corner,
                          // w a voxel's side
     uvec4 fieldSize;     // xyz its voxels per axis (zero: no field)
+    uvec4 virtualPages;  // virtual maps (virtual.enabled; virtual_pages.h): x a page's side in
+                         // texels, y the pool's pages a side, z a spot's or cube face's levels,
+                         // w 1: on
+    vec4 virtualLod;     // x virtual.lodBias, y the technique's reach around a receiver in texels
+                         // (the pages its filter reads are requested)
     vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
                                             // (the PCF family's kernels)
 };
@@ -33,12 +38,13 @@ PENUMBRA_GPU_END
 
 #ifdef __cplusplus
 namespace penumbra::gpu {
-static_assert(sizeof(FrameData) == 800 && offsetof(FrameData, position) == 128 &&
+static_assert(sizeof(FrameData) == 832 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, cameraForward) == 192 && offsetof(FrameData, biasMode) == 208 &&
               offsetof(FrameData, biasParams) == 224 && offsetof(FrameData, search) == 240 &&
               offsetof(FrameData, fieldOrigin) == 256 && offsetof(FrameData, fieldSize) == 272 &&
-              offsetof(FrameData, poisson) == 288);
+              offsetof(FrameData, virtualPages) == 288 &&
+              offsetof(FrameData, virtualLod) == 304 && offsetof(FrameData, poisson) == 320);
 } // namespace penumbra::gpu
 #endif
 

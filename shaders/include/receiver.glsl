@@ -9,12 +9,13 @@
 #define PENUMBRA_RECEIVER_GLSL
 #include "bias.h"
 #include "kernels.h"
+#include "map_reads.glsl"
 
 struct Receiver {
     vec2 uv;        // shadow-map texture coordinates
     float depth;    // d(p), light depth in [0, 1]
     vec2 gradient;  // d depth / d uv on the receiver's plane (zero: no receiver-plane bias)
-    float layer;    // the shadow view's layer in the maps
+    float layer;    // the shadow view's layer in the maps (virtual: its first page-table entry)
     float kernelScale; // kernels in texels of the first cascade, in this view's texels
     vec2 uvDx, uvDy;   // the pixel's footprint: uv's change across it along x and y (mip)
     // bias.mode=adaptive (adaptiveBiasTerms): the per-tap curvature lift (tapDepth) and the
@@ -36,7 +37,7 @@ float texelTest(Receiver r, float stored, vec2 texelUv, vec2 dzRange) {
 // Tests of the 2x2 texels whose first texel is `base`, in textureGather order:
 // x (i, j+1), y (i+1, j+1), z (i+1, j), w (i, j). One gather fetches all four depths.
 vec4 gatherTests(sampler2DArray map, ivec2 base, float size, Receiver r, vec2 dzRange) {
-    vec4 d = textureGather(map, vec3((vec2(base) + 1.0) / size, r.layer), 0);
+    vec4 d = gatherDepths(map, base, size, r.layer);
     vec2 c = (vec2(base) + 0.5) / size;
     float t = 1.0 / size;
     return vec4(texelTest(r, d.x, c + vec2(0.0, t), dzRange),

@@ -7,7 +7,7 @@
 float shadowHard(sampler2DArray map, Receiver r, uint mapSize, vec2 dzRange) {
     ivec2 texel = clamp(ivec2(floor(r.uv * float(mapSize))), ivec2(0), ivec2(int(mapSize) - 1));
     vec2 centre = (vec2(texel) + 0.5) / float(mapSize);
-    return texelTest(r, texelFetch(map, ivec3(texel, int(r.layer)), 0).r, centre, dzRange);
+    return texelTest(r, fetchDepth(map, texel, float(mapSize), r.layer), centre, dzRange);
 }
 
 vec4 evaluateHard(TechniqueInput at) {

@@ -20,7 +20,7 @@ float searchBlockers(sampler2DArray map, Receiver r, uint mapSize, uint n, float
     for (uint i = 0u; i < n; ++i) {
         vec2 p = centre + rotatedOffset(poissonPoint(i), turns, radius) - 0.5;
         ivec2 base = ivec2(floor(p));
-        vec4 depths = textureGather(map, vec3((vec2(base) + 1.0) / size, r.layer), 0);
+        vec4 depths = gatherDepths(map, base, size, r.layer);
         vec4 lit = gatherTests(map, base, size, r, dzRange);
         vec4 blocks = vec4(1.0) - lit;
         sum += dot(blocks, depths);

@@ -10,6 +10,20 @@
 #include <cstring>
 
 namespace penumbra {
+namespace {
+
+// The visibility pass's constants but SPEC_VIRTUAL: the probe hands the technique a map's layer
+// (its texels written from the host), never a virtual map.
+std::vector<shadows::SpecConstant> probeConstants(const shadows::TechniqueModule& module,
+                                                  const ParameterValues& params) {
+    std::vector<shadows::SpecConstant> constants = shadows::visibilityConstants(module, params);
+    for (shadows::SpecConstant& c : constants)
+        if (c.id == SPEC_VIRTUAL)
+            c.value = 0u;
+    return constants;
+}
+
+} // namespace
 
 std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const ParameterValues& params,
                                                 std::span<const float> depths, uint32_t size,
@@ -118,7 +132,7 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
                             {r.views, render::Access::ComputeRead}},
                    .record = [&](render::PassContext& c) {
                        vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                                         p.probe(shadows::visibilityConstants(module, params)));
+                                         p.probe(probeConstants(module, params)));
                        vk::PushDescriptors()
                            .uniformBuffer(BIND_FRAME, frameBuffer.get())
                            .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
@@ -129,6 +143,8 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
                            .uniformBuffer(TECH_PARAMS, paramsBuffer.get())
                            .storageBuffer(PROBE_RESULTS, results.get())
                            .storageBuffer(PROBE_VIEW, viewBuffer.get())
+                           // never read: the probe's map is no virtual map (probeConstants)
+                           .storageBuffer(TECH_PAGE_TABLE, viewBuffer.get())
                            .push(ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.probeLayout);
                        const gpu::ProbePush push{
                            .counts = {static_cast<uint32_t>(probes.size()), size, 0, 0}};

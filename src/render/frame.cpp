@@ -58,6 +58,9 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.views = graph.importBuffer(std::string(target::kViews), in.views);
     r.params = graph.importBuffer(std::string(target::kParams), in.params);
     r.layerParams = graph.importBuffer(std::string(target::kLayerParams), in.layerParams);
+    r.pageTable = graph.importBuffer(std::string(target::kPageTable), in.pageTable);
+    if (s.virtualMaps)
+        r.pageRequests = graph.importBuffer(std::string(target::kPageRequests), in.pageRequests);
     return r;
 }
 
@@ -66,7 +69,9 @@ FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const Gp
     const FrameResources r = declareFrame(graph, s, in);
     // A technique that traces the distance field draws no shadow map: its 1x1 depth map is only
     // bound (the graph gives it a layout on first use).
-    if (!s.technique->tracesField)
+    if (s.virtualMaps)
+        addVirtualPagePasses(graph, pipelines, scene, s, in, r);
+    else if (!s.technique->tracesField)
         addShadowPasses(graph, pipelines, scene, s, in, r);
     addGBufferPass(graph, pipelines, scene, s, in, r);
     addLightPasses(graph, pipelines, s, in, r);

@@ -30,6 +30,13 @@ struct LightDispatch {
     uint32_t views; // how many, from push.light.w
 };
 
+// Virtual maps: a page to render this frame, its projection (pageViewProj) and its texels'
+// first corner in the pool.
+struct PageDraw {
+    glm::mat4 viewProj;
+    bool perspective;
+    glm::uvec2 origin;
+};
 // Everything the frame's passes need to know but the host-filled buffers hold.
 struct FrameSettings {
     const shadows::TechniqueModule* technique;
@@ -46,12 +53,19 @@ struct FrameSettings {
     float slopeBias, constantBias;
     FrameSizes sizes;
     std::vector<ShadowView> views; // every shadow view, in layer order
+    // Virtual maps (virtual.enabled): the views are levels of virtual maps, the depth map the
+    // pool; the pages the host decided to render this frame (filled after the graph is planned,
+    // before it records), a page's side.
+    bool virtualMaps = false;
+    uint32_t pageSize = 0;
+    const std::vector<PageDraw>* pages = nullptr;
 };
 
 // What the frame reads but does not declare: this frame's ring slot (written by the host), the
 // distance field (or its stand-in) and the renderer's samplers.
 struct FrameInputs {
     VkBuffer frame, lights, views, params, layerParams;
+    VkBuffer pageTable, pageRequests; // virtual maps' (a small stand-in table otherwise)
     const vk::Image* field;
     VkSampler nearest, compare, fieldSampler;
 };
@@ -79,6 +93,7 @@ struct FrameResources {
     ResourceId integerPlaceholder = 0, field = 0;
     FilteredBindings filtered{};
     ResourceId frame = 0, lights = 0, views = 0, params = 0, layerParams = 0;
+    ResourceId pageTable = 0, pageRequests = 0;
     // The map a module calls `name` (shadows::kDepthMap or one of its own).
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;
 };
@@ -98,6 +113,14 @@ void addPostPasses(FrameGraph& graph, FramePipelines& p, const shadows::Techniqu
                    const FrameResources& r);
 void addGBufferPass(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                     const FrameSettings& s, const FrameInputs& in, const FrameResources& r);
+// One page of a virtual map rendered into its place in the pool (shadow_passes.cpp).
+void renderPageDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
+                     const PooledImage& pool, const PageDraw& page, uint32_t pageSize,
+                     const FrameSettings& s, VkSampler nearest);
+// Virtual maps: each page the host decided on rendered into the pool (LightSpace), and each
+// light's page marking after the G-buffer (ScreenSpace), both timed as "shadow".
+void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
+                          const FrameSettings& s, const FrameInputs& in, const FrameResources& r);
 void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
                     const FrameInputs& in, const FrameResources& r);
 void addReadbackPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,

@@ -1,8 +1,10 @@
 #include "render/frame_data.h"
 
 #include "core/projection.h"
+#include "core/virtual_maps.h"
 #include "shadows/technique.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra::render {
@@ -27,8 +29,20 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
                       std::exp2(static_cast<float>(params.number("composite.exposure"))), 0},
         .background = {0.55f, 0.65f, 0.8f, 1.0f}};
     f.cameraForward = glm::vec4(glm::normalize(camera.target - camera.position), 0.0f);
-    shadows::setSharedSettings(f, shadows::moduleOf(o.technique), params,
-                               ctx.info().depthLinearFilter, ctx.limits().subTexelPrecisionBits);
+    const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
+    shadows::setSharedSettings(f, module, params, ctx.info().depthLinearFilter,
+                               ctx.limits().subTexelPrecisionBits);
+    const VirtualSettings v = VirtualSettings::of(params);
+    if (v.enabled && module.readsVirtualMaps) {
+        f.virtualPages = {v.pageSize, v.poolPagesPerSide(), v.localLevels(), 1u};
+        // The pages a filter reads around its receiver; a comparison sampler reads the pool's
+        // neighbouring pages instead: the bilinear comparison is done by hand.
+        const double reach = std::max(module.blurRadiusTexels ? module.blurRadiusTexels(params) : 1.0,
+                                      module.searchCap ? module.searchCap(params) : 0.0);
+        f.virtualLod = {static_cast<float>(params.number("virtual.lodBias")),
+                        static_cast<float>(std::ceil(reach)), 0.0f, 0.0f};
+        f.biasMode.y = 0u;
+    }
     return f;
 }
 

@@ -127,11 +127,44 @@ ShadowViews shadowViewsOf(const std::vector<Light>& lights, const RenderOptions&
                                    .lambda = static_cast<float>(o.parameters.number("csm.lambda")),
                                    .blend = static_cast<float>(o.parameters.number("csm.blend")),
                                    .stabilize = o.parameters.number("csm.stabilize") != 0.0};
+    const VirtualSettings virtualMaps = VirtualSettings::of(o.parameters);
+    const bool virtualViews =
+        virtualMaps.enabled && shadows::moduleOf(o.technique).readsVirtualMaps;
     for (uint32_t i = 0; i < lights.size(); ++i) {
         const Light& light = lights[i];
         LightShadow info{.sceneLight = i, .projection = "none"};
         const auto firstView = static_cast<uint32_t>(out.views.size());
-        if (castsShadowMap(light)) {
+        if (castsShadowMap(light) && virtualViews) {
+            info.visibilityIndex = static_cast<int>(out.dispatches.size());
+            // A cube face's guard band in its finest level's texels, wide enough in its
+            // coarsest (one page): a kernel at a face's edge reads that face at every level.
+            const std::vector<VirtualLevel> levels =
+                virtualLevels(light, i, in.bounds, in.camera.position, virtualMaps,
+                              {.guardTexels = guard * virtualMaps.pagesPerSide(),
+                               .nearestSurface = in.nearestSurface[i]},
+                              out.tableEntries);
+            for (const VirtualLevel& level : levels) {
+                out.views.push_back({.light = i, .projection = level.projection});
+                out.records.push_back(viewData(light, level.projection, level.tableOffset));
+                out.records.back().cascade.w = static_cast<float>(level.pagesPerSide);
+                // A sun's levels share the finest's orientation and depth (the page marking
+                // maps its uv to theirs); a spot's or a face's mips share its projection.
+                if (light.type == LightType::Directional)
+                    out.records.back().fromFirst = fromFirstCascade(
+                        out.records[firstView].shadowMatrix, out.records.back().shadowMatrix);
+                info.views.push_back(viewInfo(level.projection, level.tableOffset,
+                                              out.records.back().shadowMatrix));
+            }
+            out.contentsKeys.emplace_back(
+                i, pageContentsKey(light, levels, virtualMaps, casterDepthBias(o.parameters)));
+            out.levels.insert(out.levels.end(), levels.begin(), levels.end());
+            out.dispatches.push_back(
+                {.push = {.light = {i, static_cast<uint32_t>(info.visibilityIndex),
+                                    virtualMaps.size, firstView}},
+                 .type = lightTypeOf(light),
+                 .views = static_cast<uint32_t>(levels.size())});
+            info.projection = "virtual";
+        } else if (castsShadowMap(light)) {
             info.visibilityIndex = static_cast<int>(out.dispatches.size());
             const bool cascaded = light.type == LightType::Directional && cascades.count > 1;
             const ViewFitting fitting{.guardTexels = guard,
@@ -208,7 +241,9 @@ FrameSettings frameSettings(const RenderOptions& o, const std::vector<Light>& li
                       .shadowMapSize = module.tracesField ? 1u : o.shadowMapSize,
                       .shadowViews = static_cast<uint32_t>(views.views.size()),
                       .shadowLights = static_cast<uint32_t>(views.dispatches.size())},
-            .views = views.views};
+            .views = views.views,
+            .virtualMaps = !views.levels.empty(),
+            .pageSize = static_cast<uint32_t>(o.parameters.number("virtual.pageSize"))};
 }
 
 } // namespace penumbra::render

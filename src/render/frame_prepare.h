@@ -7,6 +7,7 @@
 //   3. frameBlocks     the frame block, the technique's and the layers' parameter blocks
 //   4. frameSettings   what the graph's passes read (render/frame.h)
 #include "core/light_space.h"
+#include "core/virtual_maps.h"
 #include "frame_block.h"
 #include "light_geometry.h"
 #include "penumbra/renderer.h"
@@ -30,6 +31,12 @@ struct ShadowViews {
     std::vector<gpu::LightData> lights;       // one per scene light
     std::vector<LightDispatch> dispatches;    // one per shadow-casting light
     std::vector<LightShadow> report;          // RenderResult::lights
+    // virtual.enabled: every view is a level of a light's virtual map (its record's texel.z the
+    // level's first page-table entry, cascade.w its pages a side), the table's size and each
+    // shadowed light's contents key (pageContentsKey).
+    std::vector<VirtualLevel> levels;
+    uint32_t tableEntries = 0;
+    std::vector<std::pair<uint32_t, uint64_t>> contentsKeys;
 };
 struct ViewInputs {
     const Bounds& bounds;

@@ -62,6 +62,19 @@ ImageDecl screen(std::string_view name, VkFormat format, VkImageUsageFlags usage
 
 std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
                                       const ParameterValues& params) {
+    if (module.readsVirtualMaps && params.number("virtual.enabled") != 0.0) {
+        const auto pool = static_cast<uint32_t>(params.number("virtual.poolSize"));
+        const auto page = static_cast<uint32_t>(params.number("virtual.pageSize"));
+        return {{.name = std::string(target::kVirtualPool),
+                 .size = SizeClass::Fixed,
+                 .format = kDepthFormat,
+                 .usage = kDepthTarget,
+                 .width = pool,
+                 .height = pool,
+                 .layerViews = true,
+                 .lifetime = Lifetime::Persistent,
+                 .key = (uint64_t{pool} << 32) | page}};
+    }
     std::vector<ImageDecl> decls{viewMap(shadows::kDepthMap, shadows::MapFormat::Depth32, false)};
     for (const shadows::MapDecl& map : module.maps)
         decls.push_back(

@@ -34,6 +34,10 @@ inline constexpr std::string_view kLights = "slot.lights";
 inline constexpr std::string_view kViews = "slot.views";
 inline constexpr std::string_view kParams = "slot.params";
 inline constexpr std::string_view kLayerParams = "slot.layerParams";
+// Virtual maps: the physical pool (D32, persistent) and the slot's page table and requests.
+inline constexpr std::string_view kVirtualPool = "virtual.pool";
+inline constexpr std::string_view kPageTable = "slot.pageTable";
+inline constexpr std::string_view kPageRequests = "slot.pageRequests";
 // A technique's map `name` of every shadow view: "shadow.depth", "shadow.moments", ...
 std::string shadowMap(std::string_view name);
 } // namespace target
@@ -48,7 +52,8 @@ struct ShadowView {
 VkFormat formatOf(shadows::MapFormat format);
 
 // What a frame with this technique, these parameters and sizes declares of its targets: the
-// depth map and the module's maps (a layer per view), the G-buffer, visibility, the
+// depth map and the module's maps (a layer per view; with virtual.enabled, the physical pool in
+// the depth map's place, one layer, its contents kept across frames), the G-buffer, visibility, the
 // intermediates (full size for the viewer's `intermediates`, else 1x1), colour and the export
 // images. The map declarations alone: shadowMapDecls.
 std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,

@@ -48,6 +48,7 @@ void dispatchVisibility(PassContext& c, FramePipelines& p, const FrameSettings& 
         .storageImage(VIS_INTERMEDIATES, c.image(r.intermediates).view())
         .sampled(VIS_GBUFFER_ALBEDO, c.image(r.gbufferAlbedo).view(), in.nearest)
         .storageImage(VIS_COLOR, c.image(r.color).view())
+        .storageBuffer(TECH_PAGE_TABLE, c.buffer(r.pageTable))
         .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
     vkCmdPushConstants(c.cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                        sizeof light.push, &light.push);
@@ -84,6 +85,7 @@ std::vector<Use> visibilityUses(const FrameResources& r, Access visibility) {
             {r.lights, Access::UniformRead},
             {r.views, Access::UniformRead},
             {r.params, Access::UniformRead},
+            {r.pageTable, Access::ComputeRead},
             {r.gbufferDepth, Access::ComputeSampled},
             {r.gbufferNormal, Access::ComputeSampled},
             {r.gbufferAlbedo, Access::ComputeSampled},

@@ -73,8 +73,18 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {TECH_PARAMS, kUniform},
                                   {VIS_INTERMEDIATES, kImage},
                                   {VIS_GBUFFER_ALBEDO, kSampled},
-                                  {VIS_COLOR, kImage}},
+                                  {VIS_COLOR, kImage},
+                                  {TECH_PAGE_TABLE, kStorage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
+    markingLayout = vk::createPipelineLayout(ctx,
+                                             {{BIND_FRAME, kUniform},
+                                              {MARK_LIGHTS, kUniform},
+                                              {MARK_GBUFFER_DEPTH, kSampled},
+                                              {MARK_VIEWS, kUniform},
+                                              {MARK_REQUESTS, kStorage},
+                                              {MARK_GBUFFER_NORMAL, kSampled}},
+                                             VK_SHADER_STAGE_COMPUTE_BIT,
+                                             sizeof(gpu::VisibilityPush));
     compositeLayout = vk::createPipelineLayout(ctx,
                                                {{BIND_FRAME, kUniform},
                                                 {COMPOSITE_LIGHTS, kUniform},
@@ -101,7 +111,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                             {TECH_COMPARE, kSampled},
                                             {TECH_TABLE, kSampled},
                                             {TECH_FIELD, kSampled},
-                                            {TECH_PARAMS, kUniform}},
+                                            {TECH_PARAMS, kUniform},
+                                            {TECH_PAGE_TABLE, kStorage}},
                                            VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::ProbePush));
     layerLayout =
         vk::createPipelineLayout(ctx,
@@ -136,6 +147,10 @@ VkPipeline FramePipelines::specialized(std::map<Constants, vk::PipelineHandle>& 
         it = cache.emplace(constants, vk::createComputePipeline(ctx, layout, shader, values)).first;
     }
     return it->second.get();
+}
+
+VkPipeline FramePipelines::marking(const Constants& constants) {
+    return specialized(mMarking, markingLayout, "page_marking.comp", constants);
 }
 
 VkPipeline FramePipelines::visibility(const Constants& constants) {

@@ -31,6 +31,7 @@ public:
         probeLayout;
     vk::PipelineLayout readingDepthLayout; // extra depth passes that read a map (depth peels)
     vk::PipelineLayout layerLayout;        // the layers' passes (LAYER_* bindings)
+    vk::PipelineLayout markingLayout;      // virtual maps' page marking (MARK_* bindings)
     vk::PipelineLayout shadowMaskLayout;   // alpha-tested casters
     vk::PipelineHandle shadowOrtho;        // depth clamp on: casters before the near plane clamp
     vk::PipelineHandle shadowPerspective;  // depth clamp off
@@ -48,6 +49,8 @@ public:
     // constants (shadows::visibilityConstants), made on first use.
     VkPipeline visibility(const std::vector<shadows::SpecConstant>& constants);
     VkPipeline probe(const std::vector<shadows::SpecConstant>& constants);
+    // Virtual maps' page marking for one light kind (SPEC_LIGHT_TYPE).
+    VkPipeline marking(const std::vector<shadows::SpecConstant>& constants);
     // The composite on its own, for the scene's lights (sceneLightConstants).
     VkPipeline composite(const std::vector<shadows::SpecConstant>& constants);
     // A layer's pass (src/shadows/layer.h) for one list of specialization constants.
@@ -66,7 +69,7 @@ private:
     VkPipeline specialized(std::map<Constants, vk::PipelineHandle>& cache,
                            const vk::PipelineLayout& layout, std::string_view shader,
                            const Constants& constants);
-    std::map<Constants, vk::PipelineHandle> mVisibility, mProbe, mComposite;
+    std::map<Constants, vk::PipelineHandle> mVisibility, mProbe, mComposite, mMarking;
     std::map<std::pair<std::string, Constants>, vk::PipelineHandle, std::less<>> mLayers;
     std::map<std::pair<std::string, bool>, vk::PipelineHandle> mReadingDepth;
     std::map<std::pair<uint32_t, uint32_t>, vk::PipelineLayout> mPostLayouts;

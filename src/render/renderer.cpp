@@ -1,6 +1,7 @@
 #include "penumbra/renderer.h"
 
 #include "core/projection.h"
+#include "core/virtual_maps.h"
 #include "penumbra/error.h"
 #include "render/distance_field.h"
 #include "render/frame.h"
@@ -13,6 +14,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
@@ -29,11 +31,53 @@ struct ShadowCount {
 ShadowCount shadowCount(const Scene& scene, const RenderOptions& o) {
     ShadowCount n{.scene = scene.name};
     const auto cascades = static_cast<uint32_t>(o.parameters.number("csm.cascades"));
+    const VirtualSettings v = VirtualSettings::of(o.parameters);
     for (const Light& l : scene.lights) {
         n.lights += castsShadowMap(l);
-        n.views += shadowViewCount(l, cascades);
+        n.views += v.enabled ? virtualViewCount(l, v) : shadowViewCount(l, cascades);
     }
     return n;
+}
+
+// virtual.*: a technique that reads its map texel by texel, sizes that make whole pages and a
+// pool and page table the device holds.
+void checkVirtualMaps(const vk::Context& ctx, const Scene& scene, const RenderOptions& o) {
+    const VirtualSettings v = VirtualSettings::of(o.parameters);
+    if (!v.enabled)
+        return;
+    const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
+    if (!module.readsVirtualMaps)
+        throw InputError("virtual.enabled",
+                         fmt::format("technique {} filters whole maps in passes that do not "
+                                     "cross pages; virtual maps serve hard, pcf and pcss",
+                                     techniqueName(o.technique)));
+    auto powerOfTwo = [](const char* key, uint32_t value) {
+        if (!std::has_single_bit(value))
+            throw InputError(key, fmt::format("{} is not a power of two", value));
+    };
+    powerOfTwo("virtual.size", v.size);
+    powerOfTwo("virtual.pageSize", v.pageSize);
+    if (v.pageSize > v.size)
+        throw InputError("virtual.pageSize",
+                         fmt::format("{} exceeds virtual.size ({})", v.pageSize, v.size));
+    if (v.poolSize % v.pageSize != 0)
+        throw InputError("virtual.poolSize", fmt::format("{} is not a multiple of "
+                                                         "virtual.pageSize ({})",
+                                                         v.poolSize, v.pageSize));
+    if (v.poolSize > ctx.limits().maxImageDimension2D)
+        throw InputError("virtual.poolSize",
+                         fmt::format("{} exceeds this device's maxImageDimension2D ({})",
+                                     v.poolSize, ctx.limits().maxImageDimension2D));
+    uint64_t entries = 0;
+    for (const Light& l : scene.lights)
+        entries += virtualTableEntries(l, v);
+    const uint64_t range = ctx.limits().maxStorageBufferRange;
+    if (entries * sizeof(uint32_t) > range)
+        throw InputError(scene.name,
+                         fmt::format("its virtual maps need a page table of {} entries; this "
+                                     "device's storage buffers hold {} (maxStorageBufferRange); "
+                                     "raise virtual.pageSize or lower virtual.size",
+                                     entries, range / sizeof(uint32_t)));
 }
 
 void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const ShadowCount& shadows) {
@@ -109,6 +153,7 @@ void Renderer::check(const Scene& scene, const RenderOptions& o) const {
         throw InputError(scene.name, "the scene has no triangles");
     (void)scene.camera(o.camera); // throws for an unknown camera name
     checkDeviceLimits(mImpl->ctx, o, shadowCount(scene, o));
+    checkVirtualMaps(mImpl->ctx, scene, o);
     if (shadows::moduleOf(o.technique).tracesField)
         render::checkDistanceField(mImpl->ctx, scene, o.parameters);
 }

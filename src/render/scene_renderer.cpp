@@ -11,6 +11,7 @@
 //   A technique that traces the distance field (sdf) draws no shadow map: its field is built
 //   before the first frame that needs it (render/distance_field.h) and kept while the scene
 //   renderer lives and sdf.resolution and sdf.thickness stay the same.
+#include "core/virtual_maps.h"
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
 #include "render/distance_field.h"
@@ -20,6 +21,7 @@
 #include "render/renderer_impl.h"
 #include "vk/check.h"
 #include "vk/sync.h"
+#include "virtual_pages.h"
 
 #include <fmt/format.h>
 
@@ -70,6 +72,10 @@ struct SceneRenderer::Impl {
         // FrameData, LightData[], ShadowViewData[], the technique's and the layers' parameter
         // blocks (mapped)
         vk::Buffer frame, lights, views, params, layerParams;
+        // Virtual maps: the page table the host writes, the requests the GPU's marking writes
+        // (both mapped, a word per page), and the levels the last marking into it used.
+        vk::Buffer pageTable, pageRequests;
+        std::vector<VirtualLevel> markedWith;
     };
     std::array<Slot, kFramesInFlight> slots;
     size_t nextSlot = 0;
@@ -82,6 +88,13 @@ struct SceneRenderer::Impl {
     const render::DistanceField& fieldFor(const ParameterValues& p, const ProgressFn& progress,
                                           bool& built);
     render::FrameOutputs outputs;
+    // Virtual maps: which page the pool holds where, across renders while the pool keeps its
+    // contents; the pages this frame renders; what the last frame did.
+    std::unique_ptr<PageCache> pageCache;
+    uint32_t pageCacheSize = 0;
+    uint64_t pageFrame = 0;
+    std::vector<render::PageDraw> pageDraws;
+    VirtualMapInfo pageInfo;
 
     const vk::Context& ctx() const { return renderer.mImpl->ctx; }
     render::FramePipelines& pipelines() { return renderer.mImpl->pipelines; }
@@ -91,11 +104,22 @@ struct SceneRenderer::Impl {
         RenderResult result;
         render::FrameSettings settings;
         render::FrameInputs inputs;
+        size_t slot = 0;
+        // Virtual maps: every light's levels, the page table's size, the lights' contents keys.
+        std::vector<VirtualLevel> levels;
+        uint32_t tableEntries = 0;
+        std::vector<std::pair<uint32_t, uint64_t>> contentsKeys;
     };
     Prepared prepare(const RenderOptions& o, const FrameState& state, size_t slotIndex,
                      const ProgressFn& progress, bool intermediates);
     // Builds, plans and records the frame's graph into `cmd`.
     render::FrameResources record(VkCommandBuffer cmd, const Prepared& p, vk::GpuTimer& timer);
+    // Virtual maps, before a frame records: the requests of the frame before it (its slot's)
+    // made resident, the pages that were not listed for rendering, the slot's page table
+    // written. `poolHolds`: the pool kept its contents (else every page is gone).
+    void updatePages(const Prepared& p, bool poolHolds);
+    // The slot's page table and request buffers, at least `entries` words each.
+    void reservePageBuffers(Slot& slot, uint32_t entries);
 };
 
 glm::vec2 SceneRenderer::Impl::visibleDepthsFor(const Camera& c, float aspect) {
@@ -147,8 +171,11 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
                                      m.ctx().limits().maxUniformBufferRange));
     const size_t lightBytes = sizeof(gpu::LightData) * std::max<size_t>(m.scene.lights.size(), 1);
     size_t viewCount = 0;
+    // Room for any virtual map: a sun's most levels, a cube's faces with the most mips.
+    const VirtualSettings mostLevels{.size = 65536, .pageSize = 16, .levels = VIRTUAL_MAX_LEVELS};
     for (const Light& light : m.scene.lights) {
-        viewCount += shadowViewCount(light, kMaxCascades); // room for any csm.cascades
+        viewCount += std::max(shadowViewCount(light, kMaxCascades), // room for any csm.cascades
+                              virtualViewCount(light, mostLevels));
         m.nearestSurface.push_back(castsShadowMap(light) && light.type != LightType::Directional
                                        ? nearestSurfaceDistance(m.scene, light.position)
                                        : std::numeric_limits<float>::infinity());
@@ -174,6 +201,7 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
         slot.views = mapped(viewBytes, "shadow view buffer");
         slot.params = mapped(TECHNIQUE_BLOCK_BYTES, "technique parameter buffer");
         slot.layerParams = mapped(layerBytes, "layer parameter buffer");
+        m.reservePageBuffers(slot, 4); // a stand-in table: the visibility pass binds one
     }
     m.nearest = vk::createSampler(m.ctx(), {});
     const VkFilter compareFilter =
@@ -230,7 +258,7 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
     const Camera camera = state.camera ? *state.camera : scene.camera(o.camera);
     const Camera& follows = state.shadowCamera ? *state.shadowCamera : camera;
     const float aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
-    const render::ShadowViews views =
+    render::ShadowViews views =
         render::shadowViewsOf(lights, o,
                               {.bounds = bounds,
                                .nearestSurface = nearestSurface,
@@ -274,17 +302,98 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
     for (size_t i = 0; i < blocks.layers.size(); ++i)
         std::memcpy(static_cast<std::byte*>(slot.layerParams.mapped) + i * TECHNIQUE_BLOCK_BYTES,
                     blocks.layers[i].bytes().data(), TECHNIQUE_BLOCK_BYTES);
+    if (!views.levels.empty())
+        reservePageBuffers(slot, views.tableEntries);
+    render::FrameSettings settings = render::frameSettings(o, lights, views, blocks, intermediates);
+    settings.pages = &pageDraws;
     return {.result = std::move(result),
-            .settings = render::frameSettings(o, lights, views, blocks, intermediates),
+            .settings = std::move(settings),
             .inputs = {.frame = slot.frame.get(),
                        .lights = slot.lights.get(),
                        .views = slot.views.get(),
                        .params = slot.params.get(),
                        .layerParams = slot.layerParams.get(),
+                       .pageTable = slot.pageTable.get(),
+                       .pageRequests = slot.pageRequests.get(),
                        .field = fieldImage,
                        .nearest = nearest.get(),
                        .compare = compare.get(),
-                       .fieldSampler = linear.get()}};
+                       .fieldSampler = linear.get()},
+            .slot = slotIndex % slots.size(),
+            .levels = std::move(views.levels),
+            .tableEntries = views.tableEntries,
+            .contentsKeys = std::move(views.contentsKeys)};
+}
+
+void SceneRenderer::Impl::reservePageBuffers(Slot& slot, uint32_t entries) {
+    const VkDeviceSize bytes = VkDeviceSize{entries} * sizeof(uint32_t);
+    if (slot.pageTable.get() != VK_NULL_HANDLE && slot.pageTable.size >= bytes)
+        return;
+    VK_CHECK(vkDeviceWaitIdle(ctx().device())); // a frame in flight may read them
+    for (auto [buffer, name] : {std::pair{&slot.pageTable, "page table"},
+                                std::pair{&slot.pageRequests, "page requests"}}) {
+        *buffer = vk::createBuffer(ctx(), bytes,
+                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                   vk::MemoryUse::Readback, name);
+        std::memset(buffer->mapped, 0, bytes);
+    }
+    slot.markedWith.clear();
+}
+
+void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
+    const VirtualSettings v = VirtualSettings::of(*p.settings.params);
+    if (!pageCache || !poolHolds || pageCacheSize != v.pageSize ||
+        pageCache->capacity() != v.poolPages()) {
+        pageCache = std::make_unique<PageCache>(v.poolPages());
+        pageCacheSize = v.pageSize;
+    }
+    for (const auto& [light, key] : p.contentsKeys)
+        pageCache->keyLight(light, key);
+    // The level a page belongs to in this frame, and its place in the level's window.
+    auto levelOf = [&](const PageKey& k) -> const VirtualLevel* {
+        for (const VirtualLevel& level : p.levels)
+            if (level.light == k.light && level.face == k.face && level.level == k.level) {
+                const glm::ivec2 local = k.page - level.firstPage;
+                const auto n = static_cast<int>(level.pagesPerSide);
+                return local.x >= 0 && local.y >= 0 && local.x < n && local.y < n ? &level
+                                                                                  : nullptr;
+            }
+        return nullptr;
+    };
+    Slot& slot = slots[p.slot];
+    std::vector<PageKey> requests;
+    if (!slot.markedWith.empty())
+        for (const PageKey& k : requestedPages(slot.markedWith,
+                                               static_cast<const uint32_t*>(slot.pageRequests.mapped)))
+            if (levelOf(k)) // a sun's window may have moved on
+                requests.push_back(k);
+    const PageCache::Update u =
+        pageCache->update(withCoarserPages(requests, p.levels), ++pageFrame);
+    pageDraws.clear();
+    const uint32_t side = v.poolPagesPerSide();
+    for (const auto& [physical, key] : u.render) {
+        const VirtualLevel& level = *levelOf(key);
+        pageDraws.push_back({.viewProj = pageViewProj(level, key.page - level.firstPage),
+                             .perspective = level.projection.perspective,
+                             .origin = glm::uvec2(physical % side, physical / side) * v.pageSize});
+    }
+    const std::vector<uint32_t> table = pageTable(p.levels, *pageCache, p.tableEntries);
+    std::memcpy(slot.pageTable.mapped, table.data(), table.size() * sizeof(uint32_t));
+    slot.markedWith = p.levels;
+    pageInfo.requested = u.requested;
+    pageInfo.resident = pageCache->resident();
+    pageInfo.rendered = static_cast<uint32_t>(u.render.size());
+    pageInfo.cached = u.cached;
+    pageInfo.dropped = u.dropped;
+    pageInfo.evicted = u.evicted;
+    pageInfo.poolPages = pageCache->capacity();
+    pageInfo.poolBytes = uint64_t{v.poolSize} * v.poolSize * sizeof(float);
+    pageInfo.tableBytes = uint64_t{p.tableEntries} * sizeof(uint32_t);
+    pageInfo.pageSize = v.pageSize;
+    pageInfo.virtualSize = v.size;
+    pageInfo.renderedPerFrame.push_back(pageInfo.rendered);
+    pageInfo.droppedFrames += u.dropped > 0;
 }
 
 render::FrameResources SceneRenderer::Impl::record(VkCommandBuffer cmd, const Prepared& p,
@@ -292,6 +401,9 @@ render::FrameResources SceneRenderer::Impl::record(VkCommandBuffer cmd, const Pr
     render::FrameGraph graph(*pool, p.settings.sizes);
     const render::FrameResources r =
         render::buildFrame(graph, pipelines(), gpu, p.settings, p.inputs);
+    graph.plan(); // the pool's resources exist from here
+    if (p.settings.virtualMaps)
+        updatePages(p, graph.holdsContents(r.depthMap));
     timer.reset(cmd);
     graph.record(cmd, &timer);
     outputs = {.color = &graph.image(r.color).get(),
@@ -312,14 +424,19 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     m.nextSlot = (m.nextSlot + 1) % m.slots.size();
     RenderResult& result = prepared.result;
     vk::GpuTimer timer(ctx, kTimedPasses);
-    for (uint32_t frame = 0; frame <= o.frames; ++frame) {
+    m.pageInfo = {};
+    // Virtual maps: a frame renders the pages the frame before it asked for, so the first
+    // warm-up frame asks (its own pixels read whatever the pool held) and the second renders.
+    const uint32_t warmUps = prepared.settings.virtualMaps ? 2 : 1;
+    for (uint32_t frame = 0; frame < o.frames + warmUps; ++frame) {
+        const bool warmUp = frame < warmUps;
         if (progress)
-            progress(frame == 0 ? std::string("warm-up frame")
-                                : fmt::format("frame {}/{}", frame, o.frames));
-        prepared.settings.readback = frame == o.frames; // untimed passes at the end
+            progress(warmUp ? std::string("warm-up frame")
+                            : fmt::format("frame {}/{}", frame + 1 - warmUps, o.frames));
+        prepared.settings.readback = frame + 1 == o.frames + warmUps; // untimed, at the end
         ctx.submitAndWait([&](VkCommandBuffer cmd) { m.record(cmd, prepared, timer); });
-        if (frame == 0)
-            continue; // the warm-up frame pays for first-use costs
+        if (warmUp)
+            continue; // the warm-up frames pay for first-use costs
         for (const auto& [pass, ms] : timer.read()) {
             auto it = std::find_if(result.passes.begin(), result.passes.end(),
                                    [&, name = pass](const PassTime& p) { return p.pass == name; });
@@ -330,6 +447,14 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     }
     for (PassTime& p : result.passes)
         p.medianMs = median(p.frameMs);
+    if (prepared.settings.virtualMaps) {
+        result.virtualMaps = m.pageInfo;
+        if (m.pageInfo.dropped > 0 && progress)
+            progress(fmt::format("warning: the virtual pool holds {} pages; this view asked for "
+                                 "{} and {} read coarser pages (raise virtual.poolSize)",
+                                 m.pageInfo.poolPages, m.pageInfo.requested,
+                                 m.pageInfo.dropped));
+    }
 
     if (progress)
         progress("reading back");

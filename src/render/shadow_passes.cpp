@@ -26,34 +26,41 @@ struct ReadMap {
     VkPipeline pipeline;
 };
 
-// One depth pass of the scene from a light into layer `layer` of `target` (cleared to the far
-// plane), with the hardware slope bias and the constant bias of the vertex shader. Opaque casters
-// go in one draw; alpha-tested ones per material with their texture. `reads` set: a technique's
-// extra depth pass (a depth peel), which draws every caster with its pipeline, the read map's
-// layer at binding 0.
+// One depth pass of the scene from a light (world -> clip `viewProj`) into layer `layer` of
+// `target`, over `area` (the whole layer when null), cleared to the far plane first, with the
+// hardware slope bias and the constant bias of the vertex shader. Opaque casters go in one draw;
+// alpha-tested ones per material with their texture. `reads` set: a technique's extra depth pass
+// (a depth peel), which draws every caster with its pipeline, the read map's layer at binding 0.
 void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
-                      const PooledImage& target, uint32_t layer, const ShadowView& view,
-                      const FrameSettings& s, const ReadMap* reads, VkSampler nearest) {
+                      const PooledImage& target, uint32_t layer, const glm::mat4& viewProj,
+                      bool perspective, const FrameSettings& s, const ReadMap* reads,
+                      VkSampler nearest, const VkRect2D* area = nullptr) {
     const vk::Image& image = target.get();
     const VkRenderingAttachmentInfo depth =
         attachment(image, {.depthStencil = {1.0f, 0}}, target.layer(layer));
+    const VkRect2D rect = area ? *area : VkRect2D{{0, 0}, {image.width, image.height}};
     const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-                               .renderArea = {{0, 0}, {image.width, image.height}},
+                               .renderArea = rect,
                                .layerCount = 1,
                                .pDepthAttachment = &depth};
     vkCmdBeginRendering(cmd, &info);
-    setViewport(cmd, image.width, image.height);
+    const VkViewport viewport{.x = static_cast<float>(rect.offset.x),
+                              .y = static_cast<float>(rect.offset.y),
+                              .width = static_cast<float>(rect.extent.width),
+                              .height = static_cast<float>(rect.extent.height),
+                              .minDepth = 0.0f,
+                              .maxDepth = 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &rect);
     bindGeometry(cmd, scene);
-    const bool perspective = view.projection.perspective;
-    gpu::CasterPush push{
-        .shadow = {.viewProj = view.projection.viewProj, .bias = {s.constantBias, 0, 0, 0}}};
+    gpu::CasterPush push{.shadow = {.viewProj = viewProj, .bias = {s.constantBias, 0, 0, 0}}};
     auto bind = [&](VkPipeline pipeline) {
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
         vkCmdSetDepthBias(cmd, 0.0f, 0.0f, s.slopeBias);
     };
     auto draw = [&](uint32_t first, uint32_t count) { // what the view may show of it
         for (const IndexRange& r :
-             visibleRanges(scene.clusters, first, count, view.projection.viewProj, !perspective))
+             visibleRanges(scene.clusters, first, count, viewProj, !perspective))
             vkCmdDrawIndexed(cmd, r.count, 1, r.first, 0, 0);
     };
     constexpr VkShaderStageFlags kStages =
@@ -166,6 +173,15 @@ void recordPostPass(VkCommandBuffer cmd, FramePipelines& p, const shadows::PostP
 
 } // namespace
 
+void renderPageDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
+                     const PooledImage& pool, const PageDraw& page, uint32_t pageSize,
+                     const FrameSettings& s, VkSampler nearest) {
+    const VkRect2D area{{static_cast<int32_t>(page.origin.x), static_cast<int32_t>(page.origin.y)},
+                        {pageSize, pageSize}};
+    renderLightDepth(cmd, p, scene, pool, 0, page.viewProj, page.perspective, s, nullptr, nearest,
+                     &area);
+}
+
 void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                      const FrameSettings& s, const FrameInputs& in, const FrameResources& r) {
     const shadows::TechniqueModule& technique = *s.technique;
@@ -175,8 +191,10 @@ void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene
                    .uses = {{r.depthMap, Access::DepthAttachment}},
                    .record = [&p, &scene, &s, &in, map = r.depthMap](PassContext& c) {
                        for (uint32_t v = 0; v < s.views.size(); ++v)
-                           renderLightDepth(c.cmd, p, scene, c.image(map), v, s.views[v], s,
-                                            nullptr, in.nearest);
+                           renderLightDepth(c.cmd, p, scene, c.image(map), v,
+                                            s.views[v].projection.viewProj,
+                                            s.views[v].projection.perspective, s, nullptr,
+                                            in.nearest);
                    }});
     for (const shadows::DepthPassDecl& pass : technique.depthPasses) {
         const ResourceId read = r.named(technique, pass.reads);
@@ -190,7 +208,8 @@ void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene
                                const ReadMap reads{
                                    c.image(read).layer(v),
                                    p.readingDepthPass(pass.fragmentShader, perspective)};
-                               renderLightDepth(c.cmd, p, scene, c.image(target), v, s.views[v], s,
+                               renderLightDepth(c.cmd, p, scene, c.image(target), v,
+                                                s.views[v].projection.viewProj, perspective, s,
                                                 &reads, in.nearest);
                            }
                        }});

@@ -18,7 +18,8 @@ const TechniqueModule& hardModule() {
                 const glm::vec2 dzRange(in.frame.biasParams.x, in.frame.biasParams.y);
                 return glm::vec4(hardTest(in.map, in.probe, in.margins, dzRange), 0.0f, 0.0f, 0.0f);
             },
-        .blurRadiusTexels = [](const ParameterValues&) { return 0.5; }};
+        .blurRadiusTexels = [](const ParameterValues&) { return 0.5; },
+        .readsVirtualMaps = true};
     return module;
 }
 

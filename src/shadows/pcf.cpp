@@ -165,7 +165,8 @@ const TechniqueModule& pcfModule() {
                 default:
                     return 1.0;
                 }
-            }};
+            },
+        .readsVirtualMaps = true};
     return module;
 }
 

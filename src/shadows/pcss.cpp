@@ -118,7 +118,8 @@ const TechniqueModule& pcssModule() {
         .modelsLightSize = true,
         .blurRadiusTexels =
             [](const ParameterValues& p) { return p.number("pcss.maxRadius") + 1.0; },
-        .searchCap = [](const ParameterValues& p) { return p.number("pcss.maxRadius"); }};
+        .searchCap = [](const ParameterValues& p) { return p.number("pcss.maxRadius"); },
+        .readsVirtualMaps = true};
     return module;
 }
 

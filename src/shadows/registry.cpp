@@ -25,6 +25,8 @@ const std::vector<TechniqueInfo>& techniqueTable() {
         std::vector<TechniqueInfo> t;
         for (const shadows::TechniqueModule* m : shadows::allModules()) {
             t.push_back(m->info);
+            if (m->readsVirtualMaps)
+                t.back().families.push_back("virtual");
             for (const shadows::LayerModule* layer : shadows::allLayers())
                 t.back().families.push_back(layer->name);
         }
@@ -147,6 +149,57 @@ const std::vector<ParameterInfo>& parameterTable() {
          .defaultValue = 1,
          .description = "fit each cascade to its slice's bounding sphere and snap it to whole "
                         "texels, so shadows do not crawl when the camera moves or turns"}};
+    // Virtual shadow maps [Unreal Engine 5; EEVEE-Next]: src/core/virtual_maps.h,
+    // docs/techniques.md "Virtual shadow maps". Read by the techniques that read their map texel
+    // by texel (TechniqueModule::readsVirtualMaps).
+    static const std::vector<ParameterInfo> virtualMaps{
+        {.key = "virtual.enabled",
+         .type = ParameterType::Bool,
+         .defaultValue = 0,
+         .description = "store the shadow views as virtual maps: pages of a very large map "
+                        "rendered only where visible pixels need them, kept across frames in a "
+                        "physical pool (0: cascades and cube faces of --shadow-map-size)"},
+        {.key = "virtual.size",
+         .type = ParameterType::Int,
+         .defaultValue = 16384,
+         .min = 1024,
+         .max = 65536,
+         .unit = "texels (a power of two)",
+         .description = "a virtual map level's side: a sun's clipmap level, a spot's frustum, a "
+                        "cube face"},
+        {.key = "virtual.pageSize",
+         .type = ParameterType::Int,
+         .defaultValue = 128,
+         .min = 16,
+         .max = 1024,
+         .unit = "texels (a power of two)",
+         .description = "a page's side: the unit that is requested, rendered and cached"},
+        {.key = "virtual.levels",
+         .type = ParameterType::Int,
+         .defaultValue = 12,
+         .min = 1,
+         .max = 16,
+         .unit = "levels",
+         .description = "a sun's clipmap levels up to the one over the whole scene, each twice "
+                        "the extent of the one below (the finest: the scene's extent / 2^(levels "
+                        "- 1)); above it, its mips down to one page, as a spot's and a cube "
+                        "face's levels"},
+        {.key = "virtual.poolSize",
+         .type = ParameterType::Int,
+         .defaultValue = 8192,
+         .min = 256,
+         .max = 32768,
+         .unit = "texels (a multiple of virtual.pageSize)",
+         .description = "the physical pool's side: (poolSize / pageSize)^2 pages shared by every "
+                        "light; when full, pixels read coarser pages"},
+        {.key = "virtual.lodBias",
+         .type = ParameterType::Float,
+         .defaultValue = 0.0,
+         .min = -4.0,
+         .max = 4.0,
+         .unit = "levels",
+         .description = "a pixel reads the finest level whose texel is no finer than itself, "
+                        "this many levels coarser (+) or finer (-)"}};
     static const std::vector<ParameterInfo> composite{
         {.key = "composite.shadowIntensity",
          .type = ParameterType::Float,
@@ -185,6 +238,7 @@ const std::vector<ParameterInfo>& parameterTable() {
         for (const shadows::LayerModule* layer : shadows::allLayers())
             t.insert(t.end(), layer->parameters.begin(), layer->parameters.end());
         t.insert(t.end(), csm.begin(), csm.end());
+        t.insert(t.end(), virtualMaps.begin(), virtualMaps.end());
         t.insert(t.end(), composite.begin(), composite.end());
         return t;
     }();

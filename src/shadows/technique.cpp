@@ -251,6 +251,9 @@ std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
         {SPEC_FOOTPRINT, module.readsFootprint && module.readsFootprint(params) ? 1u : 0u});
     constants.push_back({SPEC_BLOCKER_SEARCH, module.searchCap ? 1u : 0u});
     constants.push_back({SPEC_TRACES_FIELD, module.tracesField ? 1u : 0u});
+    constants.push_back(
+        {SPEC_VIRTUAL,
+         module.readsVirtualMaps && params.number("virtual.enabled") != 0.0 ? 1u : 0u});
     if (module.constants)
         for (const SpecConstant& c : module.constants(params))
             constants.push_back(c);

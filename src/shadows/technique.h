@@ -165,6 +165,11 @@ struct TechniqueModule {
     // cascades the visibility pass runs its search (STAGE_SEARCH) and its filter (STAGE_FILTER)
     // in the finest cascades that hold them (pcss).
     double (*searchCap)(const ParameterValues&) = nullptr;
+    // It reads its depth map texel by texel, through map_reads.glsl (hard, pcf, pcss): its taps
+    // can go through a virtual map's page table (virtual.enabled, SPEC_VIRTUAL). A technique
+    // that filters whole maps in post passes (blurs, tables) cannot: its passes do not cross
+    // pages.
+    bool readsVirtualMaps = false;
 };
 
 // The separable Gaussian blur of the blurred-moment techniques (vsm, esm, evsm, msm;

@@ -1,0 +1,146 @@
+#pragma once
+// Virtual shadow maps on the host (docs/techniques.md, "Virtual shadow maps"): the levels of a
+// light's virtual map and the page cache that decides which pages are resident in the physical
+// pool. The page lookup's maths is shared with the shaders (shaders/include/virtual_pages.h).
+//
+// A sun's virtual map is a clipmap: orthographic levels of the same orientation and depth range,
+// level l twice the extent of level l - 1, each centred on the camera and snapped to whole pages
+// (a page keeps its place in the world while the camera moves: it stays valid); level
+// `levels` - 1 covers the whole scene, and the levels above it are its mips (its window, half the
+// pages a side each), down to one page. A spot's is its frustum at `size` texels and its mips down
+// to one page; a point light's, six such cube faces. Pages are named by PageKey: a sun's by
+// their absolute place in the level's page grid, so a moved window finds the pages it keeps.
+#include "core/light_space.h"
+#include "penumbra/settings.h"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+namespace penumbra {
+
+// The `virtual` parameter family.
+struct VirtualSettings {
+    bool enabled = false;
+    uint32_t size = 16384;    // virtual.size: a level's side in texels
+    uint32_t pageSize = 128;  // virtual.pageSize: a page's side in texels
+    uint32_t levels = 12;     // virtual.levels: a sun's clipmap levels up to the scene's extent
+    uint32_t poolSize = 8192; // virtual.poolSize: the physical pool's side in texels
+    float lodBias = 0.0f;     // virtual.lodBias: levels coarser (+) or finer (-) than a pixel
+
+    static VirtualSettings of(const ParameterValues& p);
+    uint32_t pagesPerSide() const { return size / pageSize; }
+    uint32_t poolPagesPerSide() const { return poolSize / pageSize; }
+    uint32_t poolPages() const { return poolPagesPerSide() * poolPagesPerSide(); }
+    // Levels of a spot's map or a cube face: the full size, then mips down to one page.
+    uint32_t localLevels() const;
+    // A sun's: `levels` up to the one over the whole scene, then that one's mips down to one
+    // page (an image whose pixels are larger than the scene level's texels reads those).
+    uint32_t sunLevels() const { return levels + localLevels() - 1; }
+};
+
+// A light's levels (0 without a shadow map) and their page-table entries.
+uint32_t virtualViewCount(const Light& light, const VirtualSettings& settings);
+uint64_t virtualTableEntries(const Light& light, const VirtualSettings& settings);
+
+// One level of a light's virtual map: a shadow view over pagesPerSide^2 pages.
+struct VirtualLevel {
+    uint32_t light = 0; // the scene light
+    uint32_t face = 0;  // a point light's cube face; 0 otherwise
+    uint32_t level = 0; // 0 the finest
+    LightProjection projection; // the level's whole window
+    glm::ivec2 firstPage{0};    // the window's first page in the level's absolute page grid
+    uint32_t pagesPerSide = 0;
+    uint32_t tableOffset = 0;   // its first page-table entry
+    // A sun's clipmap level below the scene's mips: its pages are named in a grid anchored at
+    // the light space's origin (firstPage moves with the camera); else by their place in the
+    // level's fixed window.
+    bool followsCamera = false;
+    uint32_t tableEntries() const { return pagesPerSide * pagesPerSide; }
+};
+
+// A light's levels, finest first (a point light's faces one after the other), their table
+// entries from `tableOffset` on (advanced past them). `camera`: the position a sun's clipmap
+// centres on.
+std::vector<VirtualLevel> virtualLevels(const Light& light, uint32_t lightIndex,
+                                        const Bounds& scene, const glm::vec3& camera,
+                                        const VirtualSettings& settings,
+                                        const ViewFitting& fitting, uint32_t& tableOffset);
+
+// The level's view-projection narrowed to its page `page` (the window's own page coordinates):
+// what renders that page alone into a pageSize^2 viewport.
+glm::mat4 pageViewProj(const VirtualLevel& level, glm::ivec2 page);
+
+// What a light's pages hold depends on: its geometry, the virtual map's sizes and the casters'
+// depth offsets. A change of any drops every page of the light.
+uint64_t pageContentsKey(const Light& light, const std::vector<VirtualLevel>& levels,
+                         const VirtualSettings& settings, glm::vec2 casterBias);
+
+struct PageKey {
+    uint32_t light = 0, face = 0, level = 0;
+    glm::ivec2 page{0}; // absolute in the level's grid
+    bool operator==(const PageKey&) const = default;
+};
+
+struct PageKeyHash {
+    size_t operator()(const PageKey& k) const;
+};
+
+// The key of entry `entry` of a level's table.
+PageKey pageKeyOf(const VirtualLevel& level, uint32_t entry);
+
+// The physical pool: which page holds which virtual page, least recently used first out.
+class PageCache {
+public:
+    explicit PageCache(uint32_t capacity);
+
+    // A light's contents key: when it differs from the last one given, its pages are dropped.
+    // Returns how many were.
+    uint32_t keyLight(uint32_t light, uint64_t contentsKey);
+
+    struct Update {
+        std::vector<std::pair<uint32_t, PageKey>> render; // physical page, what it must hold
+        uint32_t requested = 0; // distinct pages asked for
+        uint32_t cached = 0;    // of them, resident already
+        uint32_t evicted = 0;   // resident pages given to others (least recently used first)
+        uint32_t dropped = 0;   // asked for but the pool was full: readers fall back coarser
+    };
+    // This frame's requests: the resident ones are kept, the others allocated (the coarsest
+    // levels first, so that a full pool keeps the coarse pages every reader can fall back on),
+    // from free pages, then from pages not requested this frame, least recently used first.
+    Update update(std::vector<PageKey> requests, uint64_t frame);
+
+    std::optional<uint32_t> physicalOf(const PageKey& key) const;
+    uint32_t capacity() const { return static_cast<uint32_t>(mPages.size()); }
+    uint32_t resident() const;
+
+private:
+    struct Physical {
+        std::optional<PageKey> key;
+        uint64_t lastUsed = 0;
+    };
+    std::vector<Physical> mPages;
+    std::vector<std::pair<uint32_t, uint64_t>> mLightKeys;
+    std::unordered_map<PageKey, uint32_t, PageKeyHash> mWhere;
+};
+
+// The page table of `levels`' entries: 1 + the physical page of each resident page, else
+// VIRTUAL_NOT_RESIDENT. `entries`: the table's size (the last level's end at least).
+std::vector<uint32_t> pageTable(const std::vector<VirtualLevel>& levels, const PageCache& cache,
+                                uint32_t entries);
+
+// `requests` and, for each, the page that holds it in every coarser level of its light (and
+// face), once each: the chain a reader falls back on when the pool cannot hold its own level's
+// page (PageCache::update allocates the coarsest first). Pages outside a level's window are
+// left out.
+std::vector<PageKey> withCoarserPages(const std::vector<PageKey>& requests,
+                                      const std::vector<VirtualLevel>& levels);
+
+// The pages a request buffer (one word per table entry, non-zero: requested) asks for.
+std::vector<PageKey> requestedPages(const std::vector<VirtualLevel>& levels,
+                                    const uint32_t* requests);
+
+} // namespace penumbra

@@ -1,0 +1,65 @@
+// Virtual shadow maps' passes (virtual.enabled; render/frame.h, docs/techniques.md "Virtual shadow
+// maps"): the pages the host decided to render this frame (SceneRenderer, from the requests the
+// previous frame's marking left and the page cache, src/core/virtual_maps.h), each cleared and
+// drawn into its place in the pool, before the G-buffer; after it, every visible pixel's page
+// requests, which the host reads back once the frame is done. Both are timed as "shadow": all the
+// shadow-map work of a frame whose pages are all cached is the marking.
+#include "render/frame.h"
+#include "render/pass_utils.h"
+#include "vk/pipelines.h"
+
+namespace penumbra::render {
+
+void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
+                          const FrameSettings& s, const FrameInputs& in, const FrameResources& r) {
+    graph.addPass({.name = "shadow",
+                   .phase = Phase::LightSpace,
+                   .uses = {{r.depthMap, Access::DepthAttachment}},
+                   .record = [&p, &scene, &s, &in, pool = r.depthMap](PassContext& c) {
+                       if (s.pages)
+                           for (const PageDraw& page : *s.pages)
+                               renderPageDepth(c.cmd, p, scene, c.image(pool), page, s.pageSize, s,
+                                               in.nearest);
+                   }});
+    // The requests start empty every frame.
+    graph.addPass({.name = "",
+                   .phase = Phase::ScreenSpace,
+                   .uses = {{r.pageRequests, Access::TransferWrite}},
+                   .record = [requests = r.pageRequests](PassContext& c) {
+                       vkCmdFillBuffer(c.cmd, c.buffer(requests), 0, VK_WHOLE_SIZE, 0u);
+                   }});
+    graph.addPass(
+        {.name = "shadow",
+         .phase = Phase::ScreenSpace,
+         .uses = {{r.frame, Access::UniformRead},
+                  {r.lights, Access::UniformRead},
+                  {r.views, Access::UniformRead},
+                  {r.gbufferDepth, Access::ComputeSampled},
+                  {r.gbufferNormal, Access::ComputeSampled},
+                  {r.pageRequests, Access::ComputeWrite}},
+         .record = [&p, &s, &in, r](PassContext& c) {
+             for (const LightDispatch& light : s.shadowLights) {
+                 vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                                   p.marking({{SPEC_LIGHT_TYPE, light.type}}));
+                 vk::PushDescriptors()
+                     .uniformBuffer(BIND_FRAME, in.frame)
+                     .uniformBuffer(MARK_LIGHTS, in.lights)
+                     .sampled(MARK_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
+                     .sampled(MARK_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
+                     .uniformBuffer(MARK_VIEWS, in.views)
+                     .storageBuffer(MARK_REQUESTS, c.buffer(r.pageRequests))
+                     .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.markingLayout);
+                 vkCmdPushConstants(c.cmd, p.markingLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                                    sizeof light.push, &light.push);
+                 vkCmdDispatch(c.cmd, groups((s.sizes.width + MARK_BLOCK - 1) / MARK_BLOCK),
+                               groups((s.sizes.height + MARK_BLOCK - 1) / MARK_BLOCK), 1);
+             }
+         }});
+    // The host reads them after the frame's fence.
+    graph.addPass({.name = "",
+                   .phase = Phase::Readback,
+                   .uses = {{r.pageRequests, Access::HostRead}},
+                   .record = [](PassContext&) {}});
+}
+
+} // namespace penumbra::render
