@@ -608,6 +608,32 @@ TEST(Cli, StabilizedCascadesShimmerAtMostHalfAsMuchAsFreeOnes) {
     EXPECT_LT(sun, 0.05);
 }
 
+// Virtual maps along the camera paths: pages fixed in the world do not crawl (shimmer no worse
+// than stabilised cascades'), and each frame after the first renders only the few pages its view
+// uncovers.
+TEST(Cli, VirtualMapsAlongCameraPathsRenderFewPagesAndDoNotCrawl) {
+    for (const char* path : {"dolly", "orbit"}) {
+        const fs::path out = scratch(std::string("virtual-path-") + path);
+        const ProcessResult r =
+            runCli({"compare", "builtin:field", "-o", out.string(), "--techniques", "hard",
+                    "--width", "160", "--height", "120", "--frames", "1", "--samples", "4",
+                    "--set", "virtual.enabled=1", "--camera-path", path, "--path-frames", "5"});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const auto j = nlohmann::json::parse(slurp(out / "metrics.json"))["techniques"]["hard"];
+        const auto rendered = j["path_pages_rendered"].get<std::vector<uint32_t>>();
+        const auto resident = j["path_pages_resident"].get<std::vector<uint32_t>>();
+        ASSERT_EQ(rendered.size(), 5u) << j.dump();
+        ASSERT_EQ(resident.size(), 5u);
+        for (size_t t = 1; t < rendered.size(); ++t)
+            EXPECT_LE(rendered[t] * 10, resident[t]) << path << " frame " << t;
+        const double stable = fieldShimmer(path, true);
+        std::printf("%s: virtual shimmer %.6f (stabilised cascades %.6f), pages rendered %u of %u "
+                    "resident after the first frame\n",
+                    path, j["shimmer"].get<double>(), stable, rendered.back(), resident.back());
+        EXPECT_LE(j["shimmer"].get<double>(), stable + 1e-5) << path;
+    }
+}
+
 TEST(Cli, CompareRefusesAnUnknownCameraPath) {
     const fs::path out = scratch("shimmer-bad");
     const ProcessResult r =

@@ -135,9 +135,14 @@ TEST(VirtualMaps, ACameraMoveKeepsEveryPageWhereItWasInTheWorld) {
             const glm::vec2 a = glm::vec2(uvOf(before[l], p)), b = glm::vec2(uvOf(after[l], p));
             if (!gpu::virtualHolds(a, 1.0f, 0.0f) || !gpu::virtualHolds(b, 1.0f, 0.0f))
                 continue;
-            // The same absolute page, and the same texel in it.
+            // The same absolute page (the same key), and the same texel in it.
             const glm::ivec2 pa = pageOf(before[l], p, s.pageSize), pb = pageOf(after[l], p, s.pageSize);
             EXPECT_EQ(before[l].firstPage + pa, after[l].firstPage + pb) << "level " << l;
+            const uint32_t ea = gpu::virtualEntryIndex(before[l].tableOffset,
+                                                       before[l].pagesPerSide, pa);
+            const uint32_t eb = gpu::virtualEntryIndex(after[l].tableOffset,
+                                                       after[l].pagesPerSide, pb);
+            EXPECT_EQ(pageKeyOf(before[l], ea), pageKeyOf(after[l], eb)) << "level " << l;
             const float size = static_cast<float>(s.size);
             const glm::vec2 ta = a * size - glm::vec2(pa) * float(s.pageSize);
             const glm::vec2 tb = b * size - glm::vec2(pb) * float(s.pageSize);
@@ -150,6 +155,45 @@ TEST(VirtualMaps, ACameraMoveKeepsEveryPageWhereItWasInTheWorld) {
     EXPECT_GT(moved, 2u) << "the fine levels follow the camera";
     // Levels at least as large as the scene do not move.
     EXPECT_EQ(before[s.levels - 1].firstPage, after[s.levels - 1].firstPage);
+}
+
+// The chain a reader falls back on: for a page of any level, the page of every coarser level (of
+// its light and face) that holds its middle, and nothing else.
+TEST(VirtualMaps, EveryPageComesWithThePagesThatHoldItInCoarserLevels) {
+    const VirtualSettings s = small();
+    for (const Light& light : {kSun, kSpot, kPoint}) {
+        const std::vector<VirtualLevel> levels = levelsOf(light, {12, 2, -7});
+        std::mt19937 rng(11);
+        size_t checked = 0;
+        for (int i = 0; i < 40; ++i) {
+            const VirtualLevel& level = levels[rng() % levels.size()];
+            const uint32_t entry =
+                level.tableOffset + static_cast<uint32_t>(rng() % level.tableEntries());
+            const PageKey key = pageKeyOf(level, entry);
+            const std::vector<PageKey> chain = withCoarserPages({key}, levels);
+            // The page's middle in the world, at mid depth.
+            const glm::ivec2 local = key.page - level.firstPage;
+            const glm::vec2 uv = (glm::vec2(local) + 0.5f) / static_cast<float>(level.pagesPerSide);
+            const glm::vec4 ndc(uv * 2.0f - 1.0f, 0.5f, 1.0f);
+            const glm::vec4 w = glm::inverse(level.projection.viewProj) * ndc;
+            const glm::vec3 middle = glm::vec3(w) / w.w;
+            std::vector<PageKey> expected{key};
+            for (const VirtualLevel& coarser : levels)
+                if (coarser.face == level.face && coarser.level > level.level) {
+                    const glm::vec2 c = glm::vec2(uvOf(coarser, middle));
+                    if (!gpu::virtualHolds(c, 1.0f, 0.0f))
+                        break;
+                    const glm::ivec2 page = pageOf(coarser, middle, s.pageSize);
+                    expected.push_back({.light = 0, .face = coarser.face, .level = coarser.level,
+                                        .page = coarser.firstPage + page});
+                }
+            ASSERT_EQ(chain.size(), expected.size()) << int(light.type) << " level " << level.level;
+            for (size_t k = 0; k < chain.size(); ++k)
+                EXPECT_EQ(chain[k], expected[k]) << int(light.type) << " level " << level.level;
+            checked += chain.size();
+        }
+        EXPECT_GT(checked, 80u);
+    }
 }
 
 TEST(VirtualMaps, APagesProjectionFillsItsViewportWithTheLevelsTexels) {

@@ -223,19 +223,26 @@ TEST_F(VirtualTest, APoolTooSmallForTheViewReadsCoarserPages) {
                 r.virtualMaps->requested, small.rmse, roomy.rmse,
                 100.0 * small.misclassifiedOutsideEdges);
     EXPECT_GT(small.rmse, roomy.rmse) << "coarser pages: the test shows the shortage";
+    // Coarser pages, not false shadow where the truth is lit.
+    EXPECT_LE(small.acne, roomy.acne + 0.0005);
     EXPECT_LE(small.misclassifiedOutsideEdges, 0.02) << "coarser shadows, not garbage";
     for (float v : r.visibility[0])
         EXPECT_TRUE(std::isnan(v) || (v >= 0.0f && v <= 1.0f));
 }
 
-// Without virtual maps the frame is as it was, even after renders with them on the same renderer.
+// Without virtual maps the frame is as it was, even after renders with them on the same renderer;
+// and a render without them frees the pool, so the next one with them renders its pages again.
 TEST_F(VirtualTest, OffTheFrameIsAsItWas) {
     const Scene s = restingObjects(sharpPoint());
     SceneRenderer scene(sharedRenderer(), s);
     const RenderResult plain = scene.render(options(Technique::Pcf, {}));
     EXPECT_FALSE(plain.virtualMaps);
-    (void)scene.render(options(Technique::Pcf, kVirtual));
+    const RenderResult pages = scene.render(options(Technique::Pcf, kVirtual));
     const RenderResult after = scene.render(options(Technique::Pcf, {}));
     EXPECT_TRUE(sameBits(after.visibility[0], plain.visibility[0]));
     EXPECT_EQ(after.image, plain.image);
+    const RenderResult again = scene.render(options(Technique::Pcf, kVirtual));
+    EXPECT_EQ(sum(again.virtualMaps->renderedPerFrame), again.virtualMaps->resident)
+        << "a new pool holds nothing";
+    EXPECT_TRUE(sameBits(again.visibility[0], pages.visibility[0]));
 }

@@ -111,7 +111,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     for (size_t l = 0; l < truth.occluderDistance.size(); ++l) // how far each pixel's occluder is
         out.write(l == 0 ? "occluder.pfm" : fmt::format("occluder_{}.pfm", l),
                   encodePfm(w, h, 1, truth.occluderDistance[l]));
-    std::vector<double> shimmer;
+    std::vector<PathRow> shimmer;
     if (!args.cameraPath.empty()) {
         std::vector<std::string> names;
         for (const TechniqueRow& row : rows)
@@ -129,7 +129,11 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                       .metrics = metricsAgainstTruth(lit, result, truth.visibility, masks,
                                                      blurRadiusTexels(rowOptions[r]),
                                                      truth.occluderDistance),
-                      .shimmer = shimmer.empty() ? NAN : shimmer[r]};
+                      .shimmer = shimmer.empty() ? NAN : shimmer[r].shimmer,
+                      .pathPagesRendered = shimmer.empty() ? std::vector<uint32_t>{}
+                                                           : shimmer[r].pagesRendered,
+                      .pathPagesResident = shimmer.empty() ? std::vector<uint32_t>{}
+                                                           : shimmer[r].pagesResident};
         for (const auto& [key, value] : rows[r].sets)
             row.parameters.emplace_back(key, value);
         for (const PassTime& p : result.passes)

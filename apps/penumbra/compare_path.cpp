@@ -37,7 +37,7 @@ std::vector<std::vector<uint8_t>> masksOf(const Scene& lit, const RenderResult& 
 
 } // namespace
 
-std::vector<double> measurePathShimmer(SceneRenderer& renderer, const Scene& scene,
+std::vector<PathRow> measurePathShimmer(SceneRenderer& renderer, const Scene& scene,
                                        const std::vector<RenderOptions>& rows,
                                        const std::vector<std::string>& rowNames, CameraPath path,
                                        uint32_t frameCount, const ReferenceOptions& reference) {
@@ -62,8 +62,9 @@ std::vector<double> measurePathShimmer(SceneRenderer& renderer, const Scene& sce
                 lit[t], renderer.render(base, {.lights = frames[t].lights}), quiet));
         }
 
-    std::vector<double> shimmer;
+    std::vector<PathRow> out;
     for (size_t r = 0; r < rows.size(); ++r) {
+        PathRow row;
         std::fprintf(stderr, "penumbra: %s along the %s path, %u frames\n", rowNames[r].c_str(),
                      kCameraPathNames[static_cast<int>(path)], frameCount);
         RenderOptions o = rows[r];
@@ -74,6 +75,13 @@ std::vector<double> measurePathShimmer(SceneRenderer& renderer, const Scene& sce
             const SceneRenderer::FrameState state{.camera = frames[t].camera,
                                                   .lights = frames[t].lights};
             now.push_back(renderer.render(o, state));
+            if (const auto& pages = now.back().virtualMaps) {
+                uint32_t rendered = 0;
+                for (uint32_t n : pages->renderedPerFrame)
+                    rendered += n;
+                row.pagesRendered.push_back(rendered);
+                row.pagesResident.push_back(pages->resident);
+            }
             if (path != CameraPath::Sun && t > 0) {
                 SceneRenderer::FrameState previousViews = state;
                 previousViews.shadowCamera = frames[t - 1].camera;
@@ -99,9 +107,10 @@ std::vector<double> measurePathShimmer(SceneRenderer& renderer, const Scene& sce
                                      .mask = masks[t][l],
                                      .previousMask = masks[t][l]});
             }
-        shimmer.push_back(measureShimmer(pairs).shimmer);
+        row.shimmer = measureShimmer(pairs).shimmer;
+        out.push_back(std::move(row));
     }
-    return shimmer;
+    return out;
 }
 
 } // namespace penumbra::cli

@@ -161,6 +161,10 @@ void estimateMemory(BenchRun& run, const RenderOptions& o, const RenderResult& r
     run.shadowMapBytes =
         module.tracesField ? 0
                            : shadows::shadowMapBytes(module, o.shadowMapSize, o.parameters) * views;
+    if (result.virtualMaps) { // the pool, and a page table and its requests per frame in flight
+        run.virtualMaps = result.virtualMaps;
+        run.shadowMapBytes = result.virtualMaps->poolBytes + 4 * result.virtualMaps->tableBytes;
+    }
     // G-buffer depth 4, normal 8, albedo 4; visibility 4 per light; colour 4; position and
     // normal for readback 32.
     run.screenBytes = uint64_t{o.width} * o.height * (16 + 4 * std::max<uint64_t>(lights, 1) + 36);
@@ -203,6 +207,14 @@ nlohmann::json benchJson(const BenchData& data) {
                                 {"distance_field", r.fieldBytes}}}};
         if (r.fieldBytes > 0)
             run["distance_field_build_gpu_ms"] = r.fieldBuildMs;
+        if (const auto& v = r.virtualMaps)
+            run["virtual_maps"] = {{"pages_requested", v->requested},
+                                   {"pages_resident", v->resident},
+                                   {"pages_rendered_per_frame", v->renderedPerFrame},
+                                   {"pages_dropped", v->dropped},
+                                   {"pool_pages", v->poolPages},
+                                   {"pool_occupancy",
+                                    v->poolPages ? double(v->resident) / v->poolPages : 0.0}};
         runs.push_back(run);
     }
     return {{"device", deviceJson(data.device)},

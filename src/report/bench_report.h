@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +30,7 @@ struct BenchRun {
     PassStats total;                                        // of each frame's sum
     uint64_t shadowMapBytes = 0, screenBytes = 0, fieldBytes = 0;
     double fieldBuildMs = 0; // sdf: the field's one-off build (GPU)
+    std::optional<VirtualMapInfo> virtualMaps; // virtual.enabled: its pages and pool
     uint64_t memoryBytes() const { return shadowMapBytes + screenBytes + fieldBytes; }
 };
 

@@ -376,6 +376,10 @@ nlohmann::json metricsJson(const ReportData& data) {
                                 {"gpu_ms", gpu}};
         if (!data.cameraPath.empty())
             techniques[row.name]["shimmer"] = row.shimmer;
+        if (!row.pathPagesRendered.empty()) {
+            techniques[row.name]["path_pages_rendered"] = row.pathPagesRendered;
+            techniques[row.name]["path_pages_resident"] = row.pathPagesResident;
+        }
     }
     j["techniques"] = techniques;
     return j;

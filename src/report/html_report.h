@@ -26,6 +26,8 @@ struct ReportRow {
     std::vector<std::pair<std::string, double>> gpuMs;        // pass -> median ms, frame order
     std::vector<uint8_t> imagePng, visibilityPng, heatmapPng; // encoded PNG files; may be empty
     double shimmer = NAN; // mean frame-to-frame change along the camera path; NaN: no path
+    // Virtual maps along the path: pages each frame rendered and those resident (else empty).
+    std::vector<uint32_t> pathPagesRendered, pathPagesResident;
 };
 
 // Everything a report shows: the run's context, the reference, and one row per technique.
