@@ -117,6 +117,25 @@ TEST(ViewerTest, HiddenInterfaceScreenshotIsRendersImage) {
     }
 }
 
+// Virtual shadow maps in the viewer: its frames (two in flight) ask for pages, render them and
+// then reuse them; after a few frames it draws render's picture, for a sun and a point light.
+TEST(ViewerTest, VirtualMapsDrawRendersImage) {
+    const std::vector<std::vector<std::string>> cases{
+        {"builtin:showcase", "--technique", "pcf", "--width", "320", "--height", "200", "--set",
+         "virtual.enabled=1"},
+        {"builtin:room", "--technique", "hard", "--width", "320", "--height", "240", "--set",
+         "virtual.enabled=1"}};
+    for (const auto& options : cases) {
+        SCOPED_TRACE(options[0]);
+        const Rgb rendered = renderImage(options, "render-virtual");
+        std::vector<std::string> viewOptions = options;
+        viewOptions.push_back("--hide-ui");
+        const Rgb viewed = viewImage(viewOptions, "view-virtual");
+        ASSERT_EQ(viewed.width, rendered.width);
+        EXPECT_LE(meanDifference(viewed, rendered), 0.5);
+    }
+}
+
 TEST(ViewerTest, InterfaceIsDrawnOverTheTopLeftUnlessHidden) {
     const std::vector<std::string> options{"builtin:showcase", "--width", "800", "--height", "500"};
     const Rgb hidden = viewImage(
