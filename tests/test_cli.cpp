@@ -614,10 +614,26 @@ TEST(Cli, StabilizedCascadesShimmerAtMostHalfAsMuchAsFreeOnes) {
 TEST(Cli, VirtualMapsAlongCameraPathsRenderFewPagesAndDoNotCrawl) {
     for (const char* path : {"dolly", "orbit"}) {
         const fs::path out = scratch(std::string("virtual-path-") + path);
-        const ProcessResult r =
-            runCli({"compare", "builtin:field", "-o", out.string(), "--techniques", "hard",
-                    "--width", "160", "--height", "120", "--frames", "1", "--samples", "4",
-                    "--set", "virtual.enabled=1", "--camera-path", path, "--path-frames", "5"});
+        const ProcessResult r = runCli({"compare",
+                                        "builtin:field",
+                                        "-o",
+                                        out.string(),
+                                        "--techniques",
+                                        "hard",
+                                        "--width",
+                                        "160",
+                                        "--height",
+                                        "120",
+                                        "--frames",
+                                        "1",
+                                        "--samples",
+                                        "4",
+                                        "--set",
+                                        "virtual.enabled=1",
+                                        "--camera-path",
+                                        path,
+                                        "--path-frames",
+                                        "5"});
         ASSERT_EQ(r.exitCode, 0) << r.err;
         const auto j = nlohmann::json::parse(slurp(out / "metrics.json"))["techniques"]["hard"];
         const auto rendered = j["path_pages_rendered"].get<std::vector<uint32_t>>();

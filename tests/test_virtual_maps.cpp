@@ -136,12 +136,13 @@ TEST(VirtualMaps, ACameraMoveKeepsEveryPageWhereItWasInTheWorld) {
             if (!gpu::virtualHolds(a, 1.0f, 0.0f) || !gpu::virtualHolds(b, 1.0f, 0.0f))
                 continue;
             // The same absolute page (the same key), and the same texel in it.
-            const glm::ivec2 pa = pageOf(before[l], p, s.pageSize), pb = pageOf(after[l], p, s.pageSize);
+            const glm::ivec2 pa = pageOf(before[l], p, s.pageSize),
+                             pb = pageOf(after[l], p, s.pageSize);
             EXPECT_EQ(before[l].firstPage + pa, after[l].firstPage + pb) << "level " << l;
-            const uint32_t ea = gpu::virtualEntryIndex(before[l].tableOffset,
-                                                       before[l].pagesPerSide, pa);
-            const uint32_t eb = gpu::virtualEntryIndex(after[l].tableOffset,
-                                                       after[l].pagesPerSide, pb);
+            const uint32_t ea =
+                gpu::virtualEntryIndex(before[l].tableOffset, before[l].pagesPerSide, pa);
+            const uint32_t eb =
+                gpu::virtualEntryIndex(after[l].tableOffset, after[l].pagesPerSide, pb);
             EXPECT_EQ(pageKeyOf(before[l], ea), pageKeyOf(after[l], eb)) << "level " << l;
             const float size = static_cast<float>(s.size);
             const glm::vec2 ta = a * size - glm::vec2(pa) * float(s.pageSize);
@@ -184,7 +185,9 @@ TEST(VirtualMaps, EveryPageComesWithThePagesThatHoldItInCoarserLevels) {
                     if (!gpu::virtualHolds(c, 1.0f, 0.0f))
                         break;
                     const glm::ivec2 page = pageOf(coarser, middle, s.pageSize);
-                    expected.push_back({.light = 0, .face = coarser.face, .level = coarser.level,
+                    expected.push_back({.light = 0,
+                                        .face = coarser.face,
+                                        .level = coarser.level,
                                         .page = coarser.firstPage + page});
                 }
             ASSERT_EQ(chain.size(), expected.size()) << int(light.type) << " level " << level.level;
@@ -211,7 +214,8 @@ TEST(VirtualMaps, APagesProjectionFillsItsViewportWithTheLevelsTexels) {
                 if (!gpu::virtualHolds(glm::vec2(uvz), 1.0f, 0.0f) || uvz.z < 0.0f || uvz.z > 1.0f)
                     continue;
                 const glm::vec2 texel = glm::vec2(uvz) * size;
-                const glm::ivec2 page = gpu::virtualPageOf(glm::ivec2(glm::floor(texel)), s.pageSize);
+                const glm::ivec2 page =
+                    gpu::virtualPageOf(glm::ivec2(glm::floor(texel)), s.pageSize);
                 const glm::vec4 c = pageViewProj(level, page) * glm::vec4(p, 1.0f);
                 const glm::vec3 ndc = glm::vec3(c) / c.w;
                 // In the page's viewport, at the texel's place in the page; the depth unchanged.
@@ -333,8 +337,7 @@ TEST(PageCache, TheLeastRecentlyUsedPageGoesFirst) {
 
 TEST(PageCache, AFullPoolKeepsTheCoarsestPagesAndSaysWhatItDropped) {
     PageCache cache(3);
-    PageCache::Update u =
-        cache.update({key(0, 1), key(0, 2), key(3, 0), key(1, 7), key(2, 4)}, 1);
+    PageCache::Update u = cache.update({key(0, 1), key(0, 2), key(3, 0), key(1, 7), key(2, 4)}, 1);
     EXPECT_EQ(u.requested, 5u);
     EXPECT_EQ(u.dropped, 2u);
     EXPECT_EQ(u.render.size(), 3u);

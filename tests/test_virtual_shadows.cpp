@@ -31,7 +31,9 @@ Light sharpSpot() {
             .outerConeAngle = 0.75f};
 }
 Light sharpPoint() {
-    return {.name = "point", .type = LightType::Point, .position = {0.6f, 2.4f, -0.4f},
+    return {.name = "point",
+            .type = LightType::Point,
+            .position = {0.6f, 2.4f, -0.4f},
             .intensity = 10.0f};
 }
 
@@ -39,7 +41,10 @@ using Sets = std::vector<std::pair<std::string, std::string>>;
 
 RenderOptions options(Technique technique, const Sets& sets, uint32_t width = 320,
                       uint32_t height = 240) {
-    RenderOptions o{.width = width, .height = height, .shadowMapSize = 1024, .frames = 1,
+    RenderOptions o{.width = width,
+                    .height = height,
+                    .shadowMapSize = 1024,
+                    .frames = 1,
                     .technique = technique};
     for (const auto& [key, value] : sets)
         o.parameters.set(key, value);
@@ -68,9 +73,9 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
 // (texels of at most a pixel) nothing misclassified away from the truth's edges.
 TEST_F(VirtualTest, HardShadowsHoldAgainstTheTruthForEveryLightType) {
     for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
-        const Truth t = groundTruth(restingObjects(light),
-                                    {.width = 320, .height = 240, .shadowMapSize = 1024,
-                                     .samples = 1});
+        const Truth t =
+            groundTruth(restingObjects(light),
+                        {.width = 320, .height = 240, .shadowMapSize = 1024, .samples = 1});
         const ErrorMetrics maps = errorOf(t, renderRow(t, Technique::Hard, {}));
         const ErrorMetrics byDefault = errorOf(t, renderRow(t, Technique::Hard, kVirtual));
         EXPECT_LE(byDefault.misclassifiedOutsideEdges, 0.0005) << light.name;
@@ -78,9 +83,10 @@ TEST_F(VirtualTest, HardShadowsHoldAgainstTheTruthForEveryLightType) {
         const ErrorMetrics pages = errorOf(t, virtualRow);
         std::printf("%s: RMSE %.4f with %s, %.4f through %u pages; misclassified away from "
                     "edges %.4f%% -> %.4f%%\n",
-                    light.name.c_str(), maps.rmse, light.type == LightType::Point ? "a cube" : "maps",
-                    pages.rmse, virtualRow.virtualMaps->resident,
-                    100.0 * maps.misclassifiedOutsideEdges, 100.0 * pages.misclassifiedOutsideEdges);
+                    light.name.c_str(), maps.rmse,
+                    light.type == LightType::Point ? "a cube" : "maps", pages.rmse,
+                    virtualRow.virtualMaps->resident, 100.0 * maps.misclassifiedOutsideEdges,
+                    100.0 * pages.misclassifiedOutsideEdges);
         ASSERT_TRUE(virtualRow.virtualMaps) << light.name;
         EXPECT_EQ(virtualRow.lights.front().projection, "virtual");
         EXPECT_GT(virtualRow.virtualMaps->resident, 0u);
@@ -100,9 +106,9 @@ TEST_F(VirtualTest, FiltersReadPagesAsTheyReadMaps) {
         Light soft = light;
         soft.radius = 0.05f;
         soft.angularDiameter = 1.0f;
-        const Truth t = groundTruth(restingObjects(soft),
-                                    {.width = 320, .height = 240, .shadowMapSize = 1024,
-                                     .samples = 32});
+        const Truth t =
+            groundTruth(restingObjects(soft),
+                        {.width = 320, .height = 240, .shadowMapSize = 1024, .samples = 32});
         for (const auto& [technique, sets] :
              std::vector<std::pair<Technique, Sets>>{{Technique::Pcf, {{"pcf.filter", "box"}}},
                                                      {Technique::Pcf, {{"pcf.filter", "poisson"}}},
@@ -204,9 +210,9 @@ TEST_F(VirtualTest, APoolTooSmallForTheViewReadsCoarserPages) {
     const Truth t = groundTruth(restingObjects(sharpSun()),
                                 {.width = 320, .height = 240, .shadowMapSize = 1024, .samples = 1});
     const ErrorMetrics roomy = measure(t, Technique::Hard, kVirtual);
-    RenderOptions o = options(Technique::Hard, {{"virtual.enabled", "1"},
-                                                {"virtual.pageSize", "32"},
-                                                {"virtual.poolSize", "256"}});
+    RenderOptions o = options(
+        Technique::Hard,
+        {{"virtual.enabled", "1"}, {"virtual.pageSize", "32"}, {"virtual.poolSize", "256"}});
     std::vector<std::string> said;
     const RenderResult r =
         sharedRenderer().render(t.scene, o, [&](const std::string& s) { said.push_back(s); });
@@ -215,7 +221,8 @@ TEST_F(VirtualTest, APoolTooSmallForTheViewReadsCoarserPages) {
     EXPECT_EQ(r.virtualMaps->resident, 64u);
     EXPECT_GT(r.virtualMaps->dropped, 0u);
     EXPECT_TRUE(std::any_of(said.begin(), said.end(), [](const std::string& s) {
-        return s.find("warning") != std::string::npos && s.find("virtual.poolSize") != std::string::npos;
+        return s.find("warning") != std::string::npos &&
+               s.find("virtual.poolSize") != std::string::npos;
     }));
     const ErrorMetrics small = errorOf(t, r);
     std::printf("pool of 64 pages for %u asked: RMSE %.4f (%.4f with room), misclassified away "

@@ -143,7 +143,9 @@ void addTechniqueOptions(CLI::App& cmd, RenderOptions& o, std::vector<std::strin
     cmd.add_option("--shadow-map-size", o.shadowMapSize, "shadow map side in texels")
         ->capture_default_str();
     cmd.add_option("--set", sets, "technique parameter family.name=value (repeatable)");
-    cmd.add_option("--frames", o.frames, "timed frames after one warm-up frame (two with virtual.enabled: one asks for pages, the next renders them)")
+    cmd.add_option("--frames", o.frames,
+                   "timed frames after one warm-up frame (two with virtual.enabled: one asks for "
+                   "pages, the next renders them)")
         ->capture_default_str();
 }
 

@@ -130,10 +130,10 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                                                      blurRadiusTexels(rowOptions[r]),
                                                      truth.occluderDistance),
                       .shimmer = shimmer.empty() ? NAN : shimmer[r].shimmer,
-                      .pathPagesRendered = shimmer.empty() ? std::vector<uint32_t>{}
-                                                           : shimmer[r].pagesRendered,
-                      .pathPagesResident = shimmer.empty() ? std::vector<uint32_t>{}
-                                                           : shimmer[r].pagesResident};
+                      .pathPagesRendered =
+                          shimmer.empty() ? std::vector<uint32_t>{} : shimmer[r].pagesRendered,
+                      .pathPagesResident =
+                          shimmer.empty() ? std::vector<uint32_t>{} : shimmer[r].pagesResident};
         for (const auto& [key, value] : rows[r].sets)
             row.parameters.emplace_back(key, value);
         for (const PassTime& p : result.passes)

@@ -38,9 +38,9 @@ std::vector<std::vector<uint8_t>> masksOf(const Scene& lit, const RenderResult& 
 } // namespace
 
 std::vector<PathRow> measurePathShimmer(SceneRenderer& renderer, const Scene& scene,
-                                       const std::vector<RenderOptions>& rows,
-                                       const std::vector<std::string>& rowNames, CameraPath path,
-                                       uint32_t frameCount, const ReferenceOptions& reference) {
+                                        const std::vector<RenderOptions>& rows,
+                                        const std::vector<std::string>& rowNames, CameraPath path,
+                                        uint32_t frameCount, const ReferenceOptions& reference) {
     const RenderOptions& base = rows.front();
     const Camera start = scene.camera(base.camera);
     const std::vector<PathFrame> frames = pathFrames(

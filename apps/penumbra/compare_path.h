@@ -18,8 +18,8 @@ struct PathRow {
 
 // Each row (rows[r], named rowNames[r]) along `path` over `frames` frames.
 std::vector<PathRow> measurePathShimmer(SceneRenderer& renderer, const Scene& scene,
-                                       const std::vector<RenderOptions>& rows,
-                                       const std::vector<std::string>& rowNames, CameraPath path,
-                                       uint32_t frames, const ReferenceOptions& reference);
+                                        const std::vector<RenderOptions>& rows,
+                                        const std::vector<std::string>& rowNames, CameraPath path,
+                                        uint32_t frames, const ReferenceOptions& reference);
 
 } // namespace penumbra::cli

@@ -125,7 +125,7 @@ struct RenderResult {
     std::vector<float> faceNormal; // xyz per pixel: the triangle's own unit normal; NaN as above
     std::vector<PassTime> passes;
     std::vector<LightShadow> lights;
-    std::optional<DistanceFieldInfo> field; // sdf only
+    std::optional<DistanceFieldInfo> field;    // sdf only
     std::optional<VirtualMapInfo> virtualMaps; // virtual.enabled only
 };
 

@@ -178,7 +178,9 @@ PageKey pageKeyOf(const VirtualLevel& level, uint32_t entry) {
     const uint32_t local = entry - level.tableOffset;
     const glm::ivec2 page(static_cast<int>(local % level.pagesPerSide),
                           static_cast<int>(local / level.pagesPerSide));
-    return {.light = level.light, .face = level.face, .level = level.level,
+    return {.light = level.light,
+            .face = level.face,
+            .level = level.level,
             .page = level.firstPage + page};
 }
 
@@ -269,17 +271,33 @@ std::optional<uint32_t> PageCache::physicalOf(const PageKey& key) const {
     return it == mWhere.end() ? std::nullopt : std::optional<uint32_t>(it->second);
 }
 
+std::optional<PageKey> PageCache::keyOf(uint32_t physical) const {
+    return mPages.at(physical).key;
+}
+
 uint32_t PageCache::resident() const {
     return static_cast<uint32_t>(mWhere.size());
 }
 
 std::vector<uint32_t> pageTable(const std::vector<VirtualLevel>& levels, const PageCache& cache,
                                 uint32_t entries) {
+    // From the resident pages (a few thousand), not from every entry (hundreds of thousands).
     std::vector<uint32_t> table(entries, VIRTUAL_NOT_RESIDENT);
-    for (const VirtualLevel& level : levels)
-        for (uint32_t e = level.tableOffset; e < level.tableOffset + level.tableEntries(); ++e)
-            if (const std::optional<uint32_t> physical = cache.physicalOf(pageKeyOf(level, e)))
-                table.at(e) = *physical + 1u;
+    for (uint32_t physical = 0; physical < cache.capacity(); ++physical) {
+        const std::optional<PageKey> key = cache.keyOf(physical);
+        if (!key)
+            continue;
+        for (const VirtualLevel& level : levels)
+            if (level.light == key->light && level.face == key->face &&
+                level.level == key->level) {
+                const glm::ivec2 local = key->page - level.firstPage;
+                const auto n = static_cast<int>(level.pagesPerSide);
+                if (local.x >= 0 && local.y >= 0 && local.x < n && local.y < n)
+                    table.at(gpu::virtualEntryIndex(level.tableOffset, level.pagesPerSide,
+                                                    local)) = physical + 1u;
+                break;
+            }
+    }
     return table;
 }
 
@@ -305,7 +323,8 @@ std::vector<PageKey> withCoarserPages(const std::vector<PageKey>& requests,
                 break;
             // A clipmap's grids share their origin: page p's parent is p / 2; a fixed window's
             // pages count from its corner, which the scene level's window shares with its mips.
-            k.page = parent->followsCamera ? floorHalf(k.page) : floorHalf(k.page - child->firstPage);
+            k.page =
+                parent->followsCamera ? floorHalf(k.page) : floorHalf(k.page - child->firstPage);
             k.level = parent->level;
             const glm::ivec2 local = k.page - parent->firstPage;
             const auto n = static_cast<int>(parent->pagesPerSide);

@@ -48,13 +48,13 @@ uint64_t virtualTableEntries(const Light& light, const VirtualSettings& settings
 
 // One level of a light's virtual map: a shadow view over pagesPerSide^2 pages.
 struct VirtualLevel {
-    uint32_t light = 0; // the scene light
-    uint32_t face = 0;  // a point light's cube face; 0 otherwise
-    uint32_t level = 0; // 0 the finest
+    uint32_t light = 0;         // the scene light
+    uint32_t face = 0;          // a point light's cube face; 0 otherwise
+    uint32_t level = 0;         // 0 the finest
     LightProjection projection; // the level's whole window
     glm::ivec2 firstPage{0};    // the window's first page in the level's absolute page grid
     uint32_t pagesPerSide = 0;
-    uint32_t tableOffset = 0;   // its first page-table entry
+    uint32_t tableOffset = 0; // its first page-table entry
     // A sun's clipmap level below the scene's mips: its pages are named in a grid anchored at
     // the light space's origin (firstPage moves with the camera); else by their place in the
     // level's fixed window.
@@ -67,8 +67,8 @@ struct VirtualLevel {
 // centres on.
 std::vector<VirtualLevel> virtualLevels(const Light& light, uint32_t lightIndex,
                                         const Bounds& scene, const glm::vec3& camera,
-                                        const VirtualSettings& settings,
-                                        const ViewFitting& fitting, uint32_t& tableOffset);
+                                        const VirtualSettings& settings, const ViewFitting& fitting,
+                                        uint32_t& tableOffset);
 
 // The level's view-projection narrowed to its page `page` (the window's own page coordinates):
 // what renders that page alone into a pageSize^2 viewport.
@@ -103,10 +103,10 @@ public:
 
     struct Update {
         std::vector<std::pair<uint32_t, PageKey>> render; // physical page, what it must hold
-        uint32_t requested = 0; // distinct pages asked for
-        uint32_t cached = 0;    // of them, resident already
-        uint32_t evicted = 0;   // resident pages given to others (least recently used first)
-        uint32_t dropped = 0;   // asked for but the pool was full: readers fall back coarser
+        uint32_t requested = 0;                           // distinct pages asked for
+        uint32_t cached = 0;                              // of them, resident already
+        uint32_t evicted = 0; // resident pages given to others (least recently used first)
+        uint32_t dropped = 0; // asked for but the pool was full: readers fall back coarser
     };
     // This frame's requests: the resident ones are kept, the others allocated (the coarsest
     // levels first, so that a full pool keeps the coarse pages every reader can fall back on),
@@ -116,6 +116,8 @@ public:
     std::optional<uint32_t> physicalOf(const PageKey& key) const;
     uint32_t capacity() const { return static_cast<uint32_t>(mPages.size()); }
     uint32_t resident() const;
+    // What physical page `physical` holds (nothing when free).
+    std::optional<PageKey> keyOf(uint32_t physical) const;
 
 private:
     struct Physical {

@@ -37,8 +37,9 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
         f.virtualPages = {v.pageSize, v.poolPagesPerSide(), v.localLevels(), 1u};
         // The pages a filter reads around its receiver; a comparison sampler reads the pool's
         // neighbouring pages instead: the bilinear comparison is done by hand.
-        const double reach = std::max(module.blurRadiusTexels ? module.blurRadiusTexels(params) : 1.0,
-                                      module.searchCap ? module.searchCap(params) : 0.0);
+        const double reach =
+            std::max(module.blurRadiusTexels ? module.blurRadiusTexels(params) : 1.0,
+                     module.searchCap ? module.searchCap(params) : 0.0);
         f.virtualLod = {static_cast<float>(params.number("virtual.lodBias")),
                         static_cast<float>(std::ceil(reach)), 0.0f, 0.0f};
         f.biasMode.y = 0u;

@@ -152,8 +152,8 @@ ShadowViews shadowViewsOf(const std::vector<Light>& lights, const RenderOptions&
                 if (light.type == LightType::Directional)
                     out.records.back().fromFirst = fromFirstCascade(
                         out.records[firstView].shadowMatrix, out.records.back().shadowMatrix);
-                info.views.push_back(viewInfo(level.projection, level.tableOffset,
-                                              out.records.back().shadowMatrix));
+                info.views.push_back(
+                    viewInfo(level.projection, level.tableOffset, out.records.back().shadowMatrix));
             }
             out.contentsKeys.emplace_back(
                 i, pageContentsKey(light, levels, virtualMaps, casterDepthBias(o.parameters)));

@@ -76,15 +76,15 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {VIS_COLOR, kImage},
                                   {TECH_PAGE_TABLE, kStorage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
-    markingLayout = vk::createPipelineLayout(ctx,
-                                             {{BIND_FRAME, kUniform},
-                                              {MARK_LIGHTS, kUniform},
-                                              {MARK_GBUFFER_DEPTH, kSampled},
-                                              {MARK_VIEWS, kUniform},
-                                              {MARK_REQUESTS, kStorage},
-                                              {MARK_GBUFFER_NORMAL, kSampled}},
-                                             VK_SHADER_STAGE_COMPUTE_BIT,
-                                             sizeof(gpu::VisibilityPush));
+    markingLayout =
+        vk::createPipelineLayout(ctx,
+                                 {{BIND_FRAME, kUniform},
+                                  {MARK_LIGHTS, kUniform},
+                                  {MARK_GBUFFER_DEPTH, kSampled},
+                                  {MARK_VIEWS, kUniform},
+                                  {MARK_REQUESTS, kStorage},
+                                  {MARK_GBUFFER_NORMAL, kSampled}},
+                                 VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     compositeLayout = vk::createPipelineLayout(ctx,
                                                {{BIND_FRAME, kUniform},
                                                 {COMPOSITE_LIGHTS, kUniform},

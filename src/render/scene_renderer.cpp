@@ -19,9 +19,9 @@
 #include "render/frame_data.h"
 #include "render/frame_prepare.h"
 #include "render/renderer_impl.h"
+#include "virtual_pages.h"
 #include "vk/check.h"
 #include "vk/sync.h"
-#include "virtual_pages.h"
 
 #include <fmt/format.h>
 
@@ -332,10 +332,9 @@ void SceneRenderer::Impl::reservePageBuffers(Slot& slot, uint32_t entries) {
     VK_CHECK(vkDeviceWaitIdle(ctx().device())); // a frame in flight may read them
     for (auto [buffer, name] : {std::pair{&slot.pageTable, "page table"},
                                 std::pair{&slot.pageRequests, "page requests"}}) {
-        *buffer = vk::createBuffer(ctx(), bytes,
-                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                   vk::MemoryUse::Readback, name);
+        *buffer = vk::createBuffer(
+            ctx(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+            vk::MemoryUse::Readback, name);
         std::memset(buffer->mapped, 0, bytes);
     }
     slot.markedWith.clear();
@@ -364,8 +363,8 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
     Slot& slot = slots[p.slot];
     std::vector<PageKey> requests;
     if (!slot.markedWith.empty())
-        for (const PageKey& k : requestedPages(slot.markedWith,
-                                               static_cast<const uint32_t*>(slot.pageRequests.mapped)))
+        for (const PageKey& k : requestedPages(
+                 slot.markedWith, static_cast<const uint32_t*>(slot.pageRequests.mapped)))
             if (levelOf(k)) // a sun's window may have moved on
                 requests.push_back(k);
     const PageCache::Update u =
@@ -452,8 +451,7 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         if (m.pageInfo.dropped > 0 && progress)
             progress(fmt::format("warning: the virtual pool holds {} pages; this view asked for "
                                  "{} and {} read coarser pages (raise virtual.poolSize)",
-                                 m.pageInfo.poolPages, m.pageInfo.requested,
-                                 m.pageInfo.dropped));
+                                 m.pageInfo.poolPages, m.pageInfo.requested, m.pageInfo.dropped));
     }
 
     if (progress)

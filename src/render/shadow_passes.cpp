@@ -191,10 +191,9 @@ void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene
                    .uses = {{r.depthMap, Access::DepthAttachment}},
                    .record = [&p, &scene, &s, &in, map = r.depthMap](PassContext& c) {
                        for (uint32_t v = 0; v < s.views.size(); ++v)
-                           renderLightDepth(c.cmd, p, scene, c.image(map), v,
-                                            s.views[v].projection.viewProj,
-                                            s.views[v].projection.perspective, s, nullptr,
-                                            in.nearest);
+                           renderLightDepth(
+                               c.cmd, p, scene, c.image(map), v, s.views[v].projection.viewProj,
+                               s.views[v].projection.perspective, s, nullptr, in.nearest);
                    }});
     for (const shadows::DepthPassDecl& pass : technique.depthPasses) {
         const ResourceId read = r.named(technique, pass.reads);

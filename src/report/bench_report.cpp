@@ -208,13 +208,13 @@ nlohmann::json benchJson(const BenchData& data) {
         if (r.fieldBytes > 0)
             run["distance_field_build_gpu_ms"] = r.fieldBuildMs;
         if (const auto& v = r.virtualMaps)
-            run["virtual_maps"] = {{"pages_requested", v->requested},
-                                   {"pages_resident", v->resident},
-                                   {"pages_rendered_per_frame", v->renderedPerFrame},
-                                   {"pages_dropped", v->dropped},
-                                   {"pool_pages", v->poolPages},
-                                   {"pool_occupancy",
-                                    v->poolPages ? double(v->resident) / v->poolPages : 0.0}};
+            run["virtual_maps"] = {
+                {"pages_requested", v->requested},
+                {"pages_resident", v->resident},
+                {"pages_rendered_per_frame", v->renderedPerFrame},
+                {"pages_dropped", v->dropped},
+                {"pool_pages", v->poolPages},
+                {"pool_occupancy", v->poolPages ? double(v->resident) / v->poolPages : 0.0}};
         runs.push_back(run);
     }
     return {{"device", deviceJson(data.device)},

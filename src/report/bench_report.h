@@ -29,7 +29,7 @@ struct BenchRun {
     std::vector<PassStats> passes;                          // in frame order
     PassStats total;                                        // of each frame's sum
     uint64_t shadowMapBytes = 0, screenBytes = 0, fieldBytes = 0;
-    double fieldBuildMs = 0; // sdf: the field's one-off build (GPU)
+    double fieldBuildMs = 0;                   // sdf: the field's one-off build (GPU)
     std::optional<VirtualMapInfo> virtualMaps; // virtual.enabled: its pages and pool
     uint64_t memoryBytes() const { return shadowMapBytes + screenBytes + fieldBytes; }
 };

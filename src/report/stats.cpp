@@ -89,21 +89,21 @@ nlohmann::json renderStats(const RenderRun& run) {
                                {"built_for_this_render", f->built}};
     }
     if (const auto& v = run.result.virtualMaps)
-        j["virtual_maps"] = {{"pages_requested", v->requested},
-                             {"pages_resident", v->resident},
-                             {"pages_rendered", v->rendered},
-                             {"pages_cached", v->cached},
-                             {"pages_dropped", v->dropped},
-                             {"pages_evicted", v->evicted},
-                             {"pool_pages", v->poolPages},
-                             {"pool_occupancy", v->poolPages ? double(v->resident) / v->poolPages
-                                                             : 0.0},
-                             {"pool_bytes", v->poolBytes},
-                             {"page_table_bytes", v->tableBytes},
-                             {"page_size", v->pageSize},
-                             {"virtual_size", v->virtualSize},
-                             {"pages_rendered_per_frame", v->renderedPerFrame},
-                             {"frames_short_of_pool", v->droppedFrames}};
+        j["virtual_maps"] = {
+            {"pages_requested", v->requested},
+            {"pages_resident", v->resident},
+            {"pages_rendered", v->rendered},
+            {"pages_cached", v->cached},
+            {"pages_dropped", v->dropped},
+            {"pages_evicted", v->evicted},
+            {"pool_pages", v->poolPages},
+            {"pool_occupancy", v->poolPages ? double(v->resident) / v->poolPages : 0.0},
+            {"pool_bytes", v->poolBytes},
+            {"page_table_bytes", v->tableBytes},
+            {"page_size", v->pageSize},
+            {"virtual_size", v->virtualSize},
+            {"pages_rendered_per_frame", v->renderedPerFrame},
+            {"frames_short_of_pool", v->droppedFrames}};
     nlohmann::json lights = nlohmann::json::array();
     for (const LightShadow& s : run.result.lights) {
         const Light& l = run.scene.lights[s.sceneLight];
