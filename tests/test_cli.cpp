@@ -714,6 +714,46 @@ TEST(Cli, BenchTimesEveryTechniqueAndEverySweptValue) {
     EXPECT_NE(r.out.find("[3/5] pcf pcf.size=7"), std::string::npos) << r.out;
 }
 
+// bench with virtual maps for every light type: the run that reads them reports its pages (the
+// second warm-up renders the view's, the timed frames of a still view none), the pool as its
+// shadow-map memory (with a page table and its requests per frame in flight), and bench.html a
+// pages column; the run without them reports none.
+TEST(Cli, BenchReportsTheVirtualPagesOfEachRun) {
+    for (const std::string scene : {"builtin:field", "builtin:spot", "builtin:room"}) {
+        SCOPED_TRACE(scene);
+        const fs::path dir = scratch("bench-virtual");
+        const ProcessResult r =
+            runCli({"bench", scene, "-o", (dir / "times.json").string(), "--techniques", "hard",
+                    "--sweep", "virtual.enabled=0,1", "--width", "96", "--height", "64", "--frames",
+                    "3", "--set", "virtual.poolSize=2048"});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const auto j = nlohmann::json::parse(slurp(dir / "times.json"));
+        ASSERT_EQ(j["runs"].size(), 2u);
+        EXPECT_FALSE(j["runs"][0].contains("virtual_maps"));
+        const auto& v = j["runs"][1]["virtual_maps"];
+        const std::vector<uint32_t> perFrame = v["pages_rendered_per_frame"];
+        ASSERT_EQ(perFrame.size(), 5u) << "two warm-ups and three timed frames";
+        EXPECT_EQ(perFrame[0], 0u) << "the first frame only asks";
+        EXPECT_GT(perFrame[1], 0u);
+        EXPECT_EQ(perFrame[1], v["pages_resident"]);
+        for (size_t f = 2; f < perFrame.size(); ++f)
+            EXPECT_EQ(perFrame[f], 0u) << f;
+        EXPECT_EQ(v["pool_pages"], 256u); // (2048 / 128)^2
+        EXPECT_DOUBLE_EQ(v["pool_occupancy"].get<double>(),
+                         v["pages_resident"].get<double>() / 256.0);
+        const uint64_t mapBytes = j["runs"][1]["memory"]["shadow_maps"];
+        EXPECT_GT(mapBytes, 2048ull * 2048 * 4) << "the pool and four page tables";
+        EXPECT_LT(mapBytes, 2048ull * 2048 * 4 + (64ull << 20));
+        const std::string html = slurp(dir / "bench.html");
+        EXPECT_NE(html.find("virtual pages</th>"), std::string::npos);
+        EXPECT_NE(html.find("<td>0 per frame <small>(most 0)</small>, " +
+                            std::to_string(v["pages_resident"].get<uint32_t>()) +
+                            " of 256 resident"),
+                  std::string::npos)
+            << html;
+    }
+}
+
 TEST(Cli, BenchRefusesBadSweepsAndTechniquesBeforeRunning) {
     const fs::path dir = scratch("bench-bad");
     const std::string out = (dir / "b.json").string();

@@ -82,9 +82,9 @@ Rgb renderImage(const std::vector<std::string>& options, const std::string& name
 }
 
 Rgb viewImage(const std::vector<std::string>& options, const std::string& name,
-              ProcessResult* result = nullptr) {
+              ProcessResult* result = nullptr, const std::string& frames = "4") {
     const fs::path shot = scratch(name) / "shot.png";
-    std::vector<std::string> args{"--frames", "4", "--screenshot", shot.string()};
+    std::vector<std::string> args{"--frames", frames, "--screenshot", shot.string()};
     args.insert(args.end(), options.begin(), options.end());
     const ProcessResult r = runViewer(args);
     EXPECT_EQ(r.exitCode, 0) << r.err;
@@ -133,6 +133,102 @@ TEST(ViewerTest, VirtualMapsDrawRendersImage) {
         const Rgb viewed = viewImage(viewOptions, "view-virtual");
         ASSERT_EQ(viewed.width, rendered.width);
         EXPECT_LE(meanDifference(viewed, rendered), 0.5);
+    }
+}
+
+// The virtual-map views against the page counts the viewer prints for the same frame: the page
+// table of the finest level with pages (one cell per page, red rendered this frame, green cached)
+// and the pool (one cell per physical page, bright when rendered this frame), for a sun and a
+// point light. Frame 3 renders the pages frame 1 asked for (two frames in flight), frame 4
+// renders none.
+TEST(ViewerTest, VirtualPageViewsShowTheFramesPages) {
+    struct Line {
+        uint32_t resident = 0, pool = 0, rendered = 0, cached = 0, levelPages = 0;
+        std::string level;
+        uint32_t firstX = 0, lastX = 0, firstY = 0, lastY = 0;
+    };
+    auto lastLine = [](const std::string& out) {
+        const std::regex re(R"(virtual pages: requested \d+, resident (\d+) of (\d+), rendered )"
+                            R"((\d+), cached (\d+), dropped 0; shown: (.*?)(?: \((\d+) pages\), )"
+                            R"(pages (\d+)\.\.(\d+), (\d+)\.\.(\d+))?\n)");
+        Line line;
+        bool found = false;
+        for (auto it = std::sregex_iterator(out.begin(), out.end(), re);
+             it != std::sregex_iterator(); ++it) {
+            const std::smatch& m = *it;
+            auto n = [&](int i) { return static_cast<uint32_t>(std::stoul(m[i].str())); };
+            line = {n(1), n(2), n(3), n(4), 0, m[5].str()};
+            if (m[6].matched)
+                line.levelPages = n(6), line.firstX = n(7), line.lastX = n(8), line.firstY = n(9),
+                line.lastY = n(10);
+            found = true;
+        }
+        EXPECT_TRUE(found) << out;
+        return line;
+    };
+    // The colour at the centre of each of the n x n cells of the square grid in the window.
+    auto cells = [](const Rgb& shot, uint32_t n) {
+        std::vector<std::array<int, 3>> colors;
+        const int side = std::min(shot.width, shot.height);
+        const int x0 = (shot.width - side) / 2, y0 = (shot.height - side) / 2;
+        for (uint32_t y = 0; y < n; ++y)
+            for (uint32_t x = 0; x < n; ++x) {
+                const uint8_t* p =
+                    shot.at(x0 + int((x + 0.5) * side / n), y0 + int((y + 0.5) * side / n));
+                colors.push_back({p[0], p[1], p[2]});
+            }
+        return colors;
+    };
+    const std::array<int, 3> kRed{235, 70, 50}, kGreen{60, 175, 85}, kFree{20, 20, 20};
+    const std::vector<std::vector<std::string>> scenes{{"builtin:field", "--technique", "pcf"},
+                                                       {"builtin:room", "--technique", "hard"}};
+    for (const auto& scene : scenes) {
+        SCOPED_TRACE(scene[0]);
+        for (const std::string frames : {"3", "4"}) {
+            SCOPED_TRACE("frames " + frames);
+            std::vector<std::string> args = scene;
+            args.insert(args.end(), {"--width", "320", "--height", "256", "--set",
+                                     "virtual.enabled=1", "--hide-ui", "--show", "pages"});
+            ProcessResult r;
+            Rgb shot = viewImage(args, "pages", &r, frames);
+            Line line = lastLine(r.out);
+            if (scene[0] == "builtin:room") {
+                EXPECT_TRUE(std::regex_search(line.level, std::regex("light 0 [+-][xyz] level")))
+                    << line.level;
+            }
+            const uint32_t side = line.lastX + 1 - line.firstX;
+            ASSERT_EQ(line.lastY + 1 - line.firstY, side);
+            ASSERT_GT(line.levelPages, 0u);
+            int red = 0, green = 0, other = 0;
+            for (const auto& c : cells(shot, side)) {
+                if (c == kRed)
+                    ++red;
+                else if (c == kGreen)
+                    ++green;
+                else if (c != kFree)
+                    ++other;
+            }
+            EXPECT_EQ(other, 0) << "kept or dropped pages on a still frame";
+            EXPECT_EQ(uint32_t(red + green), line.levelPages);
+            if (frames == "3")
+                EXPECT_EQ(green, 0) << "every page is new on the first frame that renders";
+            else
+                EXPECT_EQ(red, 0) << "nothing rendered once the pages are resident";
+
+            args.back() = "pool";
+            shot = viewImage(args, "pool", &r, frames);
+            line = lastLine(r.out);
+            ASSERT_EQ(line.pool, 4096u); // the default pool: 64 x 64 pages
+            uint32_t held = 0, bright = 0;
+            for (const auto& c : cells(shot, 64)) {
+                held += c != kFree;
+                bright += *std::max_element(c.begin(), c.end()) >= 200;
+            }
+            EXPECT_EQ(held, line.resident);
+            EXPECT_EQ(bright, line.rendered);
+            EXPECT_EQ(line.rendered + line.cached, line.resident); // nothing kept from before
+            EXPECT_EQ(line.rendered, frames == "3" ? line.resident : 0u);
+        }
     }
 }
 

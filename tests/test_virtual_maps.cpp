@@ -412,3 +412,71 @@ TEST(PageCache, RequestsBecomeTheTablesResidentEntries) {
     }
     EXPECT_EQ(physical.size(), asked.size());
 }
+
+// The debug views' picture (virtualPages): each page's state in its level's table, and the
+// pool's owners, across frames that keep, cache, render, drop and (after the camera moved a
+// sun's window on) hold pages no level shows.
+TEST(PageCache, TheDebugViewsSayWhatEachPageIsAndWhoHoldsThePool) {
+    const std::vector<VirtualLevel> levels = levelsOf(kSun, {0, 2, 0});
+    const VirtualLevel& fine = levels[0];
+    auto at = [&](uint32_t x, uint32_t y) { return pageKeyOf(fine, y * fine.pagesPerSide + x); };
+    auto stateOf = [](const VirtualPages& v, const VirtualLevel& level, const PageKey& k) {
+        const glm::ivec2 local = k.page - level.firstPage;
+        return v.levels[0].pages.at(size_t(local.y) * level.pagesPerSide + size_t(local.x));
+    };
+    auto rendered = [](const PageCache::Update& u) {
+        std::vector<uint32_t> physical;
+        for (const auto& [p, k] : u.render)
+            physical.push_back(p);
+        return physical;
+    };
+    const PageKey a = at(3, 4), b = at(4, 4), c = at(3, 5), d = at(9, 1), e = at(10, 1),
+                  f = at(11, 1);
+    PageCache cache(4);
+    cache.update({a, b, c}, 1);
+    PageCache::Update u = cache.update({a, d}, 2);
+    VirtualPages v = virtualPages(levels, cache, {a, d}, rendered(u), 2);
+    ASSERT_EQ(v.levels.size(), levels.size());
+    EXPECT_EQ(v.levels[0].pagesPerSide, fine.pagesPerSide);
+    EXPECT_EQ(stateOf(v, fine, a), PageState::Cached);
+    EXPECT_EQ(stateOf(v, fine, d), PageState::Rendered);
+    EXPECT_EQ(stateOf(v, fine, b), PageState::Kept);
+    EXPECT_EQ(stateOf(v, fine, c), PageState::Kept);
+    EXPECT_EQ(std::count(v.levels[0].pages.begin(), v.levels[0].pages.end(), PageState::Absent),
+              ptrdiff_t(fine.tableEntries()) - 4);
+    for (size_t l = 1; l < v.levels.size(); ++l)
+        for (PageState s : v.levels[l].pages)
+            ASSERT_EQ(s, PageState::Absent) << "level " << l;
+    ASSERT_EQ(v.poolOwner.size(), 4u);
+    EXPECT_EQ(v.poolPagesPerSide, 2u);
+    for (uint32_t p = 0; p < 4; ++p) {
+        EXPECT_EQ(v.poolOwner[p], 0) << p;
+        EXPECT_EQ(v.poolRendered[p], p == cache.physicalOf(d).value()) << p;
+    }
+
+    // A full pool: a and d stay cached, two new pages take b's and c's places, one is dropped.
+    const std::vector<PageKey> five{a, d, e, f, at(12, 1)};
+    u = cache.update(five, 3);
+    EXPECT_EQ(u.dropped, 1u);
+    v = virtualPages(levels, cache, five, rendered(u), 2);
+    int states[5] = {};
+    for (const PageKey& k : five)
+        ++states[static_cast<int>(stateOf(v, fine, k))];
+    EXPECT_EQ(states[int(PageState::Cached)], 2);
+    EXPECT_EQ(states[int(PageState::Rendered)], 2);
+    EXPECT_EQ(states[int(PageState::Dropped)], 1);
+    EXPECT_EQ(stateOf(v, fine, b), PageState::Absent) << "evicted";
+
+    // The camera moves far: the finest level's window no longer shows those pages, but the pool
+    // still holds them until they are evicted.
+    const std::vector<VirtualLevel> moved = levelsOf(kSun, {300, 2, -300});
+    v = virtualPages(moved, cache, {}, {}, 2);
+    for (uint32_t p = 0; p < 4; ++p)
+        EXPECT_EQ(v.poolOwner[p], -2) << p;
+    for (PageState s : v.levels[0].pages)
+        ASSERT_EQ(s, PageState::Absent);
+    // An empty pool: every page free.
+    v = virtualPages(levels, PageCache(4), {}, {}, 2);
+    for (int32_t owner : v.poolOwner)
+        EXPECT_EQ(owner, -1);
+}

@@ -19,7 +19,7 @@ struct ViewArgs {
 };
 
 // --show MODE[:N]: scene, visibility[:LIGHT], shadow-map[:LAYER], cascades, error[:LIGHT],
-// blocker-depth[:LIGHT], penumbra[:LIGHT], contact[:LIGHT].
+// blocker-depth[:LIGHT], penumbra[:LIGHT], contact[:LIGHT], pages[:LEVEL], pool.
 void parseShow(const std::string& text, viewer::ViewerOptions& options) {
     const size_t colon = text.find(':');
     const std::string mode = text.substr(0, colon);
@@ -28,7 +28,8 @@ void parseShow(const std::string& text, viewer::ViewerOptions& options) {
         {"scene", DisplayMode::Scene},          {"visibility", DisplayMode::Visibility},
         {"shadow-map", DisplayMode::ShadowMap}, {"cascades", DisplayMode::Cascades},
         {"error", DisplayMode::Error},          {"blocker-depth", DisplayMode::BlockerDepth},
-        {"penumbra", DisplayMode::Penumbra},    {"contact", DisplayMode::Contact}};
+        {"penumbra", DisplayMode::Penumbra},    {"contact", DisplayMode::Contact},
+        {"pages", DisplayMode::Pages},          {"pool", DisplayMode::Pool}};
     bool found = false;
     for (const auto& [name, value] : modes)
         if (mode == name)
@@ -38,7 +39,9 @@ void parseShow(const std::string& text, viewer::ViewerOptions& options) {
                                        "' is not one of scene, visibility[:LIGHT], "
                                        "shadow-map[:LAYER], cascades, error[:LIGHT], "
                                        "blocker-depth[:LIGHT], penumbra[:LIGHT], "
-                                       "contact[:LIGHT]");
+                                       "contact[:LIGHT], pages[:LEVEL], pool");
+    if (options.show == DisplayMode::Pages)
+        options.showIndex = -1; // without a level: the finest with pages
     if (colon != std::string::npos) {
         const std::string index = text.substr(colon + 1);
         if (index.empty() || index.size() > 4 ||
@@ -92,7 +95,9 @@ Action addViewCommand(CLI::App& app, const GlobalOptions& global) {
                     "what the window shows: scene, visibility[:LIGHT], shadow-map[:LAYER], "
                     "cascades, error[:LIGHT] (error traces the ground truth first), "
                     "blocker-depth[:LIGHT], penumbra[:LIGHT] (pcss, vssm, msm-soft), "
-                    "contact[:LIGHT] (the contact layer's result; with contact.length > 0)")
+                    "contact[:LIGHT] (the contact layer's result; with contact.length > 0), "
+                    "pages[:LEVEL] (virtual maps: a level's page table), pool (virtual maps: "
+                    "the physical pool)")
         ->capture_default_str();
     cmd->add_option("--compare-with", args->compareWith,
                     "A/B: this technique right of the split, --technique left of it");

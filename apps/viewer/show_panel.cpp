@@ -6,12 +6,53 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include <algorithm>
+
 namespace penumbra::viewer {
 namespace {
 
 const char* const kModes[] = {
-    "lit image",     "visibility",     "shadow map",     "cascades", "error vs ground truth",
-    "blocker depth", "penumbra width", "contact shadows"};
+    "lit image",     "visibility",     "shadow map",      "cascades",      "error vs ground truth",
+    "blocker depth", "penumbra width", "contact shadows", "virtual pages", "page pool"};
+
+// The virtual-map views: the level to show, the legend and the last frame's page counts.
+void pagesPanel(ViewerState& s) {
+    const std::optional<VirtualMapInfo>& v = s.lastFrame.virtualMaps;
+    if (!v) {
+        ImGui::TextWrapped("the technique reads no virtual maps: set virtual.enabled (hard, pcf, "
+                           "pcss)");
+        return;
+    }
+    if (s.display == DisplayMode::Pages && !s.levelNames.empty()) {
+        const int shown = std::clamp(s.shownLevel, 0, static_cast<int>(s.levelNames.size()) - 1);
+        const std::string current =
+            s.displayLevel < 0 ? "finest with pages: " + s.levelNames[shown] : s.levelNames[shown];
+        if (ImGui::BeginCombo("level", current.c_str())) {
+            if (ImGui::Selectable("the finest with pages", s.displayLevel < 0))
+                s.displayLevel = -1;
+            for (size_t i = 0; i < s.levelNames.size(); ++i)
+                if (ImGui::Selectable(s.levelNames[i].c_str(),
+                                      static_cast<int>(i) == s.displayLevel))
+                    s.displayLevel = static_cast<int>(i);
+            ImGui::EndCombo();
+        }
+        ImGui::Checkbox("whole table", &s.wholeTable);
+        ImGui::Text("pages %u..%u, %u..%u", s.pageWindow.x, s.pageWindow.x + s.pageWindow.z - 1,
+                    s.pageWindow.y, s.pageWindow.y + s.pageWindow.z - 1);
+        ImGui::TextWrapped("one cell per page: red rendered this frame, green asked for and "
+                           "cached, blue kept from earlier frames, yellow asked for but the pool "
+                           "was full, dark not in the pool");
+    } else if (s.display == DisplayMode::Pool) {
+        ImGui::TextWrapped("one cell per physical page, tinted by the level it holds (finest "
+                           "red to coarsest blue), bright if rendered this frame; grey: a page "
+                           "no level shows now; dark: free");
+    }
+    ImGui::Text("pages asked for %u, cached %u, rendered %u, dropped %u", v->requested, v->cached,
+                v->rendered, v->dropped);
+    ImGui::Text("pool %u of %u pages (%.1f%%), %.0f MiB", v->resident, v->poolPages,
+                v->poolPages ? 100.0 * v->resident / v->poolPages : 0.0,
+                double(v->poolBytes) / (1 << 20));
+}
 
 // "light 0", or for a layer "light 0 +x" / "light 1 cascade 2".
 std::vector<std::string> layerNames(const RenderResult& frame) {
@@ -113,6 +154,8 @@ void showPanel(ViewerState& s) {
             }
         }
     }
+    if (s.display == DisplayMode::Pages || s.display == DisplayMode::Pool)
+        pagesPanel(s);
     if (s.display != DisplayMode::Error)
         return;
     ImGui::SliderInt("rays per pixel", &s.truthSamples, 1, 1024, "%d",

@@ -19,7 +19,7 @@ struct ViewerOptions {
     // map), technique B for the A/B split, and the truth's rays per pixel. Showing the error
     // starts the ground truth at once; with `frames`, the frames wait for it.
     DisplayMode show = DisplayMode::Scene;
-    int showIndex = 0;
+    int showIndex = 0; // -1: pages without a level
     std::optional<Technique> compareWith;
     uint32_t truthSamples = 64;
     int device = -1;

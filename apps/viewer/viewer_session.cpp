@@ -1,5 +1,7 @@
 #include "viewer_session.h"
 
+#include "page_views.h"
+
 #include "penumbra/error.h"
 #include "render/renderer_impl.h"
 #include "shadows/technique.h"
@@ -48,7 +50,9 @@ ViewerSession::ViewerSession(Renderer& renderer, const Scene& scene, const Viewe
     mState.vsync = options.vsync;
     mState.hideUi = options.hideUi;
     mState.display = options.show;
-    mState.displayLight = mState.displayLayer = options.showIndex;
+    mState.displayLight = mState.displayLayer = std::max(0, options.showIndex);
+    // -1 (pages without a level, and any other start): the finest level with pages.
+    mState.displayLevel = options.show == DisplayMode::Pages ? options.showIndex : -1;
     mState.truthSamples = static_cast<int>(options.truthSamples);
     mState.truthRequested = options.show == DisplayMode::Error;
     mScripted = options.frames > 0;
@@ -247,6 +251,11 @@ gpu::DisplayPush ViewerSession::displayPush(uint32_t width) const {
         if (mErrorShown)
             push.mode.x = DISPLAY_OVERLAY;
         break;
+    case DisplayMode::Pages:
+    case DisplayMode::Pool:
+        if (mPagesShown)
+            push.mode.x = DISPLAY_OVERLAY;
+        break;
     case DisplayMode::Contact:
         if (shadowLights > 0 && s.options.parameters.number("contact.length") > 0.0)
             push.mode.x = DISPLAY_LAYER,
@@ -276,6 +285,7 @@ void ViewerSession::record(FrameSlot& slot, uint64_t frame, DisplayPass& display
     SceneRenderer::RecordedFrame liveA = mA->record(slot.cmd, a, frameState(), frame % 2,
                                                     *slot.timerA, intermediates, printProgress);
     mState.lastFrame = std::move(liveA.result);
+    showPages(a, display);
     const render::FrameOutputs* outputsB = nullptr;
     slot.timedB = false;
     if (mState.compare) {
@@ -290,6 +300,55 @@ void ViewerSession::record(FrameSlot& slot, uint64_t frame, DisplayPass& display
         slot.timedB = true;
     }
     display.record(slot.cmd, *liveA.outputs, outputsB, displayPush(a.width));
+}
+
+void ViewerSession::showPages(const RenderOptions& o, DisplayPass& display) {
+    const bool pageView =
+        mState.display == DisplayMode::Pages || mState.display == DisplayMode::Pool;
+    mPagesShown = pageView && mState.lastFrame.virtualMaps.has_value();
+    if (!mPagesShown)
+        return;
+    const VirtualPages pages = mA->virtualPages();
+    auto isCube = [&](uint32_t light) {
+        return light < mState.lights.size() && mState.lights[light].type == LightType::Point;
+    };
+    mState.levelNames.clear();
+    int finest = -1; // the first level with a page in the pool or asked for
+    for (const VirtualPages::Level& l : pages.levels) {
+        const auto used = std::count_if(l.pages.begin(), l.pages.end(),
+                                        [](PageState p) { return p != PageState::Absent; });
+        if (used > 0 && finest < 0)
+            finest = static_cast<int>(mState.levelNames.size());
+        mState.levelNames.push_back(
+            fmt::format("{} ({} pages)", levelName(l, isCube(l.light)), used));
+    }
+    const int last = static_cast<int>(pages.levels.size()) - 1;
+    const int shown = mState.displayLevel < 0 ? std::max(finest, 0)
+                                              : std::min(mState.displayLevel, std::max(last, 0));
+    mState.shownLevel = shown;
+    if (mState.display == DisplayMode::Pool)
+        display.setOverlay(poolImage(pages, o.width, o.height));
+    else if (!pages.levels.empty()) {
+        const VirtualPages::Level& level = pages.levels[static_cast<size_t>(shown)];
+        const PageWindow window =
+            mState.wholeTable ? PageWindow{0, 0, level.pagesPerSide} : usedWindow(level);
+        mState.pageWindow = {window.x, window.y, window.side};
+        display.setOverlay(pageTableImage(level, window, o.width, o.height));
+    } else
+        mPagesShown = false;
+    if (mScripted) { // each frame's, the last one's is the screenshot's
+        const VirtualMapInfo& v = *mState.lastFrame.virtualMaps; // what the interface shows
+        const glm::uvec3 w = mState.pageWindow;
+        const std::string what = mState.display == DisplayMode::Pool || pages.levels.empty()
+                                     ? std::string("the pool")
+                                     : fmt::format("{}, pages {}..{}, {}..{}",
+                                                   mState.levelNames[static_cast<size_t>(shown)],
+                                                   w.x, w.x + w.z - 1, w.y, w.y + w.z - 1);
+        std::printf("virtual pages: requested %u, resident %u of %u, rendered %u, cached %u, "
+                    "dropped %u; shown: %s\n",
+                    v.requested, v.resident, v.poolPages, v.rendered, v.cached, v.dropped,
+                    what.c_str());
+    }
 }
 
 void ViewerSession::printTimes() const {

@@ -38,6 +38,8 @@ private:
     void startTruth();
     void measureError(DisplayPass& display);
     gpu::DisplayPush displayPush(uint32_t width) const;
+    // The virtual-map views (Pages, Pool): the last recorded frame's pages into the overlay.
+    void showPages(const RenderOptions& options, DisplayPass& display);
 
     Renderer& mRenderer;
     const Scene& mScene;
@@ -51,6 +53,7 @@ private:
     glm::uvec2 mTruthSize{0u};
     std::string mMeasuredFor; // what the error view on screen was measured for
     bool mErrorShown = false;
+    bool mPagesShown = false;
     bool mScripted = false; // --frames: no one is watching, frames wait for slow work
 };
 

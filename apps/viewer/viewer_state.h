@@ -22,7 +22,9 @@ enum class DisplayMode {
     Error,
     BlockerDepth,
     Penumbra,
-    Contact // the contact layer's own result for one light (what it multiplies in)
+    Contact, // the contact layer's own result for one light (what it multiplies in)
+    Pages,   // virtual maps: one level's page table (rendered this frame, cached, kept, dropped)
+    Pool     // virtual maps: the physical pool, each page tinted by the level it holds
 };
 
 // Whether the technique reports a blocker depth and penumbra width (evaluateTechnique's y and w):
@@ -40,7 +42,13 @@ struct ViewerState {
     DisplayMode display = DisplayMode::Scene;
     int displayLight = 0; // shadow-casting light shown by Visibility, Error, BlockerDepth, Penumbra
     int displayLayer = 0; // shadow-map layer shown by ShadowMap
-    bool compare = false; // A/B: technique B right of the split
+    int displayLevel = -1;     // virtual-map level shown by Pages (VirtualPages::levels' index);
+                               // -1: the finest level with pages, as the frame changes
+    int shownLevel = 0;        // the one shown
+    bool wholeTable = false;   // else the square around its used pages
+    glm::uvec3 pageWindow{0u}; // the pages shown: first x, first y, side
+    std::vector<std::string> levelNames; // the last frame's virtual-map levels, for the interface
+    bool compare = false;                // A/B: technique B right of the split
     Technique techniqueB = Technique::Pcss;
     float split = 0.5f; // of the width
     bool vsync = true;

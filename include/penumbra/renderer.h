@@ -116,6 +116,31 @@ struct VirtualMapInfo {
     uint32_t droppedFrames = 0;             // frames whose pool was too small for their view
 };
 
+// A virtual page as the debug views show it (SceneRenderer::virtualPages).
+enum class PageState : uint8_t {
+    Absent,   // not in the pool
+    Kept,     // in the pool, not asked for by the last frame
+    Cached,   // asked for, and in the pool before the frame
+    Rendered, // asked for, and rendered by the frame
+    Dropped,  // asked for, but the pool was full: its pixels read a coarser page
+};
+
+// The last frame's virtual pages: every level's page table and what the pool holds.
+struct VirtualPages {
+    struct Level {
+        uint32_t light = 0, face = 0, level = 0; // scene light, cube face, 0 the finest
+        uint32_t pagesPerSide = 0;
+        std::vector<PageState> pages; // row by row, the window's page (0, 0) first
+    };
+    std::vector<Level> levels;
+    // Per physical page, row by row: the index in `levels` of the level it holds a page of; -1
+    // free, -2 a page of no level this frame shows (a sun's window has moved past it).
+    std::vector<int32_t> poolOwner;
+    std::vector<uint8_t> poolRendered; // 1: rendered by the last frame
+    uint32_t poolPagesPerSide = 0;
+    VirtualMapInfo info;
+};
+
 struct RenderResult {
     uint32_t width = 0, height = 0;
     std::vector<uint8_t> image;                 // RGBA8, sRGB-encoded, rows top to bottom
@@ -225,6 +250,8 @@ public:
     };
     RenderResult render(const RenderOptions& options, const FrameState& state,
                         const ProgressFn& progress = {});
+    // The pages of the last frame that read virtual maps (empty levels before one).
+    VirtualPages virtualPages() const;
     // The distance field the last sdf render traced, x fastest, then y, then z (empty before
     // one); `info` gets its grid.
     std::vector<float> distanceField(DistanceFieldInfo& info) const;

@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <unordered_set>
 
 namespace penumbra {
 namespace {
@@ -288,13 +289,12 @@ std::vector<uint32_t> pageTable(const std::vector<VirtualLevel>& levels, const P
         if (!key)
             continue;
         for (const VirtualLevel& level : levels)
-            if (level.light == key->light && level.face == key->face &&
-                level.level == key->level) {
+            if (level.light == key->light && level.face == key->face && level.level == key->level) {
                 const glm::ivec2 local = key->page - level.firstPage;
                 const auto n = static_cast<int>(level.pagesPerSide);
                 if (local.x >= 0 && local.y >= 0 && local.x < n && local.y < n)
-                    table.at(gpu::virtualEntryIndex(level.tableOffset, level.pagesPerSide,
-                                                    local)) = physical + 1u;
+                    table.at(gpu::virtualEntryIndex(level.tableOffset, level.pagesPerSide, local)) =
+                        physical + 1u;
                 break;
             }
     }
@@ -334,6 +334,55 @@ std::vector<PageKey> withCoarserPages(const std::vector<PageKey>& requests,
                 out.push_back(k);
             child = parent;
         }
+    }
+    return out;
+}
+
+VirtualPages virtualPages(const std::vector<VirtualLevel>& levels, const PageCache& cache,
+                          const std::vector<PageKey>& requested,
+                          const std::vector<uint32_t>& rendered, uint32_t poolPagesPerSide) {
+    VirtualPages out{.poolOwner = std::vector<int32_t>(cache.capacity(), -1),
+                     .poolRendered = std::vector<uint8_t>(cache.capacity(), 0),
+                     .poolPagesPerSide = poolPagesPerSide};
+    for (const VirtualLevel& level : levels)
+        out.levels.push_back({.light = level.light,
+                              .face = level.face,
+                              .level = level.level,
+                              .pagesPerSide = level.pagesPerSide,
+                              .pages = std::vector<PageState>(level.tableEntries())});
+    // The level a key belongs to and its entry there, if this frame's window shows it.
+    auto place = [&](const PageKey& key) -> std::optional<std::pair<size_t, uint32_t>> {
+        for (size_t i = 0; i < levels.size(); ++i) {
+            const VirtualLevel& level = levels[i];
+            if (level.light != key.light || level.face != key.face || level.level != key.level)
+                continue;
+            const glm::ivec2 local = key.page - level.firstPage;
+            const auto n = static_cast<int>(level.pagesPerSide);
+            if (local.x < 0 || local.y < 0 || local.x >= n || local.y >= n)
+                return std::nullopt;
+            return std::pair{i, gpu::virtualEntryIndex(0, level.pagesPerSide, local)};
+        }
+        return std::nullopt;
+    };
+    std::unordered_set<PageKey, PageKeyHash> asked(requested.begin(), requested.end());
+    for (const PageKey& key : asked) // resident ones are overwritten below
+        if (const auto at = place(key))
+            out.levels[at->first].pages[at->second] = PageState::Dropped;
+    for (uint32_t physical : rendered)
+        out.poolRendered.at(physical) = 1;
+    for (uint32_t physical = 0; physical < cache.capacity(); ++physical) {
+        const std::optional<PageKey> key = cache.keyOf(physical);
+        if (!key)
+            continue;
+        const auto at = place(*key);
+        out.poolOwner[physical] = at ? static_cast<int32_t>(at->first) : -2;
+        if (!at)
+            continue;
+        PageState& state = out.levels[at->first].pages[at->second];
+        if (out.poolRendered[physical])
+            state = PageState::Rendered;
+        else
+            state = asked.count(*key) ? PageState::Cached : PageState::Kept;
     }
     return out;
 }

@@ -11,6 +11,7 @@
 // to one page; a point light's, six such cube faces. Pages are named by PageKey: a sun's by
 // their absolute place in the level's page grid, so a moved window finds the pages it keeps.
 #include "core/light_space.h"
+#include "penumbra/renderer.h"
 #include "penumbra/settings.h"
 
 #include <glm/glm.hpp>
@@ -29,7 +30,7 @@ struct VirtualSettings {
     uint32_t pageSize = 128;  // virtual.pageSize: a page's side in texels
     uint32_t levels = 12;     // virtual.levels: a sun's clipmap levels up to the scene's extent
     uint32_t poolSize = 8192; // virtual.poolSize: the physical pool's side in texels
-    float lodBias = 0.0f;     // virtual.lodBias: levels coarser (+) or finer (-) than a pixel
+    float lodBias = -0.5f;    // virtual.lodBias: levels coarser (+) or finer (-) than a pixel
 
     static VirtualSettings of(const ParameterValues& p);
     uint32_t pagesPerSide() const { return size / pageSize; }
@@ -140,6 +141,13 @@ std::vector<uint32_t> pageTable(const std::vector<VirtualLevel>& levels, const P
 // left out.
 std::vector<PageKey> withCoarserPages(const std::vector<PageKey>& requests,
                                       const std::vector<VirtualLevel>& levels);
+
+// The debug views' picture after an update: every level's pages and the pool's owners.
+// `requested`: the update's requests (the coarser chains included); `rendered`: the physical
+// pages it rendered.
+VirtualPages virtualPages(const std::vector<VirtualLevel>& levels, const PageCache& cache,
+                          const std::vector<PageKey>& requested,
+                          const std::vector<uint32_t>& rendered, uint32_t poolPagesPerSide);
 
 // The pages a request buffer (one word per table entry, non-zero: requested) asks for.
 std::vector<PageKey> requestedPages(const std::vector<VirtualLevel>& levels,

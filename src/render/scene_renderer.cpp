@@ -95,6 +95,11 @@ struct SceneRenderer::Impl {
     uint64_t pageFrame = 0;
     std::vector<render::PageDraw> pageDraws;
     VirtualMapInfo pageInfo;
+    // The last update's levels, requests and rendered physical pages: the debug views' source.
+    std::vector<VirtualLevel> pageLevels;
+    std::vector<PageKey> pageRequests;
+    std::vector<uint32_t> pagesRendered;
+    uint32_t poolPagesPerSide = 0;
 
     const vk::Context& ctx() const { return renderer.mImpl->ctx; }
     render::FramePipelines& pipelines() { return renderer.mImpl->pipelines; }
@@ -367,11 +372,14 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
                  slot.markedWith, static_cast<const uint32_t*>(slot.pageRequests.mapped)))
             if (levelOf(k)) // a sun's window may have moved on
                 requests.push_back(k);
-    const PageCache::Update u =
-        pageCache->update(withCoarserPages(requests, p.levels), ++pageFrame);
+    pageRequests = withCoarserPages(requests, p.levels);
+    const PageCache::Update u = pageCache->update(pageRequests, ++pageFrame);
     pageDraws.clear();
-    const uint32_t side = v.poolPagesPerSide();
+    pagesRendered.clear();
+    pageLevels = p.levels;
+    const uint32_t side = poolPagesPerSide = v.poolPagesPerSide();
     for (const auto& [physical, key] : u.render) {
+        pagesRendered.push_back(physical);
         const VirtualLevel& level = *levelOf(key);
         pageDraws.push_back({.viewProj = pageViewProj(level, key.page - level.firstPage),
                              .perspective = level.projection.perspective,
@@ -499,8 +507,21 @@ SceneRenderer::RecordedFrame SceneRenderer::record(VkCommandBuffer_T* cmd,
                                       .memoryBarrierCount = 1,
                                       .pMemoryBarriers = &previousFrames};
     vkCmdPipelineBarrier2(cmd, &dependency);
+    m.pageInfo.renderedPerFrame.clear(); // this frame's alone: a viewer's frames never end
     m.record(cmd, prepared, timer);
+    if (prepared.settings.virtualMaps)
+        prepared.result.virtualMaps = m.pageInfo;
     return {std::move(prepared.result), &m.outputs};
+}
+
+VirtualPages SceneRenderer::virtualPages() const {
+    const Impl& m = *mImpl;
+    if (!m.pageCache)
+        return {};
+    VirtualPages pages = penumbra::virtualPages(m.pageLevels, *m.pageCache, m.pageRequests,
+                                                m.pagesRendered, m.poolPagesPerSide);
+    pages.info = m.pageInfo;
+    return pages;
 }
 
 } // namespace penumbra

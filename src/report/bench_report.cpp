@@ -24,6 +24,21 @@ std::string escape(const std::string& text) {
     return out;
 }
 
+// bench.html's virtual-pages cell: pages rendered per timed frame (the last `frames` of every
+// frame's counts; the warm-ups render the view's pages), and the pool's occupancy.
+std::string virtualPagesCell(const VirtualMapInfo& v, uint32_t frames) {
+    const std::vector<uint32_t>& all = v.renderedPerFrame;
+    std::vector<uint32_t> timed(all.end() - std::min<ptrdiff_t>(frames, ptrdiff_t(all.size())),
+                                all.end());
+    std::sort(timed.begin(), timed.end());
+    const uint32_t median = timed.empty() ? 0 : timed[timed.size() / 2];
+    const uint32_t most = timed.empty() ? 0 : timed.back();
+    return fmt::format("{} per frame <small>(most {})</small>, {} of {} resident "
+                       "<small>({:.1f}%)</small>",
+                       median, most, v.resident, v.poolPages,
+                       v.poolPages ? 100.0 * v.resident / v.poolPages : 0.0);
+}
+
 std::string sweptLabel(const BenchRun& run) {
     std::string label;
     for (const auto& [key, value] : run.swept)
@@ -264,7 +279,14 @@ std::string benchHtml(const BenchData& data) {
                 passes.push_back(p.pass);
     for (const std::string& p : passes)
         html += "<th>" + escape(p) + "</th>";
-    html += "<th>total</th><th>memory MiB</th></tr>";
+    const bool anyVirtual = std::any_of(data.runs.begin(), data.runs.end(), [](const BenchRun& r) {
+        return r.virtualMaps.has_value();
+    });
+    html += "<th>total</th><th>memory MiB</th>";
+    if (anyVirtual)
+        html += "<th title='virtual.enabled: pages rendered per timed frame (median and most), "
+                "and pages resident in the pool'>virtual pages</th>";
+    html += "</tr>";
     for (const BenchRun& r : data.runs) {
         html += fmt::format("<tr><td class='l'>{}</td><td class='l'>{}</td>",
                             techniqueName(r.technique), escape(sweptLabel(r)));
@@ -276,8 +298,12 @@ std::string benchHtml(const BenchData& data) {
                         : fmt::format("<td>{:.3f} <small>[{:.3f}, {:.3f}]</small></td>", it->median,
                                       it->p10, it->p90);
         }
-        html += fmt::format("<td>{:.3f}</td><td>{:.1f}</td></tr>", r.total.median,
+        html += fmt::format("<td>{:.3f}</td><td>{:.1f}</td>", r.total.median,
                             double(r.memoryBytes()) / (1 << 20));
+        if (anyVirtual)
+            html += r.virtualMaps ? "<td>" + virtualPagesCell(*r.virtualMaps, data.frames) + "</td>"
+                                  : "<td></td>";
+        html += "</tr>";
     }
     return html + "</table></body></html>\n";
 }

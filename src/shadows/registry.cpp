@@ -194,7 +194,7 @@ const std::vector<ParameterInfo>& parameterTable() {
                         "light; when full, pixels read coarser pages"},
         {.key = "virtual.lodBias",
          .type = ParameterType::Float,
-         .defaultValue = 0.0,
+         .defaultValue = -0.5, // docs/techniques.md: half the error of 0's misclassified pixels
          .min = -4.0,
          .max = 4.0,
          .unit = "levels",
