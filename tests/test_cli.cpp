@@ -470,6 +470,96 @@ TEST(Cli, ReportLoadsInChromiumWithARowAndHeatmapPerTechnique) {
     EXPECT_EQ(count("<img"), count("src=\"data:image/png;base64,"));
 }
 
+// report.html as a reader sees it, in headless Chromium at 1000, 1400 and 1920 pixels: nothing
+// wider than the window (no sideways scrolling), no plot label over another label or a point on
+// either cost axis, the comparer's slider changing its picture, and no console message. A check
+// script appended to a copy of the page measures the laid-out page and writes what it found into
+// the DOM, which Chromium dumps.
+TEST(Cli, ReportReadsAtThreeWidthsWithoutOverlapsInChromium) {
+    const fs::path& out = smallComparison();
+    const std::string check = R"JS(<script>
+window.addEventListener("load", function () { setTimeout(function () {
+  const W = document.documentElement.clientWidth, found = { width: W, wide: [], overlaps: [],
+    labels: 0, slider: false, sorted: false };
+  found.scroll = document.documentElement.scrollWidth;
+  function boxes() {
+    document.querySelectorAll("body *").forEach(function (el) {
+      const r = el.getBoundingClientRect();
+      if (r.width > 0 && (r.right > W + 0.5 || r.left < -0.5))
+        found.wide.push(el.tagName + "." + el.getAttribute("class") + " " + r.left + ".." + r.right);
+    });
+    document.querySelectorAll("svg.error-vs-cost").forEach(function (svg) {
+      if (svg.getBoundingClientRect().width === 0) return;
+      const labels = Array.from(svg.querySelectorAll("text.plot-label")).map(function (t) {
+        return [t.textContent, t.getBoundingClientRect()]; });
+      const discs = Array.from(svg.querySelectorAll("circle")).map(function (c) {
+        return ["point", c.getBoundingClientRect()]; });
+      found.labels += labels.length;
+      function meet(a, b) { return a.left < b.right - 0.5 && b.left < a.right - 0.5 &&
+                                   a.top < b.bottom - 0.5 && b.top < a.bottom - 0.5; }
+      labels.forEach(function (a, i) {
+        labels.concat(discs).forEach(function (b, j) {
+          if (j > i && meet(a[1], b[1])) found.overlaps.push(a[0] + " / " + b[0]);
+        });
+      });
+    });
+  }
+  boxes();
+  document.getElementById("cost-log").checked = true;
+  boxes();
+  const canvas = document.getElementById("cmp-canvas"), before = canvas.toDataURL();
+  const split = document.getElementById("cmp-split");
+  split.value = 150;
+  split.dispatchEvent(new Event("input"));
+  found.slider = canvas.toDataURL() !== before;
+  const rmse = document.querySelectorAll("table.results thead tr:nth-child(2) th")[0];
+  rmse.click();
+  const values = Array.from(document.querySelectorAll("table.results tbody tr")).map(
+    function (r) { return parseFloat(r.cells[1].dataset.value); });
+  found.sorted = values.every(function (v, i) { return i === 0 || values[i - 1] <= v; });
+  document.body.setAttribute("data-check", JSON.stringify(found));
+}, 300); });
+</script>)JS";
+    std::string html = slurp(out / "report.html");
+    html.insert(html.rfind("</body>"), check);
+    const fs::path dir = scratch("report-widths");
+    fs::create_directories(dir);
+    const fs::path page = dir / "report.html";
+    { std::ofstream(page) << html; }
+    for (const int width : {1000, 1400, 1920}) {
+        SCOPED_TRACE(width);
+        const ProcessResult r =
+            runProcess({"/usr/bin/chromium", "--headless", "--no-sandbox", "--disable-gpu",
+                        "--disable-quic", "--no-first-run", "--disable-background-networking",
+                        "--disable-component-update", "--disable-sync", "--hide-scrollbars",
+                        "--user-data-dir=" + scratch("chromium-widths").string(),
+                        "--enable-logging=stderr", "--v=0", "--virtual-time-budget=5000",
+                        "--window-size=" + std::to_string(width) + ",900", "--dump-dom",
+                        "file://" + fs::absolute(page).string()});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_EQ(r.err.find("CONSOLE"), std::string::npos) << r.err;
+        const std::string key = "data-check=\"";
+        const size_t at = r.out.find(key);
+        ASSERT_NE(at, std::string::npos)
+            << "the check did not run: " << r.out.substr(0, 400) << r.err;
+        std::string json =
+            r.out.substr(at + key.size(), r.out.find('"', at + key.size()) - at - key.size());
+        for (const auto& [entity, c] : {std::pair{std::string("&quot;"), std::string("\"")},
+                                        std::pair{std::string("&lt;"), std::string("<")},
+                                        std::pair{std::string("&gt;"), std::string(">")},
+                                        std::pair{std::string("&amp;"), std::string("&")}})
+            for (size_t p = json.find(entity); p != std::string::npos; p = json.find(entity, p))
+                json.replace(p, entity.size(), c);
+        const auto found = nlohmann::json::parse(json);
+        EXPECT_LE(found["scroll"].get<int>(), found["width"].get<int>()) << found.dump();
+        EXPECT_TRUE(found["wide"].empty()) << found["wide"].dump(1);
+        EXPECT_TRUE(found["overlaps"].empty()) << found["overlaps"].dump(1);
+        EXPECT_GT(found["labels"].get<int>(), 4) << "labels are drawn, not all left out";
+        EXPECT_TRUE(found["slider"].get<bool>());
+        EXPECT_TRUE(found["sorted"].get<bool>()) << "a click on RMSE sorts by it";
+    }
+}
+
 namespace {
 
 // A ground with a box on it under a sun, a spot and a point light.

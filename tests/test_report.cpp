@@ -1,5 +1,6 @@
 #include "report/heatmap.h"
 #include "report/html_report.h"
+#include "report/report_plot.h"
 #include "report/tune_report.h"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <limits>
 #include <set>
 #include <string>
+#include <tuple>
 
 namespace penumbra {
 namespace {
@@ -271,8 +273,10 @@ TEST(HtmlReport, IsSelfContainedAndEscaped) {
     EXPECT_EQ(countOf(html, "<img class=\"heatmap\""), 2u);
     EXPECT_EQ(countOf(html, "<figure class=\"card technique\" data-technique="), 2u);
     EXPECT_EQ(countOf(html, "class=\"error-vs-cost\""), 1u);
-    for (const char* banned : {"http:", "https:", "src=\"//", "href=\"//", "<script", "url("})
+    for (const char* banned : {"http:", "https:", "src=\"//", "href=\"//", "<script src", "url("})
         EXPECT_EQ(html.find(banned), std::string::npos) << banned;
+    EXPECT_EQ(countOf(html, "<script>"), 1u) << "one inline script: sorting and the comparer";
+    EXPECT_EQ(countOf(html, "<svg class=\"error-vs-cost"), 2u) << "linear and logarithmic cost";
     EXPECT_EQ(html.find("a<b&\"c\""), std::string::npos);
     EXPECT_NE(html.find("data-technique=\"a&lt;b&amp;&quot;c&quot;\""), std::string::npos);
     EXPECT_NE(html.find("LLVM 15.0.7"), std::string::npos);
@@ -294,6 +298,69 @@ TEST(HtmlReport, EmbeddedImagesDecode) {
     EXPECT_EQ(w, 3);
     EXPECT_GE(h, 29);
     stbi_image_free(decoded);
+}
+
+// The front: what no other row beats on both counts; a tie on one count and a loss on the
+// other is dominated; non-finite rows are never on it.
+TEST(ReportPlot, TheParetoFrontHoldsWhatNoOtherRowBeatsOnBoth) {
+    const std::vector<PlotPoint> points{{"cheap", 1.0, 0.30}, {"balanced", 2.0, 0.10},
+                                        {"worse", 2.0, 0.20}, {"costly", 5.0, 0.05},
+                                        {"same", 5.0, 0.05},  {"tie-cost", 1.0, 0.35},
+                                        {"nan", NAN, 0.01},   {"dominated", 6.0, 0.06}};
+    const std::vector<bool> front = paretoFront(points);
+    const std::vector<bool> expected{true, true, false, true, true, false, false, false};
+    EXPECT_EQ(front, expected);
+}
+
+// Labels never overlap one another or a point, stay inside the plot, and a label with no room
+// left is left out rather than drawn over another.
+TEST(ReportPlot, LabelsAreSetWhereNothingElseIs) {
+    const PlotBox bounds{0, 0, 300, 200};
+    std::vector<PlotBox> points, sizes;
+    for (int i = 0; i < 12; ++i) { // a tight cluster and a few apart
+        points.push_back({100.0 + 3 * (i % 4), 100.0 + 3 * (i / 4)});
+        sizes.push_back({0, 0, labelWidth("pcf[poisson32]"), 15});
+    }
+    points.push_back({280, 190}); // near a corner: its label must turn inwards
+    sizes.push_back({0, 0, labelWidth("vsm[mip]"), 15});
+    const std::vector<PlotBox> placed = placeLabels(points, 6, sizes, bounds);
+    ASSERT_EQ(placed.size(), points.size());
+    int shown = 0;
+    for (size_t i = 0; i < placed.size(); ++i) {
+        if (placed[i].w == 0)
+            continue;
+        ++shown;
+        EXPECT_GE(placed[i].x, bounds.x);
+        EXPECT_GE(placed[i].y, bounds.y);
+        EXPECT_LE(placed[i].x + placed[i].w, bounds.x + bounds.w);
+        EXPECT_LE(placed[i].y + placed[i].h, bounds.y + bounds.h);
+        for (size_t j = 0; j < placed.size(); ++j) {
+            if (j != i && placed[j].w > 0) {
+                EXPECT_FALSE(placed[i].intersects(placed[j])) << i << " " << j;
+            }
+            const PlotBox disc{points[j].x - 6, points[j].y - 6, 12, 12};
+            EXPECT_FALSE(placed[i].intersects(disc)) << "label " << i << " over point " << j;
+        }
+    }
+    EXPECT_GE(shown, 4) << "room around the cluster for a few, and the corner's";
+    EXPECT_LT(shown, 13) << "not every label of a tight cluster fits";
+    EXPECT_GT(placed.back().w, 0.0);
+    EXPECT_LT(placed.back().x, 280.0) << "the corner's label to its left";
+}
+
+// Axis ticks at 1, 2 or 5 x 10^k, covering the data (bench.html once ticked at 35.7, 71.4).
+TEST(ReportPlot, AxesTickAtRoundNumbers) {
+    for (const auto& [max, step, top] : {std::tuple{107.0, 50.0, 150.0},
+                                         {0.0231, 0.005, 0.025},
+                                         {4.2, 1.0, 5.0},
+                                         {1.0, 0.5, 1.5}}) {
+        const Axis a = niceAxis(max);
+        EXPECT_DOUBLE_EQ(a.step, step) << max;
+        EXPECT_NEAR(a.max, top, 1e-12) << max;
+        EXPECT_GE(a.max, max);
+    }
+    const Axis none = niceAxis(NAN);
+    EXPECT_EQ(none.max, 1.0);
 }
 
 TEST(HtmlReport, PlotHandlesASingleZeroRow) {

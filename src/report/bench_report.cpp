@@ -1,5 +1,6 @@
 #include "report/bench_report.h"
 
+#include "report/report_plot.h"
 #include "report/stats.h"
 #include "shadows/technique.h"
 
@@ -97,7 +98,8 @@ std::string chart(const std::string& title, const std::string& key,
             yMax = std::max(yMax, ms);
         }
     }
-    yMax = yMax > 0 ? yMax * 1.1 : 1.0;
+    const Axis axis = niceAxis(yMax); // ticks at 1, 2 or 5 x 10^k
+    yMax = axis.max;
     auto px = [&](double x) {
         return left + (xMax > xMin ? (x - xMin) / (xMax - xMin) : 0.5) * (W - left - right);
     };
@@ -108,13 +110,11 @@ std::string chart(const std::string& title, const std::string& key,
                                   "<line x1='{}' y1='{}' x2='{}' y2='{}' stroke='#333'/>",
                                   W, H, W, H, left, escape(title), left, top, left, H - bottom,
                                   left, H - bottom, W - right, H - bottom);
-    for (int i = 0; i <= 4; ++i) { // the ms axis
-        const double y = yMax * i / 4.0;
-        svg += fmt::format("<text x='{}' y='{}' font-size='10' text-anchor='end'>{}</text>"
+    for (int i = 0; i <= int(std::lround(axis.max / axis.step)); ++i) { // the ms axis
+        const double y = axis.step * i;
+        svg += fmt::format("<text x='{}' y='{}' font-size='10' text-anchor='end'>{:.{}f}</text>"
                            "<line x1='{}' y1='{}' x2='{}' y2='{}' stroke='#ddd'/>",
-                           left - 4, py(y) + 3,
-                           y >= 100 ? fmt::format("{:.0f}", y) : fmt::format("{:.3g}", y), left,
-                           py(y), W - right, py(y));
+                           left - 4, py(y) + 3, y, axis.decimals, left, py(y), W - right, py(y));
     }
     for (size_t i = 0; i < runs.size(); ++i)
         svg += fmt::format("<text x='{}' y='{}' font-size='10' text-anchor='middle'>{}</text>",

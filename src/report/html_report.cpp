@@ -1,5 +1,8 @@
 #include "report/html_report.h"
 
+#include "report/report_plot.h"
+#include "report/report_script.h"
+
 #include "penumbra/error.h"
 
 #include <fmt/format.h>
@@ -58,27 +61,6 @@ std::string imageTag(const std::vector<uint8_t>& png, std::string_view cls, std:
                        escapeHtml(alt), base64(png));
 }
 
-double totalGpuMs(const ReportRow& row) {
-    double total = 0;
-    for (const auto& [pass, ms] : row.gpuMs)
-        total += ms;
-    return total;
-}
-
-// Every pass that any row timed, in the order first seen (rows list them in frame order).
-std::vector<std::string> passNames(const std::vector<ReportRow>& rows) {
-    std::vector<std::string> names;
-    for (const ReportRow& row : rows)
-        for (const auto& [pass, ms] : row.gpuMs)
-            if (std::find(names.begin(), names.end(), pass) == names.end())
-                names.push_back(pass);
-    return names;
-}
-
-std::string percent(double fraction) {
-    return fmt::format("{:.2f}%", 100 * fraction);
-}
-
 // "12.3 M" style counts for rays per second.
 std::string humanCount(double value) {
     if (value >= 1e9)
@@ -88,88 +70,6 @@ std::string humanCount(double value) {
     if (value >= 1e3)
         return fmt::format("{:.2f} k", value / 1e3);
     return fmt::format("{:.0f}", value);
-}
-
-// A "nice" axis from 0: a 1/2/5 x 10^k step and a maximum that covers maxValue. Degenerate data
-// (no rows, all zero, non-finite) gets the unit axis rather than a division by zero.
-struct Axis {
-    double max = 1, step = 0.2;
-    int decimals = 1;
-};
-
-Axis niceAxis(double maxValue) {
-    if (!(maxValue > 0) || !std::isfinite(maxValue))
-        return {};
-    const double raw = maxValue * 1.05 / 5;
-    const double magnitude = std::pow(10.0, std::floor(std::log10(raw)));
-    const double norm = raw / magnitude;
-    const double step = (norm <= 1 ? 1 : norm <= 2 ? 2 : norm <= 5 ? 5 : 10) * magnitude;
-    const int decimals = std::max(0, -int(std::floor(std::log10(step) + 1e-9)));
-    return {std::ceil(maxValue * 1.05 / step) * step, step, decimals};
-}
-
-constexpr std::string_view kPalette[] = {"#2b6cb0", "#c53030", "#2f855a", "#b7791f",
-                                         "#6b46c1", "#0987a0", "#d53f8c", "#4a5568"};
-
-// Error (RMSE) against total GPU time, one labelled point per row, as inline SVG.
-std::string errorVsCostSvg(const std::vector<ReportRow>& rows) {
-    constexpr double w = 760, h = 420, left = 70, right = 180, top = 20, bottom = 56;
-    constexpr double plotW = w - left - right, plotH = h - top - bottom;
-    double maxMs = 0, maxRmse = 0;
-    for (const ReportRow& row : rows) {
-        if (std::isfinite(totalGpuMs(row)))
-            maxMs = std::max(maxMs, totalGpuMs(row));
-        if (std::isfinite(row.metrics.rmse))
-            maxRmse = std::max(maxRmse, row.metrics.rmse);
-    }
-    const Axis ax = niceAxis(maxMs), ay = niceAxis(maxRmse);
-    auto px = [&](double ms) { return left + plotW * ms / ax.max; };
-    auto py = [&](double rmse) { return top + plotH * (1 - rmse / ay.max); };
-    std::string s = fmt::format("<svg class=\"error-vs-cost\" viewBox=\"0 0 {} {}\" role=\"img\" "
-                                "aria-label=\"RMSE against total GPU time\">\n",
-                                w, h);
-    auto out = std::back_inserter(s);
-    const int ticksX = int(std::lround(ax.max / ax.step)),
-              ticksY = int(std::lround(ay.max / ay.step));
-    for (int i = 0; i <= ticksX; ++i) {
-        const double x = px(i * ax.step);
-        fmt::format_to(out,
-                       "<line class=\"grid\" x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\"/>"
-                       "<text class=\"tick\" x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">"
-                       "{4:.{5}f}</text>\n",
-                       x, top, top + plotH, top + plotH + 18, i * ax.step, ax.decimals);
-    }
-    for (int i = 0; i <= ticksY; ++i) {
-        const double y = py(i * ay.step);
-        fmt::format_to(out,
-                       "<line class=\"grid\" x1=\"{1}\" y1=\"{0:.1f}\" x2=\"{2}\" y2=\"{0:.1f}\"/>"
-                       "<text class=\"tick\" x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">"
-                       "{5:.{6}f}</text>\n",
-                       y, left, left + plotW, left - 8, y + 4, i * ay.step, ay.decimals);
-    }
-    fmt::format_to(out,
-                   "<line class=\"axis\" x1=\"{0}\" y1=\"{1}\" x2=\"{2}\" y2=\"{1}\"/>"
-                   "<line class=\"axis\" x1=\"{0}\" y1=\"{3}\" x2=\"{0}\" y2=\"{1}\"/>\n",
-                   left, top + plotH, left + plotW, top);
-    fmt::format_to(out,
-                   "<text class=\"label\" x=\"{}\" y=\"{}\" text-anchor=\"middle\">total GPU "
-                   "time (ms)</text>\n<text class=\"label\" transform=\"translate(18 {}) "
-                   "rotate(-90)\" text-anchor=\"middle\">RMSE</text>\n",
-                   left + plotW / 2, h - 14, top + plotH / 2);
-    for (size_t i = 0; i < rows.size(); ++i) {
-        const double ms = totalGpuMs(rows[i]), rmse = rows[i].metrics.rmse;
-        if (!std::isfinite(ms) || !std::isfinite(rmse))
-            continue;
-        const std::string name = escapeHtml(rows[i].name);
-        fmt::format_to(out,
-                       "<g class=\"point\" data-technique=\"{0}\"><circle cx=\"{1:.1f}\" "
-                       "cy=\"{2:.1f}\" r=\"6\" fill=\"{3}\"><title>{0}: {4:.3f} ms, RMSE "
-                       "{5:.4f}</title></circle><text x=\"{6:.1f}\" y=\"{7:.1f}\">{0}</text></g>\n",
-                       name, px(ms), py(rmse), kPalette[i % std::size(kPalette)], ms, rmse,
-                       px(ms) + 9, py(rmse) - 7);
-    }
-    s += "</svg>\n";
-    return s;
 }
 
 constexpr std::string_view kStyle = R"(
@@ -230,20 +130,59 @@ void writeHeader(std::string& s, const ReportData& d) {
     s += "</ul></dd>\n</dl></section>\n";
 }
 
+// A pass's share of the cost columns: the shadow maps' passes (the depth pass and the
+// technique's post passes), the per-pixel ones, or the G-buffer (in the total only).
+enum class CostGroup { ShadowMaps, PerPixel, GBuffer };
+CostGroup costGroupOf(std::string_view pass) {
+    if (pass == "gbuffer")
+        return CostGroup::GBuffer;
+    if (pass == "visibility" || pass == "composite" || pass.starts_with("contact"))
+        return CostGroup::PerPixel;
+    return CostGroup::ShadowMaps;
+}
+
+// "size=7, filter=box": the parameters without their family, cut to `limit` characters.
+std::string shortParameters(const std::vector<std::pair<std::string, std::string>>& parameters,
+                            size_t limit) {
+    std::string text;
+    for (const auto& [key, value] : parameters)
+        text += (text.empty() ? "" : ", ") + key.substr(key.find('.') + 1) + "=" + value;
+    if (text.size() > limit)
+        text = text.substr(0, limit - 1) + "\u2026";
+    return text;
+}
+
 void writeTable(std::string& s, const ReportData& d) {
     auto out = std::back_inserter(s);
-    const std::vector<std::string> passes = passNames(d.rows);
-    s += "<h2>Error against the reference</h2>\n<section class=\"card table-wrap\"><table>\n"
-         "<thead><tr><th>Technique</th><th>Parameters</th><th>RMSE</th><th>MAE</th><th>Max</th>"
-         "<th>Misclassified</th><th>Misclassified outside edges</th><th>Acne</th><th>Leak</th>"
-         "<th>Acne beyond blur</th><th>Leak beyond blur</th>";
     const bool shimmer = !d.cameraPath.empty();
+    s += "<h2>Error against the reference</h2>\n<section class=\"card table-wrap\">"
+         "<table class=\"results\">\n<thead><tr class=\"groups\"><th rowspan=\"2\" "
+         "class=\"sortable\" data-type=\"text\">Technique</th><th colspan=\"5\">Error</th>";
+    fmt::format_to(out, "<th colspan=\"{}\" class=\"group\">Artifacts, % of pixels</th>",
+                   shimmer ? 5 : 4);
+    s += "<th colspan=\"3\" class=\"group\">GPU cost, ms</th></tr>\n<tr>";
+    auto header = [&](std::string_view text, std::string_view title, bool first = false) {
+        fmt::format_to(out, "<th class=\"sortable{}\" title=\"{}\">{}</th>", first ? " group" : "",
+                       title, text);
+    };
+    header("RMSE", "root-mean-square error of the visibility against the reference");
+    header("MAE", "mean absolute error");
+    header("Max", "largest absolute error");
+    header("Wrong", "misclassified: lit where the reference is shadowed or the reverse");
+    header("Wrong <small>off edges</small>",
+           "misclassified more than 2 pixels from the reference's shadow edges");
+    header("Acne", "fully lit in the reference, visibility below 0.9, off edges", true);
+    header("Leak", "fully shadowed in the reference, visibility above 0.1, off edges");
+    header("Acne <small>beyond blur</small>", "acne beyond the technique's blur radius");
+    header("Leak <small>beyond blur</small>", "leak beyond the technique's blur radius");
     if (shimmer)
-        fmt::format_to(out, "<th>Shimmer ({}, {} frames)</th>", escapeHtml(d.cameraPath),
-                       d.pathFrames);
-    for (const std::string& pass : passes)
-        fmt::format_to(out, "<th>{} ms</th>", escapeHtml(pass));
-    s += "<th class=\"total\">GPU total ms</th></tr></thead>\n<tbody>\n";
+        header(fmt::format("Shimmer ({})", escapeHtml(d.cameraPath)),
+               fmt::format("mean frame-to-frame change along the {} path, {} frames",
+                           escapeHtml(d.cameraPath), d.pathFrames));
+    header("Shadow maps", "the depth pass and the technique's own passes over its maps", true);
+    header("Per pixel", "visibility and composite (and the contact layer)");
+    header("Total", "every pass, the G-buffer included (the cell's tooltip lists them)");
+    s += "</tr></thead>\n<tbody>\n";
     // The lowest value of each error column is highlighted when there is something to compare.
     auto bestOf = [&](double ErrorMetrics::*field) {
         double best = INFINITY;
@@ -251,47 +190,66 @@ void writeTable(std::string& s, const ReportData& d) {
             best = std::min(best, row.metrics.*field);
         return d.rows.size() > 1 ? best : NAN;
     };
-    auto cell = [&](const ReportRow& row, double ErrorMetrics::*field, bool asPercent) {
+    auto number = [&](double v, std::string text, std::string_view cls = "",
+                      std::string_view title = "") {
+        fmt::format_to(out, "<td data-value=\"{}\"{}{}>{}</td>",
+                       std::isfinite(v) ? fmt::format("{:.9g}", v) : std::string("NaN"),
+                       cls.empty() ? "" : fmt::format(" class=\"{}\"", cls),
+                       title.empty() ? "" : fmt::format(" title=\"{}\"", title), text);
+    };
+    auto cell = [&](const ReportRow& row, double ErrorMetrics::*field, bool asPercent,
+                    std::string_view extra = "") {
         const double v = row.metrics.*field;
-        fmt::format_to(out, "<td{}>{}</td>", v == bestOf(field) ? " class=\"best\"" : "",
-                       asPercent ? percent(v) : fmt::format("{:.4f}", v));
+        const bool best = v == bestOf(field);
+        number(v, asPercent ? fmt::format("{:.2f}", 100 * v) : fmt::format("{:.4f}", v),
+               best ? fmt::format("best{}", extra) : std::string(extra));
     };
     for (const ReportRow& row : d.rows) {
         const std::string name = escapeHtml(row.name);
-        std::string params;
+        std::string full;
         for (const auto& [key, value] : row.parameters)
-            params += (params.empty() ? "" : ", ") + escapeHtml(key) + "=" + escapeHtml(value);
+            full += (full.empty() ? "" : ", ") + key + "=" + value;
         fmt::format_to(out,
-                       "<tr class=\"technique-row\" data-technique=\"{}\"><td class=\"name\">{}"
-                       "</td><td class=\"params\">{}</td>",
-                       name, name, params.empty() ? "defaults" : params);
+                       "<tr class=\"technique-row\" data-technique=\"{}\"><td class=\"name\" "
+                       "data-value=\"{}\"><strong>{}</strong><div class=\"params\" "
+                       "title=\"{}\">{}</div></td>",
+                       name, name, name, full.empty() ? "defaults" : escapeHtml(full),
+                       full.empty() ? "defaults" : escapeHtml(shortParameters(row.parameters, 34)));
         cell(row, &ErrorMetrics::rmse, false);
         cell(row, &ErrorMetrics::mae, false);
         cell(row, &ErrorMetrics::max, false);
         cell(row, &ErrorMetrics::misclassified, true);
         cell(row, &ErrorMetrics::misclassifiedOutsideEdges, true);
-        cell(row, &ErrorMetrics::acne, true);
+        cell(row, &ErrorMetrics::acne, true, " first");
         cell(row, &ErrorMetrics::leak, true);
         cell(row, &ErrorMetrics::acneBeyondBlur, true);
         cell(row, &ErrorMetrics::leakBeyondBlur, true);
         if (shimmer)
-            fmt::format_to(out, "<td>{:.5f}</td>", row.shimmer);
-        for (const std::string& pass : passes) {
-            auto it = std::find_if(row.gpuMs.begin(), row.gpuMs.end(),
-                                   [&](const auto& p) { return p.first == pass; });
-            s += it == row.gpuMs.end() ? std::string("<td>&ndash;</td>")
-                                       : fmt::format("<td>{:.3f}</td>", it->second);
+            number(row.shimmer, fmt::format("{:.5f}", row.shimmer));
+        double maps = 0, perPixel = 0;
+        std::string passes;
+        for (const auto& [pass, ms] : row.gpuMs) {
+            const CostGroup g = costGroupOf(pass);
+            if (g == CostGroup::ShadowMaps)
+                maps += ms;
+            else if (g == CostGroup::PerPixel)
+                perPixel += ms;
+            passes += fmt::format("{}{} {:.3f}", passes.empty() ? "" : ", ", pass, ms);
         }
-        fmt::format_to(out, "<td class=\"total\">{:.3f}</td></tr>\n", totalGpuMs(row));
+        number(maps, fmt::format("{:.3f}", maps), "first");
+        number(perPixel, fmt::format("{:.3f}", perPixel));
+        number(totalGpuMs(row), fmt::format("{:.3f}", totalGpuMs(row)), "", escapeHtml(passes));
+        s += "</tr>\n";
     }
-    s += "</tbody></table></section>\n<p class=\"note\">Percentages are fractions of counted "
-         "pixels (facing a light, inside its frustum). Acne: fully lit in the reference but "
-         "visibility &lt; 0.9; leak: fully shadowed but visibility &gt; 0.1; both, like "
-         "misclassified outside edges, more than 2 pixels from the reference's shadow "
-         "edges. Beyond blur: the same, more than the technique's blur radius from those "
-         "edges (its declared filter reach, in texels, projected to the screen at each pixel; "
-         "at least 2 and at most 8 pixels), so what remains is self-shadowing and missing "
-         "shadow rather than the blur a wide kernel makes.</p>\n";
+    s += "</tbody></table></section>\n<p class=\"note\">Click a column's header to sort by it. "
+         "Percentages are of counted pixels (facing a light, inside its frustum). Acne: fully "
+         "lit in the reference but visibility &lt; 0.9; leak: fully shadowed but visibility &gt; "
+         "0.1; both, like wrong (misclassified) off edges, more than 2 pixels from the "
+         "reference's shadow edges. Beyond blur: the same, more than the technique's blur radius "
+         "from those edges (its declared filter reach, in texels, projected to the screen at "
+         "each pixel; at least 2 and at most 8 pixels), so what remains is self-shadowing and "
+         "missing shadow rather than the blur a wide kernel makes. Every pass's time is in the "
+         "total's tooltip and in metrics.json.</p>\n";
 }
 
 void writeImages(std::string& s, const ReportData& d) {
@@ -326,16 +284,28 @@ void writeImages(std::string& s, const ReportData& d) {
 std::string renderHtmlReport(const ReportData& data) {
     std::string s = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                     "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
-    fmt::format_to(std::back_inserter(s), "<title>Penumbra report: {}</title>\n<style>{}</style>\n",
-                   escapeHtml(data.scene), kStyle);
+    fmt::format_to(std::back_inserter(s),
+                   "<title>Penumbra report: {}</title>\n<style>{}{}</style>\n",
+                   escapeHtml(data.scene), kStyle, kReportInteractiveStyle);
     s += "</head>\n<body>\n<main>\n";
     writeHeader(s, data);
     writeTable(s, data);
-    s += "<h2>Error against GPU cost</h2>\n<section class=\"card\">\n";
-    s += errorVsCostSvg(data.rows);
-    s += "</section>\n";
+    s += "<h2>Error against GPU cost</h2>\n<section class=\"card\">\n"
+         "<input type=\"radio\" name=\"cost-axis\" id=\"cost-linear\" checked>"
+         "<label for=\"cost-linear\">linear cost</label> "
+         "<input type=\"radio\" name=\"cost-axis\" id=\"cost-log\">"
+         "<label for=\"cost-log\">logarithmic cost</label>\n<div class=\"plots\">\n";
+    s += errorVsCostSvg(data.rows, false);
+    s += errorVsCostSvg(data.rows, true);
+    s += errorVsCostLegend(data.rows);
+    s += "</div>\n<p class=\"note\">The dashed line is the Pareto front: the rows no other row "
+         "beats on both error and cost (ringed, bold in the legend). A label that would overlap "
+         "another is left out: the legend and each point's tooltip name it.</p>\n</section>\n";
+    s += kComparerHtml;
     writeImages(s, data);
-    s += "</main>\n</body>\n</html>\n";
+    s += "</main>\n<script>";
+    s += kReportScript;
+    s += "</script>\n</body>\n</html>\n";
     return s;
 }
 

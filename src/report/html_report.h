@@ -43,8 +43,8 @@ struct ReportData {
     std::vector<ReportRow> rows;
 };
 
-// A self-contained HTML5 page (inline CSS and SVG, PNGs as data: URIs, no scripts, no network
-// references); every string from data is HTML-escaped.
+// A self-contained HTML5 page (inline CSS, SVG and one script, PNGs as data: URIs, no network
+// references) that reads at 1000 pixels and wider; every string from data is HTML-escaped.
 std::string renderHtmlReport(const ReportData& data);
 
 // metrics.json: {"reference": {...}, "techniques": {"<row name>": {..., "gpu_ms": {...}}}}.

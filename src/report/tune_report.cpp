@@ -1,6 +1,7 @@
 #include "report/tune_report.h"
 
 #include "report/html_report.h"
+#include "report/report_plot.h"
 
 #include <fmt/format.h>
 
@@ -53,6 +54,9 @@ std::string frontChart(const TuneData& d) {
         maxX = std::max(maxX, 100 * c.metrics.acneBeyondBlur * 1.1);
         maxY = std::max(maxY, 100 * c.metrics.leakBeyondBlur * 1.1);
     }
+    const Axis ax = niceAxis(maxX), ay = niceAxis(maxY); // round ticks
+    maxX = ax.max;
+    maxY = ay.max;
     const auto x = [&](double v) {
         return left + (w - left - right) * std::min(100 * v / maxX, 1.0);
     };
@@ -63,13 +67,14 @@ std::string frontChart(const TuneData& d) {
                                 "leak beyond blur'><rect x='{}' y='{}' width='{}' height='{}' "
                                 "fill='none' stroke='#999'/>",
                                 w, h, left, top, w - left - right, h - top - bottom);
-    for (int i = 0; i <= 4; ++i) {
-        const double fx = maxX * i / 4, fy = maxY * i / 4;
-        s += fmt::format("<text x='{:.1f}' y='{}' font-size='11' text-anchor='middle'>{:.3g}"
-                         "</text><text x='{}' y='{:.1f}' font-size='11' text-anchor='end'>{:.3g}"
+    for (int i = 0; i <= int(std::lround(ax.max / ax.step)); ++i)
+        s += fmt::format("<text x='{:.1f}' y='{}' font-size='11' text-anchor='middle'>{:.{}f}"
                          "</text>",
-                         x(fx / 100), h - bottom + 16, fx, left - 6, y(fy / 100) + 4, fy);
-    }
+                         x(ax.step * i / 100), h - bottom + 16, ax.step * i, ax.decimals);
+    for (int i = 0; i <= int(std::lround(ay.max / ay.step)); ++i)
+        s += fmt::format("<text x='{}' y='{:.1f}' font-size='11' text-anchor='end'>{:.{}f}"
+                         "</text>",
+                         left - 6, y(ay.step * i / 100) + 4, ay.step * i, ay.decimals);
     s += fmt::format("<text x='{}' y='{}' font-size='12' text-anchor='middle'>acne beyond blur "
                      "(%)</text><text x='14' y='{}' font-size='12' text-anchor='middle' "
                      "transform='rotate(-90 14 {})'>leak beyond blur (%)</text>",
