@@ -40,6 +40,14 @@ std::string virtualPagesCell(const VirtualMapInfo& v, uint32_t frames) {
                        v.poolPages ? 100.0 * v.resident / v.poolPages : 0.0);
 }
 
+// A pass's name may break after its underscores (vsm_blur_columns), so a table of many passes
+// fits a narrow window.
+std::string wrappable(std::string name) {
+    for (size_t at = name.find('_'); at != std::string::npos; at = name.find('_', at + 6))
+        name.insert(at + 1, "<wbr>");
+    return name;
+}
+
 std::string sweptLabel(const BenchRun& run) {
     std::string label;
     for (const auto& [key, value] : run.swept)
@@ -245,7 +253,8 @@ std::string benchHtml(const BenchData& data) {
     std::string html = fmt::format(
         "<!DOCTYPE html><html><head><meta charset='utf-8'><title>penumbra bench: {}</title>"
         "<style>body{{font-family:sans-serif;margin:24px}}table{{border-collapse:collapse}}"
-        "td,th{{border:1px solid #ccc;padding:3px 8px;text-align:right}}"
+        "td,th{{border:1px solid #ccc;padding:3px 6px;text-align:right;font-size:13px}}"
+        "td small{{display:block;color:#666}}svg{{max-width:100%;height:auto}}"
         "th{{background:#eee}}td.l{{text-align:left}}svg{{margin:8px 16px 8px 0}}</style>"
         "</head><body><h1>penumbra bench: {}</h1><p>{} ({}), {}x{}, shadow map {}, "
         "median, 10th and 90th percentile of {} frames after a warm-up frame, GPU ms per "
@@ -278,7 +287,7 @@ std::string benchHtml(const BenchData& data) {
             if (std::find(passes.begin(), passes.end(), p.pass) == passes.end())
                 passes.push_back(p.pass);
     for (const std::string& p : passes)
-        html += "<th>" + escape(p) + "</th>";
+        html += "<th>" + wrappable(escape(p)) + "</th>";
     const bool anyVirtual = std::any_of(data.runs.begin(), data.runs.end(), [](const BenchRun& r) {
         return r.virtualMaps.has_value();
     });
