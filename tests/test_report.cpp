@@ -348,6 +348,26 @@ TEST(ReportPlot, LabelsAreSetWhereNothingElseIs) {
     EXPECT_LT(placed.back().x, 280.0) << "the corner's label to its left";
 }
 
+// A label's box holds its text in DejaVu Sans at 12 px (advances in em: 'm' 0.974, 'w' 0.818,
+// 'W' 0.989, 'o' 0.612, '[' 0.39), from 2 units into the box: "msm" once overflowed its box and
+// touched a neighbouring point.
+TEST(ReportPlot, ALabelsBoxHoldsItsWidestLetters) {
+    auto dejaVu = [](const std::string& text) {
+        double em = 0;
+        for (char c : text)
+            em += c == 'm'   ? 0.974
+                  : c == 'w' ? 0.818
+                  : c == 'W' ? 0.989
+                  : c == 's' ? 0.521
+                  : c == 'o' ? 0.612
+                  : c == '[' ? 0.39
+                             : 0.636;
+        return 2.0 + 12.0 * em;
+    };
+    for (const std::string text : {"msm", "mmmm", "www", "Wm", "pcf[box7]", "msm[16]"})
+        EXPECT_GE(labelWidth(text), dejaVu(text)) << text;
+}
+
 // Axis ticks at 1, 2 or 5 x 10^k, covering the data (bench.html once ticked at 35.7, 71.4).
 TEST(ReportPlot, AxesTickAtRoundNumbers) {
     for (const auto& [max, step, top] : {std::tuple{107.0, 50.0, 150.0},

@@ -66,6 +66,16 @@ double totalGpuMs(const ReportRow& row) {
     return total;
 }
 
+namespace {
+// Each row's point: its total GPU time and RMSE.
+std::vector<PlotPoint> pointsOf(const std::vector<ReportRow>& rows) {
+    std::vector<PlotPoint> points;
+    for (const ReportRow& row : rows)
+        points.push_back({row.name, totalGpuMs(row), row.metrics.rmse});
+    return points;
+}
+} // namespace
+
 std::vector<bool> paretoFront(const std::vector<PlotPoint>& points) {
     std::vector<bool> front(points.size(), false);
     auto finite = [](const PlotPoint& p) { return std::isfinite(p.cost) && std::isfinite(p.rmse); };
@@ -83,9 +93,16 @@ std::vector<bool> paretoFront(const std::vector<PlotPoint>& points) {
 }
 
 double labelWidth(const std::string& text) {
-    // 0.62 em a character covers DejaVu Sans's digits, brackets and lower case at 12 px (its
-    // widest common glyphs, 'm' and 'w', are rarer than the narrow ones in technique names).
-    return 4.0 + 7.8 * static_cast<double>(text.size());
+    // DejaVu Sans's advances at 12 px, the widest common default face, rounded up: 'm' 0.974 em,
+    // 'M' 0.863, 'W' 0.989, 'w' 0.818, other capitals at most 0.77, digits, brackets and the
+    // other lower case at most 0.65. The text starts 2 units into its box: 4 units of slack.
+    double width = 4.0;
+    for (const char c : text)
+        width += c == 'm' || c == 'M' || c == 'W' ? 12.0
+                 : c == 'w'                       ? 10.0
+                 : c >= 'A' && c <= 'Z'           ? 9.3
+                                                  : 7.8;
+    return width;
 }
 
 std::vector<PlotBox> placeLabels(const std::vector<PlotBox>& points, double radius,
@@ -120,11 +137,9 @@ std::vector<PlotBox> placeLabels(const std::vector<PlotBox>& points, double radi
 std::string errorVsCostSvg(const std::vector<ReportRow>& rows, bool logCost) {
     constexpr double w = 760, h = 420, left = 70, right = 20, top = 20, bottom = 56;
     constexpr double plotW = w - left - right, plotH = h - top - bottom;
-    std::vector<PlotPoint> points;
+    const std::vector<PlotPoint> points = pointsOf(rows);
     double maxMs = 0, minMs = INFINITY, maxRmse = 0;
-    for (const ReportRow& row : rows) {
-        points.push_back({row.name, totalGpuMs(row), row.metrics.rmse});
-        const PlotPoint& p = points.back();
+    for (const PlotPoint& p : points) {
         if (std::isfinite(p.cost)) {
             maxMs = std::max(maxMs, p.cost);
             if (p.cost > 0)
@@ -240,9 +255,7 @@ std::string errorVsCostSvg(const std::vector<ReportRow>& rows, bool logCost) {
 }
 
 std::string errorVsCostLegend(const std::vector<ReportRow>& rows) {
-    std::vector<PlotPoint> points;
-    for (const ReportRow& row : rows)
-        points.push_back({row.name, totalGpuMs(row), row.metrics.rmse});
+    const std::vector<PlotPoint> points = pointsOf(rows);
     const std::vector<bool> front = paretoFront(points);
     std::string s = "<ul class=\"legend\">\n";
     for (size_t i = 0; i < rows.size(); ++i)
