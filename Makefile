@@ -23,7 +23,7 @@ FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
 FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
                 -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
 
-.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test
+.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -61,6 +61,14 @@ fuzz-smoke:
 	    && grep -E '^#[0-9]+.*DONE|^stat::' $(FUZZ_DIR)/fuzz-smoke.log \
 	    || { tail -n 100 $(FUZZ_DIR)/fuzz-smoke.log; \
 	         echo "fuzz-smoke: FAILED; inputs in $(FUZZ_DIR)/fuzz-crashes/"; exit 1; }
+
+# The soak: one SceneRenderer through SOAK_FRAMES frames with the technique, sizes, camera and
+# lights changing every three; device memory and the host heap must stay flat after the first
+# cycle, with the validation layer on (`make test` runs three cycles of it).
+SOAK_FRAMES ?= 10000
+soak: build
+	PENUMBRA_SOAK_FRAMES=$(SOAK_FRAMES) build/$(PRESET)/tests/penumbra_gpu_tests \
+	    --gtest_filter=FrameTest.ChangingEveryFewFramesKeepsMemoryFlat
 
 # Plants each mutation of tests/mutations/*.toml in a scratch copy (build/mutation/tree), rebuilds,
 # runs the ctest labels that can see it and reports the survivors (docs/testing.md). Not part of

@@ -50,6 +50,15 @@ inline glm::vec3 pixelVec(const std::vector<float>& v, size_t i) {
     return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
 }
 
+// How far a hardware-filtered 2x2 comparison tap may read from the exact bilinear mix: the texture
+// unit keeps subTexelPrecisionBits of each axis's fraction, and Vulkan does not say whether it
+// rounds or truncates, so each fraction may be up to one step 2^-bits off; the mix moves by at
+// most its fraction's change along each axis (its slope is at most 1 there): 2 x 2^-bits.
+inline double hardwareFilterTolerance() {
+    const DeviceInfo& device = sharedRenderer().device();
+    return device.depthLinearFilter ? std::ldexp(2.0, -int(device.subTexelPrecisionBits)) : 0.0;
+}
+
 // Pixels of the ground plane y = 0 facing up.
 inline bool onGround(const RenderResult& r, size_t i) {
     const glm::vec3 p = pixelVec(r.position, i), n = pixelVec(r.normal, i);

@@ -5,6 +5,15 @@
 // set where it only partly works (the knee of its curve): a change to its maths moves the count.
 // The stored values are measurements (lavapipe, 640x360, map 2048); see storedTolerance() for
 // how far they may move. PENUMBRA_PRINT_BASELINE=1 prints the rows afresh.
+//
+// Other devices: a knee is where a bias is as large as the depth error it meets, so where it
+// sits follows the device's rasterizer and depth rounding, which Vulkan bounds only loosely; a
+// row whose maths is exact on a plane (no bias, the receiver plane alone, the adaptive offset
+// alone) compares equal depths, a tie that rounding decides either way. There the tables only
+// bind lavapipe (CI's device, bit-identical run after run); elsewhere a knee must stay under the
+// unbiased row's acne (the low sun's slope 0.25 removes half of it on lavapipe and on an H200),
+// a tie is free, and every leak and every complete setting (the defaults, the lift) keeps its
+// stored value, which holds on any device.
 #include "truth_fixture.h"
 
 #include <cstdlib>
@@ -39,16 +48,30 @@ void expectRows(const TruthSetup& setup, const std::vector<BiasRow>& rows,
     const Truth t = groundTruth(setup);
     const bool print = std::getenv("PENUMBRA_PRINT_BASELINE") != nullptr;
     double none = -1;
+    std::vector<std::pair<std::string, double>> knees; // checked against `none` on other devices
     for (const BiasRow& row : rows) {
         const ErrorMetrics m = measure(t, technique, row.sets);
         const std::string what = setup.scene + ", " + row.config;
         std::printf("%-40s acne %.4f%% leak %.4f%%\n", what.c_str(), 100 * m.acne, 100 * m.leak);
         if (print)
             std::printf("    stored: {\"%s\", ..., %.6f, %.6f},\n", row.config, m.acne, m.leak);
-        expectStored(what + " acne", m.acne, row.acne, storedTolerance(), 1e-4);
+        const std::string config = row.config;
+        const bool tie = config == "none" || config.starts_with("receiver ") ||
+                         config == "adaptive offset alone";
+        const bool complete = config.find("defaults") != std::string::npos ||
+                              config.find("lift") != std::string::npos;
+        if (onCpuDevice() || complete)
+            expectStored(what + " acne", m.acne, row.acne, storedTolerance(), 1e-4);
+        else if (!tie)
+            knees.emplace_back(what, m.acne);
         expectStored(what + " leak", m.leak, row.leak, storedTolerance(), 1e-4);
-        if (std::string(row.config) == "none")
+        if (config == "none")
             none = m.acne;
+    }
+    for (const auto& [what, acne] : knees) {
+        if (none >= 0) {
+            EXPECT_LT(acne, none) << what << ": a bias at its knee still removes acne";
+        }
     }
     if (none >= 0) {
         EXPECT_GT(none, 0.4) << setup.scene << ": without bias half the lit pixels show acne";

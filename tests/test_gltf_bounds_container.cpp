@@ -46,10 +46,11 @@ std::vector<Boundary> containerBoundaries() {
          glbFile(glbWithBin,
                  [](auto& v, bool past) { setU32(v, 8, uint32_t(v.size() + (past ? 1 : 0))); }),
          "GLB: header length"},
+        // Bytes past the declared length are ignored (a warning): the BIN chunk then runs past it.
         {"glb_header_length_below",
          glbFile(glbWithBin,
                  [](auto& v, bool past) { setU32(v, 8, uint32_t(v.size() - (past ? 1 : 0))); }),
-         "GLB: header length"},
+         "GLB: BIN chunk length 112 runs past the file"},
         {"glb_json_chunk_not_empty",
          [](const fs::path& d, bool past) { // "{}  ": a JSON chunk of 4 bytes, or declared 0
              std::vector<uint8_t> bytes = glb("{}", {});
@@ -99,6 +100,7 @@ std::vector<Boundary> containerBoundaries() {
          "buffers[1].uri: data URI has malformed base64"},
         {"base64_nothing_after_padding", gltf(floatingQuad, dataUri("AAA=", "AA=A", 2)),
          "buffers[1].uri: data URI has malformed base64"},
+        // Without ;base64 the data is its (percent-decoded) text: 4 bytes, not 3.
         {"data_uri_marks_base64",
          gltf(floatingQuad,
               [](GltfBuilder& b, bool past) {
@@ -108,7 +110,7 @@ std::vector<Boundary> containerBoundaries() {
                                               : "data:application/octet-stream;base64,AAAA"},
                                  {"byteLength", 3}}});
               }),
-         "buffers[1].uri: data URI is not base64"},
+         "buffers[1].uri: the data URI holds 4 bytes but byteLength says 3"},
         {"percent_escape_at_the_end",
          [](const fs::path& d, bool past) { // "buf%41" names the file "bufA"
              writeBytes(d / "bufA", {1, 2, 3, 4});

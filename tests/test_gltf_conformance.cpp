@@ -1,12 +1,16 @@
 // glTF conformance (issue 16), one minimal asset per case: constructs the specification calls
 // valid load (however unusual), each error class of the glTF-Validator that we handle refuses the
 // file with its JSON path, and each part Penumbra does not use loads with one warning naming it.
+#include "base64_decode.h"
 #include "expect_refused.h"
 #include "gltf_builder.h"
 #include "penumbra/scene.h"
 #include "scratch_dir.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include <cctype>
 
 #include <cstring>
 #include <fstream>
@@ -75,6 +79,21 @@ auto text(std::function<void(std::string&)> replace) {
         std::string t((std::istreambuf_iterator<char>(in)), {});
         replace(t);
         std::ofstream(f) << t;
+        return f;
+    };
+}
+
+// The ground with its buffer's data URI rewritten by `form` from the buffer's bytes and their
+// base64.
+auto dataUri(std::function<std::string(const std::vector<uint8_t>&, const std::string&)> form) {
+    return [form](GltfBuilder& b, const fs::path& d) {
+        b.ground();
+        const fs::path f = b.writeGltf(d / "a.gltf");
+        J j = J::parse(std::ifstream(f));
+        const std::string uri = j["buffers"][0]["uri"];
+        const std::string base64 = uri.substr(uri.find(',') + 1);
+        j["buffers"][0]["uri"] = form(decodeBase64(base64), base64);
+        std::ofstream(f) << j.dump();
         return f;
     };
 }
@@ -148,6 +167,27 @@ INSTANTIATE_TEST_SUITE_P(
                      {"values", {{"bufferView", values}}}};
              }),
              ""},
+        // Zeros, which its bounds need not describe (the validator does not hold them to zeros).
+        Case{"accessor_without_buffer_view_bounds_not_its_zeros", gltf([](GltfBuilder& b) {
+                 b.j["accessors"].push_back({{"type", "VEC3"},
+                                             {"componentType", 5126},
+                                             {"count", 4},
+                                             {"min", {-1, -1, -1}},
+                                             {"max", {1, 1, 1}}});
+             }),
+             ""},
+        Case{"buffer_without_uri_that_nothing_drawn_reads", gltf([](GltfBuilder& b) {
+                 b.j["buffers"] = J::array({J::object(), {{"byteLength", 4}}});
+                 b.j["bufferViews"].push_back({{"buffer", 1}, {"byteLength", 4}});
+                 b.j["accessors"].push_back({{"type", "SCALAR"},
+                                             {"componentType", 5126},
+                                             {"count", 1},
+                                             {"bufferView", b.j["bufferViews"].size() - 1}});
+             }),
+             "buffers[1]: no uri and so no data; nothing drawn reads it, so it is left out"},
+        Case{"glb_with_bytes_after_its_length", // the validator's GLB_EXTRA_DATA
+             glb([](GltfBuilder&) {}, [](std::vector<uint8_t>& v) { v.push_back(0); }),
+             "GLB: 1 bytes after the header's length"},
         Case{"unused_image_with_a_name_too_long", // never read: no file-system error (fuzzer)
              gltf([](GltfBuilder& b) {
                  b.j["images"] = {{{"uri", std::string(5000, 'b') + ".png"}}};
@@ -195,6 +235,27 @@ INSTANTIATE_TEST_SUITE_P(
                      b.view(std::vector<float>{0, 0, 1, 0, 1, 1, 0, 1}), 5126, 4, "VEC2");
              }),
              "images[0]: KTX2 (KHR_texture_basisu) is not decoded here"}),
+    [](const auto& row) { return std::string(row.param.name); });
+
+INSTANTIATE_TEST_SUITE_P(
+    DataUris, GltfValid,
+    ::testing::Values(
+        // RFC 2397's other forms: percent-encoded (letters as they are), no media type, more
+        // parameters before ;base64.
+        Case{"data_uri_percent_encoded", dataUri([](const std::vector<uint8_t>& bytes, auto&) {
+                 std::string uri = "data:application/gltf-buffer,";
+                 for (uint8_t c : bytes)
+                     uri += std::isalnum(c) ? std::string(1, char(c)) : fmt::format("%{:02X}", c);
+                 return uri;
+             }),
+             ""},
+        Case{"data_uri_without_media_type",
+             dataUri([](auto&, const std::string& base64) { return "data:;base64," + base64; }),
+             ""},
+        Case{"data_uri_with_parameters", dataUri([](auto&, const std::string& base64) {
+                 return "data:application/octet-stream;name=ground.bin;base64," + base64;
+             }),
+             ""}),
     [](const auto& row) { return std::string(row.param.name); });
 
 TEST_P(GltfInvalid, IsRefusedWithItsJsonPath) {
@@ -248,10 +309,17 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"required_extension_unsupported",
              gltf([](GltfBuilder& b) { b.j["extensionsRequired"] = {"KHR_materials_volume"}; }),
              "extensionsRequired: 'KHR_materials_volume' is not supported"},
-        Case{"buffer_without_uri_outside_a_glb", gltf([](GltfBuilder& b) {
-                 b.j["buffers"] = J::array({J::object(), {{"byteLength", 4}}});
+        Case{"buffer_without_uri_that_a_primitive_reads", gltf([](GltfBuilder& b) {
+                 b.j["buffers"] = J::array({J::object(), {{"byteLength", 4096}}});
+                 b.j["bufferViews"][0]["buffer"] = 1;
              }),
-             "buffers[1].uri: missing (only a GLB's first buffer"},
+             "buffers[1].uri: missing, and a drawn primitive or an image reads the buffer"},
+        Case{"glb_shorter_than_its_length",
+             glb([](GltfBuilder&) {}, [](std::vector<uint8_t>& v) { v.resize(v.size() - 4); }),
+             "GLB: header length"},
+        Case{"data_uri_with_bad_percent_encoding",
+             dataUri([](auto&, auto&) { return std::string("data:application/gltf-buffer,%G0"); }),
+             "buffers[0].uri: data URI has malformed percent-encoding"},
         Case{"buffer_file_name_too_long", // ENAMETOOLONG: refused, not thrown (fuzzer)
              gltf([](GltfBuilder& b) {
                  b.j["buffers"] =

@@ -5,7 +5,10 @@
 #include "frame_block.h"
 #include "light_geometry.h"
 #include "moment_maps.h"
+#include "moments.h"
+#include "params_moments.h"
 #include "render/frame_data.h"
+#include "shadows/cpu_moments.h"
 #include "shadows/technique.h"
 #include "truth_fixture.h"
 
@@ -65,6 +68,40 @@ std::vector<FamilyCase> familyCases() {
     return cases;
 }
 
+namespace {
+
+// How far msm's reconstruction moves at a probe when what the two sides may store differently
+// moves: each 16-bit channel by one unorm step (Vulkan lets a conversion to unorm return either
+// integer next to the exact value, and k / 65535 in float times 65535 is rarely exactly k), each
+// 32-bit moment by 16 ulps of 1 (the powers and the blur in float, in another order). The
+// largest change over the corners of that box: the Hamburger reconstruction is ill-conditioned
+// near a step, so its bound is this spread at the probe, not one number.
+float msmSpread(const shadows::ShadowMapView& map, const FilterProbe& probe,
+                const shadows::FilterSettings& frame, const gpu::ShadowViewData& view) {
+    const gpu::MsmParams p = frame.params.get<gpu::MsmParams>();
+    const bool sixteen = p.bits == 16u;
+    const glm::vec4 stored =
+        shadows::momentsAt(map, MOMENTS_MSM, p.size, glm::vec2(0.0f), view, probe.uv,
+                           sixteen ? +[](glm::vec4 m) { return gpu::msmStore16(m); } : nullptr);
+    const float step = sixteen ? 1.0f / 65535.0f : std::ldexp(16.0f, -24);
+    const float d = 2.0f * gpu::momentDepth(view, probe.depth) - 1.0f;
+    auto visibility = [&](glm::vec4 m) {
+        const glm::vec4 moments = sixteen ? gpu::msmLoad16(m) : m;
+        return std::clamp(1.0f - gpu::momentOcclusion(moments, d, p.momentBias), 0.0f, 1.0f);
+    };
+    const float centre = visibility(stored);
+    float spread = 0.0f;
+    for (int corner = 0; corner < 16; ++corner) {
+        glm::vec4 m = stored;
+        for (int k = 0; k < 4; ++k)
+            m[k] += (corner >> k & 1) ? step : -step;
+        spread = std::max(spread, std::abs(visibility(m) - centre));
+    }
+    return spread;
+}
+
+} // namespace
+
 TEST_F(FilterTest, PrefilteredFamilyMatchesItsCpuReference) {
     const std::vector<float> depth = boxesOverAWave(5);
     const shadows::ShadowMapView map{depth, kSize};
@@ -83,29 +120,41 @@ TEST_F(FilterTest, PrefilteredFamilyMatchesItsCpuReference) {
             const shadows::FilterSettings frame =
                 shadows::filterSettings(shadows::moduleOf(c.technique), params, false, 8);
             const gpu::ShadowViewData view = render::probeViewData(light);
+            // 16-bit moments: the two sides may round a texel a step (1.5e-5) apart.
+            const float filtered = what.find("precision=16") != std::string::npos ? 1e-4f : 2e-5f;
             glm::vec4 worst(0.0f);
-            size_t between = 0;
+            size_t between = 0, sensitive = 0;
+            float beyondSpread = 0.0f;
             for (size_t i = 0; i < probes.size(); ++i) {
                 const glm::vec4 cpu =
                     shadows::techniqueReference(c.technique, map, probes[i], frame, view);
                 // Filtered values relative to their size (exponentials span many decades).
                 const glm::vec4 scale = glm::max(glm::abs(cpu), glm::vec4(1.0f));
-                worst = glm::max(worst, glm::abs(cpu - gpuResult[i]) /
-                                            glm::vec4(1.0f, scale.y, scale.z, 1.0f));
+                glm::vec4 off =
+                    glm::abs(cpu - gpuResult[i]) / glm::vec4(1.0f, scale.y, scale.z, 1.0f);
+                if (c.technique == Technique::Msm) {
+                    const float spread = msmSpread(map, probes[i], frame, view);
+                    sensitive += spread > 2e-3f;
+                    beyondSpread = std::max(beyondSpread, off.x - spread);
+                    off.x = 0.0f;
+                }
+                worst = glm::max(worst, off);
                 between += cpu.x > 0.0f && cpu.x < 1.0f;
             }
             EXPECT_GT(between, probes.size() / 60) << what << ": a filter's in-betweens";
-            // 16-bit moments: the two sides may round a texel a step (1.5e-5) apart.
-            const float filtered = what.find("precision=16") != std::string::npos ? 1e-4f : 2e-5f;
+            if (c.technique == Technique::Msm)
+                std::printf("%s: %zu of %zu probes with a spread over 2e-3, worst beyond it %.2g\n",
+                            what.c_str(), sensitive, probes.size(), beyondSpread);
+            // Most probes keep a tight bound (16-bit moments under a perspective light: 30%
+            // spread wider, measured), so the spread is no blanket.
+            EXPECT_LT(sensitive, probes.size() / 2) << what << ": probes with a wide spread";
+            EXPECT_LE(beyondSpread, 2e-3f) << what << ": visibility beyond the moments' spread";
             EXPECT_LE(worst.y, filtered) << what << ": filtered value (relative)";
             EXPECT_LE(worst.z, filtered) << what << ": filtered value (relative)";
             EXPECT_LE(worst.w, 1e-6f) << what << ": receiver depth";
             // EVSM's variance with a small exponent is a difference of nearly equal moments:
             // the float rounding both sides do differently grows there (measured 0.0036).
-            // ... which moves a 16-bit reconstruction at msm.bias 6e-5 by up to 7e-3 (measured).
-            const float visibility = c.technique == Technique::Evsm ? 5e-3f
-                                     : filtered > 2e-5f             ? 1e-2f
-                                                                    : 2e-3f;
+            const float visibility = c.technique == Technique::Evsm ? 5e-3f : 2e-3f;
             EXPECT_LE(worst.x, visibility) << what << ": visibility";
         }
 }

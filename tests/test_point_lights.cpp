@@ -271,24 +271,38 @@ TEST_F(ShadowTest, SixteenShadowedLightsOfEveryKindInOneFrame) {
             EXPECT_EQ(v.layer, layer++) << "views follow each other in light order";
         const ErrorMetrics m = errorOfLayer(t, r, l);
         EXPECT_GT(m.pixels, 5000u) << t.scene.lights[l].name;
+        // What is under test is each light's views and layers (a view read for the wrong light
+        // misclassifies whole regions, tens of percent), not its bias: BiasTest bounds acne per
+        // light type. A few pixels in a thousand leave room for a device's depth rounding at a
+        // 1024 map (a GPU: 0.14% acne under one sun, where lavapipe had none).
         EXPECT_LT(m.misclassifiedOutsideEdges, 0.003) << t.scene.lights[l].name;
-        EXPECT_LT(m.acne, 0.001) << t.scene.lights[l].name;
+        EXPECT_LT(m.acne, 0.003) << t.scene.lights[l].name;
     }
     EXPECT_EQ(layer, 6u * 6u + 5u + 5u * 4u);
 }
 
 TEST_F(ShadowTest, RefusesMoreShadowViewsThanTheDeviceHolds) {
     Scene scene = sixteenLights();
-    // 61 views of 16384^2 depth texels (1 GiB each): more than any device here holds.
+    // Enough point lights' views of the largest maps to pass the device's own heap: the count
+    // follows from what it reports (a 141 GiB card takes 24 bulbs of 16384^2 texels).
+    const DeviceInfo& device = sharedRenderer().device();
+    const uint32_t size = std::min(16384u, device.maxImageDimension2D);
+    const double viewBytes = 4.0 * size * size;
+    const Light bulb = scene.lights[0];
+    ASSERT_EQ(bulb.type, LightType::Point);
+    const auto bulbs = static_cast<size_t>(double(device.deviceLocalBytes) / (6 * viewBytes)) + 1;
+    scene.lights.assign(bulbs, bulb);
     try {
-        sharedRenderer().check(scene, {.shadowMapSize = 16384});
-        ADD_FAILURE() << "61 GiB of shadow maps accepted";
+        sharedRenderer().check(scene, {.shadowMapSize = size});
+        ADD_FAILURE() << bulbs * 6 << " views of " << size << "^2 accepted on a device of "
+                      << device.deviceLocalBytes << " bytes";
     } catch (const InputError& e) {
         const std::string what = e.what();
-        EXPECT_NE(what.find("61 shadow views of 16384 texels"), std::string::npos) << what;
+        EXPECT_NE(what.find(fmt::format("{} shadow views of {} texels", bulbs * 6, size)),
+                  std::string::npos)
+            << what;
     }
     // More views than an array image has layers.
-    const Light bulb = scene.lights[0];
     scene.lights.assign(1000, bulb);
     try {
         sharedRenderer().check(scene, {.width = 64, .height = 64, .shadowMapSize = 16});

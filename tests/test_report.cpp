@@ -1,3 +1,5 @@
+#include "base64_decode.h"
+#include "report/bench_report.h"
 #include "report/heatmap.h"
 #include "report/html_report.h"
 #include "report/report_plot.h"
@@ -231,27 +233,6 @@ size_t countOf(const std::string& text, const std::string& needle) {
     return count;
 }
 
-std::vector<uint8_t> decodeBase64(const std::string& text) {
-    const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::vector<uint8_t> out;
-    uint32_t bits = 0;
-    int count = 0;
-    for (char c : text) {
-        if (c == '=')
-            break;
-        size_t value = alphabet.find(c);
-        EXPECT_NE(value, std::string::npos) << c;
-        bits = (bits << 6) | uint32_t(value);
-        count += 6;
-        if (count >= 8) {
-            count -= 8;
-            out.push_back(uint8_t(bits >> count));
-        }
-    }
-    EXPECT_EQ(text.size() % 4, 0u);
-    return out;
-}
-
 // Every data:image/png;base64 payload in the page, decoded.
 std::vector<std::vector<uint8_t>> embeddedImages(const std::string& html) {
     const std::string prefix = "src=\"data:image/png;base64,";
@@ -259,7 +240,7 @@ std::vector<std::vector<uint8_t>> embeddedImages(const std::string& html) {
     for (size_t at = html.find(prefix); at != std::string::npos; at = html.find(prefix, at)) {
         at += prefix.size();
         const size_t end = html.find('"', at);
-        images.push_back(decodeBase64(html.substr(at, end - at)));
+        images.push_back(test::decodeBase64(html.substr(at, end - at)));
     }
     return images;
 }
@@ -475,4 +456,24 @@ TEST(TuneReport, JsonAndPageCarryEveryCandidateAndTheRecommendation) {
 }
 
 } // namespace
+TEST(BenchStats, PercentilesInterpolateBetweenTheSortedFrames) {
+    // Five frames given out of order: the median is the middle one; the 10th and 90th
+    // percentiles sit 0.4 of the way between the two smallest and the two largest (q (n - 1)).
+    const PassStats odd = passStats("shadow", {5, 1, 4, 2, 3});
+    EXPECT_EQ(odd.pass, "shadow");
+    EXPECT_DOUBLE_EQ(odd.median, 3.0);
+    EXPECT_DOUBLE_EQ(odd.p10, 1.4);
+    EXPECT_DOUBLE_EQ(odd.p90, 4.6);
+    // Four frames: the median halfway between the middle two.
+    const PassStats even = passStats("total", {10, 40, 20, 30});
+    EXPECT_DOUBLE_EQ(even.median, 25.0);
+    EXPECT_DOUBLE_EQ(even.p10, 13.0);
+    EXPECT_DOUBLE_EQ(even.p90, 37.0);
+    // One frame is every percentile; none gives zeros.
+    const PassStats one = passStats("gbuffer", {7});
+    EXPECT_EQ(std::tie(one.median, one.p10, one.p90), std::make_tuple(7.0, 7.0, 7.0));
+    const PassStats none = passStats("gbuffer", {});
+    EXPECT_EQ(std::tie(none.median, none.p10, none.p90), std::make_tuple(0.0, 0.0, 0.0));
+}
+
 } // namespace penumbra

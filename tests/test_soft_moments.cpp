@@ -62,23 +62,39 @@ TEST_F(FilterTest, SummedAreaSoftMembersMatchTheirCpuReference) {
                     const shadows::FilterSettings frame =
                         shadows::filterSettings(shadows::moduleOf(technique), params, false, 8);
                     const gpu::ShadowViewData view = render::probeViewData(light);
-                    size_t between = 0, off = 0;
+                    size_t between = 0, off = 0, branches = 0;
                     for (size_t i = 0; i < probes.size(); ++i) {
-                        const glm::vec4 cpu =
-                            shadows::techniqueReference(technique, map, probes[i], frame, view);
-                        const glm::vec4 d = glm::abs(cpu - gpuResult[i]);
+                        const auto reference = [&](float scale) {
+                            FilterProbe probe = probes[i];
+                            probe.depth *= scale;
+                            return shadows::techniqueReference(technique, map, probe, frame, view);
+                        };
+                        const glm::vec4 cpu = reference(1.0f);
                         // Under a perspective light the GPU's moment depths may round a texel's
                         // quantised moments one step away from the CPU's; a box's variance is a
                         // difference of nearly equal means, so the blocking fraction and the
                         // penumbra move by up to 2e-4 relative (measured), the bounds by 1e-3.
-                        off += d.x > 2e-3f || d.y > 1e-4f || d.z > 1e-3f ||
-                               d.w > 2e-3f * std::max(1.0f, cpu.w);
+                        const auto differs = [&](glm::vec4 a) {
+                            const glm::vec4 d = glm::abs(cpu - a);
+                            return d.x > 2e-3f || d.y > 1e-4f || d.z > 1e-3f ||
+                                   d.w > 2e-3f * std::max(1.0f, cpu.w);
+                        };
                         between += cpu.x > 0.0f && cpu.x < 1.0f;
+                        if (!differs(gpuResult[i]))
+                            continue;
+                        // A receiver on a branch's edge (a sub-kernel's mean at its depth) goes
+                        // either way on rounding: the CPU's own answer moves there when the
+                        // receiver moves by 1e-5 of its depth (16-bit steps of the moments).
+                        if (differs(reference(1.0f - 1e-5f)) || differs(reference(1.0f + 1e-5f)))
+                            ++branches;
+                        else
+                            ++off;
                     }
                     EXPECT_GT(between, probes.size() / 20) << what << ": penumbrae";
-                    // A receiver on a branch's edge (a sub-kernel's mean at its depth) may go
-                    // either way; a real difference moves many.
+                    // A real difference moves many probes; a stray one may be a branch that the
+                    // depth's nudge does not reach (the moments' rounding moves other texels).
                     EXPECT_LE(off, probes.size() / 200) << what << ": probes that disagree";
+                    EXPECT_LE(branches, probes.size() / 20) << what << ": probes on a branch";
                 }
 }
 

@@ -119,8 +119,11 @@ inline ErrorMetrics measure(const Truth& t, const TechniqueRow& row) {
 // How far a measurement may move from the value stored beside its check. Lavapipe renders
 // bit-identically run after run, so the tables are tight there (a 20% worse error must fail);
 // another device rasterizes and filters a little differently, so they only catch gross changes.
+inline bool onCpuDevice() {
+    return sharedRenderer().device().type.find("CPU") != std::string::npos;
+}
 inline double storedTolerance() {
-    return sharedRenderer().device().type.find("CPU") != std::string::npos ? 0.15 : 0.5;
+    return onCpuDevice() ? 0.15 : 0.5;
 }
 
 // A measured value against the one stored beside its threshold: within `relative` of it, or

@@ -46,11 +46,17 @@ struct DeviceInfo {
     uint32_t maxComputeWorkGroupInvocations = 0;
     uint64_t deviceLocalBytes = 0;
     float timestampPeriodNs = 0.0f;
-    bool depthLinearFilter = false; // D32_SFLOAT linear (and hardware 2x2 PCF) filtering
-    float maxSamplerAnisotropy = 0; // 0: no anisotropic filtering (the feature is missing)
-    bool imageCubeArray = false;    // cube-map arrays (point lights' shadow views)
-    bool suitable = false;          // has everything Penumbra needs
+    bool depthLinearFilter = false;     // D32_SFLOAT linear (and hardware 2x2 PCF) filtering
+    uint32_t subTexelPrecisionBits = 0; // bits a filter keeps of a texel's sub-position
+    float maxSamplerAnisotropy = 0;     // 0: no anisotropic filtering (the feature is missing)
+    bool imageCubeArray = false;        // cube-map arrays (point lights' shadow views)
+    bool suitable = false;              // has everything Penumbra needs
     std::string unsuitableReason;
+};
+
+struct DeviceMemoryUse {
+    uint64_t allocations = 0;
+    uint64_t bytes = 0;
 };
 
 struct PassTime {
@@ -207,6 +213,9 @@ public:
                                           const ProbeLight& light = {});
     // Validation-layer messages of severity error so far (0 when validation is off).
     uint32_t validationErrors() const;
+    // Device memory Penumbra holds right now in this process (every Renderer together): its
+    // allocations and their bytes. Flat over a long run once every size has been seen.
+    DeviceMemoryUse deviceMemoryInUse() const;
     // Every validation-layer message so far, warnings and performance warnings included.
     uint32_t validationMessages() const;
     // The Vulkan context (src/vk/context.h): for a caller that records its own passes around

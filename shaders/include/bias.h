@@ -76,9 +76,12 @@ SHARED vec4 adaptiveBiasTerms(float texelWorld, float mapSize, float depthPerWor
 
 // The part of a unit disc on one side of a straight edge at signed distance x from its centre
 // (positive: the centre is uncovered): 1/2 + (x sqrt(1 - x^2) + asin x) / pi, clamped to [-1, 1].
+// The ends are exact: Vulkan lets asin(-1) miss -pi/2 (a GPU gave 6e-9 for a disc wholly under
+// the edge), and a receiver facing away from a sun must read 0, not nearly 0.
 SHARED float discFraction(float x) {
-    x = clamp(x, -1.0f, 1.0f);
-    return 0.5f + (x * sqrt(1.0f - x * x) + asin(x)) / 3.14159265f;
+    if (x <= -1.0f) return 0.0f;
+    if (x >= 1.0f) return 1.0f;
+    return clamp(0.5f + (x * sqrt(1.0f - x * x) + asin(x)) / 3.14159265f, 0.0f, 1.0f);
 }
 
 // bias.horizon: the part of a light of angular radius a (sin a = sinRadius) above a receiver's

@@ -49,6 +49,7 @@ using glm::sqrt;
 #define OUT_ARRAY(T, name, n) T (&name)[n]
 #define IN(T) const T&
 #define SHARED inline
+#define PRECISE
 #else
 #define PENUMBRA_GPU_BEGIN
 #define PENUMBRA_GPU_END
@@ -57,6 +58,10 @@ using glm::sqrt;
 #define OUT_ARRAY(T, name, n) out T name[n]
 #define IN(T) T
 #define SHARED
+// No contraction into fused multiply-adds: with only correctly rounded adds and multiplies
+// (Vulkan's precision rules) every device computes what the CPU does, bit for bit. (The C++
+// side is built for x86-64 without FMA, so it contracts nothing.)
+#define PRECISE precise
 #endif
 
 #endif

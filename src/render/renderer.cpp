@@ -10,6 +10,7 @@
 #include "render/renderer_impl.h"
 #include "shadows/technique.h"
 #include "vk/context.h"
+#include "vk/resources.h"
 
 #include <fmt/format.h>
 
@@ -140,6 +141,11 @@ const DeviceInfo& Renderer::device() const {
 uint32_t Renderer::validationErrors() const {
     return mImpl->ctx.validationErrors();
 }
+DeviceMemoryUse Renderer::deviceMemoryInUse() const {
+    const vk::LiveDeviceMemory live = vk::liveDeviceMemory();
+    return {.allocations = live.allocations, .bytes = live.bytes};
+}
+
 uint32_t Renderer::validationMessages() const {
     return mImpl->ctx.validationErrors() + mImpl->ctx.validationWarnings();
 }

@@ -1,5 +1,6 @@
 #include "report/html_report.h"
 
+#include "core/base64.h"
 #include "report/report_plot.h"
 #include "report/report_script.h"
 
@@ -35,30 +36,12 @@ std::string escapeHtml(std::string_view text) {
 
 namespace {
 
-std::string base64(std::span<const uint8_t> bytes) {
-    static constexpr char kAlphabet[] =
-        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((bytes.size() + 2) / 3 * 4);
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-        const size_t n = std::min<size_t>(3, bytes.size() - i);
-        uint32_t group = uint32_t{bytes[i]} << 16;
-        if (n > 1)
-            group |= uint32_t{bytes[i + 1]} << 8;
-        if (n > 2)
-            group |= bytes[i + 2];
-        for (size_t k = 0; k < 4; ++k)
-            out += k <= n ? kAlphabet[(group >> (18 - 6 * k)) & 63] : '=';
-    }
-    return out;
-}
-
 // An <img> with the PNG inlined, or a stand-in when the image was not produced.
 std::string imageTag(const std::vector<uint8_t>& png, std::string_view cls, std::string_view alt) {
     if (png.empty())
         return fmt::format("<div class=\"missing {}\">no image</div>", cls);
     return fmt::format("<img class=\"{}\" alt=\"{}\" src=\"data:image/png;base64,{}\">", cls,
-                       escapeHtml(alt), base64(png));
+                       escapeHtml(alt), encodeBase64(png));
 }
 
 // "12.3 M" style counts for rays per second.

@@ -42,12 +42,9 @@ uint32_t readU32(const std::vector<uint8_t>& b, size_t at) {
 
 void checkUri(const std::filesystem::path& file, const std::string& path, const std::string& uri) {
     if (uri.rfind("data:", 0) == 0) {
-        const size_t comma = uri.find(',');
-        if (comma == std::string::npos || uri.find(";base64", 0) > comma)
-            refuse(file, path + ": data URI is not base64");
-        std::vector<uint8_t> ignored;
-        if (!decodeBase64(std::string_view(uri).substr(comma + 1), ignored))
-            refuse(file, path + ": data URI has malformed base64");
+        std::string error;
+        if (!parseDataUri(uri, &error))
+            refuse(file, path + ": " + error);
         return;
     }
     if (uri.empty())
@@ -63,7 +60,10 @@ void checkUri(const std::filesystem::path& file, const std::string& path, const 
     const std::string& name = *decoded;
     const std::filesystem::path p(name);
     if (p.is_absolute() || name.find(':') != std::string::npos || name[0] == '\\')
-        refuse(file, path + ": absolute URIs are refused ('" + uri + "')");
+        refuse(file, path +
+                         ": absolute URIs are not supported (only files beside the asset "
+                         "and data URIs are read) ('" +
+                         uri + "')");
     for (const auto& part : p)
         if (part == "..")
             refuse(file, path + ": URIs may not leave the asset's folder ('" + uri + "')");
@@ -75,15 +75,15 @@ void checkUri(const std::filesystem::path& file, const std::string& path, const 
 }
 
 // A buffer's data URI decodes to exactly its byteLength (the validator's
-// BUFFER_EMBEDDED_BYTELENGTH_MISMATCH); checkUri has checked the base64.
+// BUFFER_EMBEDDED_BYTELENGTH_MISMATCH); checkUri has checked its form.
 void dataUriHoldsByteLength(const std::filesystem::path& file, const std::string& path,
                             const std::string& uri, const nlohmann::json& byteLength) {
-    std::vector<uint8_t> bytes;
-    decodeBase64(std::string_view(uri).substr(uri.find(',') + 1), bytes);
+    std::string error;
+    const size_t bytes = parseDataUri(uri, &error)->bytes.size();
     if (!byteLength.is_number_integer() || byteLength.get<int64_t>() < 0 ||
-        bytes.size() != byteLength.get<uint64_t>())
+        bytes != byteLength.get<uint64_t>())
         refuse(file, fmt::format("{}: the data URI holds {} bytes but byteLength says {}", path,
-                                 bytes.size(), byteLength.dump()));
+                                 bytes, byteLength.dump()));
 }
 
 // An index field: must be an integer naming an element of `target` (the JSON path says where).
@@ -423,7 +423,7 @@ bool decodeBase64(std::string_view text, std::vector<uint8_t>& out) {
 
 Container readContainer(const std::filesystem::path& file, uint64_t maxFileSize) {
     std::error_code ec;
-    const uint64_t size = std::filesystem::file_size(file, ec);
+    uint64_t size = std::filesystem::file_size(file, ec);
     if (ec)
         refuse(file, "cannot read: " + ec.message());
     if (size > maxFileSize)
@@ -441,9 +441,14 @@ Container readContainer(const std::filesystem::path& file, uint64_t maxFileSize)
         if (readU32(c.bytes, 4) != 2)
             refuse(file,
                    fmt::format("GLB: version {} is not supported (2 is)", readU32(c.bytes, 4)));
-        if (readU32(c.bytes, 8) != size)
+        // Bytes after the declared length are not the asset's (the validator's warning
+        // GLB_EXTRA_DATA): read up to it. Fewer bytes than declared is a truncated file.
+        if (readU32(c.bytes, 8) > size || readU32(c.bytes, 8) < 20)
             refuse(file, fmt::format("GLB: header length {} but the file has {} bytes",
                                      readU32(c.bytes, 8), size));
+        c.trailingBytes = size - readU32(c.bytes, 8);
+        c.bytes.resize(readU32(c.bytes, 8));
+        size = c.bytes.size();
         const uint64_t jsonLength = readU32(c.bytes, 12);
         if (readU32(c.bytes, 16) != kChunkJson)
             refuse(file, "GLB: the first chunk is not JSON");
@@ -499,9 +504,15 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
             kSupportedRequired.end())
             refuse(file, "extensionsRequired: '" + name + "' is not supported");
     glbBufferWithinItsChunk(file, container, j, warnings);
+    if (container.trailingBytes > 0 && warnings)
+        warnings->push_back(fmt::format("{}: GLB: {} bytes after the header's length {} are "
+                                        "ignored",
+                                        file.string(), container.trailingBytes,
+                                        container.bytes.size()));
     checkDeclaredExtensions(file, j);
     checkRequiredProperties(file, j);
     checkReferences(file, j);
+    leaveOutUnreadBuffers(file, container.binary, j, warnings);
     for (const char* array : {"buffers", "images"}) {
         if (!j.contains(array))
             continue;
@@ -517,6 +528,11 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
                 checkUri(file, path, uri);
                 if (std::string_view(array) == "buffers" && uri.rfind("data:", 0) == 0)
                     dataUriHoldsByteLength(file, path, uri, item["byteLength"]);
+                if (uri.rfind("data:", 0) == 0) {
+                    std::string error;
+                    j[array][i]["uri"] = canonicalDataUri(*parseDataUri(uri, &error),
+                                                          std::string_view(array) == "images");
+                }
                 // (A missing image is refused by readTextures, only when a material uses it.
                 // A name the file system cannot hold is a missing file, not a throw.)
                 std::error_code ec;
@@ -525,7 +541,8 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
                     refuse(file, fmt::format("{}: '{}' is not a file beside the asset", path, uri));
             } else if (std::string_view(array) == "buffers" && (!container.binary || i > 0) &&
                        !isMeshoptFallback(item)) {
-                refuse(file, path + ": missing (only a GLB's first buffer, its BIN chunk, may "
+                refuse(file, path + ": missing, and a drawn primitive or an image reads the "
+                                    "buffer (only a GLB's first buffer, its BIN chunk, may "
                                     "leave it out)");
             }
         }

@@ -366,6 +366,10 @@ struct Checker {
                 fail(path, fmt::format("min and max need {} numbers each", n));
             finite(path + ".min", a.minValues);
             finite(path + ".max", a.maxValues);
+            // Without a bufferView or sparse values the data is the spec's zeros, a placeholder
+            // an application may fill: the validator does not hold the bounds to it.
+            if (a.bufferView < 0 && !a.sparse.isSparse)
+                continue;
             // Streamed: an accessor without a bufferView costs a few bytes whatever its count.
             std::vector<double> lo(n, std::numeric_limits<double>::infinity()), hi(n, -lo[0]);
             visitRawComponents(m, static_cast<int>(i), [&](size_t, size_t c, double v) {

@@ -219,6 +219,7 @@ DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index,
     // Optional: lavapipe 22.3 advertises linear filtering for no depth format.
     info.depthLinearFilter =
         (depth.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+    info.subTexelPrecisionBits = p.limits.subTexelPrecisionBits;
     info.maxSamplerAnisotropy =
         features.features.samplerAnisotropy ? p.limits.maxSamplerAnisotropy : 0.0f;
     info.imageCubeArray = features.features.imageCubeArray != 0;

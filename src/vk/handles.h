@@ -7,6 +7,10 @@
 
 namespace penumbra::vk {
 
+// vkFreeMemory, and the allocation leaves the count of live device memory (resources.cpp).
+void freeTrackedMemory(VkDevice device, VkDeviceMemory memory,
+                       const VkAllocationCallbacks* callbacks);
+
 template <typename T, auto Destroy>
 class DeviceHandle {
 public:
@@ -41,7 +45,7 @@ private:
 using BufferHandle = DeviceHandle<VkBuffer, vkDestroyBuffer>;
 using ImageHandle = DeviceHandle<VkImage, vkDestroyImage>;
 using ImageViewHandle = DeviceHandle<VkImageView, vkDestroyImageView>;
-using MemoryHandle = DeviceHandle<VkDeviceMemory, vkFreeMemory>;
+using MemoryHandle = DeviceHandle<VkDeviceMemory, freeTrackedMemory>;
 using SamplerHandle = DeviceHandle<VkSampler, vkDestroySampler>;
 using ShaderModuleHandle = DeviceHandle<VkShaderModule, vkDestroyShaderModule>;
 using PipelineHandle = DeviceHandle<VkPipeline, vkDestroyPipeline>;

@@ -6,9 +6,21 @@
 #include <fmt/format.h>
 
 #include <cstring>
+#include <mutex>
+#include <unordered_map>
 
 namespace penumbra::vk {
 namespace {
+
+struct LiveAllocations {
+    std::mutex mutex;
+    std::unordered_map<VkDeviceMemory, VkDeviceSize> sizes;
+};
+
+LiveAllocations& liveAllocations() {
+    static LiveAllocations live;
+    return live;
+}
 
 MemoryHandle allocate(const Context& ctx, const VkMemoryRequirements& req, MemoryUse use,
                       const std::string& name) {
@@ -30,6 +42,11 @@ MemoryHandle allocate(const Context& ctx, const VkMemoryRequirements& req, Memor
                                            static_cast<double>(req.size) / (1 << 20),
                                            resultName(result)));
     VK_CHECK(result);
+    {
+        LiveAllocations& live = liveAllocations();
+        const std::lock_guard lock(live.mutex);
+        live.sizes[memory] = req.size;
+    }
     return MemoryHandle(ctx.device(), memory);
 }
 
@@ -57,6 +74,25 @@ ImageViewHandle createView(const Context& ctx, const Image& image, VkImageViewTy
 }
 
 } // namespace
+
+void freeTrackedMemory(VkDevice device, VkDeviceMemory memory,
+                       const VkAllocationCallbacks* callbacks) {
+    {
+        LiveAllocations& live = liveAllocations();
+        const std::lock_guard lock(live.mutex);
+        live.sizes.erase(memory);
+    }
+    vkFreeMemory(device, memory, callbacks);
+}
+
+LiveDeviceMemory liveDeviceMemory() {
+    LiveAllocations& live = liveAllocations();
+    const std::lock_guard lock(live.mutex);
+    LiveDeviceMemory use{.allocations = live.sizes.size()};
+    for (const auto& [memory, size] : live.sizes)
+        use.bytes += size;
+    return use;
+}
 
 size_t formatBytes(VkFormat format) {
     switch (format) {

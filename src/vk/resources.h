@@ -44,6 +44,13 @@ struct Image {
     explicit operator bool() const { return static_cast<bool>(image); }
 };
 
+// Every device memory allocation Penumbra holds now, in this process (all devices): how a soak
+// test sees a leak.
+struct LiveDeviceMemory {
+    uint64_t allocations = 0, bytes = 0;
+};
+LiveDeviceMemory liveDeviceMemory();
+
 Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
                     const std::string& name);
 Image createImage(const Context& ctx, const ImageDesc& desc);
