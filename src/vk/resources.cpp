@@ -2,6 +2,7 @@
 
 #include "penumbra/error.h"
 #include "vk/check.h"
+#include "vk/fault_injection.h"
 
 #include <fmt/format.h>
 
@@ -36,7 +37,9 @@ MemoryHandle allocate(const Context& ctx, const VkMemoryRequirements& req, Memor
                                     .memoryTypeIndex =
                                         ctx.memoryType(req.memoryTypeBits, required, preferred)};
     VkDeviceMemory memory = VK_NULL_HANDLE;
-    const VkResult result = vkAllocateMemory(ctx.device(), &info, nullptr, &memory);
+    const VkResult result = injectFault(FaultSite::Allocation)
+                                ? VK_ERROR_OUT_OF_DEVICE_MEMORY
+                                : vkAllocateMemory(ctx.device(), &info, nullptr, &memory);
     if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
         throw InputError(name, fmt::format("out of memory allocating {:.1f} MiB ({})",
                                            static_cast<double>(req.size) / (1 << 20),

@@ -1,0 +1,42 @@
+#include "vk/fault_injection.h"
+
+#include <atomic>
+#include <charconv>
+#include <cstdlib>
+#include <string>
+
+namespace penumbra::vk {
+namespace {
+
+struct Plan {
+    long long allocation = 0; // 0: never
+};
+
+Plan readPlan() {
+    Plan plan;
+    const char* text = std::getenv("PENUMBRA_FAULT");
+    std::string_view rest = text ? text : "";
+    while (!rest.empty()) {
+        const std::string_view item = rest.substr(0, rest.find(','));
+        rest.remove_prefix(std::min(rest.size(), item.size() + 1));
+        const std::string_view prefix = "allocation:";
+        if (item.substr(0, prefix.size()) == prefix)
+            std::from_chars(item.data() + prefix.size(), item.data() + item.size(),
+                            plan.allocation);
+    }
+    return plan;
+}
+
+} // namespace
+
+bool injectFault(FaultSite site) {
+    static const Plan plan = readPlan();
+    static std::atomic<long long> allocations{0};
+    switch (site) {
+    case FaultSite::Allocation:
+        return plan.allocation > 0 && ++allocations == plan.allocation;
+    }
+    return false;
+}
+
+} // namespace penumbra::vk
