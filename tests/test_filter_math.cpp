@@ -244,6 +244,30 @@ TEST(FilterMath, ChebyshevBlockersRecoverTwoDepths) {
     EXPECT_NEAR(gpu::momentDepthDistance(view, (7.0f - 0.5f) / 19.5f), 7.0f, 1e-5f);
 }
 
+TEST(FilterMath, MomentDepthSpreadsTheReceiversRangeAndInvertsOverIt) {
+    // A cascade's receivers from 20% to 70% of the way from the near plane to the far one
+    // (moments = the parts cut off in front and behind): that slice becomes [0, 1], casters in
+    // front read 0, and momentDepthDistance walks back to the same distance, in both projections.
+    for (const float perspective : {0.0f, 1.0f}) {
+        gpu::ShadowViewData view{};
+        view.frustum = {0.5f, 20.0f, 1.0f, 1.0f};
+        view.texel = {0.0f, perspective, 0.0f, 0.0f};
+        view.moments = {0.2f, 0.3f, 0.0f, 0.0f};
+        const float n = 0.5f, f = 20.0f;
+        auto depthOf = [&](float z) { // the map's depth of view distance z
+            return perspective > 0.5f ? (f / (f - n)) * (1.0f - n / z) : (z - n) / (f - n);
+        };
+        for (const float share : {0.0f, 0.25f, 0.5f, 1.0f}) {
+            const float z = n + (0.2f + 0.5f * share) * (f - n);
+            EXPECT_NEAR(gpu::momentDepth(view, depthOf(z)), share, 2e-5f)
+                << z << " " << perspective;
+            EXPECT_NEAR(gpu::momentDepthDistance(view, share), z, 1e-4f * z) << perspective;
+        }
+        EXPECT_EQ(gpu::momentDepth(view, depthOf(n + 0.1f * (f - n))), 0.0f); // a caster in front
+        EXPECT_EQ(gpu::momentDepth(view, depthOf(n + 0.9f * (f - n))), 1.0f); // beyond the slice
+    }
+}
+
 // Moment soft shadows' blockers on two and three atoms: with four moments the reconstruction
 // of a two-atom distribution is exact, blockers and their depth included.
 TEST(FilterMath, MomentBlockersRecoverTheAtomsInFront) {

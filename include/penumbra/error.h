@@ -2,6 +2,8 @@
 // Penumbra's error tiers (design.md §4):
 //  - InputError: bad user input (a file, an option, a parameter). Caught by the CLI and printed
 //    as one line, `error: <subject>: <what>`, with a non-zero exit code.
+//  - DeviceError: the device failed under us (lost, out of memory at submit). Caught by the CLI
+//    like an InputError: one `error:` line, a non-zero exit, no output.
 //  - Programmer and driver errors abort through PENUMBRA_CHECK / VK_CHECK with file and line.
 //  - Validation-layer messages are counted by the Vulkan context; tests fail on any error.
 #include <stdexcept>
@@ -18,6 +20,11 @@ public:
 
 private:
     std::string mSubject;
+};
+
+class DeviceError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
 };
 
 [[noreturn]] void fatal(const char* file, int line, const std::string& message);

@@ -2,6 +2,7 @@
 
 #include "penumbra/error.h"
 #include "vk/check.h"
+#include "vk/fault_injection.h"
 
 #include <fmt/format.h>
 
@@ -381,8 +382,21 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
     const VkSubmitInfo2 submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
                                .commandBufferInfoCount = 1,
                                .pCommandBufferInfos = &cmdInfo};
-    VK_CHECK(vkQueueSubmit2(mQueue, 1, &submit, fence.get()));
-    VK_CHECK(vkWaitForFences(mDevice, 1, &rawFence, VK_TRUE, UINT64_MAX));
+    VkResult result = injectFault(FaultSite::Submit)
+                          ? VK_ERROR_DEVICE_LOST
+                          : vkQueueSubmit2(mQueue, 1, &submit, fence.get());
+    if (result == VK_SUCCESS)
+        result = vkWaitForFences(mDevice, 1, &rawFence, VK_TRUE, UINT64_MAX);
+    // What the device does to us is not a bug here: the commands report it as one error line.
+    // The command buffer stays in the pool (freed with it): it may still be pending.
+    if (result == VK_ERROR_DEVICE_LOST || result == VK_ERROR_OUT_OF_DEVICE_MEMORY ||
+        result == VK_ERROR_OUT_OF_HOST_MEMORY)
+        throw DeviceError(fmt::format(
+            "{}: the GPU work failed ({}){}", mInfo.name, resultName(result),
+            result == VK_ERROR_DEVICE_LOST ? "; the driver reset or lost the device: run again, "
+                                             "or pick another with --device"
+                                           : ""));
+    VK_CHECK(result);
     vkFreeCommandBuffers(mDevice, mCommandPool.get(), 1, &cmd);
 }
 

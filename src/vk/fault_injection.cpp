@@ -9,7 +9,7 @@ namespace penumbra::vk {
 namespace {
 
 struct Plan {
-    long long allocation = 0; // 0: never
+    long long allocation = 0, submit = 0; // 0: never
 };
 
 Plan readPlan() {
@@ -19,10 +19,10 @@ Plan readPlan() {
     while (!rest.empty()) {
         const std::string_view item = rest.substr(0, rest.find(','));
         rest.remove_prefix(std::min(rest.size(), item.size() + 1));
-        const std::string_view prefix = "allocation:";
-        if (item.substr(0, prefix.size()) == prefix)
-            std::from_chars(item.data() + prefix.size(), item.data() + item.size(),
-                            plan.allocation);
+        for (auto [prefix, value] : {std::pair{std::string_view("allocation:"), &plan.allocation},
+                                     std::pair{std::string_view("submit:"), &plan.submit}})
+            if (item.substr(0, prefix.size()) == prefix)
+                std::from_chars(item.data() + prefix.size(), item.data() + item.size(), *value);
     }
     return plan;
 }
@@ -31,10 +31,12 @@ Plan readPlan() {
 
 bool injectFault(FaultSite site) {
     static const Plan plan = readPlan();
-    static std::atomic<long long> allocations{0};
+    static std::atomic<long long> allocations{0}, submits{0};
     switch (site) {
     case FaultSite::Allocation:
         return plan.allocation > 0 && ++allocations == plan.allocation;
+    case FaultSite::Submit:
+        return plan.submit > 0 && ++submits == plan.submit;
     }
     return false;
 }
