@@ -77,9 +77,7 @@ void checkUri(const std::filesystem::path& file, const std::string& path, const 
 // A buffer's data URI decodes to exactly its byteLength (the validator's
 // BUFFER_EMBEDDED_BYTELENGTH_MISMATCH); checkUri has checked its form.
 void dataUriHoldsByteLength(const std::filesystem::path& file, const std::string& path,
-                            const std::string& uri, const nlohmann::json& byteLength) {
-    std::string error;
-    const size_t bytes = parseDataUri(uri, &error)->bytes.size();
+                            size_t bytes, const nlohmann::json& byteLength) {
     if (!byteLength.is_number_integer() || byteLength.get<int64_t>() < 0 ||
         bytes != byteLength.get<uint64_t>())
         refuse(file, fmt::format("{}: the data URI holds {} bytes but byteLength says {}", path,
@@ -526,12 +524,13 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
                     refuse(file, path + ": not a string");
                 const std::string uri = item["uri"];
                 checkUri(file, path, uri);
-                if (std::string_view(array) == "buffers" && uri.rfind("data:", 0) == 0)
-                    dataUriHoldsByteLength(file, path, uri, item["byteLength"]);
-                if (uri.rfind("data:", 0) == 0) {
+                if (uri.rfind("data:", 0) == 0) { // checkUri has checked its form
                     std::string error;
-                    j[array][i]["uri"] = canonicalDataUri(*parseDataUri(uri, &error),
-                                                          std::string_view(array) == "images");
+                    const DataUri data = *parseDataUri(uri, &error);
+                    const bool image = std::string_view(array) == "images";
+                    if (!image)
+                        dataUriHoldsByteLength(file, path, data.bytes.size(), item["byteLength"]);
+                    j[array][i]["uri"] = canonicalDataUri(data, image);
                 }
                 // (A missing image is refused by readTextures, only when a material uses it.
                 // A name the file system cannot hold is a missing file, not a throw.)
