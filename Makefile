@@ -23,7 +23,7 @@ FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
 FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
                 -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
 
-.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak
+.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -69,6 +69,36 @@ SOAK_FRAMES ?= 10000
 soak: build
 	PENUMBRA_SOAK_FRAMES=$(SOAK_FRAMES) build/$(PRESET)/tests/penumbra_gpu_tests \
 	    --gtest_filter=FrameTest.ChangingEveryFewFramesKeepsMemoryFlat
+
+# The fault sweep at every injection point (`make test` strides over object creations), and the
+# same under AddressSanitizer's leak checker (build/asan): each failure one error line, no
+# output, no leak. Each takes about half an hour on 2 cores.
+faults: build
+	PENUMBRA_FAULT_EVERY_POINT=1 ctest --preset $(PRESET) -j $(JOBS) -R 'CliFaults\.'
+
+faults-asan: deps
+	cmake --preset asan >/dev/null
+	cmake --build --preset asan -j $(JOBS) --target penumbra penumbra_cli_tests
+	cc -shared -fPIC -o build/asan/keep_libraries_loaded.so tests/keep_libraries_loaded.c
+	LD_PRELOAD=$(CURDIR)/build/asan/keep_libraries_loaded.so ASAN_OPTIONS=detect_leaks=1 \
+	    LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp PENUMBRA_FAULT_EVERY_POINT=1 \
+	    build/asan/tests/penumbra_cli_tests --gtest_filter='CliFaults.*'
+
+# The CLI's parameter space fuzzed (tools/fuzz_cli.py): random commands and --set values, each a
+# clean refusal or a render; findings in build/fuzz-cli/findings.txt.
+FUZZ_CLI_SECONDS ?= 600
+fuzz-cli: build
+	python3 tools/fuzz_cli.py --seconds $(FUZZ_CLI_SECONDS) --jobs $(JOBS) --out build/fuzz-cli
+
+# Cross-device image agreement (tests/test_render_diff.cpp): every comparison row against the
+# images stored in tests/renderdiff/, on whichever device the suite picks. renderdiff-store
+# rewrites them (on lavapipe, after a deliberate change to what a technique draws).
+renderdiff: build
+	build/$(PRESET)/tests/penumbra_gpu_tests --gtest_filter='RenderDiffTest.*'
+
+renderdiff-store: build
+	PENUMBRA_RENDERDIFF_STORE=1 build/$(PRESET)/tests/penumbra_gpu_tests \
+	    --gtest_filter='RenderDiffTest.*'
 
 # Plants each mutation of tests/mutations/*.toml in a scratch copy (build/mutation/tree), rebuilds,
 # runs the ctest labels that can see it and reports the survivors (docs/testing.md). Not part of

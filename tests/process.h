@@ -59,6 +59,15 @@ inline ProcessResult runProcess(std::vector<std::string> full) {
     return result;
 }
 
+// How many lines of a command's stderr are `error:` lines (a refusal prints exactly one).
+inline size_t errorLines(const std::string& err) {
+    std::istringstream lines(err);
+    size_t count = 0;
+    for (std::string line; std::getline(lines, line);)
+        count += line.rfind("error:", 0) == 0;
+    return count;
+}
+
 // The penumbra CLI, always with the validation layer on; any validation message it prints
 // (warnings included) fails the calling test.
 inline ProcessResult runCli(const std::vector<std::string>& args) {

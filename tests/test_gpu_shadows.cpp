@@ -308,3 +308,24 @@ TEST_F(ShadowTest, EveryLightFiltersItsOwnShadowView) {
         }
     }
 }
+
+// Odd image sizes: the readback packs 4-byte and 16-byte images into one buffer, and each copy's
+// offset must be a multiple of its texel block (the CLI fuzzer found 33x33 breaking it). Every
+// output must also read back where it belongs: the position of the middle pixel is on the scene
+// and the visibility of a background pixel is NaN, for a sun, a spot and a bulb's cube faces.
+TEST_F(ShadowTest, OddImageSizesReadBackEveryOutputInPlace) {
+    for (const Scene& scene : {builtin::showcase(), builtin::spot(), builtin::room()})
+        for (const auto& [w, h] : {std::pair{33u, 33u}, std::pair{31u, 17u}}) {
+            const RenderResult r = render(scene, {.width = w, .height = h, .shadowMapSize = 64});
+            ASSERT_EQ(r.image.size(), size_t{w} * h * 4);
+            const size_t middle = size_t{h / 2} * w + w / 2;
+            EXPECT_TRUE(std::isfinite(pixelVec(r.position, middle).x)) << scene.name;
+            EXPECT_NEAR(glm::length(pixelVec(r.normal, middle)), 1.0f, 1e-3f) << scene.name;
+            for (const std::vector<float>& v : r.visibility) {
+                ASSERT_EQ(v.size(), size_t{w} * h);
+                for (size_t i = 0; i < v.size(); ++i)
+                    ASSERT_EQ(std::isnan(v[i]), std::isnan(r.position[3 * i]))
+                        << scene.name << " " << w << "x" << h << " pixel " << i;
+            }
+        }
+}

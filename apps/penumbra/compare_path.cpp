@@ -59,7 +59,9 @@ std::vector<PathRow> measurePathShimmer(SceneRenderer& renderer, const Scene& sc
             ReferenceOptions quiet = reference;
             quiet.progress = false;
             truths.push_back(computeReference(
-                lit[t], renderer.render(base, {.lights = frames[t].lights}), quiet));
+                lit[t],
+                renderer.render(base, SceneRenderer::FrameState{.lights = frames[t].lights}),
+                quiet));
         }
 
     std::vector<PathRow> out;

@@ -103,10 +103,12 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
     }
     // Each candidate's swept keys as the defaults have them: the table's first row.
     for (const TuneCandidate& c : candidates)
-        for (const auto& [key, value] : c.sets)
+        for (const auto& set : c.sets) {
+            const std::string& key = set.first; // a lambda may not capture a structured binding
             if (std::none_of(candidates[0].sets.begin(), candidates[0].sets.end(),
                              [&](const auto& kv) { return kv.first == key; }))
                 candidates[0].sets.emplace_back(key, base.parameters.text(key));
+        }
 
     Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
     // The row's layers, sized to the scene as compare sizes them (a row runs exactly those).

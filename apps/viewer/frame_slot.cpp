@@ -11,18 +11,18 @@ FrameSlot::FrameSlot(const vk::Context& ctx) {
                                            .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
                                            .queueFamilyIndex = ctx.queueFamily()};
     VkCommandPool rawPool = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateCommandPool(device, &poolInfo, nullptr, &rawPool));
+    VK_CREATE(vkCreateCommandPool(device, &poolInfo, nullptr, &rawPool));
     pool = vk::CommandPoolHandle(device, rawPool);
     const VkCommandBufferAllocateInfo allocInfo{.sType =
                                                     VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
                                                 .commandPool = rawPool,
                                                 .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
                                                 .commandBufferCount = 1};
-    VK_CHECK(vkAllocateCommandBuffers(device, &allocInfo, &cmd));
+    VK_CREATE(vkAllocateCommandBuffers(device, &allocInfo, &cmd));
     const VkFenceCreateInfo fenceInfo{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO,
                                       .flags = VK_FENCE_CREATE_SIGNALED_BIT};
     VkFence fence = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateFence(device, &fenceInfo, nullptr, &fence));
+    VK_CREATE(vkCreateFence(device, &fenceInfo, nullptr, &fence));
     done = vk::FenceHandle(device, fence);
     acquired = createSemaphore(ctx);
     const auto scopes = static_cast<uint32_t>(4 + shadows::kMaxPostPasses);
@@ -32,7 +32,7 @@ FrameSlot::FrameSlot(const vk::Context& ctx) {
 
 void FrameSlot::wait(const vk::Context& ctx) const {
     const VkFence fence = done.get();
-    VK_CHECK(vkWaitForFences(ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+    ctx.checkWork(vkWaitForFences(ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
 }
 
 } // namespace penumbra::viewer

@@ -52,7 +52,7 @@ RenderPassHandle createRenderPass(VkDevice device, VkFormat format) {
                                       .dependencyCount = 2,
                                       .pDependencies = dependencies};
     VkRenderPass pass = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateRenderPass(device, &info, nullptr, &pass));
+    VK_CREATE(vkCreateRenderPass(device, &info, nullptr, &pass));
     return {device, pass};
 }
 
@@ -65,6 +65,16 @@ ImGuiLayer::ImGuiLayer(const vk::Context& ctx, const Window& window, const Swapc
     ImGui::GetIO().IniFilename = nullptr; // no imgui.ini in the user's folder
     ImGui::StyleColorsDark();
     ImGui_ImplGlfw_InitForVulkan(window.get(), true);
+    try { // the destructor does not run for a constructor that throws: undo what was set up
+        initVulkan(swapchain);
+    } catch (...) {
+        shutdown();
+        throw;
+    }
+}
+
+void ImGuiLayer::initVulkan(const Swapchain& swapchain) {
+    const vk::Context& ctx = mCtx;
 
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8}};
     const VkDescriptorPoolCreateInfo poolInfo{
@@ -74,7 +84,7 @@ ImGuiLayer::ImGuiLayer(const vk::Context& ctx, const Window& window, const Swapc
         .poolSizeCount = 1,
         .pPoolSizes = sizes};
     VkDescriptorPool pool = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
+    VK_CREATE(vkCreateDescriptorPool(ctx.device(), &poolInfo, nullptr, &pool));
     mPool = DescriptorPoolHandle(ctx.device(), pool);
     rebuild(swapchain);
 
@@ -92,13 +102,21 @@ ImGuiLayer::ImGuiLayer(const vk::Context& ctx, const Window& window, const Swapc
                                    .Allocator = nullptr,
                                    .CheckVkResultFn = checkResult};
     ImGui_ImplVulkan_Init(&info, mRenderPass.get());
+    mVulkanBackend = true;
     ctx.submitAndWait([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
     ImGui_ImplVulkan_DestroyFontUploadObjects();
 }
 
 ImGuiLayer::~ImGuiLayer() {
+    shutdown();
+}
+
+void ImGuiLayer::shutdown() noexcept {
     vkDeviceWaitIdle(mCtx.device());
-    ImGui_ImplVulkan_Shutdown();
+    if (mVulkanBackend) {
+        ImGui_ImplVulkan_DestroyFontUploadObjects(); // left by a font upload that failed
+        ImGui_ImplVulkan_Shutdown();
+    }
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
 }
@@ -120,7 +138,7 @@ void ImGuiLayer::rebuild(const Swapchain& swapchain) {
             .format = swapchain.format,
             .subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1}};
         VkImageView view = VK_NULL_HANDLE;
-        VK_CHECK(vkCreateImageView(mCtx.device(), &viewInfo, nullptr, &view));
+        VK_CREATE(vkCreateImageView(mCtx.device(), &viewInfo, nullptr, &view));
         mViews.emplace_back(mCtx.device(), view);
         const VkFramebufferCreateInfo fbInfo{.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO,
                                              .renderPass = mRenderPass.get(),
@@ -130,7 +148,7 @@ void ImGuiLayer::rebuild(const Swapchain& swapchain) {
                                              .height = mExtent.height,
                                              .layers = 1};
         VkFramebuffer framebuffer = VK_NULL_HANDLE;
-        VK_CHECK(vkCreateFramebuffer(mCtx.device(), &fbInfo, nullptr, &framebuffer));
+        VK_CREATE(vkCreateFramebuffer(mCtx.device(), &fbInfo, nullptr, &framebuffer));
         mFramebuffers.emplace_back(mCtx.device(), framebuffer);
     }
     if (ImGui::GetIO().BackendRendererUserData) // the backend is running: a new swapchain

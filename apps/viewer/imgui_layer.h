@@ -28,7 +28,10 @@ public:
     void record(VkCommandBuffer cmd, uint32_t image, bool draw);
 
 private:
+    void initVulkan(const Swapchain& swapchain);
+    void shutdown() noexcept;
     const vk::Context& mCtx;
+    bool mVulkanBackend = false; // ImGui_ImplVulkan_Init has run
     DescriptorPoolHandle mPool;
     RenderPassHandle mRenderPass;
     std::vector<vk::ImageViewHandle> mViews;

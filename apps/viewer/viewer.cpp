@@ -69,7 +69,7 @@ void submit(const vk::Context& ctx, const FrameSlot& slot, VkSemaphore rendered)
                              .pSignalSemaphoreInfos = &signal};
     const VkFence fence = slot.done.get();
     VK_CHECK(vkResetFences(ctx.device(), 1, &fence));
-    VK_CHECK(vkQueueSubmit2(ctx.queue(), 1, &info, fence));
+    ctx.checkWork(ctx.submit(info, fence), "vkQueueSubmit2");
 }
 
 // The swapchain image's states around the blit, the interface's render pass and a capture.
@@ -140,6 +140,12 @@ void runViewer(const Scene& scene, const ViewerOptions& options) {
     ImGuiLayer ui(ctx, window, swapchain);
     std::array<FrameSlot, 2> slots{FrameSlot(ctx), FrameSlot(ctx)};
     vk::Buffer capture; // the last frame's swapchain image, for --screenshot
+    // Declared last, so destroyed first: when a frame throws (the device lost, memory out), the
+    // frames before it may still be running, and what they use must outlive them.
+    const struct IdleOnExit {
+        VkDevice device;
+        ~IdleOnExit() { vkDeviceWaitIdle(device); }
+    } idleOnExit{ctx.device()};
 
     auto remakeSwapchain = [&] {
         VK_CHECK(vkDeviceWaitIdle(ctx.device()));
@@ -183,7 +189,7 @@ void runViewer(const Scene& scene, const ViewerOptions& options) {
             continue;
         }
         if (acquired != VK_SUBOPTIMAL_KHR)
-            VK_CHECK(acquired);
+            ctx.checkWork(acquired, "vkAcquireNextImageKHR");
 
         const double now = glfwGetTime();
         const auto seconds = static_cast<float>(now - lastTime);
@@ -227,11 +233,11 @@ void runViewer(const Scene& scene, const ViewerOptions& options) {
                                        .pImageIndices = &image};
         const VkResult presented = vkQueuePresentKHR(ctx.queue(), &present);
         if (presented != VK_ERROR_OUT_OF_DATE_KHR && presented != VK_SUBOPTIMAL_KHR)
-            VK_CHECK(presented);
+            ctx.checkWork(presented, "vkQueuePresentKHR");
         if (last)
             break;
     }
-    VK_CHECK(vkDeviceWaitIdle(ctx.device()));
+    ctx.checkWork(vkDeviceWaitIdle(ctx.device()), "vkDeviceWaitIdle");
     for (FrameSlot& slot : slots)
         if (slot.pending) // the last frames' GPU times
             session.recordTimes(slot), slot.pending = false;

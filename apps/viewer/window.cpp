@@ -96,7 +96,7 @@ Surface::~Surface() {
 SemaphoreHandle createSemaphore(const vk::Context& ctx) {
     const VkSemaphoreCreateInfo info{.sType = VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VkSemaphore semaphore = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateSemaphore(ctx.device(), &info, nullptr, &semaphore));
+    VK_CREATE(vkCreateSemaphore(ctx.device(), &info, nullptr, &semaphore));
     return {ctx.device(), semaphore};
 }
 
@@ -164,7 +164,7 @@ Swapchain createSwapchain(const vk::Context& ctx, VkSurfaceKHR surface, VkExtent
                                         .clipped = VK_TRUE,
                                         .oldSwapchain = old};
     VkSwapchainKHR handle = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateSwapchainKHR(ctx.device(), &info, nullptr, &handle));
+    VK_CREATE(vkCreateSwapchainKHR(ctx.device(), &info, nullptr, &handle));
     s.handle = SwapchainHandle(ctx.device(), handle);
     VK_CHECK(vkGetSwapchainImagesKHR(ctx.device(), handle, &count, nullptr));
     s.images.resize(count);

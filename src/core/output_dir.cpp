@@ -1,5 +1,6 @@
 #include "core/output_dir.h"
 
+#include "core/fault_injection.h"
 #include "penumbra/error.h"
 
 #include <sys/stat.h>
@@ -126,6 +127,8 @@ void StagedOutputDir::write(const std::string& name, std::span<const uint8_t> by
     size_t written = bytes.empty() ? 0 : std::fwrite(bytes.data(), 1, bytes.size(), out);
     int err = errno;
     bool ok = written == bytes.size();
+    if (injectFault(FaultSite::Write))
+        ok = false, err = ENOSPC; // a full disk, as the fault sweep asks
     // fclose flushes the buffered tail, so a full disk may only show up here.
     if (std::fclose(out) != 0 && ok) {
         err = errno;

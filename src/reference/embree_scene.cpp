@@ -1,10 +1,13 @@
 #include "reference/embree_scene.h"
 
+#include "core/fault_injection.h"
+
 #include <fmt/format.h>
 
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace penumbra {
 namespace {
@@ -53,6 +56,12 @@ void skipHoles(const RTCFilterFunctionNArguments* args) {
     }
 }
 
+// Embree asks before each allocation; refusing one makes it fail with RTC_ERROR_OUT_OF_MEMORY,
+// which is how PENUMBRA_FAULT=embree:N tests the truth's out-of-memory path.
+bool allowAllocation(void* /*user*/, ssize_t bytes, bool /*post*/) {
+    return bytes <= 0 || !injectFault(FaultSite::Embree);
+}
+
 } // namespace
 
 void EmbreeScene::addGeometry(const Scene& scene, const std::vector<uint32_t>& triangles,
@@ -66,7 +75,11 @@ void EmbreeScene::addGeometry(const Scene& scene, const std::vector<uint32_t>& t
     auto* indices = static_cast<uint32_t*>(
         rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                 3 * sizeof(uint32_t), triangles.size()));
-    throwIfFailed("allocating geometry buffers");
+    if (!positions || !indices) { // out of memory: the error function has the reason
+        if (geometry)
+            rtcReleaseGeometry(geometry);
+        throwIfFailed("allocating geometry buffers");
+    }
     for (size_t i = 0; i < scene.vertices.size(); ++i)
         std::memcpy(positions + 3 * i, &scene.vertices[i].position, 3 * sizeof(float));
     for (size_t k = 0; k < triangles.size(); ++k)
@@ -99,7 +112,18 @@ EmbreeScene::EmbreeScene(const Scene& scene, const std::string& config) {
                                              "'{}' ({})",
                                              config, errorName(rtcGetDeviceError(nullptr))));
     rtcSetDeviceErrorFunction(mDevice, onEmbreeError, &mError);
+    rtcSetDeviceMemoryMonitorFunction(mDevice, allowAllocation, nullptr);
+    try { // the destructor does not run for a constructor that throws
+        build(scene);
+    } catch (...) {
+        release();
+        throw;
+    }
+}
+
+void EmbreeScene::build(const Scene& scene) {
     mScene = rtcNewScene(mDevice);
+    throwIfFailed("creating the scene");
     rtcSetSceneBuildQuality(mScene, RTC_BUILD_QUALITY_HIGH);
     mTriangles = scene.triangleCount();
     std::vector<uint32_t> opaque, tested;
@@ -115,10 +139,14 @@ EmbreeScene::EmbreeScene(const Scene& scene, const std::string& config) {
 }
 
 EmbreeScene::~EmbreeScene() {
+    release();
+}
+
+void EmbreeScene::release() noexcept {
     if (mScene)
-        rtcReleaseScene(mScene);
+        rtcReleaseScene(std::exchange(mScene, nullptr));
     if (mDevice)
-        rtcReleaseDevice(mDevice);
+        rtcReleaseDevice(std::exchange(mDevice, nullptr));
 }
 
 void EmbreeScene::throwIfFailed(const char* what) const {

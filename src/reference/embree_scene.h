@@ -32,6 +32,8 @@ public:
 
 private:
     void throwIfFailed(const char* what) const;
+    void build(const Scene& scene);
+    void release() noexcept;
     // One Embree geometry of the scene's triangles `triangles` (indices into Scene::indices / 3).
     void addGeometry(const Scene& scene, const std::vector<uint32_t>& triangles, bool alphaTested);
     RTCDevice mDevice = nullptr;

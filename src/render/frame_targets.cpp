@@ -120,9 +120,12 @@ std::vector<ImageDecl> screenDecls(bool intermediates) {
 ReadbackLayout::ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers) {
     const VkDeviceSize pixels = VkDeviceSize{width} * height;
     VkDeviceSize offset = 0;
+    // A copy's buffer offset must be a multiple of its format's texel block (Vulkan: up to 16
+    // bytes here, RGBA32F); an odd-sized image's 4-byte parts would leave the next one off it.
+    constexpr VkDeviceSize kBlock = 16;
     auto part = [&](std::string_view target, VkDeviceSize size) {
         const Part p{target, offset, size};
-        offset += size;
+        offset = (offset + size + kBlock - 1) / kBlock * kBlock;
         return p;
     };
     color = part(target::kColor, pixels * 4);

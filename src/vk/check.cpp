@@ -1,7 +1,13 @@
 #include "vk/check.h"
 
+#include "core/fault_injection.h"
+#include "penumbra/error.h"
+
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 
 namespace penumbra::vk {
 
@@ -37,6 +43,19 @@ void failedCall(const char* file, int line, const char* call, VkResult result) {
     std::fprintf(stderr, "penumbra: fatal: %s:%d: %s returned %s (%d)\n", file, line, call,
                  resultName(result), static_cast<int>(result));
     std::abort();
+}
+
+VkResult injectedCreationFault() {
+    return injectFault(FaultSite::Creation) ? VK_ERROR_OUT_OF_HOST_MEMORY : VK_SUCCESS;
+}
+
+void failedCreation(const char* file, int line, const char* call, VkResult result) {
+    if (result != VK_ERROR_OUT_OF_HOST_MEMORY && result != VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        failedCall(file, line, call, result);
+    // "vkCreateImageView(device, ...)" -> "vkCreateImageView": what ran out, for the user.
+    const std::string_view text(call);
+    throw DeviceError(fmt::format("vulkan: out of memory in {} ({})",
+                                  text.substr(0, text.find('(')), resultName(result)));
 }
 
 } // namespace penumbra::vk

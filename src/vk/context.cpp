@@ -1,14 +1,15 @@
 #include "vk/context.h"
 
+#include "core/fault_injection.h"
 #include "penumbra/error.h"
 #include "vk/check.h"
-#include "vk/fault_injection.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <mutex>
+#include <utility>
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
@@ -324,7 +325,7 @@ Context::Context(const DeviceOptions& options)
                                   .pQueueCreateInfos = &queueInfo,
                                   .enabledExtensionCount = static_cast<uint32_t>(extensions.size()),
                                   .ppEnabledExtensionNames = extensions.data()};
-    VK_CHECK(vkCreateDevice(mPhysical, &info, nullptr, &mDevice));
+    VK_CREATE(vkCreateDevice(mPhysical, &info, nullptr, &mDevice));
     vkGetDeviceQueue(mDevice, mQueueFamily, 0, &mQueue);
     cmdPushDescriptorSet = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
         vkGetDeviceProcAddr(mDevice, "vkCmdPushDescriptorSetKHR"));
@@ -334,7 +335,12 @@ Context::Context(const DeviceOptions& options)
                                            .flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT,
                                            .queueFamilyIndex = mQueueFamily};
     VkCommandPool pool = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateCommandPool(mDevice, &poolInfo, nullptr, &pool));
+    try { // the destructor does not run for a constructor that throws
+        VK_CREATE(vkCreateCommandPool(mDevice, &poolInfo, nullptr, &pool));
+    } catch (...) {
+        vkDestroyDevice(std::exchange(mDevice, VK_NULL_HANDLE), nullptr);
+        throw;
+    }
     mCommandPool = CommandPoolHandle(mDevice, pool);
 }
 
@@ -366,7 +372,7 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
                                                 .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
                                                 .commandBufferCount = 1};
     VkCommandBuffer cmd = VK_NULL_HANDLE;
-    VK_CHECK(vkAllocateCommandBuffers(mDevice, &allocInfo, &cmd));
+    VK_CREATE(vkAllocateCommandBuffers(mDevice, &allocInfo, &cmd));
     const VkCommandBufferBeginInfo begin{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                          .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT};
     VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
@@ -375,20 +381,27 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
 
     const VkFenceCreateInfo fenceInfo{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     VkFence rawFence = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateFence(mDevice, &fenceInfo, nullptr, &rawFence));
+    VK_CREATE(vkCreateFence(mDevice, &fenceInfo, nullptr, &rawFence));
     FenceHandle fence(mDevice, rawFence);
     const VkCommandBufferSubmitInfo cmdInfo{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO,
                                             .commandBuffer = cmd};
     const VkSubmitInfo2 submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO_2,
                                .commandBufferInfoCount = 1,
                                .pCommandBufferInfos = &cmdInfo};
-    VkResult result = injectFault(FaultSite::Submit)
-                          ? VK_ERROR_DEVICE_LOST
-                          : vkQueueSubmit2(mQueue, 1, &submit, fence.get());
+    VkResult result = this->submit(submit, fence.get());
     if (result == VK_SUCCESS)
         result = vkWaitForFences(mDevice, 1, &rawFence, VK_TRUE, UINT64_MAX);
-    // What the device does to us is not a bug here: the commands report it as one error line.
-    // The command buffer stays in the pool (freed with it): it may still be pending.
+    // On failure the command buffer stays in the pool (freed with it): it may still be pending.
+    checkWork(result, "vkQueueSubmit2");
+    vkFreeCommandBuffers(mDevice, mCommandPool.get(), 1, &cmd);
+}
+
+VkResult Context::submit(const VkSubmitInfo2& info, VkFence fence) const {
+    return injectFault(FaultSite::Submit) ? VK_ERROR_DEVICE_LOST
+                                          : vkQueueSubmit2(mQueue, 1, &info, fence);
+}
+
+void Context::checkWork(VkResult result, const char* call) const {
     if (result == VK_ERROR_DEVICE_LOST || result == VK_ERROR_OUT_OF_DEVICE_MEMORY ||
         result == VK_ERROR_OUT_OF_HOST_MEMORY)
         throw DeviceError(fmt::format(
@@ -396,8 +409,8 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
             result == VK_ERROR_DEVICE_LOST ? "; the driver reset or lost the device: run again, "
                                              "or pick another with --device"
                                            : ""));
-    VK_CHECK(result);
-    vkFreeCommandBuffers(mDevice, mCommandPool.get(), 1, &cmd);
+    if (result != VK_SUCCESS)
+        failedCall(__FILE__, __LINE__, call, result);
 }
 
 } // namespace penumbra::vk

@@ -68,6 +68,12 @@ public:
 
     // Records into a fresh primary command buffer, submits it and waits for completion.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+    // The result of a submit, wait, acquire or present: a lost device or memory running out is
+    // what the device does to us, a DeviceError naming the device (one error line); any other
+    // failure aborts as VK_CHECK does.
+    void checkWork(VkResult result, const char* call) const;
+    // VK_ERROR_DEVICE_LOST when PENUMBRA_FAULT fails this submission, else vkQueueSubmit2's result.
+    VkResult submit(const VkSubmitInfo2& info, VkFence fence) const;
 
     PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
 

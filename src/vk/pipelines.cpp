@@ -19,7 +19,7 @@ ShaderModuleHandle loadShader(const Context& ctx, std::string_view name) {
                                         .codeSize = words.size_bytes(),
                                         .pCode = words.data()};
     VkShaderModule module = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
+    VK_CREATE(vkCreateShaderModule(ctx.device(), &info, nullptr, &module));
     return ShaderModuleHandle(ctx.device(), module);
 }
 
@@ -64,7 +64,7 @@ PipelineLayout createPipelineLayout(const Context& ctx, std::span<const Binding>
         .bindingCount = static_cast<uint32_t>(vkBindings.size()),
         .pBindings = vkBindings.data()};
     VkDescriptorSetLayout set = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateDescriptorSetLayout(ctx.device(), &setInfo, nullptr, &set));
+    VK_CREATE(vkCreateDescriptorSetLayout(ctx.device(), &setInfo, nullptr, &set));
     PipelineLayout result{.set = DescriptorSetLayoutHandle(ctx.device(), set)};
 
     const VkPushConstantRange range{.stageFlags = stages, .offset = 0, .size = pushConstantBytes};
@@ -74,7 +74,7 @@ PipelineLayout createPipelineLayout(const Context& ctx, std::span<const Binding>
                                           .pushConstantRangeCount = pushConstantBytes ? 1u : 0u,
                                           .pPushConstantRanges = &range};
     VkPipelineLayout layout = VK_NULL_HANDLE;
-    VK_CHECK(vkCreatePipelineLayout(ctx.device(), &info, nullptr, &layout));
+    VK_CREATE(vkCreatePipelineLayout(ctx.device(), &info, nullptr, &layout));
     result.layout = PipelineLayoutHandle(ctx.device(), layout);
     return result;
 }
@@ -93,7 +93,7 @@ PipelineHandle createComputePipeline(const Context& ctx, const PipelineLayout& l
                   .pSpecializationInfo = &spec.info},
         .layout = layout.get()};
     VkPipeline pipeline = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    VK_CREATE(vkCreateComputePipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
     return PipelineHandle(ctx.device(), pipeline);
 }
 
@@ -187,7 +187,8 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
                                             .pDynamicState = &dynamicState,
                                             .layout = layout.get()};
     VkPipeline pipeline = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+    VK_CREATE(
+        vkCreateGraphicsPipelines(ctx.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
     return PipelineHandle(ctx.device(), pipeline);
 }
 

@@ -1,8 +1,8 @@
 #include "vk/resources.h"
 
+#include "core/fault_injection.h"
 #include "penumbra/error.h"
 #include "vk/check.h"
-#include "vk/fault_injection.h"
 
 #include <fmt/format.h>
 
@@ -72,7 +72,7 @@ ImageViewHandle createView(const Context& ctx, const Image& image, VkImageViewTy
                                                           .baseArrayLayer = baseLayer,
                                                           .layerCount = layerCount}};
     VkImageView view = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateImageView(ctx.device(), &info, nullptr, &view));
+    VK_CREATE(vkCreateImageView(ctx.device(), &info, nullptr, &view));
     return ImageViewHandle(ctx.device(), view);
 }
 
@@ -126,7 +126,7 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
                                   .usage = usage,
                                   .sharingMode = VK_SHARING_MODE_EXCLUSIVE};
     VkBuffer raw = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateBuffer(ctx.device(), &info, nullptr, &raw));
+    VK_CREATE(vkCreateBuffer(ctx.device(), &info, nullptr, &raw));
     Buffer buffer{.buffer = BufferHandle(ctx.device(), raw), .size = size};
     VkMemoryRequirements req{};
     vkGetBufferMemoryRequirements(ctx.device(), raw, &req);
@@ -176,7 +176,7 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
         .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
     VkImage raw = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateImage(ctx.device(), &info, nullptr, &raw));
+    VK_CREATE(vkCreateImage(ctx.device(), &info, nullptr, &raw));
     image.image = ImageHandle(ctx.device(), raw);
     VkMemoryRequirements req{};
     vkGetImageMemoryRequirements(ctx.device(), raw, &req);
@@ -217,7 +217,7 @@ SamplerHandle createSampler(const Context& ctx, const SamplerDesc& desc) {
                                    .maxLod = desc.maxLod,
                                    .borderColor = desc.border};
     VkSampler sampler = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
+    VK_CREATE(vkCreateSampler(ctx.device(), &info, nullptr, &sampler));
     return SamplerHandle(ctx.device(), sampler);
 }
 

@@ -19,7 +19,7 @@ GpuTimer::GpuTimer(const Context& ctx, uint32_t maxScopes)
                                      .queryType = VK_QUERY_TYPE_TIMESTAMP,
                                      .queryCount = 2 * maxScopes};
     VkQueryPool pool = VK_NULL_HANDLE;
-    VK_CHECK(vkCreateQueryPool(mDevice, &info, nullptr, &pool));
+    VK_CREATE(vkCreateQueryPool(mDevice, &info, nullptr, &pool));
     mPool = QueryPoolHandle(mDevice, pool);
 }
 

@@ -1,0 +1,20 @@
+#pragma once
+// A test seam for the paths a user rarely sees. PENUMBRA_FAULT names, comma-separated, which call
+// of each kind fails (1-based, counted over the process):
+//   allocation:N  the Nth device-memory allocation fails as out of device memory
+//   creation:N    the Nth Vulkan object creation (image, view, pipeline, fence, command buffer,
+//                 ...) fails as out of host memory
+//   submit:N      the Nth queue submission reports the device lost
+//   embree:N      the Nth allocation the ray tracer asks for is refused
+//   write:N       the Nth output file cannot be written (no space left on the device)
+// Unset, nothing changes. The CLI's fault sweep (tests/test_cli_faults.cpp) runs each command
+// with N = 1, 2, ... until it succeeds, and checks that every failure ends in one `error:` line,
+// a non-zero exit and no output.
+namespace penumbra {
+
+enum class FaultSite { Allocation, Creation, Submit, Embree, Write };
+
+// True when this call at `site` is the one PENUMBRA_FAULT names (counts every call; thread-safe).
+bool injectFault(FaultSite site);
+
+} // namespace penumbra
