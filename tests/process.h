@@ -68,6 +68,20 @@ inline size_t errorLines(const std::string& err) {
     return count;
 }
 
+// What the one error line of a run failed at PENUMBRA_FAULT's `site` must say
+// (src/core/fault_injection.h; the CLI's and the viewer's fault sweeps).
+inline std::string expectedMessage(const std::string& site) {
+    if (site == "allocation")
+        return "out of memory allocating";
+    if (site == "creation")
+        return "out of memory in vk";
+    if (site == "submit")
+        return "the GPU work failed (VK_ERROR_DEVICE_LOST)";
+    if (site == "embree")
+        return "embree: ";
+    return "No space left on device";
+}
+
 // The penumbra CLI, always with the validation layer on; any validation message it prints
 // (warnings included) fails the calling test.
 inline ProcessResult runCli(const std::vector<std::string>& args) {

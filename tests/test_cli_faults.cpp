@@ -23,19 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// What the one error line must say at each site.
-std::string expectedMessage(const std::string& site) {
-    if (site == "allocation")
-        return "out of memory allocating";
-    if (site == "creation")
-        return "out of memory in vk";
-    if (site == "submit")
-        return "the GPU work failed (VK_ERROR_DEVICE_LOST)";
-    if (site == "embree")
-        return "embree: ";
-    return "No space left on device";
-}
-
 // Checks one failing run at `site`:`n`; false once a check failed.
 bool refusedCleanly(const std::string& at, const std::string& site, const ProcessResult& r,
                     const std::vector<fs::path>& outputs) {

@@ -72,13 +72,9 @@ TEST(ViewerFaults, EveryFaultOfTheFrameEndsInOneErrorLineAndNoScreenshot) {
     const fs::path dir = outputScratch("viewer-faults");
     const std::string asset = threeLightAsset(dir / "asset").string();
     const fs::path shot = dir / "shot" / "shot.png";
-    const std::vector<std::pair<std::string, std::string>> sites = {
-        {"allocation", "out of memory allocating"},
-        {"creation", "out of memory in vk"},
-        {"submit", "the GPU work failed (VK_ERROR_DEVICE_LOST)"},
-        {"write", "No space left on device"}};
+    const std::vector<std::string> sites = {"allocation", "creation", "submit", "write"};
     const bool everyPoint = std::getenv("PENUMBRA_FAULT_EVERY_POINT") != nullptr;
-    for (const auto& [site, said] : sites) {
+    for (const std::string& site : sites) {
         size_t lastFailed = 0;
         // Creations: the first 8 and every 8th after them, unless `make faults` asks for all.
         for (size_t n = 1; n < 2000; n += site == "creation" && !everyPoint && n >= 8 ? 8 : 1) {
@@ -98,7 +94,7 @@ TEST(ViewerFaults, EveryFaultOfTheFrameEndsInOneErrorLineAndNoScreenshot) {
             EXPECT_TRUE(r.exitCode == 2 || r.exitCode == 3) << at << " exit " << r.exitCode << "\n"
                                                             << r.err;
             EXPECT_EQ(errorLines(r.err), 1u) << at << "\n" << r.err;
-            EXPECT_NE(r.err.find(said), std::string::npos) << at << "\n" << r.err;
+            EXPECT_NE(r.err.find(expectedMessage(site)), std::string::npos) << at << "\n" << r.err;
             EXPECT_EQ(r.err.find("vulkan validation"), std::string::npos) << at << "\n" << r.err;
             EXPECT_FALSE(fs::exists(shot)) << at << ": a screenshot was left";
             if (::testing::Test::HasFailure())
