@@ -5,12 +5,15 @@ JOBS     ?= $(shell nproc)
 SUDO     := $(shell [ "$$(id -u)" = 0 ] || echo sudo)
 export XDG_RUNTIME_DIR ?= /tmp/penumbra-xdg-$(shell id -u)
 
-# Debian 12 packages the build, the tests and the tools need (design.md §3).
+# Debian 12 packages the build, the tests and the tools need (Debian 12 packages only: no vendored source, no downloads).
 PACKAGES := cmake g++ make pkg-config glslc libvulkan-dev mesa-vulkan-drivers \
     vulkan-validationlayers libglm-dev libstb-dev libcli11-dev nlohmann-json3-dev libfmt-dev \
     libgtest-dev libbenchmark-dev libembree-dev libtbb-dev libtinygltf-dev chromium \
     clang libclang-rt-14-dev python3 libglfw3-dev libimgui-dev xvfb xauth \
-    libdraco-dev libmeshoptimizer-dev
+    libdraco-dev libmeshoptimizer-dev libopenexr-dev pybind11-dev python3-dev python3-numpy \
+    python3-pytest
+# What `make python`'s example plots with, beyond the module's own needs.
+PYTHON_PACKAGES := python3-matplotlib
 
 # The glTF loader's libFuzzer target (clang, ASan + UBSan: the asan preset). `make fuzz` runs it
 # for FUZZ_SECONDS (0: until interrupted); `make test` runs it for 60 s. New inputs accumulate in
@@ -23,7 +26,7 @@ FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
 FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
                 -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
 
-.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli
+.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -93,6 +96,18 @@ fuzz-cli: build
 # Cross-device image agreement (tests/test_render_diff.cpp): every comparison row against the
 # images stored in tests/renderdiff/, on whichever device the suite picks. renderdiff-store
 # rewrites them (on lavapipe, after a deliberate change to what a technique draws).
+# The Python module and its type stubs, installed for the current user (docs/python.md).
+python: build
+	@$(MAKE) --no-print-directory deps PACKAGES="$(PYTHON_PACKAGES)"
+	@site=$$(/usr/bin/python3 -m site --user-site) && mkdir -p "$$site" && \
+	    cp build/$(PRESET)/python/penumbra.*.so build/$(PRESET)/python/penumbra.pyi "$$site"/ && \
+	    echo "penumbra: the module is in $$site (for /usr/bin/python3)"
+
+# docs/cli.md's option tables refreshed from the CLI's own definitions (the build makes the page in
+# build/$(PRESET)/docs; CliDocs.UpToDate fails until it is copied here).
+cli-docs: build
+	cp build/$(PRESET)/docs/cli.md docs/cli.md
+
 renderdiff: build
 	build/$(PRESET)/tests/penumbra_gpu_tests --gtest_filter='RenderDiffTest.*'
 

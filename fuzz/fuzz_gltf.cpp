@@ -1,4 +1,4 @@
-// libFuzzer target for the glTF loader (design.md §5: assets are hostile). Each input is written
+// libFuzzer target for the glTF loader (assets are hostile: docs/testing.md). Each input is written
 // to a private temporary folder as scene.glb (when it starts with the GLB magic "glTF") or
 // scene.gltf and loaded with a small size cap. Refusing it with InputError is the expected
 // outcome; any other exception escaping, a crash, or an ASan/UBSan report is a finding.

@@ -1,8 +1,10 @@
-// The CLI contract of design.md §1: bad input gives one `error:` line, a non-zero exit code, no
+// The CLI contract of docs/cli.md: bad input gives one `error:` line, a non-zero exit code, no
 // crash and no output; good input writes exactly the files the contract lists.
+#include "core/exr_io.h"
 #include "core/image_io.h"
 #include "core/light_space.h"
 #include "core/projection.h"
+#include "float_images.h"
 #include "gltf_builder.h"
 #include "penumbra/reference.h"
 #include "process.h"
@@ -121,6 +123,9 @@ INSTANTIATE_TEST_SUITE_P(
                  {"render", "builtin:showcase", "-o", "/etc/hostname/sub"},
                  "/etc/hostname"},
         BadInput{"no_output_option", {"render", "builtin:showcase"}, "--output"},
+        BadInput{"unknown_float_format",
+                 {"render", "builtin:showcase", "-o", "{out}", "--format", "tiff"},
+                 "--format"},
         BadInput{"reference_zero_samples",
                  {"reference", "builtin:showcase", "-o", "{out}", "--samples", "0"},
                  "--samples"},
@@ -177,25 +182,28 @@ TEST(Cli, RenderWritesTheContractFiles) {
                                     "96", "--height", "64", "--shadow-map-size", "256", "--frames",
                                     "2", "--set", "bias.slope=1.5", "--light-angle", "2.5"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    for (const char* f :
-         {"image.png", "visibility.pfm", "position.pfm", "normal.pfm", "stats.json"})
+    for (const char* f : {"image.png", "visibility.pfm", "position.pfm", "normal.pfm",
+                          "visibility.exr", "position.exr", "normal.exr", "stats.json"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
     size_t entries = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(out))
         ++entries;
-    EXPECT_EQ(entries, 5u) << "no staging leftovers";
+    EXPECT_EQ(entries, 8u) << "no staging leftovers";
+    for (const char* stem : {"visibility", "position", "normal"}) // OpenEXR beside PFM, by default
+        expectSameImage(readPfm(out / (std::string(stem) + ".pfm")),
+                        readExr(out / (std::string(stem) + ".exr")), stem);
 
-    const PfmImage vis = readPfm(out / "visibility.pfm");
+    const FloatImage vis = readPfm(out / "visibility.pfm");
     EXPECT_EQ(vis.width, 96u);
     EXPECT_EQ(vis.height, 64u);
     EXPECT_EQ(vis.channels, 1u);
     // Rows are stored bottom to top; decoded top to bottom the sky (NaN) is first, ground last.
     EXPECT_TRUE(std::isnan(vis.pixels.front()));
     EXPECT_FALSE(std::isnan(vis.pixels.back()));
-    const PfmImage pos = readPfm(out / "position.pfm");
+    const FloatImage pos = readPfm(out / "position.pfm");
     EXPECT_EQ(pos.channels, 3u);
     EXPECT_NEAR(pos.pixels[pos.pixels.size() - 2], 0.0f, 1e-3f); // bottom row lies on y = 0
-    const PfmImage normal = readPfm(out / "normal.pfm");
+    const FloatImage normal = readPfm(out / "normal.pfm");
     EXPECT_EQ(normal.channels, 3u);
     EXPECT_NEAR(normal.pixels[normal.pixels.size() - 2], 1.0f, 1e-3f); // the ground faces up
     for (size_t i = 0; i + 2 < normal.pixels.size(); i += 3)
@@ -377,7 +385,7 @@ TEST(Cli, CompareMetricsHeatMapsAndTruthFollowFromTheFilesItWrote) {
                 "hard,pcf[box7],pcss", "--width", "96", "--height", "64", "--shadow-map-size",
                 "512", "--frames", "1", "--samples", "16", "--light-angle", "6"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    const PfmImage truthFile = readPfm(out / "visibility.pfm");
+    const FloatImage truthFile = readPfm(out / "visibility.pfm");
     RenderResult g{.width = truthFile.width, .height = truthFile.height};
     g.position = readPfm(out / "position.pfm").pixels;
     g.normal = readPfm(out / "normal.pfm").pixels;
@@ -393,7 +401,7 @@ TEST(Cli, CompareMetricsHeatMapsAndTruthFollowFromTheFilesItWrote) {
     ASSERT_EQ(metrics.size(), 4u); // hard, pcf[box7], pcss, pcss[fast]
     for (const auto& [name, reported] : metrics.items()) {
         const std::string prefix = rowFilePrefix(name);
-        const PfmImage row = readPfm(out / (prefix + ".visibility.pfm"));
+        const FloatImage row = readPfm(out / (prefix + ".visibility.pfm"));
         const MetricLayer layer{row.pixels, truth.visibility[0], mask};
         const ErrorMetrics m = computeMetrics(g.width, g.height, std::span(&layer, 1));
         EXPECT_GT(m.pixels, g.width * g.height / 3) << name;
@@ -407,6 +415,21 @@ TEST(Cli, CompareMetricsHeatMapsAndTruthFollowFromTheFilesItWrote) {
             {"leak", m.leak}};
         for (const auto& [key, value] : expected)
             EXPECT_NEAR(reported[key].get<double>(), value, 1e-9) << name << " " << key;
+        // The heat map's data: the row minus the truth, NaN where either is.
+        const FloatImage difference = readExr(out / (prefix + ".difference.exr"));
+        ASSERT_EQ(difference.pixels.size(), row.pixels.size()) << name;
+        size_t compared = 0;
+        for (size_t i = 0; i < row.pixels.size(); ++i) {
+            const float want = row.pixels[i] - truth.visibility[0][i];
+            if (std::isnan(want)) {
+                ASSERT_TRUE(std::isnan(difference.pixels[i])) << name << " pixel " << i;
+                continue;
+            }
+            ASSERT_EQ(difference.pixels[i], want) << name << " pixel " << i;
+            ++compared;
+        }
+        EXPECT_GT(compared, size_t(m.pixels) / 2) << name;
+        expectSameImage(readPfm(out / (prefix + ".difference.pfm")), difference, name);
         EXPECT_EQ(slurp(out / (prefix + ".heatmap.png")),
                   [&] {
                       const std::vector<uint8_t> png = encodePng(signedErrorHeatmap(

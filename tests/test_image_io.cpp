@@ -79,7 +79,7 @@ TEST(ImageIo, PfmRoundTripsOneAndThreeChannelsIncludingNanAndNegatives) {
         pixels[2] = -inf;
         pixels[pixels.size() - 1] = payloadNan;
         std::vector<uint8_t> file = encodePfm(width, height, channels, pixels);
-        PfmImage image = decodePfm(file, "round.pfm");
+        FloatImage image = decodePfm(file, "round.pfm");
         EXPECT_EQ(image.width, width);
         EXPECT_EQ(image.height, height);
         EXPECT_EQ(image.channels, channels);
@@ -115,7 +115,7 @@ TEST(ImageIo, PfmDecodesBigEndianAndFlipsRows) {
     std::vector<uint8_t> data = {0xc0, 0x20, 0x00, 0x00, 0x3f, 0x80, 0x00, 0x00,
                                  0x3f, 0x00, 0x00, 0x00, 0x40, 0x40, 0x00, 0x00};
     file.insert(file.end(), data.begin(), data.end());
-    PfmImage image = decodePfm(file, "be.pfm");
+    FloatImage image = decodePfm(file, "be.pfm");
     EXPECT_EQ(image.width, 2u);
     EXPECT_EQ(image.height, 2u);
     EXPECT_EQ(image.channels, 1u);
@@ -126,7 +126,7 @@ TEST(ImageIo, PfmAcceptsAnyWhitespaceBetweenHeaderFields) {
     std::vector<uint8_t> file = toBytes("Pf \t2\r\n\n1   -4.25\t");
     std::vector<uint8_t> data = {0x00, 0x00, 0x80, 0x3f, 0x00, 0x00, 0x00, 0xc0};
     file.insert(file.end(), data.begin(), data.end());
-    PfmImage image = decodePfm(file, "ws.pfm");
+    FloatImage image = decodePfm(file, "ws.pfm");
     EXPECT_EQ(image.width, 2u);
     EXPECT_EQ(image.height, 1u);
     EXPECT_EQ(image.pixels, (std::vector<float>{1.0f, -2.0f}));
@@ -169,7 +169,7 @@ TEST(ImageIo, ReadPfmReadsFileAndReportsPathOnErrors) {
                   static_cast<std::streamsize>(bytes.size()));
     }
     EXPECT_EQ(readFileBytes(dir / "image.pfm"), bytes);
-    PfmImage image = readPfm(dir / "image.pfm");
+    FloatImage image = readPfm(dir / "image.pfm");
     EXPECT_EQ(image.pixels, pixels);
     try {
         readPfm(dir / "missing.pfm");

@@ -301,6 +301,9 @@ TEST_F(ShadowTest, RefusesMoreShadowViewsThanTheDeviceHolds) {
         EXPECT_NE(what.find(fmt::format("{} shadow views of {} texels", bulbs * 6, size)),
                   std::string::npos)
             << what;
+        // Which technique, and the limit it hits.
+        EXPECT_EQ(what.find("--shadow-map-size: hard needs "), 0u) << what;
+        EXPECT_NE(what.find("a render may use"), std::string::npos) << what;
     }
     // More views than an array image has layers.
     scene.lights.assign(1000, bulb);

@@ -262,7 +262,7 @@ TEST(ViewerTest, DisplayModesShowTheFrameTheyName) {
     std::vector<std::string> args{"render", "-o", out.string(), "--frames", "1"};
     args.insert(args.end(), scene.begin(), scene.end());
     ASSERT_EQ(runCli(args).exitCode, 0);
-    const PfmImage visibility = readPfm(out / "visibility.pfm");
+    const FloatImage visibility = readPfm(out / "visibility.pfm");
     std::vector<std::string> show = scene;
     show.insert(show.end(), {"--hide-ui", "--show", "visibility"});
     const Rgb grey = viewImage(show, "show-vis");
@@ -313,8 +313,8 @@ TEST(ViewerTest, ContactViewShowsWhatTheLayerMultipliesIn) {
         EXPECT_EQ(runCli(args).exitCode, 0);
         return readPfm(out / "visibility.pfm");
     };
-    const PfmImage without = visibilityOf("0", "render-no-contact");
-    const PfmImage with = visibilityOf("0.3", "render-contact");
+    const FloatImage without = visibilityOf("0", "render-no-contact");
+    const FloatImage with = visibilityOf("0.3", "render-contact");
     std::vector<std::string> show = scene;
     show.insert(show.end(), {"--set", "contact.length=0.3", "--hide-ui", "--show", "contact"});
     const Rgb contact = viewImage(show, "show-contact");
@@ -384,10 +384,10 @@ TEST(ViewerTest, BlockerSearchViewsAgreeWithTheVisibility) {
     std::vector<std::string> args{"render", "-o", out.string(), "--frames", "1"};
     args.insert(args.end(), scene.begin(), scene.end());
     ASSERT_EQ(runCli(args).exitCode, 0);
-    const PfmImage visibility = readPfm(out / "visibility.pfm");
+    const FloatImage visibility = readPfm(out / "visibility.pfm");
     // A surface facing away from the light hides it itself, no blocker needed (visibility.pfm's
     // convention): those pixels, and the terminator's, are left out.
-    const PfmImage position = readPfm(out / "position.pfm"), normal = readPfm(out / "normal.pfm");
+    const FloatImage position = readPfm(out / "position.pfm"), normal = readPfm(out / "normal.pfm");
     const auto stats = nlohmann::json::parse(slurp(out / "stats.json"));
     const auto at = stats["lights"][0]["position"].get<std::vector<float>>();
     auto facesLight = [&](int i) {

@@ -7,9 +7,8 @@
 
 namespace penumbra::test {
 
-// A ground with a box on it under a sun, a spot and a point light.
-inline std::filesystem::path threeLightAsset(const std::filesystem::path& where) {
-    GltfBuilder b;
+// A 10 x 10 ground with a 2-unit box standing on it, no lights.
+inline void groundAndBox(GltfBuilder& b) {
     b.ground();
     const int p = b.positions(
         {-1, 0, -1, 1, 0, -1, 1, 2, -1, -1, 2, -1, -1, 0, 1, 1, 0, 1, 1, 2, 1, -1, 2, 1});
@@ -18,6 +17,12 @@ inline std::filesystem::path threeLightAsset(const std::filesystem::path& where)
                                      1, 5, 6, 1, 6, 2, 3, 2, 6, 3, 6, 7, 0, 4, 5, 0, 5, 1}),
         5123, 36, "SCALAR");
     b.node({{"mesh", b.mesh(p, i)}});
+}
+
+// The ground and box under a sun, a spot and a point light.
+inline std::filesystem::path threeLightAsset(const std::filesystem::path& where) {
+    GltfBuilder b;
+    groundAndBox(b);
     const auto light = [&](int index, nlohmann::json node) {
         node["extensions"] = {{"KHR_lights_punctual", {{"light", index}}}};
         b.node(std::move(node));

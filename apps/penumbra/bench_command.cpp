@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <memory>
 
@@ -82,7 +83,7 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
     if (path.filename().empty() || path.filename() == "bench.html")
         throw InputError(args.output,
                          "-o needs a JSON file name (bench.html is written beside it)");
-    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
+    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
     StagedOutputDir out(path.has_parent_path() ? path.parent_path() : ".");
 
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
@@ -92,8 +93,31 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
         o.parameters = r.parameters;
         return o;
     };
-    for (const BenchRun& r : runs) // every run's options checked before the first one starts
-        renderer.check(scene, optionsOf(r));
+    // Every run's options checked before the first one starts; a run the device cannot hold is
+    // skipped and marked (only when none fits is it an error).
+    auto describe = [](const BenchRun& r) {
+        std::string text(techniqueName(r.technique));
+        for (const auto& [k, v] : r.swept)
+            text += " " + k + "=" + v;
+        return text;
+    };
+    std::exception_ptr firstRefusal;
+    size_t skipped = 0;
+    for (BenchRun& r : runs)
+        try {
+            renderer.check(scene, optionsOf(r));
+        } catch (const InputError& e) {
+            if (!firstRefusal)
+                firstRefusal = std::current_exception();
+            r.skipped = e.what();
+            ++skipped;
+        }
+    if (skipped == runs.size())
+        std::rethrow_exception(firstRefusal); // the error it always was, without warnings
+    for (const BenchRun& r : runs)
+        if (!r.skipped.empty())
+            std::fprintf(stderr, "penumbra: warning: %s skipped: %s\n", describe(r).c_str(),
+                         r.skipped.c_str());
     data.device = renderer.device();
     std::fprintf(stderr,
                  "penumbra: bench %s on %s (%s), %ux%u, shadow map %u, %zu runs of %u "
@@ -103,14 +127,11 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
     SceneRenderer uploaded(renderer, scene);
     for (size_t i = 0; i < runs.size(); ++i) {
         BenchRun& r = runs[i];
-        const std::string label = fmt::format(
-            "[{}/{}] {}{}", i + 1, runs.size(), techniqueName(r.technique),
-            r.swept.empty() ? "" : " " + [&] {
-                std::string s;
-                for (const auto& [k, v] : r.swept)
-                    s += (s.empty() ? "" : " ") + k + "=" + v;
-                return s;
-            }());
+        const std::string label = fmt::format("[{}/{}] {}", i + 1, runs.size(), describe(r));
+        if (!r.skipped.empty()) {
+            std::printf("%-40s skipped: %s\n", label.c_str(), r.skipped.c_str());
+            continue;
+        }
         std::fprintf(stderr, "penumbra: %s\n", label.c_str());
         const RenderOptions o = optionsOf(r);
         const RenderResult result = uploaded.render(o);
@@ -144,13 +165,16 @@ Action addBenchCommand(CLI::App& app, const GlobalOptions& global) {
         "bench", "GPU time per pass of each technique and swept parameter value: FILE.json and "
                  "bench.html beside it");
     addSceneArgument(*cmd, args->scene);
-    cmd->add_option("-o,--output", args->output, "the JSON file (bench.html is written beside it)")
+    cmd->add_option("-o,--output", args->output,
+                    "the JSON; `bench.html` is written beside it (both all-or-nothing)")
+        ->type_name("FILE.json")
         ->required();
-    cmd->add_option("--techniques", args->techniques,
-                    "comma-separated technique names (default: every technique)");
+    cmd->add_option("--techniques", args->techniques, "technique names (default: every technique)")
+        ->type_name("a,b,...");
     cmd->add_option("--sweep", args->sweeps,
-                    "key=v1,v2,...: run each technique that reads the key once per value "
-                    "(repeatable: every combination)");
+                    "run each technique that reads the key once per value, each checked "
+                    "against its range first; repeatable (every combination)")
+        ->type_name("key=v1,v2,...");
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     return [args, &global] { return runBench(*args, global); };

@@ -1,5 +1,6 @@
 #include "cli_options.h"
 
+#include "core/exr_io.h"
 #include "core/image_io.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
 
 namespace penumbra::cli {
 
@@ -88,7 +90,7 @@ TechniqueRow rowNamed(const std::string& name, std::string_view option) {
 }
 
 Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
-                         const SceneOptions& o) {
+                         const SceneOptions& o, const RenderOptions& options) {
     SceneEdits edits{.fovDegrees = o.fovDegrees};
     // Parsed before the scene loads: a typing mistake costs no loading time.
     if (!o.sunDirection.empty())
@@ -101,6 +103,8 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
         edits.lightPositions.push_back(parseNamedVector3(text, "--light-pos"));
     for (const std::string& text : o.lightDirections)
         edits.lightDirections.push_back(parseNamedVector3(text, "--light-dir"));
+    for (const std::string& text : o.addedLights)
+        edits.addedLights.push_back(parseAddedLight(text));
     std::vector<std::string> warnings;
     Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
                                    .maxTriangles = global.maxTriangles,
@@ -108,72 +112,212 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
     for (const std::string& w : warnings)
         std::fprintf(stderr, "penumbra: warning: %s\n", w.c_str());
     applySceneEdits(scene, edits);
+    const auto has = [&](auto kind) {
+        return std::any_of(scene.lights.begin(), scene.lights.end(), kind);
+    };
+    if (options.lightAngleOverride >= 0 &&
+        !has([](const Light& l) { return l.type == LightType::Directional; }))
+        std::fprintf(stderr,
+                     "penumbra: warning: --light-angle: scene '%s' has no directional light; "
+                     "the option changes nothing (--add-light sun:dir=X,Y,Z adds one)\n",
+                     scene.name.c_str());
+    if (options.lightRadiusOverride >= 0 &&
+        !has([](const Light& l) { return l.type != LightType::Directional; }))
+        std::fprintf(stderr,
+                     "penumbra: warning: --light-radius: scene '%s' has no spot or point light; "
+                     "the option changes nothing (--add-light point:pos=X,Y,Z adds one)\n",
+                     scene.name.c_str());
     return scene;
 }
 
 void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
-    cmd.add_option("--width", o.width, "image width in pixels")->capture_default_str();
-    cmd.add_option("--height", o.height, "image height in pixels")->capture_default_str();
-    CLI::Option* camera = cmd.add_option("--camera", o.camera,
-                                         "glTF camera name (default: the first, else automatic)");
-    cmd.add_option("--camera-pos", scene.cameraPosition,
-                   "X,Y,Z: an ad-hoc camera at this world position (needs --look-at)")
+    const auto group = [](CLI::Option* option) { return option->group(kSceneGroup); };
+    group(cmd.add_option("--width", o.width,
+                         "image width in pixels (1 .. the device's maxImageDimension2D)"))
+        ->type_name("W")
+        ->capture_default_str();
+    group(cmd.add_option("--height", o.height, "image height in pixels (as --width)"))
+        ->type_name("H")
+        ->capture_default_str();
+    CLI::Option* camera = group(
+        cmd.add_option("--camera", o.camera,
+                       "a named glTF camera (default: the first; a scene without cameras is framed "
+                       "automatically)"));
+    camera->type_name("NAME");
+    group(cmd.add_option("--camera-pos", scene.cameraPosition,
+                         "an ad-hoc camera at this world position (named `command line`, world "
+                         "up, near and far planes that hold the whole scene; needs --look-at)"))
+        ->type_name("X,Y,Z")
         ->excludes(camera);
-    cmd.add_option("--look-at", scene.lookAt, "X,Y,Z: the point the ad-hoc camera looks at")
+    group(cmd.add_option("--look-at", scene.lookAt, "the point the ad-hoc camera looks at"))
+        ->type_name("X,Y,Z")
         ->excludes(camera);
-    cmd.add_option("--fov", scene.fovDegrees,
-                   "the ad-hoc camera's vertical field of view in degrees (default 45.8)")
+    group(cmd.add_option("--fov", scene.fovDegrees,
+                         "the ad-hoc camera's vertical field of view, 1..170 degrees (default "
+                         "45.8)"))
+        ->type_name("DEG")
         ->excludes(camera);
-    cmd.add_option("--sun-dir", scene.sunDirection,
-                   "X,Y,Z: the direction a sun's light travels (world space); replaces the "
-                   "default light of a scene without lights, else adds a sun");
-    cmd.add_option("--light-pos", scene.lightPositions,
-                   "NAME=X,Y,Z: move the spot or point light NAME (repeatable)");
-    cmd.add_option("--light-dir", scene.lightDirections,
-                   "NAME=X,Y,Z: aim the spot or sun NAME (repeatable)");
-    cmd.add_option("--light-radius", o.lightRadiusOverride,
-                   "spot/point light radius in world units (overrides the scene)")
+    group(cmd.add_option("--sun-dir", scene.sunDirection,
+                         "a sun whose light travels along X,Y,Z (world space, any length but 0): "
+                         "replaces the default light of a scene without lights, else is added "
+                         "(named `sun`, or `sun (--sun-dir)` when the scene has a `sun`)"))
+        ->type_name("X,Y,Z");
+    group(cmd.add_option("--light-pos", scene.lightPositions,
+                         "moves the spot or point light NAME (its glTF name; unnamed lights are "
+                         "`light<i>`); repeatable"))
+        ->type_name("NAME=X,Y,Z");
+    group(cmd.add_option("--light-dir", scene.lightDirections,
+                         "aims the spot or sun NAME along X,Y,Z; repeatable"))
+        ->type_name("NAME=X,Y,Z");
+    group(cmd.add_option("--add-light", scene.addedLights,
+                         "adds a light: `sun:dir=X,Y,Z[,angle=DEG]`, "
+                         "`spot:pos=X,Y,Z,dir=X,Y,Z[,cone=DEG][,radius=R]` or "
+                         "`point:pos=X,Y,Z[,radius=R]`, each with optional `intensity=` and "
+                         "`name=` (default: as bright at the scene's centre as the default sun; "
+                         "named `<kind> (--add-light N)`); it replaces a scene's default light; "
+                         "repeatable"))
+        ->type_name("LIGHT");
+    group(cmd.add_option("--light-radius", o.lightRadiusOverride,
+                         "every spot and point light's radius in world units (default: the "
+                         "scene's); the size soft techniques and the ground truth use"))
+        ->type_name("R")
         ->check(CLI::NonNegativeNumber);
-    cmd.add_option("--light-angle", o.lightAngleOverride,
-                   "directional light angular diameter in degrees (overrides the scene)")
+    group(cmd.add_option("--light-angle", o.lightAngleOverride,
+                         "every directional light's angular diameter, 0..30 degrees (default: "
+                         "the scene's)"))
+        ->type_name("DEG")
         ->check(CLI::Range(0.0, 30.0));
 }
 
 void addTechniqueOptions(CLI::App& cmd, RenderOptions& o, std::vector<std::string>& sets) {
-    cmd.add_option("--shadow-map-size", o.shadowMapSize, "shadow map side in texels")
+    cmd.add_option("--shadow-map-size", o.shadowMapSize,
+                   "shadow-map side in texels (16 .. the device's maxImageDimension2D)")
+        ->group(kTechniqueGroup)
+        ->type_name("N")
         ->capture_default_str();
-    cmd.add_option("--set", sets, "technique parameter family.name=value (repeatable)");
+    cmd.add_option("--set", sets,
+                   "a technique parameter, e.g. pcf.size=7 (the parameters table below); "
+                   "repeatable")
+        ->group(kTechniqueGroup)
+        ->type_name("family.name=value");
     cmd.add_option("--frames", o.frames,
                    "timed frames after one warm-up frame (two with virtual.enabled: one asks for "
-                   "pages, the next renders them)")
+                   "pages, the next renders them); GPU times are their median")
+        ->group(kTechniqueGroup)
+        ->type_name("N")
         ->capture_default_str();
 }
 
 void addReferenceOptions(CLI::App& cmd, ReferenceOptions& options) {
     cmd.add_option("--samples", options.samples,
-                   "ground-truth rays per pixel and light for lights with a size (1..65536)")
+                   "ground-truth rays per pixel and light for lights with a size (1..65536); a "
+                   "light of radius or angle 0 gets one exact ray")
+        ->group(kTruthGroup)
+        ->type_name("N")
         ->capture_default_str();
     cmd.add_option("--embree-config", options.embreeConfig,
-                   "Embree device configuration, e.g. threads=2");
+                   "Embree device configuration, e.g. `threads=2`")
+        ->group(kTruthGroup)
+        ->type_name("STR");
 }
 
 void addSceneArgument(CLI::App& cmd, std::string& scene) {
     std::string builtins;
     for (std::string_view name : builtinSceneNames())
-        builtins += (builtins.empty() ? "" : ", ") + std::string(name);
-    cmd.add_option("scene", scene, "builtin:NAME (" + builtins + ") or a glTF file")->required();
+        builtins += (builtins.empty() ? "`" : "`, `") + std::string(name);
+    cmd.add_option("scene", scene,
+                   "a built-in scene (" + builtins +
+                       "`; docs/scenes.md) or a glTF 2.0 file (.gltf, .glb)")
+        ->required();
+}
+
+void addFormatOption(CLI::App& cmd, FloatFormat& format) {
+    const std::map<std::string, FloatFormat> names{
+        {"pfm", FloatFormat::Pfm}, {"exr", FloatFormat::Exr}, {"both", FloatFormat::Both}};
+    cmd.add_option("--format", format,
+                   "the float images (visibility, position, normal; compare's differences and "
+                   "occluder distances) as `pfm`, `exr` (OpenEXR: 32-bit float, lossless ZIP, "
+                   "what tev, Blender, Nuke and OpenImageIO open) or `both`")
+        ->transform(CLI::CheckedTransformer(names))
+        ->type_name("FORMAT")
+        ->default_str("both");
+}
+
+std::string_view namingExtension(FloatFormat format) {
+    return format == FloatFormat::Exr ? "exr" : "pfm";
+}
+
+void writeFloatImage(StagedOutputDir& out, const std::string& stem, FloatFormat format,
+                     uint32_t width, uint32_t height, uint32_t channels,
+                     std::span<const float> pixels) {
+    if (format != FloatFormat::Exr)
+        out.write(stem + ".pfm", encodePfm(width, height, channels, pixels));
+    if (format != FloatFormat::Pfm)
+        out.write(stem + ".exr", encodeExr(width, height, channels, pixels));
 }
 
 void writeViewFiles(StagedOutputDir& out, const RenderResult& g,
-                    const std::vector<std::vector<float>>& visibility) {
+                    const std::vector<std::vector<float>>& visibility, FloatFormat format) {
     for (size_t i = 0; i < visibility.size(); ++i)
-        out.write(visibilityFileName(i), encodePfm(g.width, g.height, 1, visibility[i]));
-    out.write("position.pfm", encodePfm(g.width, g.height, 3, g.position));
-    out.write("normal.pfm", encodePfm(g.width, g.height, 3, g.normal));
+        writeFloatImage(out, visibilityFileStem(i), format, g.width, g.height, 1, visibility[i]);
+    writeFloatImage(out, "position", format, g.width, g.height, 3, g.position);
+    writeFloatImage(out, "normal", format, g.width, g.height, 3, g.normal);
 }
 
 std::span<const uint8_t> bytesOf(const std::string& text) {
     return {reinterpret_cast<const uint8_t*>(text.data()), text.size()};
+}
+
+namespace {
+
+const char* parameterTypeName(ParameterType type) {
+    switch (type) {
+    case ParameterType::Float:
+        return "float";
+    case ParameterType::Int:
+        return "int";
+    case ParameterType::Bool:
+        return "bool";
+    case ParameterType::Choice:
+        return "choice";
+    }
+    return "?";
+}
+
+nlohmann::json describeParameter(const ParameterInfo& p) {
+    nlohmann::json j = {{"key", p.key},
+                        {"type", parameterTypeName(p.type)},
+                        {"description", p.description},
+                        {"unit", p.unit}};
+    if (p.type == ParameterType::Choice) {
+        j["choices"] = p.choices;
+        j["default"] = p.choices[static_cast<size_t>(p.defaultValue)];
+    } else if (p.type == ParameterType::Bool) {
+        j["default"] = p.defaultValue != 0.0;
+    } else {
+        j["default"] = p.defaultValue;
+        j["min"] = p.min;
+        j["max"] = p.max;
+    }
+    return j;
+}
+
+} // namespace
+
+nlohmann::json techniquesJson() {
+    nlohmann::json out = nlohmann::json::array();
+    for (const TechniqueInfo& t : allTechniques()) {
+        nlohmann::json params = nlohmann::json::array();
+        for (const ParameterInfo& p : allParameters())
+            for (std::string_view family : t.families)
+                if (p.key.substr(0, p.key.find('.')) == family)
+                    params.push_back(describeParameter(p));
+        out.push_back({{"name", t.name},
+                       {"summary", t.summary},
+                       {"reference", t.reference},
+                       {"parameters", params}});
+    }
+    return out;
 }
 
 } // namespace penumbra::cli

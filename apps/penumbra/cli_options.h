@@ -3,6 +3,7 @@
 // `--set` assembly onto a base and a row, the view, technique and reference option groups, and
 // scene loading with the scene edits. A command file holds only what is its own.
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/output_dir.h"
 #include "penumbra/reference.h"
@@ -29,7 +30,7 @@ struct GlobalOptions {
 // parsed and applied by loadSceneReporting, where a mistake is an `error:` line.
 struct SceneOptions {
     std::string sunDirection, cameraPosition, lookAt;
-    std::vector<std::string> lightPositions, lightDirections;
+    std::vector<std::string> lightPositions, lightDirections, addedLights;
     std::optional<float> fovDegrees;
 };
 
@@ -60,9 +61,15 @@ RenderOptions optionsFor(const RenderOptions& base, const TechniqueRow& row,
 TechniqueRow rowNamed(const std::string& name, std::string_view option);
 
 // loadScene with the global options, then the scene options applied; loader warnings go to
-// stderr as `penumbra: warning:`.
+// stderr as `penumbra: warning:`, and so do light sizes that no light of the scene takes
+// (--light-angle without a sun, --light-radius without a spot or point light).
 Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
-                         const SceneOptions& sceneOptions);
+                         const SceneOptions& sceneOptions, const RenderOptions& options);
+
+// The option groups several commands share, under these headings in `--help` and docs/cli.md.
+inline constexpr const char* kSceneGroup = "Scene and view";
+inline constexpr const char* kTechniqueGroup = "Technique";
+inline constexpr const char* kTruthGroup = "Ground truth";
 
 // Options that fix what is seen: image size, camera, lights and their sizes (every command that
 // takes a scene).
@@ -74,9 +81,23 @@ void addReferenceOptions(CLI::App& cmd, ReferenceOptions& options);
 // The scene argument, with the built-in scenes' names in its help.
 void addSceneArgument(CLI::App& cmd, std::string& scene);
 
-// visibility.pfm / visibility_<i>.pfm, position.pfm and normal.pfm (design.md §1).
+// Which files a float image becomes (`--format`): PFM, OpenEXR or both (the default: PFM is the
+// contract tools depend on, OpenEXR what image tools open).
+enum class FloatFormat { Pfm, Exr, Both };
+// --format pfm|exr|both (render, reference, compare).
+void addFormatOption(CLI::App& cmd, FloatFormat& format);
+// The extension stats.json names a float image by: pfm unless only OpenEXR is written.
+std::string_view namingExtension(FloatFormat format);
+// Stages STEM.pfm and/or STEM.exr (rows top to bottom, 1 or 3 channels).
+void writeFloatImage(StagedOutputDir& out, const std::string& stem, FloatFormat format,
+                     uint32_t width, uint32_t height, uint32_t channels,
+                     std::span<const float> pixels);
+// visibility / visibility_<i>, position and normal as float images (docs/cli.md).
 void writeViewFiles(StagedOutputDir& out, const RenderResult& gbuffer,
-                    const std::vector<std::vector<float>>& visibility);
+                    const std::vector<std::vector<float>>& visibility, FloatFormat format);
+// Every technique with its summary, paper and parameters (defaults, ranges, units): `penumbra
+// techniques --json` and the Python module's techniques().
+nlohmann::json techniquesJson();
 // Raw text of a file's bytes for StagedOutputDir::write.
 std::span<const uint8_t> bytesOf(const std::string& text);
 

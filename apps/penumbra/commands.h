@@ -1,5 +1,5 @@
 #pragma once
-// The sub-commands of the `penumbra` CLI (design.md §1). Each registers its options on the app
+// The sub-commands of the `penumbra` CLI (docs/cli.md). Each registers its options on the app
 // (the shared groups from cli_options.h) and returns the action to run when it was chosen.
 #include "cli_options.h"
 

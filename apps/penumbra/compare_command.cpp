@@ -11,12 +11,14 @@
 #include "report/html_report.h"
 #include "report/light_mask.h"
 #include "report/metrics.h"
+#include "report/page_image.h"
 #include "report/stats.h"
 #include "shadows/technique.h"
 
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <exception>
 #include <memory>
 
 namespace penumbra::cli {
@@ -30,6 +32,7 @@ struct CompareArgs {
     ReferenceOptions reference{.progress = true};
     std::string cameraPath; // empty: no shimmer
     uint32_t pathFrames = 8;
+    FloatFormat format = FloatFormat::Both;
 };
 
 // File-name prefix of a row: "pcf[box7]" -> "pcf-box7", "pcf[box3]+contact" -> "pcf-box3-contact".
@@ -55,7 +58,7 @@ double blurRadiusTexels(const RenderOptions& o) {
 }
 
 int runCompare(const CompareArgs& args, const GlobalOptions& global) {
-    const std::vector<TechniqueRow> rows = comparisonRows(args.techniques);
+    std::vector<TechniqueRow> rows = comparisonRows(args.techniques);
     std::vector<RenderOptions> rowOptions;
     for (const TechniqueRow& row : rows)
         rowOptions.push_back(optionsFor(args.options, row, args.sets));
@@ -64,14 +67,34 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     if (!args.cameraPath.empty() && !cameraPathFromName(args.cameraPath, path))
         throw InputError("--camera-path",
                          fmt::format("'{}' is not dolly, orbit or sun", args.cameraPath));
-    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
+    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
     // A row's layers that the settings leave off take the layer's settings for this scene's size.
     for (size_t i = 0; i < rows.size(); ++i)
         applyRow(rows[i], rowOptions[i].parameters, scene.bounds().radius());
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
-    for (const RenderOptions& o : rowOptions)
-        renderer.check(scene, o);
+    // A row the device cannot hold (its maps past the device's memory or limits) is skipped and
+    // marked in the table and the report; only when no row fits is it an error.
+    std::vector<ReportRow> skipped;
+    std::exception_ptr firstRefusal;
+    for (size_t r = rows.size(); r-- > 0;) {
+        try {
+            renderer.check(scene, rowOptions[r]);
+        } catch (const InputError& e) {
+            firstRefusal = std::current_exception();
+            skipped.insert(skipped.begin(),
+                           {.name = rows[r].name,
+                            .technique = std::string(techniqueName(rows[r].technique)),
+                            .skipped = e.what()});
+            rows.erase(rows.begin() + std::ptrdiff_t(r));
+            rowOptions.erase(rowOptions.begin() + std::ptrdiff_t(r));
+        }
+    }
+    if (rows.empty())
+        std::rethrow_exception(firstRefusal); // the error it always was, without warnings
+    for (const ReportRow& row : skipped)
+        std::fprintf(stderr, "penumbra: warning: %s skipped: %s\n", row.name.c_str(),
+                     row.skipped.c_str());
     const DeviceInfo& device = renderer.device();
 
     SceneRenderer uploaded(renderer, scene); // one upload and one set of targets for all rows
@@ -105,12 +128,15 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
             report.lights.push_back(describeLight(lit.lights[s.sceneLight]));
             masks.push_back(lightMask(lit.lights[s.sceneLight], gbuffer));
         }
+    report.pageScale = pageScale(w);
     if (!truth.visibility.empty())
-        report.referenceVisibilityPng = encodePng(visibilityImage(w, h, truth.visibility[0]));
-    writeViewFiles(out, gbuffer, truth.visibility); // the reference's files at the top level
-    for (size_t l = 0; l < truth.occluderDistance.size(); ++l) // how far each pixel's occluder is
-        out.write(l == 0 ? "occluder.pfm" : fmt::format("occluder_{}.pfm", l),
-                  encodePfm(w, h, 1, truth.occluderDistance[l]));
+        report.referenceVisibilityPng =
+            encodePng(reduceImage(visibilityImage(w, h, truth.visibility[0]), report.pageScale));
+    // The reference's files at the top level, with how far each pixel's occluder is.
+    writeViewFiles(out, gbuffer, truth.visibility, args.format);
+    for (size_t l = 0; l < truth.occluderDistance.size(); ++l)
+        writeFloatImage(out, l == 0 ? "occluder" : fmt::format("occluder_{}", l), args.format, w, h,
+                        1, truth.occluderDistance[l]);
     std::vector<PathRow> shimmer;
     if (!args.cameraPath.empty()) {
         std::vector<std::string> names;
@@ -138,24 +164,39 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
             row.parameters.emplace_back(key, value);
         for (const PassTime& p : result.passes)
             row.gpuMs.emplace_back(p.pass, p.medianMs);
-        row.imagePng = encodePng(w, h, 4, result.image);
-        if (!truth.visibility.empty()) {
-            row.visibilityPng = encodePng(visibilityImage(w, h, result.visibility[0]));
-            row.heatmapPng = encodePng(
-                signedErrorHeatmap(w, h, result.visibility[0], truth.visibility[0], masks[0]));
-        }
+        // Full-size files beside the report, the page's images reduced (page_image.h).
         const std::string prefix = filePrefix(rows[r].name);
-        out.write(prefix + ".image.png", row.imagePng);
-        if (!row.heatmapPng.empty())
-            out.write(prefix + ".heatmap.png", row.heatmapPng);
-        for (size_t l = 0; l < result.visibility.size(); ++l)
-            out.write(prefix + "." + visibilityFileName(l),
-                      encodePfm(w, h, 1, result.visibility[l]));
-        out.write(prefix + ".stats.json",
-                  bytesOf(renderStats({args.scene, scene, rowOptions[r], device, result}).dump(2) +
-                          "\n"));
+        const uint32_t scale = report.pageScale;
+        const RgbaImage litImage{w, h, result.image};
+        row.imageFile = prefix + ".image.png";
+        const std::vector<uint8_t> litPng = encodePng(litImage);
+        out.write(row.imageFile, litPng);
+        row.imagePng = scale == 1 ? litPng : encodePng(reduceImage(litImage, scale));
+        if (!truth.visibility.empty()) {
+            row.visibilityPng =
+                encodePng(reduceImage(visibilityImage(w, h, result.visibility[0]), scale));
+            const RgbaImage heatmap =
+                signedErrorHeatmap(w, h, result.visibility[0], truth.visibility[0], masks[0]);
+            row.heatmapFile = prefix + ".heatmap.png";
+            const std::vector<uint8_t> heatmapPng = encodePng(heatmap);
+            out.write(row.heatmapFile, heatmapPng);
+            row.heatmapPng = scale == 1 ? heatmapPng : encodePng(reduceImage(heatmap, scale));
+        }
+        for (size_t l = 0; l < result.visibility.size(); ++l) {
+            const std::string light = l == 0 ? "" : fmt::format("_{}", l);
+            writeFloatImage(out, prefix + ".visibility" + light, args.format, w, h, 1,
+                            result.visibility[l]);
+            if (l < truth.visibility.size()) // the heat map's data: this row minus the truth
+                writeFloatImage(out, prefix + ".difference" + light, args.format, w, h, 1,
+                                signedError(result.visibility[l], truth.visibility[l]));
+        }
+        const RenderRun run{args.scene, scene,  rowOptions[r],
+                            device,     result, namingExtension(args.format)};
+        out.write(prefix + ".stats.json", bytesOf(renderStats(run).dump(2) + "\n"));
         report.rows.push_back(std::move(row));
     }
+    for (ReportRow& row : skipped)
+        report.rows.push_back(std::move(row));
     out.write("metrics.json", bytesOf(metricsJson(report).dump(2) + "\n"));
     out.write("report.html", bytesOf(renderHtmlReport(report)));
     if (renderer.validationErrors() > 0)
@@ -167,6 +208,10 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                 "misclass.%", "acne%", "leak%", "acne>b%", "leak>b%", "leak@c%", "GPU ms",
                 shimmer.empty() ? "" : "    shimmer");
     for (const ReportRow& row : report.rows) {
+        if (!row.skipped.empty()) {
+            std::printf("%-22s skipped: %s\n", row.name.c_str(), row.skipped.c_str());
+            continue;
+        }
         double total = 0;
         for (const auto& [pass, ms] : row.gpuMs)
             total += ms;
@@ -193,18 +238,28 @@ Action addCompareCommand(CLI::App& app, const GlobalOptions& global) {
         "compare",
         "render each technique and the ground truth; write report.html and metrics.json");
     addSceneArgument(*cmd, args->scene);
-    cmd->add_option("-o,--output", args->output, "output directory")->required();
+    cmd->add_option("-o,--output", args->output, "output directory, created if missing")
+        ->type_name("DIR")
+        ->required();
     cmd->add_option("--techniques", args->techniques,
-                    "comma-separated techniques or variants, e.g. hard,pcf[box7] (default: all)");
+                    "the rows: technique names (all their variants), variants such as "
+                    "`pcf[box7]`, either followed by `+LAYER` to run with that layer "
+                    "(`pcf[box3]+contact`); default: every row, then each layer's own rows "
+                    "with it. `--set`s apply to every row")
+        ->type_name("a,b,...");
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     addReferenceOptions(*cmd, args->reference);
+    addFormatOption(*cmd, args->format);
     cmd->add_option("--camera-path", args->cameraPath,
-                    "measure shimmer along a path: dolly (forward by sub-texel steps), orbit "
-                    "(0.1 deg a frame about the target), sun (directional lights turn 0.05 deg "
-                    "a frame)");
-    cmd->add_option("--path-frames", args->pathFrames, "frames along --camera-path")
-        ->check(CLI::Range(2, 64));
+                    "measure shimmer along a path: `dolly` (the camera forward by 0.37 of a "
+                    "shadow-map texel a frame), `orbit` (0.1 degrees a frame about its target), "
+                    "`sun` (every directional light turns 0.05 degrees a frame)")
+        ->type_name("PATH");
+    cmd->add_option("--path-frames", args->pathFrames, "frames along --camera-path, 2..64")
+        ->type_name("N")
+        ->check(CLI::Range(2, 64))
+        ->capture_default_str();
     return [args, &global] { return runCompare(*args, global); };
 }
 

@@ -48,48 +48,7 @@ Action addTechniquesCommand(CLI::App& app) {
     auto json = std::make_shared<bool>(false);
     cmd->add_flag("--json", *json, "machine-readable output");
     return [json] {
-        auto typeName = [](ParameterType t) {
-            switch (t) {
-            case ParameterType::Float:
-                return "float";
-            case ParameterType::Int:
-                return "int";
-            case ParameterType::Bool:
-                return "bool";
-            case ParameterType::Choice:
-                return "choice";
-            }
-            return "?";
-        };
-        auto describe = [&](const ParameterInfo& p) {
-            nlohmann::json j = {{"key", p.key},
-                                {"type", typeName(p.type)},
-                                {"description", p.description},
-                                {"unit", p.unit}};
-            if (p.type == ParameterType::Choice) {
-                j["choices"] = p.choices;
-                j["default"] = p.choices[static_cast<size_t>(p.defaultValue)];
-            } else if (p.type == ParameterType::Bool) {
-                j["default"] = p.defaultValue != 0.0;
-            } else {
-                j["default"] = p.defaultValue;
-                j["min"] = p.min;
-                j["max"] = p.max;
-            }
-            return j;
-        };
-        nlohmann::json out = nlohmann::json::array();
-        for (const TechniqueInfo& t : allTechniques()) {
-            nlohmann::json params = nlohmann::json::array();
-            for (const ParameterInfo& p : allParameters())
-                for (std::string_view family : t.families)
-                    if (p.key.substr(0, p.key.find('.')) == family)
-                        params.push_back(describe(p));
-            out.push_back({{"name", t.name},
-                           {"summary", t.summary},
-                           {"reference", t.reference},
-                           {"parameters", params}});
-        }
+        const nlohmann::json out = techniquesJson();
         if (*json) {
             fmt::print("{}\n", out.dump(2));
             return 0;

@@ -1,5 +1,6 @@
 // penumbra: the command-line front end. Errors from user input end as one line,
 // `error: <subject>: <what>`, and a non-zero exit code; nothing partial is left behind.
+#include "cli_reference.h"
 #include "commands.h"
 #include "penumbra/error.h"
 
@@ -20,16 +21,21 @@ int main(int argc, char** argv) {
     global.validation = env && std::strcmp(env, "0") != 0 && *env;
     app.add_option("--device", global.device,
                    "Vulkan device index from `penumbra info` (default: a GPU if any, else the "
-                   "software rasterizer)");
+                   "software rasterizer)")
+        ->type_name("N");
     app.add_option("--max-file-size", global.maxFileSize,
-                   "largest glTF file (and file it references) to read, in bytes (default 1 GiB)")
+                   "largest glTF file, and file it references, that is read (default 1 GiB)")
+        ->type_name("BYTES")
         ->check(CLI::PositiveNumber);
     app.add_option("--max-triangles", global.maxTriangles,
                    "most triangles a glTF scene may have once instanced meshes are copied per "
-                   "node (default 100000000)")
-        ->check(CLI::PositiveNumber);
+                   "node")
+        ->type_name("N")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     app.add_flag("--validation", global.validation,
-                 "enable the Khronos validation layer; any validation error fails the command");
+                 "the Khronos validation layer and a debug messenger; any validation error fails "
+                 "the command and writes nothing (`PENUMBRA_VALIDATION=1` does the same)");
 
     const std::pair<const char*, cli::Action> commands[] = {
         {"render", cli::addRenderCommand(app, global)},
@@ -39,7 +45,8 @@ int main(int argc, char** argv) {
         {"tune", cli::addTuneCommand(app, global)},
         {"view", cli::addViewCommand(app, global)},
         {"info", cli::addInfoCommand(app, global)},
-        {"techniques", cli::addTechniquesCommand(app)}};
+        {"techniques", cli::addTechniquesCommand(app)},
+        {"cli-reference", cli::addCliReferenceCommand(app)}};
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

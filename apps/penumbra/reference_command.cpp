@@ -18,6 +18,7 @@ struct ReferenceArgs {
     std::string scene, output;
     RenderOptions options;
     ReferenceOptions reference{.progress = true};
+    FloatFormat format = FloatFormat::Both;
 };
 
 int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
@@ -26,7 +27,7 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
     options.shadowMapSize = 64; // only the G-buffer is used; keep the shadow pass cheap
     validate(options);
     validate(args.reference);
-    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
+    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     renderer.check(scene, options);
@@ -35,7 +36,7 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
     const RenderResult gbuffer = renderer.render(scene, options);
     applyLightSizeOverrides(scene, options.lightRadiusOverride, options.lightAngleOverride);
     const ReferenceResult truth = computeReference(scene, gbuffer, args.reference);
-    writeViewFiles(out, gbuffer, truth.visibility);
+    writeViewFiles(out, gbuffer, truth.visibility, args.format);
     const double raysPerSecond =
         truth.traceSeconds > 0 ? static_cast<double>(truth.rays) / truth.traceSeconds : 0;
     const nlohmann::json info = {{"scene", args.scene},
@@ -67,9 +68,12 @@ Action addReferenceCommand(CLI::App& app, const GlobalOptions& global) {
     CLI::App* cmd = app.add_subcommand(
         "reference", "ray-traced ground-truth visibility (Embree) for the same view as render");
     addSceneArgument(*cmd, args->scene);
-    cmd->add_option("-o,--output", args->output, "output directory")->required();
+    cmd->add_option("-o,--output", args->output, "output directory, created if missing")
+        ->type_name("DIR")
+        ->required();
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addReferenceOptions(*cmd, args->reference);
+    addFormatOption(*cmd, args->format);
     return [args, &global] { return runReference(*args, global); };
 }
 

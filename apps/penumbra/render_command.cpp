@@ -22,21 +22,26 @@ struct RenderArgs {
     std::string fieldSlice = "y";
     std::vector<std::string> sets;
     RenderOptions options;
+    FloatFormat format = FloatFormat::Both;
 };
 
-void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& run) {
+void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& run,
+                  FloatFormat format) {
     out.write("image.png", encodePng(r.width, r.height, 4, r.image));
-    writeViewFiles(out, r, r.visibility);
+    writeViewFiles(out, r, r.visibility, format);
     const std::string stats = renderStats(run).dump(2) + "\n";
     out.write("stats.json",
               std::span(reinterpret_cast<const uint8_t*>(stats.data()), stats.size()));
 }
 
 int runRender(const RenderArgs& args, const GlobalOptions& global) {
-    const RenderOptions options =
-        optionsFor(args.options, {.technique = findTechnique(args.technique).id}, args.sets);
+    // A technique, or one of compare's rows ("pcf[box7]", "pcf[box3]+contact") as compare runs it.
+    const TechniqueRow row = rowNamed(args.technique, "--technique");
+    RenderOptions options = optionsFor(args.options, row, args.sets);
     const FieldSlice slice = parseFieldSlice(args.fieldSlice);
-    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
+    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
+    if (!row.layers.empty()) // the layers it names, as compare runs them (the others off)
+        applyRow(row, options.parameters, scene.bounds().radius());
     // Created before the long work so an unwritable path fails fast; removed again on error.
     StagedOutputDir out(args.output);
 
@@ -56,7 +61,9 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     const RenderResult result = sceneRenderer.render(options, [](const std::string& stage) {
         std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
     });
-    writeOutputs(out, result, {args.scene, scene, options, device, result});
+    writeOutputs(out, result,
+                 {args.scene, scene, options, device, result, namingExtension(args.format)},
+                 args.format);
     if (result.field) { // what the tracer saw
         DistanceFieldInfo info;
         const std::vector<float> voxels = sceneRenderer.distanceField(info);
@@ -99,14 +106,22 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "render SCENE with one shadow technique into DIR");
     addSceneArgument(*cmd, args->scene);
-    cmd->add_option("-o,--output", args->output, "output directory")->required();
-    cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
+    cmd->add_option("-o,--output", args->output, "output directory, created if missing")
+        ->type_name("DIR")
+        ->required();
+    cmd->add_option("--technique", args->technique,
+                    "the shadow technique, or a compare row such as `pcf[box7]` (`penumbra "
+                    "techniques` lists them with their parameters)")
+        ->type_name("T")
         ->capture_default_str();
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
+    addFormatOption(*cmd, args->format);
     cmd->add_option("--field-slice", args->fieldSlice,
-                    "sdf only: the slice of the distance field written to field_slice.png, "
-                    "AXIS or AXIS:POSITION (x, y, z; world units; default the box's middle)")
+                    "`sdf` only: the slice of the distance field written to `field_slice.png`, "
+                    "across x, y or z, at world coordinate POS (default: the middle of the "
+                    "field's box; outside it: an error)")
+        ->type_name("AXIS[:POS]")
         ->capture_default_str();
     return [args, &global] { return runRender(*args, global); };
 }

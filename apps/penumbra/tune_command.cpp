@@ -41,6 +41,26 @@ std::vector<Sweep> modeGrid(const std::string& mode) {
             {"bias.normal", {"0", "0.3", "1"}}};
 }
 
+// "fixed: `bias.constant` 0, 0.0002 x ... (60); adaptive: ..." for --modes' help, from the grids.
+std::string describeModeGrids() {
+    std::string text;
+    for (const char* mode : {"fixed", "adaptive"}) {
+        std::string axes;
+        size_t settings = 1;
+        for (const Sweep& sweep : modeGrid(mode)) {
+            if (sweep.key == "bias.mode")
+                continue;
+            std::string values;
+            for (const std::string& v : sweep.values)
+                values += (values.empty() ? "" : ", ") + v;
+            axes += (axes.empty() ? "`" : " x `") + sweep.key + "` " + values;
+            settings *= sweep.values.size();
+        }
+        text += fmt::format("{}{}: {} ({})", text.empty() ? "" : "; ", mode, axes, settings);
+    }
+    return text;
+}
+
 // Every combination of the sweeps' values over `base`.
 void addProduct(std::vector<TuneCandidate>& out, std::vector<ParameterValues>& values,
                 const ParameterValues& base, const std::vector<Sweep>& sweeps) {
@@ -110,7 +130,7 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
                 candidates[0].sets.emplace_back(key, base.parameters.text(key));
         }
 
-    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
+    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
     // The row's layers, sized to the scene as compare sizes them (a row runs exactly those).
     applyRow(row, base.parameters, scene.bounds().radius());
     for (ParameterValues& v : values)
@@ -213,15 +233,21 @@ Action addTuneCommand(CLI::App& app, const GlobalOptions& global) {
                 "and print the recommended --set line");
     addSceneArgument(*cmd, args->scene);
     cmd->add_option("--technique", args->technique,
-                    "the technique or variant to tune, e.g. hard, pcf[box7]")
+                    "the technique or compare variant to tune, e.g. `hard`, `pcf[box7]`")
+        ->type_name("NAME")
         ->required();
-    cmd->add_option("-o,--output", args->output, "output directory")->required();
+    cmd->add_option("-o,--output", args->output, "output directory, created if missing")
+        ->type_name("DIR")
+        ->required();
     cmd->add_option("--sweep", args->sweeps,
-                    "key=v1,v2,...: sweep these values instead of the default grid (repeatable: "
-                    "every combination)");
+                    "sweep these (every combination, over `--set`) instead of the default grid; "
+                    "repeatable")
+        ->type_name("key=v1,v2,...");
     cmd->add_option("--modes", args->modes,
-                    "bias modes whose default grid is swept without --sweep: fixed, adaptive or "
-                    "both (default fixed,adaptive)");
+                    "without `--sweep`: the bias modes whose default grid is swept. " +
+                        describeModeGrids())
+        ->type_name("fixed,adaptive")
+        ->default_str("fixed,adaptive");
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     addReferenceOptions(*cmd, args->reference);

@@ -65,7 +65,7 @@ int runView(const ViewArgs& args, const GlobalOptions& global) {
     options.vsync = !args.noVsync && options.frames == 0; // scripted runs do not wait for vsync
     options.device = global.device;
     options.validation = global.validation;
-    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions);
+    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, options.render);
     viewer::runViewer(scene, options);
     return 0;
 }
@@ -79,33 +79,51 @@ Action addViewCommand(CLI::App& app, const GlobalOptions& global) {
                 "the error against the ground truth (mouse: left drag orbits, right drag looks, "
                 "wheel zooms; WASD QE fly; Tab hides the interface; Esc quits)");
     addSceneArgument(*cmd, args->scene);
-    cmd->add_option("--technique", args->technique, "shadow technique (see `penumbra techniques`)")
+    cmd->add_option("--technique", args->technique,
+                    "the technique at start (`penumbra techniques` lists them)")
+        ->type_name("T")
         ->capture_default_str();
     addViewOptions(*cmd, args->options.render, args->sceneOptions);
     cmd->add_option("--shadow-map-size", args->options.render.shadowMapSize,
-                    "shadow map side in texels")
+                    "shadow-map side in texels at start")
+        ->type_name("N")
         ->capture_default_str();
-    cmd->add_option("--set", args->sets, "technique parameter family.name=value (repeatable)");
+    cmd->add_option("--set", args->sets, "a technique parameter at start; repeatable")
+        ->type_name("family.name=value");
     cmd->add_option("--frames", args->options.frames,
-                    "draw N frames, then exit (0: until the window closes)")
+                    "draw N frames, then exit (0: until the window is closed)")
+        ->type_name("N")
         ->capture_default_str();
     cmd->add_option("--screenshot", args->options.screenshot,
-                    "with --frames N: write the last presented image to FILE (PNG)");
+                    "with `--frames N`: write the last presented image (the interface included "
+                    "unless hidden) to FILE as PNG")
+        ->type_name("FILE");
     cmd->add_option("--show", args->show,
-                    "what the window shows: scene, visibility[:LIGHT], shadow-map[:LAYER], "
-                    "cascades, error[:LIGHT] (error traces the ground truth first), "
-                    "blocker-depth[:LIGHT], penumbra[:LIGHT] (pcss, vssm, msm-soft), "
-                    "contact[:LIGHT] (the contact layer's result; with contact.length > 0), "
-                    "pages[:LEVEL] (virtual maps: a level's page table), pool (virtual maps: "
-                    "the physical pool)")
+                    "what the window shows at start: `scene`; `visibility[:LIGHT]` (a light's "
+                    "visibility as grey); `shadow-map[:LAYER]` (a layer of the depth map: a view, "
+                    "a cascade or a cube face); `cascades` (the lit image tinted by cascade: red, "
+                    "green, blue, yellow from near to far); `error[:LIGHT]` (the signed-error "
+                    "heat map against the ground truth, traced first; with `--frames` the frames "
+                    "wait for it and the metrics are printed); `blocker-depth[:LIGHT]` and "
+                    "`penumbra[:LIGHT]` (pcss, vssm, msm-soft: the average blocker's depth, the "
+                    "filter radius); `contact[:LIGHT]` (the contact layer's own result); "
+                    "`pages[:LEVEL]` and `pool` (virtual maps: a level's page table, the physical "
+                    "pool; docs/techniques.md has the legend)")
+        ->type_name("MODE")
         ->capture_default_str();
     cmd->add_option("--compare-with", args->compareWith,
-                    "A/B: this technique right of the split, --technique left of it");
+                    "A/B: technique T right of the split (a yellow line), `--technique` left of "
+                    "it, on the same frame")
+        ->type_name("T");
     cmd->add_option("--samples", args->options.truthSamples,
-                    "ground-truth rays per pixel and light for --show error (1..65536)")
+                    "ground-truth rays per pixel and light for the error view (1..65536)")
+        ->type_name("N")
         ->capture_default_str();
-    cmd->add_flag("--hide-ui", args->options.hideUi, "draw the scene without the interface");
-    cmd->add_flag("--no-vsync", args->noVsync, "present as fast as frames are drawn");
+    cmd->add_flag("--hide-ui", args->options.hideUi,
+                  "draw the scene without the interface (Tab toggles it)");
+    cmd->add_flag("--no-vsync", args->noVsync,
+                  "present as fast as frames are drawn (scripted runs, with `--frames`, never "
+                  "wait for vsync)");
     return [args, &global] { return runView(*args, global); };
 }
 

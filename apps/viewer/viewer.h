@@ -1,5 +1,5 @@
 #pragma once
-// `penumbra view`: the interactive viewer (design.md §1). A GLFW window with a Vulkan swapchain,
+// `penumbra view`: the interactive viewer (docs/cli.md). A GLFW window with a Vulkan swapchain,
 // the frame of SceneRenderer recorded with two frames in flight, and a Dear ImGui interface.
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"

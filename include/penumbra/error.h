@@ -1,5 +1,5 @@
 #pragma once
-// Penumbra's error tiers (design.md §4):
+// Penumbra's error tiers (docs/architecture.md, "Errors and validation"):
 //  - InputError: bad user input (a file, an option, a parameter). Caught by the CLI and printed
 //    as one line, `error: <subject>: <what>`, with a non-zero exit code.
 //  - DeviceError: the device failed under us (lost, out of memory at submit). Caught by the CLI

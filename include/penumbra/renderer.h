@@ -1,7 +1,7 @@
 #pragma once
 // Renderer: owns a Vulkan device and renders a Scene with one shadow technique, returning the lit
 // image, per-light visibility and the G-buffer's world position and normal, plus GPU time per
-// pass. Headless; the same frame (design.md §2) serves the CLI, the tests and the viewer.
+// pass. Headless; the same frame (docs/architecture.md) serves the CLI, the tests and the viewer.
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
 

@@ -98,6 +98,17 @@ struct Bounds {
     bool empty() const { return min.x > max.x; }
 };
 
+// --add-light KIND:key=value,... as given: the kind, what the text set, the text itself.
+struct AddedLight {
+    LightType type = LightType::Directional;
+    std::optional<glm::vec3> position, direction; // pos=, dir= (the direction light travels)
+    std::optional<float> angleDegrees;            // sun: angular diameter
+    std::optional<float> coneDegrees;             // spot: outer half-angle
+    std::optional<float> radius, intensity;
+    std::string name; // empty: "<kind> (--add-light <n>)"
+    std::string text; // as typed
+};
+
 // Scene control from the command line (issue 16), applied to the loaded scene by every command
 // that takes one, so that the render and the ground truth see the same lights and view.
 struct SceneEdits {
@@ -106,6 +117,7 @@ struct SceneEdits {
     std::vector<std::pair<std::string, glm::vec3>> lightDirections; // --light-dir NAME=X,Y,Z
     std::optional<glm::vec3> cameraPosition, lookAt;                // --camera-pos, --look-at
     std::optional<float> fovDegrees;                                // --fov, vertical
+    std::vector<AddedLight> addedLights;                            // --add-light
     bool empty() const;
 };
 
@@ -187,7 +199,17 @@ glm::vec2 visibleDepthRange(const Scene& scene, const Camera& camera, float aspe
 // --light-dir (a light by name: a position for spots and point lights, a direction for spots and
 // suns), --camera-pos with --look-at and --fov (a camera named "command line" that becomes the
 // scene's first). Throws InputError naming the option.
+// --add-light adds its lights after --sun-dir's (replacing the loader's default light too), each
+// named as given or "<kind> (--add-light <n>)"; a name the scene already has is an InputError.
 void applySceneEdits(Scene& scene, const SceneEdits& edits);
+// "sun:dir=X,Y,Z[,angle=DEG]", "spot:pos=X,Y,Z,dir=X,Y,Z[,cone=DEG][,radius=R]",
+// "point:pos=X,Y,Z[,radius=R]", each with optional intensity= and name=; InputError("--add-light",
+// ...) naming what is wrong otherwise.
+AddedLight parseAddedLight(std::string_view text);
+// The light an --add-light makes in `scene` (the index-th): unless given, a sun as bright as
+// --sun-dir's (2), a spot or point light as bright at the scene's centre, a spot's cone 45
+// degrees with a soft rim (inner 0.8 of the outer), sizes 0.
+Light makeAddedLight(const AddedLight& added, const Scene& scene, size_t index);
 // "X,Y,Z" as three finite numbers, and "NAME=X,Y,Z"; InputError(option, ...) otherwise.
 glm::vec3 parseVector3(std::string_view text, std::string_view option);
 using NamedVector = std::pair<std::string, glm::vec3>;

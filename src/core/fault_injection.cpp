@@ -38,4 +38,16 @@ bool injectFault(FaultSite site) {
     return plan[index] > 0 && ++calls[index] == plan[index];
 }
 
+uint64_t deviceMemoryForChecks(uint64_t reported) {
+    const char* text = std::getenv("PENUMBRA_DEVICE_MEMORY");
+    if (!text || !*text)
+        return reported;
+    uint64_t bytes = 0;
+    const std::string_view view(text);
+    const auto [end, error] = std::from_chars(view.data(), view.data() + view.size(), bytes);
+    if (error != std::errc{} || end != view.data() + view.size() || bytes == 0)
+        return reported; // a malformed seam changes nothing
+    return std::min(bytes, reported);
+}
+
 } // namespace penumbra

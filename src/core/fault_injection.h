@@ -10,11 +10,18 @@
 // Unset, nothing changes. The CLI's fault sweep (tests/test_cli_faults.cpp) runs each command
 // with N = 1, 2, ... until it succeeds, and checks that every failure ends in one `error:` line,
 // a non-zero exit and no output.
+#include <cstdint>
+
 namespace penumbra {
 
 enum class FaultSite { Allocation, Creation, Submit, Embree, Write };
 
 // True when this call at `site` is the one PENUMBRA_FAULT names (counts every call; thread-safe).
 bool injectFault(FaultSite site);
+
+// PENUMBRA_DEVICE_MEMORY=BYTES: the device memory the renderer's checks assume when less than
+// the device reports, so that the paths for a device too small to hold a render (compare and
+// bench skipping a row) can be tested on any device. Returns `reported` when unset.
+uint64_t deviceMemoryForChecks(uint64_t reported);
 
 } // namespace penumbra

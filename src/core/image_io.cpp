@@ -161,10 +161,10 @@ std::vector<uint8_t> encodePfm(uint32_t width, uint32_t height, uint32_t channel
     return out;
 }
 
-PfmImage decodePfm(std::span<const uint8_t> bytes, const std::string& subject) {
+FloatImage decodePfm(std::span<const uint8_t> bytes, const std::string& subject) {
     if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != 'F' && bytes[1] != 'f'))
         throw InputError(subject, "not a pfm file (bad magic)");
-    PfmImage image;
+    FloatImage image;
     image.channels = bytes[1] == 'F' ? 3 : 1;
 
     PfmHeaderReader reader(bytes.subspan(2), subject);
@@ -189,7 +189,7 @@ PfmImage decodePfm(std::span<const uint8_t> bytes, const std::string& subject) {
     image.pixels.resize(*count);
     size_t rowFloats = size_t{image.width} * image.channels;
     const uint8_t* src = bytes.data() + dataStart;
-    // File rows run bottom to top; PfmImage rows run top to bottom.
+    // File rows run bottom to top; FloatImage rows run top to bottom.
     for (size_t fileRow = 0; fileRow < image.height; ++fileRow) {
         float* dst = image.pixels.data() + (image.height - 1 - fileRow) * rowFloats;
         for (size_t i = 0; i < rowFloats; ++i, src += 4) {
@@ -204,7 +204,7 @@ PfmImage decodePfm(std::span<const uint8_t> bytes, const std::string& subject) {
     return image;
 }
 
-PfmImage readPfm(const std::filesystem::path& path) {
+FloatImage readPfm(const std::filesystem::path& path) {
     return decodePfm(readFileBytes(path), path.string());
 }
 

@@ -19,17 +19,18 @@ std::vector<uint8_t> encodePng(uint32_t width, uint32_t height, uint32_t channel
 std::vector<uint8_t> encodePfm(uint32_t width, uint32_t height, uint32_t channels,
                                std::span<const float> pixels);
 
-// A decoded PFM image: pixels holds width * height * channels floats, rows top to bottom.
-struct PfmImage {
+// A decoded float image (PFM or OpenEXR): pixels holds width * height * channels floats, rows top
+// to bottom.
+struct FloatImage {
     uint32_t width = 0, height = 0, channels = 0;
     std::vector<float> pixels; // rows top to bottom
 };
 
 // Decodes a PFM file image of either byte order; throws InputError(subject, ...) if malformed.
-PfmImage decodePfm(std::span<const uint8_t> bytes, const std::string& subject);
+FloatImage decodePfm(std::span<const uint8_t> bytes, const std::string& subject);
 
 // Reads and decodes a PFM file; throws InputError(path, ...) if unreadable or malformed.
-PfmImage readPfm(const std::filesystem::path& path);
+FloatImage readPfm(const std::filesystem::path& path);
 
 // Reads a whole file into memory; throws InputError(path, ...) if it cannot be read.
 std::vector<uint8_t> readFileBytes(const std::filesystem::path& path);

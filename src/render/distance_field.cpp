@@ -1,5 +1,6 @@
 #include "render/distance_field.h"
 
+#include "core/fault_injection.h"
 #include "penumbra/error.h"
 #include "vk/pipelines.h"
 #include "vk/sync.h"
@@ -64,7 +65,7 @@ shadows::FieldLayout fieldFits(const vk::Context& ctx, const Bounds& bounds, uin
                                      "3D image size limit of {}",
                                      resolution, layout.size.x, layout.size.y, layout.size.z,
                                      limit));
-    const double have = static_cast<double>(ctx.deviceLocalHeapBytes());
+    const double have = static_cast<double>(deviceMemoryForChecks(ctx.deviceLocalHeapBytes()));
     if (static_cast<double>(fieldBuildBytes(layout)) > 0.5 * have)
         throw InputError("sdf.resolution",
                          fmt::format("{} needs {:.2f} GiB of device memory to build its field; "

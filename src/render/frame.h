@@ -1,5 +1,5 @@
 #pragma once
-// One frame as a render graph (render/frame_graph.h), design.md §2: buildFrame declares its
+// One frame as a render graph (render/frame_graph.h; docs/architecture.md): buildFrame declares its
 // targets and adds its passes phase by phase; each pass lives in the file of its phase:
 //   LightSpace   shadow_passes.cpp   the light's depth per shadow view, the technique's own
 //                                    depth passes and its post passes

@@ -1,6 +1,6 @@
 #pragma once
-// Every pipeline of the frame (design.md §2), created once per Renderer. What depends on the
-// technique is made on first use from what its module declares: the visibility pass per list of
+// Every pipeline of the frame (docs/architecture.md), created once per Renderer. What depends on
+// the technique is made on first use from what its module declares: the visibility pass per list of
 // specialization constants, extra depth passes per fragment shader, post passes per shader.
 #include "penumbra/settings.h"
 #include "shadows/technique.h"

@@ -1,5 +1,6 @@
 #include "penumbra/renderer.h"
 
+#include "core/fault_injection.h"
 #include "core/projection.h"
 #include "core/virtual_maps.h"
 #include "penumbra/error.h"
@@ -121,13 +122,15 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
     const double pixels = double(o.width) * double(o.height);
     const auto shadowBytes = static_cast<double>(bytes.shadowMaps);
     const double need = static_cast<double>(bytes.screen) + shadowBytes;
-    const double have = static_cast<double>(ctx.deviceLocalHeapBytes());
+    const double have = static_cast<double>(deviceMemoryForChecks(ctx.deviceLocalHeapBytes()));
     if (need > 0.8 * have)
         throw InputError(shadowBytes > pixels * 100 ? "--shadow-map-size" : "--width",
-                         fmt::format("this render needs {:.1f} GiB of device memory ({:.1f} GiB "
-                                     "for {} shadow views of {} texels); the device has {:.1f} GiB",
-                                     need / (1 << 30), shadowBytes / (1 << 30), shadows.views,
-                                     o.shadowMapSize, have / (1 << 30)));
+                         fmt::format("{} needs {:.2f} GiB of device memory ({:.2f} GiB for {} "
+                                     "shadow views of {} texels); a render may use {:.2f} GiB, "
+                                     "80% of the device's {:.2f} GiB",
+                                     techniqueName(o.technique), need / (1 << 30),
+                                     shadowBytes / (1 << 30), shadows.views, o.shadowMapSize,
+                                     0.8 * have / (1 << 30), have / (1 << 30)));
 }
 
 } // namespace

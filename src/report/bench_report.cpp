@@ -215,6 +215,13 @@ nlohmann::json benchJson(const BenchData& data) {
         nlohmann::json swept = nlohmann::json::object();
         for (const auto& [key, value] : r.swept)
             swept[key] = value;
+        if (!r.skipped.empty()) {
+            runs.push_back({{"technique", techniqueName(r.technique)},
+                            {"swept", swept},
+                            {"parameters", parameters},
+                            {"skipped", r.skipped}});
+            continue;
+        }
         nlohmann::json gpu = nlohmann::json::object();
         for (const PassStats& p : r.passes)
             gpu[p.pass] = statsJson(p);
@@ -265,7 +272,7 @@ std::string benchHtml(const BenchData& data) {
         for (const TechniqueInfo& t : allTechniques()) {
             std::vector<const BenchRun*> runs;
             for (const BenchRun& r : data.runs) {
-                if (r.technique != t.id || sweptValue(r, key).empty())
+                if (r.technique != t.id || sweptValue(r, key).empty() || !r.skipped.empty())
                     continue;
                 bool othersFirst = true; // the other swept keys at their first value
                 for (const auto& [k, v] : r.swept)
@@ -299,6 +306,11 @@ std::string benchHtml(const BenchData& data) {
     for (const BenchRun& r : data.runs) {
         html += fmt::format("<tr><td class='l'>{}</td><td class='l'>{}</td>",
                             techniqueName(r.technique), escape(sweptLabel(r)));
+        if (!r.skipped.empty()) { // the device cannot hold it: say why across the row
+            html += fmt::format("<td class='l' colspan='{}'>skipped: {}</td></tr>",
+                                passes.size() + 2 + (anyVirtual ? 1 : 0), escape(r.skipped));
+            continue;
+        }
         for (const std::string& name : passes) {
             auto it = std::find_if(r.passes.begin(), r.passes.end(),
                                    [&](const PassStats& p) { return p.pass == name; });

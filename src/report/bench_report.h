@@ -1,6 +1,6 @@
 #pragma once
 // `penumbra bench`: per-pass GPU time statistics of each run (a technique, with the values of
-// the parameters swept), its JSON (design.md §1) and a self-contained bench.html with the cost
+// the parameters swept), its JSON (docs/cli.md) and a self-contained bench.html with the cost
 // of each pass against each swept parameter.
 #include "penumbra/renderer.h"
 #include "penumbra/settings.h"
@@ -31,6 +31,7 @@ struct BenchRun {
     uint64_t shadowMapBytes = 0, screenBytes = 0, fieldBytes = 0;
     double fieldBuildMs = 0;                   // sdf: the field's one-off build (GPU)
     std::optional<VirtualMapInfo> virtualMaps; // virtual.enabled: its pages and pool
+    std::string skipped; // why it did not run (the device cannot hold it); empty: it ran
     uint64_t memoryBytes() const { return shadowMapBytes + screenBytes + fieldBytes; }
 };
 

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <string>
 
@@ -216,6 +217,16 @@ void put(RgbaImage& image, size_t i, Rgb c) {
 }
 
 } // namespace
+
+std::vector<float> signedError(std::span<const float> visibility, std::span<const float> truth) {
+    PENUMBRA_CHECK(visibility.size() == truth.size(), "visibility size != truth size");
+    std::vector<float> error(visibility.size());
+    for (size_t i = 0; i < error.size(); ++i)
+        error[i] = std::isfinite(visibility[i]) && std::isfinite(truth[i])
+                       ? visibility[i] - truth[i]
+                       : std::numeric_limits<float>::quiet_NaN();
+    return error;
+}
 
 RgbaImage signedErrorHeatmap(uint32_t width, uint32_t height, std::span<const float> visibility,
                              std::span<const float> truth, std::span<const uint8_t> mask,

@@ -21,6 +21,9 @@ RgbaImage signedErrorHeatmap(uint32_t width, uint32_t height, std::span<const fl
                              std::span<const float> truth, std::span<const uint8_t> mask,
                              float range = 1.0f);
 
+// The heat map's data: v - truth per pixel, NaN where either is not finite (no comparison).
+std::vector<float> signedError(std::span<const float> visibility, std::span<const float> truth);
+
 // Visibility as grey (0 black, 1 white, clamped); NaN (background) as light sky blue #8CA6CC.
 RgbaImage visibilityImage(uint32_t width, uint32_t height, std::span<const float> visibility);
 

@@ -36,12 +36,19 @@ std::string escapeHtml(std::string_view text) {
 
 namespace {
 
-// An <img> with the PNG inlined, or a stand-in when the image was not produced.
-std::string imageTag(const std::vector<uint8_t>& png, std::string_view cls, std::string_view alt) {
+// An <img> with the PNG inlined, or a stand-in when the image was not produced; with a file
+// name, a link to that full-size file beside the report.
+std::string imageTag(const std::vector<uint8_t>& png, std::string_view cls, std::string_view alt,
+                     std::string_view fullSizeFile = {}) {
     if (png.empty())
         return fmt::format("<div class=\"missing {}\">no image</div>", cls);
-    return fmt::format("<img class=\"{}\" alt=\"{}\" src=\"data:image/png;base64,{}\">", cls,
-                       escapeHtml(alt), encodeBase64(png));
+    const std::string img =
+        fmt::format("<img class=\"{}\" alt=\"{}\" src=\"data:image/png;base64,{}\">", cls,
+                    escapeHtml(alt), encodeBase64(png));
+    if (fullSizeFile.empty())
+        return img;
+    return fmt::format("<a class=\"full-size\" href=\"{0}\" title=\"full size: {0}\">{1}</a>",
+                       escapeHtml(fullSizeFile), img);
 }
 
 // "12.3 M" style counts for rays per second.
@@ -246,33 +253,53 @@ void writeImages(std::string& s, const ReportData& d) {
                    imageTag(d.referenceVisibilityPng, "reference", "reference visibility"));
     for (const ReportRow& row : d.rows) {
         const std::string name = escapeHtml(row.name);
-        fmt::format_to(out,
-                       "<figure class=\"card technique\" data-technique=\"{0}\"><figcaption>"
-                       "<strong>{0}</strong><span class=\"tech\">{1}</span></figcaption>\n"
-                       "<div class=\"triptych\"><div class=\"panel\">{2}<span>Lit image</span>"
-                       "</div><div class=\"panel\">{3}<span>Visibility</span></div>"
-                       "<div class=\"panel\">{4}<span>Error: visibility &minus; reference</span>"
-                       "</div></div></figure>\n",
-                       name, escapeHtml(row.technique),
-                       imageTag(row.imagePng, "lit", row.name + " lit image"),
-                       imageTag(row.visibilityPng, "visibility", row.name + " visibility"),
-                       imageTag(row.heatmapPng, "heatmap", row.name + " error heat map"));
+        fmt::format_to(
+            out,
+            "<figure class=\"card technique\" data-technique=\"{0}\"><figcaption>"
+            "<strong>{0}</strong><span class=\"tech\">{1}</span></figcaption>\n"
+            "<div class=\"triptych\"><div class=\"panel\">{2}<span>Lit image</span>"
+            "</div><div class=\"panel\">{3}<span>Visibility</span></div>"
+            "<div class=\"panel\">{4}<span>Error: visibility &minus; reference</span>"
+            "</div></div></figure>\n",
+            name, escapeHtml(row.technique),
+            imageTag(row.imagePng, "lit", row.name + " lit image", row.imageFile),
+            imageTag(row.visibilityPng, "visibility", row.name + " visibility"),
+            imageTag(row.heatmapPng, "heatmap", row.name + " error heat map", row.heatmapFile));
     }
     s += "</div>\n<p class=\"note\">Heat maps: blue is too dark (acne side), red too bright "
-         "(leak side); dimmed pixels are not counted; the checker is background.</p>\n";
+         "(leak side); dimmed pixels are not counted; the checker is background.";
+    if (d.pageScale > 1)
+        fmt::format_to(out,
+                       " Images are shown at 1/{0} of the rendered size ({1} &times; {2}), each "
+                       "pixel the mean of {0} &times; {0} in linear light; click a lit image or a "
+                       "heat map for its full-size file, which sits beside this report.",
+                       d.pageScale, d.width, d.height);
+    s += "</p>\n";
 }
 
-} // namespace
+// The rows that did not run, each with why (the device could not hold it).
+void writeSkipped(std::string& s, const std::vector<const ReportRow*>& skipped) {
+    if (skipped.empty())
+        return;
+    s += "<h2>Skipped rows</h2>\n<section class=\"card skipped\"><ul>\n";
+    for (const ReportRow* row : skipped)
+        fmt::format_to(std::back_inserter(s), "<li><strong>{}</strong>: {}</li>\n",
+                       escapeHtml(row->name), escapeHtml(row->skipped));
+    s += "</ul><p class=\"note\">The device cannot hold these rows at these settings; the "
+         "others ran as usual.</p></section>\n";
+}
 
-std::string renderHtmlReport(const ReportData& data) {
+std::string renderRanRows(const ReportData& data, const std::vector<const ReportRow*>& skipped) {
     std::string s = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                     "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
     fmt::format_to(std::back_inserter(s),
                    "<title>Penumbra report: {}</title>\n<style>{}{}</style>\n",
                    escapeHtml(data.scene), kStyle, kReportInteractiveStyle);
-    s += "</head>\n<body>\n<main>\n";
+    fmt::format_to(std::back_inserter(s), "</head>\n<body>\n<main data-page-scale=\"{}\">\n",
+                   data.pageScale);
     writeHeader(s, data);
     writeTable(s, data);
+    writeSkipped(s, skipped);
     s += "<h2>Error against GPU cost</h2>\n<section class=\"card\">\n"
          "<input type=\"radio\" name=\"cost-axis\" id=\"cost-linear\" checked>"
          "<label for=\"cost-linear\">linear cost</label> "
@@ -292,6 +319,21 @@ std::string renderHtmlReport(const ReportData& data) {
     return s;
 }
 
+} // namespace
+
+std::string renderHtmlReport(const ReportData& all) {
+    // The table, the plot, the comparer and the images show the rows that ran.
+    ReportData data = all;
+    data.rows.clear();
+    std::vector<const ReportRow*> skipped;
+    for (const ReportRow& row : all.rows)
+        if (row.skipped.empty())
+            data.rows.push_back(row);
+        else
+            skipped.push_back(&row);
+    return renderRanRows(data, skipped);
+}
+
 nlohmann::json metricsJson(const ReportData& data) {
     nlohmann::json j;
     j["reference"] = {{"samples", data.samples},
@@ -307,26 +349,11 @@ nlohmann::json metricsJson(const ReportData& data) {
     nlohmann::json techniques = nlohmann::json::object();
     for (const ReportRow& row : data.rows) {
         PENUMBRA_CHECK(!techniques.contains(row.name), "duplicate report row " + row.name);
-        nlohmann::json gpu = nlohmann::json::object();
-        for (const auto& [pass, ms] : row.gpuMs) {
-            PENUMBRA_CHECK(pass != "total", "a GPU pass may not be named total");
-            gpu[pass] = ms;
+        if (!row.skipped.empty()) {
+            techniques[row.name] = {{"skipped", row.skipped}};
+            continue;
         }
-        gpu["total"] = totalGpuMs(row);
-        const ErrorMetrics& m = row.metrics;
-        techniques[row.name] = {{"rmse", m.rmse},
-                                {"mae", m.mae},
-                                {"max", m.max},
-                                {"misclassified", m.misclassified},
-                                {"misclassified_outside_edges", m.misclassifiedOutsideEdges},
-                                {"acne", m.acne},
-                                {"leak", m.leak},
-                                {"acne_beyond_blur", m.acneBeyondBlur},
-                                {"leak_beyond_blur", m.leakBeyondBlur},
-                                {"leak_near_contact", m.leakNearContact},
-                                {"near_contact_pixels", m.nearContact},
-                                {"pixels", m.pixels},
-                                {"gpu_ms", gpu}};
+        techniques[row.name] = metricsRowJson(row);
         if (!data.cameraPath.empty())
             techniques[row.name]["shimmer"] = row.shimmer;
         if (!row.pathPagesRendered.empty()) {
@@ -336,6 +363,29 @@ nlohmann::json metricsJson(const ReportData& data) {
     }
     j["techniques"] = techniques;
     return j;
+}
+
+nlohmann::json metricsRowJson(const ReportRow& row) {
+    nlohmann::json gpu = nlohmann::json::object();
+    for (const auto& [pass, ms] : row.gpuMs) {
+        PENUMBRA_CHECK(pass != "total", "a GPU pass may not be named total");
+        gpu[pass] = ms;
+    }
+    gpu["total"] = totalGpuMs(row);
+    const ErrorMetrics& m = row.metrics;
+    return {{"rmse", m.rmse},
+            {"mae", m.mae},
+            {"max", m.max},
+            {"misclassified", m.misclassified},
+            {"misclassified_outside_edges", m.misclassifiedOutsideEdges},
+            {"acne", m.acne},
+            {"leak", m.leak},
+            {"acne_beyond_blur", m.acneBeyondBlur},
+            {"leak_beyond_blur", m.leakBeyondBlur},
+            {"leak_near_contact", m.leakNearContact},
+            {"near_contact_pixels", m.nearContact},
+            {"pixels", m.pixels},
+            {"gpu_ms", gpu}};
 }
 
 } // namespace penumbra

@@ -1,5 +1,5 @@
 #pragma once
-// report.html and metrics.json of `penumbra compare` (design.md §1): every technique's error
+// report.html and metrics.json of `penumbra compare` (docs/cli.md): every technique's error
 // against the ray-traced reference, its GPU cost, and its images, in one offline file.
 #include "report/metrics.h"
 
@@ -24,7 +24,9 @@ struct ReportRow {
     std::vector<std::pair<std::string, std::string>> parameters; // non-default, for display
     ErrorMetrics metrics;
     std::vector<std::pair<std::string, double>> gpuMs;        // pass -> median ms, frame order
-    std::vector<uint8_t> imagePng, visibilityPng, heatmapPng; // encoded PNG files; may be empty
+    std::vector<uint8_t> imagePng, visibilityPng, heatmapPng; // at page size (page_image.h)
+    std::string imageFile, heatmapFile; // the full-size files beside report.html; may be empty
+    std::string skipped;  // why it did not run (the device cannot hold it); empty: it ran
     double shimmer = NAN; // mean frame-to-frame change along the camera path; NaN: no path
     // Virtual maps along the path: pages each frame rendered and those resident (else empty).
     std::vector<uint32_t> pathPagesRendered, pathPagesResident;
@@ -34,7 +36,8 @@ struct ReportRow {
 struct ReportData {
     std::string scene, device, driver; // e.g. "builtin:showcase", "llvmpipe (...)"
     uint32_t width = 0, height = 0, shadowMapSize = 0;
-    uint32_t samples = 0; // reference rays per pixel and light
+    uint32_t pageScale = 1; // the images are shown reduced by this factor (pageScale())
+    uint32_t samples = 0;   // reference rays per pixel and light
     double referenceSeconds = 0, raysPerSecond = 0;
     std::vector<std::string> lights; // one description per shadow-casting light
     std::string cameraPath;          // "dolly", "orbit", "sun"; empty: no shimmer measured
@@ -47,8 +50,11 @@ struct ReportData {
 // references) that reads at 1000 pixels and wider; every string from data is HTML-escaped.
 std::string renderHtmlReport(const ReportData& data);
 
-// metrics.json: {"reference": {...}, "techniques": {"<row name>": {..., "gpu_ms": {...}}}}.
+// metrics.json: {"reference": {...}, "techniques": {"<row name>": {..., "gpu_ms": {...}}}}; a
+// skipped row is {"skipped": "<why>"}.
 // Row names are keys, so duplicates are a programmer error.
 nlohmann::json metricsJson(const ReportData& data);
+// One row's entry of metrics.json (without the camera path's keys): the Python module's metrics().
+nlohmann::json metricsRowJson(const ReportRow& row);
 
 } // namespace penumbra

@@ -1,6 +1,6 @@
 #pragma once
-// Error of a shadow technique's visibility against the ray-traced ground truth (design.md §1):
-// the numbers behind metrics.json and the report's table.
+// Error of a shadow technique's visibility against the ray-traced ground truth (docs/cli.md,
+// compare): the numbers behind metrics.json and the report's table.
 #include <cstdint>
 #include <span>
 

@@ -129,8 +129,12 @@ const std::string_view kReportScript = R"JS(
   canvas.addEventListener("mousemove", function (e) {
     const p = imagePixel(e);
     if (p.x < 0 || p.y < 0 || p.x >= p.w || p.y >= p.h) return;
-    values.textContent = "pixel " + p.x + ", " + p.y + ": left " + valueAt(+selA.value, p) +
-                         ", right " + valueAt(+selB.value, p);
+    // Rendered pixels: a reduced page image's pixel starts at scale times its coordinates.
+    const scale = +(document.querySelector("main").dataset.pageScale || 1);
+    values.textContent = "pixel " + p.x * scale + ", " + p.y * scale +
+                         (scale > 1 ? " (mean of " + scale + " \u00d7 " + scale + ")" : "") +
+                         ": left " + valueAt(+selA.value, p) + ", right " +
+                         valueAt(+selB.value, p);
   });
   canvas.addEventListener("click", function (e) {
     centre = imagePixel(e);

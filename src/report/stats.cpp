@@ -11,8 +11,8 @@ nlohmann::json vec(const glm::vec3& v) {
 
 } // namespace
 
-std::string visibilityFileName(size_t index) {
-    return index == 0 ? "visibility.pfm" : fmt::format("visibility_{}.pfm", index);
+std::string visibilityFileStem(size_t index) {
+    return index == 0 ? "visibility" : fmt::format("visibility_{}", index);
 }
 
 nlohmann::json deviceJson(const DeviceInfo& device) {
@@ -41,6 +41,8 @@ nlohmann::json sceneEditsJson(const SceneEdits& e) {
         j["look_at"] = vec(*e.lookAt);
     if (e.fovDegrees)
         j["fov_degrees"] = *e.fovDegrees;
+    for (const AddedLight& added : e.addedLights)
+        j["add_light"].push_back(added.text);
     return j;
 }
 
@@ -121,7 +123,8 @@ nlohmann::json renderStats(const RenderRun& run) {
         else
             light["radius"] = o.lightRadiusOverride >= 0 ? o.lightRadiusOverride : l.radius;
         if (s.visibilityIndex >= 0) {
-            light["visibility_file"] = visibilityFileName(static_cast<size_t>(s.visibilityIndex));
+            light["visibility_file"] = visibilityFileStem(static_cast<size_t>(s.visibilityIndex)) +
+                                       "." + std::string(run.floatExtension);
             // The first view's (the only one's for suns and spots), as before views were listed.
             light["near"] = s.views.front().nearPlane;
             light["far"] = s.views.front().farPlane;

@@ -1,11 +1,12 @@
 #pragma once
-// stats.json of `penumbra render` (design.md §1): the device, the scene, every parameter in
+// stats.json of `penumbra render` (docs/cli.md): the device, the scene, every parameter in
 // effect and the GPU time per pass (median of the timed frames after one warm-up frame).
 #include "penumbra/renderer.h"
 
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <string_view>
 
 namespace penumbra {
 
@@ -15,6 +16,7 @@ struct RenderRun {
     const RenderOptions& options;
     const DeviceInfo& device;
     const RenderResult& result;
+    std::string_view floatExtension = "pfm"; // the visibility files stats.json names
 };
 
 nlohmann::json renderStats(const RenderRun& run);
@@ -23,7 +25,7 @@ nlohmann::json sceneEditsJson(const SceneEdits& edits);
 // The device as stats.json and the bench's JSON name it.
 nlohmann::json deviceJson(const DeviceInfo& device);
 
-// "visibility.pfm" for the first shadow-casting light, "visibility_<i>.pfm" after it.
-std::string visibilityFileName(size_t index);
+// "visibility" for the first shadow-casting light, "visibility_<i>" after it (then .pfm, .exr).
+std::string visibilityFileStem(size_t index);
 
 } // namespace penumbra

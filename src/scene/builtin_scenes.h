@@ -1,5 +1,5 @@
 #pragma once
-// The built-in scenes, made in code (design.md, issue 2). Their layout is part of the test
+// The built-in scenes, made in code (docs/scenes.md). Their layout is part of the test
 // contract: tests compute analytic shadows from the same constants.
 #include "penumbra/scene.h"
 

@@ -80,7 +80,7 @@ NamedVector parseNamedVector3(std::string_view text, std::string_view option) {
 
 bool SceneEdits::empty() const {
     return !sunDirection && lightPositions.empty() && lightDirections.empty() && !cameraPosition &&
-           !lookAt && !fovDegrees;
+           !lookAt && !fovDegrees && addedLights.empty();
 }
 
 void applySceneEdits(Scene& scene, const SceneEdits& e) {
@@ -95,6 +95,18 @@ void applySceneEdits(Scene& scene, const SceneEdits& e) {
                                 .direction = direction,
                                 .intensity = 2.0f});
         scene.defaultLight = false;
+    }
+    for (size_t i = 0; i < e.addedLights.size(); ++i) {
+        if (scene.defaultLight)
+            scene.lights.clear(); // the loader's stand-in: an added light replaces it
+        scene.defaultLight = false;
+        Light light = makeAddedLight(e.addedLights[i], scene, i);
+        if (std::any_of(scene.lights.begin(), scene.lights.end(),
+                        [&](const Light& l) { return l.name == light.name; }))
+            throw InputError("--add-light", fmt::format("scene '{}' already has a light named "
+                                                        "'{}' (lights: {})",
+                                                        scene.name, light.name, lightNames(scene)));
+        scene.lights.push_back(std::move(light));
     }
     for (const auto& [name, position] : e.lightPositions) {
         Light& l = lightNamed(scene, name, "--light-pos");

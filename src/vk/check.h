@@ -1,6 +1,6 @@
 #pragma once
 // VK_CHECK: a Vulkan call that fails here is a programmer or driver error, not bad input, so it
-// aborts with the file, line and VkResult (design.md §4, error tier 2).
+// aborts with the file, line and VkResult (error tier 2, docs/architecture.md).
 // VK_CREATE: an object creation or allocation. Running out of host or device memory there is
 // what the device does to us, not a bug: it throws a DeviceError (one error line); any other
 // failure aborts as VK_CHECK does. PENUMBRA_FAULT=creation:N fails the Nth one (fault_injection.h).

@@ -1,0 +1,103 @@
+// Lights from the command line: --add-light's sun, spot and point light each cast the shadow the
+// ground truth sees, and light sizes that no light of the scene takes are warned about.
+#include "core/image_io.h"
+#include "gltf_builder.h"
+#include "process.h"
+#include "scratch_dir.h"
+#include "three_light_asset.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+using namespace penumbra;
+using namespace penumbra::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A ground and a box on it, no lights: the loader gives it a default light until one is added.
+fs::path unlitAsset(const fs::path& where) {
+    GltfBuilder b;
+    groundAndBox(b);
+    fs::create_directories(where);
+    return b.writeGltf(where / "unlit.gltf");
+}
+
+const std::vector<std::string> kLights = {"--add-light", "sun:dir=-1,-2,-0.5",
+                                          "--add-light", "spot:pos=3,5,2,dir=-0.5,-1,-0.3,cone=40",
+                                          "--add-light", "point:pos=-2,3,1,name=bulb"};
+
+std::vector<std::string> command(std::vector<std::string> args) {
+    for (const char* a :
+         {"--width", "64", "--height", "48", "--camera-pos", "0,9,9", "--look-at", "0,0,0"})
+        args.emplace_back(a);
+    args.insert(args.end(), kLights.begin(), kLights.end());
+    return args;
+}
+
+} // namespace
+
+TEST(CliLights, AddedLightsOfEveryKindCastTheShadowsTheTruthSees) {
+    const fs::path asset = unlitAsset(outputScratch("added-lights-asset"));
+    const fs::path rendered = outputScratch("added-lights-render");
+    const fs::path traced = outputScratch("added-lights-truth");
+    ProcessResult r =
+        runCli(command({"render", asset.string(), "-o", rendered.string(), "--shadow-map-size",
+                        "1024", "--frames", "1", "--format", "pfm"}));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runCli(command({"reference", asset.string(), "-o", traced.string(), "--format", "pfm"}));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string stats = slurp(rendered / "stats.json");
+    for (const char* name : {"directional (--add-light 1)", "spot (--add-light 2)", "bulb"})
+        EXPECT_NE(stats.find(name), std::string::npos) << name;
+    EXPECT_NE(stats.find("\"default_light\": false"), std::string::npos)
+        << "the default light is replaced";
+    EXPECT_EQ(stats.find("default sun"), std::string::npos);
+    for (const char* file : {"visibility.pfm", "visibility_1.pfm", "visibility_2.pfm"}) {
+        const FloatImage v = readPfm(rendered / file), t = readPfm(traced / file);
+        ASSERT_EQ(v.pixels.size(), t.pixels.size()) << file;
+        size_t seen = 0, shadowed = 0, wrong = 0;
+        for (size_t i = 0; i < v.pixels.size(); ++i) {
+            if (!std::isfinite(t.pixels[i]))
+                continue;
+            ++seen;
+            shadowed += t.pixels[i] < 0.5f;
+            wrong += std::abs(v.pixels[i] - t.pixels[i]) > 0.5f;
+        }
+        EXPECT_GT(shadowed, seen / 50) << file << ": the box's shadow is in view";
+        EXPECT_LT(shadowed, seen - seen / 10) << file << ": the light reaches the ground";
+        EXPECT_LE(wrong, seen / 100) << file << ": " << wrong << " of " << seen << " pixels";
+    }
+}
+
+TEST(CliLights, LightSizesNoLightTakesAreWarnedAbout) {
+    const fs::path out = outputScratch("light-size-warnings");
+    const std::vector<std::string> base = {
+        "render", "builtin:showcase",  "-o", out.string(), "--width", "16", "--height",
+        "16",     "--shadow-map-size", "64", "--frames",   "1"};
+    auto with = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = base;
+        args.insert(args.end(), extra.begin(), extra.end());
+        return runCli(args);
+    };
+    ProcessResult r = with({"--light-radius", "0.3"}); // the showcase has a sun only
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: --light-radius: scene 'showcase' has no spot or point"),
+              std::string::npos)
+        << r.err;
+    r = with({"--light-radius", "0.3", "--add-light", "point:pos=0,3,0"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+    r = with({"--light-angle", "2"});
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+    r = runCli({"render", "builtin:spot", "-o", out.string(), "--width", "16", "--height", "16",
+                "--shadow-map-size", "64", "--frames", "1", "--light-angle", "2"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: --light-angle: scene"), std::string::npos) << r.err;
+    r = with({"--add-light", "spot:pos=0,3,0"});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("error: --add-light: 'spot:pos=0,3,0': it needs dir="), std::string::npos)
+        << r.err;
+}

@@ -1,0 +1,195 @@
+// What the commands write: `--format pfm|exr|both` (the float files of render and reference, for
+// every light type, and the file stats.json names) and compare's report images at page size with
+// the full-size files beside it.
+#include "base64_decode.h"
+#include "core/exr_io.h"
+#include "core/image_io.h"
+#include "float_images.h"
+#include "process.h"
+#include "scratch_dir.h"
+#include "three_light_asset.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <set>
+#include <string>
+#include <utility>
+
+using namespace penumbra;
+using namespace penumbra::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::set<std::string> filesIn(const fs::path& dir) {
+    std::set<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir))
+        names.insert(e.path().filename().string());
+    return names;
+}
+
+// A small view from above the box, so every light's shadow of it is seen.
+const std::vector<std::string> kSmallView = {"--width",      "48",    "--height",  "32",
+                                             "--camera-pos", "0,9,9", "--look-at", "0,0,0"};
+
+// A PNG's width and height from its IHDR chunk (big-endian, bytes 16 to 23).
+std::pair<uint32_t, uint32_t> pngSize(const std::vector<uint8_t>& png) {
+    EXPECT_GE(png.size(), 24u);
+    if (png.size() < 24)
+        return {0, 0};
+    const auto word = [&](size_t at) {
+        return uint32_t{png[at]} << 24 | uint32_t{png[at + 1]} << 16 | uint32_t{png[at + 2]} << 8 |
+               png[at + 3];
+    };
+    return {word(16), word(20)};
+}
+
+std::vector<std::string> withView(std::vector<std::string> args) {
+    args.insert(args.end(), kSmallView.begin(), kSmallView.end());
+    return args;
+}
+
+} // namespace
+
+TEST(CliOutputs, ExrOnlyWritesNoPfmAndStatsNameTheExrFiles) {
+    const fs::path asset = threeLightAsset(outputScratch("formats-asset"));
+    const fs::path out = outputScratch("formats-exr");
+    const ProcessResult r =
+        runCli(withView({"render", asset.string(), "-o", out.string(), "--shadow-map-size", "128",
+                         "--frames", "1", "--format", "exr"}));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(filesIn(out), (std::set<std::string>{"image.png", "visibility.exr",
+                                                   "visibility_1.exr", "visibility_2.exr",
+                                                   "position.exr", "normal.exr", "stats.json"}));
+    const auto stats = nlohmann::json::parse(slurp(out / "stats.json"));
+    ASSERT_EQ(stats["lights"].size(), 3u);
+    for (size_t l = 0; l < 3; ++l) { // the sun's, the spot's and the bulb's
+        const std::string name = stats["lights"][l]["visibility_file"];
+        EXPECT_EQ(name, l == 0 ? "visibility.exr" : "visibility_" + std::to_string(l) + ".exr");
+        const FloatImage v = readExr(out / name);
+        EXPECT_EQ(v.width, 48u);
+        EXPECT_EQ(v.height, 32u);
+        EXPECT_EQ(v.channels, 1u);
+        size_t lit = 0, shadowed = 0;
+        for (float x : v.pixels)
+            if (std::isfinite(x))
+                (x > 0.5f ? lit : shadowed) += 1;
+        EXPECT_GT(lit, 0u) << name;
+        EXPECT_GT(shadowed, 0u) << name << ": the box's shadow";
+    }
+    EXPECT_EQ(readExr(out / "position.exr").channels, 3u);
+}
+
+TEST(CliOutputs, PfmOnlyAndTheReferencesExrMatchItsPfm) {
+    const fs::path asset = threeLightAsset(outputScratch("formats-asset-2"));
+    const fs::path pfm = outputScratch("formats-pfm");
+    ProcessResult r = runCli(withView(
+        {"reference", asset.string(), "-o", pfm.string(), "--samples", "4", "--format", "pfm"}));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(filesIn(pfm),
+              (std::set<std::string>{"visibility.pfm", "visibility_1.pfm", "visibility_2.pfm",
+                                     "position.pfm", "normal.pfm", "reference.json"}));
+    // The default writes both; the truth is deterministic, so the OpenEXR files of a second run
+    // hold the first run's PFM pixels bit for bit.
+    const fs::path both = outputScratch("formats-both");
+    r = runCli(withView({"reference", asset.string(), "-o", both.string(), "--samples", "4"}));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* stem : {"visibility", "visibility_1", "visibility_2", "position", "normal"}) {
+        const std::string s = stem;
+        expectSameImage(readPfm(pfm / (s + ".pfm")), readExr(both / (s + ".exr")), s);
+        expectSameImage(readPfm(both / (s + ".pfm")), readExr(both / (s + ".exr")), s);
+    }
+}
+
+TEST(CliOutputs, WideComparisonsShowReducedImagesAndLinkTheFullSizeFiles) {
+    // 1000 pixels across is past the page's 960: every image is shown at half size, and the
+    // lit image and heat map link their full-size files, which compare writes beside the page.
+    const fs::path out = outputScratch("wide-compare");
+    const ProcessResult r =
+        runCli({"compare", "builtin:showcase", "-o", out.string(), "--techniques", "hard",
+                "--width", "1000", "--height", "24", "--shadow-map-size", "256", "--frames", "1",
+                "--samples", "1", "--format", "pfm"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string fullSize = slurp(out / "hard.image.png");
+    EXPECT_EQ(pngSize({fullSize.begin(), fullSize.end()}), std::make_pair(1000u, 24u));
+    EXPECT_FALSE(fs::exists(out / "visibility.exr")) << "--format pfm";
+    const std::string html = slurp(out / "report.html");
+    EXPECT_NE(html.find("<main data-page-scale=\"2\">"), std::string::npos);
+    for (const char* file : {"hard.image.png", "hard.heatmap.png"}) {
+        EXPECT_NE(html.find(std::string("href=\"") + file + "\""), std::string::npos) << file;
+        EXPECT_TRUE(fs::exists(out / file)) << file;
+    }
+    const std::string prefix = "src=\"data:image/png;base64,";
+    size_t images = 0;
+    for (size_t at = html.find(prefix); at != std::string::npos; at = html.find(prefix, at)) {
+        at += prefix.size();
+        const auto [width, height] =
+            pngSize(decodeBase64(html.substr(at, html.find('"', at) - at)));
+        EXPECT_EQ(width, 500u) << "image " << images;
+        EXPECT_GE(height, 12u) << "image " << images; // heat maps add their legend below
+        ++images;
+    }
+    EXPECT_EQ(images, 4u) << "the truth, and the row's lit image, visibility and heat map";
+}
+
+TEST(CliOutputs, RowsTheDeviceCannotHoldAreSkippedAndMarked) {
+    // A device of 512 MiB (PENUMBRA_DEVICE_MEMORY: what the checks assume) and one 8192^2 map:
+    // hard's 256 MiB of depth fits; vsm's two-moment map and its blur's do not.
+    setenv("PENUMBRA_DEVICE_MEMORY", std::to_string(512u << 20).c_str(), 1);
+    const fs::path out = outputScratch("skipped-rows");
+    const std::vector<std::string> view = {
+        "--width", "32",    "--height",      "24", "--frames", "1", "--shadow-map-size",
+        "8192",    "--set", "csm.cascades=1"};
+    std::vector<std::string> args = {"compare",      "builtin:showcase", "-o",        out.string(),
+                                     "--techniques", "hard,vsm",         "--samples", "1"};
+    args.insert(args.end(), view.begin(), view.end());
+    ProcessResult r = runCli(args);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: vsm skipped: --shadow-map-size: vsm needs "), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.out.find("vsm                    skipped: --shadow-map-size: vsm needs"),
+              std::string::npos)
+        << r.out;
+    const auto metrics = nlohmann::json::parse(slurp(out / "metrics.json"))["techniques"];
+    ASSERT_TRUE(metrics.contains("hard"));
+    EXPECT_TRUE(metrics["hard"].contains("rmse"));
+    ASSERT_TRUE(metrics.contains("vsm"));
+    EXPECT_NE(metrics["vsm"]["skipped"].get<std::string>().find("a render may use 0.40 GiB"),
+              std::string::npos)
+        << metrics["vsm"];
+    EXPECT_FALSE(fs::exists(out / "vsm.image.png"));
+    const std::string html = slurp(out / "report.html");
+    EXPECT_NE(html.find("<h2>Skipped rows</h2>"), std::string::npos);
+    EXPECT_NE(html.find("<li><strong>vsm</strong>: --shadow-map-size: vsm needs"),
+              std::string::npos);
+    EXPECT_EQ(html.find("data-technique=\"vsm\""), std::string::npos) << "no table row, no image";
+
+    // bench the same: the run that fits is timed, the other marked.
+    args = {"bench",        "builtin:showcase", "-o", (out / "bench.json").string(),
+            "--techniques", "hard,vsm"};
+    args.insert(args.end(), view.begin(), view.end());
+    r = runCli(args);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const size_t vsmLine = r.out.find("[2/2] vsm");
+    ASSERT_NE(vsmLine, std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("[2/2] vsm", vsmLine + 1), std::string::npos)
+        << r.out << "one line for the skipped run, no timing";
+    const auto runs = nlohmann::json::parse(slurp(out / "bench.json"))["runs"];
+    ASSERT_EQ(runs.size(), 2u);
+    EXPECT_TRUE(runs[0].contains("gpu_ms_total")) << runs[0];
+    EXPECT_NE(runs[1]["skipped"].get<std::string>().find("vsm needs"), std::string::npos);
+    EXPECT_NE(slurp(out / "bench.html").find("skipped: --shadow-map-size: vsm needs"),
+              std::string::npos);
+
+    // When no row fits, it is the error it always was.
+    args = {"compare", "builtin:showcase", "-o", (out / "none").string(), "--techniques", "vsm"};
+    args.insert(args.end(), view.begin(), view.end());
+    r = runCli(args);
+    unsetenv("PENUMBRA_DEVICE_MEMORY");
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_NE(r.err.find("error: --shadow-map-size: vsm needs"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out / "none"));
+}
