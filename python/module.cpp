@@ -60,8 +60,11 @@ struct PyScene {
     void edit(std::optional<Vec3> sunDir, std::map<std::string, Vec3> lightPos,
               std::map<std::string, Vec3> lightDir, std::optional<Vec3> cameraPos,
               std::optional<Vec3> lookAt, std::optional<float> fov,
-              const std::vector<std::string>& addLight) {
-        SceneEdits edits;
+              const std::vector<std::string>& addLight, std::optional<std::string> view,
+              bool ground) {
+        SceneEdits edits{.ground = ground};
+        if (view)
+            edits.view = parseViewChoice(*view);
         for (const std::string& text : addLight)
             edits.addedLights.push_back(parseAddedLight(text));
         if (sunDir)
@@ -319,10 +322,12 @@ PYBIND11_MODULE(penumbra, m) {
              py::arg("light_dir") = std::map<std::string, Vec3>{},
              py::arg("camera_pos") = py::none(), py::arg("look_at") = py::none(),
              py::arg("fov") = py::none(), py::arg("add_light") = std::vector<std::string>{},
+             py::arg("view") = py::none(), py::arg("ground") = false,
              "The CLI's scene options, in place: sun_dir adds a sun (or replaces the default "
              "light), light_pos / light_dir move and aim lights by name, camera_pos and look_at "
              "(with fov) make an ad-hoc camera, add_light adds lights as --add-light does "
-             "('point:pos=0,3,0,radius=0.2'). All or nothing; InputError names the option.")
+             "('point:pos=0,3,0,radius=0.2'), view ('auto', 'exterior', 'interior') and ground "
+             "as --view and --ground do. All or nothing; InputError names the option.")
         .def_property_readonly("name", [](const PyScene& s) { return s.scene->name; })
         .def_property_readonly("triangles",
                                [](const PyScene& s) { return s.scene->triangleCount(); })

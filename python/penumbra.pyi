@@ -34,6 +34,8 @@ class Scene:
         look_at: Optional[Vec3] = None,
         fov: Optional[float] = None,
         add_light: Sequence[str] = (),
+        view: Optional[str] = None,
+        ground: bool = False,
     ) -> None:
         """The CLI's scene options, in place (all or nothing); InputError names the option."""
     @property

@@ -97,7 +97,7 @@ TEST(AddedLights, MalformedTextIsRefusedNamingWhatIsWrong) {
 
 TEST(AddedLights, TheLightsTheyMakeAndTheirDefaults) {
     Scene scene = ground();
-    scene.lights = {defaultLightFor(scene)};
+    scene.lights = {defaultSun()};
     scene.defaultLight = true;
     SceneEdits edits;
     for (const char* text :

@@ -228,8 +228,13 @@ TEST(MetricsBeyondBlur, ExcludesThePixelsWithinEachPixelsOwnRadius) {
     EXPECT_EQ(m.truthLitBeyondBlur, 6u * 3);
     EXPECT_EQ(m.truthShadowedBeyondBlur, 6u * 3);
     EXPECT_EQ(m.pixelsBeyondBlur, 12u * 3);
-    EXPECT_DOUBLE_EQ(m.acneBeyondBlur, 1.0);
-    EXPECT_DOUBLE_EQ(m.leakBeyondBlur, 1.0);
+    // Fractions of the pixels acne and leak judge (9 columns each side of the fixed band 2).
+    EXPECT_EQ(m.acneBeyondBlurPixels, 6u * 3);
+    EXPECT_EQ(m.leakBeyondBlurPixels, 6u * 3);
+    EXPECT_DOUBLE_EQ(m.acneBeyondBlur, 6.0 / 9.0);
+    EXPECT_DOUBLE_EQ(m.leakBeyondBlur, 6.0 / 9.0);
+    EXPECT_EQ(m.acnePixels, 9u * 3);
+    EXPECT_DOUBLE_EQ(m.acne, 1.0);
     // The fixed band (2) is unchanged by it.
     EXPECT_EQ(m.truthLit, 9u * 3);
     // Only the pixel's own radius matters: a wide radius on the lit side alone.
@@ -257,13 +262,31 @@ TEST(MetricsBeyondBlur, RadiusIsClampedToTwoAndEightPixels) {
     EXPECT_EQ(shadowedBeyond(0.0f), 17u * 2); // 2: columns 0..16
     EXPECT_EQ(shadowedBeyond(kNaN), 17u * 2);
     EXPECT_EQ(shadowedBeyond(3.0f), 16u * 2);
-    // Every shadowed pixel leaks (visibility 1): the fraction is over the band's own pixels.
-    EXPECT_DOUBLE_EQ(withBlurBand(im, std::vector<float>(im.truth.size(), 5.0f)).leakBeyondBlur,
-                     1.0);
+    // Every shadowed pixel leaks (visibility 1): the fraction is over the pixels leak judges
+    // (columns 0..16), of which those beyond the band (0..13) leak beyond blur.
+    const ErrorMetrics five = withBlurBand(im, std::vector<float>(im.truth.size(), 5.0f));
+    EXPECT_EQ(five.leakPixels, 17u * 2);
+    EXPECT_EQ(five.leakBeyondBlurPixels, 14u * 2);
+    EXPECT_DOUBLE_EQ(five.leakBeyondBlur, 14.0 / 17.0);
     // No band given: beyond blur is outside the 2-pixel edge band.
     const ErrorMetrics plain = im.metrics();
     EXPECT_EQ(plain.truthShadowedBeyondBlur, plain.truthShadowed);
     EXPECT_EQ(plain.leakBeyondBlur, plain.leak);
+}
+
+TEST(MetricsBeyondBlur, NeverExceedsThePlainFigures) {
+    // A blur band narrower than the edge band (3) used to judge pixels the plain figures skip.
+    Images im = wrongEverywhere();
+    MetricLayer l = im.layer();
+    const std::vector<float> band(im.truth.size(), 2.0f);
+    l.blurBand = band;
+    const ErrorMetrics m = computeMetrics(im.width, im.height, std::span(&l, 1), 3);
+    EXPECT_EQ(m.truthLit, 8u * 3);
+    EXPECT_EQ(m.acneBeyondBlurPixels, m.acnePixels);
+    EXPECT_EQ(m.leakBeyondBlurPixels, m.leakPixels);
+    EXPECT_LE(m.acneBeyondBlur, m.acne);
+    EXPECT_LE(m.leakBeyondBlur, m.leak);
+    EXPECT_EQ(m.pixelsBeyondBlur, 16u * 3);
 }
 
 TEST(MetricsBeyondBlur, VariableBandMatchesBruteForce) {

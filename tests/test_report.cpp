@@ -159,6 +159,9 @@ ReportRow makeRow(std::string name, double rmse, std::vector<std::pair<std::stri
     row.metrics.leakNearContact = 0.375;
     row.metrics.nearContact = 321;
     row.metrics.pixels = 1234;
+    row.metrics.truthLit = 40213, row.metrics.truthShadowed = 300; // few shadowed: a note
+    row.metrics.acnePixels = 12, row.metrics.leakPixels = 150;
+    row.metrics.acneBeyondBlurPixels = 7, row.metrics.leakBeyondBlurPixels = 5;
     row.gpuMs = std::move(gpu);
     row.imagePng = encodePng(visibilityImage(2, 2, std::vector<float>{0, 1, 0.5f, kNaN}));
     row.visibilityPng = {1, 2, 3, 4}; // not a PNG: exercises base64 with one byte left over
@@ -190,7 +193,9 @@ std::set<std::string> keysOf(const nlohmann::json& j) {
 TEST(MetricsJson, HasExactlyTheContractKeys) {
     const ReportData d = makeReport();
     nlohmann::json j = metricsJson(d); // not const: a missing key reads as null, not UB
-    EXPECT_EQ(keysOf(j), (std::set<std::string>{"reference", "techniques"}));
+    EXPECT_EQ(keysOf(j), (std::set<std::string>{"reference", "techniques", "notes"}));
+    ASSERT_EQ(j["notes"].size(), 1u);
+    EXPECT_NE(j["notes"][0].get<std::string>().find("300 fully shadowed"), std::string::npos);
     nlohmann::json& ref = j["reference"];
     EXPECT_EQ(keysOf(ref), (std::set<std::string>{"samples", "seconds", "rays_per_second", "lights",
                                                   "scene", "width", "height", "device"}));
@@ -204,10 +209,26 @@ TEST(MetricsJson, HasExactlyTheContractKeys) {
     EXPECT_EQ(ref["device"], d.device);
     EXPECT_EQ(keysOf(j["techniques"]), (std::set<std::string>{"hard", "a<b&\"c\""}));
     nlohmann::json& t = j["techniques"]["a<b&\"c\""];
-    EXPECT_EQ(keysOf(t), (std::set<std::string>{
-                             "rmse", "mae", "max", "misclassified", "misclassified_outside_edges",
-                             "acne", "leak", "acne_beyond_blur", "leak_beyond_blur",
-                             "leak_near_contact", "near_contact_pixels", "pixels", "gpu_ms"}));
+    EXPECT_EQ(keysOf(t),
+              (std::set<std::string>{"rmse", "mae", "max", "misclassified",
+                                     "misclassified_outside_edges", "acne", "leak",
+                                     "acne_beyond_blur", "leak_beyond_blur", "leak_near_contact",
+                                     "near_contact_pixels", "pixels", "counts", "gpu_ms"}));
+    EXPECT_EQ(t["counts"]["acne"], (nlohmann::json{{"pixels", 12}, {"of", 40213}}));
+    EXPECT_EQ(t["counts"]["leak"], (nlohmann::json{{"pixels", 150}, {"of", 300}}));
+    EXPECT_EQ(t["counts"]["acne_beyond_blur"], (nlohmann::json{{"pixels", 7}, {"of", 40213}}))
+        << "beyond blur has acne's denominator";
+    EXPECT_EQ(t["counts"]["leak_beyond_blur"], (nlohmann::json{{"pixels", 5}, {"of", 300}}));
+    EXPECT_EQ(t["counts"]["misclassified"]["of"], 1234);
+    ReportData plenty = makeReport();
+    for (ReportRow& row : plenty.rows)
+        row.metrics.truthShadowed = kFewJudgedPixels;
+    EXPECT_TRUE(metricsJson(plenty)["notes"].empty());
+    const std::string html = renderHtmlReport(d);
+    EXPECT_NE(html.find("12/40.2k"), std::string::npos) << "the pixels under each percentage";
+    EXPECT_NE(html.find("title=\"150 of 300 pixels\""), std::string::npos);
+    EXPECT_NE(html.find("class=\"note few-pixels\""), std::string::npos);
+    EXPECT_EQ(renderHtmlReport(plenty).find("class=\"note few-pixels\""), std::string::npos);
     EXPECT_EQ(t["rmse"], 0.1);
     EXPECT_EQ(t["mae"], 0.05);
     EXPECT_EQ(t["max"], 1.0);

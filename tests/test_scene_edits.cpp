@@ -1,5 +1,6 @@
 // Scene control from the command line and the defaults for scenes without lights or cameras
 // (issue 16): what each edit changes, what it refuses, and the interior rule of scene/interior.h.
+#include "generated_scenes.h"
 #include "gltf_builder.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
@@ -40,24 +41,6 @@ Scene threeLights() {
     return scene;
 }
 
-// A 20 x 4 x 12 room whose walls, floor and (optional) ceiling face inwards, a table inside.
-Scene room(bool ceiling) {
-    Scene scene;
-    scene.name = "room";
-    MeshBuilder mb(scene);
-    const uint32_t m = mb.material("walls", glm::vec3(0.6f));
-    const float x = 10.0f, y = 4.0f, z = 6.0f;
-    mb.quad({-x, 0, z}, {x, 0, z}, {x, 0, -z}, {-x, 0, -z}, m);   // floor, facing up
-    mb.quad({-x, 0, -z}, {x, 0, -z}, {x, y, -z}, {-x, y, -z}, m); // back wall, facing +z
-    mb.quad({x, 0, z}, {-x, 0, z}, {-x, y, z}, {x, y, z}, m);     // front wall, facing -z
-    mb.quad({-x, 0, z}, {-x, 0, -z}, {-x, y, -z}, {-x, y, z}, m); // left wall, facing +x
-    mb.quad({x, 0, -z}, {x, 0, z}, {x, y, z}, {x, y, -z}, m);     // right wall, facing -x
-    if (ceiling)
-        mb.quad({-x, y, -z}, {x, y, -z}, {x, y, z}, {-x, y, z}, m); // facing down
-    mb.box(glm::scale(glm::translate(glm::mat4(1.0f), {2.0f, 0.5f, 1.0f}), {2.0f, 1.0f, 1.0f}), m);
-    return scene;
-}
-
 } // namespace
 
 TEST(SceneEdits, ParsesVectorsStrictly) {
@@ -76,7 +59,7 @@ TEST(SceneEdits, ParsesVectorsStrictly) {
 
 TEST(SceneEdits, SunDirReplacesTheDefaultLightElseAddsASun) {
     Scene withDefault = room(true);
-    withDefault.lights = {defaultLightFor(withDefault)};
+    withDefault.lights = {defaultSun()};
     withDefault.defaultLight = true;
     applySceneEdits(withDefault, {.sunDirection = glm::vec3(0, -2, 1)});
     ASSERT_EQ(withDefault.lights.size(), 1u);
@@ -167,59 +150,4 @@ TEST(SceneEdits, CameraPosLookAtAndFovMakeTheFirstCamera) {
                 .find("--fov"),
             std::string::npos)
             << fov;
-}
-
-TEST(Interior, RoomsAreInteriorsAndLoneModelsAreNot) {
-    EXPECT_TRUE(isInterior(room(true)));
-    EXPECT_TRUE(isInterior(room(false))) << "an open sky above is still a room";
-    Scene lone;
-    MeshBuilder mb(lone);
-    mb.box(glm::scale(glm::mat4(1.0f), glm::vec3(4.0f)), mb.material("box", glm::vec3(0.5f)));
-    EXPECT_FALSE(isInterior(lone)) << "from inside a closed model the rays meet back faces";
-    Scene yard = room(false);
-    yard.indices.erase(yard.indices.begin() + 6, yard.indices.begin() + 12); // no back wall
-    EXPECT_FALSE(isInterior(yard));
-}
-
-TEST(Interior, ARoomTheSunCannotReachGetsALightUnderItsCeiling) {
-    const Scene closed = room(true);
-    const Light l = defaultLightFor(closed);
-    ASSERT_EQ(l.type, LightType::Point);
-    EXPECT_NEAR(l.position.x, 0.0f, 1e-4f);
-    EXPECT_NEAR(l.position.z, 0.0f, 1e-4f);
-    EXPECT_NEAR(l.position.y, 3.0f, 1e-4f) << "half way from the centre (y 2) to the ceiling";
-    // The floor under it receives the default sun's irradiance: I / d^2 with d = 3.
-    EXPECT_NEAR(l.intensity / 9.0f, defaultSun().intensity, 1e-3f);
-
-    const Light open = defaultLightFor(room(false));
-    EXPECT_EQ(open.type, LightType::Directional) << "without a roof the sun reaches the room";
-
-    const Camera c = interiorCamera(closed);
-    EXPECT_EQ(c.position, glm::vec3(0, 2, 0));
-    EXPECT_NEAR(glm::normalize(c.target - c.position).x, 1.0f, 1e-6f)
-        << "along the longer horizontal side";
-    EXPECT_LT(c.znear, 0.01f);
-}
-
-TEST(Interior, AGltfRoomWithoutLightsOrCamerasIsLitAndSeenFromInside) {
-    GltfBuilder b;
-    // The closed room of room(true) without its table: floor, four walls and ceiling.
-    const float x = 10, y = 4, z = 6;
-    const int p = b.positions(
-        {-x, 0, z, x, 0, z, x, 0, -z, -x, 0, -z, -x, y, z, x, y, z, x, y, -z, -x, y, -z});
-    const std::vector<uint16_t> quads = {0, 1, 2, 3, /*floor*/ 3, 2, 6, 7, /*back*/
-                                         1, 0, 4, 5, /*front*/ 0, 3, 7, 4, /*left*/
-                                         2, 1, 5, 6, /*right*/ 7, 6, 5, 4 /*ceiling*/};
-    std::vector<uint16_t> tris;
-    for (size_t q = 0; q < quads.size(); q += 4)
-        tris.insert(tris.end(),
-                    {quads[q], quads[q + 1], quads[q + 2], quads[q], quads[q + 2], quads[q + 3]});
-    b.node({{"mesh", b.mesh(p, b.accessor(b.view(tris), 5123, tris.size(), "SCALAR"))}});
-    const Scene s = loadGltf(b.writeGltf(scratchDir("gltf", "interior") / "room.gltf"));
-    ASSERT_EQ(s.lights.size(), 1u);
-    EXPECT_TRUE(s.defaultLight);
-    EXPECT_EQ(s.lights[0].type, LightType::Point);
-    ASSERT_EQ(s.cameras.size(), 1u);
-    EXPECT_EQ(s.camera("").name, "auto (interior)");
-    EXPECT_EQ(s.camera("").position, glm::vec3(0, 2, 0));
 }

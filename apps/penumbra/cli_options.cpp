@@ -105,6 +105,9 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
         edits.lightDirections.push_back(parseNamedVector3(text, "--light-dir"));
     for (const std::string& text : o.addedLights)
         edits.addedLights.push_back(parseAddedLight(text));
+    if (!o.view.empty())
+        edits.view = parseViewChoice(o.view);
+    edits.ground = o.ground;
     std::vector<std::string> warnings;
     Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
                                    .maxTriangles = global.maxTriangles,
@@ -157,6 +160,15 @@ void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
                          "45.8)"))
         ->type_name("DEG")
         ->excludes(camera);
+    group(cmd.add_option("--view", scene.view,
+                         "the automatic camera: `exterior` frames the subject from outside, "
+                         "`interior` stands in its most open room, `auto` measures which "
+                         "(default: the scene's first camera, else auto)"))
+        ->type_name("auto|exterior|interior")
+        ->excludes(camera);
+    group(cmd.add_flag("--ground", scene.ground,
+                       "adds a ground quad under the subject, three times its width, to catch "
+                       "the shadows of a lone object"));
     group(cmd.add_option("--sun-dir", scene.sunDirection,
                          "a sun whose light travels along X,Y,Z (world space, any length but 0): "
                          "replaces the default light of a scene without lights, else is added "

@@ -32,6 +32,8 @@ struct SceneOptions {
     std::string sunDirection, cameraPosition, lookAt;
     std::vector<std::string> lightPositions, lightDirections, addedLights;
     std::optional<float> fovDegrees;
+    std::string view; // --view
+    bool ground = false;
 };
 
 // "a,b,c" -> {"a", "b", "c"}; an empty list or an empty item is an InputError(option).

@@ -98,6 +98,9 @@ struct Bounds {
     bool empty() const { return min.x > max.x; }
 };
 
+// --view: the automatic camera's kind; Auto measures it (docs/scenes.md).
+enum class ViewChoice { Auto, Exterior, Interior };
+
 // --add-light KIND:key=value,... as given: the kind, what the text set, the text itself.
 struct AddedLight {
     LightType type = LightType::Directional;
@@ -118,6 +121,8 @@ struct SceneEdits {
     std::optional<glm::vec3> cameraPosition, lookAt;                // --camera-pos, --look-at
     std::optional<float> fovDegrees;                                // --fov, vertical
     std::vector<AddedLight> addedLights;                            // --add-light
+    std::optional<ViewChoice> view;                                 // --view
+    bool ground = false;                                            // --ground
     bool empty() const;
 };
 
@@ -199,6 +204,8 @@ glm::vec2 visibleDepthRange(const Scene& scene, const Camera& camera, float aspe
 // --light-dir (a light by name: a position for spots and point lights, a direction for spots and
 // suns), --camera-pos with --look-at and --fov (a camera named "command line" that becomes the
 // scene's first). Throws InputError naming the option.
+// --ground adds a ground quad under the subject (scene/framing.h), three times its width;
+// --view puts the automatic camera of that kind first (a default light follows it).
 // --add-light adds its lights after --sun-dir's (replacing the loader's default light too), each
 // named as given or "<kind> (--add-light <n>)"; a name the scene already has is an InputError.
 void applySceneEdits(Scene& scene, const SceneEdits& edits);
@@ -206,6 +213,11 @@ void applySceneEdits(Scene& scene, const SceneEdits& edits);
 // "point:pos=X,Y,Z[,radius=R]", each with optional intensity= and name=; InputError("--add-light",
 // ...) naming what is wrong otherwise.
 AddedLight parseAddedLight(std::string_view text);
+// "auto", "exterior", "interior"; InputError("--view", ...) otherwise.
+ViewChoice parseViewChoice(std::string_view text);
+std::string_view viewChoiceName(ViewChoice choice);
+// The quad --ground adds.
+void addGround(Scene& scene);
 // The light an --add-light makes in `scene` (the index-th): unless given, a sun as bright as
 // --sun-dir's (2), a spot or point light as bright at the scene's centre, a spot's cone 45
 // degrees with a soft rim (inner 0.8 of the outer), sizes 0.

@@ -142,6 +142,15 @@ std::string shortParameters(const std::vector<std::pair<std::string, std::string
     return text;
 }
 
+// 950, 12.3k, 4.1M: a pixel count that fits under a percentage.
+std::string compactCount(uint64_t n) {
+    if (n < 10'000)
+        return fmt::format("{}", n);
+    if (n < 10'000'000)
+        return fmt::format("{:.3g}k", static_cast<double>(n) / 1e3);
+    return fmt::format("{:.3g}M", static_cast<double>(n) / 1e6);
+}
+
 void writeTable(std::string& s, const ReportData& d) {
     auto out = std::back_inserter(s);
     const bool shimmer = !d.cameraPath.empty();
@@ -187,12 +196,21 @@ void writeTable(std::string& s, const ReportData& d) {
                        cls.empty() ? "" : fmt::format(" class=\"{}\"", cls),
                        title.empty() ? "" : fmt::format(" title=\"{}\"", title), text);
     };
+    // A percentage with its pixels beneath it (numerator / denominator, both in the tooltip).
     auto cell = [&](const ReportRow& row, double ErrorMetrics::*field, bool asPercent,
-                    std::string_view extra = "") {
+                    std::string_view extra = "", std::string_view countKey = "") {
         const double v = row.metrics.*field;
         const bool best = v == bestOf(field);
-        number(v, asPercent ? fmt::format("{:.2f}", 100 * v) : fmt::format("{:.4f}", v),
-               best ? fmt::format("best{}", extra) : std::string(extra));
+        std::string text = asPercent ? fmt::format("{:.2f}", 100 * v) : fmt::format("{:.4f}", v);
+        std::string title;
+        if (!countKey.empty()) {
+            const nlohmann::json c = metricCountsJson(row.metrics)[std::string(countKey)];
+            const uint64_t n = c["pixels"], of = c["of"];
+            text +=
+                fmt::format("<div class=\"count\">{}/{}</div>", compactCount(n), compactCount(of));
+            title = fmt::format("{} of {} pixels", n, of);
+        }
+        number(v, text, best ? fmt::format("best{}", extra) : std::string(extra), title);
     };
     for (const ReportRow& row : d.rows) {
         const std::string name = escapeHtml(row.name);
@@ -208,12 +226,13 @@ void writeTable(std::string& s, const ReportData& d) {
         cell(row, &ErrorMetrics::rmse, false);
         cell(row, &ErrorMetrics::mae, false);
         cell(row, &ErrorMetrics::max, false);
-        cell(row, &ErrorMetrics::misclassified, true);
-        cell(row, &ErrorMetrics::misclassifiedOutsideEdges, true);
-        cell(row, &ErrorMetrics::acne, true, " first");
-        cell(row, &ErrorMetrics::leak, true);
-        cell(row, &ErrorMetrics::acneBeyondBlur, true);
-        cell(row, &ErrorMetrics::leakBeyondBlur, true);
+        cell(row, &ErrorMetrics::misclassified, true, "", "misclassified");
+        cell(row, &ErrorMetrics::misclassifiedOutsideEdges, true, "",
+             "misclassified_outside_edges");
+        cell(row, &ErrorMetrics::acne, true, " first", "acne");
+        cell(row, &ErrorMetrics::leak, true, "", "leak");
+        cell(row, &ErrorMetrics::acneBeyondBlur, true, "", "acne_beyond_blur");
+        cell(row, &ErrorMetrics::leakBeyondBlur, true, "", "leak_beyond_blur");
         if (shimmer)
             number(row.shimmer, fmt::format("{:.5f}", row.shimmer));
         double maps = 0, perPixel = 0;
@@ -231,15 +250,21 @@ void writeTable(std::string& s, const ReportData& d) {
         number(totalGpuMs(row), fmt::format("{:.3f}", totalGpuMs(row)), "", escapeHtml(passes));
         s += "</tr>\n";
     }
-    s += "</tbody></table></section>\n<p class=\"note\">Click a column's header to sort by it. "
+    s += "</tbody></table></section>\n";
+    if (!d.rows.empty() && !fewPixelsNote(d.rows.front().metrics).empty())
+        fmt::format_to(out, "<p class=\"note few-pixels\"><strong>{}</strong></p>\n",
+                       fewPixelsNote(d.rows.front().metrics));
+    s += "<p class=\"note\">Click a column's header to sort by it. "
          "Percentages are of counted pixels (facing a light, inside its frustum). Acne: fully "
          "lit in the reference but visibility &lt; 0.9; leak: fully shadowed but visibility &gt; "
          "0.1; both, like wrong (misclassified) off edges, more than 2 pixels from the "
-         "reference's shadow edges. Beyond blur: the same, more than the technique's blur radius "
-         "from those edges (its declared filter reach, in texels, projected to the screen at "
-         "each pixel; at least 2 and at most 8 pixels), so what remains is self-shadowing and "
-         "missing shadow rather than the blur a wide kernel makes. Every pass's time is in the "
-         "total's tooltip and in metrics.json.</p>\n";
+         "reference's shadow edges. Beyond blur: the errors among the same pixels that also lie "
+         "more than the technique's blur radius from those edges (its declared filter reach, in "
+         "texels, projected to the screen at each pixel; at least 2 and at most 8 pixels), so "
+         "what remains is self-shadowing and missing shadow rather than the blur a wide kernel "
+         "makes; of the same pixels, it never exceeds the plain figure. Under each percentage: "
+         "its pixels, of how many. Every pass's time is in the total's tooltip and in "
+         "metrics.json.</p>\n";
 }
 
 void writeImages(std::string& s, const ReportData& d) {
@@ -362,6 +387,13 @@ nlohmann::json metricsJson(const ReportData& data) {
         }
     }
     j["techniques"] = techniques;
+    j["notes"] = nlohmann::json::array();
+    for (const ReportRow& row : data.rows)
+        if (row.skipped.empty()) { // the truth, and so the counts, are the same for every row
+            if (!fewPixelsNote(row.metrics).empty())
+                j["notes"].push_back(fewPixelsNote(row.metrics));
+            break;
+        }
     return j;
 }
 
@@ -385,7 +417,35 @@ nlohmann::json metricsRowJson(const ReportRow& row) {
             {"leak_near_contact", m.leakNearContact},
             {"near_contact_pixels", m.nearContact},
             {"pixels", m.pixels},
+            {"counts", metricCountsJson(m)},
             {"gpu_ms", gpu}};
+}
+
+nlohmann::json metricCountsJson(const ErrorMetrics& m) {
+    const auto of = [](uint64_t pixels, uint64_t total) {
+        return nlohmann::json{{"pixels", pixels}, {"of", total}};
+    };
+    return {{"misclassified", of(m.misclassifiedPixels, m.pixels)},
+            {"misclassified_outside_edges",
+             of(m.misclassifiedOutsideEdgesPixels, m.pixelsOutsideEdges)},
+            {"acne", of(m.acnePixels, m.truthLit)},
+            {"leak", of(m.leakPixels, m.truthShadowed)},
+            {"acne_beyond_blur", of(m.acneBeyondBlurPixels, m.truthLit)},
+            {"leak_beyond_blur", of(m.leakBeyondBlurPixels, m.truthShadowed)},
+            {"leak_near_contact", of(m.leakNearContactPixels, m.nearContact)}};
+}
+
+std::string fewPixelsNote(const ErrorMetrics& m) {
+    std::string few;
+    if (m.truthLit < kFewJudgedPixels)
+        few += fmt::format("{} fully lit", m.truthLit);
+    if (m.truthShadowed < kFewJudgedPixels)
+        few += fmt::format("{}{} fully shadowed", few.empty() ? "" : " and ", m.truthShadowed);
+    if (few.empty())
+        return "";
+    return fmt::format("This view has only {} pixels away from shadow edges (fewer than {}): "
+                       "acne and leak rest on too few pixels to rank techniques by them.",
+                       few, kFewJudgedPixels);
 }
 
 } // namespace penumbra

@@ -56,5 +56,10 @@ std::string renderHtmlReport(const ReportData& data);
 nlohmann::json metricsJson(const ReportData& data);
 // One row's entry of metrics.json (without the camera path's keys): the Python module's metrics().
 nlohmann::json metricsRowJson(const ReportRow& row);
+// Each fraction's pixels: {"acne": {"pixels": numerator, "of": denominator}, ...}.
+nlohmann::json metricCountsJson(const ErrorMetrics& m);
+// The note a view with fewer than kFewJudgedPixels fully lit or fully shadowed pixels away from
+// edges gets (empty when it has enough), from any ran row's metrics.
+std::string fewPixelsNote(const ErrorMetrics& m);
 
 } // namespace penumbra

@@ -130,7 +130,9 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
                 ++m.nearContact;
                 leakNearContact += v >= 0.5f;
             }
-            if (distance[i] > blurRadiusAt(layer.blurBand, i)) {
+            // Beyond the blur band and the edge band both: a subset of the pixels acne and leak
+            // judge, so the beyond-blur figures cannot exceed theirs.
+            if (distance[i] > edgeBand && distance[i] > blurRadiusAt(layer.blurBand, i)) {
                 ++m.pixelsBeyondBlur;
                 m.truthLitBeyondBlur += lit;
                 acneBeyondBlur += lit && v < 0.9f;
@@ -148,9 +150,16 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
     m.misclassifiedOutsideEdges = fraction(misclassifiedOutside, m.pixelsOutsideEdges);
     m.acne = fraction(acne, m.truthLit);
     m.leak = fraction(leak, m.truthShadowed);
-    m.acneBeyondBlur = fraction(acneBeyondBlur, m.truthLitBeyondBlur);
-    m.leakBeyondBlur = fraction(leakBeyondBlur, m.truthShadowedBeyondBlur);
+    m.acneBeyondBlur = fraction(acneBeyondBlur, m.truthLit);
+    m.leakBeyondBlur = fraction(leakBeyondBlur, m.truthShadowed);
     m.leakNearContact = fraction(leakNearContact, m.nearContact);
+    m.misclassifiedPixels = misclassified;
+    m.misclassifiedOutsideEdgesPixels = misclassifiedOutside;
+    m.acnePixels = acne;
+    m.leakPixels = leak;
+    m.acneBeyondBlurPixels = acneBeyondBlur;
+    m.leakBeyondBlurPixels = leakBeyondBlur;
+    m.leakNearContactPixels = leakNearContact;
     return m;
 }
 

@@ -14,9 +14,10 @@ struct ErrorMetrics {
     // Both outside the edge band, where filtering and aliasing cannot explain them:
     double acne = 0; // among counted pixels with truth == 1: fraction with v < 0.9
     double leak = 0; // among counted pixels with truth == 0: fraction with v > 0.1
-    // The same outside the blur band, whose radius per pixel is the technique's blur radius on
-    // the screen (MetricLayer::blurBand) clamped to [kMinBlurBand, kMaxBlurBand]: what is left
-    // is self-shadowing and missing shadow, not the blur a wide kernel is meant to make.
+    // The same errors outside the blur band too, whose radius per pixel is the technique's blur
+    // radius on the screen (MetricLayer::blurBand) clamped to [kMinBlurBand, kMaxBlurBand]: what
+    // is left is self-shadowing and missing shadow, not the blur a wide kernel is meant to make.
+    // Fractions of the same pixels as acne and leak (truthLit, truthShadowed), so never larger.
     double acneBeyondBlur = 0, leakBeyondBlur = 0;
     // Near contacts: among counted pixels the truth shadows (truth < 0.5) from an occluder within
     // the contact band along the ray to the light's centre (MetricLayer::occluderDistance), the
@@ -26,7 +27,16 @@ struct ErrorMetrics {
     uint64_t nearContact = 0;
     uint64_t pixels = 0, pixelsOutsideEdges = 0, truthLit = 0, truthShadowed = 0;
     uint64_t pixelsBeyondBlur = 0, truthLitBeyondBlur = 0, truthShadowedBeyondBlur = 0;
+    // The numerators of the fractions above, in pixels.
+    uint64_t misclassifiedPixels = 0, misclassifiedOutsideEdgesPixels = 0, acnePixels = 0,
+             leakPixels = 0, acneBeyondBlurPixels = 0, leakBeyondBlurPixels = 0,
+             leakNearContactPixels = 0;
 };
+
+// Fewer fully lit or fully shadowed pixels away from edges than this and acne or leak rest on too
+// few pixels to rank techniques by (one pixel would move them by more than 0.2%): the report and
+// metrics.json say so.
+inline constexpr uint64_t kFewJudgedPixels = 500;
 
 // The blur band's radius never falls below the fixed edge band nor exceeds 8 pixels (a blur
 // wider than that on the screen is a soft shadow the truth has too, or a scene seen at grazing

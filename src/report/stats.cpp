@@ -43,6 +43,10 @@ nlohmann::json sceneEditsJson(const SceneEdits& e) {
         j["fov_degrees"] = *e.fovDegrees;
     for (const AddedLight& added : e.addedLights)
         j["add_light"].push_back(added.text);
+    if (e.view)
+        j["view"] = viewChoiceName(*e.view);
+    if (e.ground)
+        j["ground"] = true;
     return j;
 }
 

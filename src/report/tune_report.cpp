@@ -34,6 +34,7 @@ nlohmann::json candidateJson(const TuneCandidate& c) {
             {"misclassified_outside_edges", m.misclassifiedOutsideEdges},
             {"rmse", m.rmse},
             {"pixels", m.pixels},
+            {"counts", metricCountsJson(m)},
             {"gpu_ms", c.gpuMs},
             {"defaults", c.isDefault},
             {"front", c.onFront}};

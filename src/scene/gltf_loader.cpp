@@ -397,13 +397,23 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
                              ? "the default scene has no triangles, only points or lines: "
                                "nothing in it would cast or receive a shadow"
                              : "the default scene has no triangles");
-    // Stand-ins that suit interiors as well as objects (scene/interior.h has the rule).
-    if (scene.lights.empty()) {
-        scene.lights.push_back(defaultLightFor(scene));
-        scene.defaultLight = true;
+    // Stand-ins that suit interiors as well as objects (scene/interior.h has the rules).
+    if (scene.lights.empty() || scene.cameras.empty()) {
+        const Bounds subject = subjectBounds(scene);
+        const ViewMeasure measure = measureView(scene, subject);
+        if (scene.cameras.empty()) {
+            Camera camera = measure.interior() ? interiorCamera(scene, measure, subject)
+                                               : exteriorCamera(scene, subject);
+            if (!measure.interior())
+                camera.name = "auto (exterior)";
+            scene.cameras.push_back(std::move(camera));
+        }
+        if (scene.lights.empty()) {
+            scene.lights.push_back(
+                defaultLightFor(scene, scene.cameras.front(), measure.interior()));
+            scene.defaultLight = true;
+        }
     }
-    if (scene.cameras.empty() && isInterior(scene))
-        scene.cameras.push_back(interiorCamera(scene));
     return scene;
 }
 

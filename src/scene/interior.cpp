@@ -1,97 +1,175 @@
 #include "scene/interior.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+
+#include <glm/gtc/constants.hpp>
 
 namespace penumbra {
 namespace {
 
 constexpr float kInteriorFovDegrees = 70.0f;
+constexpr int kGrid = 5;                       // room candidates per horizontal axis
+constexpr std::array kHeights = {0.5f, 0.25f}; // of the subject's height
+constexpr int kAzimuths = 8;                   // horizontal rays per candidate
+constexpr int kMinFrontRays = 7;               // of kAzimuths
+constexpr float kMinOpenness = 0.05f;          // of the subject's width
+constexpr float kExteriorElevation = 15.0f;    // degrees
+constexpr float kSunFromLeft = 85.0f;          // degrees round from the camera's back
+constexpr float kSunElevation = 45.0f;         // degrees
+constexpr float kDefaultSunIntensity = 2.0f;
 
-glm::vec3 centreOf(const Scene& scene) {
-    return scene.bounds().center();
+glm::vec3 horizontal(int k) {
+    const float a = 2.0f * glm::pi<float>() * static_cast<float>(k) / kAzimuths;
+    return {std::cos(a), 0.0f, std::sin(a)};
 }
 
 } // namespace
 
-Light defaultSun() {
-    return {.name = "default sun",
-            .type = LightType::Directional,
-            .direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f)),
-            .intensity = 2.0f};
+bool ViewMeasure::interior() const {
+    return room && room->openness >= kMinOpenness * subjectWidth && exteriorFront < 0.5f;
 }
 
-std::optional<RayHit> firstHit(const Scene& scene, const glm::vec3& origin, const glm::vec3& dir) {
-    std::optional<RayHit> best;
-    for (size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
-        const Vertex& a = scene.vertices[scene.indices[t]];
-        const glm::vec3 e1 = scene.vertices[scene.indices[t + 1]].position - a.position;
-        const glm::vec3 e2 = scene.vertices[scene.indices[t + 2]].position - a.position;
-        // Moller-Trumbore.
-        const glm::vec3 p = glm::cross(dir, e2);
-        const float det = glm::dot(e1, p);
-        if (std::abs(det) < 1e-20f)
-            continue;
-        const glm::vec3 s = origin - a.position;
-        // Edges inclusive (with round-off): a ray through the diagonal of a quad hits it.
-        constexpr float kEdge = 1e-5f;
-        const float u = glm::dot(s, p) / det;
-        if (u < -kEdge || u > 1.0f + kEdge)
-            continue;
-        const glm::vec3 q = glm::cross(s, e1);
-        const float v = glm::dot(dir, q) / det;
-        if (v < -kEdge || u + v > 1.0f + kEdge)
-            continue;
-        const float distance = glm::dot(e2, q) / det;
-        if (distance <= 0.0f || (best && distance >= best->distance))
-            continue;
-        // Counter-clockwise is the front (glTF): the ray meets the front when it runs against
-        // the normal n = cross(e1, e2), and det = dot(e1, cross(dir, e2)) = -dot(dir, n). By
-        // winding only, even for double-sided materials: exporters mark closed models
-        // double-sided as often as not.
-        best = RayHit{.distance = distance, .front = det > 0.0f};
+ViewMeasure measureView(const Scene& scene, const Bounds& subject) {
+    ViewMeasure m{.subjectWidth = std::max(subject.extent().x, subject.extent().z)};
+    if (scene.triangleCount() == 0 || subject.empty())
+        return m;
+    // Room candidates: kAzimuths horizontal rays and one down from each.
+    std::vector<glm::vec3> candidates;
+    for (float h : kHeights)
+        for (int i = 0; i < kGrid; ++i)
+            for (int k = 0; k < kGrid; ++k) {
+                const glm::vec3 f((static_cast<float>(i) + 0.5f) / kGrid, h,
+                                  (static_cast<float>(k) + 0.5f) / kGrid);
+                candidates.push_back(subject.min + f * subject.extent());
+            }
+    std::vector<Ray> rays;
+    for (const glm::vec3& p : candidates) {
+        for (int a = 0; a < kAzimuths; ++a)
+            rays.push_back({.origin = p, .direction = horizontal(a)});
+        rays.push_back({.origin = p, .direction = glm::vec3(0, -1, 0)});
     }
-    return best;
+    // Exterior rays: from 8 sides towards the subject's lower half.
+    const glm::vec3 centre = subject.center();
+    const float reach = 1.5f * std::max(subject.radius(), 1e-6f);
+    const size_t exteriorStart = rays.size();
+    for (int a = 0; a < kAzimuths; ++a)
+        for (float h : {0.2f, 0.5f}) {
+            const glm::vec3 aim(centre.x, subject.min.y + h * subject.extent().y, centre.z);
+            const float e = glm::radians(kExteriorElevation);
+            const glm::vec3 from =
+                aim + reach * (std::cos(e) * horizontal(a) + std::sin(e) * glm::vec3(0, 1, 0));
+            rays.push_back({.origin = from, .direction = glm::normalize(aim - from)});
+        }
+    const std::vector<std::optional<RayHit>> hits = firstHits(scene, rays);
+
+    for (size_t c = 0; c < candidates.size(); ++c) {
+        const size_t first = c * (kAzimuths + 1);
+        const auto& down = hits[first + kAzimuths];
+        if (!down || !down->front)
+            continue;
+        int fronts = 0, longest = 0;
+        float longestDistance = -1.0f;
+        std::vector<float> free;
+        for (int a = 0; a < kAzimuths; ++a) {
+            const auto& hit = hits[first + static_cast<size_t>(a)];
+            if (!hit)
+                continue;
+            fronts += hit->front ? 1 : 0;
+            free.push_back(hit->distance);
+            if (hit->distance > longestDistance)
+                longest = a, longestDistance = hit->distance;
+        }
+        if (fronts < kMinFrontRays)
+            continue;
+        // The clearance to the nearest wall; of equals, the one nearest the centre.
+        const float openness = *std::min_element(free.begin(), free.end());
+        const float tie = 1e-4f * m.subjectWidth;
+        const auto nearer = [&](const glm::vec3& a, const glm::vec3& b) {
+            return glm::length(a - centre) < glm::length(b - centre) - tie;
+        };
+        if (!m.room || openness > m.room->openness + tie ||
+            (openness > m.room->openness - tie && nearer(candidates[c], m.room->position)))
+            m.room = RoomPoint{
+                .position = candidates[c], .along = horizontal(longest), .openness = openness};
+    }
+    int met = 0, fronts = 0;
+    for (size_t r = exteriorStart; r < rays.size(); ++r)
+        if (hits[r]) {
+            ++met;
+            fronts += hits[r]->front ? 1 : 0;
+        }
+    m.exteriorFront = met ? static_cast<float>(fronts) / static_cast<float>(met) : 1.0f;
+    return m;
 }
 
 bool isInterior(const Scene& scene) {
-    if (scene.triangleCount() == 0)
-        return false;
-    const glm::vec3 centre = centreOf(scene);
-    for (const glm::vec3 dir : {glm::vec3(0, -1, 0), glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0),
-                                glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)}) {
-        const auto hit = firstHit(scene, centre, dir);
-        if (!hit || !hit->front)
-            return false;
-    }
-    return true;
+    return measureView(scene, subjectBounds(scene)).interior();
 }
 
-Camera interiorCamera(const Scene& scene) {
-    const Bounds b = scene.bounds();
-    const glm::vec3 centre = b.center();
-    const glm::vec3 extent = b.extent();
-    const glm::vec3 along = extent.x >= extent.z ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, -1);
-    const float size = std::max(glm::length(extent), 1e-3f);
+Camera interiorCamera(const Scene& scene, const ViewMeasure& measure, const Bounds& subject) {
+    const glm::vec3 extent = subject.extent();
+    glm::vec3 position = subject.center();
+    glm::vec3 along = extent.x >= extent.z ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, -1);
+    if (measure.room) {
+        position = measure.room->position;
+        along = measure.room->along;
+    }
+    const Bounds all = scene.bounds();
+    const float size = std::max(glm::length(all.extent()), 1e-3f);
     return {.name = "auto (interior)",
-            .position = centre,
-            .target = centre + along * (0.25f * size),
+            .position = position,
+            .target = position + along * (0.25f * size),
             .yfov = glm::radians(kInteriorFovDegrees),
             .znear = size * 1e-4f,
             .zfar = size * 1.5f};
 }
 
-Light defaultLightFor(const Scene& scene) {
-    const Light sun = defaultSun();
-    if (!isInterior(scene))
+Camera interiorCamera(const Scene& scene) {
+    const Bounds subject = subjectBounds(scene);
+    return interiorCamera(scene, measureView(scene, subject), subject);
+}
+
+Camera automaticCamera(const Scene& scene, ViewChoice choice) {
+    const Bounds subject = subjectBounds(scene);
+    if (choice != ViewChoice::Exterior) {
+        const ViewMeasure m = measureView(scene, subject);
+        if (choice == ViewChoice::Interior || m.interior())
+            return interiorCamera(scene, m, subject);
+    }
+    Camera c = exteriorCamera(scene, subject);
+    c.name = "auto (exterior)";
+    return c;
+}
+
+Light defaultSun(const Camera& camera) {
+    glm::vec3 forward = camera.target - camera.position;
+    forward.y = 0.0f;
+    forward = glm::length(forward) > 1e-6f ? glm::normalize(forward) : glm::vec3(0, 0, -1);
+    const glm::vec3 right = glm::cross(forward, glm::vec3(0, 1, 0));
+    const float round = glm::radians(kSunFromLeft), up = glm::radians(kSunElevation);
+    // Towards the light: behind-left of the view axis, turned `round` from straight behind.
+    const glm::vec3 towards =
+        std::cos(up) * (-std::cos(round) * forward - std::sin(round) * right) +
+        std::sin(up) * glm::vec3(0, 1, 0);
+    return {.name = "default sun",
+            .type = LightType::Directional,
+            .direction = -glm::normalize(towards),
+            .intensity = kDefaultSunIntensity};
+}
+
+Light defaultLightFor(const Scene& scene, const Camera& camera, bool interior) {
+    const Light sun = defaultSun(camera);
+    if (!interior)
         return sun;
-    const glm::vec3 centre = centreOf(scene);
-    if (!firstHit(scene, centre, -sun.direction))
-        return sun; // the sun reaches the middle of the room (an open roof)
+    const glm::vec3 from = camera.position;
+    if (!firstHit(scene, from, -sun.direction))
+        return sun; // the sun reaches the room (an open roof)
     const Bounds b = scene.bounds();
-    const auto ceiling = firstHit(scene, centre, glm::vec3(0, 1, 0));
-    const float up = ceiling ? ceiling->distance : b.max.y - centre.y;
-    const glm::vec3 position = centre + glm::vec3(0.0f, 0.5f * up, 0.0f);
+    const auto ceiling = firstHit(scene, from, glm::vec3(0, 1, 0));
+    const float up = ceiling ? ceiling->distance : b.max.y - from.y;
+    const glm::vec3 position = from + glm::vec3(0.0f, 0.5f * up, 0.0f);
     const auto floor = firstHit(scene, position, glm::vec3(0, -1, 0));
     const float height = floor ? floor->distance : position.y - b.min.y;
     // A point light's irradiance at distance d is I / d^2: the sun's irradiance on that floor.

@@ -1,35 +1,54 @@
 #pragma once
-// Defaults for a glTF scene that brings no lights or no camera, chosen so that interiors are lit
-// and seen from inside (issue 16). The rule (README, "Scenes without lights or cameras"):
-// - A scene is an interior when rays from its bounds' centre along -y, +x, -x, +z and -z all
-//   meet the front of a surface (the inside of walls and the floor). The sky above may be open;
-//   from inside a closed model the rays meet back faces, so a lone model is not an interior.
-// - An interior's automatic camera stands at that centre and looks along the bounds' longer
-//   horizontal axis, 70 degrees of vertical field of view.
-// - Without lights, an interior whose centre the default sun cannot reach gets a point light
-//   instead, above the centre half way to the ceiling (or the bounds' top), as bright on the
-//   floor below it as the default sun would be.
+// Exterior or interior, and the default light (docs/scenes.md, "Scenes without lights or
+// cameras"). Measured with rays, once per load:
+// - A room point is a point of the subject (a 5 x 5 grid, at a quarter and half its height) from
+//   which the ray straight down and at least 7 of 8 horizontal rays meet the front of a surface
+//   (a floor, the inside of walls; one doorway may let a ray out, the sky above may be open).
+//   Inside a closed model the rays meet back faces: a solid box has no room points.
+// - Exterior rays look at the subject from 8 sides, 15 degrees above the horizon.
+// - A scene is an interior when it has a room point wider than a twentieth of the subject and
+//   fewer than half the exterior rays that meet a surface meet its front: walls modelled to be
+//   seen from inside. A building with its rooms modelled has fronts outside too: exterior.
+// - An interior's automatic camera stands at the most open room point (the largest clearance to
+//   the nearest wall; of equals, the nearest to the subject's centre) and looks along its longest
+//   horizontal free line, 70 degrees of vertical view.
+// - The default light is a sun from the camera's front left, 45 degrees up, so that cast
+//   shadows fall to the right and away, in view. An interior whose camera the sun cannot reach
+//   gets a point light instead, half way to the ceiling above the camera (or the bounds' top),
+//   as bright on the floor below it as the sun would be.
 #include "penumbra/scene.h"
+#include "scene/framing.h"
 
 #include <optional>
 
 namespace penumbra {
 
-// The loader's stand-in when an asset has no lights: a sun from above and slightly behind.
-Light defaultSun();
-
-// The distance to the first triangle along a ray and whether it is met from its front (by its
-// winding); nullopt for a miss. Brute force: for the few rays of the rules above, once per load.
-struct RayHit {
-    float distance = 0.0f;
-    bool front = false;
+struct RoomPoint {
+    glm::vec3 position{0.0f};
+    glm::vec3 along{1.0f, 0.0f, 0.0f}; // the longest free horizontal line from it
+    float openness = 0.0f;             // the shortest horizontal free distance
 };
-std::optional<RayHit> firstHit(const Scene& scene, const glm::vec3& origin, const glm::vec3& dir);
+
+struct ViewMeasure {
+    float exteriorFront = 1.0f;    // of the exterior rays that met a surface, the share of fronts
+    std::optional<RoomPoint> room; // the most open room point
+    float subjectWidth = 0.0f;
+    bool interior() const;
+};
+ViewMeasure measureView(const Scene& scene, const Bounds& subject);
 
 bool isInterior(const Scene& scene);
+// Stands at `measure`'s room point, or lacking one at the subject's centre looking along its
+// longer horizontal side.
+Camera interiorCamera(const Scene& scene, const ViewMeasure& measure, const Bounds& subject);
 Camera interiorCamera(const Scene& scene);
-// The default light for a scene without lights: defaultSun(), or for an interior it cannot
-// light, the point light of the rule above.
-Light defaultLightFor(const Scene& scene);
+// Exterior or interior as `choice` says, or as measured for ViewChoice::Auto; named
+// "auto (exterior)" or "auto (interior)".
+Camera automaticCamera(const Scene& scene, ViewChoice choice);
+
+// The stand-in sun for a scene without lights, placed for a camera as above.
+Light defaultSun(const Camera& camera = Camera{});
+// defaultSun(camera), or for an interior camera the sun cannot reach, the point light above.
+Light defaultLightFor(const Scene& scene, const Camera& camera, bool interior);
 
 } // namespace penumbra

@@ -1,6 +1,7 @@
 #include "penumbra/scene.h"
 #include "penumbra/error.h"
 #include "scene/builtin_scenes.h"
+#include "scene/framing.h"
 #include "scene/gltf_loader.h"
 
 #include <fmt/format.h>
@@ -67,17 +68,9 @@ Camera Scene::camera(std::string_view cameraName) const {
     }
     if (!cameras.empty())
         return cameras.front();
-    // Automatic framing: look at the bounds' centre from above and in front, far enough for
-    // the bounding sphere to fit the vertical field of view.
-    const Bounds b = bounds();
-    Camera c{.name = "auto"};
-    const float radius = std::max(0.5f * glm::length(b.extent()), 1e-3f);
-    const float distance = 1.1f * radius / std::sin(0.5f * c.yfov);
-    c.target = b.center();
-    c.position = c.target + distance * glm::normalize(glm::vec3(0.0f, 0.6f, 1.0f));
-    c.znear = std::max(distance - radius, distance * 1e-3f) * 0.5f;
-    c.zfar = (distance + radius) * 1.5f;
-    return c;
+    // Automatic framing of the subject from outside (scene/framing.h); the glTF loader has
+    // already added its measured camera to scenes without one.
+    return exteriorCamera(*this, subjectBounds(*this));
 }
 
 std::vector<std::string_view> builtinSceneNames() {

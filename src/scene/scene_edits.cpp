@@ -2,6 +2,9 @@
 // that render, the ground truth, the report and stats.json all see the same lights and camera.
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
+#include "scene/framing.h"
+#include "scene/interior.h"
+#include "scene/mesh_builder.h"
 
 #include <fmt/format.h>
 
@@ -12,6 +15,11 @@
 
 namespace penumbra {
 namespace {
+
+constexpr std::pair<ViewChoice, std::string_view> kViewChoiceNames[] = {
+    {ViewChoice::Auto, "auto"},
+    {ViewChoice::Exterior, "exterior"},
+    {ViewChoice::Interior, "interior"}};
 
 std::string lightNames(const Scene& scene) {
     std::string names;
@@ -80,10 +88,42 @@ NamedVector parseNamedVector3(std::string_view text, std::string_view option) {
 
 bool SceneEdits::empty() const {
     return !sunDirection && lightPositions.empty() && lightDirections.empty() && !cameraPosition &&
-           !lookAt && !fovDegrees && addedLights.empty();
+           !lookAt && !fovDegrees && addedLights.empty() && !view && !ground;
+}
+
+ViewChoice parseViewChoice(std::string_view text) {
+    for (const auto& [choice, name] : kViewChoiceNames)
+        if (name == text)
+            return choice;
+    throw InputError("--view", fmt::format("'{}' is not auto, exterior or interior", text));
+}
+
+std::string_view viewChoiceName(ViewChoice choice) {
+    for (const auto& [c, name] : kViewChoiceNames)
+        if (c == choice)
+            return name;
+    return "auto";
+}
+
+void addGround(Scene& scene) {
+    const Bounds s = subjectBounds(scene);
+    const glm::vec3 c = s.center();
+    const float half = std::max(1.5f * std::max(s.extent().x, s.extent().z), 1e-3f);
+    const float y = s.min.y;
+    MeshBuilder mb(scene);
+    mb.quad({c.x - half, y, c.z + half}, {c.x + half, y, c.z + half}, {c.x + half, y, c.z - half},
+            {c.x - half, y, c.z - half}, mb.material("ground (--ground)", glm::vec3(0.6f)));
 }
 
 void applySceneEdits(Scene& scene, const SceneEdits& e) {
+    if (e.view) {
+        scene.cameras.insert(scene.cameras.begin(), automaticCamera(scene, *e.view));
+        if (scene.defaultLight) // the stand-in light follows the view it was placed for
+            scene.lights.front() = defaultLightFor(scene, scene.cameras.front(),
+                                                   scene.cameras.front().name == "auto (interior)");
+    }
+    if (e.ground) // after the framing: the view is of the subject, not of the ground
+        addGround(scene);
     if (e.sunDirection) {
         const glm::vec3 direction = unitDirection(*e.sunDirection, "--sun-dir");
         if (scene.defaultLight)

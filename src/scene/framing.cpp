@@ -1,0 +1,149 @@
+#include "scene/framing.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+constexpr float kLowPercentile = 0.05f, kHighPercentile = 0.95f;
+constexpr float kSubjectMargin = 0.25f; // of the core's diagonal
+constexpr float kAzimuthDegrees = 30.0f;
+constexpr float kLowestElevation = 20.0f, kElevationRange = 30.0f;
+constexpr float kFrameMargin = 1.05f; // the subject's extent over what the view must hold
+// The image shape the framing assumes: the default 1280 x 720. Narrower images cut the sides.
+constexpr float kAssumedAspect = 16.0f / 9.0f;
+
+float percentile(std::vector<float>& values, float fraction) {
+    const size_t k = static_cast<size_t>(fraction * static_cast<float>(values.size() - 1) + 0.5f);
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+    return values[k];
+}
+
+bool overlaps(const Bounds& a, const Bounds& b) {
+    return glm::all(glm::lessThanEqual(a.min, b.max)) && glm::all(glm::lessThanEqual(b.min, a.max));
+}
+
+} // namespace
+
+Bounds subjectBounds(const Scene& scene) {
+    const Bounds all = scene.bounds();
+    if (all.empty())
+        return all;
+    Bounds core;
+    for (int axis = 0; axis < 3; ++axis) {
+        std::vector<float> values; // the triangles' corners
+        values.reserve(scene.indices.size());
+        for (uint32_t i : scene.indices)
+            values.push_back(scene.vertices[i].position[axis]);
+        core.min[axis] = percentile(values, kLowPercentile);
+        core.max[axis] = percentile(values, kHighPercentile);
+    }
+    const float margin = std::max(kSubjectMargin * glm::length(core.extent()), 1e-6f);
+    const Bounds region{.min = core.min - margin, .max = core.max + margin};
+    const float huge = glm::length(region.extent());
+    Bounds subject;
+    for (size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
+        Bounds triangle;
+        for (size_t k = 0; k < 3; ++k)
+            triangle.grow(scene.vertices[scene.indices[t + k]].position);
+        if (!overlaps(triangle, region))
+            continue;
+        if (glm::length(triangle.extent()) > huge) { // a ground or sky plane: the part near
+            triangle.min = glm::max(triangle.min, region.min);
+            triangle.max = glm::min(triangle.max, region.max);
+        }
+        subject.grow(triangle.min);
+        subject.grow(triangle.max);
+    }
+    return subject.empty() ? all : subject;
+}
+
+Camera exteriorCamera(const Scene& scene, const Bounds& subject) {
+    const glm::vec3 extent = glm::max(subject.extent(), glm::vec3(1e-6f));
+    const float width = std::max(extent.x, extent.z);
+    // Compact subjects from low down, flat ones (a level) from higher up to see across them.
+    const float flatness = std::clamp(1.0f - extent.y / width, 0.0f, 1.0f);
+    const float elevation = glm::radians(kLowestElevation + kElevationRange * flatness);
+    // A three-quarter view of compact subjects; flat ones (a level) from the front, which fills
+    // the frame with their ground.
+    const float azimuth = glm::radians(kAzimuthDegrees * (1.0f - flatness));
+    const glm::vec3 toEye(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
+                          std::cos(azimuth) * std::cos(elevation));
+    Camera c{.name = "auto"};
+    const glm::vec3 forward = -toEye;
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
+    const glm::vec3 up = glm::cross(right, forward);
+    const float tanHalf = std::tan(0.5f * c.yfov);
+    // A corner r (from the centre) is in view at distance d when |r.right| and |r.up| are at
+    // most tanHalf x its depth, d - r.toEye: d >= |r.axis| / tanHalf + r.toEye.
+    // The triangles' corners, clamped to the subject, must be in view: tighter than its box.
+    const glm::vec3 centre = subject.center();
+    float distance = 0.0f, radius = 0.0f;
+    for (uint32_t i : scene.indices) {
+        const glm::vec3 r =
+            kFrameMargin *
+            (glm::clamp(scene.vertices[i].position, subject.min, subject.max) - centre);
+        const float side =
+            std::max(std::abs(glm::dot(r, right)) / kAssumedAspect, std::abs(glm::dot(r, up)));
+        distance = std::max(distance, side / tanHalf + glm::dot(r, toEye));
+        radius = std::max(radius, glm::length(r));
+    }
+    distance = std::max(distance, radius * 1.05f);
+    c.target = centre;
+    c.position = centre + distance * toEye;
+    c.znear = std::max(distance - radius, distance * 1e-3f) * 0.5f;
+    // Far enough for everything, the sky planes the framing ignored included.
+    const Bounds all = scene.bounds();
+    float farthest = distance + radius;
+    for (int corner = 0; corner < 8; ++corner)
+        farthest = std::max(farthest, glm::length(glm::vec3(corner & 1 ? all.max.x : all.min.x,
+                                                            corner & 2 ? all.max.y : all.min.y,
+                                                            corner & 4 ? all.max.z : all.min.z) -
+                                                  c.position));
+    c.zfar = farthest * 1.05f;
+    return c;
+}
+
+std::vector<std::optional<RayHit>> firstHits(const Scene& scene, std::span<const Ray> rays) {
+    std::vector<std::optional<RayHit>> best(rays.size());
+    for (size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
+        const glm::vec3 a = scene.vertices[scene.indices[t]].position;
+        const glm::vec3 e1 = scene.vertices[scene.indices[t + 1]].position - a;
+        const glm::vec3 e2 = scene.vertices[scene.indices[t + 2]].position - a;
+        for (size_t r = 0; r < rays.size(); ++r) {
+            const glm::vec3& dir = rays[r].direction;
+            // Moller-Trumbore.
+            const glm::vec3 p = glm::cross(dir, e2);
+            const float det = glm::dot(e1, p);
+            if (std::abs(det) < 1e-20f)
+                continue;
+            const glm::vec3 s = rays[r].origin - a;
+            // Edges inclusive (with round-off): a ray through the diagonal of a quad hits it.
+            constexpr float kEdge = 1e-5f;
+            const float u = glm::dot(s, p) / det;
+            if (u < -kEdge || u > 1.0f + kEdge)
+                continue;
+            const glm::vec3 q = glm::cross(s, e1);
+            const float v = glm::dot(dir, q) / det;
+            if (v < -kEdge || u + v > 1.0f + kEdge)
+                continue;
+            const float distance = glm::dot(e2, q) / det;
+            if (distance <= 0.0f || (best[r] && distance >= best[r]->distance))
+                continue;
+            // The front is counter-clockwise (glTF): the ray meets it when it runs against
+            // n = cross(e1, e2), and det = dot(e1, cross(dir, e2)) = -dot(dir, n).
+            best[r] = RayHit{.distance = distance,
+                             .front = det > 0.0f,
+                             .triangle = static_cast<uint32_t>(t / 3)};
+        }
+    }
+    return best;
+}
+
+std::optional<RayHit> firstHit(const Scene& scene, const glm::vec3& origin, const glm::vec3& dir) {
+    const Ray ray{.origin = origin, .direction = dir};
+    return firstHits(scene, std::span(&ray, 1)).front();
+}
+
+} // namespace penumbra

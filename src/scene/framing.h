@@ -1,0 +1,36 @@
+#pragma once
+// What the automatic camera of a scene without cameras looks at, and from where (docs/scenes.md,
+// "Scenes without lights or cameras"):
+// - The subject is the geometry near the bulk of the scene: per axis, the 5th to 95th percentile
+//   of the triangles' corners, grown by a quarter of its diagonal (the region). Triangles
+//   wholly outside the region (sky planes, far outliers) do not count; one longer than the
+//   region's diagonal that crosses it (a huge ground) counts only inside it.
+// - An exterior view looks at the subject's centre from the front-right (30 degrees round from
+//   +z), 20 degrees above the horizon for a compact subject and up to 50 degrees for a flat one
+//   (a level), as near as keeps the subject's box inside a 16:9 view.
+#include "penumbra/scene.h"
+
+#include <optional>
+#include <span>
+
+namespace penumbra {
+
+Bounds subjectBounds(const Scene& scene);
+Camera exteriorCamera(const Scene& scene, const Bounds& subject);
+
+// The nearest triangle along a ray and whether the ray meets its front (counter-clockwise, by
+// winding only: exporters mark closed models double-sided as often as not); nullopt for a miss.
+struct RayHit {
+    float distance = 0.0f;
+    bool front = false;
+    uint32_t triangle = 0;
+};
+struct Ray {
+    glm::vec3 origin{0.0f}, direction{0.0f, -1.0f, 0.0f};
+};
+// Brute force over every triangle for a batch of rays: the few hundred rays the framing rules
+// cast once per load.
+std::vector<std::optional<RayHit>> firstHits(const Scene& scene, std::span<const Ray> rays);
+std::optional<RayHit> firstHit(const Scene& scene, const glm::vec3& origin, const glm::vec3& dir);
+
+} // namespace penumbra

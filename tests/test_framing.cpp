@@ -1,0 +1,162 @@
+// The automatic view of scenes without cameras (scene/framing.h, scene/interior.h): the subject
+// without sky planes or outliers, exterior or interior by measurement, --view and --ground, and
+// a default light whose cast shadow is in view. On generated scenes of each kind.
+#include "generated_scenes.h"
+#include "gltf_builder.h"
+#include "penumbra/error.h"
+#include "scene/gltf_loader.h"
+#include "scene/interior.h"
+#include "scratch_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+float elevationDegrees(const Camera& c) {
+    const glm::vec3 d = glm::normalize(c.position - c.target);
+    return glm::degrees(std::asin(d.y));
+}
+
+bool inside(const Bounds& b, const glm::vec3& p) {
+    return glm::all(glm::lessThanEqual(b.min, p)) && glm::all(glm::lessThanEqual(p, b.max));
+}
+
+} // namespace
+
+TEST(Framing, SubjectBoundsIgnoreSkyPlanesAndOutliers) {
+    const Bounds s = subjectBounds(levelUnderSky());
+    EXPECT_LT(s.max.y, 10.0f) << "the sky backdrop does not count";
+    EXPECT_GT(s.min.z, -40.0f) << "the sky backdrop does not count";
+    EXPECT_LT(s.max.x, 60.0f) << "the stray triangle at 900 does not count";
+    // The blocks span x -16.5..16.5 and z -11.5..11.5; the ground counts only near them.
+    EXPECT_LE(s.min.x, -16.5f);
+    EXPECT_GE(s.max.x, 16.5f);
+    EXPECT_LE(s.min.z, -11.5f);
+    EXPECT_GT(s.min.x, -30.0f) << "the ground is cut to the region around the blocks";
+    EXPECT_EQ(s.min.y, 0.0f);
+    // A lone model's subject is the model itself.
+    const Scene lone = loneObject();
+    const Bounds l = subjectBounds(lone), all = lone.bounds();
+    EXPECT_EQ(l.min, all.min);
+    EXPECT_EQ(l.max, all.max);
+}
+
+TEST(Framing, RoomsAndCourtyardsOpenToTheSkyAreInteriorsModelsAndBuildingsAreNot) {
+    EXPECT_TRUE(isInterior(room(true)));
+    EXPECT_TRUE(isInterior(room(false))) << "an open sky above is still a room";
+    EXPECT_FALSE(isInterior(solidBox())) << "from inside a closed model the rays meet back faces";
+    EXPECT_FALSE(isInterior(buildingWithRooms())) << "its rooms are modelled, its facade faces out";
+    EXPECT_FALSE(isInterior(courtyard())) << "the wings' outer walls face out";
+    EXPECT_FALSE(isInterior(levelUnderSky()));
+    EXPECT_FALSE(isInterior(loneObject()));
+    Scene yard = room(false);
+    yard.indices.erase(yard.indices.begin() + 6, yard.indices.begin() + 12); // no back wall
+    EXPECT_FALSE(isInterior(yard)) << "three walls are not a room";
+
+    const ViewMeasure m = measureView(room(true), subjectBounds(room(true)));
+    ASSERT_TRUE(m.room.has_value());
+    EXPECT_EQ(m.exteriorFront, 0.0f);
+    EXPECT_EQ(measureView(buildingWithRooms(), subjectBounds(buildingWithRooms())).exteriorFront,
+              1.0f);
+}
+
+TEST(Framing, ARoomIsSeenFromItsMostOpenPointAndLitUnderItsCeiling) {
+    const Scene closed = room(true);
+    const Camera c = interiorCamera(closed);
+    EXPECT_EQ(c.position, glm::vec3(0, 2, 0)) << "the centre is the most open point";
+    EXPECT_NEAR(std::abs(glm::normalize(c.target - c.position).x), 1.0f, 1e-6f)
+        << "along the longer horizontal side";
+    EXPECT_LT(c.znear, 0.01f);
+
+    const Light l = defaultLightFor(closed, c, true);
+    ASSERT_EQ(l.type, LightType::Point);
+    EXPECT_NEAR(l.position.x, 0.0f, 1e-4f);
+    EXPECT_NEAR(l.position.z, 0.0f, 1e-4f);
+    EXPECT_NEAR(l.position.y, 3.0f, 1e-4f) << "half way from the camera (y 2) to the ceiling";
+    // The floor under it receives the default sun's irradiance: I / d^2 with d = 3.
+    EXPECT_NEAR(l.intensity / 9.0f, defaultSun().intensity, 1e-3f);
+
+    const Light open = defaultLightFor(room(false), interiorCamera(room(false)), true);
+    EXPECT_EQ(open.type, LightType::Directional) << "without a roof the sun reaches the room";
+}
+
+TEST(Framing, ExteriorViewsFillTheFrameAndShowACastShadow) {
+    struct Case {
+        Scene scene;
+        float minSubject, maxElevation, minShadow;
+    };
+    Scene lone = loneObject();
+    const Bounds loneSubject = subjectBounds(lone);
+    const Camera loneCamera = automaticCamera(lone, ViewChoice::Auto);
+    addGround(lone); // --ground, after the framing as applySceneEdits does
+    // Nothing catches the building's and the box's shadows but themselves.
+    const Case cases[] = {{levelUnderSky(), 0.35f, 50.5f, 0.01f},
+                          {courtyard(), 0.3f, 50.5f, 0.02f},
+                          {buildingWithRooms(), 0.4f, 50.5f, 0.0f},
+                          {solidBox(), 0.2f, 20.5f, 0.0f}};
+    for (const Case& k : cases) {
+        const Camera c = automaticCamera(k.scene, ViewChoice::Auto);
+        EXPECT_EQ(c.name, "auto (exterior)") << k.scene.name;
+        EXPECT_LE(elevationDegrees(c), k.maxElevation) << k.scene.name;
+        EXPECT_GE(elevationDegrees(c), 19.5f) << k.scene.name;
+        const ViewCensus v = viewCensus(k.scene, c, defaultSun(c), subjectBounds(k.scene));
+        EXPECT_GE(v.subject, k.minSubject) << k.scene.name;
+        EXPECT_GE(v.castShadow, k.minShadow) << k.scene.name;
+    }
+    EXPECT_NEAR(elevationDegrees(loneCamera), 20.0f + 30.0f * 0.0f, 0.5f)
+        << "a model taller than wide is seen from low down";
+    const ViewCensus v = viewCensus(lone, loneCamera, defaultSun(loneCamera), loneSubject);
+    EXPECT_GE(v.subject, 0.15f);
+    EXPECT_GE(v.castShadow, 0.004f) << "--ground catches the model's shadow";
+    const ViewCensus level = viewCensus(levelUnderSky(), automaticCamera(levelUnderSky(), {}),
+                                        defaultSun(), subjectBounds(levelUnderSky()));
+    EXPECT_GE(level.subject, 0.35f) << "framed without the sky backdrop";
+}
+
+TEST(Framing, ViewOverridesTheMeasurement) {
+    const Scene building = buildingWithRooms();
+    const Camera in = automaticCamera(building, ViewChoice::Interior);
+    EXPECT_EQ(in.name, "auto (interior)");
+    EXPECT_TRUE(inside(building.bounds(), in.position));
+    const Camera out = automaticCamera(room(true), ViewChoice::Exterior);
+    EXPECT_EQ(out.name, "auto (exterior)");
+    EXPECT_FALSE(inside(room(true).bounds(), out.position));
+
+    Scene s = room(true);
+    s.lights = {defaultLightFor(s, interiorCamera(s), true)};
+    s.defaultLight = true;
+    applySceneEdits(s, {.view = ViewChoice::Exterior, .ground = true});
+    EXPECT_EQ(s.cameras.front().name, "auto (exterior)");
+    EXPECT_EQ(s.lights.front().type, LightType::Directional) << "the default light follows";
+    EXPECT_EQ(s.materials.back().name, "ground (--ground)");
+    EXPECT_EQ(parseViewChoice("interior"), ViewChoice::Interior);
+    EXPECT_THROW(parseViewChoice("inside"), InputError);
+}
+
+TEST(Framing, AGltfRoomWithoutLightsOrCamerasIsLitAndSeenFromInside) {
+    GltfBuilder b;
+    // The closed room of room(true) without its table: floor, four walls and ceiling.
+    const float x = 10, y = 4, z = 6;
+    const int p = b.positions(
+        {-x, 0, z, x, 0, z, x, 0, -z, -x, 0, -z, -x, y, z, x, y, z, x, y, -z, -x, y, -z});
+    const std::vector<uint16_t> quads = {0, 1, 2, 3, /*floor*/ 3, 2, 6, 7, /*back*/
+                                         1, 0, 4, 5, /*front*/ 0, 3, 7, 4, /*left*/
+                                         2, 1, 5, 6, /*right*/ 7, 6, 5, 4 /*ceiling*/};
+    std::vector<uint16_t> tris;
+    for (size_t q = 0; q < quads.size(); q += 4)
+        tris.insert(tris.end(),
+                    {quads[q], quads[q + 1], quads[q + 2], quads[q], quads[q + 2], quads[q + 3]});
+    b.node({{"mesh", b.mesh(p, b.accessor(b.view(tris), 5123, tris.size(), "SCALAR"))}});
+    const Scene s = loadGltf(b.writeGltf(scratchDir("gltf", "interior") / "room.gltf"));
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_TRUE(s.defaultLight);
+    EXPECT_EQ(s.lights[0].type, LightType::Point);
+    ASSERT_EQ(s.cameras.size(), 1u);
+    EXPECT_EQ(s.camera("").name, "auto (interior)");
+    EXPECT_EQ(s.camera("").position, glm::vec3(0, 2, 0));
+}
