@@ -61,8 +61,8 @@ struct PyScene {
               std::map<std::string, Vec3> lightDir, std::optional<Vec3> cameraPos,
               std::optional<Vec3> lookAt, std::optional<float> fov,
               const std::vector<std::string>& addLight, std::optional<std::string> view,
-              bool ground) {
-        SceneEdits edits{.ground = ground};
+              bool ground, bool doubleSided) {
+        SceneEdits edits{.ground = ground, .doubleSided = doubleSided};
         if (view)
             edits.view = parseViewChoice(*view);
         for (const std::string& text : addLight)
@@ -323,11 +323,13 @@ PYBIND11_MODULE(penumbra, m) {
              py::arg("camera_pos") = py::none(), py::arg("look_at") = py::none(),
              py::arg("fov") = py::none(), py::arg("add_light") = std::vector<std::string>{},
              py::arg("view") = py::none(), py::arg("ground") = false,
+             py::arg("double_sided") = false,
              "The CLI's scene options, in place: sun_dir adds a sun (or replaces the default "
              "light), light_pos / light_dir move and aim lights by name, camera_pos and look_at "
              "(with fov) make an ad-hoc camera, add_light adds lights as --add-light does "
-             "('point:pos=0,3,0,radius=0.2'), view ('auto', 'exterior', 'interior') and ground "
-             "as --view and --ground do. All or nothing; InputError names the option.")
+             "('point:pos=0,3,0,radius=0.2'), view ('auto', 'exterior', 'interior'), ground and "
+             "double_sided as --view, --ground and --double-sided do. All or nothing; InputError "
+             "names the option.")
         .def_property_readonly("name", [](const PyScene& s) { return s.scene->name; })
         .def_property_readonly("triangles",
                                [](const PyScene& s) { return s.scene->triangleCount(); })

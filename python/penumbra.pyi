@@ -36,6 +36,7 @@ class Scene:
         add_light: Sequence[str] = (),
         view: Optional[str] = None,
         ground: bool = False,
+        double_sided: bool = False,
     ) -> None:
         """The CLI's scene options, in place (all or nothing); InputError names the option."""
     @property

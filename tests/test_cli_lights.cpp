@@ -101,3 +101,43 @@ TEST(CliLights, LightSizesNoLightTakesAreWarnedAbout) {
     EXPECT_NE(r.err.find("error: --add-light: 'spot:pos=0,3,0': it needs dir="), std::string::npos)
         << r.err;
 }
+
+TEST(CliLights, ViewGroundDoubleSidedAndOpenGeometryFromTheCommandLine) {
+    const fs::path asset = unlitAsset(outputScratch("view-asset"));
+    const fs::path out = outputScratch("view-render");
+    const auto render = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args = {
+            "render", asset.string(),      "-o", out.string(), "--width", "16",       "--height",
+            "16",     "--shadow-map-size", "64", "--frames",   "1",       "--format", "pfm"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return runCli(args);
+    };
+    ProcessResult r = render({"--technique", "second-depth"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // The ground quad is open: 2 of its 14 triangles (the box's 12 are closed).
+    EXPECT_NE(r.err.find("2 of 14 triangles lie on open edges and 0 on mis-wound ones; "
+                         "`second-depth`"),
+              std::string::npos)
+        << r.err;
+    std::string stats = slurp(out / "stats.json");
+    EXPECT_NE(stats.find("\"name\": \"auto (exterior)\""), std::string::npos);
+    EXPECT_NE(stats.find("\"exposure\": \"automatic\""), std::string::npos);
+
+    r = render({"--view", "interior", "--ground", "--double-sided"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("open edges"), std::string::npos) << "hard needs no closed surfaces";
+    stats = slurp(out / "stats.json");
+    EXPECT_NE(stats.find("\"name\": \"auto (interior)\""), std::string::npos);
+    EXPECT_NE(stats.find("\"view\": \"interior\""), std::string::npos);
+    EXPECT_NE(stats.find("\"ground\": true"), std::string::npos);
+    EXPECT_NE(stats.find("\"double_sided\": true"), std::string::npos);
+    EXPECT_NE(stats.find("\"triangles\": 16"), std::string::npos) << "the ground's two";
+
+    r = render({"--view", "inside"});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("error: --view: 'inside' is not auto, exterior or interior"),
+              std::string::npos)
+        << r.err;
+    r = render({"--view", "exterior", "--camera", "x"});
+    EXPECT_NE(r.exitCode, 0) << "--view and --camera exclude each other";
+}

@@ -6,6 +6,7 @@
 #include "penumbra/error.h"
 #include "scene/gltf_loader.h"
 #include "scene/interior.h"
+#include "scene/mesh_closure.h"
 #include "scratch_dir.h"
 
 #include <gtest/gtest.h>
@@ -159,4 +160,70 @@ TEST(Framing, AGltfRoomWithoutLightsOrCamerasIsLitAndSeenFromInside) {
     ASSERT_EQ(s.cameras.size(), 1u);
     EXPECT_EQ(s.camera("").name, "auto (interior)");
     EXPECT_EQ(s.camera("").position, glm::vec3(0, 2, 0));
+}
+
+TEST(Framing, ClosureCountsOpenAndMisWoundTriangles) {
+    EXPECT_TRUE(meshClosure(solidBox()).closed());
+    EXPECT_EQ(meshClosure(solidBox()).triangles, 12u);
+    Scene holed = solidBox();
+    holed.indices.erase(holed.indices.begin(), holed.indices.begin() + 6); // one face gone
+    const MeshClosure h = meshClosure(holed);
+    EXPECT_EQ(h.open, 4u) << "one triangle of each neighbouring face meets the hole";
+    EXPECT_EQ(h.misWound, 0u);
+    Scene flipped = solidBox();
+    std::swap(flipped.indices[1], flipped.indices[2]); // one face turned inside out
+    std::swap(flipped.indices[4], flipped.indices[5]);
+    const MeshClosure f = meshClosure(flipped);
+    EXPECT_EQ(f.open, 0u);
+    EXPECT_EQ(f.misWound, 6u) << "the face and a triangle of each neighbour";
+    EXPECT_EQ(meshClosure(courtyard()).open, 2u) << "the paved floor is an open quad";
+}
+
+TEST(Framing, AutomaticExposureBringsPhotometricLightsToTheDefaultSun) {
+    Scene s = solidBox();
+    const auto withLight = [&](Light l) {
+        s.lights = {l};
+        return automaticExposure(s);
+    };
+    EXPECT_EQ(withLight({.type = LightType::Directional, .intensity = 2.0f}), 0.0f);
+    EXPECT_EQ(withLight({.type = LightType::Directional, .intensity = 7.9f}), 0.0f)
+        << "within a factor 4: authored for display";
+    EXPECT_EQ(withLight({.type = LightType::Directional, .intensity = 0.6f}), 0.0f);
+    EXPECT_EQ(withLight({.type = LightType::Directional, .intensity = 9.0f}), -2.0f)
+        << "log2(2 / 9) = -2.17, to half a stop";
+    EXPECT_EQ(withLight({.type = LightType::Directional, .intensity = 100000.0f}), -15.5f);
+    EXPECT_EQ(withLight({.type = LightType::Directional, .intensity = 0.01f}), 7.5f);
+    // 4000 cd, 5 from the subject's centre (0, 2, 0): 160 lux, log2(2 / 160) = -6.32.
+    EXPECT_EQ(withLight({.type = LightType::Point, .position = {0, 2, 5}, .intensity = 4000.0f}),
+              -6.5f);
+    EXPECT_EQ(withLight({.type = LightType::Point,
+                         .position = {0, 2, 5},
+                         .color = glm::vec3(0.0f, 0.5f, 0.0f),
+                         .intensity = 4000.0f}),
+              -5.5f)
+        << "its brightest channel counts";
+}
+
+TEST(Framing, DoubleSidedMakesEveryMaterialDoubleSided) {
+    Scene s = room(true);
+    for (Material& m : s.materials)
+        m.doubleSided = false;
+    applySceneEdits(s, {.doubleSided = true});
+    for (const Material& m : s.materials)
+        EXPECT_TRUE(m.doubleSided) << m.name;
+}
+
+TEST(Framing, AnInsideOutBoxOnAWideGroundIsAMisWoundModelNotARoom) {
+    Scene s;
+    MeshBuilder mb(s);
+    const uint32_t m = mb.material("m", glm::vec3(0.5f));
+    mb.quad({-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}, m);
+    mb.box(boxAt({0, 1, 0}, glm::vec3(2.0f)), m);
+    for (size_t t = 6; t + 2 < s.indices.size(); t += 3)
+        std::swap(s.indices[t + 1], s.indices[t + 2]); // the box inside out
+    const ViewMeasure v = measureView(s, subjectBounds(s));
+    ASSERT_TRUE(v.room.has_value()) << "from inside, its walls face in";
+    EXPECT_LT(v.room->coverage, 0.1f);
+    EXPECT_FALSE(v.interior());
+    EXPECT_NEAR(measureView(room(true), subjectBounds(room(true))).room->coverage, 1.0f, 1e-3f);
 }

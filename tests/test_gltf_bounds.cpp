@@ -420,17 +420,6 @@ std::vector<Boundary> contentBoundaries() {
              return Asset{b.writeGltf(d / "a.gltf"), {.maxImageBytes = uint64_t(past ? 31 : 32)}};
          },
          "images[1]: the images need more than 31 bytes decoded"},
-        {"png_last_chunk_inside_image", // one byte short: IEND's CRC is cut
-         gltf(textured, pngBytes([](std::vector<uint8_t>& png, bool past) {
-                  if (past)
-                      png.pop_back();
-              })),
-         "images[0]: a PNG chunk runs past the end of the image"},
-        {"png_chunk_length_inside_image", // IEND declares 1 byte of data where the image has 0
-         gltf(textured, pngBytes([](std::vector<uint8_t>& png, bool past) {
-                  png[png.size() - 12 + 3] = past ? 1 : 0;
-              })),
-         "images[0]: a PNG chunk runs past the end of the image"},
     };
 }
 

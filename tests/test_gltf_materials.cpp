@@ -213,27 +213,8 @@ std::vector<BadMaterial> badMaterials() {
     };
     std::vector<uint8_t> huge = png(); // the IHDR width (big-endian at byte 16) says 20000
     huge[16] = 0, huge[17] = 0, huge[18] = 0x4e, huge[19] = 0x20;
-    std::vector<uint8_t> truncated = png();
-    truncated.resize(40);
-    std::vector<uint8_t> lyingChunk = png(); // the chunk after IHDR claims 1.7 GB (fuzz finding)
-    lyingChunk[33] = 0x68, lyingChunk[34] = 0, lyingChunk[35] = 0, lyingChunk[36] = 0x26;
-    std::vector<uint8_t> badData = png(); // chunks intact, the compressed pixels garbage
-    for (size_t k = 41; k < 45; ++k)
-        badData[k] ^= 0xff;
     return {
-        {"not_png_or_jpeg", replaceImage({'G', 'I', 'F', '8', '9', 'a', 0, 0}),
-         "images[0]: not a PNG, JPEG, KTX2 or WebP image"},
         {"huge_image", replaceImage(huge), "images[0]: 20000x2 pixels is outside 1..16384"},
-        {"truncated_png", replaceImage(truncated),
-         "images[0]: a PNG chunk runs past the end of the image"},
-        {"png_chunk_length", replaceImage(lyingChunk),
-         "images[0]: a PNG chunk runs past the end of the image"},
-        {"png_not_decodable", replaceImage(badData), "images[0]: cannot decode the image"},
-        {"missing_image_file",
-         [](GltfBuilder& b) {
-             b.j["images"][0] = {{"uri", "gone.png"}};
-         },
-         "images[0]: cannot read the image 'gone.png'"},
         {"view_without_mime", [](GltfBuilder& b) { b.j["images"][0].erase("mimeType"); },
          "images[0].mimeType: required with a bufferView"},
         {"texture_out_of_range",
@@ -285,6 +266,61 @@ std::vector<BadMaterial> badMaterials() {
 }
 
 } // namespace
+
+// Images that are damaged, missing or in no format we read: the material keeps its colour factor
+// and the load warns once, naming the file and the image.
+std::vector<BadMaterial> damagedImages() {
+    auto replaceImage = [](std::vector<uint8_t> bytes) {
+        return [bytes](GltfBuilder& b) { b.j["images"][0]["bufferView"] = b.view(bytes); };
+    };
+    std::vector<uint8_t> truncated = png();
+    truncated.resize(40);
+    std::vector<uint8_t> lyingChunk = png(); // the chunk after IHDR claims 1.7 GB (fuzz finding)
+    lyingChunk[33] = 0x68, lyingChunk[34] = 0, lyingChunk[35] = 0, lyingChunk[36] = 0x26;
+    std::vector<uint8_t> badData = png(); // chunks intact, the compressed pixels garbage
+    for (size_t k = 41; k < 45; ++k)
+        badData[k] ^= 0xff;
+    std::vector<uint8_t> lastByteCut = png(); // IEND's CRC is cut
+    lastByteCut.pop_back();
+    return {{"not_png_or_jpeg", replaceImage({'G', 'I', 'F', '8', '9', 'a', 0, 0}),
+             "images[0]: not a PNG, JPEG, KTX2 or WebP image"},
+            {"truncated_png", replaceImage(truncated),
+             "images[0]: damaged: a PNG chunk runs past the end of the image"},
+            {"png_chunk_length", replaceImage(lyingChunk),
+             "images[0]: damaged: a PNG chunk runs past the end of the image"},
+            {"png_last_byte_cut", replaceImage(lastByteCut),
+             "images[0]: damaged: a PNG chunk runs past the end of the image"},
+            {"png_not_decodable", replaceImage(badData), "images[0]: damaged: cannot decode it"},
+            {"missing_image_file",
+             [](GltfBuilder& b) {
+                 b.j["images"][0] = {{"uri", "gone.png"}};
+             },
+             "images[0] 'gone.png': cannot read the image"}};
+}
+
+class GltfImageFallsBack : public ::testing::TestWithParam<BadMaterial> {};
+
+TEST_P(GltfImageFallsBack, ToTheColourFactorWithOneWarning) {
+    GltfBuilder b = texturedQuad();
+    b.j["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {0.5, 0.25, 1.0, 1.0};
+    const Scene intact =
+        load(b.writeGltf(dir(std::string(GetParam().name) + "-intact") / "a.gltf"));
+    ASSERT_EQ(intact.images.size(), 1u) << "the intact image decodes";
+    GetParam().change(b);
+    const fs::path file = b.writeGltf(dir(GetParam().name) / "bad.gltf");
+    std::vector<std::string> warnings;
+    const Scene s = load(file, &warnings);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find(file.string() + ": " + GetParam().expected), std::string::npos)
+        << warnings[0];
+    EXPECT_NE(warnings[0].find("base colour factor"), std::string::npos);
+    EXPECT_TRUE(s.images.empty());
+    EXPECT_EQ(s.materials[0].baseColorTexture, -1);
+    EXPECT_EQ(s.materials[0].baseColor, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
+}
+
+INSTANTIATE_TEST_SUITE_P(Assets, GltfImageFallsBack, ::testing::ValuesIn(damagedImages()),
+                         [](const auto& p) { return std::string(p.param.name); });
 
 TEST_P(GltfMaterialRefuses, WithTheFileAndThePath) {
     GltfBuilder b = texturedQuad();

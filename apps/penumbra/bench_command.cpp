@@ -84,6 +84,10 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
         throw InputError(args.output,
                          "-o needs a JSON file name (bench.html is written beside it)");
     const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
+    std::vector<Technique> techniques;
+    for (const BenchRun& r : runs)
+        techniques.push_back(r.technique);
+    warnOpenGeometry(scene, techniques);
     StagedOutputDir out(path.has_parent_path() ? path.parent_path() : ".");
 
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});

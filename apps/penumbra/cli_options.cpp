@@ -5,6 +5,7 @@
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
 #include "report/stats.h"
+#include "scene/mesh_closure.h"
 
 #include <fmt/format.h>
 
@@ -89,6 +90,25 @@ TechniqueRow rowNamed(const std::string& name, std::string_view option) {
                                                       name));
 }
 
+void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques) {
+    std::string needing;
+    for (Technique t : {Technique::Sdf, Technique::SecondDepth})
+        if (std::find(techniques.begin(), techniques.end(), t) != techniques.end())
+            needing += fmt::format("{}`{}`", needing.empty() ? "" : " and ", techniqueName(t));
+    if (needing.empty())
+        return;
+    const MeshClosure c = meshClosure(scene);
+    if (c.closed())
+        return;
+    std::fprintf(stderr,
+                 "penumbra: warning: scene '%s': %llu of %llu triangles lie on open edges and "
+                 "%llu on mis-wound ones; %s take a model's inside from closed, consistently "
+                 "wound surfaces and may leak or show acne there\n",
+                 scene.name.c_str(), static_cast<unsigned long long>(c.open),
+                 static_cast<unsigned long long>(c.triangles),
+                 static_cast<unsigned long long>(c.misWound), needing.c_str());
+}
+
 Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
                          const SceneOptions& o, const RenderOptions& options) {
     SceneEdits edits{.fovDegrees = o.fovDegrees};
@@ -108,6 +128,7 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
     if (!o.view.empty())
         edits.view = parseViewChoice(o.view);
     edits.ground = o.ground;
+    edits.doubleSided = o.doubleSided;
     std::vector<std::string> warnings;
     Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
                                    .maxTriangles = global.maxTriangles,
@@ -166,6 +187,9 @@ void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
                          "(default: the scene's first camera, else auto)"))
         ->type_name("auto|exterior|interior")
         ->excludes(camera);
+    group(cmd.add_flag("--double-sided", scene.doubleSided,
+                       "draws every material's back faces too (a mis-wound or open mesh shows "
+                       "holes where single-sided back faces are culled)"));
     group(cmd.add_flag("--ground", scene.ground,
                        "adds a ground quad under the subject, three times its width, to catch "
                        "the shadows of a lone object"));

@@ -33,7 +33,7 @@ struct SceneOptions {
     std::vector<std::string> lightPositions, lightDirections, addedLights;
     std::optional<float> fovDegrees;
     std::string view; // --view
-    bool ground = false;
+    bool ground = false, doubleSided = false;
 };
 
 // "a,b,c" -> {"a", "b", "c"}; an empty list or an empty item is an InputError(option).
@@ -61,6 +61,10 @@ RenderOptions optionsFor(const RenderOptions& base, const TechniqueRow& row,
 // The row a single `--technique` names: a technique at its defaults, a variant ("pcf[box7]") or
 // either with layers ("pcf[box3]+contact"); InputError(option) otherwise.
 TechniqueRow rowNamed(const std::string& name, std::string_view option);
+
+// One warning when a technique that takes a model's inside from its winding (sdf, second-depth)
+// meets open or mis-wound surfaces (scene/mesh_closure.h), with the triangles counted.
+void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques);
 
 // loadScene with the global options, then the scene options applied; loader warnings go to
 // stderr as `penumbra: warning:`, and so do light sizes that no light of the scene takes

@@ -68,6 +68,10 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         throw InputError("--camera-path",
                          fmt::format("'{}' is not dolly, orbit or sun", args.cameraPath));
     Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
+    std::vector<Technique> techniques;
+    for (const TechniqueRow& row : rows)
+        techniques.push_back(row.technique);
+    warnOpenGeometry(scene, techniques);
     // A row's layers that the settings leave off take the layer's settings for this scene's size.
     for (size_t i = 0; i < rows.size(); ++i)
         applyRow(rows[i], rowOptions[i].parameters, scene.bounds().radius());

@@ -40,6 +40,7 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     RenderOptions options = optionsFor(args.options, row, args.sets);
     const FieldSlice slice = parseFieldSlice(args.fieldSlice);
     const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
+    warnOpenGeometry(scene, std::span(&options.technique, 1));
     if (!row.layers.empty()) // the layers it names, as compare runs them (the others off)
         applyRow(row, options.parameters, scene.bounds().radius());
     // Created before the long work so an unwritable path fails fast; removed again on error.

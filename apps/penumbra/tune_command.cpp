@@ -131,6 +131,7 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
         }
 
     Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
+    warnOpenGeometry(scene, std::span(&row.technique, 1));
     // The row's layers, sized to the scene as compare sizes them (a row runs exactly those).
     applyRow(row, base.parameters, scene.bounds().radius());
     for (ParameterValues& v : values)

@@ -158,6 +158,7 @@ struct RenderResult {
     std::vector<LightShadow> lights;
     std::optional<DistanceFieldInfo> field;    // sdf only
     std::optional<VirtualMapInfo> virtualMaps; // virtual.enabled only
+    float exposure = 0.0f; // EV the image was shaded with: composite.exposure, else automatic
 };
 
 using ProgressFn = std::function<void(const std::string& stage)>;

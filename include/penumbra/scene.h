@@ -123,6 +123,7 @@ struct SceneEdits {
     std::vector<AddedLight> addedLights;                            // --add-light
     std::optional<ViewChoice> view;                                 // --view
     bool ground = false;                                            // --ground
+    bool doubleSided = false;                                       // --double-sided
     bool empty() const;
 };
 
@@ -205,6 +206,7 @@ glm::vec2 visibleDepthRange(const Scene& scene, const Camera& camera, float aspe
 // suns), --camera-pos with --look-at and --fov (a camera named "command line" that becomes the
 // scene's first). Throws InputError naming the option.
 // --ground adds a ground quad under the subject (scene/framing.h), three times its width;
+// --double-sided makes every material double-sided;
 // --view puts the automatic camera of that kind first (a default light follows it).
 // --add-light adds its lights after --sun-dir's (replacing the loader's default light too), each
 // named as given or "<kind> (--add-light <n>)"; a name the scene already has is an InputError.

@@ -3,6 +3,7 @@
 // Every parameter has a default and a valid range; `penumbra techniques` prints this table.
 #include <cstdint>
 #include <map>
+#include <set>
 #include <span>
 #include <string>
 #include <string_view>
@@ -83,12 +84,14 @@ public:
     void set(std::string_view key, std::string_view value);
     // Parses "key=value".
     void assign(std::string_view keyEqualsValue);
-    double number(std::string_view key) const;    // programmer error if key is unknown
+    double number(std::string_view key) const; // programmer error if key is unknown
+    bool isSet(std::string_view key) const { return mSet.contains(key); } // by set() or assign()
     std::string text(std::string_view key) const; // value as the user would write it
     const std::map<std::string, double, std::less<>>& all() const { return mValues; }
 
 private:
     std::map<std::string, double, std::less<>> mValues;
+    std::set<std::string, std::less<>> mSet;
 };
 
 struct RenderOptions {

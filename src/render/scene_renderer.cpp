@@ -19,6 +19,7 @@
 #include "render/frame_data.h"
 #include "render/frame_prepare.h"
 #include "render/renderer_impl.h"
+#include "scene/framing.h"
 #include "virtual_pages.h"
 #include "vk/check.h"
 #include "vk/sync.h"
@@ -54,6 +55,7 @@ struct SceneRenderer::Impl {
     Renderer& renderer;
     Scene scene; // sanitized
     Bounds bounds;
+    float automaticExposure = 0.0f; // EV, when composite.exposure is not set (scene/framing.h)
     render::GpuScene gpu;
     std::vector<float> nearestSurface;  // per scene light: from its position (spot and point)
     std::vector<glm::vec3> nearestFrom; // the positions nearestSurface was measured from
@@ -67,6 +69,13 @@ struct SceneRenderer::Impl {
     };
     std::optional<VisibleDepths> visibleDepths;
     glm::vec2 visibleDepthsFor(const Camera& c, float aspect);
+    // `o` with the scene's automatic exposure unless composite.exposure was set.
+    RenderOptions exposed(const RenderOptions& o) const {
+        RenderOptions shaded = o;
+        if (automaticExposure != 0.0f && !o.parameters.isSet("composite.exposure"))
+            shaded.parameters.set("composite.exposure", fmt::format("{}", automaticExposure));
+        return shaded;
+    }
     std::unique_ptr<render::ResourcePool> pool;
     struct Slot {
         // FrameData, LightData[], ShadowViewData[], the technique's and the layers' parameter
@@ -164,6 +173,7 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
     if (m.scene.triangleCount() == 0)
         throw InputError(m.scene.name, "the scene has no valid triangles");
     m.bounds = m.scene.bounds();
+    m.automaticExposure = automaticExposure(m.scene);
     m.gpu = render::uploadScene(m.ctx(), m.scene);
     m.pool = std::make_unique<render::ResourcePool>(m.ctx());
     const size_t lightRecords =
@@ -275,8 +285,10 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
         fatal(__FILE__, __LINE__, "SceneRenderer: more shadow views than shadowViewCount counted");
 
     RenderResult result{.width = o.width, .height = o.height, .lights = views.report};
+    const RenderOptions shaded = exposed(o);
     render::FrameBlocks blocks =
-        render::frameBlocks(camera, o, static_cast<uint32_t>(lights.size()), ctx());
+        render::frameBlocks(camera, shaded, static_cast<uint32_t>(lights.size()), ctx());
+    result.exposure = static_cast<float>(shaded.parameters.number("composite.exposure"));
     const vk::Image* fieldImage = &fieldPlaceholder;
     if (shadows::moduleOf(o.technique).tracesField) {
         bool built = false;

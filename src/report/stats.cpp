@@ -47,6 +47,8 @@ nlohmann::json sceneEditsJson(const SceneEdits& e) {
         j["view"] = viewChoiceName(*e.view);
     if (e.ground)
         j["ground"] = true;
+    if (e.doubleSided)
+        j["double_sided"] = true;
     return j;
 }
 
@@ -79,6 +81,8 @@ nlohmann::json renderStats(const RenderRun& run) {
             params[std::string(p.key)] = o.parameters.number(p.key);
     }
     j["parameters"] = params;
+    j["exposure_ev"] = run.result.exposure;
+    j["exposure"] = o.parameters.isSet("composite.exposure") ? "composite.exposure" : "automatic";
     if (const auto& f = run.result.field) {
         nlohmann::json passes = nlohmann::json::object();
         for (const PassTime& p : f->buildPasses)

@@ -59,6 +59,29 @@ Bounds subjectBounds(const Scene& scene) {
     return subject.empty() ? all : subject;
 }
 
+float automaticExposure(const Scene& scene) {
+    constexpr float kTarget = 2.0f, kTolerance = 4.0f;
+    const Bounds subject = subjectBounds(scene);
+    if (subject.empty())
+        return 0.0f;
+    float brightest = 0.0f;
+    for (const Light& l : scene.lights) {
+        float irradiance = l.intensity;
+        if (l.type != LightType::Directional) {
+            const float d = std::max(glm::length(l.position - subject.center()),
+                                     0.1f * std::max(subject.radius(), 1e-6f));
+            irradiance = l.intensity / (d * d);
+        }
+        irradiance *= std::max({l.color.x, l.color.y, l.color.z});
+        if (std::isfinite(irradiance))
+            brightest = std::max(brightest, irradiance);
+    }
+    if (brightest <= 0.0f ||
+        (brightest <= kTarget * kTolerance && brightest >= kTarget / kTolerance))
+        return 0.0f;
+    return std::clamp(std::round(2.0f * std::log2(kTarget / brightest)) / 2.0f, -30.0f, 30.0f);
+}
+
 Camera exteriorCamera(const Scene& scene, const Bounds& subject) {
     const glm::vec3 extent = glm::max(subject.extent(), glm::vec3(1e-6f));
     const float width = std::max(extent.x, extent.z);

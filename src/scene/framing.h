@@ -16,6 +16,12 @@
 namespace penumbra {
 
 Bounds subjectBounds(const Scene& scene);
+// The exposure (EV) a scene is shaded with when composite.exposure is not set: 0 when its
+// brightest light's irradiance at the subject's centre (a sun's intensity; a spot's or point
+// light's intensity / d^2, d at least a tenth of the subject's radius) is within a factor 4 of
+// the default sun's (2), as in scenes authored for display; else log2(2 / irradiance), to half a
+// stop: photometric lights (lux, candela) come out as bright as the default sun.
+float automaticExposure(const Scene& scene);
 Camera exteriorCamera(const Scene& scene, const Bounds& subject);
 
 // The nearest triangle along a ray and whether the ray meets its front (counter-clockwise, by

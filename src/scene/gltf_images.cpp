@@ -81,24 +81,27 @@ bool decodeImage(tinygltf::Image* image, int index, std::string* err, std::strin
     auto& policy = *static_cast<ImageDecodePolicy*>(user);
     if (!policy.wanted.contains(index))
         return true;
+    // Past a cap: an error (the caps guard the machine). Damaged or unknown: the factor.
     auto refuse = [&](const std::string& why) {
         if (err)
             *err += fmt::format("images[{}]: {}\n", index, why);
         return false;
     };
-    if (!bytes || size <= 0)
-        return refuse("no image bytes");
-    if (const char* format = otherImageFormat(bytes, size)) {
-        policy.undecodable[index] = format;
+    auto fallBack = [&](const std::string& why) {
+        policy.undecodable[index] = why;
         return true;
-    }
+    };
+    if (!bytes || size <= 0)
+        return fallBack("no image bytes");
+    if (const char* format = otherImageFormat(bytes, size))
+        return fallBack(fmt::format("{} is not decoded here", format));
     if (!isPng(bytes, size) && !isJpeg(bytes, size))
-        return refuse("not a PNG, JPEG, KTX2 or WebP image");
+        return fallBack("not a PNG, JPEG, KTX2 or WebP image");
     if (isPng(bytes, size) && !pngChunksFit(bytes, size))
-        return refuse("a PNG chunk runs past the end of the image (truncated or hostile)");
+        return fallBack("damaged: a PNG chunk runs past the end of the image (truncated?)");
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes, size, &width, &height, &channels))
-        return refuse(fmt::format("cannot read the image header ({})", stbi_failure_reason()));
+        return fallBack(fmt::format("damaged: cannot read its header ({})", stbi_failure_reason()));
     if (width < 1 || height < 1 || width > static_cast<int>(kMaxImageSide) ||
         height > static_cast<int>(kMaxImageSide))
         return refuse(
@@ -110,11 +113,14 @@ bool decodeImage(tinygltf::Image* image, int index, std::string* err, std::strin
     policy.decodedBytes += bytesNeeded;
     int w = 0, h = 0;
     unsigned char* pixels = stbi_load_from_memory(bytes, size, &w, &h, &channels, 4);
-    if (!pixels)
-        return refuse(fmt::format("cannot decode the image ({})", stbi_failure_reason()));
+    if (!pixels) {
+        policy.decodedBytes -= bytesNeeded;
+        return fallBack(fmt::format("damaged: cannot decode it ({})", stbi_failure_reason()));
+    }
     if (w != width || h != height) {
         stbi_image_free(pixels);
-        return refuse("the decoded size differs from the header's");
+        policy.decodedBytes -= bytesNeeded;
+        return fallBack("damaged: the decoded size differs from the header's");
     }
     image->width = w;
     image->height = h;
@@ -140,23 +146,26 @@ std::vector<int32_t> readTextures(const std::filesystem::path& file, tinygltf::M
     std::vector<int32_t> textureOf(model.textures.size(), -1);
     std::map<int, uint32_t> sceneImage;
     for (int i : policy.wanted) {
-        if (const auto other = policy.undecodable.find(i); other != policy.undecodable.end()) {
+        tinygltf::Image& image = model.images[static_cast<size_t>(i)];
+        const std::string named = image.uri.empty() || image.uri.starts_with("data:")
+                                      ? fmt::format("images[{}]", i)
+                                      : fmt::format("images[{}] '{}'", i, image.uri);
+        const auto fallBack = [&](const std::string& why) {
             if (warnings)
-                warnings->push_back(fmt::format("{}: images[{}]: {} is not decoded here; its "
-                                                "materials use their base colour factor (and "
-                                                "alpha-tested ones cast no holes)",
-                                                file.string(), i, other->second));
+                warnings->push_back(fmt::format("{}: {}: {}; its materials use their base colour "
+                                                "factor (and alpha-tested ones cast no holes)",
+                                                file.string(), named, why));
+        };
+        if (const auto other = policy.undecodable.find(i); other != policy.undecodable.end()) {
+            fallBack(other->second);
             continue;
         }
-        tinygltf::Image& image = model.images[static_cast<size_t>(i)];
         const size_t expected = static_cast<size_t>(image.width) * image.height * 4;
         if (image.image.empty() || image.width <= 0 || image.height <= 0 ||
-            image.image.size() != expected)
-            throw InputError(file.string(),
-                             fmt::format("images[{}]: cannot read the image{}", i,
-                                         image.uri.empty() || image.uri.starts_with("data:")
-                                             ? std::string()
-                                             : " '" + image.uri + "'"));
+            image.image.size() != expected) { // a file that is missing or cannot be read
+            fallBack("cannot read the image (a missing file?)");
+            continue;
+        }
         sceneImage[i] = static_cast<uint32_t>(scene.images.size());
         scene.images.push_back({.name = image.name.empty() ? fmt::format("image{}", i) : image.name,
                                 .width = static_cast<uint32_t>(image.width),

@@ -20,8 +20,9 @@ struct ImageDecodePolicy {
     std::set<int> wanted; // images a base-colour texture uses; the others are never decoded
     uint64_t maxDecodedBytes = uint64_t{4} << 30; // RGBA8 bytes of all images together
     uint64_t decodedBytes = 0;
-    // Wanted images in a format we do not decode (KTX2 / Basis Universal, WebP) and its name:
-    // their textures fall back to the material's colour factor with a warning.
+    // Wanted images we do not decode and why: a format we do not read (KTX2 / Basis Universal,
+    // WebP), or bytes that are not an image or are damaged. Their textures fall back to the
+    // material's colour factor with a warning. (Past the size caps is an error instead.)
     std::map<int, std::string> undecodable;
 };
 

@@ -15,6 +15,7 @@ constexpr std::array kHeights = {0.5f, 0.25f}; // of the subject's height
 constexpr int kAzimuths = 8;                   // horizontal rays per candidate
 constexpr int kMinFrontRays = 7;               // of kAzimuths
 constexpr float kMinOpenness = 0.05f;          // of the subject's width
+constexpr float kMinCoverage = 0.5f;           // of the subject's footprint
 constexpr float kExteriorElevation = 15.0f;    // degrees
 constexpr float kSunFromLeft = 85.0f;          // degrees round from the camera's back
 constexpr float kSunElevation = 45.0f;         // degrees
@@ -28,7 +29,8 @@ glm::vec3 horizontal(int k) {
 } // namespace
 
 bool ViewMeasure::interior() const {
-    return room && room->openness >= kMinOpenness * subjectWidth && exteriorFront < 0.5f;
+    return room && room->openness >= kMinOpenness * subjectWidth &&
+           room->coverage >= kMinCoverage && exteriorFront < 0.5f;
 }
 
 ViewMeasure measureView(const Scene& scene, const Bounds& subject) {
@@ -72,17 +74,27 @@ ViewMeasure measureView(const Scene& scene, const Bounds& subject) {
         int fronts = 0, longest = 0;
         float longestDistance = -1.0f;
         std::vector<float> free;
+        glm::vec2 lo(candidates[c].x, candidates[c].z), hi = lo; // the walls met, seen from above
         for (int a = 0; a < kAzimuths; ++a) {
             const auto& hit = hits[first + static_cast<size_t>(a)];
             if (!hit)
                 continue;
             fronts += hit->front ? 1 : 0;
             free.push_back(hit->distance);
+            const glm::vec3 wall = candidates[c] + hit->distance * horizontal(a);
+            lo = glm::min(lo, glm::vec2(wall.x, wall.z));
+            hi = glm::max(hi, glm::vec2(wall.x, wall.z));
             if (hit->distance > longestDistance)
                 longest = a, longestDistance = hit->distance;
         }
         if (fronts < kMinFrontRays)
             continue;
+        // How much of the subject's footprint the room spans: an inside-out box on a wide
+        // ground is a mis-wound model, not a room.
+        const glm::vec2 sLo(subject.min.x, subject.min.z), sHi(subject.max.x, subject.max.z);
+        const glm::vec2 overlap = glm::max(glm::min(hi, sHi) - glm::max(lo, sLo), glm::vec2(0));
+        const glm::vec2 footprint = glm::max(sHi - sLo, glm::vec2(1e-12f));
+        const float coverage = overlap.x * overlap.y / (footprint.x * footprint.y);
         // The clearance to the nearest wall; of equals, the one nearest the centre.
         const float openness = *std::min_element(free.begin(), free.end());
         const float tie = 1e-4f * m.subjectWidth;
@@ -91,8 +103,10 @@ ViewMeasure measureView(const Scene& scene, const Bounds& subject) {
         };
         if (!m.room || openness > m.room->openness + tie ||
             (openness > m.room->openness - tie && nearer(candidates[c], m.room->position)))
-            m.room = RoomPoint{
-                .position = candidates[c], .along = horizontal(longest), .openness = openness};
+            m.room = RoomPoint{.position = candidates[c],
+                               .along = horizontal(longest),
+                               .openness = openness,
+                               .coverage = coverage};
     }
     int met = 0, fronts = 0;
     for (size_t r = exteriorStart; r < rays.size(); ++r)

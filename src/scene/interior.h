@@ -6,9 +6,11 @@
 //   (a floor, the inside of walls; one doorway may let a ray out, the sky above may be open).
 //   Inside a closed model the rays meet back faces: a solid box has no room points.
 // - Exterior rays look at the subject from 8 sides, 15 degrees above the horizon.
-// - A scene is an interior when it has a room point wider than a twentieth of the subject and
-//   fewer than half the exterior rays that meet a surface meet its front: walls modelled to be
-//   seen from inside. A building with its rooms modelled has fronts outside too: exterior.
+// - A scene is an interior when it has a room point wider than a twentieth of the subject whose
+//   walls span at least half the subject's footprint, and fewer than half the exterior rays that
+//   meet a surface meet its front: walls modelled to be seen from inside. A building with its
+//   rooms modelled has fronts outside too, and an inside-out box on a wide ground (a mis-wound
+//   model) spans little of it: both exterior.
 // - An interior's automatic camera stands at the most open room point (the largest clearance to
 //   the nearest wall; of equals, the nearest to the subject's centre) and looks along its longest
 //   horizontal free line, 70 degrees of vertical view.
@@ -27,6 +29,7 @@ struct RoomPoint {
     glm::vec3 position{0.0f};
     glm::vec3 along{1.0f, 0.0f, 0.0f}; // the longest free horizontal line from it
     float openness = 0.0f;             // the shortest horizontal free distance
+    float coverage = 0.0f; // the share of the subject's footprint its walls span (seen from above)
 };
 
 struct ViewMeasure {

@@ -88,7 +88,7 @@ NamedVector parseNamedVector3(std::string_view text, std::string_view option) {
 
 bool SceneEdits::empty() const {
     return !sunDirection && lightPositions.empty() && lightDirections.empty() && !cameraPosition &&
-           !lookAt && !fovDegrees && addedLights.empty() && !view && !ground;
+           !lookAt && !fovDegrees && addedLights.empty() && !view && !ground && !doubleSided;
 }
 
 ViewChoice parseViewChoice(std::string_view text) {
@@ -124,6 +124,9 @@ void applySceneEdits(Scene& scene, const SceneEdits& e) {
     }
     if (e.ground) // after the framing: the view is of the subject, not of the ground
         addGround(scene);
+    if (e.doubleSided)
+        for (Material& m : scene.materials)
+            m.doubleSided = true;
     if (e.sunDirection) {
         const glm::vec3 direction = unitDirection(*e.sunDirection, "--sun-dir");
         if (scene.defaultLight)

@@ -438,6 +438,7 @@ void ParameterValues::set(std::string_view key, std::string_view value) {
         throw InputError("--set",
                          fmt::format("unknown parameter '{}' (known: {})", key, knownKeys()));
     mValues.find(key)->second = parseValue(*p, value);
+    mSet.emplace(key);
 }
 
 void ParameterValues::assign(std::string_view keyEqualsValue) {
