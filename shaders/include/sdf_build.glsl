@@ -13,8 +13,8 @@ layout(set = 0, binding = FIELD_BRICK_STARTS, std430) readonly buffer BrickStart
     uint brickStarts[];
 };
 layout(set = 0, binding = FIELD_BRICK_LIST, std430) readonly buffer BrickList { uint brickList[]; };
-layout(set = 0, binding = FIELD_BRICK_NEAREST, std430) readonly buffer BrickNearest {
-    uint brickNearest[];
+layout(set = 0, binding = FIELD_FAR_CANDIDATES, std430) readonly buffer FarCandidates {
+    uint farCandidates[]; // bricks + 1 offsets into farCandidates, then the lists
 };
 layout(set = 0, binding = FIELD_IDS_IN, r32ui) uniform readonly uimage3D idsIn;
 layout(set = 0, binding = FIELD_IDS_OUT, r32ui) uniform writeonly uimage3D idsOut;

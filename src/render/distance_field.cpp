@@ -202,7 +202,7 @@ DistanceField buildDistanceField(const vk::Context& ctx, FramePipelines& pipelin
     const vk::Buffer triangles = upload(ctx, geometry.triangles, "field triangles");
     const vk::Buffer starts = upload(ctx, geometry.brickStarts, "field brick starts");
     const vk::Buffer list = upload(ctx, geometry.brickList, "field brick lists");
-    const vk::Buffer nearest = upload(ctx, geometry.brickNearest, "field brick nearest");
+    const vk::Buffer nearest = upload(ctx, geometry.farCandidates, "field far candidates");
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT;
     std::array<vk::Image, 2> ids{
         fieldImage(ctx, "distance field ids", VK_FORMAT_R32_UINT, layout, storage),
@@ -225,7 +225,7 @@ DistanceField buildDistanceField(const vk::Context& ctx, FramePipelines& pipelin
             .storageBuffer(FIELD_TRIANGLES, triangles.get())
             .storageBuffer(FIELD_BRICK_STARTS, starts.get())
             .storageBuffer(FIELD_BRICK_LIST, list.get())
-            .storageBuffer(FIELD_BRICK_NEAREST, nearest.get())
+            .storageBuffer(FIELD_FAR_CANDIDATES, nearest.get())
             .storageImage(FIELD_IDS_IN, in.view.get())
             .storageImage(FIELD_IDS_OUT, out.view.get())
             .storageImage(FIELD_OUT, field.image.view.get())

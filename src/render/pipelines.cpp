@@ -252,7 +252,7 @@ const FieldPipelines& FramePipelines::field() {
                                               {FIELD_IDS_IN, kImage},
                                               {FIELD_IDS_OUT, kImage},
                                               {FIELD_OUT, kImage},
-                                              {FIELD_BRICK_NEAREST, kStorage}},
+                                              {FIELD_FAR_CANDIDATES, kStorage}},
                                              VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::FieldPush));
         f->seed = vk::createComputePipeline(ctx, f->layout, "sdf_seed.comp");
         f->flood = vk::createComputePipeline(ctx, f->layout, "sdf_flood.comp");

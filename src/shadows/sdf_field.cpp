@@ -102,6 +102,60 @@ std::vector<uint32_t> brickNearest(const FieldGeometry& g, const FieldLayout& la
     return ids;
 }
 
+// Per brick, the far voxels' candidates: the distinct nearest triangles of the brick and its 26
+// neighbours, less those that cannot be nearest anywhere in the brick (measured from its centre,
+// more than the brick's diagonal farther than the nearest of them: distances change by at most
+// the distance moved). Packed: bricks + 1 offsets into the array, then the lists. A brick whose
+// every voxel has its nearest triangle within a brick (sdf_seed's exact answer) lists none.
+std::vector<uint32_t> farCandidates(const FieldGeometry& g, const FieldLayout& layout,
+                                    float thickness) {
+    const glm::ivec3 bricks(layout.bricks());
+    const size_t count = g.brickNearest.size();
+    const float side = FIELD_BRICK * layout.voxel;
+    const float halfDiagonal = 0.5f * std::sqrt(3.0f) * side;
+    std::vector<uint32_t> packed(count + 1, 0);
+    std::vector<std::pair<float, uint32_t>> found;
+    size_t b = 0;
+    for (int z = 0; z < bricks.z; ++z)
+        for (int y = 0; y < bricks.y; ++y)
+            for (int x = 0; x < bricks.x; ++x, ++b) {
+                packed[b] = static_cast<uint32_t>(packed.size());
+                const glm::vec3 centre = layout.origin + (glm::vec3(x, y, z) + 0.5f) * side;
+                found.clear();
+                for (int dz = -1; dz <= 1; ++dz)
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            const glm::ivec3 q(x + dx, y + dy, z + dz);
+                            if (glm::any(glm::lessThan(q, glm::ivec3(0))) ||
+                                glm::any(glm::greaterThanEqual(q, bricks)))
+                                continue;
+                            const uint32_t id =
+                                g.brickNearest[(size_t(q.z) * size_t(bricks.y) + size_t(q.y)) *
+                                                   size_t(bricks.x) +
+                                               size_t(q.x)];
+                            if (id == FIELD_NO_TRIANGLE ||
+                                std::any_of(found.begin(), found.end(),
+                                            [&](const auto& f) { return f.second == id; }))
+                                continue;
+                            const gpu::FieldTriangle& t = g.triangles[id];
+                            found.push_back(
+                                {gpu::fieldTriangleDistance(centre, glm::vec3(t.a), glm::vec3(t.b),
+                                                            glm::vec3(t.c), flagsOf(t), thickness),
+                                 id});
+                        }
+                if (found.empty())
+                    continue;
+                std::sort(found.begin(), found.end());
+                if (found[0].first + halfDiagonal <= side - thickness)
+                    continue; // every voxel's seed is exact
+                for (const auto& [d, id] : found)
+                    if (d <= found[0].first + 2.0f * halfDiagonal)
+                        packed.push_back(id);
+            }
+    packed[count] = static_cast<uint32_t>(packed.size());
+    return packed;
+}
+
 } // namespace
 
 FieldLayout fieldLayout(const Bounds& bounds, uint32_t resolution) {
@@ -202,6 +256,7 @@ FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout, float
         visit(g.triangles[i], [&](uint64_t brick) { g.brickList[cursor[brick]++] = i; });
 
     g.brickNearest = brickNearest(g, layout, thickness);
+    g.farCandidates = farCandidates(g, layout, thickness);
     return g;
 }
 

@@ -42,6 +42,9 @@ struct FieldGeometry {
     // Per brick, the triangle nearest to its centre (jump flooding over the bricks from those
     // with a list): the far voxels' candidates, those of their brick and its 26 neighbours.
     std::vector<uint32_t> brickNearest;
+    // Per brick, the candidates sdf_flood measures for its far voxels (farCandidates): bricks + 1
+    // offsets into this array, then the lists.
+    std::vector<uint32_t> farCandidates;
     uint32_t sceneTriangles = 0;                     // the scene's, as given
     uint32_t closedTriangles = 0, openTriangles = 0; // of `triangles`
     uint32_t alphaTriangles = 0;       // the scene's alpha-tested triangles, before they were cut
