@@ -128,34 +128,38 @@ TEST(SdfField, EveryBrickKnowsItsNearestTriangle) {
     EXPECT_LT(worst, layout.voxel) << "world units";
 }
 
-// A closed box around a sphere, or around a point light (a room, a glass envelope): taken as a
-// shell, open, with a warning naming its material. A box resting on another, touching it, and a
-// box holding nothing stay solids.
-TEST(SdfField, ClosedSurfacesHoldingSomethingAreShells) {
+// A closed box around the camera (a sky box, a room seen from inside) or around a point light:
+// taken as a shell, open, with a warning naming its material and what it holds. A box around
+// other geometry alone (a tower's envelope around its floors), a ball inside it, and a box
+// resting on another stay solids; so does a box with a light on its surface.
+TEST(SdfField, ClosedSurfacesHoldingTheLightOrCameraAreShells) {
     Scene scene;
     MeshBuilder mb(scene);
     const uint32_t glass = mb.material("glass", glm::vec3(0.5f));
     const uint32_t grey = mb.material("grey", glm::vec3(0.5f));
-    mb.box(glm::scale(glm::mat4(1.0f), glm::vec3(4.0f)), glass); // [-2, 2]^3
-    const size_t envelopeEnd = scene.triangleCount();
+    mb.box(glm::scale(glm::mat4(1.0f), glm::vec3(4.0f)), glass); // [-2, 2]^3, the camera inside
+    const size_t skyEnd = scene.triangleCount();
     mb.sphere({0, 0, 0}, 0.5f, grey, 12, 6);
-    const size_t sphereEnd = scene.triangleCount();
     mb.box(glm::translate(glm::mat4(1.0f), glm::vec3(5, 0.5f, 0)), grey); // [4.5, 5.5] x [0, 1]
     mb.box(glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(5, 1.25f, 0)), glm::vec3(0.5f)),
            grey); // resting on it: [4.75, 5.25] x [1, 1.5]
-    const size_t restingEnd = scene.triangleCount();
+    mb.box(glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(5, 4, 0)), glm::vec3(2.0f)),
+           grey); // [4, 6] x [3, 5] around a small box: an envelope around floors
+    mb.box(glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(5, 4, 0)), glm::vec3(0.5f)), grey);
+    const size_t solidEnd = scene.triangleCount();
     mb.box(glm::translate(glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)), glm::vec3(-4, 0, 0)),
            grey); // [-9, -7]: a room around a point light
-    scene.lights.push_back({.type = LightType::Point, .position = {-8, 0, 0}});
+    scene.lights.push_back({.name = "bulb", .type = LightType::Point, .position = {-8, 0, 0}});
+    scene.lights.push_back({.name = "lamp", .type = LightType::Point, .position = {5, 1.0f, 0}});
+    scene.cameras.push_back({.name = "inside", .position = {0, 1.5f, 0}});
     dropInvalidTriangles(scene);
     const Closure c = closedSurfaces(scene);
     for (size_t t = 0; t < scene.triangleCount(); ++t) {
-        const bool shell = t < envelopeEnd || t >= restingEnd;
+        const bool shell = t < skyEnd || t >= solidEnd;
         EXPECT_EQ(c.closed[t], !shell) << t;
     }
     ASSERT_EQ(c.shells.size(), 2u);
-    EXPECT_NE(c.shells[0].find("material 'glass'"), std::string::npos) << c.shells[0];
-    EXPECT_NE(c.shells[0].find("other geometry"), std::string::npos) << c.shells[0];
-    EXPECT_NE(c.shells[1].find("a light or camera"), std::string::npos) << c.shells[1];
-    (void)sphereEnd;
+    std::string all = c.shells[0] + "\n" + c.shells[1];
+    EXPECT_NE(all.find("(material 'glass') holds camera 'inside'"), std::string::npos) << all;
+    EXPECT_NE(all.find("(material 'grey') holds light 'bulb'"), std::string::npos) << all;
 }

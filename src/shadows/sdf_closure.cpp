@@ -50,11 +50,12 @@ struct Shell {
     std::string warning;
 };
 
-// The closed surfaces that hold something inside them: another surface, a light or a camera. A
-// solid cannot (a room, a building's glass envelope or a sky box drawn as a closed mesh can):
-// signed, every receiver inside would read as inside a solid and shadow itself. They are taken
-// as shells, open geometry. A point decides only when it is clear of the surface by a
-// millionth of the scene's size (a box resting on another touches it).
+// The closed surfaces that hold a light or a camera inside them: a room drawn as one closed box,
+// a sky box, a building's closed envelope seen from inside. Signed as a solid, every receiver the
+// camera sees or the light reaches in there would read as inside it and shadow itself. They are
+// taken as shells, open geometry. (A closed surface around other geometry alone stays a solid: a
+// tower's envelope around its floors, seen and lit from outside, shadows as a whole.) A point
+// decides only when it is clear of the surface by a millionth of the scene's size.
 std::vector<Shell> holdingShells(const Scene& scene, const std::vector<uint32_t>& rootOf,
                                  const std::vector<bool>& open, const std::vector<double>& volume) {
     const size_t count = rootOf.size();
@@ -63,38 +64,30 @@ std::vector<Shell> holdingShells(const Scene& scene, const std::vector<uint32_t>
     };
     std::unordered_map<uint32_t, std::vector<uint32_t>> closedTriangles; // per closed root
     std::unordered_map<uint32_t, Bounds> bounds;
-    std::unordered_map<uint32_t, size_t> firstOf; // each surface's first triangle
     for (size_t t = 0; t < count; ++t) {
         const uint32_t r = rootOf[t];
-        firstOf.try_emplace(r, t);
         if (open[r])
             continue;
         closedTriangles[r].push_back(static_cast<uint32_t>(t));
         for (int k = 0; k < 3; ++k)
             bounds[r].grow(corner(t, k));
     }
-    // What may be inside: a corner and the centre of each surface's first triangle, the lights
-    // that have a position and the cameras.
     struct Probe {
         glm::vec3 p;
-        uint32_t root; // the surface it belongs to (UINT32_MAX: a light or camera)
+        std::string what;
     };
     std::vector<Probe> probes;
-    for (const auto& [r, t] : firstOf) {
-        probes.push_back({corner(t, 0), r});
-        probes.push_back({(corner(t, 0) + corner(t, 1) + corner(t, 2)) / 3.0f, r});
-    }
     for (const Light& light : scene.lights)
         if (light.type != LightType::Directional)
-            probes.push_back({light.position, UINT32_MAX});
+            probes.push_back({light.position, fmt::format("light '{}'", light.name)});
     for (const Camera& camera : scene.cameras)
-        probes.push_back({camera.position, UINT32_MAX});
+        probes.push_back({camera.position, fmt::format("camera '{}'", camera.name)});
     const float clear = static_cast<float>(std::max(1e-6 * maxExtent(scene.bounds()), 1e-12));
     std::vector<Shell> shells;
     for (const auto& [r, triangles] : closedTriangles) {
         const Bounds& b = bounds[r];
         for (const Probe& probe : probes) {
-            if (probe.root == r || glm::any(glm::lessThan(probe.p, b.min)) ||
+            if (glm::any(glm::lessThan(probe.p, b.min)) ||
                 glm::any(glm::greaterThan(probe.p, b.max)))
                 continue;
             // The winding along the column from below (sdf_resolve's rule), and the distance.
@@ -119,11 +112,9 @@ std::vector<Shell> holdingShells(const Scene& scene, const std::vector<uint32_t>
                     ? fmt::format("material '{}'", scene.materials[material].name)
                     : std::string("no material");
             shells.push_back(
-                {r,
-                 fmt::format("sdf: a closed surface of {} triangles ({}) holds {} inside it: "
-                             "taken as a thin shell, not a solid",
-                             triangles.size(), name,
-                             probe.root == UINT32_MAX ? "a light or camera" : "other geometry")});
+                {r, fmt::format("sdf: a closed surface of {} triangles ({}) holds {} inside it: "
+                                "taken as a thin shell, not a solid",
+                                triangles.size(), name, probe.what)});
             break;
         }
     }

@@ -55,8 +55,8 @@ struct FieldGeometry {
 // Which of the scene's triangles belong to closed surfaces: welded by position (to a millionth of
 // the scene's size), a connected set of triangles is closed when each of its edges is shared by
 // exactly two of them, wound in opposite directions. Alpha-tested materials are never closed, nor
-// are surfaces that hold other geometry, a light or a camera inside (a room, a glass envelope:
-// signed as solids, every receiver inside would shadow itself); `shells` has a warning for each.
+// are surfaces that hold a point or spot light or a camera inside (a room, a sky box: signed as
+// solids, every receiver inside would shadow itself); `shells` has a warning for each.
 // Also returns, per triangle, whether its closed surface is wound inside out (negative volume).
 // (src/shadows/sdf_closure.cpp)
 struct Closure {
