@@ -106,6 +106,8 @@ TEST(FieldBuild, SlabsCoverTheFieldOncePerPass) {
         EXPECT_EQ(next, pass == render::kResolve ? layout.size.y : layout.size.z) << pass;
         EXPECT_EQ(count, 8u) << pass; // 10 and 9 bricks: 8 slabs
     }
-    EXPECT_EQ(render::fieldProgressLine(0.25, 3.0, "sdf_flood"),
-              "distance field 25% (sdf_flood), 3.0 s, about 9 s left");
+    EXPECT_DOUBLE_EQ(render::fieldTimeLeft(0.25, 3.0), 9.0);
+    EXPECT_DOUBLE_EQ(render::fieldTimeLeft(1.0, 3.0), 0.0);
+    EXPECT_EQ(render::fieldProgressLine(0.25, 5.0, 8.2, "sdf_flood"),
+              "distance field 25% (sdf_flood), 5.0 s, about 9 s left");
 }

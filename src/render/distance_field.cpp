@@ -58,7 +58,8 @@ double msSince(std::chrono::steady_clock::time_point start) {
 constexpr uint32_t kFieldSlabs = 8;
 
 // Reports a build's progress through a ProgressFn: once it has run for a second, then every
-// few seconds, each line with its share of the estimated work done and the time left.
+// two seconds, each line with its share of the passes' estimated work done and the time left at
+// the passes' rate so far (the CPU's part before them is done).
 class BuildProgress {
 public:
     BuildProgress(const ProgressFn& progress, std::chrono::steady_clock::time_point start,
@@ -66,6 +67,11 @@ public:
         : mProgress(progress), mStart(start), mSlabs(slabs) {
         for (const FieldSlab& s : slabs)
             mTotal += s.cost;
+        const double elapsed = msSince(mStart) / 1000.0;
+        if (mProgress && elapsed >= 1.0) {
+            mProgress(fmt::format("distance field: triangle lists ready, {:.1f} s", elapsed));
+            mLast = elapsed;
+        }
     }
     void done(size_t slab) {
         mDone += mSlabs[slab].cost;
@@ -73,12 +79,15 @@ public:
         if (!mProgress || elapsed < 1.0 || elapsed < mLast + 2.0 || slab + 1 == mSlabs.size())
             return;
         mLast = elapsed;
-        mProgress(fieldProgressLine(mDone / std::max(mTotal, 1.0), elapsed, mSlabs[slab + 1].pass));
+        const double fraction = mDone / std::max(mTotal, 1.0);
+        mProgress(fieldProgressLine(fraction, elapsed,
+                                    fieldTimeLeft(fraction, msSince(mPasses) / 1000.0),
+                                    mSlabs[slab + 1].pass));
     }
 
 private:
     const ProgressFn& mProgress;
-    std::chrono::steady_clock::time_point mStart;
+    std::chrono::steady_clock::time_point mStart, mPasses = std::chrono::steady_clock::now();
     const std::vector<FieldSlab>& mSlabs;
     double mTotal = 0.0, mDone = 0.0, mLast = 0.0;
 };
@@ -125,10 +134,14 @@ std::vector<FieldSlab> fieldSlabs(const shadows::FieldLayout& layout,
     return slabs;
 }
 
-std::string fieldProgressLine(double fraction, double elapsedSeconds, std::string_view next) {
-    const double left = fraction > 0.0 ? elapsedSeconds * (1.0 - fraction) / fraction : 0.0;
+double fieldTimeLeft(double fraction, double seconds) {
+    return fraction > 0.0 ? seconds * (1.0 - fraction) / fraction : 0.0;
+}
+
+std::string fieldProgressLine(double fraction, double elapsedSeconds, double leftSeconds,
+                              std::string_view next) {
     return fmt::format("distance field {:.0f}% ({}), {:.1f} s, about {:.0f} s left",
-                       100.0 * fraction, next, elapsedSeconds, std::ceil(left));
+                       100.0 * fraction, next, elapsedSeconds, std::ceil(leftSeconds));
 }
 
 uint64_t fieldBuildBytes(const shadows::FieldLayout& layout) {

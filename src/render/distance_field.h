@@ -65,8 +65,12 @@ struct FieldSlab {
 std::vector<FieldSlab> fieldSlabs(const shadows::FieldLayout& layout,
                                   const std::vector<uint32_t>& brickStarts, uint32_t count);
 
-// "distance field 45% (sdf_flood), 12.3 s, about 15 s left": the share done, what runs next.
-std::string fieldProgressLine(double fraction, double elapsedSeconds, std::string_view next);
+// The time left when `fraction` of the work took `seconds`, at the same rate.
+double fieldTimeLeft(double fraction, double seconds);
+// "distance field 45% (sdf_flood), 12.3 s, about 15 s left": the share done, the time since the
+// build began, the time left, what runs next.
+std::string fieldProgressLine(double fraction, double elapsedSeconds, double leftSeconds,
+                              std::string_view next);
 
 // The field's voxels, x fastest then y then z (tests, the debug slice).
 std::vector<float> readDistanceField(const vk::Context& ctx, const DistanceField& field);
