@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 namespace penumbra::shadows {
 namespace {
@@ -43,14 +44,23 @@ std::vector<uint32_t> brickNearest(const FieldGeometry& g, const FieldLayout& la
     };
     std::vector<uint32_t> ids(count, FIELD_NO_TRIANGLE);
     std::vector<float> best(count, std::numeric_limits<float>::infinity());
-    std::vector<bool> exact(count, false);
+    std::vector<uint8_t> exact(count, 0);
+    // Every brick, its layers of z shared out among the CPU's threads (each writes its own).
     auto each = [&](auto&& f) {
-        for (int z = 0; z < bricks.z; ++z)
-            for (int y = 0; y < bricks.y; ++y)
-                for (int x = 0; x < bricks.x; ++x) {
-                    const glm::ivec3 b(x, y, z);
-                    f(b, index(b), layout.origin + (glm::vec3(b) + 0.5f) * side);
-                }
+        auto layers = [&](int first, int step) {
+            for (int z = first; z < bricks.z; z += step)
+                for (int y = 0; y < bricks.y; ++y)
+                    for (int x = 0; x < bricks.x; ++x) {
+                        const glm::ivec3 b(x, y, z);
+                        f(b, index(b), layout.origin + (glm::vec3(b) + 0.5f) * side);
+                    }
+        };
+        const int threads = static_cast<int>(
+            std::clamp(std::thread::hardware_concurrency(), 1u, static_cast<unsigned>(bricks.z)));
+        std::vector<std::jthread> workers;
+        for (int t = 1; t < threads; ++t)
+            workers.emplace_back(layers, t, threads);
+        layers(0, threads);
     };
     each([&](glm::ivec3, size_t b, glm::vec3 centre) {
         for (uint32_t i = g.brickStarts[b]; i < g.brickStarts[b + 1]; ++i) {
