@@ -1,12 +1,12 @@
 #version 460
 // The distance field's first pass: each voxel's nearest triangle among its brick's list (every
 // triangle within a brick of it), exact wherever the nearest one is that close; FIELD_NO_TRIANGLE
-// where the list is empty. sdf_flood spreads the ids to the rest.
+// where the list is empty. sdf_flood gives the rest theirs.
 #include "sdf_build.glsl"
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 void main() {
-    ivec3 v = ivec3(gl_GlobalInvocationID);
+    ivec3 v = slabVoxel();
     if (!insideField(v)) return;
     vec3 p = voxelCentre(v);
     uint brick = brickOf(v);

@@ -280,6 +280,12 @@ TEST_F(MaterialTest, DistanceFieldSeesThroughAlphaTestedHoles) {
         scene.cameras.push_back({.position = {0.0f, 9.0f, 4.0f}, .target = {0, 0, 0}});
         const RenderResult r =
             render(scene, {.width = 160, .height = 160, .technique = Technique::Sdf});
+        // The stats count the scene's triangles, and the pieces the masked card became apart.
+        ASSERT_TRUE(r.field.has_value());
+        EXPECT_EQ(r.field->triangles, scene.triangleCount());
+        EXPECT_EQ(r.field->alphaTriangles, masked ? 2u : 0u);
+        EXPECT_EQ(r.field->fieldTriangles, 2u + (masked ? r.field->alphaPieces : 2u));
+        EXPECT_EQ(r.field->alphaPieces > 2u, masked);
         const ReferenceResult truth = computeReference(scene, r, {.samples = 1});
         const glm::vec3 toLight = -scene.lights[0].direction;
         size_t n = 0, gpuLit = 0, truthLit = 0, disagree = 0;

@@ -178,7 +178,7 @@ TEST(SdfField, BrickListsHoldEveryTriangleNearTheirBrick) {
     mb.beam({-2, 0.5f, -2}, {2, 2.0f, 1}, 0.1f, grey);
     dropInvalidTriangles(scene);
     const FieldLayout layout = fieldLayout(scene.bounds(), 48);
-    const FieldGeometry g = fieldGeometry(scene, layout);
+    const FieldGeometry g = fieldGeometry(scene, layout, 0.75f * layout.voxel);
     ASSERT_EQ(g.triangles.size(), scene.triangleCount());
     EXPECT_EQ(g.closedTriangles + g.openTriangles, g.triangles.size());
     EXPECT_EQ(g.openTriangles, 2u); // the quad

@@ -106,7 +106,13 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     for (size_t r = 0; r < rows.size(); ++r) {
         std::fprintf(stderr, "penumbra: rendering %s (%zu/%zu) on %s\n", rows[r].name.c_str(),
                      r + 1, rows.size(), device.name.c_str());
-        results.push_back(uploaded.render(rowOptions[r]));
+        // The distance field's build (sdf: once, minutes on a large scene) and warnings; not
+        // each frame's stages.
+        results.push_back(uploaded.render(rowOptions[r], [](const std::string& stage) {
+            if (stage.find("distance field") != std::string::npos ||
+                stage.rfind("warning:", 0) == 0)
+                std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
+        }));
     }
     Scene lit = scene; // the light sizes the reference must use
     applyLightSizeOverrides(lit, args.options.lightRadiusOverride, args.options.lightAngleOverride);

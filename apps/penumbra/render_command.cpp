@@ -90,10 +90,13 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     }
     std::printf("  | total %.3f\n", total);
     if (const auto& f = result.field) {
-        std::printf("distance field %ux%ux%u voxels of %.4g (%.1f MiB), built once per scene: "
-                    "%.1f ms CPU, GPU",
+        std::printf("distance field %ux%ux%u voxels of %.4g (%.1f MiB) from %u triangles",
                     f->voxels.x, f->voxels.y, f->voxels.z, f->voxelSize,
-                    static_cast<double>(f->bytes) / (1 << 20), f->buildCpuMs);
+                    static_cast<double>(f->bytes) / (1 << 20), f->triangles);
+        if (f->alphaTriangles > 0)
+            std::printf(" (%u alpha-tested, cut into %u pieces)", f->alphaTriangles,
+                        f->alphaPieces);
+        std::printf(", built once per scene: %.1f ms CPU, GPU", f->buildCpuMs);
         for (const PassTime& p : f->buildPasses)
             std::printf("  %s %.3f", p.pass.c_str(), p.medianMs);
         std::printf("  | total %.3f ms\n", f->buildGpuMs);

@@ -97,8 +97,11 @@ struct DistanceFieldInfo {
     float voxelSize = 0.0f;            // world units
     glm::vec3 origin{0.0f};            // the box's lowest corner
     uint64_t bytes = 0;                // the field (R32F)
-    uint32_t triangles = 0;            // after alpha-tested ones were cut to their covered parts
-    uint32_t openTriangles = 0;        // unsigned, with sdf.thickness
+    uint32_t triangles = 0;            // the scene's
+    uint32_t fieldTriangles = 0;       // what the field was built from: alpha-tested ones cut
+    uint32_t openTriangles = 0;        // of those, unsigned, with sdf.thickness
+    uint32_t alphaTriangles = 0;       // the scene's alpha-tested triangles
+    uint32_t alphaPieces = 0;          // the covered pieces they were cut into
     double buildGpuMs = 0.0;           // its three compute passes
     std::vector<PassTime> buildPasses; // each: sdf_seed, sdf_flood, sdf_resolve
     double buildCpuMs = 0.0;           // the triangle lists

@@ -94,8 +94,9 @@
 #define FIELD_BRICK_STARTS 1     // sdf_resolve): FieldTriangle[], each brick's first entry in
 #define FIELD_BRICK_LIST 2       // the brick list (one past the last brick: its end), the list
 #define FIELD_IDS_IN 3           // of triangle indices; nearest-triangle ids (R32UI, 3D) read
-#define FIELD_IDS_OUT 4          // and written; the field (R32F, 3D) written
-#define FIELD_OUT 5
+#define FIELD_IDS_OUT 4          // and written; the field (R32F, 3D) written; each brick's
+#define FIELD_OUT 5              // candidates for its far voxels
+#define FIELD_FAR_CANDIDATES 6
 
 // A shadow-map post pass samples its inputs at bindings POST_INPUT_BINDING + i and writes its
 // outputs at POST_OUTPUT_BINDING + i (src/shadows/technique.h, PostPassDecl); its technique's

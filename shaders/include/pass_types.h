@@ -38,7 +38,7 @@ struct FieldTriangle {   // std430
 
 struct FieldPush {       // push constants of the distance field's build passes
     vec4 origin;         // xyz the box's lowest corner, w a voxel's side
-    uvec4 size;          // xyz voxels per axis, w the flood's step (sdf_flood)
+    uvec4 size;          // xyz voxels per axis, w the first z of this dispatch's slab
     vec4 thickness;      // x: open geometry's half-thickness (world units)
 };
 

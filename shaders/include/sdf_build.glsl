@@ -13,12 +13,18 @@ layout(set = 0, binding = FIELD_BRICK_STARTS, std430) readonly buffer BrickStart
     uint brickStarts[];
 };
 layout(set = 0, binding = FIELD_BRICK_LIST, std430) readonly buffer BrickList { uint brickList[]; };
+layout(set = 0, binding = FIELD_FAR_CANDIDATES, std430) readonly buffer FarCandidates {
+    uint farCandidates[]; // bricks + 1 offsets into farCandidates, then the lists
+};
 layout(set = 0, binding = FIELD_IDS_IN, r32ui) uniform readonly uimage3D idsIn;
 layout(set = 0, binding = FIELD_IDS_OUT, r32ui) uniform writeonly uimage3D idsOut;
 layout(set = 0, binding = FIELD_OUT, r32f) uniform writeonly image3D field;
 layout(push_constant) uniform Push { FieldPush push; };
 
 vec3 voxelCentre(ivec3 v) { return push.origin.xyz + (vec3(v) + 0.5) * push.origin.w; }
+
+// This invocation's voxel: the dispatch covers a slab of z from FieldPush.size.w.
+ivec3 slabVoxel() { return ivec3(gl_GlobalInvocationID) + ivec3(0, 0, int(push.size.w)); }
 
 bool insideField(ivec3 v) {
     return all(greaterThanEqual(v, ivec3(0))) && all(lessThan(uvec3(v), push.size.xyz));

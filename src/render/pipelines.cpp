@@ -251,7 +251,8 @@ const FieldPipelines& FramePipelines::field() {
                                               {FIELD_BRICK_LIST, kStorage},
                                               {FIELD_IDS_IN, kImage},
                                               {FIELD_IDS_OUT, kImage},
-                                              {FIELD_OUT, kImage}},
+                                              {FIELD_OUT, kImage},
+                                              {FIELD_FAR_CANDIDATES, kStorage}},
                                              VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::FieldPush));
         f->seed = vk::createComputePipeline(ctx, f->layout, "sdf_seed.comp");
         f->flood = vk::createComputePipeline(ctx, f->layout, "sdf_flood.comp");

@@ -160,7 +160,10 @@ SceneRenderer::Impl::fieldFor(const ParameterValues& p, const ProgressFn& progre
         VK_CHECK(vkDeviceWaitIdle(ctx().device())); // a frame in flight may still trace it
         field.reset();                              // its memory first
         field = render::buildDistanceField(ctx(), pipelines(), scene, wanted.first,
-                                           static_cast<float>(wanted.second));
+                                           static_cast<float>(wanted.second), progress);
+        if (progress)
+            for (const std::string& warning : field->warnings)
+                progress("warning: " + warning);
         fieldKey = wanted;
     }
     return *field;
@@ -300,8 +303,11 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
                                          .voxelSize = grid.layout.voxel,
                                          .origin = grid.layout.origin,
                                          .bytes = grid.bytes(),
-                                         .triangles = grid.triangles,
+                                         .triangles = grid.sceneTriangles,
+                                         .fieldTriangles = grid.triangles,
                                          .openTriangles = grid.openTriangles,
+                                         .alphaTriangles = grid.alphaTriangles,
+                                         .alphaPieces = grid.alphaPieces,
                                          .buildGpuMs = grid.buildMs,
                                          .buildPasses = grid.passMs,
                                          .buildCpuMs = grid.cpuMs,

@@ -2,15 +2,15 @@
 
 #include "penumbra/error.h"
 #include "sdf_math.h"
+#include "shadows/sdf_cut.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
-#include <numeric>
-#include <unordered_map>
+#include <limits>
+#include <thread>
 
 namespace penumbra::shadows {
 namespace {
@@ -25,93 +25,145 @@ float maxExtent(const Bounds& b) {
     return std::max({e.x, e.y, e.z, 0.0f});
 }
 
-struct Welder {
-    double step;
-    std::unordered_map<uint64_t, std::vector<std::pair<std::array<int64_t, 3>, uint32_t>>> cells;
-    uint32_t next = 0;
-    uint32_t id(const glm::vec3& p) {
-        const std::array<int64_t, 3> key{std::llround(p.x / step), std::llround(p.y / step),
-                                         std::llround(p.z / step)};
-        const uint64_t hash = static_cast<uint64_t>(key[0]) * 73856093u ^
-                              static_cast<uint64_t>(key[1]) * 19349663u ^
-                              static_cast<uint64_t>(key[2]) * 83492791u;
-        auto& bucket = cells[hash];
-        for (const auto& [k, i] : bucket)
-            if (k == key)
-                return i;
-        bucket.push_back({key, next});
-        return next++;
-    }
-};
-
-uint32_t findRoot(std::vector<uint32_t>& parent, uint32_t i) {
-    while (parent[i] != i)
-        i = parent[i] = parent[parent[i]];
-    return i;
-}
-
-gpu::FieldTriangle fieldTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t flags) {
-    float f;
-    std::memcpy(&f, &flags, sizeof f);
-    return {glm::vec4(a, f), glm::vec4(b, 0.0f), glm::vec4(c, 0.0f)};
-}
-
-uint32_t flagsOf(const gpu::FieldTriangle& t) {
-    uint32_t flags;
-    std::memcpy(&flags, &t.a.w, sizeof flags);
-    return flags;
-}
-
-// An alpha-tested triangle cut into n x n pieces of at most half a voxel, keeping those whose
-// centre the material covers (the test the shadow pass and the ground truth make).
-void cutByCoverage(const Scene& scene, const std::array<const Vertex*, 3>& v, float voxel,
-                   uint64_t& budget, std::vector<gpu::FieldTriangle>& out) {
-    const glm::vec3 a = v[0]->position, b = v[1]->position, c = v[2]->position;
-    const float edge = std::max({glm::distance(a, b), glm::distance(b, c), glm::distance(c, a)});
-    auto n = static_cast<uint32_t>(std::clamp(std::ceil(edge / (0.5f * voxel)), 1.0f, 64.0f));
-    while (n > 1 && uint64_t{n} * n > budget)
-        --n;
-    auto at = [&](float s, float t) { return a + s * (b - a) + t * (c - a); };
-    const float step = 1.0f / static_cast<float>(n);
-    auto covered = [&](glm::vec2 st0, glm::vec2 st1, glm::vec2 st2) {
-        const glm::vec2 st = (st0 + st1 + st2) / 3.0f;
-        const float w0 = 1.0f - st.x - st.y;
-        const glm::vec2 uv = w0 * v[0]->uv + st.x * v[1]->uv + st.y * v[2]->uv;
-        const float alpha = w0 * v[0]->color.w + st.x * v[1]->color.w + st.y * v[2]->color.w;
-        return scene.covers(v[0]->material, uv, alpha);
+// Each brick's nearest triangle to its centre: exact where its list has one within a brick of the
+// centre (the list holds every triangle that close), then carried to the other bricks by
+// jump flooding over the bricks [Rong and Tan 2006]: steps n/2, ..., 1, then 1 again, each
+// candidate measured exactly from the brick's centre.
+std::vector<uint32_t> brickNearest(const FieldGeometry& g, const FieldLayout& layout,
+                                   float thickness) {
+    const glm::ivec3 bricks(layout.bricks());
+    const size_t count = size_t(bricks.x) * size_t(bricks.y) * size_t(bricks.z);
+    const float side = FIELD_BRICK * layout.voxel;
+    auto index = [&](glm::ivec3 b) {
+        return (size_t(b.z) * size_t(bricks.y) + size_t(b.y)) * size_t(bricks.x) + size_t(b.x);
     };
-    // Piece (i, j) "up": corners P(i, j), P(i + 1, j), P(i, j + 1); "down": P(i + 1, j),
-    // P(i + 1, j + 1), P(i, j + 1), for i + j + 2 <= n. Pieces outside the triangle count as
-    // covered: its own edges continue into its neighbours.
-    auto up = [&](int i, int j) {
-        if (i < 0 || j < 0 || i + j >= int(n))
-            return true;
-        const glm::vec2 p(float(i) * step, float(j) * step);
-        return covered(p, p + glm::vec2(step, 0), p + glm::vec2(0, step));
+    auto distance = [&](uint32_t id, glm::vec3 p) {
+        const gpu::FieldTriangle& t = g.triangles[id];
+        return gpu::fieldTriangleDistance(p, glm::vec3(t.a), glm::vec3(t.b), glm::vec3(t.c),
+                                          flagsOf(t), thickness);
     };
-    auto down = [&](int i, int j) {
-        if (i < 0 || j < 0 || i + j + 2 > int(n))
-            return true;
-        const glm::vec2 p(float(i) * step, float(j) * step);
-        return covered(p + glm::vec2(step, 0), p + glm::vec2(step, step), p + glm::vec2(0, step));
+    std::vector<uint32_t> ids(count, FIELD_NO_TRIANGLE);
+    std::vector<float> best(count, std::numeric_limits<float>::infinity());
+    std::vector<uint8_t> exact(count, 0);
+    // Every brick, its layers of z shared out among the CPU's threads (each writes its own).
+    auto each = [&](auto&& f) {
+        auto layers = [&](int first, int step) {
+            for (int z = first; z < bricks.z; z += step)
+                for (int y = 0; y < bricks.y; ++y)
+                    for (int x = 0; x < bricks.x; ++x) {
+                        const glm::ivec3 b(x, y, z);
+                        f(b, index(b), layout.origin + (glm::vec3(b) + 0.5f) * side);
+                    }
+        };
+        const int threads = static_cast<int>(
+            std::clamp(std::thread::hardware_concurrency(), 1u, static_cast<unsigned>(bricks.z)));
+        std::vector<std::jthread> workers;
+        for (int t = 1; t < threads; ++t)
+            workers.emplace_back(layers, t, threads);
+        layers(0, threads);
     };
-    auto emit = [&](glm::vec2 st0, glm::vec2 st1, glm::vec2 st2, bool ab, bool bc, bool ca) {
-        const uint32_t flags = FIELD_OPEN | (ab ? 0u : FIELD_OUTLINE_AB) |
-                               (bc ? 0u : FIELD_OUTLINE_BC) | (ca ? 0u : FIELD_OUTLINE_CA);
-        out.push_back(fieldTriangle(at(st0.x, st0.y), at(st1.x, st1.y), at(st2.x, st2.y), flags));
-    };
-    for (int i = 0; i < int(n); ++i)
-        for (int j = 0; i + j < int(n); ++j) {
-            const glm::vec2 p(float(i) * step, float(j) * step);
-            // Each edge's neighbour: up's are the downs below, left and across its diagonal.
-            if (up(i, j))
-                emit(p, p + glm::vec2(step, 0), p + glm::vec2(0, step), down(i, j - 1), down(i, j),
-                     down(i - 1, j));
-            if (i + j + 2 <= int(n) && down(i, j))
-                emit(p + glm::vec2(step, 0), p + glm::vec2(step, step), p + glm::vec2(0, step),
-                     up(i + 1, j), up(i, j + 1), up(i, j));
+    each([&](glm::ivec3, size_t b, glm::vec3 centre) {
+        for (uint32_t i = g.brickStarts[b]; i < g.brickStarts[b + 1]; ++i) {
+            const float d = distance(g.brickList[i], centre);
+            if (d < best[b]) {
+                best[b] = d;
+                ids[b] = g.brickList[i];
+            }
         }
-    budget -= std::min<uint64_t>(budget, uint64_t{n} * n);
+        exact[b] = best[b] <= side - thickness; // (a slab is at most its thickness nearer)
+    });
+    int step = 1;
+    while (2 * step < std::max({bricks.x, bricks.y, bricks.z}))
+        step *= 2;
+    std::vector<int> steps;
+    for (; step >= 1; step /= 2)
+        steps.push_back(step);
+    steps.push_back(1);
+    std::vector<uint32_t> nextIds;
+    std::vector<float> nextBest;
+    for (const int s : steps) {
+        nextIds = ids;
+        nextBest = best;
+        each([&](glm::ivec3 b, size_t i, glm::vec3 centre) {
+            if (exact[i])
+                return;
+            uint32_t tried = ids[i];
+            for (int dz = -s; dz <= s; dz += s)
+                for (int dy = -s; dy <= s; dy += s)
+                    for (int dx = -s; dx <= s; dx += s) {
+                        const glm::ivec3 q = b + glm::ivec3(dx, dy, dz);
+                        if (glm::any(glm::lessThan(q, glm::ivec3(0))) ||
+                            glm::any(glm::greaterThanEqual(q, bricks)))
+                            continue;
+                        const uint32_t id = ids[index(q)];
+                        if (id == FIELD_NO_TRIANGLE || id == tried)
+                            continue;
+                        tried = id;
+                        const float d = distance(id, centre);
+                        if (d < nextBest[i]) {
+                            nextBest[i] = d;
+                            nextIds[i] = id;
+                        }
+                    }
+        });
+        ids.swap(nextIds);
+        best.swap(nextBest);
+    }
+    return ids;
+}
+
+// Per brick, the far voxels' candidates: the distinct nearest triangles of the brick and its 26
+// neighbours, less those that cannot be nearest anywhere in the brick (measured from its centre,
+// more than the brick's diagonal farther than the nearest of them: distances change by at most
+// the distance moved). Packed: bricks + 1 offsets into the array, then the lists. A brick whose
+// every voxel has its nearest triangle within a brick (sdf_seed's exact answer) lists none.
+std::vector<uint32_t> farCandidates(const FieldGeometry& g, const FieldLayout& layout,
+                                    float thickness) {
+    const glm::ivec3 bricks(layout.bricks());
+    const size_t count = g.brickNearest.size();
+    const float side = FIELD_BRICK * layout.voxel;
+    const float halfDiagonal = 0.5f * std::sqrt(3.0f) * side;
+    std::vector<uint32_t> packed(count + 1, 0);
+    std::vector<std::pair<float, uint32_t>> found;
+    size_t b = 0;
+    for (int z = 0; z < bricks.z; ++z)
+        for (int y = 0; y < bricks.y; ++y)
+            for (int x = 0; x < bricks.x; ++x, ++b) {
+                packed[b] = static_cast<uint32_t>(packed.size());
+                const glm::vec3 centre = layout.origin + (glm::vec3(x, y, z) + 0.5f) * side;
+                found.clear();
+                for (int dz = -1; dz <= 1; ++dz)
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dx = -1; dx <= 1; ++dx) {
+                            const glm::ivec3 q(x + dx, y + dy, z + dz);
+                            if (glm::any(glm::lessThan(q, glm::ivec3(0))) ||
+                                glm::any(glm::greaterThanEqual(q, bricks)))
+                                continue;
+                            const uint32_t id =
+                                g.brickNearest[(size_t(q.z) * size_t(bricks.y) + size_t(q.y)) *
+                                                   size_t(bricks.x) +
+                                               size_t(q.x)];
+                            if (id == FIELD_NO_TRIANGLE ||
+                                std::any_of(found.begin(), found.end(),
+                                            [&](const auto& f) { return f.second == id; }))
+                                continue;
+                            const gpu::FieldTriangle& t = g.triangles[id];
+                            found.push_back(
+                                {gpu::fieldTriangleDistance(centre, glm::vec3(t.a), glm::vec3(t.b),
+                                                            glm::vec3(t.c), flagsOf(t), thickness),
+                                 id});
+                        }
+                if (found.empty())
+                    continue;
+                std::sort(found.begin(), found.end());
+                if (found[0].first + halfDiagonal <= side - thickness)
+                    continue; // every voxel's seed is exact
+                for (const auto& [d, id] : found)
+                    if (d <= found[0].first + 2.0f * halfDiagonal)
+                        packed.push_back(id);
+            }
+    packed[count] = static_cast<uint32_t>(packed.size());
+    return packed;
 }
 
 } // namespace
@@ -141,60 +193,11 @@ FieldLayout fieldLayout(const Bounds& bounds, uint32_t resolution) {
     return layout;
 }
 
-Closure closedSurfaces(const Scene& scene) {
-    const size_t count = scene.triangleCount();
-    Closure out{.closed = std::vector<bool>(count, false),
-                .flipped = std::vector<bool>(count, false)};
-    Welder welder{.step = std::max(1e-6 * maxExtent(scene.bounds()), 1e-12)};
-    std::vector<std::array<uint32_t, 3>> welded(count);
-    for (size_t t = 0; t < count; ++t)
-        for (int k = 0; k < 3; ++k)
-            welded[t][k] = welder.id(scene.vertices[scene.indices[3 * t + k]].position);
-    std::vector<uint32_t> parent(welder.next);
-    std::iota(parent.begin(), parent.end(), 0u);
-    std::unordered_map<uint64_t, uint32_t> directedEdges;
-    auto edgeKey = [](uint32_t u, uint32_t v) { return (uint64_t{u} << 32) | v; };
-    for (const auto& w : welded) {
-        parent[findRoot(parent, w[1])] = findRoot(parent, w[0]);
-        parent[findRoot(parent, w[2])] = findRoot(parent, w[0]);
-        for (int k = 0; k < 3; ++k)
-            ++directedEdges[edgeKey(w[k], w[(k + 1) % 3])];
-    }
-    std::vector<bool> open(welder.next, false);
-    std::vector<double> volume(welder.next, 0.0);
-    for (size_t t = 0; t < count; ++t) {
-        const auto& w = welded[t];
-        const uint32_t root = findRoot(parent, w[0]);
-        const Material* m =
-            scene.materials.empty()
-                ? nullptr
-                : &scene.materials[std::min<size_t>(scene.vertices[scene.indices[3 * t]].material,
-                                                    scene.materials.size() - 1)];
-        if (m && m->alphaTested())
-            open[root] = true;
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t u = w[k], v = w[(k + 1) % 3];
-            auto back = directedEdges.find(edgeKey(v, u));
-            if (directedEdges[edgeKey(u, v)] != 1 || back == directedEdges.end() ||
-                back->second != 1)
-                open[root] = true;
-        }
-        const glm::dvec3 a(scene.vertices[scene.indices[3 * t]].position);
-        const glm::dvec3 b(scene.vertices[scene.indices[3 * t + 1]].position);
-        const glm::dvec3 c(scene.vertices[scene.indices[3 * t + 2]].position);
-        volume[root] += glm::dot(a, glm::cross(b, c)) / 6.0;
-    }
-    for (size_t t = 0; t < count; ++t) {
-        const uint32_t root = findRoot(parent, welded[t][0]);
-        out.closed[t] = !open[root];
-        out.flipped[t] = !open[root] && volume[root] < 0.0;
-    }
-    return out;
-}
-
-FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout) {
+FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout, float thickness) {
     FieldGeometry g;
+    g.sceneTriangles = static_cast<uint32_t>(scene.triangleCount());
     const Closure closure = closedSurfaces(scene);
+    g.warnings = closure.shells;
     uint64_t budget = kMaxCutTriangles;
     for (size_t t = 0; t < scene.triangleCount(); ++t) {
         const std::array<const Vertex*, 3> v{&scene.vertices[scene.indices[3 * t]],
@@ -203,7 +206,9 @@ FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout) {
         const uint32_t material = v[0]->material;
         if (material < scene.materials.size() && scene.materials[material].alphaTested()) {
             ++g.alphaTriangles;
+            const size_t before = g.triangles.size();
             cutByCoverage(scene, v, layout.voxel, budget, g.triangles);
+            g.alphaPieces += static_cast<uint32_t>(g.triangles.size() - before);
             continue;
         }
         const uint32_t flags =
@@ -260,40 +265,8 @@ FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout) {
     for (uint32_t i = 0; i < g.triangles.size(); ++i)
         visit(g.triangles[i], [&](uint64_t brick) { g.brickList[cursor[brick]++] = i; });
 
-    // Breadth-first over the bricks from those with a list, to their 26 neighbours.
-    std::vector<uint32_t> hops(brickCount, UINT32_MAX);
-    std::vector<uint64_t> frontier;
-    for (uint64_t b = 0; b < brickCount; ++b)
-        if (counts[b] > 0) {
-            hops[b] = 0;
-            frontier.push_back(b);
-        }
-    uint32_t farthest = 0;
-    while (!frontier.empty()) {
-        std::vector<uint64_t> next;
-        for (const uint64_t b : frontier) {
-            const glm::ivec3 c(static_cast<int>(b % bricks.x),
-                               static_cast<int>(b / bricks.x % bricks.y),
-                               static_cast<int>(b / (uint64_t{bricks.x} * bricks.y)));
-            for (int dz = -1; dz <= 1; ++dz)
-                for (int dy = -1; dy <= 1; ++dy)
-                    for (int dx = -1; dx <= 1; ++dx) {
-                        const glm::ivec3 n = c + glm::ivec3(dx, dy, dz);
-                        if (glm::any(glm::lessThan(n, glm::ivec3(0))) ||
-                            glm::any(glm::greaterThanEqual(n, glm::ivec3(bricks))))
-                            continue;
-                        const uint64_t nb =
-                            (uint64_t(n.z) * bricks.y + uint64_t(n.y)) * bricks.x + uint64_t(n.x);
-                        if (hops[nb] != UINT32_MAX)
-                            continue;
-                        hops[nb] = hops[b] + 1;
-                        farthest = std::max(farthest, hops[nb]);
-                        next.push_back(nb);
-                    }
-        }
-        frontier.swap(next);
-    }
-    g.seedGap = (farthest + 1) * FIELD_BRICK;
+    g.brickNearest = brickNearest(g, layout, thickness);
+    g.farCandidates = farCandidates(g, layout, thickness);
     return g;
 }
 

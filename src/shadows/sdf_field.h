@@ -1,15 +1,16 @@
 #pragma once
 // What the `sdf` technique's field is built from, prepared on the CPU once per scene and
 // resolution: the field's box and voxels, the triangles (closed surfaces signed by their winding,
-// open ones given a thickness, alpha-tested ones cut down to their covered parts) and a coarse
-// grid of bricks listing the triangles near each. The GPU passes (src/render/distance_field.h)
-// compute the distances from these.
+// open ones given a thickness, alpha-tested ones cut down to their covered parts), a coarse
+// grid of bricks listing the triangles near each, and each brick's nearest triangle. The GPU passes
+// (src/render/distance_field.h) compute the distances from these.
 #include "pass_types.h"
 #include "penumbra/scene.h"
 
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace penumbra::shadows {
@@ -38,22 +39,33 @@ struct FieldGeometry {
     // every triangle within one brick of the brick's box (so a voxel's nearest triangle is in its
     // brick's list whenever it is that close, and every triangle crossing the brick is).
     std::vector<uint32_t> brickStarts, brickList;
-    // The farthest any voxel is from a brick with a list, in voxels (chessboard distance, a
-    // bound): how far jump flooding has to carry the ids.
-    uint32_t seedGap = 0;
-    uint32_t closedTriangles = 0, openTriangles = 0;
-    uint32_t alphaTriangles = 0; // alpha-tested triangles before they were cut down
+    // Per brick, the triangle nearest to its centre (jump flooding over the bricks from those
+    // with a list): the far voxels' candidates, those of their brick and its 26 neighbours.
+    std::vector<uint32_t> brickNearest;
+    // Per brick, the candidates sdf_flood measures for its far voxels (farCandidates): bricks + 1
+    // offsets into this array, then the lists.
+    std::vector<uint32_t> farCandidates;
+    uint32_t sceneTriangles = 0;                     // the scene's, as given
+    uint32_t closedTriangles = 0, openTriangles = 0; // of `triangles`
+    uint32_t alphaTriangles = 0;       // the scene's alpha-tested triangles, before they were cut
+    uint32_t alphaPieces = 0;          // what those were cut into (part of `triangles`)
+    std::vector<std::string> warnings; // closed surfaces taken as shells (Closure::shells)
 };
 
 // Which of the scene's triangles belong to closed surfaces: welded by position (to a millionth of
 // the scene's size), a connected set of triangles is closed when each of its edges is shared by
-// exactly two of them, wound in opposite directions. Alpha-tested materials are never closed.
+// exactly two of them, wound in opposite directions. Alpha-tested materials are never closed, nor
+// are surfaces that hold a point or spot light or a camera inside (a room, a sky box: signed as
+// solids, every receiver inside would shadow itself); `shells` has a warning for each.
 // Also returns, per triangle, whether its closed surface is wound inside out (negative volume).
+// (src/shadows/sdf_closure.cpp)
 struct Closure {
     std::vector<bool> closed, flipped;
+    std::vector<std::string> shells;
 };
 Closure closedSurfaces(const Scene& scene);
 
-FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout);
+// `thickness`: open geometry's half-thickness, world units (the distance jump flooding measures).
+FieldGeometry fieldGeometry(const Scene& scene, const FieldLayout& layout, float thickness);
 
 } // namespace penumbra::shadows

@@ -1,0 +1,165 @@
+// The `sdf` field's inputs for real assets: alpha-tested triangles cut into few pieces (merged
+// where covered), each brick's nearest triangle (what far voxels start from), closed surfaces
+// that hold something inside taken as shells, and the counts the stats report.
+#include "scene/mesh_builder.h"
+#include "sdf_math.h"
+#include "shadows/sdf_cut.h"
+#include "shadows/sdf_field.h"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+using namespace penumbra;
+using namespace penumbra::shadows;
+
+namespace {
+
+Bounds boundsOf(glm::vec3 lo, glm::vec3 hi) {
+    Bounds b;
+    b.grow(lo);
+    b.grow(hi);
+    return b;
+}
+
+// A card over a ground plane, its material 8x8 texels (alpha 255 where `covered`), alpha-tested.
+Scene maskedCard(bool (*covered)(uint32_t x, uint32_t y)) {
+    Scene scene;
+    MeshBuilder mb(scene);
+    mb.quad({-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, mb.material("ground", glm::vec3(0.7f)));
+    TextureImage image{.name = "mask", .width = 8, .height = 8};
+    for (uint32_t y = 0; y < 8; ++y)
+        for (uint32_t x = 0; x < 8; ++x)
+            image.rgba.insert(image.rgba.end(), {200, 200, 200, uint8_t(covered(x, y) ? 255 : 0)});
+    const uint32_t card = mb.texturedMaterial(
+        "card", image,
+        {.wrapS = TextureWrap::ClampToEdge, .wrapT = TextureWrap::ClampToEdge, .nearest = true},
+        AlphaMode::Mask);
+    mb.quad({-2, 2, 2}, {2, 2, 2}, {2, 2, -2}, {-2, 2, -2}, card);
+    dropInvalidTriangles(scene);
+    return scene;
+}
+
+double area(const gpu::FieldTriangle& t) {
+    return 0.5 * glm::length(glm::cross(glm::dvec3(t.b - t.a), glm::dvec3(t.c - t.a)));
+}
+
+} // namespace
+
+// A fully covered card stays two triangles without outlines; a card whose left half is a hole
+// keeps exactly the right half's area, in far fewer pieces than its grid, with outlines only on
+// the pieces along the hole (the hole's edge runs along the subdivision's midlines: few).
+TEST(SdfField, AlphaTestedTrianglesAreMergedWhereCovered) {
+    const FieldLayout layout = fieldLayout(boundsOf({-4, 0, -4}, {4, 2, 4}), 128);
+    const FieldGeometry whole =
+        fieldGeometry(maskedCard([](uint32_t, uint32_t) { return true; }), layout, layout.voxel);
+    EXPECT_EQ(whole.sceneTriangles, 4u);
+    EXPECT_EQ(whole.alphaTriangles, 2u);
+    EXPECT_EQ(whole.alphaPieces, 2u);
+    for (size_t t = 2; t < whole.triangles.size(); ++t)
+        EXPECT_EQ(flagsOf(whole.triangles[t]), uint32_t{FIELD_OPEN}) << t;
+
+    const FieldGeometry half = fieldGeometry(
+        maskedCard([](uint32_t x, uint32_t) { return x >= 4; }), layout, layout.voxel);
+    EXPECT_EQ(half.alphaTriangles, 2u);
+    EXPECT_EQ(half.triangles.size(), size_t{half.alphaPieces} + 2);
+    double covered = 0.0;
+    size_t outlined = 0;
+    for (size_t t = 2; t < half.triangles.size(); ++t) {
+        const gpu::FieldTriangle& p = half.triangles[t];
+        covered += area(p);
+        const glm::vec3 centre = (glm::vec3(p.a) + glm::vec3(p.b) + glm::vec3(p.c)) / 3.0f;
+        EXPECT_GT(centre.x, 0.0f) << "a piece in the hole"; // u = 0 at x = -2
+        outlined += (flagsOf(p) & (FIELD_OUTLINE_AB | FIELD_OUTLINE_BC | FIELD_OUTLINE_CA)) != 0;
+    }
+    EXPECT_NEAR(covered, 8.0, 0.25); // half the 4x4 card, up to the pieces along the diagonal
+    // The grid has 2 x 64^2 pieces; merged, about the hole's edge's worth.
+    EXPECT_LT(half.alphaPieces, 1000u);
+    EXPECT_GE(outlined, 1u);
+    EXPECT_LT(outlined, half.alphaPieces);
+}
+
+// Each brick's nearest triangle: exact where one of its list is within a brick of its centre;
+// elsewhere (jump flooded over
+// the bricks) within a voxel of the nearest, for a sphere, a plane and a beam.
+TEST(SdfField, EveryBrickKnowsItsNearestTriangle) {
+    Scene scene;
+    MeshBuilder mb(scene);
+    const uint32_t grey = mb.material("grey", glm::vec3(0.5f));
+    mb.sphere({0, 1, 0}, 0.7f, grey, 12, 6);
+    mb.quad({-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3}, grey);
+    mb.beam({-2, 0.5f, -2}, {2, 2.0f, 1}, 0.1f, grey);
+    dropInvalidTriangles(scene);
+    const FieldLayout layout = fieldLayout(scene.bounds(), 64);
+    const float thickness = 0.75f * layout.voxel;
+    const FieldGeometry g = fieldGeometry(scene, layout, thickness);
+    const glm::uvec3 bricks = layout.bricks();
+    ASSERT_EQ(g.brickNearest.size(), size_t{bricks.x} * bricks.y * bricks.z);
+    auto distance = [&](uint32_t id, glm::vec3 p) {
+        const gpu::FieldTriangle& t = g.triangles[id];
+        return gpu::fieldTriangleDistance(p, glm::vec3(t.a), glm::vec3(t.b), glm::vec3(t.c),
+                                          flagsOf(t), thickness);
+    };
+    size_t listed = 0, far = 0;
+    float worst = 0.0f;
+    for (uint32_t z = 0; z < bricks.z; ++z)
+        for (uint32_t y = 0; y < bricks.y; ++y)
+            for (uint32_t x = 0; x < bricks.x; ++x) {
+                const size_t b = (size_t{z} * bricks.y + y) * bricks.x + x;
+                const glm::vec3 centre =
+                    layout.origin + (glm::vec3(x, y, z) + 0.5f) * (FIELD_BRICK * layout.voxel);
+                float nearest = std::numeric_limits<float>::infinity();
+                for (uint32_t t = 0; t < g.triangles.size(); ++t)
+                    nearest = std::min(nearest, distance(t, centre));
+                ASSERT_NE(g.brickNearest[b], FIELD_NO_TRIANGLE);
+                const float got = distance(g.brickNearest[b], centre);
+                if (nearest <= FIELD_BRICK * layout.voxel) {
+                    ++listed;
+                    EXPECT_FLOAT_EQ(got, nearest) << b;
+                } else {
+                    ++far;
+                    worst = std::max(worst, got - nearest);
+                }
+            }
+    EXPECT_GT(listed, 100u);
+    EXPECT_GT(far, 1000u);
+    EXPECT_LT(worst, layout.voxel) << "world units";
+}
+
+// A closed box around the camera (a sky box, a room seen from inside) or around a point light:
+// taken as a shell, open, with a warning naming its material and what it holds. A box around
+// other geometry alone (a tower's envelope around its floors), a ball inside it, and a box
+// resting on another stay solids; so does a box with a light on its surface.
+TEST(SdfField, ClosedSurfacesHoldingTheLightOrCameraAreShells) {
+    Scene scene;
+    MeshBuilder mb(scene);
+    const uint32_t glass = mb.material("glass", glm::vec3(0.5f));
+    const uint32_t grey = mb.material("grey", glm::vec3(0.5f));
+    mb.box(glm::scale(glm::mat4(1.0f), glm::vec3(4.0f)), glass); // [-2, 2]^3, the camera inside
+    const size_t skyEnd = scene.triangleCount();
+    mb.sphere({0, 0, 0}, 0.5f, grey, 12, 6);
+    mb.box(glm::translate(glm::mat4(1.0f), glm::vec3(5, 0.5f, 0)), grey); // [4.5, 5.5] x [0, 1]
+    mb.box(glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(5, 1.25f, 0)), glm::vec3(0.5f)),
+           grey); // resting on it: [4.75, 5.25] x [1, 1.5]
+    mb.box(glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(5, 4, 0)), glm::vec3(2.0f)),
+           grey); // [4, 6] x [3, 5] around a small box: an envelope around floors
+    mb.box(glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(5, 4, 0)), glm::vec3(0.5f)), grey);
+    const size_t solidEnd = scene.triangleCount();
+    mb.box(glm::translate(glm::scale(glm::mat4(1.0f), glm::vec3(2.0f)), glm::vec3(-4, 0, 0)),
+           grey); // [-9, -7]: a room around a point light
+    scene.lights.push_back({.name = "bulb", .type = LightType::Point, .position = {-8, 0, 0}});
+    scene.lights.push_back({.name = "lamp", .type = LightType::Point, .position = {5, 1.0f, 0}});
+    scene.cameras.push_back({.name = "inside", .position = {0, 1.5f, 0}});
+    dropInvalidTriangles(scene);
+    const Closure c = closedSurfaces(scene);
+    for (size_t t = 0; t < scene.triangleCount(); ++t) {
+        const bool shell = t < skyEnd || t >= solidEnd;
+        EXPECT_EQ(c.closed[t], !shell) << t;
+    }
+    ASSERT_EQ(c.shells.size(), 2u);
+    std::string all = c.shells[0] + "\n" + c.shells[1];
+    EXPECT_NE(all.find("(material 'glass') holds camera 'inside'"), std::string::npos) << all;
+    EXPECT_NE(all.find("(material 'grey') holds light 'bulb'"), std::string::npos) << all;
+}
