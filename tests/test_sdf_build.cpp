@@ -126,6 +126,47 @@ TEST(SdfField, EveryBrickKnowsItsNearestTriangle) {
     EXPECT_GT(listed, 100u);
     EXPECT_GT(far, 1000u);
     EXPECT_LT(worst, layout.voxel) << "world units";
+
+    // The far candidates lose nothing: at every voxel of a brick that lists any, the nearest of
+    // them is the nearest of the 27 bricks' nearest triangles.
+    ASSERT_EQ(g.farCandidates.size(), size_t{g.farCandidates[g.brickNearest.size()]});
+    size_t voxels = 0, mismatched = 0;
+    for (uint32_t z = 0; z < bricks.z; ++z)
+        for (uint32_t y = 0; y < bricks.y; ++y)
+            for (uint32_t x = 0; x < bricks.x; ++x) {
+                const size_t b = (size_t{z} * bricks.y + y) * bricks.x + x;
+                if (g.farCandidates[b] == g.farCandidates[b + 1])
+                    continue;
+                for (uint32_t v = 0; v < FIELD_BRICK * FIELD_BRICK * FIELD_BRICK; v += 7) {
+                    const glm::uvec3 voxel =
+                        glm::uvec3(x, y, z) * FIELD_BRICK +
+                        glm::uvec3(v % FIELD_BRICK, v / FIELD_BRICK % FIELD_BRICK,
+                                   v / (FIELD_BRICK * FIELD_BRICK));
+                    const glm::vec3 p = layout.voxelCentre(voxel);
+                    float listedBest = std::numeric_limits<float>::infinity();
+                    for (uint32_t i = g.farCandidates[b]; i < g.farCandidates[b + 1]; ++i)
+                        listedBest = std::min(listedBest, distance(g.farCandidates[i], p));
+                    float all = std::numeric_limits<float>::infinity();
+                    for (int dz = -1; dz <= 1; ++dz)
+                        for (int dy = -1; dy <= 1; ++dy)
+                            for (int dx = -1; dx <= 1; ++dx) {
+                                const glm::ivec3 q = glm::ivec3(x, y, z) + glm::ivec3(dx, dy, dz);
+                                if (glm::any(glm::lessThan(q, glm::ivec3(0))) ||
+                                    glm::any(glm::greaterThanEqual(q, glm::ivec3(bricks))))
+                                    continue;
+                                all = std::min(
+                                    all,
+                                    distance(g.brickNearest[(size_t(q.z) * bricks.y + size_t(q.y)) *
+                                                                bricks.x +
+                                                            size_t(q.x)],
+                                             p));
+                            }
+                    ++voxels;
+                    mismatched += listedBest != all;
+                }
+            }
+    EXPECT_GT(voxels, 1000u);
+    EXPECT_EQ(mismatched, 0u) << "of " << voxels;
 }
 
 // A closed box around the camera (a sky box, a room seen from inside) or around a point light:
