@@ -84,10 +84,6 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
         throw InputError(args.output,
                          "-o needs a JSON file name (bench.html is written beside it)");
     const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
-    std::vector<Technique> techniques;
-    for (const BenchRun& r : runs)
-        techniques.push_back(r.technique);
-    warnOpenGeometry(scene, techniques);
     StagedOutputDir out(path.has_parent_path() ? path.parent_path() : ".");
 
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
@@ -128,6 +124,10 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
                  "frames\n",
                  scene.name.c_str(), data.device.name.c_str(), data.device.driverName.c_str(),
                  base.width, base.height, base.shadowMapSize, runs.size(), base.frames);
+    std::vector<Technique> techniques;
+    for (const BenchRun& r : runs)
+        techniques.push_back(r.technique);
+    warnOpenGeometry(scene, techniques); // after every check
     SceneRenderer uploaded(renderer, scene);
     for (size_t i = 0; i < runs.size(); ++i) {
         BenchRun& r = runs[i];

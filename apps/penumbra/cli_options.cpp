@@ -97,8 +97,10 @@ void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques)
             needing += fmt::format("{}`{}`", needing.empty() ? "" : " and ", techniqueName(t));
     if (needing.empty())
         return;
+    // A few open triangles are a ground quad or a leaf: what the techniques handle as thin
+    // shells. Warned: any mis-wound triangle, or open ones past 1% of the scene.
     const MeshClosure c = meshClosure(scene);
-    if (c.closed())
+    if (c.misWound == 0 && c.open * 100 <= c.triangles)
         return;
     std::fprintf(stderr,
                  "penumbra: warning: scene '%s': %llu of %llu triangles lie on open edges and "

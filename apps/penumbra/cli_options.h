@@ -63,7 +63,8 @@ RenderOptions optionsFor(const RenderOptions& base, const TechniqueRow& row,
 TechniqueRow rowNamed(const std::string& name, std::string_view option);
 
 // One warning when a technique that takes a model's inside from its winding (sdf, second-depth)
-// meets open or mis-wound surfaces (scene/mesh_closure.h), with the triangles counted.
+// meets mis-wound surfaces, or open ones past 1% of the triangles (scene/mesh_closure.h), with
+// the triangles counted. Called after every check, so that no warning precedes an error line.
 void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques);
 
 // loadScene with the global options, then the scene options applied; loader warnings go to

@@ -68,10 +68,6 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         throw InputError("--camera-path",
                          fmt::format("'{}' is not dolly, orbit or sun", args.cameraPath));
     Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
-    std::vector<Technique> techniques;
-    for (const TechniqueRow& row : rows)
-        techniques.push_back(row.technique);
-    warnOpenGeometry(scene, techniques);
     // A row's layers that the settings leave off take the layer's settings for this scene's size.
     for (size_t i = 0; i < rows.size(); ++i)
         applyRow(rows[i], rowOptions[i].parameters, scene.bounds().radius());
@@ -101,6 +97,10 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                      row.skipped.c_str());
     const DeviceInfo& device = renderer.device();
 
+    std::vector<Technique> techniques;
+    for (const TechniqueRow& row : rows)
+        techniques.push_back(row.technique);
+    warnOpenGeometry(scene, techniques);     // after every check
     SceneRenderer uploaded(renderer, scene); // one upload and one set of targets for all rows
     std::vector<RenderResult> results;
     for (size_t r = 0; r < rows.size(); ++r) {

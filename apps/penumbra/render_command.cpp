@@ -40,7 +40,6 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     RenderOptions options = optionsFor(args.options, row, args.sets);
     const FieldSlice slice = parseFieldSlice(args.fieldSlice);
     const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
-    warnOpenGeometry(scene, std::span(&options.technique, 1));
     if (!row.layers.empty()) // the layers it names, as compare runs them (the others off)
         applyRow(row, options.parameters, scene.bounds().radius());
     // Created before the long work so an unwritable path fails fast; removed again on error.
@@ -57,6 +56,8 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     std::fprintf(stderr, "penumbra: %s on %s (%s), %ux%u, shadow map %u, technique %s\n",
                  scene.name.c_str(), device.name.c_str(), device.driverName.c_str(), options.width,
                  options.height, options.shadowMapSize, args.technique.c_str());
+    warnOpenGeometry(scene, std::span(&options.technique, 1)); // after every check: no warning
+                                                               // precedes an error line
     std::fprintf(stderr, "penumbra: uploading scene\n");
     SceneRenderer sceneRenderer(renderer, scene);
     const RenderResult result = sceneRenderer.render(options, [](const std::string& stage) {

@@ -131,7 +131,6 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
         }
 
     Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
-    warnOpenGeometry(scene, std::span(&row.technique, 1));
     // The row's layers, sized to the scene as compare sizes them (a row runs exactly those).
     applyRow(row, base.parameters, scene.bounds().radius());
     for (ParameterValues& v : values)
@@ -162,6 +161,7 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
                  row.name.c_str(), args.scene.c_str(), candidates.size(), cameras.size(),
                  base.width, base.height, data.device.c_str());
 
+    warnOpenGeometry(scene, std::span(&row.technique, 1)); // after every check
     SceneRenderer uploaded(renderer, scene);
     std::vector<ViewTruth> views;
     for (const std::string& camera : cameras) {
