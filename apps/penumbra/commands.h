@@ -17,5 +17,7 @@ Action addViewCommand(CLI::App& app, const GlobalOptions& global);
 Action addInfoCommand(CLI::App& app, const GlobalOptions& global);
 Action addTechniquesCommand(CLI::App& app);
 Action addTuneCommand(CLI::App& app, const GlobalOptions& global);
+Action addSweepCommand(CLI::App& app, const GlobalOptions& global);
+Action addMergeCommand(CLI::App& app, const GlobalOptions& global);
 
 } // namespace penumbra::cli

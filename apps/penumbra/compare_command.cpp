@@ -14,6 +14,7 @@
 #include "report/page_image.h"
 #include "report/stats.h"
 #include "shadows/technique.h"
+#include "truth_cache_option.h"
 
 #include <fmt/format.h>
 
@@ -31,6 +32,7 @@ struct CompareArgs {
     RenderOptions options;
     ReferenceOptions reference{.progress = true};
     std::string cameraPath; // empty: no shimmer
+    std::string truthCache; // empty: no cache
     uint32_t pathFrames = 8;
     FloatFormat format = FloatFormat::Both;
 };
@@ -119,7 +121,8 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     std::fprintf(stderr, "penumbra: ground truth, %u samples per pixel and light\n",
                  args.reference.samples);
     const RenderResult& gbuffer = results.front(); // every row sees the same view
-    const ReferenceResult truth = computeReference(lit, gbuffer, args.reference);
+    const ReferenceResult truth =
+        truthThroughCache(args.truthCache, lit, args.options.camera, gbuffer, args.reference);
     const uint32_t w = gbuffer.width, h = gbuffer.height;
 
     ReportData report{.scene = args.scene,
@@ -260,6 +263,7 @@ Action addCompareCommand(CLI::App& app, const GlobalOptions& global) {
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     addReferenceOptions(*cmd, args->reference);
+    addTruthCacheOption(*cmd, args->truthCache);
     addFormatOption(*cmd, args->format);
     cmd->add_option("--camera-path", args->cameraPath,
                     "measure shimmer along a path: `dolly` (the camera forward by 0.37 of a "

@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
         {"compare", cli::addCompareCommand(app, global)},
         {"bench", cli::addBenchCommand(app, global)},
         {"tune", cli::addTuneCommand(app, global)},
+        {"sweep", cli::addSweepCommand(app, global)},
+        {"merge", cli::addMergeCommand(app, global)},
         {"view", cli::addViewCommand(app, global)},
         {"info", cli::addInfoCommand(app, global)},
         {"techniques", cli::addTechniquesCommand(app)},

@@ -8,6 +8,7 @@
 #include "report/light_mask.h"
 #include "report/tune_report.h"
 #include "shadows/technique.h"
+#include "truth_cache_option.h"
 
 #include <fmt/format.h>
 
@@ -24,6 +25,7 @@ struct TuneArgs {
     std::vector<std::string> sweeps, sets;
     RenderOptions options;
     ReferenceOptions reference{.progress = true};
+    std::string truthCache; // empty: no cache
 };
 
 // The sweep of each bias mode when no --sweep is given: the mode's own terms and the normal
@@ -170,7 +172,7 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
         std::fprintf(stderr, "penumbra: ground truth for view %s, %u samples per pixel and light\n",
                      camera.empty() ? "(default)" : camera.c_str(), args.reference.samples);
         const RenderResult gbuffer = uploaded.render(v.options);
-        v.truth = computeReference(lit, gbuffer, args.reference);
+        v.truth = truthThroughCache(args.truthCache, lit, camera, gbuffer, args.reference);
         data.truthSeconds += v.truth.seconds;
         for (const LightShadow& s : gbuffer.lights)
             if (s.visibilityIndex >= 0)
@@ -252,6 +254,7 @@ Action addTuneCommand(CLI::App& app, const GlobalOptions& global) {
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     addReferenceOptions(*cmd, args->reference);
+    addTruthCacheOption(*cmd, args->truthCache);
     return [args, &global] { return runTune(*args, global); };
 }
 

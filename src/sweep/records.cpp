@@ -1,0 +1,162 @@
+// Task records (records.h).
+#include "sweep/records.h"
+
+#include "penumbra/error.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+namespace penumbra::sweep {
+namespace {
+
+// NaN as null (JSON has no NaN), and back.
+nlohmann::json number(double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nullptr;
+}
+double numberFrom(const nlohmann::json& j) {
+    return j.is_number() ? j.get<double>() : NAN;
+}
+
+} // namespace
+
+nlohmann::json taskRecordJson(const TaskRecord& r) {
+    nlohmann::json j{{"id", r.id},
+                     {"view", r.view},
+                     {"scene", r.scene},
+                     {"light", r.light},
+                     {"camera", r.camera},
+                     {"setting", r.setting},
+                     {"technique", r.technique},
+                     {"status", r.failed ? "failed" : "ok"},
+                     {"width", r.width},
+                     {"height", r.height},
+                     {"samples", r.samples}};
+    j["parameters"] = nlohmann::json::object();
+    for (const auto& [key, value] : r.parameters)
+        j["parameters"][key] = value;
+    if (r.failed) {
+        j["error"] = r.error;
+        return j;
+    }
+    j["device"] = r.device;
+    j["truth"] = {{"key", r.truthKey}, {"computed", r.truthComputed}};
+    for (const auto& [name, value] : r.metrics)
+        j["metrics"][name] = number(value);
+    for (const auto& [name, values] : r.replicates) {
+        nlohmann::json list = nlohmann::json::array();
+        for (double v : values)
+            list.push_back(number(v));
+        j["replicates"][name] = list;
+    }
+    j["gpu_ms"] = {{"visibility", number(r.visibilityMs)}, {"shadow", number(r.shadowMs)}};
+    for (const auto& [pass, ms] : r.passes)
+        j["gpu_ms"]["passes"][pass] = number(ms);
+    return j;
+}
+
+TaskRecord taskRecordFrom(const nlohmann::json& j, const std::string& file) {
+    try {
+        TaskRecord r{.id = j.at("id"),
+                     .view = j.at("view"),
+                     .scene = j.at("scene"),
+                     .light = j.at("light"),
+                     .camera = j.at("camera"),
+                     .setting = j.at("setting"),
+                     .technique = j.at("technique"),
+                     .failed = j.at("status") == "failed",
+                     .width = j.at("width"),
+                     .height = j.at("height"),
+                     .samples = j.at("samples")};
+        for (const auto& [key, value] : j.at("parameters").items())
+            r.parameters.emplace_back(key, value.get<std::string>());
+        if (r.failed) {
+            r.error = j.at("error");
+            return r;
+        }
+        r.device = j.at("device");
+        r.truthKey = j.at("truth").at("key");
+        r.truthComputed = j.at("truth").at("computed");
+        for (const auto& [name, value] : j.at("metrics").items())
+            r.metrics[name] = numberFrom(value);
+        if (j.contains("replicates"))
+            for (const auto& [name, values] : j.at("replicates").items())
+                for (const nlohmann::json& v : values)
+                    r.replicates[name].push_back(numberFrom(v));
+        r.visibilityMs = numberFrom(j.at("gpu_ms").at("visibility"));
+        r.shadowMs = numberFrom(j.at("gpu_ms").at("shadow"));
+        if (j.at("gpu_ms").contains("passes"))
+            for (const auto& [pass, ms] : j.at("gpu_ms").at("passes").items())
+                r.passes.emplace_back(pass, numberFrom(ms));
+        return r;
+    } catch (const nlohmann::json::exception& e) {
+        throw InputError(file, fmt::format("not a task record: {}", e.what()));
+    }
+}
+
+std::filesystem::path taskRecordPath(const std::filesystem::path& dir, const std::string& id) {
+    return dir / "tasks" / (id + ".json");
+}
+
+void writeTaskRecord(const std::filesystem::path& dir, const TaskRecord& record) {
+    const std::filesystem::path final = taskRecordPath(dir, record.id);
+    std::error_code ec;
+    std::filesystem::create_directories(final.parent_path(), ec);
+    const std::filesystem::path temp =
+        final.parent_path() /
+        fmt::format(".{}.{}-{}.tmp", record.id, ::getpid(), std::random_device{}());
+    {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        out << taskRecordJson(record).dump(1) << "\n";
+        out.flush();
+        if (!out) {
+            std::filesystem::remove(temp, ec);
+            throw InputError(final.string(), "cannot write the task record");
+        }
+    }
+    std::filesystem::rename(temp, final, ec);
+    if (ec) {
+        std::filesystem::remove(temp, ec);
+        throw InputError(final.string(), "cannot rename the task record into place");
+    }
+}
+
+std::vector<TaskRecord> readTaskRecords(const std::filesystem::path& dir) {
+    std::vector<TaskRecord> out;
+    std::error_code ec;
+    if (!std::filesystem::is_directory(dir / "tasks", ec))
+        throw InputError(dir.string(), "no tasks/ folder: not a sweep's output directory");
+    for (const auto& entry : std::filesystem::directory_iterator(dir / "tasks")) {
+        const std::filesystem::path p = entry.path();
+        if (p.extension() != ".json" || p.filename().string().front() == '.')
+            continue; // temporary files of tasks in flight
+        std::ifstream in(p, std::ios::binary);
+        std::stringstream text;
+        text << in.rdbuf();
+        nlohmann::json j = nlohmann::json::parse(text.str(), nullptr, false);
+        if (j.is_discarded())
+            throw InputError(p.string(), "not valid JSON");
+        out.push_back(taskRecordFrom(j, p.string()));
+    }
+    std::sort(out.begin(), out.end(),
+              [](const TaskRecord& a, const TaskRecord& b) { return a.id < b.id; });
+    return out;
+}
+
+void setCosts(TaskRecord& record, const std::vector<std::pair<std::string, double>>& passes) {
+    record.passes = passes;
+    record.visibilityMs = NAN;
+    record.shadowMs = 0;
+    for (const auto& [pass, ms] : passes) {
+        if (pass == "visibility")
+            record.visibilityMs = ms;
+        if (pass != "gbuffer" && pass != "composite")
+            record.shadowMs += ms;
+    }
+}
+
+} // namespace penumbra::sweep
