@@ -90,7 +90,9 @@ nlohmann::json number(double v) {
 
 } // namespace
 
-MergeResult mergeRecords(const std::vector<TaskRecord>& records) {
+MergeResult mergeRecords(std::vector<TaskRecord> records) {
+    std::sort(records.begin(), records.end(),
+              [](const TaskRecord& a, const TaskRecord& b) { return a.id < b.id; });
     MergeResult m{.tasks = records.size()};
     std::vector<const TaskRecord*> ok;
     std::map<std::string, std::vector<const TaskRecord*>> byScene;

@@ -39,7 +39,8 @@ struct MergeResult {
     size_t tasks = 0;
 };
 
-MergeResult mergeRecords(const std::vector<TaskRecord>& records);
+// Takes the records in id order, whatever order they come in.
+MergeResult mergeRecords(std::vector<TaskRecord> records);
 nlohmann::json mergeJson(const MergeResult& merged);
 
 } // namespace penumbra::sweep
