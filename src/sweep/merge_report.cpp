@@ -19,9 +19,11 @@ main { max-width: 1400px; margin: 0 auto; padding: 32px 24px 64px; }
 h1 { font-size: 26px; margin: 0 0 4px; } h2 { font-size: 19px; margin: 36px 0 12px; }
 .card { background: #fff; border: 1px solid #e4e7eb; border-radius: 10px; padding: 18px 20px;
   margin-bottom: 16px; }
-.table-wrap { overflow-x: auto; padding: 0; }
-table { border-collapse: collapse; width: 100%; font-variant-numeric: tabular-nums; font-size: 13px; }
-th, td { padding: 6px 8px; border-bottom: 1px solid #e4e7eb; text-align: right; }
+table { border-collapse: collapse; width: 100%; table-layout: fixed; font-size: 13px;
+  font-variant-numeric: tabular-nums; }
+th, td { padding: 6px 6px; border-bottom: 1px solid #e4e7eb; text-align: right;
+  overflow-wrap: anywhere; }
+th.setting { width: 22%; } table.cost th.setting { width: 30%; }
 th { background: #f0f3f7; font-weight: 600; } td.l, th.l { text-align: left; }
 td.front { font-weight: 600; color: #22543d; } .ci { color: #616e7c; font-size: 11px; display: block; }
 .note { color: #616e7c; font-size: 13px; margin: 8px 0 0; }
@@ -57,26 +59,33 @@ void writeGroup(std::string& s, const GroupSummary& g) {
     s += "</div><p class=\"note\">RMSE against the shadow passes' GPU time (every pass but the "
          "G-buffer and the composite: the shadow maps, their post passes and the visibility "
          "pass), means over the views. The dashed line is the Pareto front.</p></section>\n";
-    s += "<section class=\"card table-wrap\"><table class=\"merged\"><thead><tr>"
-         "<th class=\"l\">setting</th><th>views</th>";
+    s += "<section class=\"card\"><table class=\"merged\"><thead><tr>"
+         "<th class=\"l setting\">setting</th>";
     for (const MetricField& f : kMetricFields)
         fmt::format_to(out, "<th>{}</th>", f.name);
-    s +=
-        "<th>visibility ms</th><th>shadow ms</th><th class=\"l\">device</th></tr></thead><tbody>\n";
+    s += "</tr></thead><tbody>\n";
     for (const SettingSummary& st : g.settings) {
-        fmt::format_to(out, "<tr><td class=\"l{}\">{}{}</td><td>{}</td>",
-                       st.onFront ? " front" : "", escapeHtml(st.setting),
-                       st.onFront ? " &#9670;" : "", st.views);
+        fmt::format_to(out, "<tr><td class=\"l{}\">{}{}</td>", st.onFront ? " front" : "",
+                       escapeHtml(st.setting), st.onFront ? " &#9670;" : "");
         for (const MetricField& f : kMetricFields) {
             const Estimate& e = st.metrics.at(std::string(f.name));
             fmt::format_to(out, "<td>{} <small>#{}</small><span class=\"ci\">{} .. {}</span></td>",
                            figure(e.value), e.rank, figure(e.lo), figure(e.hi));
         }
+        s += "</tr>\n";
+    }
+    s += "</tbody></table>\n<table class=\"cost\"><thead><tr><th class=\"l setting\">setting"
+         "</th><th>views</th><th>visibility ms</th><th>shadow passes ms</th><th class=\"l\">"
+         "device</th></tr></thead><tbody>\n";
+    for (const SettingSummary& st : g.settings) {
         std::string devices;
         for (const std::string& d : st.devices)
             devices += (devices.empty() ? "" : "; ") + escapeHtml(d);
-        fmt::format_to(out, "<td>{}</td><td>{}</td><td class=\"l\">{}</td></tr>\n",
-                       figure(st.visibilityMs), figure(st.shadowMs), devices);
+        fmt::format_to(out,
+                       "<tr><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td>"
+                       "<td class=\"l\">{}</td></tr>\n",
+                       escapeHtml(st.setting), st.views, figure(st.visibilityMs),
+                       figure(st.shadowMs), devices);
     }
     s += "</tbody></table></section>\n";
 }
