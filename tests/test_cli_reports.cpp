@@ -180,3 +180,26 @@ TEST(Cli, ReportsReadAtThreeWidthsWithoutOverlapsInChromium) {
         }
     }
 }
+
+// merge's report.html over a small sweep at 1000, 1400 and 1920 pixels: no sideways scrolling,
+// nothing wider than the window, the plots' labels clear of each other and of the points.
+TEST(Cli, MergeReportReadsAtThreeWidthsInChromium) {
+    const fs::path plan = scratchDir("merge-widths") / "plan.toml";
+    std::ofstream(plan) << "width = 64\nheight = 48\nsamples = 4\nshadow_map_size = 256\n"
+                           "frames = 1\nscenes = [\"builtin:showcase\", \"builtin:resting\"]\n"
+                           "[[techniques]]\nname = \"hard\"\n[[techniques]]\nname = \"pcf\"\n"
+                           "pcf.filter = [\"box\", \"poisson\"]\npcf.size = [3, 7]\n";
+    const fs::path sweep = scratch("merge-widths-sweep"), report = scratch("merge-widths-report");
+    ProcessResult r = runCli({"sweep", plan.string(), "-o", sweep.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runCli({"merge", sweep.string(), "-o", report.string()});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const int width : {1000, 1400, 1920}) {
+        SCOPED_TRACE(width);
+        const nlohmann::json found = layoutIn(report / "report.html", width);
+        ASSERT_FALSE(found.is_null());
+        EXPECT_LE(found["scroll"].get<int>(), found["width"].get<int>()) << found.dump();
+        EXPECT_TRUE(found["wide"].empty()) << found["wide"].dump(1);
+        EXPECT_TRUE(found["overlaps"].empty()) << found["overlaps"].dump(1);
+    }
+}

@@ -4,15 +4,19 @@
 
 #include "report/html_report.h"
 #include "report/report_plot.h"
+#include "report/report_script.h"
 #include "sweep/truth_bootstrap.h"
 
 #include <fmt/format.h>
+
+#include <algorithm>
 
 namespace penumbra::sweep {
 namespace {
 
 constexpr std::string_view kStyle = R"(
 * { box-sizing: border-box; }
+:root { --ink: #1f2933; --muted: #616e7c; --line: #e4e7eb; --card: #fff; --accent: #2b6cb0; }
 body { margin: 0; background: #f5f7fa; color: #1f2933;
   font: 15px/1.45 system-ui, -apple-system, "Segoe UI", Roboto, Arial, sans-serif; }
 main { max-width: 1400px; margin: 0 auto; padding: 32px 24px 64px; }
@@ -27,19 +31,22 @@ th.setting { width: 22%; } table.cost th.setting { width: 30%; }
 th { background: #f0f3f7; font-weight: 600; } td.l, th.l { text-align: left; }
 td.front { font-weight: 600; color: #22543d; } .ci { color: #616e7c; font-size: 11px; display: block; }
 .note { color: #616e7c; font-size: 13px; margin: 8px 0 0; }
-.plots { display: grid; grid-template-columns: minmax(0, 3fr) minmax(0, 1fr); gap: 16px; }
-@media (max-width: 1100px) { .plots { grid-template-columns: minmax(0, 1fr); } }
 svg.error-vs-cost { width: 100%; max-width: 900px; height: auto; display: block; font-size: 12px; }
-svg.error-vs-cost.log { display: none; }
 svg .grid { stroke: #e4e7eb; } svg .axis { stroke: #52606d; stroke-width: 1.2; }
 svg .tick { fill: #616e7c; } svg .label { fill: #1f2933; font-size: 13px; }
 svg .point text { fill: #1f2933; font-size: 12px; } svg circle { stroke: #fff; stroke-width: 1.5; }
-ul.legend { list-style: none; padding: 0; margin: 0; font-size: 13px; overflow-wrap: anywhere; }
-ul.legend li { margin: 2px 0; }
+ul.legend { overflow-wrap: anywhere; }
 )";
 
 std::string figure(double v) {
-    return std::isfinite(v) ? fmt::format("{:.4g}", v) : "&ndash;";
+    return std::isfinite(v) ? fmt::format("{:.3g}", v) : "&ndash;";
+}
+
+// "leak_beyond_blur" -> "leak beyond blur": a header that wraps between words.
+std::string headerOf(std::string_view name) {
+    std::string text(name);
+    std::replace(text.begin(), text.end(), '_', ' ');
+    return text;
 }
 
 void writeGroup(std::string& s, const GroupSummary& g) {
@@ -62,7 +69,7 @@ void writeGroup(std::string& s, const GroupSummary& g) {
     s += "<section class=\"card\"><table class=\"merged\"><thead><tr>"
          "<th class=\"l setting\">setting</th>";
     for (const MetricField& f : kMetricFields)
-        fmt::format_to(out, "<th>{}</th>", f.name);
+        fmt::format_to(out, "<th>{}</th>", headerOf(f.name));
     s += "</tr></thead><tbody>\n";
     for (const SettingSummary& st : g.settings) {
         fmt::format_to(out, "<tr><td class=\"l{}\">{}{}</td>", st.onFront ? " front" : "",
@@ -99,7 +106,7 @@ std::string mergeHtml(const MergeResult& m, const std::string& title) {
     fmt::format_to(out,
                    "<title>Penumbra sweep: {}</title>\n<style>{}</style>\n</head>\n<body>\n"
                    "<main>\n<h1>Penumbra sweep</h1>\n",
-                   escapeHtml(title), kStyle);
+                   escapeHtml(title), std::string(kStyle) + std::string(kReportInteractiveStyle));
     fmt::format_to(out,
                    "<section class=\"card\"><p>{}: {} task(s), {} failed. Each figure is the "
                    "mean over the views a setting ran on; under it, its 95% interval from the "
