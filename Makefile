@@ -11,7 +11,7 @@ PACKAGES := cmake g++ make pkg-config glslc libvulkan-dev mesa-vulkan-drivers \
     libgtest-dev libbenchmark-dev libembree-dev libtbb-dev libtinygltf-dev chromium \
     clang libclang-rt-14-dev python3 libglfw3-dev libimgui-dev xvfb xauth \
     libdraco-dev libmeshoptimizer-dev libopenexr-dev pybind11-dev python3-dev python3-numpy \
-    python3-pytest libtomlplusplus-dev
+    python3-pytest libtomlplusplus-dev slurm-wlm munge
 # What `make python`'s example plots with, beyond the module's own needs.
 PYTHON_PACKAGES := python3-matplotlib
 
@@ -26,7 +26,7 @@ FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
 FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
                 -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
 
-.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python
+.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python slurm-test
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -45,6 +45,13 @@ build: deps
 test: build
 	ctest --preset $(PRESET) -j $(JOBS)
 	$(MAKE) --no-print-directory fuzz-smoke
+	$(MAKE) --no-print-directory slurm-test
+
+# The sweep on a real one-node Slurm cluster (slurm-wlm and munge, as root, a private
+# configuration in a temporary directory, every daemon stopped on exit): bench/plans/smoke.toml
+# as a 3-task job array against the same plan run locally, about a minute (docs/sweep.md).
+slurm-test: build
+	tests/cluster/slurm_test.sh $(BUILDDIR)/apps/penumbra/penumbra bench/plans/smoke.toml 3
 
 fuzz-build: deps
 	cmake --preset asan >/dev/null
