@@ -107,6 +107,8 @@ TEST(SweepCli, TracesEachViewOnceResumesAndShardsMergeToTheSameFigures) {
     ::unsetenv("SLURM_ARRAY_TASK_ID");
     ::unsetenv("SLURM_ARRAY_TASK_COUNT");
     ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(summaryLine(r).find(", 0 skipped"), std::string::npos)
+        << "the third shard ran only its own tasks: " << r.out;
     EXPECT_EQ(records(sharded), 4u);
 
     const fs::path reportOne = outputScratch("merge-one"), reportShards = outputScratch("merge-3");

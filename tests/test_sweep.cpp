@@ -6,6 +6,7 @@
 #include "sweep/emit.h"
 #include "sweep/merge.h"
 #include "sweep/plan.h"
+#include "sweep/records.h"
 #include "sweep/tasks.h"
 #include "sweep/truth_bootstrap.h"
 #include "sweep/truth_cache.h"
@@ -337,6 +338,18 @@ TEST(SweepMerge, MeansRanksFrontsAndFailures) {
     // The order records come in does not change a figure.
     std::reverse(records.begin(), records.end());
     EXPECT_EQ(mergeJson(mergeRecords(records)).dump(), mergeJson(m).dump());
+}
+
+TEST(SweepMerge, CostsAreTheVisibilityPassAndEveryShadowPass) {
+    TaskRecord r;
+    setCosts(r, {{"shadow", 1.0},
+                 {"gbuffer", 2.0},
+                 {"vsm_blur", 0.25},
+                 {"visibility", 0.5},
+                 {"composite", 4.0}});
+    EXPECT_EQ(r.visibilityMs, 0.5);
+    EXPECT_EQ(r.shadowMs, 1.75); // not the G-buffer, not the composite
+    EXPECT_EQ(r.passes.size(), 5u);
 }
 
 TEST(SweepEmit, SlurmArrayAndKubernetesIndexedJob) {
