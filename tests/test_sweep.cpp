@@ -77,6 +77,8 @@ TEST(SweepPlan, RefusesEachMistakeNamingItsKey) {
         {base + "[[techniques]]\nname = \"pcf\"\npcf.colour = [1]\n", "techniques[0].pcf.colour:"},
         {base + "[[techniques]]\nname = \"pcf\"\npcf.size = [3, 1000]\n",
          "techniques[0].pcf.size:"},
+        {base + "[[techniques]]\nname = \"pcf\"\nvsm.size = [3]\n",
+         "techniques[0].vsm: pcf reads no vsm.* parameters"},
         {kScenes + "[[lights]]\nkind = \"sun\"\n" + kTechniques, "lights[0].direction: missing"},
         {kScenes + "[[lights]]\nkind = \"sun\"\ndirection = [0, -1, 0]\nsizes = [45]\n" +
              kTechniques,

@@ -187,8 +187,9 @@ public:
             const std::optional<std::string> name = t["name"].value_exact<std::string>();
             if (!name)
                 fail(at + "name", "missing");
+            const TechniqueInfo* info = nullptr;
             try {
-                findTechnique(*name);
+                info = &findTechnique(*name);
             } catch (const InputError&) {
                 fail(at + "name", fmt::format("no technique '{}' (penumbra techniques)", *name));
             }
@@ -201,6 +202,11 @@ public:
                 if (!params)
                     fail(at + std::string(family.str()),
                          "unknown key (parameters are written family.name = value)");
+                // A family the technique does not read would sweep a setting with no effect.
+                const auto& families = info->families;
+                if (std::find(families.begin(), families.end(), family.str()) == families.end())
+                    fail(at + std::string(family.str()),
+                         fmt::format("{} reads no {}.* parameters", *name, family.str()));
                 for (auto&& [param, v] : *params) {
                     const std::string key = fmt::format("{}.{}", family.str(), param.str());
                     axes.emplace_back(key, values(v, at + key));
