@@ -273,6 +273,17 @@ TEST(TruthBootstrap, ExactTruthsAreNeverRedrawn) {
     EXPECT_EQ(drawn(a[3]), drawn(b[3])); // the same seed, the same draws
     EXPECT_NE(drawn(a[3]), drawn(a[2]));
     EXPECT_TRUE(std::isnan(a[3].visibility[0][0]));
+    // Replicate 3 alone is the fourth of four.
+    EXPECT_EQ(drawn(bootstrapTruth(truth, sampled, 9, 3)), drawn(a[3]));
+    // On the machine's cores, each replicate's metric at its index.
+    const std::vector<ErrorMetrics> metrics =
+        bootstrapMetrics(truth, sampled, 4, 9, [](const ReferenceResult& r) {
+            ErrorMetrics m;
+            m.rmse = r.visibility[0][7];
+            return m;
+        });
+    for (size_t i = 0; i < 4; ++i)
+        EXPECT_EQ(metrics[i].rmse, a[i].visibility[0][7]);
 }
 
 TEST(TruthBootstrap, BasicIntervalReflectsTheReplicatesAboutTheEstimate) {

@@ -109,13 +109,15 @@ void measure(sweep::TaskRecord& record, const sweep::SweepTask& task, const Load
     for (const sweep::MetricField& f : sweep::kMetricFields)
         record.metrics[std::string(f.name)] = m.*f.member;
     const std::vector<uint32_t> perLayer = sweep::truthSamplesPerLayer(view.lit, result, samples);
-    for (const ReferenceResult& redrawn :
-         sweep::bootstrapTruths(truth, perLayer, sweep::kBootstrapReplicates, seedOf(task.id))) {
-        const ErrorMetrics r = metricsAgainstTruth(view.lit, result, redrawn.visibility, masks,
-                                                   blur, truth.occluderDistance);
+    const std::vector<ErrorMetrics> replicates =
+        sweep::bootstrapMetrics(truth, perLayer, sweep::kBootstrapReplicates, seedOf(task.id),
+                                [&](const ReferenceResult& redrawn) {
+                                    return metricsAgainstTruth(view.lit, result, redrawn.visibility,
+                                                               masks, blur, truth.occluderDistance);
+                                });
+    for (const ErrorMetrics& r : replicates)
         for (const sweep::MetricField& f : sweep::kMetricFields)
             record.replicates[std::string(f.name)].push_back(r.*f.member);
-    }
     std::vector<std::pair<std::string, double>> passes;
     for (const PassTime& p : result.passes)
         passes.emplace_back(p.pass, p.medianMs);

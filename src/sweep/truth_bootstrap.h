@@ -10,6 +10,7 @@
 #include "report/metrics.h"
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -38,10 +39,21 @@ inline constexpr uint32_t kBootstrapReplicates = 64;
 std::vector<uint32_t> truthSamplesPerLayer(const Scene& lit, const RenderResult& result,
                                            uint32_t samples);
 
-// `replicates` truths drawn as described above from `seed` (the same seed, the same draws).
+// Replicate `index` of the truths drawn as described above, from a generator seeded by `seed`
+// and `index` alone: the same draws however many replicates are drawn, in whatever order.
+ReferenceResult bootstrapTruth(const ReferenceResult& truth,
+                               std::span<const uint32_t> samplesPerLayer, uint64_t seed,
+                               uint32_t index);
+// Replicates 0 .. replicates-1.
 std::vector<ReferenceResult> bootstrapTruths(const ReferenceResult& truth,
                                              std::span<const uint32_t> samplesPerLayer,
                                              uint32_t replicates, uint64_t seed);
+// `metrics` of each replicate, replicate i at index i, computed on the machine's cores (each
+// worker holds one redrawn truth at a time).
+std::vector<ErrorMetrics>
+bootstrapMetrics(const ReferenceResult& truth, std::span<const uint32_t> samplesPerLayer,
+                 uint32_t replicates, uint64_t seed,
+                 const std::function<ErrorMetrics(const ReferenceResult&)>& metrics);
 
 // The basic bootstrap's 95% interval: the redrawn truths stand to the measured one as the
 // measured one stands to the exact truth, so with q2.5 and q97.5 the replicates' percentiles,
