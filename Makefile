@@ -11,7 +11,7 @@ PACKAGES := cmake g++ make pkg-config glslc libvulkan-dev mesa-vulkan-drivers \
     libgtest-dev libbenchmark-dev libembree-dev libtbb-dev libtinygltf-dev chromium \
     clang libclang-rt-14-dev python3 libglfw3-dev libimgui-dev xvfb xauth \
     libdraco-dev libmeshoptimizer-dev libopenexr-dev pybind11-dev python3-dev python3-numpy \
-    python3-pytest libtomlplusplus-dev slurm-wlm munge
+    python3-pytest libtomlplusplus-dev slurm-wlm munge python3-yaml
 # What `make python`'s example plots with, beyond the module's own needs.
 PYTHON_PACKAGES := python3-matplotlib
 

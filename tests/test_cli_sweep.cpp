@@ -248,10 +248,40 @@ TEST(SweepCli, EmitsTheClusterJobsForThePlan) {
     EXPECT_NE(r.out.find("#SBATCH --array=0-1\n"), std::string::npos) << r.out; // two views
     EXPECT_EQ(r.out.find("--gres"), std::string::npos);
     EXPECT_NE(r.out.find(" sweep " + fs::absolute(plan).string() + " -o "), std::string::npos);
-    r = runCli({"sweep", plan.string(), "-o", out.string(), "--emit", "kubernetes", "--task-count",
-                "4", "--image", "penumbra:1.0"});
+    // Relative paths lie inside the volume's mount: run from where plans/p.toml is the plan.
+    const fs::path root = scratchDir("sweep-k8s");
+    fs::create_directories(root / "plans");
+    fs::copy_file(plan, root / "plans" / "p.toml", fs::copy_options::overwrite_existing);
+    const fs::path cwd = fs::current_path();
+    fs::current_path(root);
+    r = runCli({"sweep", "plans/p.toml", "-o", "out", "--emit", "kubernetes", "--task-count", "4",
+                "--image", "penumbra:1.0"});
+    fs::current_path(cwd);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("  completions: 4\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("image: \"penumbra:1.0\""), std::string::npos);
     EXPECT_NE(r.out.find("nvidia.com/gpu: 1"), std::string::npos);
+    // The manifest's shape, read by a YAML parser (Debian's python3-yaml).
+    const fs::path manifest = scratchDir("sweep-cli") / "job.yaml";
+    std::ofstream(manifest) << r.out;
+    const ProcessResult parsed = runProcess(
+        {"/usr/bin/python3", "-c",
+         "import sys, yaml\n"
+         "job = yaml.safe_load(open(sys.argv[1]))\n"
+         "assert job['apiVersion'] == 'batch/v1' and job['kind'] == 'Job', job\n"
+         "spec = job['spec']\n"
+         "assert spec['completionMode'] == 'Indexed' and spec['completions'] == 4\n"
+         "assert spec['parallelism'] == 4\n"
+         "pod = spec['template']['spec']\n"
+         "assert pod['restartPolicy'] == 'Never'\n"
+         "[c] = pod['containers']\n"
+         "assert c['args'][:4] == ['sweep', '/data/plans/p.toml', '-o', '/data/out'], c\n"
+         "assert c['args'][c['args'].index('--task-count') + 1] == '4'\n"
+         "assert c['resources']['limits']['nvidia.com/gpu'] == 1\n"
+         "[m] = c['volumeMounts']\n"
+         "[v] = pod['volumes']\n"
+         "assert m['name'] == v['name'] and m['mountPath'] == '/data'\n"
+         "assert v['persistentVolumeClaim']['claimName'] == 'penumbra-data'\n",
+         manifest.string()});
+    EXPECT_EQ(parsed.exitCode, 0) << parsed.err;
 }
