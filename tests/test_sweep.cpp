@@ -205,6 +205,14 @@ TEST(TruthCache, ComputesOnceAndReadsBackWhatItStored) {
     EXPECT_TRUE(computed);
     EXPECT_EQ(computations, 2);
     EXPECT_TRUE(cache.load("k1").has_value());
+    // A truth without occluder distances keeps them unknown.
+    ReferenceResult bare = fakeTruth(4, 4, 1.0f);
+    bare.occluderDistance.clear();
+    cache.store("bare", bare);
+    const std::optional<ReferenceResult> read = cache.load("bare");
+    ASSERT_TRUE(read.has_value());
+    EXPECT_EQ(read->visibility[0][3], 1.0f);
+    EXPECT_TRUE(std::isnan(read->occluderDistance[0][3]));
 }
 
 TEST(TruthCache, ConcurrentWritersLeaveOneWholeFile) {

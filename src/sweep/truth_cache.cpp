@@ -1,7 +1,6 @@
-// The truth cache (truth_cache.h). File layout, little-endian: "PNTRUTH" + version byte, width,
-// height, layer count (uint32 each), rays (uint64), seconds and trace seconds (double), then
-// per layer the
-// visibility and the occluder distances (width * height float32 each).
+// The truth cache (truth_cache.h). File layout, little-endian: "PNTRUTH" + version byte; width,
+// height, layer count (uint32 each); rays (uint64); seconds and trace seconds (double); then per
+// layer the visibility and the occluder distances (width * height float32 each).
 #include "sweep/truth_cache.h"
 
 #include "penumbra/error.h"
@@ -11,6 +10,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <random>
@@ -145,8 +145,13 @@ void TruthCache::store(const std::string& key, const ReferenceResult& truth) con
         write(out, &truth.seconds, 8);
         write(out, &truth.traceSeconds, 8);
         for (uint32_t l = 0; l < layers; ++l) {
-            write(out, truth.visibility[l].data(), truth.visibility[l].size() * 4);
-            write(out, truth.occluderDistance[l].data(), truth.occluderDistance[l].size() * 4);
+            const std::vector<float>& visibility = truth.visibility[l];
+            // A truth without occluder distances (a caller's own) stores them unknown (NaN).
+            const bool known = l < truth.occluderDistance.size() &&
+                               truth.occluderDistance[l].size() == visibility.size();
+            const std::vector<float> unknown(known ? 0 : visibility.size(), NAN);
+            write(out, visibility.data(), visibility.size() * 4);
+            write(out, (known ? truth.occluderDistance[l] : unknown).data(), visibility.size() * 4);
         }
         out.flush();
         if (!out) {
