@@ -361,15 +361,15 @@ TEST(SweepMerge, MeansRanksFrontsAndFailures) {
     EXPECT_EQ(mergeJson(mergeRecords(records)).dump(), mergeJson(m).dump());
 }
 
-TEST(SweepMerge, CostsAreTheVisibilityPassAndEveryShadowPass) {
+TEST(SweepMerge, CostsAreThePerPixelPassesAndEveryPassButTheGBuffer) {
     TaskRecord r;
     setCosts(r, {{"shadow", 1.0},
                  {"gbuffer", 2.0},
                  {"vsm_blur", 0.25},
                  {"visibility", 0.5},
                  {"composite", 4.0}});
-    EXPECT_EQ(r.visibilityMs, 0.5);
-    EXPECT_EQ(r.shadowMs, 1.75); // not the G-buffer, not the composite
+    EXPECT_EQ(r.visibilityMs, 4.5); // the composite evaluates the technique where fused
+    EXPECT_EQ(r.shadowMs, 5.75);    // everything but the G-buffer
     EXPECT_EQ(r.passes.size(), 5u);
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // `penumbra merge`: a sweep's task records summed up per scene and over the corpus. Each
 // technique setting's error (every metric, with its 95% interval from the truth bootstrap)
-// against its GPU cost, the Pareto front of RMSE against shadow-pass time, and ranks per metric.
-// Error figures depend only on the records' error numbers, taken in id order: the same tasks
-// give the same figures however they were sharded.
+// against its GPU cost, the Pareto front of RMSE against shadow time (every pass but the G-buffer),
+// and ranks. Error figures depend only on the records' error numbers, taken in id order: the same
+// tasks give the same figures however they were sharded.
 #include "sweep/records.h"
 
 #include <nlohmann/json.hpp>
@@ -23,9 +23,9 @@ struct SettingSummary {
     std::string setting, technique;
     size_t views = 0;                          // views it ran on
     std::map<std::string, Estimate> metrics;   // kMetricFields' names
-    double visibilityMs = NAN, shadowMs = NAN; // means over the views
+    double visibilityMs = NAN, shadowMs = NAN; // means over the views (records.h)
     std::vector<std::string> devices;          // that measured it, sorted
-    bool onFront = false; // no other setting has both less RMSE and less shadow-pass time
+    bool onFront = false; // no other setting has both less RMSE and less shadow time
 };
 
 struct GroupSummary {

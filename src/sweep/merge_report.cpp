@@ -1,5 +1,5 @@
 // The merged report (merge_report.h). The plot is compare's (report_plot.h), fed one row per
-// setting with the shadow passes' time as its cost.
+// setting with its shadow time (every pass but the G-buffer) as its cost.
 #include "sweep/merge_report.h"
 
 #include "report/html_report.h"
@@ -57,15 +57,15 @@ void writeGroup(std::string& s, const GroupSummary& g) {
     for (const SettingSummary& st : g.settings) {
         ReportRow row{.name = st.setting, .technique = st.technique};
         row.metrics.rmse = st.metrics.at("rmse").value;
-        row.gpuMs = {{"shadow passes", st.shadowMs}};
+        row.gpuMs = {{"shadow", st.shadowMs}};
         rows.push_back(std::move(row));
     }
     s += "<section class=\"card\"><div class=\"plots\">\n";
     s += errorVsCostSvg(rows, false);
     s += errorVsCostLegend(rows);
-    s += "</div><p class=\"note\">RMSE against the shadow passes' GPU time (every pass but the "
-         "G-buffer and the composite: the shadow maps, their post passes and the visibility "
-         "pass), means over the views. The dashed line is the Pareto front.</p></section>\n";
+    s += "</div><p class=\"note\">RMSE against the technique's GPU time (every pass but the "
+         "G-buffer: the shadow maps, their post passes and the per-pixel evaluation), means "
+         "over the views. The dashed line is the Pareto front.</p></section>\n";
     s += "<section class=\"card\"><table class=\"merged\"><thead><tr>"
          "<th class=\"l setting\">setting</th>";
     for (const MetricField& f : kMetricFields)
@@ -82,7 +82,7 @@ void writeGroup(std::string& s, const GroupSummary& g) {
         s += "</tr>\n";
     }
     s += "</tbody></table>\n<table class=\"cost\"><thead><tr><th class=\"l setting\">setting"
-         "</th><th>views</th><th>visibility ms</th><th>shadow passes ms</th><th class=\"l\">"
+         "</th><th>views</th><th>per-pixel ms</th><th>shadow ms</th><th class=\"l\">"
          "device</th></tr></thead><tbody>\n";
     for (const SettingSummary& st : g.settings) {
         std::string devices;

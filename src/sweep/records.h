@@ -23,8 +23,8 @@ struct TaskRecord {
     uint32_t width = 0, height = 0, samples = 0;
     std::map<std::string, double> metrics;                 // kMetricFields' names
     std::map<std::string, std::vector<double>> replicates; // the bootstrap's, per metric
-    double visibilityMs = NAN;                             // the visibility pass, median frame
-    double shadowMs = NAN; // every pass but the G-buffer and the composite
+    double visibilityMs = NAN; // per-pixel passes (visibility, composite, contact), median frame
+    double shadowMs = NAN;     // every pass but the G-buffer: the technique's whole cost
     std::vector<std::pair<std::string, double>> passes;
 };
 
@@ -38,7 +38,7 @@ void writeTaskRecord(const std::filesystem::path& dir, const TaskRecord& record)
 // Every DIR/tasks/*.json, sorted by id; InputError(file, ...) for one that does not parse.
 std::vector<TaskRecord> readTaskRecords(const std::filesystem::path& dir);
 
-// "visibility" and the sum of the shadow passes from a render's passes.
+// The per-pixel cost and the whole shadow cost from a render's passes.
 void setCosts(TaskRecord& record, const std::vector<std::pair<std::string, double>>& passes);
 
 } // namespace penumbra::sweep
