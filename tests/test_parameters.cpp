@@ -256,7 +256,8 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
         EXPECT_EQ(constants[1].value, uint32_t{RECEIVER_LIGHT}); // the default
         EXPECT_EQ(constants[2].id, uint32_t{SPEC_HORIZON});
         const bool sized = m->info.id == Technique::Pcss || m->info.id == Technique::Vssm ||
-                           m->info.id == Technique::MsmSoft || m->info.id == Technique::Sdf;
+                           m->info.id == Technique::MsmSoft || m->info.id == Technique::Sdf ||
+                           m->info.id == Technique::Smrt;
         EXPECT_EQ(constants[2].value, sized ? 1u : 0u) << name;
         ParameterValues everywhere, nowhere;
         everywhere.assign("bias.horizon=all");
@@ -324,7 +325,8 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
         EXPECT_EQ(capability(*m, virtualMaps, SPEC_VIRTUAL), m->readsVirtualMaps ? 1u : 0u)
             << m->info.name;
         EXPECT_EQ(m->readsVirtualMaps, m == &shadows::hardModule() || m == &shadows::pcfModule() ||
-                                           m == &shadows::pcssModule())
+                                           m == &shadows::pcssModule() ||
+                                           m == &shadows::smrtModule())
             << m->info.name;
         // The shared settings carry the blocker search's cap where there is one, else 0.
         const shadows::FilterSettings s = shadows::filterSettings(*m, defaults, false, 8);

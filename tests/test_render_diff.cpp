@@ -113,6 +113,8 @@ Allowance allowanceFor(Technique technique) {
         return {0.0, 0.005}; // one comparison per pixel: ties only
     case Technique::Pcf:
         return {filter, 0.005};
+    case Technique::Smrt: // a ray's crossing test may flip: one ray of smrt[fast]'s 8
+        return {1.0 / 8.0 + 0.02, 0.01};
     default: // blocker searches, moments, fields: see the header
         return {filter + 0.02, 0.01};
     }

@@ -11,6 +11,7 @@
 #include "shadow_moments.glsl"
 #include "shadow_sat.glsl"
 #include "shadow_sdf.glsl"
+#include "shadow_smrt.glsl"
 
 // x: visibility; yzw: intermediate results the parity tests and the viewer read (PCSS: average
 // blocker depth, blocking texels found, filter radius in texels; VSM: the two filtered moments

@@ -1,0 +1,173 @@
+// Technique `smrt`, shadow-map ray tracing [after Unreal Engine 5's virtual shadow maps, Epic
+// Games 2022]: smrt.rays rays from the receiver towards points spread over the light, each marched
+// through the light's depth map at smrt.samples points; a ray is blocked where it crosses the
+// map's surface, and extrapolated on when it ends behind it. No blocker estimate: overlapping
+// occluders and contact hardening come from the rays. Shader: shaders/include/shadow_smrt.glsl;
+// the march's maths, shared with this reference: shaders/include/smrt_march.h; derivations in
+// docs/techniques.md ("Shadow-map ray tracing").
+#include "kernels.h"
+#include "penumbra/renderer.h"
+#include "shadows/technique.h"
+#include "smrt_march.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra::shadows {
+namespace {
+
+// smrtStored, transcribed: the light view distance at the nearest texel of uv (clamped).
+float stored(const FilterInput& in, glm::vec2 uv) {
+    const auto size = static_cast<float>(in.map.size);
+    const glm::vec2 at = uv * size;
+    // How near uv came to a texel's border: the GPU may round it to the other texel.
+    const glm::vec2 f = glm::fract(at);
+    in.margins.see(std::min(std::min(f.x, 1.0f - f.x), std::min(f.y, 1.0f - f.y)), 0.0f);
+    const glm::ivec2 texel = glm::floor(at);
+    return gpu::viewDistance(in.view, in.map.texel(texel.x, texel.y));
+}
+
+// smrtPoint, transcribed.
+gpu::SmrtPoint pointAt(const FilterInput& in, const gpu::SmrtParams& s, glm::vec3 p, glm::vec3 d,
+                       float distance) {
+    gpu::SmrtPoint x = gpu::smrtPointAt(in.view, p, d, distance);
+    gpu::smrtSetStored(x, in.view, stored(in, x.uv), in.map.size, s.slope);
+    in.margins.see(x.behind / std::max(x.z, 1.0f), x.slack / std::max(x.z, 1.0f));
+    return x;
+}
+
+// shadowSmrtDetail: x visibility, y rays blocked, z of those blocked only by extrapolation, w the
+// mean march length in texels (over the rays traced).
+glm::vec4 smrtReference(const FilterInput& in) {
+    const gpu::SmrtParams s = in.params.get<gpu::SmrtParams>();
+    const gpu::ShadowViewData& view = in.view;
+    const uint32_t mapSize = in.map.size;
+    const float turns = gpu::rotationTurns(s.rotation, in.probe.pixel);
+    const glm::vec3 p =
+        gpu::smrtViewPoint(view, in.probe.uv, gpu::viewDistance(view, in.probe.depth));
+    const gpu::SmrtPoint receiver = pointAt(in, s, p, glm::vec3(0.0f), 0.0f);
+    float blocked = 0.0f, extrapolated = 0.0f, marched = 0.0f, traced = 0.0f;
+    bool grazed = gpu::smrtIsBehind(receiver);
+    for (uint32_t ray = 0; ray < s.rays; ++ray) {
+        const uint32_t k = s.rays - 1 - ray;
+        if (ray > 0 && ray == s.adaptive && (blocked == traced || (blocked == 0.0f && !grazed)))
+            break;
+        const glm::vec3 d = gpu::smrtRayDirection(view, p, k, s.rays, turns);
+        const float length = gpu::smrtMarchLength(view, p, d, s.maxRadius, mapSize);
+        const float jitter = glm::fract(turns * 2.618034f + static_cast<float>(k) * 0.7548777f);
+        gpu::SmrtPoint last = receiver;
+        bool crossed = false;
+        for (uint32_t i = 0; i < s.samples && !crossed; ++i) {
+            const gpu::SmrtPoint next =
+                pointAt(in, s, p, d, gpu::smrtSampleDistance(i, s.samples, length, jitter));
+            grazed = grazed || gpu::smrtIsBehind(next);
+            if (gpu::smrtIsBehind(next) != gpu::smrtIsBehind(last)) {
+                gpu::SmrtPoint a = last, b = next;
+                for (uint32_t j = 0; j < s.refine; ++j) {
+                    const gpu::SmrtPoint m = pointAt(in, s, p, d, 0.5f * (a.s + b.s));
+                    (gpu::smrtIsBehind(m) == gpu::smrtIsBehind(a) ? a : b) = m;
+                }
+                float margin = 0.0f;
+                crossed = gpu::smrtCrosses(view, a, b, s.slope, margin);
+                in.margins.see(margin, 0.0f);
+            }
+            last = next;
+        }
+        const bool hit = crossed || gpu::smrtIsBehind(last);
+        blocked += hit ? 1.0f : 0.0f;
+        extrapolated += hit && !crossed ? 1.0f : 0.0f;
+        marched += glm::length((gpu::smrtProject(view, p + length * d) - in.probe.uv) *
+                               static_cast<float>(mapSize));
+        traced += 1.0f;
+    }
+    return {1.0f - blocked / traced, blocked, extrapolated, marched / traced};
+}
+
+} // namespace
+
+const TechniqueModule& smrtModule() {
+    static const TechniqueModule module{
+        .info = {.id = Technique::Smrt,
+                 .name = "smrt",
+                 .summary = "shadow-map ray tracing: rays towards points of the light marched "
+                            "through the depth map (contact hardening, overlapping occluders)",
+                 .reference = "after Unreal Engine 5's virtual shadow maps (Epic Games 2022), "
+                              "shadow-map ray tracing",
+                 .families = {"bias", "smrt", "csm", "composite"},
+                 .variants = {{.label = ""}, {.label = "fast", .sets = {{"smrt.rays", "8"}}}}},
+        .parameters =
+            {{.key = "smrt.rays",
+              .type = ParameterType::Int,
+              .defaultValue = 16,
+              .min = 1,
+              .max = 64,
+              .unit = "rays per pixel",
+              .description = "rays towards points of the light (a rotated low-discrepancy set "
+                             "per pixel); the visibility is the fraction no occluder blocks"},
+             {.key = "smrt.samples",
+              .type = ParameterType::Int,
+              .defaultValue = 8,
+              .min = 2,
+              .max = 64,
+              .unit = "map samples per ray",
+              .description = "depth-map samples along each ray, denser near the receiver"},
+             {.key = "smrt.maxRadius",
+              .type = ParameterType::Float,
+              .defaultValue = 256.0,
+              .min = 2.0,
+              .max = 256.0,
+              .unit = "texels",
+              .description = "how far from the receiver's texel a ray is marched; a ray still "
+                             "behind an occluder there is taken as blocked (extrapolated)"},
+             {.key = "smrt.slope",
+              .type = ParameterType::Float,
+              .defaultValue = 8.0,
+              .min = 0.0,
+              .max = 64.0,
+              .unit = "depth per lateral unit",
+              .description = "the steepest surface a ray may cross between two samples; a "
+                             "steeper change of the map's depth is an occluder's silhouette"},
+             {.key = "smrt.refine",
+              .type = ParameterType::Int,
+              .defaultValue = 3,
+              .min = 0,
+              .max = 8,
+              .unit = "halvings",
+              .description = "halvings of the interval where a ray changes side of the map's "
+                             "surface before the crossing test (a silhouette's jump stays, a "
+                             "surface's gap shrinks)"},
+             {.key = "smrt.adaptive",
+              .type = ParameterType::Int,
+              .defaultValue = 4,
+              .min = 0,
+              .max = 64,
+              .unit = "rays",
+              .description = "rays traced first, round the light's rim: where all are blocked, or "
+                             "all lit without one passing behind an occluder, no more are (0: "
+                             "every pixel traces smrt.rays)"},
+             {.key = "smrt.rotation",
+              .type = ParameterType::Choice,
+              .defaultValue = 2,
+              .choices = {std::begin(gpu::kRotationChoices), std::end(gpu::kRotationChoices)},
+              .description = "per-pixel rotation of the ray set and jitter of the samples"}},
+        .pack =
+            [](const ParameterValues& p, ParamBlock& block) {
+                auto whole = [&](const char* key) { return static_cast<uint32_t>(p.number(key)); };
+                auto real = [&](const char* key) { return static_cast<float>(p.number(key)); };
+                block.set(gpu::SmrtParams{.rays = whole("smrt.rays"),
+                                          .samples = whole("smrt.samples"),
+                                          .rotation = whole("smrt.rotation"),
+                                          .maxRadius = real("smrt.maxRadius"),
+                                          .slope = real("smrt.slope"),
+                                          .refine = whole("smrt.refine"),
+                                          .adaptive = whole("smrt.adaptive")});
+            },
+        .reference = smrtReference,
+        .modelsLightSize = true,
+        .blurRadiusTexels =
+            [](const ParameterValues& p) { return p.number("smrt.maxRadius") + 1.0; },
+        .readsVirtualMaps = true};
+    return module;
+}
+
+} // namespace penumbra::shadows
