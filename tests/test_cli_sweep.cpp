@@ -285,3 +285,19 @@ TEST(SweepCli, EmitsTheClusterJobsForThePlan) {
          manifest.string()});
     EXPECT_EQ(parsed.exitCode, 0) << parsed.err;
 }
+
+// The plans the repository ships are valid against today's techniques and parameters, and expand
+// to the task counts docs/sweep.md gives.
+TEST(SweepCli, TheShippedPlansAreValid) {
+    for (const auto& [name, tasks] :
+         {std::pair{"smoke.toml", 12}, std::pair{"standard.toml", 660}}) {
+        const fs::path plan = fs::path(PENUMBRA_SOURCE_DIR) / "bench" / "plans" / name;
+        const ProcessResult r =
+            runCli({"sweep", plan.string(), "-o", outputScratch("sweep-plans").string(), "--list"});
+        ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
+        size_t lines = 0;
+        for (char c : r.out)
+            lines += c == '\n';
+        EXPECT_EQ(lines, size_t(tasks)) << name << ":\n" << r.out.substr(0, 2000);
+    }
+}
