@@ -3,6 +3,7 @@
 // process runs its shard: every task when no shard is named.
 #include "commands.h"
 #include "penumbra/error.h"
+#include "sweep/atomic_file.h"
 #include "sweep/emit.h"
 #include "sweep/plan.h"
 #include "sweep/tasks.h"
@@ -40,20 +41,6 @@ std::optional<uint32_t> fromEnvironment(std::optional<uint32_t> option,
             return uint32_t(v);
         }
     return std::nullopt;
-}
-
-void writeAtomically(const std::filesystem::path& file, const std::string& text) {
-    const std::filesystem::path temp = file.string() + fmt::format(".{}.tmp", ::getpid());
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        out << text;
-        if (!out.flush())
-            throw InputError(file.string(), "cannot write");
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, file, ec);
-    if (ec)
-        throw InputError(file.string(), "cannot write");
 }
 
 // DIR/sweep.json: every task of the plan (what merge counts as missing), the same for every
@@ -133,7 +120,8 @@ int runSweep(const SweepArgs& args, const GlobalOptions& global) {
     std::filesystem::create_directories(output / "tasks", ec);
     if (ec)
         throw InputError(output.string(), "cannot create the output directory");
-    writeAtomically(output / "sweep.json", tasksJson(plan, tasks));
+    sweep::writeFileAtomically(output / "sweep.json",
+                               [&](std::ostream& out) { out << tasksJson(plan, tasks); });
     const std::filesystem::path truth =
         args.truthCache.empty() ? output / "truth" : std::filesystem::path(args.truthCache);
     const SweepRunStats stats = runSweepTasks(plan, tasks, mine, output, truth, global);

@@ -2,13 +2,12 @@
 #include "sweep/records.h"
 
 #include "penumbra/error.h"
+#include "sweep/atomic_file.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <fstream>
-#include <random>
 #include <sstream>
 
 namespace penumbra::sweep {
@@ -106,23 +105,8 @@ void writeTaskRecord(const std::filesystem::path& dir, const TaskRecord& record)
     const std::filesystem::path final = taskRecordPath(dir, record.id);
     std::error_code ec;
     std::filesystem::create_directories(final.parent_path(), ec);
-    const std::filesystem::path temp =
-        final.parent_path() /
-        fmt::format(".{}.{}-{}.tmp", record.id, ::getpid(), std::random_device{}());
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        out << taskRecordJson(record).dump(1) << "\n";
-        out.flush();
-        if (!out) {
-            std::filesystem::remove(temp, ec);
-            throw InputError(final.string(), "cannot write the task record");
-        }
-    }
-    std::filesystem::rename(temp, final, ec);
-    if (ec) {
-        std::filesystem::remove(temp, ec);
-        throw InputError(final.string(), "cannot rename the task record into place");
-    }
+    writeFileAtomically(final,
+                        [&](std::ostream& out) { out << taskRecordJson(record).dump(1) << "\n"; });
 }
 
 std::vector<TaskRecord> readTaskRecords(const std::filesystem::path& dir) {

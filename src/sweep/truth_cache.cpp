@@ -4,16 +4,14 @@
 #include "sweep/truth_cache.h"
 
 #include "penumbra/error.h"
+#include "sweep/atomic_file.h"
 #include "sweep/tasks.h"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <random>
 
 namespace penumbra::sweep {
 namespace {
@@ -40,7 +38,7 @@ private:
     std::string mBytes;
 };
 
-void write(std::ofstream& out, const void* data, size_t bytes) {
+void write(std::ostream& out, const void* data, size_t bytes) {
     out.write(static_cast<const char*>(data), std::streamsize(bytes));
 }
 
@@ -129,13 +127,7 @@ std::optional<ReferenceResult> TruthCache::load(const std::string& key) const {
 }
 
 void TruthCache::store(const std::string& key, const ReferenceResult& truth) const {
-    static std::atomic<uint64_t> counter{0};
-    const std::filesystem::path final = fileOf(key);
-    // Unique among processes (pid) and machines sharing the directory (random), and threads.
-    const std::filesystem::path temp =
-        mDir / fmt::format(".{}.{}-{}-{}.tmp", key, ::getpid(), std::random_device{}(), ++counter);
-    {
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    writeFileAtomically(fileOf(key), [&](std::ostream& out) {
         const uint32_t layers = uint32_t(truth.visibility.size());
         write(out, kMagic, 8);
         write(out, &truth.width, 4);
@@ -153,19 +145,7 @@ void TruthCache::store(const std::string& key, const ReferenceResult& truth) con
             write(out, visibility.data(), visibility.size() * 4);
             write(out, (known ? truth.occluderDistance[l] : unknown).data(), visibility.size() * 4);
         }
-        out.flush();
-        if (!out) {
-            std::error_code ec;
-            std::filesystem::remove(temp, ec);
-            throw InputError(final.string(), "cannot write the truth cache file");
-        }
-    }
-    std::error_code ec;
-    std::filesystem::rename(temp, final, ec);
-    if (ec) {
-        std::filesystem::remove(temp, ec);
-        throw InputError(final.string(), "cannot rename into the truth cache");
-    }
+    });
 }
 
 ReferenceResult cachedTruth(const TruthCache* cache, const std::string& key,
