@@ -138,6 +138,12 @@ TEST(BlurBand, MetricsAgainstTruthLeaveTheBlurOut) {
     // A blur twice as wide as declared is counted.
     const ErrorMetrics narrow = metricsAgainstTruth(lit, g, truths, masks, 1.0);
     EXPECT_GT(narrow.acneBeyondBlur, 0.0);
+    // A cube face's own radius (the soft members' cubeRadius) counts under a point light only.
+    EXPECT_EQ(metricsAgainstTruth(lit, g, truths, masks, BlurReach(1.0, 3.0)).acneBeyondBlur,
+              narrow.acneBeyondBlur);
+    lit.lights = {Light{.type = LightType::Point, .position = {0.4f, 0.03f, 10.0f}}};
+    EXPECT_EQ(metricsAgainstTruth(lit, g, truths, masks, BlurReach(1.0, 3.0)).acneBeyondBlur, 0.0);
+    EXPECT_GT(metricsAgainstTruth(lit, g, truths, masks, BlurReach(1.0)).acneBeyondBlur, 0.0);
 }
 
 } // namespace

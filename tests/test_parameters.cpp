@@ -372,6 +372,19 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(block.get<gpu::VsmParams>().anisotropy, 8.0f);
     shadows::vsmModule().pack(defaults, block);
     EXPECT_EQ(block.get<gpu::VsmParams>().anisotropy, 0.0f);
+    // The soft members' one table serves every view: its scale holds the widest box of either cap
+    // (a cube face's 96 by default, else a spot's when wider).
+    ParameterValues spotWide;
+    spotWide.assign("vssm.maxRadius=120");
+    const ParameterValues& wideSpots = spotWide;
+    for (const ParameterValues* p : {&defaults, &wideSpots}) {
+        shadows::vssmModule().pack(*p, block);
+        const gpu::SoftParams soft = block.get<gpu::SoftParams>();
+        EXPECT_EQ(soft.tableScale,
+                  shadows::fixedPointScale(
+                      2.0 * std::max(p->number("vssm.maxRadius"), p->number("vssm.cubeRadius"))));
+        EXPECT_EQ(soft.cubeRadius, 96.0f);
+    }
     for (double widest : {1.0, 7.0, 40.0, 128.0, 512.0}) {
         const double scale = shadows::fixedPointScale(widest);
         const double hull = std::ceil(widest) + 2.0;
@@ -392,8 +405,9 @@ TEST(TechniqueModules, CubeGuardBandsHoldEveryKernel) {
                 p.set(key, value);
             p.set("bias.normal", normal);
             const shadows::TechniqueModule& m = shadows::moduleOf(row.technique);
-            const double need = m.blurRadiusTexels(p) + 1.5 + p.number("bias.normal");
-            const uint32_t guard = shadows::viewGuardTexels(m, p);
+            const double reach = m.cubeRadiusTexels ? m.cubeRadiusTexels(p) : m.blurRadiusTexels(p);
+            const double need = reach + 1.5 + p.number("bias.normal");
+            const uint32_t guard = shadows::viewGuardTexels(m, p, true);
             EXPECT_GE(guard, need) << row.name << ", bias.normal " << normal;
             EXPECT_LE(guard, need + 3.0) << row.name << ": a wider band costs resolution";
         }
@@ -401,6 +415,19 @@ TEST(TechniqueModules, CubeGuardBandsHoldEveryKernel) {
     ParameterValues wide;
     wide.set("pcss.maxRadius", "100");
     EXPECT_EQ(shadows::viewGuardTexels(shadows::pcssModule(), wide), 101u + 2u + 1u); // normal 0.3
+    // A point light's cube faces: the soft members' own cap (cubeRadius 96), the others' the same.
+    wide.set("pcss.cubeRadius", "50");
+    EXPECT_EQ(shadows::viewGuardTexels(shadows::pcssModule(), wide, true), 51u + 2u + 1u);
+    EXPECT_EQ(shadows::widestRadiusTexels(shadows::pcssModule(), wide), 101.0);
+    const ParameterValues defaults;
+    for (const shadows::TechniqueModule* m : {&shadows::vssmModule(), &shadows::msmSoftModule()}) {
+        EXPECT_EQ(shadows::viewGuardTexels(*m, defaults), 65u + 2u + 1u) << m->info.name;
+        EXPECT_EQ(shadows::viewGuardTexels(*m, defaults, true), 97u + 2u + 1u) << m->info.name;
+        EXPECT_EQ(shadows::blurRadii(*m, defaults), std::make_pair(65.0, 97.0)) << m->info.name;
+    }
+    EXPECT_EQ(shadows::viewGuardTexels(shadows::pcfModule(), defaults, true),
+              shadows::viewGuardTexels(shadows::pcfModule(), defaults));
+    EXPECT_EQ(shadows::blurRadii(shadows::hardModule(), defaults), std::make_pair(0.5, -1.0));
 }
 
 TEST(TechniqueModules, ChoiceListsAreTheShadersOwnTables) {

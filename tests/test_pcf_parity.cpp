@@ -177,12 +177,21 @@ TEST_F(FilterTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
                                   .size = 0.8f,
                                   .nearPlane = 2.0f,
                                   .farPlane = 30.0f,
-                                  .worldPerUv = {1.2f, 1.2f}}};
+                                  .worldPerUv = {1.2f, 1.2f}},
+                                 // A point light's cube face: its own cap (pcss.cubeRadius).
+                                 {.perspective = true,
+                                  .size = 0.8f,
+                                  .nearPlane = 2.0f,
+                                  .farPlane = 30.0f,
+                                  .worldPerUv = {1.2f, 1.2f},
+                                  .cubeFace = true}};
     for (const ProbeLight& probeLight : lights)
         for (const char* rotation : {"none", "ign"}) {
             ParameterValues params;
             params.set("pcss.rotation", rotation);
             params.assign("pcss.maxRadius=24");
+            params.assign("pcss.cubeRadius=3");
+            const float cap = probeLight.cubeFace ? 3.0f : 24.0f;
             // The blocker search and the filter both test taps: with the adaptive mode's
             // per-tap terms on the rotated runs.
             const std::vector<FilterProbe> probes =
@@ -193,7 +202,8 @@ TEST_F(FilterTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
                 shadows::filterSettings(shadows::moduleOf(Technique::Pcss), params, false, 8);
             const gpu::ShadowViewData light = render::probeViewData(probeLight);
             glm::vec4 worst(0.0f);
-            size_t compared = 0, searched = 0;
+            size_t compared = 0, searched = 0, capped = 0;
+            float widest = 0.0f;
             for (size_t i = 0; i < probes.size(); ++i) {
                 if (shadows::smallestComparisonMargin(Technique::Pcss, map, probes[i], frame,
                                                       light) < 1e-5f)
@@ -202,13 +212,24 @@ TEST_F(FilterTest, PcssBlockerSearchAndPenumbraMatchTheCpuReference) {
                 const glm::vec4 cpu =
                     shadows::techniqueReference(Technique::Pcss, map, probes[i], frame, light);
                 searched += cpu.z > 0.0f;
+                widest = std::max(widest, gpuResult[i].w);
+                capped += gpuResult[i].w == cap;
                 // Depths and radii relative to their size; counts exactly.
                 worst = glm::max(worst, glm::abs(cpu - gpuResult[i]) /
                                             glm::max(glm::vec4(1.0f, 1.0f, 1.0f, std::abs(cpu.w)),
                                                      glm::vec4(1.0f)));
             }
-            const std::string what = std::string(probeLight.perspective ? "perspective" : "ortho") +
+            const std::string what = std::string(probeLight.cubeFace      ? "cube face"
+                                                 : probeLight.perspective ? "perspective"
+                                                                          : "ortho") +
                                      ", rotation " + rotation;
+            // The filter radius stops at this view's cap, and wide penumbrae reach it.
+            // The filter radius stops at this view's cap: the synthetic penumbrae (up to 10
+            // texels) reach a cube face's 3, not the others' 24.
+            EXPECT_LE(widest, cap) << what;
+            if (probeLight.cubeFace) {
+                EXPECT_GT(capped, 20u) << what << ": penumbrae at the cap";
+            }
             EXPECT_GT(compared, probes.size() * 8 / 10) << what;
             EXPECT_GT(searched, probes.size() / 4) << what << ": blockers must be found";
             EXPECT_LE(worst.x, 1e-3f) << what << ": visibility";

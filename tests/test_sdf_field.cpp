@@ -73,6 +73,37 @@ TEST(SdfField, LayoutCoversTheBoundsWithCubicVoxelsInWholeBricks) {
     EXPECT_NO_THROW(fieldLayout(boundsOf({0, 0, 0}, {1, 1, 1}), 500));
 }
 
+// sdf.resolution 0: the finest resolution whose bounds hold the voxel budget, between its bounds.
+TEST(SdfField, TheAutomaticResolutionSpendsTheVoxelBudgetOnTheScenesShape) {
+    const auto innerVoxels = [](const Bounds& b, uint32_t n) {
+        const glm::vec3 e = b.extent();
+        const float longest = std::max({e.x, e.y, e.z}), voxel = longest / float(n);
+        double count = 1.0;
+        for (int axis = 0; axis < 3; ++axis)
+            count *= std::max(std::ceil(double(e[axis]) / double(voxel)), 1.0);
+        return count;
+    };
+    // A cube: the budget's cube root is under the floor, so the floor (the former default).
+    const Bounds cube = boundsOf({-1, -1, -1}, {1, 1, 1});
+    EXPECT_EQ(fieldResolution(cube, 0), kAutoFieldResolutionMin);
+    // A wide ground with low casters (60 x 2 x 60, the bulbs' scene): finer, the finest within
+    // the budget, so 16 more voxels would pass it.
+    const Bounds flat = boundsOf({-30, 0, -30}, {30, 2, 30});
+    const uint32_t n = fieldResolution(flat, 0);
+    EXPECT_GT(n, 600u);
+    EXPECT_LT(n, kAutoFieldResolutionMax);
+    EXPECT_LE(innerVoxels(flat, n), double(kAutoFieldVoxels));
+    EXPECT_GT(innerVoxels(flat, n + 16), double(kAutoFieldVoxels));
+    EXPECT_FLOAT_EQ(fieldLayout(flat, 0).voxel, 60.0f / float(n));
+    // A plane alone: the ceiling.
+    EXPECT_EQ(fieldResolution(boundsOf({0, 0, 0}, {10, 0, 10}), 0), kAutoFieldResolutionMax);
+    // A value asked for is kept; 1 to 15 are refused, naming the parameter.
+    EXPECT_EQ(fieldResolution(flat, 128), 128u);
+    EXPECT_EQ(fieldResolution(flat, 16), 16u);
+    EXPECT_THROW(fieldResolution(flat, 15), InputError);
+    EXPECT_THROW(fieldLayout(flat, 1), InputError);
+}
+
 TEST(SdfField, ClosedSurfacesAreFoundByTheirEdges) {
     Scene scene;
     MeshBuilder mb(scene);

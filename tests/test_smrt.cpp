@@ -6,7 +6,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
 
@@ -158,8 +160,9 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
         EXPECT_LT(beyond.acneBeyondBlur, 0.001) << c.name;
         EXPECT_LT(beyond.leakBeyondBlur, 0.001) << c.name;
         EXPECT_LT(smrt.rmse, 0.06) << c.name;
-        if (c.name == "spot 1.5" || c.name == "sun 6" || c.name == "point 0.3" ||
-            c.name == "point 0.5")
+        // pcss follows the bulbs' penumbrae on their faces up to pcss.cubeRadius (96 texels) and
+        // reads 0.029 at radius 0.3 against smrt's 0.035; at 0.5 its estimate fails again.
+        if (c.name == "spot 1.5" || c.name == "sun 6" || c.name == "point 0.5")
             EXPECT_LT(smrt.rmse, 0.8 * pcss) << c.name;
         else
             EXPECT_LT(smrt.rmse, 2.0 * pcss) << c.name;
@@ -171,6 +174,39 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
                                          .rmse;
             std::printf("%-10s converged (64 rays, 32 samples) %.4f\n", c.name.c_str(), converged);
             EXPECT_LT(converged, 0.015) << c.name;
+        }
+    }
+}
+
+// The close bulb (radius 0.3, 1.2 over the spheres): every soft technique within 0.05 of
+// the truth. The summed-area members and pcss reach it through their cube faces' own cap
+// (<family>.cubeRadius, 96): at their spots' and cascades' caps (pcss 40, the others 64) the
+// same faces clip the penumbrae (0.067, 0.047, 0.047 measured), and sdf through its automatic
+// resolution (256 voxels on the 60-unit plane: 0.082).
+TEST_F(QualityTest, EverySoftTechniqueHoldsUnderACloseBulb) {
+    for (Case& c : analyticCases()) {
+        if (c.name != "point 0.3")
+            continue;
+        const Truth t = groundTruth(c.scene, {.width = 384, .height = 384, .samples = 128});
+        const std::pair<Technique, const char*> members[] = {
+            {Technique::Pcss, "pcss"}, {Technique::Vssm, "vssm"}, {Technique::MsmSoft, "msm-soft"}};
+        for (const auto& [technique, family] : members) {
+            const double atDefaults = errorOf(t, renderRow(t, technique, {})).rmse;
+            const std::string maxRadius =
+                fmt::format("{}", ParameterValues().number(std::string(family) + ".maxRadius"));
+            const double clipped =
+                errorOf(t,
+                        renderRow(t, technique, {{std::string(family) + ".cubeRadius", maxRadius}}))
+                    .rmse;
+            std::printf("%-9s rmse %.4f; at its maxRadius (%s) on the faces %.4f\n", family,
+                        atDefaults, maxRadius.c_str(), clipped);
+            EXPECT_LT(atDefaults, 0.05) << family;
+            EXPECT_LT(atDefaults, 0.85 * clipped) << family << ": the cube faces' own cap";
+        }
+        for (const Technique technique : {Technique::Sdf, Technique::Smrt}) {
+            const double rmse = errorOf(t, renderRow(t, technique, {})).rmse;
+            std::printf("%-9s rmse %.4f\n", std::string(techniqueName(technique)).c_str(), rmse);
+            EXPECT_LT(rmse, 0.05) << techniqueName(technique);
         }
     }
 }
@@ -197,6 +233,9 @@ TEST_F(QualityTest, SmrtReadsVirtualMaps) {
 TEST_F(QualityTest, SoftTechniquesErrorAgainstCostTable) {
     if (!std::getenv("PENUMBRA_SOFT_TABLE"))
         GTEST_SKIP() << "a measurement: PENUMBRA_SOFT_TABLE=1 prints it";
+    // Five frames on lavapipe; a real GPU's sub-millisecond passes want more for a stable median.
+    const char* framesText = std::getenv("PENUMBRA_SOFT_TABLE_FRAMES");
+    const uint32_t frames = framesText ? static_cast<uint32_t>(std::atoi(framesText)) : 5u;
     struct Row {
         const char* name;
         Technique technique;
@@ -210,6 +249,7 @@ TEST_F(QualityTest, SoftTechniquesErrorAgainstCostTable) {
         {"sdf", Technique::Sdf, {}},
         {"smrt[fast]", Technique::Smrt, {{"smrt.rays", "8"}}},
         {"smrt", Technique::Smrt, {}},
+        {"smrt 12 samples", Technique::Smrt, {{"smrt.samples", "12"}}},
         {"smrt 32 rays", Technique::Smrt, {{"smrt.rays", "32"}}},
         {"smrt 64 rays", Technique::Smrt, {{"smrt.rays", "64"}}}};
     std::vector<Case> cases = analyticCases();
@@ -223,7 +263,7 @@ TEST_F(QualityTest, SoftTechniquesErrorAgainstCostTable) {
             RenderOptions o{.width = t.setup.width,
                             .height = t.setup.height,
                             .shadowMapSize = t.setup.shadowMapSize,
-                            .frames = 5,
+                            .frames = std::max(frames, 1u),
                             .technique = row.technique};
             for (const auto& [key, value] : sets)
                 o.parameters.set(key, value);
@@ -232,7 +272,8 @@ TEST_F(QualityTest, SoftTechniquesErrorAgainstCostTable) {
             for (const PassTime& p : r.passes)
                 if (p.pass == "visibility")
                     ms = p.medianMs;
-            std::printf(" %.4f (%.1f ms) |", errorOf(t, r).rmse, ms);
+            std::printf(ms < 1.0 ? " %.4f (%.3f ms) |" : " %.4f (%.1f ms) |", errorOf(t, r).rmse,
+                        ms);
             std::fflush(stdout);
         }
         std::printf("\n");

@@ -41,7 +41,14 @@ TEST_F(FilterTest, SummedAreaSoftMembersMatchTheirCpuReference) {
     std::vector<FilterProbe> probes = probesOver(9);
     for (size_t i = 0; i < probes.size(); i += 3) // some receivers on a tilted plane
         probes[i].gradient = {0.04f, -0.03f};
-    for (const ProbeLight& light : kSizedLights)
+    // The spot again as a point light's cube face, whose kernels take <family>.cubeRadius (28
+    // here, under maxRadius so the table's scale stays the one these tolerances were measured at;
+    // just under the spot's widest penumbrae (32 texels), so the boxes stay as wide as the
+    // spot's: at a cap of 20 an H100's moment rounding moved 21 of msm-soft's probes, since a
+    // narrower box weighs each texel's rounding more than these tolerances allow).
+    ProbeLight cubeFace = kSizedLights[1];
+    cubeFace.cubeFace = true;
+    for (const ProbeLight& light : {kSizedLights[0], kSizedLights[1], cubeFace})
         for (Technique technique : kSoftMembers)
             for (const char* subdivision : {"1", "3"})
                 for (const char* refine : {"false", "true"}) {
@@ -49,21 +56,27 @@ TEST_F(FilterTest, SummedAreaSoftMembersMatchTheirCpuReference) {
                     ParameterValues params;
                     params.set(family + ".subdivision", subdivision);
                     params.set(family + ".refine", refine);
+                    params.set(family + ".cubeRadius", "28");
                     // Parity, not the default: at vssm.minVariance 1e-7 a variance is a few
                     // ulps of its second moment, and a bound there follows either side's
                     // rounding (one probe in a hundred moved by 0.02).
                     if (technique == Technique::Vssm)
                         params.set("vssm.minVariance", "0.00001");
-                    const std::string what =
-                        fmt::format("{} {} subdivision {} refine {}", family,
-                                    light.perspective ? "spot" : "sun", subdivision, refine);
+                    const std::string what = fmt::format("{} {} subdivision {} refine {}", family,
+                                                         light.cubeFace      ? "cube face"
+                                                         : light.perspective ? "spot"
+                                                                             : "sun",
+                                                         subdivision, refine);
                     const std::vector<glm::vec4> gpuResult = sharedRenderer().probeTechnique(
                         technique, params, depth, kSize, probes, light);
                     const shadows::FilterSettings frame =
                         shadows::filterSettings(shadows::moduleOf(technique), params, false, 8);
                     const gpu::ShadowViewData view = render::probeViewData(light);
-                    size_t between = 0, off = 0, branches = 0;
+                    size_t between = 0, off = 0, branches = 0, capped = 0;
+                    float widest = 0.0f;
                     for (size_t i = 0; i < probes.size(); ++i) {
+                        widest = std::max(widest, gpuResult[i].w);
+                        capped += gpuResult[i].w == 28.0f;
                         const auto reference = [&](float scale) {
                             FilterProbe probe = probes[i];
                             probe.depth *= scale;
@@ -95,6 +108,14 @@ TEST_F(FilterTest, SummedAreaSoftMembersMatchTheirCpuReference) {
                     // depth's nudge does not reach (the moments' rounding moves other texels).
                     EXPECT_LE(off, probes.size() / 200) << what << ": probes that disagree";
                     EXPECT_LE(branches, probes.size() / 20) << what << ": probes on a branch";
+                    // The cube face's kernels stop at its cap of 28 texels (some reach it); the
+                    // spot's, the same view but capped at maxRadius, pass it (32 texels).
+                    if (light.cubeFace) {
+                        EXPECT_LE(widest, 28.0f) << what;
+                        EXPECT_GE(capped, 5u) << what << ": kernels at the cap";
+                    } else if (light.perspective) {
+                        EXPECT_GT(widest, 29.0f) << what << ": kernels past the cube cap";
+                    }
                 }
 }
 
@@ -178,7 +199,11 @@ TEST_F(QualityTest, SummedAreaSoftShadowsFollowTheLightsSize) {
             EXPECT_LT(rmse, 0.07) << light.name << ", " << name;
             EXPECT_LT(rmse, hard) << light.name << ", " << name;
             EXPECT_LT(m.acne, 0.001) << light.name << ", " << name;
-            EXPECT_LT(m.leak, 0.01) << light.name << ", " << name;
+            // A point light's faces filter up to <family>.cubeRadius (96 texels): penumbrae that
+            // wide follow the truth, and the small umbra under the sphere is over-blurred (vssm
+            // 2.2%, msm-soft 3.4% measured; 0 at the spots' cap of 64, which clipped them).
+            EXPECT_LT(m.leak, light.type == LightType::Point ? 0.05 : 0.01)
+                << light.name << ", " << name;
         }
         // The bound for the rest of the family: lower than hard, acne under 0.1%.
         for (Technique technique :

@@ -54,9 +54,8 @@ std::string describeLight(const Light& l) {
                : fmt::format("{}: {}, radius {}", l.name, lightTypeName(l.type), l.radius);
 }
 
-double blurRadiusTexels(const RenderOptions& o) {
-    const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
-    return module.blurRadiusTexels ? module.blurRadiusTexels(o.parameters) : 0.0;
+BlurReach blurRadiusTexels(const RenderOptions& o) {
+    return shadows::blurRadii(shadows::moduleOf(o.technique), o.parameters);
 }
 
 int runCompare(const CompareArgs& args, const GlobalOptions& global) {

@@ -103,7 +103,7 @@ void measure(sweep::TaskRecord& record, const sweep::SweepTask& task, const Load
         if (s.visibilityIndex >= 0)
             masks.push_back(lightMask(view.lit.lights[s.sceneLight], gbuffer));
     const shadows::TechniqueModule& module = shadows::moduleOf(options.technique);
-    const double blur = module.blurRadiusTexels ? module.blurRadiusTexels(options.parameters) : 0;
+    const BlurReach blur = shadows::blurRadii(module, options.parameters);
     const ErrorMetrics m = metricsAgainstTruth(view.lit, result, truth.visibility, masks, blur,
                                                truth.occluderDistance);
     for (const sweep::MetricField& f : sweep::kMetricFields)

@@ -184,7 +184,7 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
         TuneCandidate& c = candidates[i];
         std::fprintf(stderr, "penumbra: [%zu/%zu] %s\n", i + 1, candidates.size(),
                      c.isDefault ? "(defaults)" : c.setLine.c_str());
-        const double blur = module.blurRadiusTexels ? module.blurRadiusTexels(values[i]) : 0.0;
+        const BlurReach blur = shadows::blurRadii(module, values[i]);
         std::vector<RenderResult> results;
         std::vector<TruthView> pooled;
         for (const ViewTruth& v : views) {

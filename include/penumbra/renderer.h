@@ -187,6 +187,8 @@ struct ProbeLight {
     float size = 0.0f;                       // radius (perspective) or tan(half angular diameter)
     float nearPlane = 0.0f, farPlane = 1.0f; // light view distances of depth 0 and 1
     glm::vec2 worldPerUv{1.0f}; // world size of one uv unit (at unit distance if perspective)
+    bool cubeFace = false;      // a point light's cube face (perspective): the soft members'
+                                // kernels take their cubeRadius cap
 };
 
 class SceneRenderer;

@@ -38,7 +38,8 @@ struct ShadowViewData {  // std140 uniform record, one per shadow view
     vec4 frustum;        // x near, y far (view distance), zw world size of one uv unit
                          // (orthographic) or of one uv unit at unit distance (perspective)
     vec4 texel;          // x world size of a texel (perspective: at unit distance), y 1 if
-                         // perspective, z the view's layer in the maps, w the light's size as
+                         // perspective (2: a point light's cube face, also perspective), z the
+                         // view's layer in the maps, w the light's size as
                          // this view sees it: radius (perspective) or tan(half angular diameter)
     vec4 cascade;        // x the camera view distance where this view's slice ends, y where it
                          // starts blending into the next view (both huge: not a cascade), z the
@@ -83,6 +84,13 @@ SHARED float viewDistance(IN(ShadowViewData) view, float depth) {
 SHARED float texelsPerWorld(IN(ShadowViewData) view, float z, uint mapSize) {
     float worldPerUv = view.frustum.z * (view.texel.y > 0.5f ? z : 1.0f);
     return float(mapSize) / worldPerUv;
+}
+
+// The soft members' kernel cap in `view`: a point light's cube face (texel.y 2) has no coarser
+// view to move a wide kernel to, as a sun's cascades do, so it takes the technique's own cube cap
+// (`<family>.cubeRadius`, guard band as wide); spots and cascades `<family>.maxRadius`.
+SHARED float kernelCap(IN(ShadowViewData) view, float maxRadius, float cubeRadius) {
+    return view.texel.y > 1.5f ? cubeRadius : maxRadius;
 }
 
 // Search radius (texels): the light seen from the receiver, cut by the near plane, where the

@@ -21,7 +21,9 @@ struct PcssParams {      // std140
     uint blockerSamples; // pcss.blockerSamples: gathers of the blocker search
     uint filterSamples;  // pcss.filterSamples: bilinear taps of the filter
     uint rotation;       // pcss.rotation: ROTATION_*
-    float maxRadius;     // pcss.maxRadius: texels of the view sampled
+    float maxRadius;     // pcss.maxRadius: texels of the view sampled (spots, cascades)
+    float cubeRadius;    // pcss.cubeRadius: the same on a point light's cube faces (kernelCap)
+    float pad0, pad1, pad2;
 };
 PENUMBRA_GPU_END
 

@@ -17,14 +17,14 @@ struct SavsmParams {     // std140
 // vssm and msm-soft: the search and filter cap, the kernel subdivision and the refining search
 // (shadows::SoftSearch), the table's scale, and each one's own bound settings.
 struct SoftParams {      // std140
-    float maxRadius;     // <family>.maxRadius: texels of the map sampled
+    float maxRadius;     // <family>.maxRadius: texels of the map sampled (spots, cascades)
     float tableScale;    // fixed-point steps per unit of the table
     uint subdivision;    // <family>.subdivision: sub-kernels per axis
     uint refine;         // <family>.refine: 1, search again over the penumbra's own box
     float minVariance;   // vssm.minVariance
     float bleedReduction;// vssm.bleedReduction
     float momentBias;    // msm-soft.bias
-    float pad;
+    float cubeRadius;    // <family>.cubeRadius: maxRadius on a point light's cube faces
 };
 PENUMBRA_GPU_END
 

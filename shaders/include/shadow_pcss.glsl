@@ -31,10 +31,10 @@ float searchBlockers(sampler2DArray map, Receiver r, uint mapSize, uint n, float
 }
 
 // The blocker search over the light's extent seen from the receiver, capped at pcss.maxRadius
-// texels of this view: x blocking texels found, y their average depth in this view (1: none).
+// texels of this view (pcss.cubeRadius on a cube face): x blocking texels found, y their average depth in this view (1: none).
 vec2 pcssSearch(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, float turns) {
     float search = min(blockerSearchRadius(view, viewDistance(view, r.depth), mapSize),
-                       pcss.maxRadius);
+                       kernelCap(view, pcss.maxRadius, pcss.cubeRadius));
     float blockerDepth;
     float blockers = searchBlockers(map, r, mapSize, pcss.blockerSamples, max(search, 0.5), turns,
                                     frame.biasParams.xy, blockerDepth);
@@ -47,7 +47,7 @@ vec2 pcssSearch(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData vie
 vec4 pcssFilter(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, float zBlocker,
                 vec2 blockers, float turns) {
     float radius = clamp(penumbraRadius(view, viewDistance(view, r.depth), zBlocker, mapSize),
-                         0.5, pcss.maxRadius);
+                         0.5, kernelCap(view, pcss.maxRadius, pcss.cubeRadius));
     // Only blockers and a penumbra under a texel: inside the umbra.
     if (blockers.x == 4.0 * float(pcss.blockerSamples) && radius <= 1.0)
         return vec4(0.0, blockers.y, blockers.x, radius);

@@ -87,12 +87,12 @@ struct SoftSettings {
     bool refine;
 };
 
-SoftSettings softSettings(uint kind) {
+SoftSettings softSettings(uint kind, ShadowViewData view) {
     return kind == MOMENTS_MSM
-               ? SoftSettings(kind, msmSoft.maxRadius, msmSoft.tableScale,
-                              int(msmSoft.subdivision), msmSoft.refine != 0u)
-               : SoftSettings(kind, vssm.maxRadius, vssm.tableScale, int(vssm.subdivision),
-                              vssm.refine != 0u);
+               ? SoftSettings(kind, kernelCap(view, msmSoft.maxRadius, msmSoft.cubeRadius),
+                              msmSoft.tableScale, int(msmSoft.subdivision), msmSoft.refine != 0u)
+               : SoftSettings(kind, kernelCap(view, vssm.maxRadius, vssm.cubeRadius),
+                              vssm.tableScale, int(vssm.subdivision), vssm.refine != 0u);
 }
 
 // The box [lo, hi] cut into up to subdivision^2 sub-kernels (none under VSSM_MIN_CELL texels
@@ -150,7 +150,7 @@ float softBlockerDistance(uint kind, vec3 found, ShadowViewData view) {
 // with Chebyshev; msm-soft [Peters et al. 2016] with the Hamburger reconstruction.
 vec4 shadowSoftDetail(usampler2DArray table, uint kind, Receiver r, uint mapSize,
                       ShadowViewData view) {
-    SoftSettings s = softSettings(kind);
+    SoftSettings s = softSettings(kind, view);
     float size = float(mapSize);
     float zReceiver = viewDistance(view, r.depth);
     vec2 lo, hi;

@@ -152,19 +152,22 @@ namespace {
 
 shadows::FieldLayout fieldFits(const vk::Context& ctx, const Bounds& bounds, uint32_t resolution) {
     const shadows::FieldLayout layout = shadows::fieldLayout(bounds, resolution);
+    // What the messages name: the resolution asked for, or the automatic one it stood for.
+    const std::string asked =
+        resolution > 0 ? std::to_string(resolution)
+                       : fmt::format("0 (automatic: {})", shadows::fieldResolution(bounds, 0));
     const uint32_t limit = ctx.limits().maxImageDimension3D;
     if (std::max({layout.size.x, layout.size.y, layout.size.z}) > limit)
         throw InputError("sdf.resolution",
                          fmt::format("{} makes a field of {}x{}x{} voxels, past this device's "
                                      "3D image size limit of {}",
-                                     resolution, layout.size.x, layout.size.y, layout.size.z,
-                                     limit));
+                                     asked, layout.size.x, layout.size.y, layout.size.z, limit));
     const double have = static_cast<double>(deviceMemoryForChecks(ctx.deviceLocalHeapBytes()));
     if (static_cast<double>(fieldBuildBytes(layout)) > 0.5 * have)
         throw InputError("sdf.resolution",
                          fmt::format("{} needs {:.2f} GiB of device memory to build its field; "
                                      "the device has {:.2f} GiB",
-                                     resolution,
+                                     asked,
                                      static_cast<double>(fieldBuildBytes(layout)) / (1 << 30),
                                      have / (1 << 30)));
     return layout;

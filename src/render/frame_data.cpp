@@ -37,9 +37,8 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
         f.virtualPages = {v.pageSize, v.poolPagesPerSide(), v.localLevels(), 1u};
         // The pages a filter reads around its receiver; a comparison sampler reads the pool's
         // neighbouring pages instead: the bilinear comparison is done by hand.
-        const double reach =
-            std::max(module.blurRadiusTexels ? module.blurRadiusTexels(params) : 1.0,
-                     module.searchCap ? module.searchCap(params) : 0.0);
+        const double reach = std::max({shadows::widestRadiusTexels(module, params), 1.0,
+                                       module.searchCap ? module.searchCap(params) : 0.0});
         f.virtualLod = {static_cast<float>(params.number("virtual.lodBias")),
                         static_cast<float>(std::ceil(reach)), 0.0f, 0.0f};
         f.biasMode.y = 0u;
@@ -50,7 +49,11 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
 gpu::ShadowViewData probeViewData(const ProbeLight& light) {
     return {.shadowMatrix = glm::mat4(1.0f),
             .frustum = {light.nearPlane, light.farPlane, light.worldPerUv.x, light.worldPerUv.y},
-            .texel = {0.0f, light.perspective ? 1.0f : 0.0f, 0.0f, light.size},
+            .texel = {0.0f,
+                      light.cubeFace      ? 2.0f
+                      : light.perspective ? 1.0f
+                                          : 0.0f,
+                      0.0f, light.size},
             .cascade = {kNotACascade, kNotACascade, 1.0f, 0.0f},
             .fromFirst = {1.0f, 1.0f, 0.0f, 0.0f}};
 }

@@ -20,7 +20,11 @@ gpu::ShadowViewData viewData(const Light& light, const LightProjection& shadow, 
                                                                 shadow.window.w - shadow.window.z);
     return {.shadowMatrix = textureMatrix() * shadow.viewProj,
             .frustum = {shadow.nearPlane, shadow.farPlane, worldPerUv},
-            .texel = {shadow.texelWorldSize, shadow.perspective ? 1.0f : 0.0f,
+            // texel.y: 2 marks a point light's cube face (kernelCap, light_geometry.h).
+            .texel = {shadow.texelWorldSize,
+                      light.type == LightType::Point ? 2.0f
+                      : shadow.perspective           ? 1.0f
+                                                     : 0.0f,
                       static_cast<float>(layer),
                       light.type == LightType::Directional
                           ? std::tan(0.5f * glm::radians(light.angularDiameter))
@@ -121,7 +125,10 @@ std::vector<Light> lightsOf(const Scene& scene, const std::vector<Light>* edited
 ShadowViews shadowViewsOf(const std::vector<Light>& lights, const RenderOptions& o,
                           const ViewInputs& in) {
     ShadowViews out;
-    const uint32_t guard = viewGuardTexels(shadows::moduleOf(o.technique), o.parameters);
+    const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
+    // Cascades' and cube faces' guard bands: the soft members cap a cube face's kernels apart.
+    const uint32_t cascadeGuard = viewGuardTexels(module, o.parameters),
+                   cubeGuard = viewGuardTexels(module, o.parameters, true);
     const CascadeSettings cascades{.count =
                                        static_cast<uint32_t>(o.parameters.number("csm.cascades")),
                                    .lambda = static_cast<float>(o.parameters.number("csm.lambda")),
@@ -133,6 +140,7 @@ ShadowViews shadowViewsOf(const std::vector<Light>& lights, const RenderOptions&
     for (uint32_t i = 0; i < lights.size(); ++i) {
         const Light& light = lights[i];
         LightShadow info{.sceneLight = i, .projection = "none"};
+        const uint32_t guard = light.type == LightType::Point ? cubeGuard : cascadeGuard;
         const auto firstView = static_cast<uint32_t>(out.views.size());
         if (castsShadowMap(light) && virtualViews) {
             info.visibilityIndex = static_cast<int>(out.dispatches.size());

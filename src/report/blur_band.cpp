@@ -107,7 +107,7 @@ std::vector<float> blurBandPixels(const Light& light, const LightShadow& shadow,
 }
 
 ErrorMetrics metricsAgainstTruth(const Scene& lit, std::span<const TruthView> views,
-                                 double blurTexels) {
+                                 BlurReach blur) {
     std::vector<std::vector<float>> bands; // moved, never copied: the layers' spans stay valid
     std::vector<MetricLayer> layers;
     uint32_t width = 0, height = 0;
@@ -119,8 +119,8 @@ ErrorMetrics metricsAgainstTruth(const Scene& lit, std::span<const TruthView> vi
         std::vector<std::vector<float>> viewBands(view.truth.size());
         for (const LightShadow& s : result.lights)
             if (s.visibilityIndex >= 0 && size_t(s.visibilityIndex) < viewBands.size())
-                viewBands[size_t(s.visibilityIndex)] =
-                    blurBandPixels(lit.lights[s.sceneLight], s, result, blurTexels);
+                viewBands[size_t(s.visibilityIndex)] = blurBandPixels(
+                    lit.lights[s.sceneLight], s, result, blur.on(lit.lights[s.sceneLight]));
         for (std::vector<float>& b : viewBands)
             bands.push_back(std::move(b));
         for (size_t l = 0; l < view.truth.size(); ++l)
@@ -139,14 +139,14 @@ ErrorMetrics metricsAgainstTruth(const Scene& lit, std::span<const TruthView> vi
 
 ErrorMetrics metricsAgainstTruth(const Scene& lit, const RenderResult& result,
                                  std::span<const std::vector<float>> truth,
-                                 std::span<const std::vector<uint8_t>> masks, double blurTexels,
+                                 std::span<const std::vector<uint8_t>> masks, BlurReach blur,
                                  std::span<const std::vector<float>> occluderDistance) {
     const TruthView view{.result = &result,
                          .truth = truth,
                          .masks = masks,
                          .occluderDistance = occluderDistance,
                          .contactBand = contactBand(lit)};
-    return metricsAgainstTruth(lit, std::span(&view, 1), blurTexels);
+    return metricsAgainstTruth(lit, std::span(&view, 1), blur);
 }
 
 double contactBand(const Scene& scene) {

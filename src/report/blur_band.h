@@ -7,6 +7,7 @@
 #include "report/metrics.h"
 
 #include <span>
+#include <utility>
 
 #include <vector>
 
@@ -41,11 +42,22 @@ double contactBand(const Scene& scene);
 // The metrics of the views' renders against their truth, pooled (every view the same size),
 // with the blur band of a technique whose declared blur radius is `blurTexels`; `lit`: the scene
 // with the light sizes the truth used.
+// The technique's blur radius in texels (TechniqueModule::blurRadiusTexels), and on a point
+// light's cube faces its own where it has one (cubeRadiusTexels; negative: the same).
+struct BlurReach {
+    double texels = 0.0, cubeTexels = -1.0;
+    BlurReach(double t = 0.0, double cube = -1.0) : texels(t), cubeTexels(cube) {}
+    BlurReach(std::pair<double, double> radii) : texels(radii.first), cubeTexels(radii.second) {}
+    double on(const Light& light) const {
+        return light.type == LightType::Point && cubeTexels >= 0.0 ? cubeTexels : texels;
+    }
+};
+
 ErrorMetrics metricsAgainstTruth(const Scene& lit, std::span<const TruthView> views,
-                                 double blurTexels);
+                                 BlurReach blur);
 ErrorMetrics metricsAgainstTruth(const Scene& lit, const RenderResult& result,
                                  std::span<const std::vector<float>> truth,
-                                 std::span<const std::vector<uint8_t>> masks, double blurTexels,
+                                 std::span<const std::vector<uint8_t>> masks, BlurReach blur,
                                  std::span<const std::vector<float>> occluderDistance = {});
 
 } // namespace penumbra

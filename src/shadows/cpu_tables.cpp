@@ -34,8 +34,10 @@ struct SoftSettings {
     bool refine;
 };
 
-SoftSettings softSettings(uint32_t kind, const gpu::SoftParams& p) {
-    return {kind, p.maxRadius, p.tableScale, static_cast<int>(p.subdivision), p.refine != 0u};
+SoftSettings softSettings(uint32_t kind, const gpu::SoftParams& p,
+                          const gpu::ShadowViewData& view) {
+    return {kind, gpu::kernelCap(view, p.maxRadius, p.cubeRadius), p.tableScale,
+            static_cast<int>(p.subdivision), p.refine != 0u};
 }
 
 // softKernel, loop for loop.
@@ -91,7 +93,7 @@ glm::vec4 softReference(uint32_t kind, const gpu::SoftParams& p, const FilterInp
     const FilterProbe& probe = in.probe;
     const gpu::FrameData& f = in.frame;
     const gpu::ShadowViewData& view = in.view;
-    const SoftSettings s = softSettings(kind, p);
+    const SoftSettings s = softSettings(kind, p, view);
     const MomentTable table(map, view, kind, s.scale);
     const float size = static_cast<float>(map.size);
     const float zReceiver = gpu::viewDistance(view, probe.depth);

@@ -20,6 +20,7 @@ constexpr SummedAreaTable kTable{.rowsShader = "msm_soft_sum_rows.comp",
                                  .columnsShader = "msm_soft_sum_columns.comp",
                                  .format = MapFormat::RGBA32UI};
 constexpr SoftSearch kSearch{.maxRadiusKey = "msm-soft.maxRadius",
+                             .cubeRadiusKey = "msm-soft.cubeRadius",
                              .subdivisionKey = "msm-soft.subdivision",
                              .refineKey = "msm-soft.refine"};
 
@@ -62,7 +63,8 @@ const TechniqueModule& msmSoftModule() {
                 return softReference(MOMENTS_MSM, in.params.get<gpu::SoftParams>(), in);
             },
         .modelsLightSize = true,
-        .blurRadiusTexels = [](const ParameterValues& p) { return kSearch.radiusTexels(p); }};
+        .blurRadiusTexels = [](const ParameterValues& p) { return kSearch.radiusTexels(p); },
+        .cubeRadiusTexels = [](const ParameterValues& p) { return kSearch.cubeRadiusTexels(p); }};
     return module;
 }
 

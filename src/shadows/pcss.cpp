@@ -46,7 +46,8 @@ glm::vec4 pcssReference(const FilterInput& in) {
     const glm::vec2 dzRange(in.frame.biasParams.x, in.frame.biasParams.y);
     const float turns = gpu::rotationTurns(p.rotation, in.probe.pixel);
     const float zReceiver = gpu::viewDistance(view, r.depth);
-    const float search = std::min(gpu::blockerSearchRadius(view, zReceiver, mapSize), p.maxRadius);
+    const float cap = gpu::kernelCap(view, p.maxRadius, p.cubeRadius);
+    const float search = std::min(gpu::blockerSearchRadius(view, zReceiver, mapSize), cap);
     float blockerDepth = 1.0f;
     const float blockers = searchBlockers(in, r, p.blockerSamples, std::max(search, 0.5f), turns,
                                           dzRange, blockerDepth);
@@ -54,7 +55,7 @@ glm::vec4 pcssReference(const FilterInput& in) {
         return {1.0f, blockerDepth, 0.0f, 0.0f};
     const float zBlocker = gpu::viewDistance(view, blockerDepth);
     const float radius =
-        std::clamp(gpu::penumbraRadius(view, zReceiver, zBlocker, mapSize), 0.5f, p.maxRadius);
+        std::clamp(gpu::penumbraRadius(view, zReceiver, zBlocker, mapSize), 0.5f, cap);
     if (blockers == 4.0f * static_cast<float>(p.blockerSamples) && radius <= 1.0f)
         return {0.0f, blockerDepth, blockers, radius};
     const float v =
@@ -98,8 +99,9 @@ const TechniqueModule& pcssModule() {
               .max = 256.0,
               .unit = "texels",
               .description = "largest blocker-search and filter radius, in texels of the map "
-                             "sampled (a sun's PCSS "
-                             "moves to a coarser cascade rather than clip)"},
+                             "sampled on spots and a sun's cascades (a sun's PCSS moves to a "
+                             "coarser cascade rather than clip)"},
+             cubeRadiusParameter("pcss.cubeRadius"),
              {.key = "pcss.rotation",
               .type = ParameterType::Choice,
               .defaultValue = 2,
@@ -112,12 +114,15 @@ const TechniqueModule& pcssModule() {
                     gpu::PcssParams{.blockerSamples = choice("pcss.blockerSamples"),
                                     .filterSamples = choice("pcss.filterSamples"),
                                     .rotation = choice("pcss.rotation"),
-                                    .maxRadius = static_cast<float>(p.number("pcss.maxRadius"))});
+                                    .maxRadius = static_cast<float>(p.number("pcss.maxRadius")),
+                                    .cubeRadius = static_cast<float>(p.number("pcss.cubeRadius"))});
             },
         .reference = pcssReference,
         .modelsLightSize = true,
         .blurRadiusTexels =
             [](const ParameterValues& p) { return p.number("pcss.maxRadius") + 1.0; },
+        .cubeRadiusTexels =
+            [](const ParameterValues& p) { return p.number("pcss.cubeRadius") + 1.0; },
         .searchCap = [](const ParameterValues& p) { return p.number("pcss.maxRadius"); },
         .readsVirtualMaps = true};
     return module;

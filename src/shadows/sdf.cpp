@@ -30,12 +30,14 @@ const TechniqueModule& sdfModule() {
         .parameters =
             {{.key = "sdf.resolution",
               .type = ParameterType::Int,
-              .defaultValue = 256,
-              .min = 16,
+              .defaultValue = 0,
+              .min = 0,
               .max = 1024,
               .unit = "voxels on the scene's longest axis",
               .description = "the field's resolution (the other axes get voxels of the same "
-                             "size); built once per scene and value, at most 2^27 voxels"},
+                             "size); 0: automatic, the finest from 256 to 1024 whose scene "
+                             "holds at most 2^23 voxels; 1-15 are refused; built once per "
+                             "scene and value, at most 2^27 voxels"},
              {.key = "sdf.thickness",
               .type = ParameterType::Float,
               .defaultValue = 0.75,

@@ -168,8 +168,32 @@ std::vector<uint32_t> farCandidates(const FieldGeometry& g, const FieldLayout& l
 
 } // namespace
 
-FieldLayout fieldLayout(const Bounds& bounds, uint32_t resolution) {
-    PENUMBRA_CHECK(!bounds.empty() && resolution > 0, "fieldLayout: empty bounds");
+uint32_t fieldResolution(const Bounds& bounds, uint32_t requested) {
+    if (requested > 0 && requested < 16)
+        throw InputError("sdf.resolution",
+                         fmt::format("{} is too coarse: 0 (automatic) or 16 to 1024", requested));
+    if (requested > 0 || bounds.empty())
+        return requested > 0 ? requested : kAutoFieldResolutionMin;
+    const glm::dvec3 extent = glm::dvec3(bounds.extent());
+    const double longest = std::max({extent.x, extent.y, extent.z});
+    if (!(longest > 0.0))
+        return kAutoFieldResolutionMin;
+    // Whole voxels per axis (at least one, as fieldLayout counts them), padding left out: the
+    // budget is the scene's, not the margin's. Steps of 16 from the finest down.
+    for (uint32_t n = kAutoFieldResolutionMax; n > kAutoFieldResolutionMin; n -= 16) {
+        const double voxel = longest / n;
+        double count = 1.0;
+        for (int axis = 0; axis < 3; ++axis)
+            count *= std::max(std::ceil(extent[axis] / voxel), 1.0);
+        if (count <= static_cast<double>(kAutoFieldVoxels))
+            return n;
+    }
+    return kAutoFieldResolutionMin;
+}
+
+FieldLayout fieldLayout(const Bounds& bounds, uint32_t requested) {
+    PENUMBRA_CHECK(!bounds.empty(), "fieldLayout: empty bounds");
+    const uint32_t resolution = fieldResolution(bounds, requested);
     const float longest = maxExtent(bounds);
     FieldLayout layout;
     layout.voxel = longest > 0.0f ? longest / static_cast<float>(resolution) : 1.0f;

@@ -29,8 +29,19 @@ struct FieldLayout {
     glm::vec3 voxelCentre(glm::uvec3 v) const { return origin + (glm::vec3(v) + 0.5f) * voxel; }
 };
 
-// `resolution` voxels on the bounds' longest axis, cubic voxels, kFieldPadding around, each axis
-// rounded up to whole bricks. Throws InputError("sdf.resolution", ...) past kMaxFieldVoxels.
+// sdf.resolution 0 (automatic): the finest resolution, from kAutoFieldResolutionMin to
+// kAutoFieldResolutionMax voxels on the longest axis, whose bounds hold at most
+// kAutoFieldVoxels voxels. A fixed resolution gives a flat scene (a wide ground and small
+// casters) voxels as large as its casters; a voxel budget gives it as many voxels as a cube.
+inline constexpr uint64_t kAutoFieldVoxels = uint64_t{1} << 23;
+inline constexpr uint32_t kAutoFieldResolutionMin = 256, kAutoFieldResolutionMax = 1024;
+// The resolution `requested` (sdf.resolution) stands for on `bounds`: itself, or for 0 the
+// automatic one. Throws InputError("sdf.resolution", ...) for 1 to 15.
+uint32_t fieldResolution(const Bounds& bounds, uint32_t requested);
+
+// fieldResolution(bounds, resolution) voxels on the bounds' longest axis, cubic voxels,
+// kFieldPadding around, each axis rounded up to whole bricks. Throws
+// InputError("sdf.resolution", ...) past kMaxFieldVoxels.
 FieldLayout fieldLayout(const Bounds& bounds, uint32_t resolution);
 
 struct FieldGeometry {

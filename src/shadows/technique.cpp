@@ -81,6 +81,18 @@ std::vector<PostPassDecl> SummedAreaTable::passes() const {
              .dispatch = PostDispatch::Lines}};
 }
 
+ParameterInfo cubeRadiusParameter(std::string_view key) {
+    // 96 by measurement under close bulbs (docs/techniques.md, "Soft shadows against the truth").
+    return {.key = key,
+            .type = ParameterType::Float,
+            .defaultValue = 96.0,
+            .min = 1.0,
+            .max = 256.0,
+            .unit = "texels",
+            .description = "the same on a point light's cube faces, where no coarser view takes "
+                           "over a wider kernel (also their guard band)"};
+}
+
 std::vector<ParameterInfo> SoftSearch::parameters() const {
     return {{.key = maxRadiusKey,
              .type = ParameterType::Float,
@@ -89,8 +101,9 @@ std::vector<ParameterInfo> SoftSearch::parameters() const {
              .max = 256.0,
              .unit = "texels",
              .description = "largest blocker-search and filter half-width, in texels of the map "
-                            "sampled (also the guard band of cube faces and cascades; wider boxes "
-                            "leave the table fewer fixed-point bits)"},
+                            "sampled on spots and a sun's cascades (also the cascades' guard band; "
+                            "wider boxes leave the table fewer fixed-point bits)"},
+            cubeRadiusParameter(cubeRadiusKey),
             {.key = subdivisionKey,
              .type = ParameterType::Int,
              .defaultValue = 3,
@@ -109,15 +122,21 @@ std::vector<ParameterInfo> SoftSearch::parameters() const {
 }
 
 gpu::SoftParams SoftSearch::pack(const ParameterValues& p) const {
-    const double cap = p.number(maxRadiusKey);
+    const double cap = p.number(maxRadiusKey), cubeCap = p.number(cubeRadiusKey);
+    // One table scale for every view: the widest box either cap allows.
     return {.maxRadius = static_cast<float>(cap),
-            .tableScale = fixedPointScale(2.0 * cap),
+            .tableScale = fixedPointScale(2.0 * std::max(cap, cubeCap)),
             .subdivision = static_cast<uint32_t>(p.number(subdivisionKey)),
-            .refine = p.number(refineKey) != 0.0 ? 1u : 0u};
+            .refine = p.number(refineKey) != 0.0 ? 1u : 0u,
+            .cubeRadius = static_cast<float>(cubeCap)};
 }
 
 double SoftSearch::radiusTexels(const ParameterValues& p) const {
     return p.number(maxRadiusKey) + 1.0;
+}
+
+double SoftSearch::cubeRadiusTexels(const ParameterValues& p) const {
+    return p.number(cubeRadiusKey) + 1.0;
 }
 
 float fixedPointScale(double widestBox) {
@@ -227,8 +246,21 @@ uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
     return bytes;
 }
 
-uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params) {
-    const double footprint = module.blurRadiusTexels ? module.blurRadiusTexels(params) : 0.0;
+double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& params) {
+    return std::max(module.blurRadiusTexels ? module.blurRadiusTexels(params) : 0.0,
+                    module.cubeRadiusTexels ? module.cubeRadiusTexels(params) : 0.0);
+}
+
+std::pair<double, double> blurRadii(const TechniqueModule& module, const ParameterValues& params) {
+    return {module.blurRadiusTexels ? module.blurRadiusTexels(params) : 0.0,
+            module.cubeRadiusTexels ? module.cubeRadiusTexels(params) : -1.0};
+}
+
+uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params,
+                         bool cubeFace) {
+    const double footprint = cubeFace && module.cubeRadiusTexels ? module.cubeRadiusTexels(params)
+                             : module.blurRadiusTexels           ? module.blurRadiusTexels(params)
+                                                                 : 0.0;
     // A bilinear tap reads 1.5 texels past its centre; the normal offset moves the receiver up to
     // bias.normal texels after its face was chosen.
     return static_cast<uint32_t>(std::ceil(footprint) + 2.0 +

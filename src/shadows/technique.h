@@ -22,6 +22,7 @@
 #include <span>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace penumbra {
@@ -147,8 +148,11 @@ struct TechniqueModule {
     // Whether it models the light's size (its penumbra follows it): bias.horizon=soft applies.
     bool modelsLightSize = false;
     // The widest footprint the technique filters over, in texels from the receiver: the blur
-    // radius a metric may allow at a shadow edge (0 for a single sample).
+    // radius a metric may allow at a shadow edge (0 for a single sample). On a point light's cube
+    // faces cubeRadiusTexels where set (the soft members' `<family>.cubeRadius`);
+    // widestRadiusTexels is the larger of the two.
     double (*blurRadiusTexels)(const ParameterValues&) = nullptr;
+    double (*cubeRadiusTexels)(const ParameterValues&) = nullptr;
 
     // Capabilities: what the frame and the visibility pass do differently for it, as
     // specialization constants (visibilityConstants), never by its name.
@@ -196,16 +200,21 @@ struct SummedAreaTable {
     std::vector<MapDecl> maps() const;
     std::vector<PostPassDecl> passes() const;
 };
+// `<family>.cubeRadius` of the soft members (pcss, vssm, msm-soft): their search and filter cap
+// on a point light's cube faces (kernelCap, light_geometry.h).
+ParameterInfo cubeRadiusParameter(std::string_view key);
+
 // The summed-area soft members' common parameters (vssm, msm-soft; shadowSoftDetail in
 // shaders/include/shadow_sat.glsl) under the family's own keys: the search and filter cap in
 // texels, the kernel subdivision and the refining second search.
 struct SoftSearch {
-    std::string_view maxRadiusKey, subdivisionKey, refineKey;
+    std::string_view maxRadiusKey, cubeRadiusKey, subdivisionKey, refineKey;
     std::vector<ParameterInfo> parameters() const;
     // The cap, the subdivision, the refining search and the table's fixed-point scale (the
     // member fills in its own bound's settings).
     gpu::SoftParams pack(const ParameterValues& p) const;
-    double radiusTexels(const ParameterValues& p) const; // the widest footprint
+    double radiusTexels(const ParameterValues& p) const;     // the widest footprint
+    double cubeRadiusTexels(const ParameterValues& p) const; // on a point light's cube faces
 };
 
 // The fixed-point steps per unit that keep every box sum exact [Lauritzen 2007, GPU Gems 3
@@ -221,10 +230,18 @@ const TechniqueModule& moduleOf(Technique technique);
 // Device memory the technique's maps take per shadow view of size x size texels.
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
                         const ParameterValues& params);
-// The guard band of a point light's cube faces and a sun's cascades (src/core/light_space.h,
-// ViewFitting): the technique's widest footprint, the bilinear tap's reach and the normal offset,
-// in texels, so a kernel near a view's edge reads the geometry across it from the same map.
-uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params);
+// The guard band of a point light's cube faces (cubeFace) or a sun's cascades
+// (src/core/light_space.h, ViewFitting): the technique's widest footprint on those views, the
+// bilinear tap's reach and the normal offset, in texels, so a kernel near a view's edge reads the
+// geometry across it from the same map.
+uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params,
+                         bool cubeFace = false);
+// The footprint on any view: the larger of blurRadiusTexels and cubeRadiusTexels (what the
+// metrics' blur band and the virtual pages' marking allow for); 0 without one.
+double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& params);
+// blurRadiusTexels (0 without one) and cubeRadiusTexels (negative without one): the blur band a
+// metric allows per light type (report/blur_band.h, BlurReach).
+std::pair<double, double> blurRadii(const TechniqueModule& module, const ParameterValues& params);
 // Every specialization constant of the visibility pass, TECHNIQUE first: the pipeline key.
 std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
                                               const ParameterValues& params);

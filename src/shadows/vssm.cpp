@@ -22,6 +22,7 @@ constexpr SummedAreaTable kTable{.rowsShader = "vssm_sum_rows.comp",
                                  .columnsShader = "vssm_sum_columns.comp",
                                  .format = MapFormat::RG32UI};
 constexpr SoftSearch kSearch{.maxRadiusKey = "vssm.maxRadius",
+                             .cubeRadiusKey = "vssm.cubeRadius",
                              .subdivisionKey = "vssm.subdivision",
                              .refineKey = "vssm.refine"};
 
@@ -71,7 +72,8 @@ const TechniqueModule& vssmModule() {
                 return softReference(MOMENTS_VSM, in.params.get<gpu::SoftParams>(), in);
             },
         .modelsLightSize = true,
-        .blurRadiusTexels = [](const ParameterValues& p) { return kSearch.radiusTexels(p); }};
+        .blurRadiusTexels = [](const ParameterValues& p) { return kSearch.radiusTexels(p); },
+        .cubeRadiusTexels = [](const ParameterValues& p) { return kSearch.cubeRadiusTexels(p); }};
     return module;
 }
 
