@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <random>
 #include <string>
 
@@ -160,6 +161,11 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
         EXPECT_LT(beyond.acneBeyondBlur, 0.001) << c.name;
         EXPECT_LT(beyond.leakBeyondBlur, 0.001) << c.name;
         EXPECT_LT(smrt.rmse, 0.06) << c.name;
+        // Each set-up's measured error (lavapipe; an H100 within 0.0004) and an eighth more.
+        const std::map<std::string, double> measured = {
+            {"spot 0.1", 0.0040},  {"spot 0.5", 0.0075},  {"spot 1.5", 0.0140}, {"sun 6", 0.0063},
+            {"point 0.1", 0.0215}, {"point 0.3", 0.0346}, {"point 0.5", 0.0510}};
+        EXPECT_LT(smrt.rmse, 1.125 * measured.at(c.name)) << c.name;
         // pcss follows the bulbs' penumbrae on their faces up to pcss.cubeRadius (96 texels) and
         // reads 0.029 at radius 0.3 against smrt's 0.035; at 0.5 its estimate fails again.
         if (c.name == "spot 1.5" || c.name == "sun 6" || c.name == "point 0.5")
