@@ -10,6 +10,8 @@ struct SdfParams {       // std140
     float startOffset;   // sdf.startOffset: voxels off the surface
     float k;             // sdf.k: penumbra sharpness (0: from the light's size)
     float minStep;       // the smallest step, voxels
+    float thickness;     // sdf.thickness: open geometry's half-thickness, voxels (ownSurface)
+    float pad0, pad1, pad2;
 };
 PENUMBRA_GPU_END
 

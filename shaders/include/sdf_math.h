@@ -159,11 +159,21 @@ struct ConeTrace {
     float step;     // the last step's length
 };
 
+// Whether a sample's free distance h is the receiver's own surface: no nearer than the receiver's
+// tangent plane, `plane` below the sample, less `shell` (open geometry's sdf.thickness, the
+// field's shell round an open receiver), within `slack`. That
+// surface's shadow is the horizon's, which the trace starts from (bias.horizon); counted again as
+// a miss it darkened every light wider than asin(1 - shell / height) seen from the start (under
+// a bulb of radius 0.5 over an open plane: 0.85 on fully lit ground).
+SHARED bool ownSurface(float h, float plane, float shell, float slack) {
+    return h >= plane - shell - slack;
+}
+
 SHARED bool coneTraceStep(INOUT(ConeTrace) c, float h, float apex, float sinRadius, float k,
-                          float minStep) {
+                          float minStep, bool own) {
     vec2 miss = closestApproach(h, c.previous, c.step, c.t);
-    c.edge = min(c.edge, coneEdge(miss.x, miss.y + apex, sinRadius, k));
-    c.previous = h;
+    if (!own) c.edge = min(c.edge, coneEdge(miss.x, miss.y + apex, sinRadius, k));
+    c.previous = own ? -1.0f : h; // no closest approach between the own surface and another
     c.step = max(abs(h), minStep);
     c.t += c.step;
     return c.edge > -1.0f;

@@ -57,10 +57,13 @@ float shadowSdf(sampler3D field, LightData light, vec3 world, vec3 face, float s
     vec3 origin = traceStart(world, face, toLight, sdf.startOffset * voxel, apex);
     float minStep = sdf.minStep * voxel;
     uint steps = uint(sdf.steps);
+    vec3 up = dot(face, toLight) < 0.0 ? -face : face; // the tangent plane's light side
     for (uint i = 0u; i < steps && c.t < reach - apex; ++i) {
         vec3 p = origin + c.t * toLight;
         if (!insideFieldBox(p)) break;
-        if (!coneTraceStep(c, fieldAt(field, p), apex, sinRadius, k, minStep)) return 0.0;
+        float h = fieldAt(field, p);
+        bool own = horizon && ownSurface(h, dot(p - world, up), sdf.thickness * voxel, 0.05 * voxel);
+        if (!coneTraceStep(c, h, apex, sinRadius, k, minStep, own)) return 0.0;
     }
     return discFraction(c.edge);
 }

@@ -102,6 +102,7 @@ TraceSettings traceSettingsOf(const ParameterValues& parameters) {
             .startOffset = sdf.startOffset,
             .k = sdf.k,
             .minStep = sdf.minStep,
+            .thickness = sdf.thickness,
             .horizon = horizon};
 }
 
@@ -127,11 +128,16 @@ float traceFieldVisibility(const FieldGrid& field, const Light& light, const glm
     float apex = 0.0f;
     const glm::vec3 origin =
         gpu::traceStart(world, face, toLight, s.startOffset * field.voxel, apex);
+    const glm::vec3 up = glm::dot(face, toLight) < 0.0f ? -face : face;
     for (uint32_t i = 0; i < s.steps && c.t < reach - apex; ++i) {
         const glm::vec3 p = origin + c.t * toLight;
         if (!field.contains(p))
             break;
-        if (!gpu::coneTraceStep(c, field.sample(p), apex, sinRadius, s.k, s.minStep * field.voxel))
+        const float h = field.sample(p);
+        const bool own =
+            s.horizon && gpu::ownSurface(h, glm::dot(p - world, up), s.thickness * field.voxel,
+                                         0.05f * field.voxel);
+        if (!gpu::coneTraceStep(c, h, apex, sinRadius, s.k, s.minStep * field.voxel, own))
             return 0.0f;
     }
     return gpu::discFraction(c.edge);

@@ -50,6 +50,7 @@ struct TraceSettings {
     float startOffset = 0.0f; // voxels
     float k = 0.0f;           // 0: from the light's size
     float minStep = 0.0f;     // voxels
+    float thickness = 0.0f;   // voxels: open geometry's half-thickness (gpu::ownSurface)
     bool horizon = true;
 };
 // What the visibility pass gets for `parameters`: the sdf module's own packing into FrameData

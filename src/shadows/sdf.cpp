@@ -77,7 +77,8 @@ const TechniqueModule& sdfModule() {
                     gpu::SdfParams{.steps = static_cast<float>(p.number("sdf.steps")),
                                    .startOffset = static_cast<float>(p.number("sdf.startOffset")),
                                    .k = static_cast<float>(p.number("sdf.k")),
-                                   .minStep = kMinStepVoxels});
+                                   .minStep = kMinStepVoxels,
+                                   .thickness = static_cast<float>(p.number("sdf.thickness"))});
             },
         .modelsLightSize = true,
         .blurRadiusTexels = [](const ParameterValues&) { return 0.0; },
