@@ -246,14 +246,14 @@ uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
     return bytes;
 }
 
-double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& params) {
-    return std::max(module.blurRadiusTexels ? module.blurRadiusTexels(params) : 0.0,
-                    module.cubeRadiusTexels ? module.cubeRadiusTexels(params) : 0.0);
-}
-
 std::pair<double, double> blurRadii(const TechniqueModule& module, const ParameterValues& params) {
     return {module.blurRadiusTexels ? module.blurRadiusTexels(params) : 0.0,
             module.cubeRadiusTexels ? module.cubeRadiusTexels(params) : -1.0};
+}
+
+double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& params) {
+    const auto [views, cubeFaces] = blurRadii(module, params); // cubeFaces -1: none
+    return std::max(views, cubeFaces);
 }
 
 uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params,
