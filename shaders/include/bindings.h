@@ -33,6 +33,9 @@
                                  // (TechniqueModule::tracesField)
 #define SPEC_VIRTUAL 18          // 1: the maps are virtual (virtual.enabled): TECH_MAP is the
                                  // page pool, read through the page table (virtual_pages.h)
+#define SPEC_FILTER_RADIUS 19    // visibility_filter.comp: its radius in pixels,
+#define SPEC_FILTER_TOLERANCE 20 // ... its range tolerance (a float's bits)
+#define SPEC_FILTER_AXIS 21      // ... and its pass: 0 along rows, 1 along columns
 
 // Descriptor bindings, pass by pass.
 #define BIND_FRAME 0             // FrameData, in every pass that reads it

@@ -40,6 +40,8 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.visibility = screen(target::kVisibility);
     r.intermediates = screen(target::kIntermediates);
     r.layerResults = screen(target::kLayerResults);
+    if (visibilityFilterOf(s).radius > 0)
+        r.visibilityScratch = screen(target::kVisibilityScratch);
     r.color = screen(target::kColor);
     r.position = screen(target::kPosition);
     r.normal = screen(target::kNormal);
@@ -62,6 +64,11 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     if (s.virtualMaps)
         r.pageRequests = graph.importBuffer(std::string(target::kPageRequests), in.pageRequests);
     return r;
+}
+
+shadows::VisibilityFilter visibilityFilterOf(const FrameSettings& s) {
+    return s.technique->visibilityFilter ? s.technique->visibilityFilter(*s.params)
+                                         : shadows::VisibilityFilter{};
 }
 
 FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const GpuScene& scene,

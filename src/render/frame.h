@@ -89,6 +89,7 @@ struct FrameResources {
     std::vector<ResourceId> maps; // the technique's own, in its module's order
     ResourceId gbufferDepth = 0, gbufferNormal = 0, gbufferAlbedo = 0;
     ResourceId visibility = 0, intermediates = 0, layerResults = 0, color = 0;
+    ResourceId visibilityScratch = 0; // the visibility filter's rows (0: no filter runs)
     ResourceId position = 0, normal = 0, faceNormal = 0, readback = 0;
     ResourceId integerPlaceholder = 0, field = 0;
     FilteredBindings filtered{};
@@ -97,6 +98,9 @@ struct FrameResources {
     // The map a module calls `name` (shadows::kDepthMap or one of its own).
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;
 };
+
+// The technique's visibility filter under these settings (radius 0: none runs).
+shadows::VisibilityFilter visibilityFilterOf(const FrameSettings& s);
 
 // Declares every target and input of a frame with these settings.
 FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const FrameInputs& in);

@@ -90,6 +90,8 @@ std::vector<ImageDecl> screenDecls(bool intermediates) {
         screen(target::kGBufferAlbedo, kAlbedoFormat,
                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled),
         screen(target::kVisibility, VK_FORMAT_R32_SFLOAT, kStorageOut | kSampled, true),
+        // The visibility filter's rows (TechniqueModule::visibilityFilter; declared when it runs).
+        screen(target::kVisibilityScratch, VK_FORMAT_R32_SFLOAT, kStorageOut, true),
         screen(target::kColor, VK_FORMAT_R8G8B8A8_UNORM, kStorageOut),
         screen(target::kPosition, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut),
         screen(target::kNormal, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut),

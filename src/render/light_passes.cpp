@@ -1,5 +1,6 @@
 // The PerLight and Composite phases (render/frame.h). Each shadow-casting light is evaluated by
-// the base technique (one visibility dispatch, "visibility") and then by each enabled layer (one
+// the base technique (one visibility dispatch, "visibility"), its visibility filter if it has one
+// ("filter", two dispatches), and then by each enabled layer (one
 // dispatch of the layer's shader, timed under the layer's name), which multiplies into the
 // light's visibility layer. The composite shades every pixel from the lights' layers: fused into
 // the last light's visibility dispatch ("composite", composite.fused) when no layer runs after
@@ -10,6 +11,7 @@
 #include "vk/sync.h"
 
 #include <algorithm>
+#include <bit>
 
 namespace penumbra::render {
 namespace {
@@ -78,6 +80,32 @@ void dispatchLayer(PassContext& c, FramePipelines& p, const FrameSettings& s, co
     vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
 }
 
+// One pass of the technique's visibility filter for one light (visibility_filter.comp): along
+// rows (axis 0) from its visibility layer into the scratch, or along columns back.
+void dispatchFilter(PassContext& c, FramePipelines& p, const FrameSettings& s, const FrameInputs& in,
+                    const FrameResources& r, shadows::VisibilityFilter filter, uint32_t axis,
+                    const LightDispatch& light) {
+    const std::vector<shadows::SpecConstant> constants{
+        {SPEC_FILTER_RADIUS, filter.radius},
+        {SPEC_FILTER_TOLERANCE, std::bit_cast<uint32_t>(filter.tolerance)},
+        {SPEC_FILTER_AXIS, axis}};
+    vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                      p.layer("visibility_filter.comp", constants));
+    // The layers' layout: every binding written, the scratch at LAYER_RESULTS.
+    vk::PushDescriptors()
+        .uniformBuffer(BIND_FRAME, in.frame)
+        .uniformBuffer(LAYER_LIGHTS, in.lights)
+        .sampled(LAYER_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
+        .sampled(LAYER_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
+        .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
+        .uniformBuffer(LAYER_PARAMS, in.layerParams, 0, TECHNIQUE_BLOCK_BYTES)
+        .storageImage(LAYER_RESULTS, c.image(r.visibilityScratch).view())
+        .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layerLayout);
+    vkCmdPushConstants(c.cmd, p.layerLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       sizeof light.push, &light.push);
+    vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+}
+
 // What every visibility dispatch binds; `visibility` as the pass uses it.
 std::vector<Use> visibilityUses(const FrameResources& r, Access visibility) {
     const FilteredBindings filtered = r.filtered;
@@ -104,7 +132,9 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                     const FrameInputs& in, const FrameResources& r) {
     // With no layer after it, the last light's visibility dispatch shades too: one pass fewer
     // over the G-buffer, and its position and normal reconstructed once.
-    const bool fused = s.fuseComposite && !s.shadowLights.empty() && s.layers.empty();
+    const shadows::VisibilityFilter filter = visibilityFilterOf(s);
+    const bool fused = s.fuseComposite && !s.shadowLights.empty() && s.layers.empty() &&
+                       filter.radius == 0;
     const size_t separate = fused ? s.shadowLights.size() - 1 : s.shadowLights.size();
     graph.addPass({.name = "visibility",
                    .phase = Phase::PerLight,
@@ -113,6 +143,23 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                        for (size_t i = 0; i < separate; ++i)
                            dispatchVisibility(c, p, s, in, r, s.shadowLights[i], false);
                    }});
+    // The filter's two passes (both timed as "filter"): rows into the scratch, columns back.
+    for (uint32_t axis = 0; filter.radius > 0 && axis < 2; ++axis) {
+        const Access read = Access::ComputeReadWrite, write = Access::ComputeWrite;
+        graph.addPass({.name = "filter",
+                       .phase = Phase::PerLight,
+                       .uses = {{r.frame, Access::UniformRead},
+                                {r.lights, Access::UniformRead},
+                                {r.layerParams, Access::UniformRead},
+                                {r.gbufferDepth, Access::ComputeSampled},
+                                {r.gbufferNormal, Access::ComputeSampled},
+                                {r.visibility, axis == 0 ? read : write},
+                                {r.visibilityScratch, axis == 0 ? write : read}},
+                       .record = [&p, &s, &in, r, filter, axis](PassContext& c) {
+                           for (const LightDispatch& light : s.shadowLights)
+                               dispatchFilter(c, p, s, in, r, filter, axis, light);
+                       }});
+    }
     for (const shadows::LayerModule* layer : s.layers)
         graph.addPass({.name = std::string(layer->name),
                        .phase = Phase::PerLight,

@@ -145,6 +145,23 @@ const TechniqueModule& smrtModule() {
               .description = "rays traced first, round the light's rim: where all are blocked, or "
                              "all lit without one passing behind an occluder, no more are (0: "
                              "every pixel traces smrt.rays)"},
+             {.key = "smrt.filter",
+              .type = ParameterType::Int,
+              .defaultValue = 1,
+              .min = 0,
+              .max = 8,
+              .unit = "pixels",
+              .description = "the edge-aware spatial filter of the rays' noise: pixels each "
+                             "side, along rows and then columns, of neighbours on the same "
+                             "surface (0: off)"},
+             {.key = "smrt.filterTolerance",
+              .type = ParameterType::Float,
+              .defaultValue = 0.7,
+              .min = 0.05,
+              .max = 1.0,
+              .unit = "visibility",
+              .description = "the filter's range: a neighbour whose visibility differs by this "
+                             "much or more does not count, so hard edges stay sharp"},
              {.key = "smrt.rotation",
               .type = ParameterType::Choice,
               .defaultValue = 2,
@@ -166,7 +183,12 @@ const TechniqueModule& smrtModule() {
         .modelsLightSize = true,
         .blurRadiusTexels =
             [](const ParameterValues& p) { return p.number("smrt.maxRadius") + 1.0; },
-        .readsVirtualMaps = true};
+        .readsVirtualMaps = true,
+        .visibilityFilter = [](const ParameterValues& p) {
+            return VisibilityFilter{
+                .radius = static_cast<uint32_t>(p.number("smrt.filter")),
+                .tolerance = static_cast<float>(p.number("smrt.filterTolerance"))};
+        }};
     return module;
 }
 

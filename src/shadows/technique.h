@@ -130,6 +130,12 @@ struct FilterInput {
     MarginTracker margins;
 };
 
+// An edge-aware spatial filter of a technique's visibility (shaders/include/visibility_filter_weights.h).
+struct VisibilityFilter {
+    uint32_t radius = 0; // pixels each side along rows, then columns (0: none)
+    float tolerance = 0.5f; // visibility steps beyond this stay sharp
+};
+
 struct TechniqueModule {
     TechniqueInfo info;                         // name, summary, paper, parameter families, rows
     std::vector<ParameterInfo> parameters;      // the technique's own family (`pcf.*`, ...)
@@ -174,6 +180,10 @@ struct TechniqueModule {
     // that filters whole maps in post passes (blurs, tables) cannot: its passes do not cross
     // pages.
     bool readsVirtualMaps = false;
+    // When set, an edge-aware spatial filter of its visibility runs after its dispatch, before
+    // the layers (visibility_filter.comp; smrt's noise): its radius in pixels (0: none) and its
+    // range tolerance, from the parameters.
+    VisibilityFilter (*visibilityFilter)(const ParameterValues&) = nullptr;
 };
 
 // The separable Gaussian blur of the blurred-moment techniques (vsm, esm, evsm, msm;

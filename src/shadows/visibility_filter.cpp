@@ -1,0 +1,56 @@
+// The edge-aware visibility filter's CPU mirror: visibility_filter.comp's two passes transcribed.
+#include "shadows/visibility_filter.h"
+
+#include "visibility_filter_weights.h"
+
+#include <cmath>
+
+namespace penumbra::shadows {
+namespace {
+
+// One pass along `axis` (0 rows, 1 columns), as one dispatch of the shader.
+std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const float> position,
+                              std::span<const float> normal, std::span<const float> source,
+                              VisibilityFilter filter, int axis) {
+    std::vector<float> out(source.begin(), source.end());
+    const int radius = static_cast<int>(filter.radius);
+    auto at = [&](std::span<const float> v, size_t i) {
+        return glm::vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    };
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const size_t i = size_t{y} * width + x;
+            if (std::isnan(position[3 * i]))
+                continue; // background
+            float weights = 0.0f, sum = 0.0f;
+            for (int offset = -radius; offset <= radius; ++offset) {
+                const int qx = static_cast<int>(x) + (axis == 0 ? offset : 0);
+                const int qy = static_cast<int>(y) + (axis == 1 ? offset : 0);
+                if (qx < 0 || qy < 0 || qx >= static_cast<int>(width) ||
+                    qy >= static_cast<int>(height))
+                    continue;
+                const size_t j = static_cast<size_t>(qy) * width + static_cast<size_t>(qx);
+                if (std::isnan(position[3 * j]))
+                    continue;
+                const float w = gpu::visibilityFilterWeight(
+                    at(position, i), at(normal, i), source[i], at(position, j), at(normal, j),
+                    source[j], offset, radius, filter.tolerance);
+                weights += w;
+                sum += w * source[j];
+            }
+            out[i] = sum / weights;
+        }
+    return out;
+}
+
+} // namespace
+
+std::vector<float> filterVisibility(uint32_t width, uint32_t height, std::span<const float> position,
+                                    std::span<const float> normal,
+                                    std::span<const float> visibility, VisibilityFilter filter) {
+    const std::vector<float> rows =
+        filterPass(width, height, position, normal, visibility, filter, 0);
+    return filterPass(width, height, position, normal, rows, filter, 1);
+}
+
+} // namespace penumbra::shadows
