@@ -169,9 +169,9 @@ TEST_F(FilterTest, VisibilityFilterMatchesItsCpuReference) {
             return sharedRenderer().render(scene, o);
         };
         const RenderResult base = render("0"), gpu = render("2");
-        const std::vector<float> cpu = shadows::filterVisibility(
-            base.width, base.height, base.position, base.normal, base.visibility[0],
-            {.radius = 2, .tolerance = 0.5f});
+        const std::vector<float> cpu =
+            shadows::filterVisibility(base.width, base.height, base.position, base.normal,
+                                      base.visibility[0], {.radius = 2, .tolerance = 0.5f});
         float worst = 0.0f, moved = 0.0f;
         size_t background = 0;
         for (size_t i = 0; i < cpu.size(); ++i) {

@@ -38,8 +38,12 @@ Surface surface(const std::function<glm::vec3(int, int)>& position,
     return s;
 }
 
-glm::vec3 onPlane(int x, int y) { return {0.1f * float(x), 0.1f * float(y), 0.0f}; }
-glm::vec3 up(int, int) { return {0.0f, 0.0f, 1.0f}; }
+glm::vec3 onPlane(int x, int y) {
+    return {0.1f * float(x), 0.1f * float(y), 0.0f};
+}
+glm::vec3 up(int, int) {
+    return {0.0f, 0.0f, 1.0f};
+}
 
 std::vector<float> filtered(const Surface& s, uint32_t radius, float tolerance) {
     return shadows::filterVisibility(kSize, kSize, s.position, s.normal, s.visibility,
@@ -69,9 +73,8 @@ void expectNear(const std::vector<float>& out, const std::vector<float>& expecte
 // averages out along rows and columns alike; the mean stays.
 TEST(VisibilityFilter, AveragesNoiseOnASurfaceAlongBothAxes) {
     for (const bool alongColumns : {false, true}) {
-        const Surface s = surface(onPlane, up, [&](int x, int y) {
-            return ((alongColumns ? y : x) % 2) ? 0.6f : 0.4f;
-        });
+        const Surface s = surface(
+            onPlane, up, [&](int x, int y) { return ((alongColumns ? y : x) % 2) ? 0.6f : 0.4f; });
         const std::vector<float> out = filtered(s, 2, 0.7f);
         EXPECT_LT(variance(out), 0.1 * variance(s.visibility)) << alongColumns;
         double mean = 0.0;
@@ -84,9 +87,8 @@ TEST(VisibilityFilter, AveragesNoiseOnASurfaceAlongBothAxes) {
 // A linear ramp is its own average under a symmetric kernel: interior pixels keep their value
 // (an off-centre tent or a one-sided window would move them).
 TEST(VisibilityFilter, KeepsALinearRamp) {
-    const Surface s = surface(onPlane, up, [](int x, int y) {
-        return 0.2f + 0.02f * float(x) + 0.01f * float(y);
-    });
+    const Surface s = surface(
+        onPlane, up, [](int x, int y) { return 0.2f + 0.02f * float(x) + 0.01f * float(y); });
     const std::vector<float> out = filtered(s, 2, 1.0f);
     for (int y = 2; y < int(kSize) - 2; ++y)
         for (int x = 2; x < int(kSize) - 2; ++x)
@@ -100,14 +102,17 @@ TEST(VisibilityFilter, KeepsHardEdgesDepthStepsAndCreases) {
     const Surface hard = surface(onPlane, up, [&](int x, int) { return half(x, 0.0f, 1.0f); });
     EXPECT_EQ(filtered(hard, 3, 0.7f), hard.visibility);
     // Two planes a unit apart in depth, 0.3 and 0.5 (within the tolerance): no mixing.
-    const Surface step = surface([&](int x, int y) {
-        return onPlane(x, y) + glm::vec3(0.0f, 0.0f, half(x, 0.0f, 1.0f));
-    }, up, [&](int x, int) { return half(x, 0.3f, 0.5f); });
+    const Surface step = surface(
+        [&](int x, int y) { return onPlane(x, y) + glm::vec3(0.0f, 0.0f, half(x, 0.0f, 1.0f)); },
+        up, [&](int x, int) { return half(x, 0.3f, 0.5f); });
     expectNear(filtered(step, 3, 0.7f), step.visibility);
     // One plane whose normal turns by 60 degrees at x = 8 (a crease seen flat): no mixing.
-    const Surface crease = surface(onPlane, [&](int x, int) {
-        return x < 8 ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.866025f, 0.0f, 0.5f);
-    }, [&](int x, int) { return half(x, 0.3f, 0.5f); });
+    const Surface crease = surface(
+        onPlane,
+        [&](int x, int) {
+            return x < 8 ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(0.866025f, 0.0f, 0.5f);
+        },
+        [&](int x, int) { return half(x, 0.3f, 0.5f); });
     expectNear(filtered(crease, 3, 0.7f), crease.visibility);
     // ... while the same 0.3 | 0.5 on one flat plane does mix (the three above are not vacuous).
     const Surface flat = surface(onPlane, up, [&](int x, int) { return half(x, 0.3f, 0.5f); });
@@ -148,9 +153,8 @@ TEST(VisibilityFilter, LeavesTheBackgroundOutAndRadiusZeroAlone) {
 // window, or one axis alone each give other fractions.
 TEST(VisibilityFilter, SpreadsABumpAsTheSeparableTent) {
     constexpr float e = 1e-3f;
-    const Surface s = surface(onPlane, up, [&](int x, int y) {
-        return x == 8 && y == 8 ? 0.5f + e : 0.5f;
-    });
+    const Surface s =
+        surface(onPlane, up, [&](int x, int y) { return x == 8 && y == 8 ? 0.5f + e : 0.5f; });
     const std::vector<float> out = filtered(s, 1, 1.0f);
     auto excess = [&](int x, int y) { return (out[size_t(y) * kSize + size_t(x)] - 0.5f) / e; };
     EXPECT_NEAR(excess(8, 8), 0.25f, 0.005f);

@@ -82,9 +82,9 @@ void dispatchLayer(PassContext& c, FramePipelines& p, const FrameSettings& s, co
 
 // One pass of the technique's visibility filter for one light (visibility_filter.comp): along
 // rows (axis 0) from its visibility layer into the scratch, or along columns back.
-void dispatchFilter(PassContext& c, FramePipelines& p, const FrameSettings& s, const FrameInputs& in,
-                    const FrameResources& r, shadows::VisibilityFilter filter, uint32_t axis,
-                    const LightDispatch& light) {
+void dispatchFilter(PassContext& c, FramePipelines& p, const FrameSettings& s,
+                    const FrameInputs& in, const FrameResources& r,
+                    shadows::VisibilityFilter filter, uint32_t axis, const LightDispatch& light) {
     const std::vector<shadows::SpecConstant> constants{
         {SPEC_FILTER_RADIUS, filter.radius},
         {SPEC_FILTER_TOLERANCE, std::bit_cast<uint32_t>(filter.tolerance)},
@@ -133,8 +133,8 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     // With no layer after it, the last light's visibility dispatch shades too: one pass fewer
     // over the G-buffer, and its position and normal reconstructed once.
     const shadows::VisibilityFilter filter = visibilityFilterOf(s);
-    const bool fused = s.fuseComposite && !s.shadowLights.empty() && s.layers.empty() &&
-                       filter.radius == 0;
+    const bool fused =
+        s.fuseComposite && !s.shadowLights.empty() && s.layers.empty() && filter.radius == 0;
     const size_t separate = fused ? s.shadowLights.size() - 1 : s.shadowLights.size();
     graph.addPass({.name = "visibility",
                    .phase = Phase::PerLight,

@@ -184,11 +184,12 @@ const TechniqueModule& smrtModule() {
         .blurRadiusTexels =
             [](const ParameterValues& p) { return p.number("smrt.maxRadius") + 1.0; },
         .readsVirtualMaps = true,
-        .visibilityFilter = [](const ParameterValues& p) {
-            return VisibilityFilter{
-                .radius = static_cast<uint32_t>(p.number("smrt.filter")),
-                .tolerance = static_cast<float>(p.number("smrt.filterTolerance"))};
-        }};
+        .visibilityFilter =
+            [](const ParameterValues& p) {
+                return VisibilityFilter{.radius = static_cast<uint32_t>(p.number("smrt.filter")),
+                                        .tolerance =
+                                            static_cast<float>(p.number("smrt.filterTolerance"))};
+            }};
     return module;
 }
 

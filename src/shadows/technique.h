@@ -130,9 +130,10 @@ struct FilterInput {
     MarginTracker margins;
 };
 
-// An edge-aware spatial filter of a technique's visibility (shaders/include/visibility_filter_weights.h).
+// An edge-aware spatial filter of a technique's visibility
+// (shaders/include/visibility_filter_weights.h).
 struct VisibilityFilter {
-    uint32_t radius = 0; // pixels each side along rows, then columns (0: none)
+    uint32_t radius = 0;    // pixels each side along rows, then columns (0: none)
     float tolerance = 0.5f; // visibility steps beyond this stay sharp
 };
 

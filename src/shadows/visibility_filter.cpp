@@ -45,8 +45,8 @@ std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const f
 
 } // namespace
 
-std::vector<float> filterVisibility(uint32_t width, uint32_t height, std::span<const float> position,
-                                    std::span<const float> normal,
+std::vector<float> filterVisibility(uint32_t width, uint32_t height,
+                                    std::span<const float> position, std::span<const float> normal,
                                     std::span<const float> visibility, VisibilityFilter filter) {
     const std::vector<float> rows =
         filterPass(width, height, position, normal, visibility, filter, 0);
