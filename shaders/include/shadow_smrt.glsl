@@ -28,25 +28,26 @@ SmrtPoint smrtPoint(sampler2DArray map, ShadowViewData view, vec3 p, vec3 d, flo
 vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view,
                       uvec2 pixel) {
     float turns = rotationTurns(smrt.rotation, pixel);
+    uvec2 budget = smrtBudget(view, smrt);
+    uint rays = budget.x, samples = budget.y;
     vec3 p = smrtViewPoint(view, r.uv, viewDistance(view, r.depth));
     SmrtPoint receiver = smrtPoint(map, view, p, vec3(0.0), 0.0, mapSize, r.layer);
     float blocked = 0.0, extrapolated = 0.0, marched = 0.0, traced = 0.0;
     bool grazed = smrtIsBehind(receiver);
     // From the light's rim inwards: the first rays reach round its rim.
-    for (uint ray = 0u; ray < smrt.rays; ++ray) {
-        uint k = smrt.rays - 1u - ray;
+    for (uint ray = 0u; ray < rays; ++ray) {
+        uint k = rays - 1u - ray;
         // The first smrt.adaptive rays all blocked, or all lit without one passing behind the
         // surface: fully in shadow or fully lit, no more rays.
         if (ray > 0u && ray == smrt.adaptive && (blocked == traced || (blocked == 0.0 && !grazed))) break;
-        vec3 d = smrtRayDirection(view, p, k, smrt.rays, turns);
-        float len = smrtMarchLength(view, p, d, smrt.maxRadius, mapSize);
+        vec3 d = smrtRayDirection(view, p, k, rays, turns);
+        SmrtMarch march = smrtMarch(view, p, d, smrt.maxRadius, mapSize);
         float jitter = fract(turns * 2.618034 + float(k) * 0.7548777);
         SmrtPoint last = receiver;
         bool crossed = false;
-        for (uint i = 0u; i < smrt.samples && !crossed; ++i) {
-            SmrtPoint next = smrtPoint(map, view, p, d,
-                                       smrtSampleDistance(i, smrt.samples, len, jitter), mapSize,
-                                       r.layer);
+        for (uint i = 0u; i < samples && !crossed; ++i) {
+            float s = smrtSampleDistance(march, p, d, i, samples, jitter);
+            SmrtPoint next = smrtPoint(map, view, p, d, s, mapSize, r.layer);
             grazed = grazed || smrtIsBehind(next);
             if (smrtIsBehind(next) != smrtIsBehind(last)) {
                 SmrtPoint a = last, b = next;
@@ -65,7 +66,7 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         bool hit = crossed || smrtIsBehind(last);
         blocked += hit ? 1.0 : 0.0;
         extrapolated += hit && !crossed ? 1.0 : 0.0;
-        marched += length((smrtProject(view, p + len * d) - r.uv) * float(mapSize));
+        marched += length((smrtProject(view, p + march.extent * d) - r.uv) * float(mapSize));
         traced += 1.0;
     }
     return vec4(1.0 - blocked / traced, blocked, extrapolated, marched / traced);

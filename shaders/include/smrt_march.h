@@ -24,8 +24,21 @@ struct SmrtParams {      // std140
                          // the surface, before the crossing test
     uint adaptive;       // smrt.adaptive: rays traced first (round the light's rim); no more
                          // where they agree (0: off)
+    uint cubeRays;       // smrt.cubeRays, smrt.cubeSamples: rays and samples on a point
+    uint cubeSamples;    // light's cube faces (smrtBudget)
     uint pad0;
+    uint pad1;
+    uint pad2;
 };
+
+// The rays per pixel (x) and samples per ray (y) in `view`. A point light's cube face (texel.y 2)
+// takes its own: with the light inside the scene, a ray towards the light's rim sweeps hundreds
+// of texels of the 90-degree face as it nears the light, so the march's spacing, not the rays'
+// noise, is what limits it there (docs/techniques.md, "Shadow-map ray tracing").
+SHARED uvec2 smrtBudget(IN(ShadowViewData) view, IN(SmrtParams) params) {
+    return view.texel.y > 1.5f ? uvec2(params.cubeRays, params.cubeSamples)
+                               : uvec2(params.rays, params.samples);
+}
 
 // A point of the view's space from its map coordinates (uv) and light view distance z.
 SHARED vec3 smrtViewPoint(IN(ShadowViewData) view, vec2 uv, float z) {
@@ -71,16 +84,25 @@ SHARED vec3 smrtRayDirection(IN(ShadowViewData) view, vec3 p, uint k, uint n, fl
 // light), and no farther than where its point falls maxTexels texels from p's in the map. The
 // map offset grows with s as s C / (z (z + s d.z)) (perspective) or s C (orthographic), C the
 // lateral rate; solved for maxTexels.
+// C of a perspective view (texels of the map per unit of s, times z^2).
+SHARED float smrtPerspectiveRate(IN(ShadowViewData) view, vec3 p, vec3 d, uint mapSize) {
+    vec2 rate = vec2((d.x * p.z - p.x * d.z) / view.frustum.z, (d.y * p.z - p.y * d.z) / view.frustum.w);
+    return length(rate) * float(mapSize);
+}
+
+// The s at which a perspective march's point falls `texels` from p's in the map (1e30: never).
+SHARED float smrtPerspectiveReach(vec3 p, vec3 d, float c, float texels) {
+    float denominator = c - texels * p.z * d.z;
+    return denominator > 1e-20f ? texels * p.z * p.z / denominator : 1e30f;
+}
+
 SHARED float smrtMarchLength(IN(ShadowViewData) view, vec3 p, vec3 d, float maxTexels, uint mapSize) {
     float nearPlane = view.frustum.x;
     float toNear = d.z < -1e-6f ? (p.z - nearPlane) / -d.z : 1e30f;
     float size = float(mapSize);
     float toCap;
     if (view.texel.y > 0.5f) {
-        vec2 rate = vec2((d.x * p.z - p.x * d.z) / view.frustum.z, (d.y * p.z - p.y * d.z) / view.frustum.w);
-        float c = length(rate) * size;
-        float denominator = c - maxTexels * p.z * d.z;
-        toCap = denominator > 1e-20f ? maxTexels * p.z * p.z / denominator : 1e30f;
+        toCap = smrtPerspectiveReach(p, d, smrtPerspectiveRate(view, p, d, mapSize), maxTexels);
     } else {
         float c = length(vec2(d.x / view.frustum.z, d.y / view.frustum.w)) * size;
         toCap = c > 1e-20f ? maxTexels / c : 1e30f;
@@ -88,11 +110,34 @@ SHARED float smrtMarchLength(IN(ShadowViewData) view, vec3 p, vec3 d, float maxT
     return max(min(toNear, toCap), 0.0f);
 }
 
-// Sample i of n along a march of `length`: squared spacing (dense near the receiver, where
-// contact shadows are), offset by `jitter` of a step.
-SHARED float smrtSampleDistance(uint i, uint n, float marchLength, float jitter) {
+// Where a ray's samples go: squared spacing (dense near the receiver, where contact shadows are),
+// in distance along the ray, except on a point light's cube face (texel.y 2), where it is squared
+// in texels of the map: a ray towards a close light's rim sweeps most of its texels in its last
+// stretch, which samples squared in distance cross in a few long steps. Once per ray: the march's
+// length (extent), and on a cube face its lateral rate C and the texels its end lies from p's.
+struct SmrtMarch {
+    float extent;
+    float rate;
+    float texels;
+    bool byTexels;
+};
+
+SHARED SmrtMarch smrtMarch(IN(ShadowViewData) view, vec3 p, vec3 d, float maxTexels, uint mapSize) {
+    SmrtMarch march;
+    march.extent = smrtMarchLength(view, p, d, maxTexels, mapSize);
+    march.byTexels = view.texel.y > 1.5f;
+    march.rate = march.byTexels ? smrtPerspectiveRate(view, p, d, mapSize) : 0.0f;
+    march.texels = march.byTexels ? march.extent * march.rate /
+                                        max(p.z * (p.z + march.extent * d.z), 1e-20f)
+                                  : 0.0f;
+    return march;
+}
+
+// Sample i of n along the march, offset by `jitter` of a step.
+SHARED float smrtSampleDistance(IN(SmrtMarch) march, vec3 p, vec3 d, uint i, uint n, float jitter) {
     float t = (float(i) + jitter) / float(n);
-    return marchLength * t * t;
+    if (!march.byTexels) return march.extent * t * t;
+    return min(smrtPerspectiveReach(p, d, march.rate, march.texels * t * t), march.extent);
 }
 
 // A point of a ray's march: how far along the ray (s), its light view distance and map position,

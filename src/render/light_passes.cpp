@@ -57,6 +57,27 @@ void dispatchVisibility(PassContext& c, FramePipelines& p, const FrameSettings& 
     vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
 }
 
+// One dispatch over the image on the layers' pipeline layout for one light: every binding
+// written, the block at `paramsOffset` of the layer buffer, `results` at LAYER_RESULTS.
+void dispatchOnLayerLayout(PassContext& c, FramePipelines& p, const FrameSettings& s,
+                           const FrameInputs& in, const FrameResources& r, VkPipeline pipeline,
+                           VkDeviceSize paramsOffset, ResourceId results,
+                           const LightDispatch& light) {
+    vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vk::PushDescriptors()
+        .uniformBuffer(BIND_FRAME, in.frame)
+        .uniformBuffer(LAYER_LIGHTS, in.lights)
+        .sampled(LAYER_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
+        .sampled(LAYER_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
+        .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
+        .uniformBuffer(LAYER_PARAMS, in.layerParams, paramsOffset, TECHNIQUE_BLOCK_BYTES)
+        .storageImage(LAYER_RESULTS, c.image(results).view())
+        .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layerLayout);
+    vkCmdPushConstants(c.cmd, p.layerLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                       sizeof light.push, &light.push);
+    vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+}
+
 // One layer's dispatch for one light: reads the G-buffer and the light's visibility layer and
 // writes it back multiplied by what the layer finds.
 void dispatchLayer(PassContext& c, FramePipelines& p, const FrameSettings& s, const FrameInputs& in,
@@ -64,24 +85,13 @@ void dispatchLayer(PassContext& c, FramePipelines& p, const FrameSettings& s, co
                    const LightDispatch& light) {
     const std::vector<shadows::SpecConstant> constants{
         {SPEC_LIGHT_TYPE, light.type}, {SPEC_INTERMEDIATES, s.intermediates ? 1u : 0u}};
-    vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layer(layer.shader, constants));
-    vk::PushDescriptors()
-        .uniformBuffer(BIND_FRAME, in.frame)
-        .uniformBuffer(LAYER_LIGHTS, in.lights)
-        .sampled(LAYER_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
-        .sampled(LAYER_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
-        .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
-        .uniformBuffer(LAYER_PARAMS, in.layerParams, TECHNIQUE_BLOCK_BYTES * layerIndex(layer),
-                       TECHNIQUE_BLOCK_BYTES)
-        .storageImage(LAYER_RESULTS, c.image(r.layerResults).view())
-        .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layerLayout);
-    vkCmdPushConstants(c.cmd, p.layerLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                       sizeof light.push, &light.push);
-    vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+    dispatchOnLayerLayout(c, p, s, in, r, p.layer(layer.shader, constants),
+                          TECHNIQUE_BLOCK_BYTES * layerIndex(layer), r.layerResults, light);
 }
 
 // One pass of the technique's visibility filter for one light (visibility_filter.comp): along
-// rows (axis 0) from its visibility layer into the scratch, or along columns back.
+// rows (axis 0) from its visibility layer into the scratch (at LAYER_RESULTS), or along columns
+// back.
 void dispatchFilter(PassContext& c, FramePipelines& p, const FrameSettings& s,
                     const FrameInputs& in, const FrameResources& r,
                     shadows::VisibilityFilter filter, uint32_t axis, const LightDispatch& light) {
@@ -89,21 +99,21 @@ void dispatchFilter(PassContext& c, FramePipelines& p, const FrameSettings& s,
         {SPEC_FILTER_RADIUS, filter.radius},
         {SPEC_FILTER_TOLERANCE, std::bit_cast<uint32_t>(filter.tolerance)},
         {SPEC_FILTER_AXIS, axis}};
-    vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                      p.layer("visibility_filter.comp", constants));
-    // The layers' layout: every binding written, the scratch at LAYER_RESULTS.
-    vk::PushDescriptors()
-        .uniformBuffer(BIND_FRAME, in.frame)
-        .uniformBuffer(LAYER_LIGHTS, in.lights)
-        .sampled(LAYER_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
-        .sampled(LAYER_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
-        .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
-        .uniformBuffer(LAYER_PARAMS, in.layerParams, 0, TECHNIQUE_BLOCK_BYTES)
-        .storageImage(LAYER_RESULTS, c.image(r.visibilityScratch).view())
-        .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layerLayout);
-    vkCmdPushConstants(c.cmd, p.layerLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                       sizeof light.push, &light.push);
-    vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+    dispatchOnLayerLayout(c, p, s, in, r, p.layer("visibility_filter.comp", constants), 0,
+                          r.visibilityScratch, light);
+}
+
+// What a pass on the layers' pipeline layout binds: `visibility` and `results` (at
+// LAYER_RESULTS) as it uses them.
+std::vector<Use> layerLayoutUses(const FrameResources& r, Access visibility, ResourceId results,
+                                 Access resultsAccess) {
+    return {{r.frame, Access::UniformRead},
+            {r.lights, Access::UniformRead},
+            {r.layerParams, Access::UniformRead},
+            {r.gbufferDepth, Access::ComputeSampled},
+            {r.gbufferNormal, Access::ComputeSampled},
+            {r.visibility, visibility},
+            {results, resultsAccess}};
 }
 
 // What every visibility dispatch binds; `visibility` as the pass uses it.
@@ -148,13 +158,8 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
         const Access read = Access::ComputeReadWrite, write = Access::ComputeWrite;
         graph.addPass({.name = "filter",
                        .phase = Phase::PerLight,
-                       .uses = {{r.frame, Access::UniformRead},
-                                {r.lights, Access::UniformRead},
-                                {r.layerParams, Access::UniformRead},
-                                {r.gbufferDepth, Access::ComputeSampled},
-                                {r.gbufferNormal, Access::ComputeSampled},
-                                {r.visibility, axis == 0 ? read : write},
-                                {r.visibilityScratch, axis == 0 ? write : read}},
+                       .uses = layerLayoutUses(r, axis == 0 ? read : write, r.visibilityScratch,
+                                               axis == 0 ? write : read),
                        .record = [&p, &s, &in, r, filter, axis](PassContext& c) {
                            for (const LightDispatch& light : s.shadowLights)
                                dispatchFilter(c, p, s, in, r, filter, axis, light);
@@ -163,13 +168,8 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     for (const shadows::LayerModule* layer : s.layers)
         graph.addPass({.name = std::string(layer->name),
                        .phase = Phase::PerLight,
-                       .uses = {{r.frame, Access::UniformRead},
-                                {r.lights, Access::UniformRead},
-                                {r.layerParams, Access::UniformRead},
-                                {r.gbufferDepth, Access::ComputeSampled},
-                                {r.gbufferNormal, Access::ComputeSampled},
-                                {r.visibility, Access::ComputeReadWrite},
-                                {r.layerResults, Access::ComputeWrite}},
+                       .uses = layerLayoutUses(r, Access::ComputeReadWrite, r.layerResults,
+                                               Access::ComputeWrite),
                        .record = [&p, &s, &in, r, layer](PassContext& c) {
                            for (const LightDispatch& light : s.shadowLights)
                                dispatchLayer(c, p, s, in, r, *layer, light);

@@ -43,23 +43,25 @@ glm::vec4 smrtReference(const FilterInput& in) {
     const gpu::ShadowViewData& view = in.view;
     const uint32_t mapSize = in.map.size;
     const float turns = gpu::rotationTurns(s.rotation, in.probe.pixel);
+    const glm::uvec2 budget = gpu::smrtBudget(view, s);
+    const uint32_t rays = budget.x, samples = budget.y;
     const glm::vec3 p =
         gpu::smrtViewPoint(view, in.probe.uv, gpu::viewDistance(view, in.probe.depth));
     const gpu::SmrtPoint receiver = pointAt(in, s, p, glm::vec3(0.0f), 0.0f);
     float blocked = 0.0f, extrapolated = 0.0f, marched = 0.0f, traced = 0.0f;
     bool grazed = gpu::smrtIsBehind(receiver);
-    for (uint32_t ray = 0; ray < s.rays; ++ray) {
-        const uint32_t k = s.rays - 1 - ray;
+    for (uint32_t ray = 0; ray < rays; ++ray) {
+        const uint32_t k = rays - 1 - ray;
         if (ray > 0 && ray == s.adaptive && (blocked == traced || (blocked == 0.0f && !grazed)))
             break;
-        const glm::vec3 d = gpu::smrtRayDirection(view, p, k, s.rays, turns);
-        const float length = gpu::smrtMarchLength(view, p, d, s.maxRadius, mapSize);
+        const glm::vec3 d = gpu::smrtRayDirection(view, p, k, rays, turns);
+        const gpu::SmrtMarch march = gpu::smrtMarch(view, p, d, s.maxRadius, mapSize);
         const float jitter = glm::fract(turns * 2.618034f + static_cast<float>(k) * 0.7548777f);
         gpu::SmrtPoint last = receiver;
         bool crossed = false;
-        for (uint32_t i = 0; i < s.samples && !crossed; ++i) {
+        for (uint32_t i = 0; i < samples && !crossed; ++i) {
             const gpu::SmrtPoint next =
-                pointAt(in, s, p, d, gpu::smrtSampleDistance(i, s.samples, length, jitter));
+                pointAt(in, s, p, d, gpu::smrtSampleDistance(march, p, d, i, samples, jitter));
             grazed = grazed || gpu::smrtIsBehind(next);
             if (gpu::smrtIsBehind(next) != gpu::smrtIsBehind(last)) {
                 gpu::SmrtPoint a = last, b = next;
@@ -76,7 +78,7 @@ glm::vec4 smrtReference(const FilterInput& in) {
         const bool hit = crossed || gpu::smrtIsBehind(last);
         blocked += hit ? 1.0f : 0.0f;
         extrapolated += hit && !crossed ? 1.0f : 0.0f;
-        marched += glm::length((gpu::smrtProject(view, p + length * d) - in.probe.uv) *
+        marched += glm::length((gpu::smrtProject(view, p + march.extent * d) - in.probe.uv) *
                                static_cast<float>(mapSize));
         traced += 1.0f;
     }
@@ -103,14 +105,32 @@ const TechniqueModule& smrtModule() {
               .max = 64,
               .unit = "rays per pixel",
               .description = "rays towards points of the light (a rotated low-discrepancy set "
-                             "per pixel); the visibility is the fraction no occluder blocks"},
+                             "per pixel); the visibility is the fraction no occluder blocks "
+                             "(spots and suns; smrt.cubeRays on cube faces)"},
              {.key = "smrt.samples",
               .type = ParameterType::Int,
               .defaultValue = 8,
               .min = 2,
               .max = 64,
               .unit = "map samples per ray",
-              .description = "depth-map samples along each ray, denser near the receiver"},
+              .description = "depth-map samples along each ray, denser near the receiver "
+                             "(spots and suns; smrt.cubeSamples on cube faces)"},
+             {.key = "smrt.cubeRays",
+              .type = ParameterType::Int,
+              .defaultValue = 8,
+              .min = 1,
+              .max = 64,
+              .unit = "rays per pixel",
+              .description = "smrt.rays on a point light's cube faces, where the march's spacing "
+                             "limits the error more than the rays' noise"},
+             {.key = "smrt.cubeSamples",
+              .type = ParameterType::Int,
+              .defaultValue = 12,
+              .min = 2,
+              .max = 64,
+              .unit = "map samples per ray",
+              .description = "smrt.samples on a point light's cube faces, whose rays sweep far "
+                             "across the face as they near the light"},
              {.key = "smrt.maxRadius",
               .type = ParameterType::Float,
               .defaultValue = 256.0,
@@ -177,7 +197,9 @@ const TechniqueModule& smrtModule() {
                                           .maxRadius = real("smrt.maxRadius"),
                                           .slope = real("smrt.slope"),
                                           .refine = whole("smrt.refine"),
-                                          .adaptive = whole("smrt.adaptive")});
+                                          .adaptive = whole("smrt.adaptive"),
+                                          .cubeRays = whole("smrt.cubeRays"),
+                                          .cubeSamples = whole("smrt.cubeSamples")});
             },
         .reference = smrtReference,
         .modelsLightSize = true,
