@@ -80,11 +80,7 @@ SHARED vec3 smrtRayDirection(IN(ShadowViewData) view, vec3 p, uint k, uint n, fl
     return cosTheta * w + sinTheta * (cos(phi) * t1 + sin(phi) * t2);
 }
 
-// How far along direction d from p the march goes: to the near plane (no caster lies nearer the
-// light), and no farther than where its point falls maxTexels texels from p's in the map. The
-// map offset grows with s as s C / (z (z + s d.z)) (perspective) or s C (orthographic), C the
-// lateral rate; solved for maxTexels.
-// C of a perspective view (texels of the map per unit of s, times z^2).
+// C of a perspective view: a point s along the ray lies s C / (z (z + s d.z)) texels from p's.
 SHARED float smrtPerspectiveRate(IN(ShadowViewData) view, vec3 p, vec3 d, uint mapSize) {
     vec2 rate = vec2((d.x * p.z - p.x * d.z) / view.frustum.z, (d.y * p.z - p.y * d.z) / view.frustum.w);
     return length(rate) * float(mapSize);
@@ -96,6 +92,10 @@ SHARED float smrtPerspectiveReach(vec3 p, vec3 d, float c, float texels) {
     return denominator > 1e-20f ? texels * p.z * p.z / denominator : 1e30f;
 }
 
+// How far along direction d from p the march goes: to the near plane (no caster lies nearer the
+// light), and no farther than where its point falls maxTexels texels from p's in the map. The
+// map offset grows with s as s C / (z (z + s d.z)) (perspective) or s C (orthographic), C the
+// lateral rate; solved for maxTexels.
 SHARED float smrtMarchLength(IN(ShadowViewData) view, vec3 p, vec3 d, float maxTexels, uint mapSize) {
     float nearPlane = view.frustum.x;
     float toNear = d.z < -1e-6f ? (p.z - nearPlane) / -d.z : 1e30f;
