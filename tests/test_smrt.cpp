@@ -182,9 +182,13 @@ TEST_F(FilterTest, VisibilityFilterMatchesItsCpuReference) {
                                     .position = {0, 1.2f, 0},
                                     .radius = 0.3f})}};
     for (const auto& [name, scene] : scenes) {
+        // The point light's filter takes smrt.cubeFilter, the others smrt.filter: each render
+        // sets the other one to 0, so that a light given the wrong radius is not filtered.
+        const bool point = std::string(name) == "point";
         auto render = [&](const char* radius) {
             RenderOptions o{.width = 128, .height = 128, .frames = 1, .technique = Technique::Smrt};
-            o.parameters.set("smrt.filter", radius);
+            o.parameters.set("smrt.filter", point ? "0" : radius);
+            o.parameters.set("smrt.cubeFilter", point ? radius : "0");
             o.parameters.set("smrt.filterTolerance", "0.5");
             o.parameters.set("composite.fused", "true");
             return sharedRenderer().render(scene, o);
@@ -247,7 +251,9 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
         // keeps a steep penumbra).
         if (c.name == "spot 1.5" || c.name == "point 0.3" || c.name == "spot 0.1") {
             const double unfiltered =
-                errorOf(t, renderRow(t, Technique::Smrt, {{"smrt.filter", "0"}})).rmse;
+                errorOf(t, renderRow(t, Technique::Smrt,
+                                     {{"smrt.filter", "0"}, {"smrt.cubeFilter", "0"}}))
+                    .rmse;
             std::printf("%-10s unfiltered %.4f\n", c.name.c_str(), unfiltered);
             EXPECT_LT(smrt.rmse, (c.name == "spot 0.1" ? 1.02 : 0.85) * unfiltered) << c.name;
         }
@@ -258,7 +264,8 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
                                                            {"smrt.cubeRays", "64"},
                                                            {"smrt.cubeSamples", "32"},
                                                            {"smrt.adaptive", "0"},
-                                                           {"smrt.filter", "0"}}))
+                                                           {"smrt.filter", "0"},
+                                                           {"smrt.cubeFilter", "0"}}))
                                          .rmse;
             std::printf("%-10s converged (64 rays, 32 samples) %.4f\n", c.name.c_str(), converged);
             EXPECT_LT(converged, 0.015) << c.name;
@@ -356,7 +363,7 @@ TEST_F(QualityTest, SoftTechniquesErrorAgainstCostTable) {
         {"sdf", Technique::Sdf, {}},
         {"smrt[fast]", Technique::Smrt, {{"smrt.rays", "8"}}},
         {"smrt", Technique::Smrt, {}},
-        {"smrt unfiltered", Technique::Smrt, {{"smrt.filter", "0"}}},
+        {"smrt unfiltered", Technique::Smrt, {{"smrt.filter", "0"}, {"smrt.cubeFilter", "0"}}},
         {"smrt +4 samples", Technique::Smrt, {{"smrt.samples", "12"}, {"smrt.cubeSamples", "16"}}},
         {"smrt 2x rays", Technique::Smrt, {{"smrt.rays", "32"}, {"smrt.cubeRays", "16"}}},
         {"smrt 4x rays", Technique::Smrt, {{"smrt.rays", "64"}, {"smrt.cubeRays", "32"}}}};

@@ -3,6 +3,7 @@
 // what it must keep (hard steps, depth steps, creases, linear ramps, the background) and what it
 // must remove (noise, along both axes). The GPU against this mirror: FilterTest in
 // tests/test_smrt.cpp.
+#include "light_geometry.h"
 #include "shadows/visibility_filter.h"
 
 #include <gtest/gtest.h>
@@ -162,4 +163,15 @@ TEST(VisibilityFilter, SpreadsABumpAsTheSeparableTent) {
     EXPECT_NEAR(excess(8, 7), 0.125f, 0.005f);
     EXPECT_NEAR(excess(7, 9), 0.0625f, 0.005f);
     EXPECT_NEAR(excess(10, 8), 0.0f, 0.005f);
+}
+
+// Point lights take the cube radius, spots and suns the other; a filter runs if either is set.
+TEST(VisibilityFilter, PointLightsTakeTheCubeRadius) {
+    const shadows::VisibilityFilter filter{.radius = 1, .cubeRadius = 3};
+    EXPECT_EQ(filter.radiusFor(LIGHT_POINT), 3u);
+    EXPECT_EQ(filter.radiusFor(LIGHT_SPOT), 1u);
+    EXPECT_EQ(filter.radiusFor(LIGHT_DIRECTIONAL), 1u);
+    EXPECT_TRUE((shadows::VisibilityFilter{.cubeRadius = 2}.runs()));
+    EXPECT_TRUE((shadows::VisibilityFilter{.radius = 2}.runs()));
+    EXPECT_FALSE(shadows::VisibilityFilter{}.runs());
 }

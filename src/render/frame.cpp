@@ -40,7 +40,7 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.visibility = screen(target::kVisibility);
     r.intermediates = screen(target::kIntermediates);
     r.layerResults = screen(target::kLayerResults);
-    if (visibilityFilterOf(s).radius > 0)
+    if (visibilityFilterOf(s).runs())
         r.visibilityScratch = screen(target::kVisibilityScratch);
     r.color = screen(target::kColor);
     r.position = screen(target::kPosition);

@@ -99,7 +99,8 @@ struct FrameResources {
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;
 };
 
-// The technique's visibility filter under these settings (radius 0: none runs).
+// The technique's visibility filter under these settings (none runs where its radius for the
+// light's kind is 0).
 shadows::VisibilityFilter visibilityFilterOf(const FrameSettings& s);
 
 // Declares every target and input of a frame with these settings.

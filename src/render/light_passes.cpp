@@ -96,7 +96,7 @@ void dispatchFilter(PassContext& c, FramePipelines& p, const FrameSettings& s,
                     const FrameInputs& in, const FrameResources& r,
                     shadows::VisibilityFilter filter, uint32_t axis, const LightDispatch& light) {
     const std::vector<shadows::SpecConstant> constants{
-        {SPEC_FILTER_RADIUS, filter.radius},
+        {SPEC_FILTER_RADIUS, filter.radiusFor(light.type)},
         {SPEC_FILTER_TOLERANCE, std::bit_cast<uint32_t>(filter.tolerance)},
         {SPEC_FILTER_AXIS, axis}};
     dispatchOnLayerLayout(c, p, s, in, r, p.layer("visibility_filter.comp", constants), 0,
@@ -144,7 +144,7 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     // over the G-buffer, and its position and normal reconstructed once.
     const shadows::VisibilityFilter filter = visibilityFilterOf(s);
     const bool fused =
-        s.fuseComposite && !s.shadowLights.empty() && s.layers.empty() && filter.radius == 0;
+        s.fuseComposite && !s.shadowLights.empty() && s.layers.empty() && !filter.runs();
     const size_t separate = fused ? s.shadowLights.size() - 1 : s.shadowLights.size();
     graph.addPass({.name = "visibility",
                    .phase = Phase::PerLight,
@@ -154,7 +154,7 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                            dispatchVisibility(c, p, s, in, r, s.shadowLights[i], false);
                    }});
     // The filter's two passes (both timed as "filter"): rows into the scratch, columns back.
-    for (uint32_t axis = 0; filter.radius > 0 && axis < 2; ++axis) {
+    for (uint32_t axis = 0; filter.runs() && axis < 2; ++axis) {
         const Access read = Access::ComputeReadWrite, write = Access::ComputeWrite;
         graph.addPass({.name = "filter",
                        .phase = Phase::PerLight,
@@ -162,7 +162,8 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                                                axis == 0 ? write : read),
                        .record = [&p, &s, &in, r, filter, axis](PassContext& c) {
                            for (const LightDispatch& light : s.shadowLights)
-                               dispatchFilter(c, p, s, in, r, filter, axis, light);
+                               if (filter.radiusFor(light.type) > 0)
+                                   dispatchFilter(c, p, s, in, r, filter, axis, light);
                        }});
     }
     for (const shadows::LayerModule* layer : s.layers)

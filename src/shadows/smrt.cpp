@@ -174,6 +174,15 @@ const TechniqueModule& smrtModule() {
               .description = "the edge-aware spatial filter of the rays' noise: pixels each "
                              "side, along rows and then columns, of neighbours on the same "
                              "surface (0: off)"},
+             {.key = "smrt.cubeFilter",
+              .type = ParameterType::Int,
+              .defaultValue = 1,
+              .min = 0,
+              .max = 8,
+              .unit = "pixels",
+              .description = "smrt.filter under point lights, whose cube faces trace fewer rays "
+                             "(smrt.cubeRays); 2 suits bulbs whose penumbrae are many pixels "
+                             "wide"},
              {.key = "smrt.filterTolerance",
               .type = ParameterType::Float,
               .defaultValue = 0.7,
@@ -208,9 +217,10 @@ const TechniqueModule& smrtModule() {
         .readsVirtualMaps = true,
         .visibilityFilter =
             [](const ParameterValues& p) {
-                return VisibilityFilter{.radius = static_cast<uint32_t>(p.number("smrt.filter")),
-                                        .tolerance =
-                                            static_cast<float>(p.number("smrt.filterTolerance"))};
+                return VisibilityFilter{
+                    .radius = static_cast<uint32_t>(p.number("smrt.filter")),
+                    .tolerance = static_cast<float>(p.number("smrt.filterTolerance")),
+                    .cubeRadius = static_cast<uint32_t>(p.number("smrt.cubeFilter"))};
             }};
     return module;
 }

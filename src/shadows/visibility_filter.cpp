@@ -1,6 +1,7 @@
 // The edge-aware visibility filter's CPU mirror: visibility_filter.comp's two passes transcribed.
 #include "shadows/visibility_filter.h"
 
+#include "light_geometry.h"
 #include "visibility_filter_weights.h"
 
 #include <cmath>
@@ -44,6 +45,10 @@ std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const f
 }
 
 } // namespace
+
+uint32_t VisibilityFilter::radiusFor(uint32_t lightType) const {
+    return lightType == LIGHT_POINT ? cubeRadius : radius;
+}
 
 std::vector<float> filterVisibility(uint32_t width, uint32_t height,
                                     std::span<const float> position, std::span<const float> normal,
