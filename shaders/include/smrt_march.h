@@ -96,13 +96,15 @@ SHARED float smrtPerspectiveReach(vec3 p, vec3 d, float c, float texels) {
 // light), and no farther than where its point falls maxTexels texels from p's in the map. The
 // map offset grows with s as s C / (z (z + s d.z)) (perspective) or s C (orthographic), C the
 // lateral rate; solved for maxTexels.
-SHARED float smrtMarchLength(IN(ShadowViewData) view, vec3 p, vec3 d, float maxTexels, uint mapSize) {
+// `rate`: smrtPerspectiveRate for a perspective view (its caller has it), unused otherwise.
+SHARED float smrtMarchLength(IN(ShadowViewData) view, vec3 p, vec3 d, float maxTexels, uint mapSize,
+                             float rate) {
     float nearPlane = view.frustum.x;
     float toNear = d.z < -1e-6f ? (p.z - nearPlane) / -d.z : 1e30f;
     float size = float(mapSize);
     float toCap;
     if (view.texel.y > 0.5f) {
-        toCap = smrtPerspectiveReach(p, d, smrtPerspectiveRate(view, p, d, mapSize), maxTexels);
+        toCap = smrtPerspectiveReach(p, d, rate, maxTexels);
     } else {
         float c = length(vec2(d.x / view.frustum.z, d.y / view.frustum.w)) * size;
         toCap = c > 1e-20f ? maxTexels / c : 1e30f;
@@ -124,9 +126,9 @@ struct SmrtMarch {
 
 SHARED SmrtMarch smrtMarch(IN(ShadowViewData) view, vec3 p, vec3 d, float maxTexels, uint mapSize) {
     SmrtMarch march;
-    march.extent = smrtMarchLength(view, p, d, maxTexels, mapSize);
+    march.rate = view.texel.y > 0.5f ? smrtPerspectiveRate(view, p, d, mapSize) : 0.0f;
+    march.extent = smrtMarchLength(view, p, d, maxTexels, mapSize, march.rate);
     march.byTexels = view.texel.y > 1.5f;
-    march.rate = march.byTexels ? smrtPerspectiveRate(view, p, d, mapSize) : 0.0f;
     march.texels = march.byTexels ? march.extent * march.rate /
                                         max(p.z * (p.z + march.extent * d.z), 1e-20f)
                                   : 0.0f;
