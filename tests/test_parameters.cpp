@@ -284,6 +284,12 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     const ParameterValues defaults;
     EXPECT_EQ(shadows::shadowMapBytes(shadows::hardModule(), 1024, defaults), 4u * 1024 * 1024);
     EXPECT_EQ(shadows::shadowMapBytes(shadows::secondDepthModule(), 16, defaults), 12u * 16 * 16);
+    // smrt: depth, and its bounds from half the size down (8, 4, 2, 1 texels a side; an odd-sized
+    // map's half rounds down: 7, 3, 1).
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::smrtModule(), 16, defaults),
+              4u * 16 * 16 + 4u * (64 + 16 + 4 + 1));
+    EXPECT_EQ(shadows::shadowMapBytes(shadows::smrtModule(), 15, defaults),
+              4u * 15 * 15 + 4u * (49 + 9 + 1));
     ParameterValues poisson;
     poisson.assign("pcf.filter=poisson");
     poisson.assign("pcf.radius=6");

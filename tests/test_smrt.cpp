@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <random>
 #include <string>
@@ -74,8 +75,13 @@ std::vector<float> occludersOverGround(uint32_t seed, uint32_t size) {
 // exactly, the visibility and the march length to rounding. Probes where a comparison came
 // within 1e-5 (relative) of a tie, or a sample within 1e-5 of a texel's border, are skipped.
 TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
-    constexpr uint32_t kSize = 96;
-    const std::vector<float> depth = occludersOverGround(7, kSize);
+    // 95 texels: every level of smrt.skipLit's bounds is odd-sized (47, 23, 11, 5, 2, 1), and a
+    // box on the last columns lies in the leftovers their last tiles must take.
+    constexpr uint32_t kSize = 95;
+    std::vector<float> depth = occludersOverGround(7, kSize);
+    for (uint32_t y = 30; y < 60; ++y)
+        for (uint32_t x = kSize - 3; x < kSize; ++x)
+            depth[y * kSize + x] = 0.3f;
     const shadows::ShadowMapView map{depth, kSize};
     std::mt19937 engine(5);
     auto unit = [&] { return float(engine() >> 8) / 16777216.0f; };
@@ -120,7 +126,7 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
             const shadows::FilterSettings frame =
                 shadows::filterSettings(shadows::moduleOf(Technique::Smrt), params, false, 8);
             const gpu::ShadowViewData view = render::probeViewData(light);
-            size_t compared = 0, valid = 0, penumbra = 0, extrapolated = 0, stopped = 0;
+            size_t compared = 0, valid = 0, penumbra = 0, extrapolated = 0, stopped = 0, proven = 0;
             float most = 0.0f; // the most rays a probe found blocked
             glm::vec4 worst(0.0f);
             for (size_t i = 0; i < probes.size(); ++i) {
@@ -137,6 +143,7 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
                 // Fewer rays traced than the view's budget.
                 stopped += cpu.x == 0.0f && cpu.y < (light.cubeFace ? 5.0f : 16.0f);
                 most = std::max(most, cpu.y);
+                proven += cpu.x == 1.0f && cpu.w == 0.0f; // smrt.skipLit: no ray traced
                 worst = glm::max(worst, glm::abs(cpu - gpuResult[i]) /
                                             glm::vec4(1.0f, 1.0f, 1.0f, std::max(cpu.w, 1.0f)));
             }
@@ -157,6 +164,8 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
             if (params.number("smrt.adaptive") > 0) {
                 EXPECT_GT(stopped, 50u) << what << ": pixels the first rays settle";
             }
+            // smrt.skipLit proves most of the open ground lit, at either reach.
+            EXPECT_GT(proven, probes.size() / 8) << what << ": pixels proven lit";
             if (params.number("smrt.maxRadius") < 10.0) { // marches cut short
                 EXPECT_GT(extrapolated, 20u) << what << ": extrapolated rays";
             }
@@ -325,6 +334,38 @@ TEST_F(QualityTest, DistanceFieldIgnoresTheReceiversOwnSurfaceUnderAWideBulb) {
     }
 }
 
+// smrt.skipLit proves pixels lit from the map's bounds and traces no ray there: a proof, so every
+// pixel's visibility is bit for bit the march's, under a spot, a sun's cascades and a bulb's cube
+// faces, in frames whose maps hold real casters (the parity test checks that it proves pixels).
+// A proof that claims too much shows here, where the shader and its mirror share the maths.
+TEST_F(QualityTest, SmrtSkipsOnlyWhatItProvesLit) {
+    for (Case& c : analyticCases()) {
+        if (c.name != "spot 1.5" && c.name != "sun 6" && c.name != "point 0.1")
+            continue;
+        auto visibility = [&](const char* skip) {
+            // 1000 texels: the bounds' levels 125, 31, 15, 7 and 3 are odd-sized (leftovers).
+            RenderOptions o{.width = 256,
+                            .height = 256,
+                            .shadowMapSize = 1000,
+                            .frames = 1,
+                            .technique = Technique::Smrt};
+            o.parameters.set("smrt.skipLit", skip);
+            return sharedRenderer().render(c.scene, o).visibility.at(0);
+        };
+        const std::vector<float> proven = visibility("true"), marched = visibility("false");
+        ASSERT_EQ(proven.size(), marched.size());
+        size_t differ = 0, lit = 0;
+        for (size_t i = 0; i < proven.size(); ++i) {
+            differ += std::memcmp(&proven[i], &marched[i], sizeof(float)) != 0;
+            lit += marched[i] == 1.0f;
+        }
+        std::printf("%-10s %zu of %zu pixels differ (%zu fully lit)\n", c.name.c_str(), differ,
+                    proven.size(), lit);
+        EXPECT_EQ(differ, 0u) << c.name;
+        EXPECT_GT(lit, proven.size() / 4) << c.name;
+    }
+}
+
 // The march reads its map through the page table: on virtual maps, under a spot and a point
 // light, it follows the truth as on whole maps.
 TEST_F(QualityTest, SmrtReadsVirtualMaps) {
@@ -343,7 +384,8 @@ TEST_F(QualityTest, SmrtReadsVirtualMaps) {
 // docs/techniques.md's table of every soft technique's error against its cost on the analytic
 // set-ups (PENUMBRA_SOFT_TABLE=1 prints it; a measurement, not a check: skipped otherwise). Cost:
 // the visibility pass (composite.fused off) and smrt's filter passes, medians of 5 frames after a
-// warm-up, in one run so that the ratios hold on a noisy machine.
+// warm-up, in one run so that the ratios hold on a noisy machine; smrt's bounds (built once per
+// view, over its texels) after a plus.
 TEST_F(QualityTest, SoftTechniquesErrorAgainstCostTable) {
     if (!std::getenv("PENUMBRA_SOFT_TABLE"))
         GTEST_SKIP() << "a measurement: PENUMBRA_SOFT_TABLE=1 prints it";
@@ -387,12 +429,19 @@ TEST_F(QualityTest, SoftTechniquesErrorAgainstCostTable) {
             for (const auto& [key, value] : sets)
                 o.parameters.set(key, value);
             const RenderResult r = sharedRenderer().render(t.scene, o);
-            double ms = 0.0; // the visibility pass and smrt's filter, the per-pixel work
-            for (const PassTime& p : r.passes)
+            double ms = 0.0;   // the visibility pass and smrt's filter, the per-pixel work
+            double maps = 0.0; // smrt's bounds, built over every texel of every view
+            for (const PassTime& p : r.passes) {
                 if (p.pass == "visibility" || p.pass == "filter")
                     ms += p.medianMs;
-            std::printf(ms < 1.0 ? " %.4f (%.3f ms) |" : " %.4f (%.1f ms) |", errorOf(t, r).rmse,
-                        ms);
+                if (p.pass.rfind("smrt_bounds", 0) == 0)
+                    maps += p.medianMs;
+            }
+            const std::string bounds = maps <= 0.0  ? ""
+                                       : maps < 1.0 ? fmt::format(" + {:.3f}", maps)
+                                                    : fmt::format(" + {:.1f}", maps);
+            std::printf(ms < 1.0 ? " %.4f (%.3f%s ms) |" : " %.4f (%.1f%s ms) |",
+                        errorOf(t, r).rmse, ms, bounds.c_str());
             std::fflush(stdout);
         }
         std::printf("\n");

@@ -23,6 +23,70 @@ SmrtPoint smrtPoint(sampler2DArray map, ShadowViewData view, vec3 p, vec3 d, flo
     return x;
 }
 
+// Ring k's block (at `level`) through its tiles' children, each against the ceiling at its own
+// distance, never nearer than the ring's inner radius (smrtLastChild, smrtTileDistance).
+bool smrtChildrenHold(usampler2DArray bounds, ShadowViewData view, SmrtCeiling c, vec2 at,
+                      ivec4 block, int level, int boundsSize, uint mapSize, int layer,
+                      float inner) {
+    if (level == 0) return false;
+    int child = level - 1;
+    int levelSize = max(boundsSize >> level, 1), childSize = max(boundsSize >> child, 1);
+    int lastX = smrtLastChild(block.z, levelSize, childSize);
+    int lastY = smrtLastChild(block.w, levelSize, childSize);
+    for (int y = 2 * block.y; y <= lastY; ++y)
+        for (int x = 2 * block.x; x <= lastX; ++x) {
+            float d = smrtTileDistance(at, ivec2(x, y), child, childSize, mapSize);
+            float ceiling = smrtDepthOf(view, smrtLitCeiling(c, max(inner, d)));
+            if (uintBitsToFloat(texelFetch(bounds, ivec3(x, y, layer), child).r) < ceiling)
+                return false;
+        }
+    return true;
+}
+
+// smrt.skipLit: whether no ray of the pixel can pass behind the map's surface, so that it is fully
+// lit without tracing one (smrtLitCeiling). Ring 0 reads the 3x3 texels round p's; ring k a 2x2
+// block of the bounds' level k (`bounds`: the nearest depth over each tile, as float bits; built by
+// smrt_bounds.comp and smrt_bounds_mip.comp), against the ceiling 2^(k-1) texels out. Not on
+// virtual maps (no bounds) nor for a receiver outside the map (its clamped reads would lie nearer
+// the map's edge than the points that make them).
+bool smrtProvenLit(sampler2DArray map, usampler2DArray bounds, ShadowViewData view, vec3 p,
+                   vec2 uv, uint mapSize, float layer) {
+    vec2 at = uv * float(mapSize);
+    if (VIRTUAL_MAPS || any(lessThan(at, vec2(0.0))) ||
+        any(greaterThanEqual(at, vec2(float(mapSize)))))
+        return false;
+    SmrtCeiling c = smrtCeilingOf(view, p, mapSize, smrt.slope);
+    float ceiling = smrtDepthOf(view, smrtLitCeiling(c, 0.0));
+    ivec2 home = ivec2(floor(at));
+    for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) {
+            ivec2 texel = clamp(home + ivec2(i, j), ivec2(0), ivec2(int(mapSize) - 1));
+            if (fetchDepth(map, texel, float(mapSize), layer) < ceiling) return false;
+        }
+    uint rings = smrtBoundsRings(smrt.maxRadius);
+    int levels = textureQueryLevels(bounds);
+    // A level's size by arithmetic: lavapipe 22.3 answers textureSize(bounds, level) with level 0's
+    // size when the level changes from one iteration of the loop to the next.
+    int boundsSize = textureSize(bounds, 0).x;
+    // Outermost first: where a caster stands in the light's way, the wide rings fail first, before
+    // the near ones spend reads on their children.
+    for (uint k = rings; k >= 1u; --k) {
+        int level = min(int(k), levels - 1);
+        ivec4 block = smrtBoundsBlock(at, uint(level), max(boundsSize >> level, 1));
+        int l = int(layer);
+        uint nearest = min(min(texelFetch(bounds, ivec3(block.xy, l), level).r,
+                               texelFetch(bounds, ivec3(block.zy, l), level).r),
+                           min(texelFetch(bounds, ivec3(block.xw, l), level).r,
+                               texelFetch(bounds, ivec3(block.zw, l), level).r));
+        float inner = float(1u << (k - 1u));
+        float ring = smrtDepthOf(view, smrtLitCeiling(c, inner));
+        if (uintBitsToFloat(nearest) < ring &&
+            !smrtChildrenHold(bounds, view, c, at, block, level, boundsSize, mapSize, l, inner))
+            return false;
+    }
+    return true;
+}
+
 // x visibility, y rays blocked, z of those, the rays blocked only by extrapolation, w the mean
 // march length in texels of the map (over the rays traced).
 vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view,
@@ -31,6 +95,8 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
     uvec2 budget = smrtBudget(view, smrt);
     uint rays = budget.x, samples = budget.y;
     vec3 p = smrtViewPoint(view, r.uv, viewDistance(view, r.depth));
+    if (smrt.skipLit != 0u && smrtProvenLit(map, shadowTable, view, p, r.uv, mapSize, r.layer))
+        return vec4(1.0, 0.0, 0.0, 0.0);
     SmrtPoint receiver = smrtPoint(map, view, p, vec3(0.0), 0.0, mapSize, r.layer);
     float blocked = 0.0, extrapolated = 0.0, marched = 0.0, traced = 0.0;
     bool grazed = smrtIsBehind(receiver);

@@ -26,7 +26,7 @@ struct SmrtParams {      // std140
                          // where they agree (0: off)
     uint cubeRays;       // smrt.cubeRays, smrt.cubeSamples: rays and samples on a point
     uint cubeSamples;    // light's cube faces (smrtBudget)
-    uint pad0;
+    uint skipLit;        // smrt.skipLit: 1: pixels the map's bounds prove fully lit trace no ray
     uint pad1;
     uint pad2;
 };
@@ -58,6 +58,15 @@ SHARED float smrtTexelWorld(IN(ShadowViewData) view, float z, uint mapSize) {
     return view.frustum.z * (view.texel.y > 0.5f ? z : 1.0f) / float(mapSize);
 }
 
+// The cosine of the half-angle of the cone the light fills seen from p: a sphere of radius
+// texel.w (perspective), a sun of angular radius atan(texel.w).
+SHARED float smrtConeCos(IN(ShadowViewData) view, vec3 p) {
+    float size = view.texel.w;
+    return view.texel.y > 0.5f
+               ? sqrt(max(1.0f - min(size * size / max(dot(p, p), 1e-20f), 1.0f), 0.0f))
+               : 1.0f / sqrt(1.0f + size * size);
+}
+
 // The k-th of n ray directions from receiver p towards the light, uniform in solid angle over the
 // cone the light subtends (a sphere of radius texel.w seen from p; a sun's cone of half-angle
 // atan(texel.w)): stratified along the cone's radius (jittered within each stratum), a
@@ -66,9 +75,7 @@ SHARED float smrtTexelWorld(IN(ShadowViewData) view, float z, uint mapSize) {
 SHARED vec3 smrtRayDirection(IN(ShadowViewData) view, vec3 p, uint k, uint n, float turns) {
     bool perspective = view.texel.y > 0.5f;
     vec3 w = perspective ? -p / max(length(p), 1e-20f) : vec3(0.0f, 0.0f, -1.0f);
-    float size = view.texel.w;
-    float cosAlpha = perspective ? sqrt(max(1.0f - min(size * size / max(dot(p, p), 1e-20f), 1.0f), 0.0f))
-                                 : 1.0f / sqrt(1.0f + size * size);
+    float cosAlpha = smrtConeCos(view, p);
     float a = (float(k) + fract(turns * 1.618034f + 0.5f)) / float(n); // ray n - 1: the rim
     float b = fract(float(k) * 0.618034f + turns);
     float cosTheta = 1.0f - a * (1.0f - cosAlpha);
@@ -191,6 +198,113 @@ SHARED bool smrtCrosses(IN(ShadowViewData) view, IN(SmrtPoint) a, IN(SmrtPoint) 
     float gap = bBehind ? b.behind : a.behind;
     margin = abs(gap - reach) / max(b.z, 1.0f);
     return gap <= reach;
+}
+
+// Fully lit, proven (smrt.skipLit; docs/techniques.md, "Shadow-map ray tracing", step 9). A ray's
+// point q falls behind the map only where the stored light view distance is below q.z - slack(q.z)
+// at its texel. This bounds that for every ray of the pixel at once: no point of a ray from p
+// towards the light that falls `texels` or more from p's position in the map lies behind a texel
+// whose stored distance is at least the value returned. Perspective: a point s along direction d
+// falls s C / (z (z + s d.z)) texels from p's (smrtPerspectiveRate), at light view distance
+// p.z / (1 + texels p.z (-d.z) / C); over the light's cone |p x d| <= R (so C <= R / texel) and
+// -d.z >= cos(alpha + beta) (alpha the cone's half-angle, beta p's angle off the view axis; past
+// 90 degrees nothing is proven).
+// Orthographic: the ray drops texels * texel / tan(alpha) or more towards the light. Rounding is
+// allowed for (the cone as the rays' float cosine has it, a hundredth of a texel, 1e-5 p.z), so
+// that it cannot make the proof claim what the march would not.
+struct SmrtCeiling {
+    float top;    // the ceiling at 0 texels (less the margin) ...
+    float k;      // ... over 1 + texels k (perspective), ...
+    float fall;   // ... less texels fall (orthographic) ...
+    float margin; // ... plus this
+};
+
+// The ceiling's terms for receiver p, once a pixel (smrtLitCeiling evaluates them).
+SHARED SmrtCeiling smrtCeilingOf(IN(ShadowViewData) view, vec3 p, uint mapSize, float slope) {
+    float size = float(mapSize);
+    float texel = min(view.frustum.z, view.frustum.w) / size; // uv units x frustum, the finer axis
+    float slack = 0.75f * slope * view.frustum.z / size;      // smrtSetStored's, per unit of z
+    // The cone as the rays have it (smrtRayDirection): its sine from the same float cosine, which
+    // for a small light rounds far more than R / |p| does, and a little more for the rest.
+    float cosAlpha = smrtConeCos(view, p);
+    float sinAlpha = sqrt(max(1.0f - cosAlpha * cosAlpha, 0.0f)) * 1.0001f + 2e-7f;
+    SmrtCeiling c;
+    // Rounding: 1e-5 of the distance, and a few steps of the stored depth's float, which in a
+    // perspective view stand for z^2 / near each (smrtDepthOf).
+    float n = view.frustum.x, f = view.frustum.y;
+    float depthStep = view.texel.y > 0.5f ? p.z * p.z / max(n, 1e-6f) : abs(f - n);
+    c.margin = 1e-5f * abs(p.z) + 4e-7f * depthStep;
+    c.k = 0.0f;
+    c.fall = 0.0f;
+    if (view.texel.y > 0.5f) {
+        float distance = max(length(p), 1e-30f);
+        float cosAlphaBeta = (cosAlpha * p.z - sinAlpha * length(vec2(p.x, p.y))) / distance;
+        c.top = max(1.0f - slack, 0.0f) * p.z; // z - slack(z) = (1 - slack) z
+        c.k = p.z * cosAlphaBeta * texel / (distance * sinAlpha);
+        // A cone past 90 degrees off the view axis has rays that move away from the light's plane:
+        // no ceiling holds.
+        if (cosAlphaBeta <= 1e-6f) c.top = 1e30f;
+    } else {
+        c.top = p.z - slack;
+        c.fall = texel * cosAlpha / sinAlpha; // texel / tan(alpha): a texel's least fall
+    }
+    return c;
+}
+
+// The ceiling `texels` out. A point's distance in texels may round by a hundredth of a texel: the
+// ceiling is taken that much nearer in.
+SHARED float smrtLitCeiling(IN(SmrtCeiling) c, float texels) {
+    float reach = max(texels - 0.01f, 0.0f);
+    return c.top / (1.0f + reach * c.k) - reach * c.fall + c.margin;
+}
+
+// The depth the map stores for light view distance z (viewDistance's inverse): the proof compares
+// stored depths with the ceiling's, one division a ring rather than one a texel.
+SHARED float smrtDepthOf(IN(ShadowViewData) view, float z) {
+    float n = view.frustum.x, f = view.frustum.y;
+    return view.texel.y > 0.5f ? f * (z - n) / (max(z, 1e-30f) * (f - n)) : (z - n) / (f - n);
+}
+
+// The rings of the proof: ring 0 is the 3x3 texels round p's; ring k >= 1 a 2x2 block of tiles of
+// the map's bounds (the nearest light view depth over 2^(level+1) texels a side at `level`), the
+// block holding every texel within 2^k of p. `rings`: how many it takes to cover a march of
+// maxRadius texels (and a texel more, for rounding).
+SHARED uint smrtBoundsRings(float maxRadius) {
+    uint rings = 1u;
+    while (float(1u << rings) < maxRadius + 1.0f) ++rings;
+    return rings;
+}
+
+// Ring k's block at `level` (levelSize tiles a side): its first tile (xy) and last (zw). `at` is
+// p's position in texels of the map. The block starts a tile before p's when p lies in its
+// tile's first half, so that 2^level texels either side of p stay in it.
+SHARED ivec4 smrtBoundsBlock(vec2 at, uint level, int levelSize) {
+    float tile = float(2u << level);
+    ivec2 first = ivec2(floor(at / tile - 0.5f));
+    ivec2 last = first + ivec2(1, 1);
+    ivec2 top = ivec2(levelSize - 1, levelSize - 1);
+    return ivec4(clamp(first, ivec2(0, 0), top), clamp(last, ivec2(0, 0), top));
+}
+
+// A ring whose block fails as a whole is looked at once more, through its tiles' children (at
+// level - 1), each against the ceiling at its own distance from p: the block reaches three times
+// as far as the ring's inner radius, and a receiver's own tilted surface at its far side fails
+// the ring's one ceiling where it would pass its own.
+// The last child of `tile` of a level of levelSize tiles: two each, three for the last tile of an
+// odd-sized child level.
+SHARED int smrtLastChild(int tile, int levelSize, int childSize) {
+    return tile == levelSize - 1 ? childSize - 1 : 2 * tile + 1;
+}
+
+// The distance (texels) from `at` to the texels `tile` of `level` covers (its last tile reaches
+// the map's edge).
+SHARED float smrtTileDistance(vec2 at, ivec2 tile, int level, int levelSize, uint mapSize) {
+    float side = float(2 << level);
+    vec2 low = vec2(tile) * side;
+    vec2 high = vec2(tile.x == levelSize - 1 ? float(mapSize) : low.x + side,
+                     tile.y == levelSize - 1 ? float(mapSize) : low.y + side);
+    vec2 gap = max(max(low - at, at - high), vec2(0.0f, 0.0f));
+    return length(gap);
 }
 
 PENUMBRA_GPU_END

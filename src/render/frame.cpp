@@ -24,9 +24,11 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     for (size_t m = 1; m < maps.size(); ++m)
         r.maps.push_back(graph.declare(maps[m]));
     const shadows::TechniqueModule& module = *s.technique;
-    bool integerMap = false; // the summed-area members' tables: read through usamplers
+    // On virtual maps a technique has the page pool alone: it reads it as its depth map.
+    const bool ownMaps = r.maps.size() == module.maps.size();
+    bool integerMap = false; // the summed-area members' tables, smrt's bounds: through usamplers
     for (const shadows::MapDecl& map : module.maps)
-        integerMap = integerMap || (map.name == module.visibilityMap &&
+        integerMap = integerMap || (ownMaps && map.name == module.visibilityMap &&
                                     shadows::holdsIntegers(shadows::formatOf(map, *s.params)));
     auto screen = [&](std::string_view name) {
         for (const ImageDecl& decl : screenDecls(s.intermediates))
@@ -47,7 +49,7 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.normal = screen(target::kNormal);
     r.faceNormal = screen(target::kFaceNormal);
     r.integerPlaceholder = screen(target::kIntegerPlaceholder);
-    const ResourceId filtered = r.named(module, module.visibilityMap);
+    const ResourceId filtered = ownMaps ? r.named(module, module.visibilityMap) : r.depthMap;
     r.filtered = integerMap
                      ? FilteredBindings{.floats = r.depthMap, .integers = filtered}
                      : FilteredBindings{.floats = filtered, .integers = r.integerPlaceholder};

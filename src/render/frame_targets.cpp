@@ -16,6 +16,8 @@ VkFormat formatOf(shadows::MapFormat format) {
         return VK_FORMAT_R32_SFLOAT;
     case shadows::MapFormat::RG32F:
         return VK_FORMAT_R32G32_SFLOAT;
+    case shadows::MapFormat::R32UI:
+        return VK_FORMAT_R32_UINT;
     case shadows::MapFormat::RG32UI:
         return VK_FORMAT_R32G32_UINT;
     case shadows::MapFormat::RGBA32UI:
@@ -38,9 +40,11 @@ constexpr VkImageUsageFlags kStorageOut =
 
 // A map of every shadow view: a layer each, a 2D view of each layer (and level) to render into
 // or write in a post pass.
-ImageDecl viewMap(std::string_view name, shadows::MapFormat format, bool mipmapped) {
+ImageDecl viewMap(std::string_view name, shadows::MapFormat format, bool mipmapped,
+                  uint32_t shrink = 0) {
     return {.name = target::shadowMap(name),
             .size = SizeClass::ShadowView,
+            .shrink = shrink,
             .format = formatOf(format),
             .usage = format == shadows::MapFormat::Depth32 ? kDepthTarget
                                                            : VK_IMAGE_USAGE_STORAGE_BIT | kSampled,
@@ -77,8 +81,8 @@ std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
     }
     std::vector<ImageDecl> decls{viewMap(shadows::kDepthMap, shadows::MapFormat::Depth32, false)};
     for (const shadows::MapDecl& map : module.maps)
-        decls.push_back(
-            viewMap(map.name, shadows::formatOf(map, params), shadows::mipmappedOf(map, params)));
+        decls.push_back(viewMap(map.name, shadows::formatOf(map, params),
+                                shadows::mipmappedOf(map, params), map.shrink));
     return decls;
 }
 

@@ -51,7 +51,8 @@ struct Resolved {
 Resolved resolve(const ImageDecl& d, const FrameSizes& s) {
     switch (d.size) {
     case SizeClass::ShadowView:
-        return {s.shadowMapSize, s.shadowMapSize, 1, std::max(s.shadowViews, 1u)};
+        return {std::max(s.shadowMapSize >> d.shrink, 1u),
+                std::max(s.shadowMapSize >> d.shrink, 1u), 1, std::max(s.shadowViews, 1u)};
     case SizeClass::Screen:
         return {s.width, s.height, 1, d.perLight ? std::max(s.shadowLights, 1u) : 1u};
     case SizeClass::Scene:

@@ -35,6 +35,7 @@ enum class Lifetime { PerFrame, Persistent };
 struct ImageDecl {
     std::string name;
     SizeClass size;
+    uint32_t shrink = 0; // ShadowView: shadowMapSize >> shrink a side (at least 1)
     VkFormat format;
     VkImageUsageFlags usage;
     bool perLight = false;          // Screen: a layer per shadow-casting light

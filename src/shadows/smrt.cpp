@@ -36,6 +36,84 @@ gpu::SmrtPoint pointAt(const FilterInput& in, const gpu::SmrtParams& s, glm::vec
     return x;
 }
 
+// The nearest depth over the texels of `tile` at `level` of the bounds (levelSize tiles a side),
+// straight from the map.
+float tileNearest(const ShadowMapView& map, glm::ivec2 tile, int level, int levelSize) {
+    const int side = 2 << level, last = static_cast<int>(map.size) - 1;
+    auto end = [&](int t) { return t == levelSize - 1 ? last : (t + 1) * side - 1; };
+    float nearest = 1.0f;
+    for (int y = tile.y * side; y <= end(tile.y); ++y)
+        for (int x = tile.x * side; x <= end(tile.x); ++x)
+            nearest = std::min(nearest, map.texel(x, y));
+    return std::max(nearest, 0.0f);
+}
+
+// smrtChildrenHold, transcribed.
+bool childrenHold(const FilterInput& in, const gpu::SmrtCeiling& c, glm::vec2 at, glm::ivec4 block,
+                  int level, int boundsSize, float inner) {
+    if (level == 0)
+        return false;
+    const int child = level - 1;
+    const int levelSize = std::max(boundsSize >> level, 1);
+    const int childSize = std::max(boundsSize >> child, 1);
+    const int lastX = gpu::smrtLastChild(block.z, levelSize, childSize);
+    const int lastY = gpu::smrtLastChild(block.w, levelSize, childSize);
+    for (int y = 2 * block.y; y <= lastY; ++y)
+        for (int x = 2 * block.x; x <= lastX; ++x) {
+            const float d = gpu::smrtTileDistance(at, {x, y}, child, childSize, in.map.size);
+            const float ceiling =
+                gpu::smrtDepthOf(in.view, gpu::smrtLitCeiling(c, std::max(inner, d)));
+            const float stored = tileNearest(in.map, {x, y}, child, childSize);
+            in.margins.see(stored, ceiling);
+            if (stored < ceiling)
+                return false;
+        }
+    return true;
+}
+
+// smrtProvenLit, transcribed: each ring's nearest depth read straight from the texels its block's
+// tiles cover (the bounds' level 0 takes 2x2 texels, each level above 2x2 tiles, and a level's
+// last tile the odd-sized leftovers: smrt_bounds.comp, smrt_bounds_mip.comp).
+bool provenLit(const FilterInput& in, const gpu::SmrtParams& s, glm::vec3 p) {
+    const uint32_t size = in.map.size;
+    const auto sizeF = static_cast<float>(size);
+    const glm::vec2 at = in.probe.uv * sizeF;
+    if (at.x < 0.0f || at.y < 0.0f || at.x >= sizeF || at.y >= sizeF)
+        return false;
+    auto below = [&](float stored, float ceiling) {
+        in.margins.see(stored, ceiling);
+        return stored < ceiling;
+    };
+    const gpu::SmrtCeiling c = gpu::smrtCeilingOf(in.view, p, size, s.slope);
+    const float ceiling = gpu::smrtDepthOf(in.view, gpu::smrtLitCeiling(c, 0.0f));
+    const glm::ivec2 home = glm::floor(at);
+    for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i)
+            if (below(in.map.texel(home.x + i, home.y + j), ceiling))
+                return false;
+    const uint32_t boundsSize = std::max(size >> 1, 1u);
+    int levels = 1;
+    while ((boundsSize >> levels) > 0)
+        ++levels;
+    const uint32_t rings = gpu::smrtBoundsRings(s.maxRadius);
+    for (uint32_t k = rings; k >= 1; --k) {
+        const int level = std::min(static_cast<int>(k), levels - 1);
+        const int levelSize = static_cast<int>(std::max(boundsSize >> level, 1u));
+        const glm::ivec4 block = gpu::smrtBoundsBlock(at, static_cast<uint32_t>(level), levelSize);
+        const float nearest =
+            std::min(std::min(tileNearest(in.map, {block.x, block.y}, level, levelSize),
+                              tileNearest(in.map, {block.z, block.y}, level, levelSize)),
+                     std::min(tileNearest(in.map, {block.x, block.w}, level, levelSize),
+                              tileNearest(in.map, {block.z, block.w}, level, levelSize)));
+        const auto inner = static_cast<float>(1u << (k - 1));
+        const float ring = gpu::smrtDepthOf(in.view, gpu::smrtLitCeiling(c, inner));
+        if (below(nearest, ring) &&
+            !childrenHold(in, c, at, block, level, static_cast<int>(boundsSize), inner))
+            return false;
+    }
+    return true;
+}
+
 // shadowSmrtDetail: x visibility, y rays blocked, z of those blocked only by extrapolation, w the
 // mean march length in texels (over the rays traced).
 glm::vec4 smrtReference(const FilterInput& in) {
@@ -47,6 +125,8 @@ glm::vec4 smrtReference(const FilterInput& in) {
     const uint32_t rays = budget.x, samples = budget.y;
     const glm::vec3 p =
         gpu::smrtViewPoint(view, in.probe.uv, gpu::viewDistance(view, in.probe.depth));
+    if (s.skipLit != 0 && provenLit(in, s, p))
+        return {1.0f, 0.0f, 0.0f, 0.0f};
     const gpu::SmrtPoint receiver = pointAt(in, s, p, glm::vec3(0.0f), 0.0f);
     float blocked = 0.0f, extrapolated = 0.0f, marched = 0.0f, traced = 0.0f;
     bool grazed = gpu::smrtIsBehind(receiver);
@@ -165,6 +245,13 @@ const TechniqueModule& smrtModule() {
               .description = "rays traced first, round the light's rim: where all are blocked, or "
                              "all lit without one passing behind an occluder, no more are (0: "
                              "every pixel traces smrt.rays)"},
+             {.key = "smrt.skipLit",
+              .type = ParameterType::Bool,
+              .defaultValue = 1,
+              .description = "prove pixels fully lit from bounds of the map (the nearest depth "
+                             "over tiles of 2 to 1024 texels, built after the depth pass) and "
+                             "trace no ray there; the same result, fewer rays (not on virtual "
+                             "maps)"},
              {.key = "smrt.filter",
               .type = ParameterType::Int,
               .defaultValue = 1,
@@ -196,6 +283,17 @@ const TechniqueModule& smrtModule() {
               .defaultValue = 2,
               .choices = {std::begin(gpu::kRotationChoices), std::end(gpu::kRotationChoices)},
               .description = "per-pixel rotation of the ray set and jitter of the samples"}},
+        // smrt.skipLit's bounds: the nearest depth over 2x2 texels, then 2x2 tiles, level by level
+        // (float bits; read at TECH_TABLE beside the depth map).
+        .maps = {{.name = "bounds",
+                  .format = MapFormat::R32UI,
+                  .mipmappedFor = [](const ParameterValues&) { return true; },
+                  .shrink = 1}},
+        .postPasses = {{.shader = "smrt_bounds.comp", .inputs = {kDepthMap}, .outputs = {"bounds"}},
+                       {.shader = "smrt_bounds_mip.comp",
+                        .outputs = {"bounds"},
+                        .dispatch = PostDispatch::MipChain}},
+        .visibilityMap = "bounds",
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 auto whole = [&](const char* key) { return static_cast<uint32_t>(p.number(key)); };
@@ -208,7 +306,8 @@ const TechniqueModule& smrtModule() {
                                           .refine = whole("smrt.refine"),
                                           .adaptive = whole("smrt.adaptive"),
                                           .cubeRays = whole("smrt.cubeRays"),
-                                          .cubeSamples = whole("smrt.cubeSamples")});
+                                          .cubeSamples = whole("smrt.cubeSamples"),
+                                          .skipLit = whole("smrt.skipLit")});
             },
         .reference = smrtReference,
         .modelsLightSize = true,

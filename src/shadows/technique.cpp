@@ -16,6 +16,7 @@ uint32_t bytesPerTexel(MapFormat format) {
     switch (format) {
     case MapFormat::Depth32:
     case MapFormat::R32F:
+    case MapFormat::R32UI:
         return 4;
     case MapFormat::RG32F:
     case MapFormat::RG32UI:
@@ -29,7 +30,8 @@ uint32_t bytesPerTexel(MapFormat format) {
 }
 
 bool holdsIntegers(MapFormat format) {
-    return format == MapFormat::RG32UI || format == MapFormat::RGBA32UI;
+    return format == MapFormat::R32UI || format == MapFormat::RG32UI ||
+           format == MapFormat::RGBA32UI;
 }
 
 std::span<const TechniqueModule* const> allModules() {
@@ -237,12 +239,15 @@ uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
     if (module.tracesField)
         return 0; // no shadow map: the field's memory is the scene's (src/render/distance_field.h)
     const uint64_t texels = uint64_t{size} * size;
-    uint64_t chain = 0; // the texels of a full mip chain
-    for (uint32_t level = 0; (size >> level) > 0; ++level)
-        chain += uint64_t{size >> level} * (size >> level);
     uint64_t bytes = bytesPerTexel(MapFormat::Depth32) * texels;
-    for (const MapDecl& map : module.maps)
-        bytes += bytesPerTexel(formatOf(map, params)) * (mipmappedOf(map, params) ? chain : texels);
+    for (const MapDecl& map : module.maps) {
+        const uint32_t side = std::max(size >> map.shrink, 1u);
+        uint64_t chain = 0; // the texels of a full mip chain
+        for (uint32_t level = 0; (side >> level) > 0; ++level)
+            chain += uint64_t{side >> level} * (side >> level);
+        const uint64_t level0 = uint64_t{side} * side;
+        bytes += bytesPerTexel(formatOf(map, params)) * (mipmappedOf(map, params) ? chain : level0);
+    }
     return bytes;
 }
 

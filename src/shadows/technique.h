@@ -31,10 +31,11 @@ struct FilterProbe; // penumbra/renderer.h
 
 namespace penumbra::shadows {
 
-enum class MapFormat { Depth32, R32F, RG32F, RGBA32F, RG32UI, RGBA32UI, RGBA16 }; // 16: unorm
+// RGBA16: unorm.
+enum class MapFormat { Depth32, R32F, RG32F, RGBA32F, R32UI, RG32UI, RGBA32UI, RGBA16 };
 uint32_t bytesPerTexel(MapFormat format);
 // Integer maps are read through usamplers: the visibility pass binds its filtered map at
-// VIS_SHADOW_TABLE instead of VIS_SHADOW_MAP when it is one.
+// TECH_TABLE instead of TECH_MAP when it is one.
 bool holdsIntegers(MapFormat format);
 
 // Every technique has the light's depth map, "depth" (Depth32, cleared to 1 = far).
@@ -50,6 +51,8 @@ struct MapDecl {
     // When set and true for the parameters, the map has a full mip chain (vsm.filter=mip) that a
     // PostDispatch::MipChain pass fills; else one level.
     bool (*mipmappedFor)(const ParameterValues&) = nullptr;
+    // Its level 0 is the depth map's size >> shrink a side (smrt's bounds: 1, half).
+    uint32_t shrink = 0;
 };
 MapFormat formatOf(const MapDecl& map, const ParameterValues& params);
 bool mipmappedOf(const MapDecl& map, const ParameterValues& params);
@@ -142,12 +145,14 @@ struct VisibilityFilter {
 };
 
 struct TechniqueModule {
-    TechniqueInfo info;                         // name, summary, paper, parameter families, rows
-    std::vector<ParameterInfo> parameters;      // the technique's own family (`pcf.*`, ...)
-    std::vector<MapDecl> maps;                  // beyond kDepthMap
-    std::vector<DepthPassDecl> depthPasses;     // beyond the light's depth pass
-    std::vector<PostPassDecl> postPasses;       // in order
-    std::string_view visibilityMap = kDepthMap; // what the visibility pass filters
+    TechniqueInfo info;                     // name, summary, paper, parameter families, rows
+    std::vector<ParameterInfo> parameters;  // the technique's own family (`pcf.*`, ...)
+    std::vector<MapDecl> maps;              // beyond kDepthMap
+    std::vector<DepthPassDecl> depthPasses; // beyond the light's depth pass
+    std::vector<PostPassDecl> postPasses;   // in order
+    // What the visibility pass filters: at TECH_MAP, or at TECH_TABLE when it holds integers (the
+    // depth map then at TECH_MAP; smrt's bounds beside the map it marches).
+    std::string_view visibilityMap = kDepthMap;
     // Its own specialization constants of the visibility pass (SPEC_FILTER: pcf.filter).
     std::vector<SpecConstant> (*constants)(const ParameterValues&) = nullptr;
     // Writes the module's parameters into its block (its struct, params_<family>.h).

@@ -1,0 +1,190 @@
+// smrt.skipLit's ceiling (smrtCeilingOf, smrtLitCeiling, shaders/include/smrt_march.h) against the
+// march itself: every point of every ray a receiver traces towards the light, a given number of
+// texels from the receiver in the map, must lie no farther from the light (less its slack) than the
+// ceiling there. The shader and its CPU mirror share the ceiling, so only a check like this one
+// (and the frame with and without the proof, tests/test_smrt.cpp) sees a mistake in it. The ceiling
+// must also stay near the widest ray's own path, or it proves nothing.
+#include "smrt_march.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+using namespace penumbra;
+
+namespace {
+
+constexpr uint32_t kMapSize = 1024;
+constexpr float kSlope = 8.0f;
+
+gpu::ShadowViewData view(float kind, float nearPlane, float farPlane, glm::vec2 worldPerUv,
+                         float lightSize) {
+    gpu::ShadowViewData v{};
+    v.frustum = {nearPlane, farPlane, worldPerUv.x, worldPerUv.y};
+    v.texel = {0.0f, kind, 0.0f, lightSize};
+    return v;
+}
+
+// Each point of a ray's march, z - slack(z), against the ceiling at its distance in texels.
+struct Check {
+    int points = 0, above = 0;
+    float tightest = 1e30f; // smallest (ceiling - z') / (p.z - ceiling) over points past 4 texels
+};
+
+void march(const gpu::ShadowViewData& v, glm::vec3 p, glm::vec3 d, Check& check) {
+    const float rate = v.texel.y > 0.5f ? gpu::smrtPerspectiveRate(v, p, d, kMapSize) : 0.0f;
+    const float extent = gpu::smrtMarchLength(v, p, d, 256.0f, kMapSize, rate);
+    const glm::vec2 home = gpu::smrtProject(v, p) * float(kMapSize);
+    for (int i = 1; i <= 200; ++i) {
+        const float s = extent * float(i) / 200.0f;
+        const glm::vec3 q = p + s * d;
+        const float r = glm::length(gpu::smrtProject(v, q) * float(kMapSize) - home);
+        const float slack = 0.75f * kSlope * gpu::smrtTexelWorld(v, q.z, kMapSize);
+        const float ceiling = gpu::smrtLitCeiling(gpu::smrtCeilingOf(v, p, kMapSize, kSlope), r);
+        ++check.points;
+        check.above += q.z - slack > ceiling;
+        if (q.z - slack > ceiling && check.above < 6)
+            std::printf("p %g %g %g d %g %g %g s %g ext %g r %g z' %.7g ceil %.7g slack %g\n", p.x,
+                        p.y, p.z, d.x, d.y, d.z, s, extent, r, q.z - slack, ceiling, slack);
+        if (r > 4.0f)
+            check.tightest = std::min(check.tightest,
+                                      (ceiling - (q.z - slack)) / std::max(p.z - ceiling, 1e-6f));
+    }
+}
+
+// Receivers across the view (off its axis too), each with rays over the whole cone, the rim's
+// densely.
+Check sweep(const gpu::ShadowViewData& v, float zLow, float zHigh) {
+    std::mt19937 engine(11);
+    auto unit = [&] { return float(engine() >> 8) / 16777216.0f; };
+    Check check;
+    for (int receiver = 0; receiver < 60; ++receiver) {
+        const glm::vec2 uv(0.05f + 0.9f * unit(), 0.05f + 0.9f * unit());
+        const glm::vec3 p = gpu::smrtViewPoint(v, uv, zLow + (zHigh - zLow) * unit());
+        for (uint32_t k = 0; k < 64; ++k)
+            march(v, p, gpu::smrtRayDirection(v, p, k, 64, unit()), check);
+        // The rim itself: the last stratum's jitter at its end, at every azimuth.
+        // The jitter is frac(turns * 1.618034 + 0.5): 0.999 at turns = 1.499 / 1.618034, and the
+        // same at turns + m / 1.618034, which turns the azimuth by m / 1.618034 (mod 1).
+        for (int m = 0; m < 32; ++m) {
+            const float turns = (1.499f + float(m)) / 1.618034f;
+            march(v, p, gpu::smrtRayDirection(v, p, 63, 64, turns), check);
+        }
+    }
+    return check;
+}
+
+} // namespace
+
+TEST(SmrtLitCeiling, BoundsEveryRayPointUnderEveryLight) {
+    struct Setup {
+        const char* name;
+        gpu::ShadowViewData view;
+        float zLow, zHigh;
+    };
+    const Setup setups[] = {
+        {"spot, radius 0.1", view(1.0f, 0.1f, 30.0f, {2.0f, 2.0f}, 0.1f), 4.0f, 20.0f},
+        {"spot, radius 1.5", view(1.0f, 0.1f, 30.0f, {2.0f, 1.5f}, 1.5f), 4.0f, 20.0f},
+        {"cube face, bulb 0.3", view(2.0f, 0.05f, 20.0f, {2.5f, 2.5f}, 0.3f), 0.6f, 6.0f},
+        // Receivers next to the bulb, off the face's axis: some cones pass 90 degrees from it.
+        {"cube face, near bulb", view(2.0f, 0.05f, 20.0f, {2.5f, 2.5f}, 0.3f), 0.2f, 0.35f},
+        {"sun, 6 degrees", view(0.0f, 0.0f, 40.0f, {30.0f, 24.0f}, std::tan(0.0524f)), 5.0f, 35.0f},
+        {"sun, 0.5 degrees", view(0.0f, 0.0f, 40.0f, {30.0f, 30.0f}, std::tan(0.0044f)), 5.0f,
+         35.0f}};
+    for (const Setup& s : setups) {
+        const Check check = sweep(s.view, s.zLow, s.zHigh);
+        std::printf("%-20s %d points, %d above the ceiling, tightest headroom %.3f\n", s.name,
+                    check.points, check.above, check.tightest);
+        EXPECT_EQ(check.above, 0) << s.name;
+        // Some ray comes within a tenth of the ceiling's drop: the bound is the widest ray's own.
+        EXPECT_LT(check.tightest, 0.1f) << s.name;
+    }
+}
+
+// The rings reach past the march: ring k's block holds every texel within 2^k of the receiver,
+// and the last ring's 2^k passes smrt.maxRadius (and a texel more, for rounding).
+TEST(SmrtLitCeiling, RingsCoverTheMarch) {
+    for (float maxRadius : {2.0f, 3.0f, 24.0f, 255.0f, 256.0f}) {
+        const uint32_t rings = gpu::smrtBoundsRings(maxRadius);
+        EXPECT_GE(float(1u << rings), maxRadius + 1.0f) << maxRadius;
+        EXPECT_LT(float(1u << (rings - 1)), maxRadius + 1.0f) << maxRadius << ": one ring too many";
+    }
+}
+
+// The texels (first, last) per axis that a tile of `level` covers: 2^(level+1) each, the last
+// tile to the map's edge (the bounds' leftovers).
+glm::ivec2 tileTexels(int tile, int level, int levelSize, int mapSize) {
+    const int side = 2 << level;
+    return {tile * side, tile == levelSize - 1 ? mapSize - 1 : (tile + 1) * side - 1};
+}
+
+// On maps whose bounds have odd-sized levels (1000: 500, 250, 125, 62, 31, 15, 7, 3, 1) and on a
+// power of two: ring k's 2x2 block holds every texel within 2^k of the receiver, and its tiles'
+// children (smrtLastChild) hold exactly the block's texels.
+TEST(SmrtLitCeiling, BlocksAndTheirChildrenHoldTheRing) {
+    std::mt19937 engine(3);
+    for (int mapSize : {1000, 1024, 77}) {
+        const int boundsSize = std::max(mapSize >> 1, 1);
+        int levels = 1;
+        while ((boundsSize >> levels) > 0)
+            ++levels;
+        std::uniform_real_distribution<float> position(0.0f, float(mapSize) - 1e-3f);
+        for (int trial = 0; trial < 400; ++trial) {
+            const glm::vec2 at(position(engine), position(engine));
+            for (uint32_t k = 1; k <= 9; ++k) {
+                const int level = std::min(int(k), levels - 1);
+                const int levelSize = std::max(boundsSize >> level, 1);
+                const glm::ivec4 block = gpu::smrtBoundsBlock(at, uint32_t(level), levelSize);
+                // A tile's distance from the receiver: to the nearest point of its texels.
+                for (const glm::ivec2 tile :
+                     {glm::ivec2(block.x, block.y), glm::ivec2(block.z, block.w)}) {
+                    const glm::ivec2 xs = tileTexels(tile.x, level, levelSize, mapSize);
+                    const glm::ivec2 ys = tileTexels(tile.y, level, levelSize, mapSize);
+                    const float dx = std::max({float(xs.x) - at.x, at.x - float(xs.y + 1), 0.0f});
+                    const float dy = std::max({float(ys.x) - at.y, at.y - float(ys.y + 1), 0.0f});
+                    EXPECT_NEAR(
+                        gpu::smrtTileDistance(at, tile, level, levelSize, uint32_t(mapSize)),
+                        std::hypot(dx, dy), 1e-3f);
+                }
+                for (int axis = 0; axis < 2; ++axis) {
+                    const int first = axis == 0 ? block.x : block.y;
+                    const int last = axis == 0 ? block.z : block.w;
+                    const int low = tileTexels(first, level, levelSize, mapSize).x;
+                    const int high = tileTexels(last, level, levelSize, mapSize).y;
+                    const int home = int(std::floor(at[axis]));
+                    const int reach = 1 << k;
+                    EXPECT_LE(low, std::max(home - reach, 0)) << mapSize << " ring " << k;
+                    EXPECT_GE(high, std::min(home + reach, mapSize - 1))
+                        << mapSize << " ring " << k;
+                    if (level == 0)
+                        continue;
+                    const int childSize = std::max(boundsSize >> (level - 1), 1);
+                    const int lastChild = gpu::smrtLastChild(last, levelSize, childSize);
+                    EXPECT_EQ(tileTexels(2 * first, level - 1, childSize, mapSize).x, low);
+                    EXPECT_EQ(tileTexels(lastChild, level - 1, childSize, mapSize).y, high)
+                        << mapSize << " ring " << k << ": the children's last texel";
+                }
+            }
+        }
+    }
+}
+
+// The proof compares stored depths with the ceiling's depth: smrtDepthOf inverts viewDistance
+// under both projections and keeps their order.
+TEST(SmrtLitCeiling, DepthOfInvertsViewDistance) {
+    for (const gpu::ShadowViewData& v : {view(1.0f, 0.1f, 30.0f, {2.0f, 2.0f}, 0.1f),
+                                         view(0.0f, -5.0f, 40.0f, {30.0f, 30.0f}, 0.01f)}) {
+        float last = -1e30f;
+        for (int i = 0; i <= 100; ++i) {
+            const float z = v.frustum.x + (v.frustum.y - v.frustum.x) * float(i) / 100.0f;
+            const float depth = gpu::smrtDepthOf(v, z);
+            // A float depth's step stands for z^2 / near (perspective) or far - near.
+            const float step = v.texel.y > 0.5f ? z * z / v.frustum.x : v.frustum.y - v.frustum.x;
+            EXPECT_NEAR(gpu::viewDistance(v, depth), z, 1e-6f * std::abs(z) + 4e-7f * step);
+            EXPECT_GT(depth, last);
+            last = depth;
+        }
+    }
+}
