@@ -110,9 +110,13 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
                                   .cubeFace = true}};
     for (const ProbeLight& light : lights)
         for (const char* sets :
-             {"smrt.rotation=none,smrt.refine=0,smrt.adaptive=0,smrt.maxRadius=3",
-              "smrt.rotation=ign,smrt.refine=3,smrt.adaptive=4,smrt.maxRadius=24"}) {
+             // The cube face's adaptive stop the other way round from the spots' and suns'.
+             {"smrt.rotation=none,smrt.refine=0,smrt.adaptive=0,smrt.cubeAdaptive=2,"
+              "smrt.maxRadius=3",
+              "smrt.rotation=ign,smrt.refine=3,smrt.adaptive=4,smrt.cubeAdaptive=0,"
+              "smrt.maxRadius=24"}) {
             ParameterValues params;
+            params.set("smrt.rays", "16");
             params.set("smrt.cubeRays", "5");
             params.set("smrt.cubeSamples", "6");
             std::string all(sets);
@@ -155,13 +159,16 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
             // No probe traces more rays than its view's budget; without the adaptive stop, umbra
             // probes find all of them blocked.
             const float budget = light.cubeFace ? 5.0f : 16.0f;
+            // The view's own adaptive stop: smrt.cubeAdaptive on the cube face.
+            const double adaptive =
+                params.number(light.cubeFace ? "smrt.cubeAdaptive" : "smrt.adaptive");
             EXPECT_LE(most, budget) << what << ": rays traced";
-            if (params.number("smrt.adaptive") == 0) {
+            if (adaptive == 0) {
                 EXPECT_EQ(most, budget) << what << ": rays traced";
             }
             EXPECT_EQ(valid, compared) << what << ": visibilities in [0, 1]";
             EXPECT_GT(penumbra, 50u) << what << ": penumbrae";
-            if (params.number("smrt.adaptive") > 0) {
+            if (adaptive > 0) {
                 EXPECT_GT(stopped, 50u) << what << ": pixels the first rays settle";
             }
             // smrt.skipLit proves most of the open ground lit, at either reach.
@@ -198,7 +205,9 @@ TEST_F(FilterTest, VisibilityFilterMatchesItsCpuReference) {
             RenderOptions o{.width = 128, .height = 128, .frames = 1, .technique = Technique::Smrt};
             o.parameters.set("smrt.filter", point ? "0" : radius);
             o.parameters.set("smrt.cubeFilter", point ? radius : "0");
-            o.parameters.set("smrt.filterTolerance", "0.5");
+            // The same for the tolerance: the light's own 0.5, the other 0.9.
+            o.parameters.set("smrt.filterTolerance", point ? "0.9" : "0.5");
+            o.parameters.set("smrt.cubeFilterTolerance", point ? "0.5" : "0.9");
             o.parameters.set("composite.fused", "true");
             return sharedRenderer().render(scene, o);
         };
@@ -227,8 +236,8 @@ TEST_F(FilterTest, VisibilityFilterMatchesItsCpuReference) {
 
 // The analytic set-ups at 384x384 against the truth (128 rays a pixel): at its defaults
 // smrt beats pcss wherever pcss's planar-blocker estimate fails (a wide spot, a sun, close
-// bulbs), stays near it elsewhere, and has no acne or leak beyond its reach; its noise filter
-// (smrt.filter) helps where penumbrae are wide and costs nothing where they are narrow; with many
+// bulbs) and stays below it everywhere, with no acne or leak beyond its reach; its noise filter
+// (smrt.filter) helps where penumbrae are wide and costs little where they are narrow; with many
 // rays and samples it converges to the truth, which only a correct march does.
 TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
     for (Case& c : analyticCases()) {
@@ -245,7 +254,7 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
         EXPECT_LT(smrt.rmse, 0.06) << c.name;
         // Each set-up's measured error (lavapipe) and an eighth more.
         const std::map<std::string, double> measured = {
-            {"spot 0.1", 0.0040},  {"spot 0.5", 0.0051},  {"spot 1.5", 0.0086}, {"sun 6", 0.0046},
+            {"spot 0.1", 0.0032},  {"spot 0.5", 0.0046},  {"spot 1.5", 0.0064}, {"sun 6", 0.0051},
             {"point 0.1", 0.0131}, {"point 0.3", 0.0162}, {"point 0.5", 0.0223}};
         EXPECT_LT(smrt.rmse, 1.125 * measured.at(c.name)) << c.name;
         // pcss follows the bulbs' penumbrae on their faces up to pcss.cubeRadius (96 texels) and
@@ -253,18 +262,20 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
         if (c.name == "spot 1.5" || c.name == "sun 6" || c.name == "point 0.3" ||
             c.name == "point 0.5")
             EXPECT_LT(smrt.rmse, 0.8 * pcss) << c.name;
-        else
-            EXPECT_LT(smrt.rmse, 2.0 * pcss) << c.name;
-        // The filter: measured 0.0140 -> 0.0086 under the wide spot, 0.0359 -> 0.0162 under the
-        // bulb (8 rays a pixel on its faces), 0.0040 -> 0.0040 under the narrow spot (its range
-        // keeps a steep penumbra).
+        else if (c.name == "point 0.1") // 0.0131 against 0.0133
+            EXPECT_LT(smrt.rmse, 1.02 * pcss) << c.name;
+        else // 0.0032 against 0.0036, 0.0046 against 0.0097
+            EXPECT_LT(smrt.rmse, 0.95 * pcss) << c.name;
+        // The filter: measured 0.0081 -> 0.0064 under the wide spot, 0.0359 -> 0.0162 under the
+        // bulb (8 rays a pixel on its faces, tolerance 0.7), 0.0030 -> 0.0032 under the narrow
+        // spot (32 rays, tolerance 0.15: its range keeps most of a steep penumbra).
         if (c.name == "spot 1.5" || c.name == "point 0.3" || c.name == "spot 0.1") {
             const double unfiltered =
                 errorOf(t, renderRow(t, Technique::Smrt,
                                      {{"smrt.filter", "0"}, {"smrt.cubeFilter", "0"}}))
                     .rmse;
             std::printf("%-10s unfiltered %.4f\n", c.name.c_str(), unfiltered);
-            EXPECT_LT(smrt.rmse, (c.name == "spot 0.1" ? 1.02 : 0.85) * unfiltered) << c.name;
+            EXPECT_LT(smrt.rmse, (c.name == "spot 0.1" ? 1.1 : 0.85) * unfiltered) << c.name;
         }
         if (c.name == "point 0.3" || c.name == "spot 1.5") {
             const double converged = errorOf(t, renderRow(t, Technique::Smrt,
@@ -273,6 +284,7 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
                                                            {"smrt.cubeRays", "64"},
                                                            {"smrt.cubeSamples", "32"},
                                                            {"smrt.adaptive", "0"},
+                                                           {"smrt.cubeAdaptive", "0"},
                                                            {"smrt.filter", "0"},
                                                            {"smrt.cubeFilter", "0"}}))
                                          .rmse;
@@ -403,12 +415,16 @@ TEST_F(QualityTest, SoftTechniquesErrorAgainstCostTable) {
         {"vssm", Technique::Vssm, {}},
         {"msm-soft", Technique::MsmSoft, {}},
         {"sdf", Technique::Sdf, {}},
-        {"smrt[fast]", Technique::Smrt, {{"smrt.rays", "8"}}},
+        {"smrt[fast]",
+         Technique::Smrt,
+         {{"smrt.rays", "16"}, {"smrt.adaptive", "4"}, {"smrt.filterTolerance", "0.7"}}},
         {"smrt", Technique::Smrt, {}},
         {"smrt unfiltered", Technique::Smrt, {{"smrt.filter", "0"}, {"smrt.cubeFilter", "0"}}},
         {"smrt +4 samples", Technique::Smrt, {{"smrt.samples", "12"}, {"smrt.cubeSamples", "16"}}},
-        {"smrt 2x rays", Technique::Smrt, {{"smrt.rays", "32"}, {"smrt.cubeRays", "16"}}},
-        {"smrt 4x rays", Technique::Smrt, {{"smrt.rays", "64"}, {"smrt.cubeRays", "32"}}}};
+        {"smrt 2x rays", Technique::Smrt, {{"smrt.rays", "64"}, {"smrt.cubeRays", "16"}}},
+        {"smrt 4x rays",
+         Technique::Smrt,
+         {{"smrt.rays", "64"}, {"smrt.cubeRays", "32"}, {"smrt.adaptive", "16"}}}};
     std::vector<Case> cases = analyticCases();
     cases.push_back({"sun 2", sphereOverPlane(acceptanceSun(2.0f))});
     // PENUMBRA_SOFT_TABLE_CASES="point 0.3,point 0.5" measures those lines alone.

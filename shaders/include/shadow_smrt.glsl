@@ -93,7 +93,7 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                       uvec2 pixel) {
     float turns = rotationTurns(smrt.rotation, pixel);
     uvec2 budget = smrtBudget(view, smrt);
-    uint rays = budget.x, samples = budget.y;
+    uint rays = budget.x, samples = budget.y, adaptive = smrtAdaptive(view, smrt);
     vec3 p = smrtViewPoint(view, r.uv, viewDistance(view, r.depth));
     if (smrt.skipLit != 0u && smrtProvenLit(map, shadowTable, view, p, r.uv, mapSize, r.layer))
         return vec4(1.0, 0.0, 0.0, 0.0);
@@ -105,7 +105,7 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         uint k = rays - 1u - ray;
         // The first smrt.adaptive rays all blocked, or all lit without one passing behind the
         // surface: fully in shadow or fully lit, no more rays.
-        if (ray > 0u && ray == smrt.adaptive && (blocked == traced || (blocked == 0.0 && !grazed))) break;
+        if (ray > 0u && ray == adaptive && (blocked == traced || (blocked == 0.0 && !grazed))) break;
         vec3 d = smrtRayDirection(view, p, k, rays, turns);
         SmrtMarch march = smrtMarch(view, p, d, smrt.maxRadius, mapSize);
         float jitter = fract(turns * 2.618034 + float(k) * 0.7548777);

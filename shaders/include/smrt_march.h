@@ -27,7 +27,7 @@ struct SmrtParams {      // std140
     uint cubeRays;       // smrt.cubeRays, smrt.cubeSamples: rays and samples on a point
     uint cubeSamples;    // light's cube faces (smrtBudget)
     uint skipLit;        // smrt.skipLit: 1: pixels the map's bounds prove fully lit trace no ray
-    uint pad1;
+    uint cubeAdaptive;   // smrt.cubeAdaptive: smrt.adaptive on a point light's cube faces
     uint pad2;
 };
 
@@ -38,6 +38,12 @@ struct SmrtParams {      // std140
 SHARED uvec2 smrtBudget(IN(ShadowViewData) view, IN(SmrtParams) params) {
     return view.texel.y > 1.5f ? uvec2(params.cubeRays, params.cubeSamples)
                                : uvec2(params.rays, params.samples);
+}
+
+// The rim rays traced before the adaptive stop may end the pixel's march (smrtBudget's faces take
+// their own).
+SHARED uint smrtAdaptive(IN(ShadowViewData) view, IN(SmrtParams) params) {
+    return view.texel.y > 1.5f ? params.cubeAdaptive : params.adaptive;
 }
 
 // A point of the view's space from its map coordinates (uv) and light view distance z.

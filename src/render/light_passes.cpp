@@ -97,7 +97,7 @@ void dispatchFilter(PassContext& c, FramePipelines& p, const FrameSettings& s,
                     shadows::VisibilityFilter filter, uint32_t axis, const LightDispatch& light) {
     const std::vector<shadows::SpecConstant> constants{
         {SPEC_FILTER_RADIUS, filter.radiusFor(light.type)},
-        {SPEC_FILTER_TOLERANCE, std::bit_cast<uint32_t>(filter.tolerance)},
+        {SPEC_FILTER_TOLERANCE, std::bit_cast<uint32_t>(filter.toleranceFor(light.type))},
         {SPEC_FILTER_AXIS, axis}};
     dispatchOnLayerLayout(c, p, s, in, r, p.layer("visibility_filter.comp", constants), 0,
                           r.visibilityScratch, light);

@@ -123,6 +123,7 @@ glm::vec4 smrtReference(const FilterInput& in) {
     const float turns = gpu::rotationTurns(s.rotation, in.probe.pixel);
     const glm::uvec2 budget = gpu::smrtBudget(view, s);
     const uint32_t rays = budget.x, samples = budget.y;
+    const uint32_t adaptive = gpu::smrtAdaptive(view, s);
     const glm::vec3 p =
         gpu::smrtViewPoint(view, in.probe.uv, gpu::viewDistance(view, in.probe.depth));
     if (s.skipLit != 0 && provenLit(in, s, p))
@@ -132,7 +133,7 @@ glm::vec4 smrtReference(const FilterInput& in) {
     bool grazed = gpu::smrtIsBehind(receiver);
     for (uint32_t ray = 0; ray < rays; ++ray) {
         const uint32_t k = rays - 1 - ray;
-        if (ray > 0 && ray == s.adaptive && (blocked == traced || (blocked == 0.0f && !grazed)))
+        if (ray > 0 && ray == adaptive && (blocked == traced || (blocked == 0.0f && !grazed)))
             break;
         const glm::vec3 d = gpu::smrtRayDirection(view, p, k, rays, turns);
         const gpu::SmrtMarch march = gpu::smrtMarch(view, p, d, s.maxRadius, mapSize);
@@ -176,11 +177,15 @@ const TechniqueModule& smrtModule() {
                  .reference = "after Unreal Engine 5's virtual shadow maps (Epic Games 2022), "
                               "shadow-map ray tracing",
                  .families = {"bias", "smrt", "csm", "composite"},
-                 .variants = {{.label = ""}, {.label = "fast", .sets = {{"smrt.rays", "8"}}}}},
+                 .variants = {{.label = ""},
+                              {.label = "fast",
+                               .sets = {{"smrt.rays", "16"},
+                                        {"smrt.adaptive", "4"},
+                                        {"smrt.filterTolerance", "0.7"}}}}},
         .parameters =
             {{.key = "smrt.rays",
               .type = ParameterType::Int,
-              .defaultValue = 16,
+              .defaultValue = 32,
               .min = 1,
               .max = 64,
               .unit = "rays per pixel",
@@ -238,13 +243,22 @@ const TechniqueModule& smrtModule() {
                              "surface's gap shrinks)"},
              {.key = "smrt.adaptive",
               .type = ParameterType::Int,
-              .defaultValue = 4,
+              .defaultValue = 8,
               .min = 0,
               .max = 64,
               .unit = "rays",
               .description = "rays traced first, round the light's rim: where all are blocked, or "
                              "all lit without one passing behind an occluder, no more are (0: "
-                             "every pixel traces smrt.rays)"},
+                             "every pixel traces smrt.rays; spots and suns, smrt.cubeAdaptive on "
+                             "cube faces)"},
+             {.key = "smrt.cubeAdaptive",
+              .type = ParameterType::Int,
+              .defaultValue = 4,
+              .min = 0,
+              .max = 64,
+              .unit = "rays",
+              .description = "smrt.adaptive on a point light's cube faces, which trace "
+                             "smrt.cubeRays"},
              {.key = "smrt.skipLit",
               .type = ParameterType::Bool,
               .defaultValue = 1,
@@ -272,12 +286,21 @@ const TechniqueModule& smrtModule() {
                              "wide"},
              {.key = "smrt.filterTolerance",
               .type = ParameterType::Float,
-              .defaultValue = 0.7,
+              .defaultValue = 0.15,
               .min = 0.05,
               .max = 1.0,
               .unit = "visibility",
               .description = "the filter's range: a neighbour whose visibility differs by this "
-                             "much or more does not count, so hard edges stay sharp"},
+                             "much or more does not count, so hard edges and narrow penumbrae "
+                             "stay sharp (spots and suns)"},
+             {.key = "smrt.cubeFilterTolerance",
+              .type = ParameterType::Float,
+              .defaultValue = 0.7,
+              .min = 0.05,
+              .max = 1.0,
+              .unit = "visibility",
+              .description = "smrt.filterTolerance under point lights, whose fewer rays a "
+                             "pixel (smrt.cubeRays) leave more noise to take"},
              {.key = "smrt.rotation",
               .type = ParameterType::Choice,
               .defaultValue = 2,
@@ -307,7 +330,8 @@ const TechniqueModule& smrtModule() {
                                           .adaptive = whole("smrt.adaptive"),
                                           .cubeRays = whole("smrt.cubeRays"),
                                           .cubeSamples = whole("smrt.cubeSamples"),
-                                          .skipLit = whole("smrt.skipLit")});
+                                          .skipLit = whole("smrt.skipLit"),
+                                          .cubeAdaptive = whole("smrt.cubeAdaptive")});
             },
         .reference = smrtReference,
         .modelsLightSize = true,
@@ -319,7 +343,8 @@ const TechniqueModule& smrtModule() {
                 return VisibilityFilter{
                     .radius = static_cast<uint32_t>(p.number("smrt.filter")),
                     .tolerance = static_cast<float>(p.number("smrt.filterTolerance")),
-                    .cubeRadius = static_cast<uint32_t>(p.number("smrt.cubeFilter"))};
+                    .cubeRadius = static_cast<uint32_t>(p.number("smrt.cubeFilter")),
+                    .cubeTolerance = static_cast<float>(p.number("smrt.cubeFilterTolerance"))};
             }};
     return module;
 }

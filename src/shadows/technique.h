@@ -136,11 +136,13 @@ struct FilterInput {
 // An edge-aware spatial filter of a technique's visibility
 // (shaders/include/visibility_filter_weights.h).
 struct VisibilityFilter {
-    uint32_t radius = 0;     // pixels each side along rows, then columns (0: none)
-    float tolerance = 0.5f;  // visibility steps beyond this stay sharp
-    uint32_t cubeRadius = 0; // radius under point lights (their cube faces' own budget)
-    // The radius for a light of this kind (LIGHT_*).
+    uint32_t radius = 0;        // pixels each side along rows, then columns (0: none)
+    float tolerance = 0.5f;     // visibility steps beyond this stay sharp
+    uint32_t cubeRadius = 0;    // radius under point lights (their cube faces' own budget)
+    float cubeTolerance = 0.5f; // tolerance under point lights
+    // The radius and the tolerance for a light of this kind (LIGHT_*).
     uint32_t radiusFor(uint32_t lightType) const;
+    float toleranceFor(uint32_t lightType) const;
     bool runs() const { return radius > 0 || cubeRadius > 0; }
 };
 

@@ -50,6 +50,10 @@ uint32_t VisibilityFilter::radiusFor(uint32_t lightType) const {
     return lightType == LIGHT_POINT ? cubeRadius : radius;
 }
 
+float VisibilityFilter::toleranceFor(uint32_t lightType) const {
+    return lightType == LIGHT_POINT ? cubeTolerance : tolerance;
+}
+
 std::vector<float> filterVisibility(uint32_t width, uint32_t height,
                                     std::span<const float> position, std::span<const float> normal,
                                     std::span<const float> visibility, VisibilityFilter filter) {
