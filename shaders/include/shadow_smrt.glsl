@@ -68,12 +68,12 @@ bool smrtProvenLit(sampler2DArray map, usampler2DArray bounds, ShadowViewData vi
     // A level's size by arithmetic: lavapipe 22.3 answers textureSize(bounds, level) with level 0's
     // size when the level changes from one iteration of the loop to the next.
     int boundsSize = textureSize(bounds, 0).x;
+    int l = int(layer);
     // Outermost first: where a caster stands in the light's way, the wide rings fail first, before
     // the near ones spend reads on their children.
     for (uint k = rings; k >= 1u; --k) {
         int level = min(int(k), levels - 1);
         ivec4 block = smrtBoundsBlock(at, uint(level), max(boundsSize >> level, 1));
-        int l = int(layer);
         uint nearest = min(min(texelFetch(bounds, ivec3(block.xy, l), level).r,
                                texelFetch(bounds, ivec3(block.zy, l), level).r),
                            min(texelFetch(bounds, ivec3(block.xw, l), level).r,

@@ -302,13 +302,17 @@ SHARED int smrtLastChild(int tile, int levelSize, int childSize) {
     return tile == levelSize - 1 ? childSize - 1 : 2 * tile + 1;
 }
 
-// The distance (texels) from `at` to the texels `tile` of `level` covers (its last tile reaches
-// the map's edge).
+// One past the last texel, along an axis, that `tile` of `level` covers (levelSize tiles a side;
+// the last tile reaches the map's edge).
+SHARED int smrtTileEnd(int tile, int level, int levelSize, uint mapSize) {
+    return tile == levelSize - 1 ? int(mapSize) : (tile + 1) * (2 << level);
+}
+
+// The distance (texels) from `at` to the texels `tile` of `level` covers.
 SHARED float smrtTileDistance(vec2 at, ivec2 tile, int level, int levelSize, uint mapSize) {
-    float side = float(2 << level);
-    vec2 low = vec2(tile) * side;
-    vec2 high = vec2(tile.x == levelSize - 1 ? float(mapSize) : low.x + side,
-                     tile.y == levelSize - 1 ? float(mapSize) : low.y + side);
+    vec2 low = vec2(tile * (2 << level));
+    vec2 high = vec2(float(smrtTileEnd(tile.x, level, levelSize, mapSize)),
+                     float(smrtTileEnd(tile.y, level, levelSize, mapSize)));
     vec2 gap = max(max(low - at, at - high), vec2(0.0f, 0.0f));
     return length(gap);
 }

@@ -39,11 +39,12 @@ gpu::SmrtPoint pointAt(const FilterInput& in, const gpu::SmrtParams& s, glm::vec
 // The nearest depth over the texels of `tile` at `level` of the bounds (levelSize tiles a side),
 // straight from the map.
 float tileNearest(const ShadowMapView& map, glm::ivec2 tile, int level, int levelSize) {
-    const int side = 2 << level, last = static_cast<int>(map.size) - 1;
-    auto end = [&](int t) { return t == levelSize - 1 ? last : (t + 1) * side - 1; };
+    const int side = 2 << level;
+    const int endY = gpu::smrtTileEnd(tile.y, level, levelSize, map.size);
+    const int endX = gpu::smrtTileEnd(tile.x, level, levelSize, map.size);
     float nearest = 1.0f;
-    for (int y = tile.y * side; y <= end(tile.y); ++y)
-        for (int x = tile.x * side; x <= end(tile.x); ++x)
+    for (int y = tile.y * side; y < endY; ++y)
+        for (int x = tile.x * side; x < endX; ++x)
             nearest = std::min(nearest, map.texel(x, y));
     return std::max(nearest, 0.0f);
 }
