@@ -61,5 +61,7 @@ void main() {
         weights += w;
         sum += w * vq;
     }
-    writeTarget(at, sum / weights); // the pixel itself weighs RADIUS + 1
+    // The pixel itself weighs RADIUS + 1. The clamp: a GPU's division may round sum / weights
+    // past 1 by an ulp or two where every neighbour is lit (a reciprocal, not an exact quotient).
+    writeTarget(at, clamp(sum / weights, 0.0, 1.0));
 }

@@ -135,7 +135,9 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         marched += length((smrtProject(view, p + march.extent * d) - r.uv) * float(mapSize));
         traced += 1.0;
     }
-    return vec4(1.0 - blocked / traced, blocked, extrapolated, marched / traced);
+    // A division may round either way by 2.5 ulp (a GPU takes a reciprocal): with every ray
+    // blocked, 1 - 5/5 would read -1e-7 on an H100 without the max.
+    return vec4(max(1.0 - blocked / traced, 0.0), blocked, extrapolated, marched / traced);
 }
 
 vec4 evaluateSmrt(TechniqueInput at) {

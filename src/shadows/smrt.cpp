@@ -164,7 +164,7 @@ glm::vec4 smrtReference(const FilterInput& in) {
                                static_cast<float>(mapSize));
         traced += 1.0f;
     }
-    return {1.0f - blocked / traced, blocked, extrapolated, marched / traced};
+    return {std::max(1.0f - blocked / traced, 0.0f), blocked, extrapolated, marched / traced};
 }
 
 } // namespace

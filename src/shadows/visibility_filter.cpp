@@ -4,6 +4,7 @@
 #include "light_geometry.h"
 #include "visibility_filter_weights.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace penumbra::shadows {
@@ -39,7 +40,7 @@ std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const f
                 weights += w;
                 sum += w * source[j];
             }
-            out[i] = sum / weights;
+            out[i] = std::clamp(sum / weights, 0.0f, 1.0f);
         }
     return out;
 }
