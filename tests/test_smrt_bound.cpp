@@ -188,3 +188,65 @@ TEST(SmrtLitCeiling, DepthOfInvertsViewDistance) {
         }
     }
 }
+
+// smrt.gapSamples' check of a long step: every texel the march may read between the step's ends
+// (points along it, their texels clamped to the map as smrtStored clamps them) lies in the tiles
+// smrtStepTiles names, at most 2x2 of the finest level that holds them, on odd-sized and
+// power-of-two maps, with ends off the map too.
+TEST(SmrtStepCheck, TilesHoldEveryTexelTheStepReads) {
+    std::mt19937 engine(5);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int mapSize : {1000, 1024, 77}) {
+        const int boundsSize = std::max(mapSize >> 1, 1);
+        int levels = 1;
+        while ((boundsSize >> levels) > 0)
+            ++levels;
+        for (int trial = 0; trial < 2000; ++trial) {
+            gpu::SmrtPoint a{}, b{};
+            a.uv = {unit(engine) * 1.1f - 0.05f, unit(engine) * 1.1f - 0.05f};
+            // Steps of a texel to most of the map, in any direction.
+            const float length = std::pow(2.0f, 10.0f * unit(engine)) / float(mapSize);
+            const float angle = 6.2831853f * unit(engine);
+            b.uv = a.uv + length * glm::vec2(std::cos(angle), std::sin(angle));
+            const glm::ivec4 box = gpu::smrtStepTexelBox(a, b, uint32_t(mapSize));
+            const int level = gpu::smrtStepLevel(box, levels);
+            const int levelSize = std::max(boundsSize >> level, 1);
+            const glm::ivec4 tiles = gpu::smrtStepTiles(box, level, levelSize);
+            EXPECT_LE(tiles.z - tiles.x, 1) << mapSize << " level " << level;
+            EXPECT_LE(tiles.w - tiles.y, 1) << mapSize << " level " << level;
+            const int widest = std::max(box.z - box.x, box.w - box.y) + 1;
+            if (level > 0) { // the finest level that holds the box
+                EXPECT_LT(2 << (level - 1), widest) << mapSize << " level " << level;
+            }
+            for (int i = 0; i <= 64; ++i) {
+                const glm::vec2 uv = glm::mix(a.uv, b.uv, float(i) / 64.0f);
+                const glm::ivec2 texel =
+                    glm::clamp(glm::ivec2(glm::floor(uv * float(mapSize))), 0, mapSize - 1);
+                for (int axis = 0; axis < 2; ++axis) {
+                    const int first = axis == 0 ? tiles.x : tiles.y;
+                    const int last = axis == 0 ? tiles.z : tiles.w;
+                    ASSERT_GE(texel[axis], tileTexels(first, level, levelSize, mapSize).x)
+                        << mapSize << " level " << level << " axis " << axis;
+                    ASSERT_LE(texel[axis], tileTexels(last, level, levelSize, mapSize).y)
+                        << mapSize << " level " << level << " axis " << axis;
+                }
+            }
+        }
+    }
+}
+
+// A tile storing at least smrtStepCeiling(z)'s depth lies no nearer the light than z, after the
+// rounding of viewDistance, under both projections; and the ceiling stays within 1e-4 of z.
+TEST(SmrtStepCheck, CeilingLiesBeyondTheStepsFarEnd) {
+    for (const gpu::ShadowViewData& v :
+         {view(1.0f, 0.1f, 30.0f, {2.0f, 2.0f}, 0.1f), view(2.0f, 0.05f, 12.0f, {2.0f, 2.0f}, 0.3f),
+          view(0.0f, -5.0f, 40.0f, {30.0f, 30.0f}, 0.01f)}) {
+        for (int i = 0; i <= 1000; ++i) {
+            const float z = v.frustum.x + (v.frustum.y - v.frustum.x) * float(i) / 1000.0f;
+            const float ceiling = gpu::smrtStepCeiling(v, z);
+            EXPECT_GE(gpu::viewDistance(v, ceiling), z) << z;
+            const float step = v.texel.y > 0.5f ? z * z / v.frustum.x : v.frustum.y - v.frustum.x;
+            EXPECT_LE(gpu::viewDistance(v, ceiling), z + 2e-5f * std::abs(z) + 1e-6f * step) << z;
+        }
+    }
+}

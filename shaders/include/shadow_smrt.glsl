@@ -87,6 +87,39 @@ bool smrtProvenLit(sampler2DArray map, usampler2DArray bounds, ShadowViewData vi
     return true;
 }
 
+// smrt.gapSamples: whether the bounds prove that no point of the step from a to b lies behind the
+// map (smrtLongStep). Virtual maps have no bounds: nothing is proven, and every long step in front
+// of the surface is sampled again.
+bool smrtStepClear(usampler2DArray bounds, ShadowViewData view, SmrtPoint a, SmrtPoint b,
+                   uint mapSize, int layer, int levels, int boundsSize) {
+    if (VIRTUAL_MAPS) return false;
+    ivec4 box = smrtStepTexelBox(a, b, mapSize);
+    int level = smrtStepLevel(box, levels);
+    ivec4 tiles = smrtStepTiles(box, level, max(boundsSize >> level, 1));
+    // The box's 2x2 tiles (or fewer, read twice): no loop, which lavapipe would run masked.
+    uint nearest = min(min(texelFetch(bounds, ivec3(tiles.xy, layer), level).r,
+                           texelFetch(bounds, ivec3(tiles.zy, layer), level).r),
+                       min(texelFetch(bounds, ivec3(tiles.xw, layer), level).r,
+                           texelFetch(bounds, ivec3(tiles.zw, layer), level).r));
+    // A point lies behind only past its slack, which grows with distance: the farther end's
+    // distance less the nearer end's slack bounds every point's.
+    float ceiling = smrtStepCeiling(view, max(a.z, b.z) - min(a.slack, b.slack));
+    return uintBitsToFloat(nearest) >= ceiling;
+}
+
+// Whether the ray crosses the map's surface between a and b, which lie on either side of it: the
+// interval halved smrt.refine times, then smrtCrosses.
+bool smrtStepCrosses(sampler2DArray map, ShadowViewData view, vec3 p, vec3 d, SmrtPoint a,
+                     SmrtPoint b, uint mapSize, float layer) {
+    for (uint j = 0u; j < smrt.refine; ++j) {
+        SmrtPoint m = smrtPoint(map, view, p, d, 0.5 * (a.s + b.s), mapSize, layer);
+        if (smrtIsBehind(m) == smrtIsBehind(a)) a = m;
+        else b = m;
+    }
+    float margin;
+    return smrtCrosses(view, a, b, smrt.slope, margin);
+}
+
 // x visibility, y rays blocked, z of those, the rays blocked only by extrapolation, w the mean
 // march length in texels of the map (over the rays traced).
 vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view,
@@ -94,12 +127,16 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
     float turns = rotationTurns(smrt.rotation, pixel);
     uvec2 budget = smrtBudget(view, smrt);
     uint rays = budget.x, samples = budget.y, adaptive = smrtAdaptive(view, smrt);
+    uint gapSamples = smrtGapSamples(view, smrt);
     vec3 p = smrtViewPoint(view, r.uv, viewDistance(view, r.depth));
     if (smrt.skipLit != 0u && smrtProvenLit(map, shadowTable, view, p, r.uv, mapSize, r.layer))
         return vec4(1.0, 0.0, 0.0, 0.0);
     SmrtPoint receiver = smrtPoint(map, view, p, vec3(0.0), 0.0, mapSize, r.layer);
     float blocked = 0.0, extrapolated = 0.0, marched = 0.0, traced = 0.0;
     bool grazed = smrtIsBehind(receiver);
+    int l = int(r.layer);
+    int levels = VIRTUAL_MAPS ? 1 : textureQueryLevels(shadowTable);
+    int boundsSize = VIRTUAL_MAPS ? 1 : textureSize(shadowTable, 0).x;
     // From the light's rim inwards: the first rays reach round its rim.
     for (uint ray = 0u; ray < rays; ++ray) {
         uint k = rays - 1u - ray;
@@ -111,21 +148,50 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         float jitter = fract(turns * 2.618034 + float(k) * 0.7548777);
         SmrtPoint last = receiver;
         bool crossed = false;
-        for (uint i = 0u; i < samples && !crossed; ++i) {
-            float s = smrtSampleDistance(march, p, d, i, samples, jitter);
-            SmrtPoint next = smrtPoint(map, view, p, d, s, mapSize, r.layer);
-            grazed = grazed || smrtIsBehind(next);
-            if (smrtIsBehind(next) != smrtIsBehind(last)) {
-                SmrtPoint a = last, b = next;
-                for (uint j = 0u; j < smrt.refine; ++j) {
-                    SmrtPoint m = smrtPoint(map, view, p, d, 0.5 * (a.s + b.s), mapSize, r.layer);
-                    if (smrtIsBehind(m) == smrtIsBehind(a)) a = m;
-                    else b = m;
+        // Two loops, not one with a test of gapSamples in it: lavapipe runs a branch inside
+        // the march masked, taken or not, and the gaps' reads would cost every pixel.
+        if (gapSamples == 0u) {
+            for (uint i = 0u; i < samples && !crossed; ++i) {
+                float s = smrtSampleDistance(march, p, d, i, samples, jitter);
+                SmrtPoint next = smrtPoint(map, view, p, d, s, mapSize, r.layer);
+                grazed = grazed || smrtIsBehind(next);
+                if (smrtIsBehind(next) != smrtIsBehind(last)) {
+                    SmrtPoint a = last, b = next;
+                    for (uint j = 0u; j < smrt.refine; ++j) {
+                        SmrtPoint m = smrtPoint(map, view, p, d, 0.5 * (a.s + b.s), mapSize, r.layer);
+                        if (smrtIsBehind(m) == smrtIsBehind(a)) a = m;
+                        else b = m;
+                    }
+                    float margin;
+                    crossed = smrtCrosses(view, a, b, smrt.slope, margin);
                 }
-                float margin;
-                crossed = smrtCrosses(view, a, b, smrt.slope, margin);
+                last = next;
             }
-            last = next;
+        } else {
+            for (uint i = 0u; i < samples && !crossed; ++i) {
+                float s = smrtSampleDistance(march, p, d, i, samples, jitter);
+                SmrtPoint next = smrtPoint(map, view, p, d, s, mapSize, r.layer);
+                grazed = grazed || smrtIsBehind(next);
+                SmrtPoint from = last;
+                // A long step in front of the surface that the bounds cannot prove clear: sampled
+                // again inside.
+                if (!smrtIsBehind(last) && !smrtIsBehind(next) &&
+                    smrtStepTexels(last, next, mapSize) > smrtLongStep() &&
+                    !smrtStepClear(shadowTable, view, last, next, mapSize, l, levels, boundsSize)) {
+                    for (uint j = 1u; j <= gapSamples && !crossed; ++j) {
+                        float s = smrtGapDistance(last, next, j, gapSamples);
+                        SmrtPoint inside = smrtPoint(map, view, p, d, s, mapSize, r.layer);
+                        grazed = grazed || smrtIsBehind(inside);
+                        if (smrtIsBehind(inside) != smrtIsBehind(from))
+                            crossed = smrtStepCrosses(map, view, p, d, from, inside, mapSize,
+                                                      r.layer);
+                        from = inside;
+                    }
+                }
+                if (!crossed && smrtIsBehind(next) != smrtIsBehind(from))
+                    crossed = smrtStepCrosses(map, view, p, d, from, next, mapSize, r.layer);
+                last = next;
+            }
         }
         // A ray that ends behind the surface is extrapolated on towards the light: it meets the
         // occluder it is behind (nothing lies nearer the light than the near plane).

@@ -10,6 +10,7 @@
 
 #ifdef __cplusplus
 #include <glm/glm.hpp>
+#include <glm/integer.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -32,6 +33,7 @@ using glm::cos;
 using glm::cross;
 using glm::dot;
 using glm::exp;
+using glm::findMSB;
 using glm::floor;
 using glm::fract;
 using glm::length;

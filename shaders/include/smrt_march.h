@@ -28,7 +28,10 @@ struct SmrtParams {      // std140
     uint cubeSamples;    // light's cube faces (smrtBudget)
     uint skipLit;        // smrt.skipLit: 1: pixels the map's bounds prove fully lit trace no ray
     uint cubeAdaptive;   // smrt.cubeAdaptive: smrt.adaptive on a point light's cube faces
-    uint pad2;
+    uint gapSamples;     // smrt.gapSamples: samples added inside a long step in front of the
+                         // surface that the map's bounds cannot prove clear (0: off)
+    uint cubeGapSamples; // smrt.cubeGapSamples: smrt.gapSamples on a point light's cube faces
+    uint pad0, pad1, pad2;
 };
 
 // The rays per pixel (x) and samples per ray (y) in `view`. A point light's cube face (texel.y 2)
@@ -44,6 +47,11 @@ SHARED uvec2 smrtBudget(IN(ShadowViewData) view, IN(SmrtParams) params) {
 // their own).
 SHARED uint smrtAdaptive(IN(ShadowViewData) view, IN(SmrtParams) params) {
     return view.texel.y > 1.5f ? params.cubeAdaptive : params.adaptive;
+}
+
+// The samples added inside a long step (smrt.gapSamples; smrtBudget's faces take their own).
+SHARED uint smrtGapSamples(IN(ShadowViewData) view, IN(SmrtParams) params) {
+    return view.texel.y > 1.5f ? params.cubeGapSamples : params.gapSamples;
 }
 
 // A point of the view's space from its map coordinates (uv) and light view distance z.
@@ -315,6 +323,59 @@ SHARED float smrtTileDistance(vec2 at, ivec2 tile, int level, int levelSize, uin
                      float(smrtTileEnd(tile.y, level, levelSize, mapSize)));
     vec2 gap = max(max(low - at, at - high), vec2(0.0f, 0.0f));
     return length(gap);
+}
+
+// smrt.gapSamples. Two samples in front of the map's surface say nothing of the stretch between
+// them: a ray towards a wide light's far rim passes under a sphere's silhouette in a few texels
+// and the march's long far steps (smrtSampleDistance) step over it, so the outer penumbra reads
+// too bright. A step of more than smrtLongStep texels is checked against the bounds (the nearest
+// depth over tiles, smrt.skipLit's): where a tile it crosses holds a depth nearer the light than
+// its farther end, the step is sampled again at smrt.gapSamples evenly spaced points. Near the
+// receiver, where the steps are short, nothing changes.
+SHARED float smrtLongStep() { return 4.0f; }
+
+// The step's length in texels of the map.
+SHARED float smrtStepTexels(IN(SmrtPoint) a, IN(SmrtPoint) b, uint mapSize) {
+    return length((b.uv - a.uv) * float(mapSize));
+}
+
+// Inside point j (1 .. n) of n evenly spaced between a and b, along the ray.
+SHARED float smrtGapDistance(IN(SmrtPoint) a, IN(SmrtPoint) b, uint j, uint n) {
+    return a.s + (b.s - a.s) * float(j) / float(n + 1u);
+}
+
+// The texels the step reads (the march's reads are clamped to the map): the first (xy) and last
+// (zw) of their box.
+SHARED ivec4 smrtStepTexelBox(IN(SmrtPoint) a, IN(SmrtPoint) b, uint mapSize) {
+    ivec2 top = ivec2(int(mapSize) - 1, int(mapSize) - 1);
+    vec2 low = min(a.uv, b.uv) * float(mapSize), high = max(a.uv, b.uv) * float(mapSize);
+    ivec2 first = clamp(ivec2(floor(low)), ivec2(0, 0), top);
+    ivec2 last = clamp(ivec2(floor(high)), ivec2(0, 0), top);
+    return ivec4(first.x, first.y, last.x, last.y);
+}
+
+// The bounds' level whose tiles (2^(level+1) texels a side) are as wide as the box, so that at most
+// 2x2 of them hold it (the top level's one tile, the whole map, where none below is).
+SHARED int smrtStepLevel(ivec4 box, int levels) {
+    int widest = max(box.z - box.x, box.w - box.y) + 1; // (2 << level) >= widest
+    return clamp(findMSB(max(widest - 1, 1)), 0, levels - 1);
+}
+
+// The box's tiles at `level` (levelSize tiles a side; the last takes the odd-sized leftovers).
+SHARED ivec4 smrtStepTiles(ivec4 box, int level, int levelSize) {
+    int side = 2 << level, last = levelSize - 1;
+    return ivec4(min(box.x / side, last), min(box.y / side, last), min(box.z / side, last),
+                 min(box.w / side, last));
+}
+
+// The stored depth a tile must hold at least for no point of a step to fall behind it, given the
+// step's bound z on each point's distance less its slack (smrtStepClear: the farther end's distance
+// less the nearer end's slack), with the rounding of viewDistance and smrtDepthOf allowed for
+// (1e-5 z and four steps of the depth's float, as smrtCeilingOf).
+SHARED float smrtStepCeiling(IN(ShadowViewData) view, float z) {
+    float n = view.frustum.x, f = view.frustum.y;
+    float depthStep = view.texel.y > 0.5f ? z * z / max(n, 1e-6f) : abs(f - n);
+    return smrtDepthOf(view, z + 1e-5f * abs(z) + 4e-7f * depthStep);
 }
 
 PENUMBRA_GPU_END

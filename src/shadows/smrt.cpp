@@ -115,6 +115,36 @@ bool provenLit(const FilterInput& in, const gpu::SmrtParams& s, glm::vec3 p) {
     return true;
 }
 
+// The march's test for a step to check (smrtStepTexels against smrtLongStep).
+bool isLongStep(const FilterInput& in, const gpu::SmrtPoint& a, const gpu::SmrtPoint& b) {
+    const float texels = gpu::smrtStepTexels(a, b, in.map.size);
+    in.margins.see(texels / gpu::smrtLongStep(), 1.0f);
+    return texels > gpu::smrtLongStep();
+}
+
+// smrtStepClear, transcribed: each tile's nearest depth straight from the map.
+bool stepClear(const FilterInput& in, const gpu::SmrtPoint& a, const gpu::SmrtPoint& b) {
+    const uint32_t boundsSize = std::max(in.map.size >> 1, 1u);
+    int levels = 1;
+    while ((boundsSize >> levels) > 0)
+        ++levels;
+    const glm::ivec4 box = gpu::smrtStepTexelBox(a, b, in.map.size);
+    // The box's corners are the ends' own texels, whose margins `stored` has seen.
+    const int level = gpu::smrtStepLevel(box, levels);
+    const int levelSize = static_cast<int>(std::max(boundsSize >> level, 1u));
+    const glm::ivec4 tiles = gpu::smrtStepTiles(box, level, levelSize);
+    const float ceiling =
+        gpu::smrtStepCeiling(in.view, std::max(a.z, b.z) - std::min(a.slack, b.slack));
+    for (int y = tiles.y; y <= tiles.w; ++y)
+        for (int x = tiles.x; x <= tiles.z; ++x) {
+            const float nearest = tileNearest(in.map, {x, y}, level, levelSize);
+            in.margins.see(nearest, ceiling);
+            if (nearest < ceiling)
+                return false;
+        }
+    return true;
+}
+
 // shadowSmrtDetail: x visibility, y rays blocked, z of those blocked only by extrapolation, w the
 // mean march length in texels (over the rays traced).
 glm::vec4 smrtReference(const FilterInput& in) {
@@ -125,6 +155,7 @@ glm::vec4 smrtReference(const FilterInput& in) {
     const glm::uvec2 budget = gpu::smrtBudget(view, s);
     const uint32_t rays = budget.x, samples = budget.y;
     const uint32_t adaptive = gpu::smrtAdaptive(view, s);
+    const uint32_t gapSamples = gpu::smrtGapSamples(view, s);
     const glm::vec3 p =
         gpu::smrtViewPoint(view, in.probe.uv, gpu::viewDistance(view, in.probe.depth));
     if (s.skipLit != 0 && provenLit(in, s, p))
@@ -141,20 +172,35 @@ glm::vec4 smrtReference(const FilterInput& in) {
         const float jitter = glm::fract(turns * 2.618034f + static_cast<float>(k) * 0.7548777f);
         gpu::SmrtPoint last = receiver;
         bool crossed = false;
+        // smrtStepCrosses, transcribed.
+        auto crosses = [&](gpu::SmrtPoint a, gpu::SmrtPoint b) {
+            for (uint32_t j = 0; j < s.refine; ++j) {
+                const gpu::SmrtPoint m = pointAt(in, s, p, d, 0.5f * (a.s + b.s));
+                (gpu::smrtIsBehind(m) == gpu::smrtIsBehind(a) ? a : b) = m;
+            }
+            float margin = 0.0f;
+            const bool result = gpu::smrtCrosses(view, a, b, s.slope, margin);
+            in.margins.see(margin, 0.0f);
+            return result;
+        };
         for (uint32_t i = 0; i < samples && !crossed; ++i) {
             const gpu::SmrtPoint next =
                 pointAt(in, s, p, d, gpu::smrtSampleDistance(march, p, d, i, samples, jitter));
             grazed = grazed || gpu::smrtIsBehind(next);
-            if (gpu::smrtIsBehind(next) != gpu::smrtIsBehind(last)) {
-                gpu::SmrtPoint a = last, b = next;
-                for (uint32_t j = 0; j < s.refine; ++j) {
-                    const gpu::SmrtPoint m = pointAt(in, s, p, d, 0.5f * (a.s + b.s));
-                    (gpu::smrtIsBehind(m) == gpu::smrtIsBehind(a) ? a : b) = m;
+            gpu::SmrtPoint from = last;
+            if (gapSamples > 0 && !gpu::smrtIsBehind(last) && !gpu::smrtIsBehind(next) &&
+                isLongStep(in, last, next) && !stepClear(in, last, next)) {
+                for (uint32_t j = 1; j <= gapSamples && !crossed; ++j) {
+                    const gpu::SmrtPoint inside =
+                        pointAt(in, s, p, d, gpu::smrtGapDistance(last, next, j, gapSamples));
+                    grazed = grazed || gpu::smrtIsBehind(inside);
+                    if (gpu::smrtIsBehind(inside) != gpu::smrtIsBehind(from))
+                        crossed = crosses(from, inside);
+                    from = inside;
                 }
-                float margin = 0.0f;
-                crossed = gpu::smrtCrosses(view, a, b, s.slope, margin);
-                in.margins.see(margin, 0.0f);
             }
+            if (!crossed && gpu::smrtIsBehind(next) != gpu::smrtIsBehind(from))
+                crossed = crosses(from, next);
             last = next;
         }
         const bool hit = crossed || gpu::smrtIsBehind(last);
@@ -182,7 +228,8 @@ const TechniqueModule& smrtModule() {
                               {.label = "fast",
                                .sets = {{"smrt.rays", "16"},
                                         {"smrt.adaptive", "4"},
-                                        {"smrt.filterTolerance", "0.7"}}}}},
+                                        {"smrt.filterTolerance", "0.7"},
+                                        {"smrt.cubeGapSamples", "0"}}}}},
         .parameters =
             {{.key = "smrt.rays",
               .type = ParameterType::Int,
@@ -267,6 +314,25 @@ const TechniqueModule& smrtModule() {
                              "over tiles of 2 to 1024 texels, built after the depth pass) and "
                              "trace no ray there; the same result, fewer rays (not on virtual "
                              "maps)"},
+             {.key = "smrt.gapSamples",
+              .type = ParameterType::Int,
+              .defaultValue = 0,
+              .min = 0,
+              .max = 16,
+              .unit = "samples",
+              .description = "samples added, evenly spaced, inside a step of more than 4 texels "
+                             "whose ends lie in front of the map's surface where the map's "
+                             "bounds cannot prove that nothing lies between (thin occluders the "
+                             "long far steps would pass; 0: off; on virtual maps, which have no "
+                             "bounds, every such step)"},
+             {.key = "smrt.cubeGapSamples",
+              .type = ParameterType::Int,
+              .defaultValue = 3,
+              .min = 0,
+              .max = 16,
+              .unit = "samples",
+              .description = "smrt.gapSamples on a point light's cube faces, whose rays towards "
+                             "a close light's rim take the longest steps"},
              {.key = "smrt.filter",
               .type = ParameterType::Int,
               .defaultValue = 1,
@@ -332,7 +398,9 @@ const TechniqueModule& smrtModule() {
                                           .cubeRays = whole("smrt.cubeRays"),
                                           .cubeSamples = whole("smrt.cubeSamples"),
                                           .skipLit = whole("smrt.skipLit"),
-                                          .cubeAdaptive = whole("smrt.cubeAdaptive")});
+                                          .cubeAdaptive = whole("smrt.cubeAdaptive"),
+                                          .gapSamples = whole("smrt.gapSamples"),
+                                          .cubeGapSamples = whole("smrt.cubeGapSamples")});
             },
         .reference = smrtReference,
         .modelsLightSize = true,
