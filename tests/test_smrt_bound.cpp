@@ -235,18 +235,34 @@ TEST(SmrtStepCheck, TilesHoldEveryTexelTheStepReads) {
     }
 }
 
-// A tile storing at least smrtStepCeiling(z)'s depth lies no nearer the light than z, after the
-// rounding of viewDistance, under both projections; and the ceiling stays within 1e-4 of z.
-TEST(SmrtStepCheck, CeilingLiesBeyondTheStepsFarEnd) {
+// A tile storing at least smrtStepCeiling's depth holds no point of the step behind it: every
+// point between the ends lies no farther than the ceiling's distance plus its own slack (the
+// march's test), after the rounding of viewDistance, under both projections and on a cube face;
+// and the ceiling stays within 2e-5 of the larger of the ends' distance less slack.
+TEST(SmrtStepCheck, CeilingHoldsEveryPointOfTheStep) {
+    std::mt19937 engine(9);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (const gpu::ShadowViewData& v :
          {view(1.0f, 0.1f, 30.0f, {2.0f, 2.0f}, 0.1f), view(2.0f, 0.05f, 12.0f, {2.0f, 2.0f}, 0.3f),
           view(0.0f, -5.0f, 40.0f, {30.0f, 30.0f}, 0.01f)}) {
-        for (int i = 0; i <= 1000; ++i) {
-            const float z = v.frustum.x + (v.frustum.y - v.frustum.x) * float(i) / 1000.0f;
-            const float ceiling = gpu::smrtStepCeiling(v, z);
-            EXPECT_GE(gpu::viewDistance(v, ceiling), z) << z;
+        auto pointAt = [&](float z) {
+            gpu::SmrtPoint q{};
+            q.z = z;
+            q.slack = 0.75f * kSlope * gpu::smrtTexelWorld(v, z, kMapSize);
+            return q;
+        };
+        const float low = std::max(v.frustum.x, 0.0f) + 0.01f, high = v.frustum.y;
+        for (int trial = 0; trial < 2000; ++trial) {
+            const gpu::SmrtPoint a = pointAt(low + (high - low) * unit(engine));
+            const gpu::SmrtPoint b = pointAt(low + (high - low) * unit(engine));
+            const float ceiling = gpu::viewDistance(v, gpu::smrtStepCeiling(v, a, b));
+            for (int i = 0; i <= 32; ++i) {
+                const gpu::SmrtPoint q = pointAt(a.z + (b.z - a.z) * float(i) / 32.0f);
+                ASSERT_LE(q.z - q.slack, ceiling) << a.z << " " << b.z << " at " << i;
+            }
+            const float z = std::max(a.z - a.slack, b.z - b.slack);
             const float step = v.texel.y > 0.5f ? z * z / v.frustum.x : v.frustum.y - v.frustum.x;
-            EXPECT_LE(gpu::viewDistance(v, ceiling), z + 2e-5f * std::abs(z) + 1e-6f * step) << z;
+            EXPECT_LE(ceiling, z + 2e-5f * std::abs(z) + 1e-6f * step) << a.z << " " << b.z;
         }
     }
 }

@@ -101,10 +101,7 @@ bool smrtStepClear(usampler2DArray bounds, ShadowViewData view, SmrtPoint a, Smr
                            texelFetch(bounds, ivec3(tiles.zy, layer), level).r),
                        min(texelFetch(bounds, ivec3(tiles.xw, layer), level).r,
                            texelFetch(bounds, ivec3(tiles.zw, layer), level).r));
-    // A point lies behind only past its slack, which grows with distance: the farther end's
-    // distance less the nearer end's slack bounds every point's.
-    float ceiling = smrtStepCeiling(view, max(a.z, b.z) - min(a.slack, b.slack));
-    return uintBitsToFloat(nearest) >= ceiling;
+    return uintBitsToFloat(nearest) >= smrtStepCeiling(view, a, b);
 }
 
 // Whether the ray crosses the map's surface between a and b, which lie on either side of it: the
@@ -155,16 +152,8 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 float s = smrtSampleDistance(march, p, d, i, samples, jitter);
                 SmrtPoint next = smrtPoint(map, view, p, d, s, mapSize, r.layer);
                 grazed = grazed || smrtIsBehind(next);
-                if (smrtIsBehind(next) != smrtIsBehind(last)) {
-                    SmrtPoint a = last, b = next;
-                    for (uint j = 0u; j < smrt.refine; ++j) {
-                        SmrtPoint m = smrtPoint(map, view, p, d, 0.5 * (a.s + b.s), mapSize, r.layer);
-                        if (smrtIsBehind(m) == smrtIsBehind(a)) a = m;
-                        else b = m;
-                    }
-                    float margin;
-                    crossed = smrtCrosses(view, a, b, smrt.slope, margin);
-                }
+                if (smrtIsBehind(next) != smrtIsBehind(last))
+                    crossed = smrtStepCrosses(map, view, p, d, last, next, mapSize, r.layer);
                 last = next;
             }
         } else {

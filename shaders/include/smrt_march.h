@@ -368,11 +368,13 @@ SHARED ivec4 smrtStepTiles(ivec4 box, int level, int levelSize) {
                  min(box.w / side, last));
 }
 
-// The stored depth a tile must hold at least for no point of a step to fall behind it, given the
-// step's bound z on each point's distance less its slack (smrtStepClear: the farther end's distance
-// less the nearer end's slack), with the rounding of viewDistance and smrtDepthOf allowed for
-// (1e-5 z and four steps of the depth's float, as smrtCeilingOf).
-SHARED float smrtStepCeiling(IN(ShadowViewData) view, float z) {
+// The stored depth a tile must hold at least for no point of the step from a to b to fall behind
+// it. A point lies behind only past its slack: below its distance less its slack. Both are linear
+// along the step (the slack is a texel's world size, linear in z), so the larger of the ends' is
+// every point's bound. The rounding of viewDistance and smrtDepthOf is allowed for (1e-5 z and
+// four steps of the depth's float, as smrtCeilingOf).
+SHARED float smrtStepCeiling(IN(ShadowViewData) view, IN(SmrtPoint) a, IN(SmrtPoint) b) {
+    float z = max(a.z - a.slack, b.z - b.slack);
     float n = view.frustum.x, f = view.frustum.y;
     float depthStep = view.texel.y > 0.5f ? z * z / max(n, 1e-6f) : abs(f - n);
     return smrtDepthOf(view, z + 1e-5f * abs(z) + 4e-7f * depthStep);

@@ -49,6 +49,19 @@ float tileNearest(const ShadowMapView& map, glm::ivec2 tile, int level, int leve
     return std::max(nearest, 0.0f);
 }
 
+// The bounds' size (half the map's, at least 1) and its levels down to one tile.
+struct BoundsShape {
+    uint32_t size = 1;
+    int levels = 1;
+};
+
+BoundsShape boundsShape(uint32_t mapSize) {
+    BoundsShape b{.size = std::max(mapSize >> 1, 1u)};
+    while ((b.size >> b.levels) > 0)
+        ++b.levels;
+    return b;
+}
+
 // smrtChildrenHold, transcribed.
 bool childrenHold(const FilterInput& in, const gpu::SmrtCeiling& c, glm::vec2 at, glm::ivec4 block,
                   int level, int boundsSize, float inner) {
@@ -92,10 +105,7 @@ bool provenLit(const FilterInput& in, const gpu::SmrtParams& s, glm::vec3 p) {
         for (int i = -1; i <= 1; ++i)
             if (below(in.map.texel(home.x + i, home.y + j), ceiling))
                 return false;
-    const uint32_t boundsSize = std::max(size >> 1, 1u);
-    int levels = 1;
-    while ((boundsSize >> levels) > 0)
-        ++levels;
+    const auto [boundsSize, levels] = boundsShape(size);
     const uint32_t rings = gpu::smrtBoundsRings(s.maxRadius);
     for (uint32_t k = rings; k >= 1; --k) {
         const int level = std::min(static_cast<int>(k), levels - 1);
@@ -124,17 +134,13 @@ bool isLongStep(const FilterInput& in, const gpu::SmrtPoint& a, const gpu::SmrtP
 
 // smrtStepClear, transcribed: each tile's nearest depth straight from the map.
 bool stepClear(const FilterInput& in, const gpu::SmrtPoint& a, const gpu::SmrtPoint& b) {
-    const uint32_t boundsSize = std::max(in.map.size >> 1, 1u);
-    int levels = 1;
-    while ((boundsSize >> levels) > 0)
-        ++levels;
+    const auto [boundsSize, levels] = boundsShape(in.map.size);
     const glm::ivec4 box = gpu::smrtStepTexelBox(a, b, in.map.size);
     // The box's corners are the ends' own texels, whose margins `stored` has seen.
     const int level = gpu::smrtStepLevel(box, levels);
     const int levelSize = static_cast<int>(std::max(boundsSize >> level, 1u));
     const glm::ivec4 tiles = gpu::smrtStepTiles(box, level, levelSize);
-    const float ceiling =
-        gpu::smrtStepCeiling(in.view, std::max(a.z, b.z) - std::min(a.slack, b.slack));
+    const float ceiling = gpu::smrtStepCeiling(in.view, a, b);
     for (int y = tiles.y; y <= tiles.w; ++y)
         for (int x = tiles.x; x <= tiles.z; ++x) {
             const float nearest = tileNearest(in.map, {x, y}, level, levelSize);
