@@ -153,8 +153,23 @@ VkPipeline FramePipelines::marking(const Constants& constants) {
     return specialized(mMarking, markingLayout, "page_marking.comp", constants);
 }
 
+namespace {
+
+// The module of a pass that evaluates techniques, for the technique its constants name:
+// `<shader>#<id>` holds that technique's code alone (cmake/Shaders.cmake, PER_TECHNIQUE).
+std::string techniqueModule(std::string_view shader, const std::vector<shadows::SpecConstant>& constants) {
+    for (const shadows::SpecConstant& c : constants)
+        if (c.id == SPEC_TECHNIQUE)
+            return std::string(shader) + "#" + std::to_string(c.value);
+    PENUMBRA_CHECK(false, std::string(shader) + ": no technique among its constants");
+    return {};
+}
+
+} // namespace
+
 VkPipeline FramePipelines::visibility(const Constants& constants) {
-    return specialized(mVisibility, visibilityLayout, "visibility.comp", constants);
+    return specialized(mVisibility, visibilityLayout, techniqueModule("visibility.comp", constants),
+                       constants);
 }
 
 VkPipeline FramePipelines::gbuffer(GBufferVariant v) {
@@ -198,7 +213,8 @@ VkPipeline FramePipelines::layer(std::string_view shader, const Constants& const
 }
 
 VkPipeline FramePipelines::probe(const Constants& constants) {
-    return specialized(mProbe, probeLayout, "filter_probe.comp", constants);
+    return specialized(mProbe, probeLayout, techniqueModule("filter_probe.comp", constants),
+                       constants);
 }
 
 VkPipeline FramePipelines::readingDepthPass(std::string_view fragmentShader, bool perspective) {
