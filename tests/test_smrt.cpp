@@ -116,10 +116,10 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
              {"smrt.rotation=none,smrt.refine=0,smrt.adaptive=0,smrt.cubeAdaptive=2,"
               "smrt.maxRadius=3,smrt.gapSamples=0,smrt.cubeGapSamples=2",
               "smrt.rotation=ign,smrt.refine=3,smrt.adaptive=4,smrt.cubeAdaptive=0,"
-              "smrt.maxRadius=24,smrt.gapSamples=3,smrt.cubeGapSamples=0",
+              "smrt.maxRadius=24,smrt.gapSamples=3,smrt.cubeGapSamples=0,smrt.hidden=1",
               // Long marches, whose far steps the gaps' samples fill under every light.
               "smrt.rotation=random,smrt.refine=2,smrt.adaptive=0,smrt.cubeAdaptive=0,"
-              "smrt.maxRadius=128,smrt.gapSamples=4,smrt.cubeGapSamples=3"}) {
+              "smrt.maxRadius=128,smrt.gapSamples=4,smrt.cubeGapSamples=3,smrt.hidden=1"}) {
             ParameterValues params;
             params.set("smrt.rays", "16");
             params.set("smrt.cubeRays", "5");
@@ -140,9 +140,14 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
             noGaps.set("smrt.cubeGapSamples", "0");
             const shadows::FilterSettings frameNoGaps =
                 shadows::filterSettings(shadows::moduleOf(Technique::Smrt), noGaps, false, 8);
+            // The same without smrt.hidden: the probes it moves.
+            ParameterValues shown = params;
+            shown.set("smrt.hidden", "false");
+            const shadows::FilterSettings frameShown =
+                shadows::filterSettings(shadows::moduleOf(Technique::Smrt), shown, false, 8);
             const gpu::ShadowViewData view = render::probeViewData(light);
             size_t compared = 0, valid = 0, penumbra = 0, extrapolated = 0, stopped = 0, proven = 0,
-                   nan = 0, gapMoved = 0;
+                   nan = 0, gapMoved = 0, hiddenMoved = 0;
             float most = 0.0f; // the most rays a probe found blocked
             glm::vec4 worst(0.0f);
             for (size_t i = 0; i < probes.size(); ++i) {
@@ -155,6 +160,8 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
                 penumbra += cpu.x > 0.0f && cpu.x < 1.0f;
                 gapMoved += cpu != shadows::techniqueReference(Technique::Smrt, map, probes[i],
                                                                frameNoGaps, view);
+                hiddenMoved += cpu != shadows::techniqueReference(Technique::Smrt, map, probes[i],
+                                                                  frameShown, view);
                 valid += cpu.x >= 0.0f && cpu.x <= 1.0f && gpuResult[i].x >= 0.0f &&
                          gpuResult[i].x <= 1.0f;
                 extrapolated += cpu.z > 0.0f;
@@ -190,13 +197,17 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
             // reach its near plane within 17 texels, and a march cut at 3 texels has no long step.
             const double gaps =
                 params.number(light.cubeFace ? "smrt.cubeGapSamples" : "smrt.gapSamples");
+            // smrt.hidden: the probe map's steps hide surfaces from a few probes' rays (2 to 12).
+            if (params.number("smrt.hidden") != 0) {
+                EXPECT_GT(hiddenMoved, 0u) << what << ": probes smrt.hidden moves";
+            }
             if (gaps > 0 && light.perspective && params.number("smrt.maxRadius") > 10.0) {
                 EXPECT_GT(gapMoved, 10u) << what << ": probes the gaps' samples move";
             } else if (gaps == 0) {
                 EXPECT_EQ(gapMoved, 0u) << what << ": probes the gaps' samples move";
             }
-            std::printf("%s: %zu of %zu probes moved by the gaps' samples\n", what.c_str(),
-                        gapMoved, compared);
+            std::printf("%s: %zu of %zu probes moved by the gaps' samples, %zu by smrt.hidden\n",
+                        what.c_str(), gapMoved, compared, hiddenMoved);
             if (adaptive > 0) {
                 EXPECT_GT(stopped, 50u) << what << ": pixels the first rays settle";
             }
@@ -521,7 +532,8 @@ Scene tableUnder(const Light& light) {
     const uint32_t wood = mb.material("wood", {0.6f, 0.45f, 0.3f});
     mb.box(glm::scale(glm::translate(glm::mat4(1.0f), {0.0f, 0.9f, 0.0f}), {2.0f, 0.08f, 1.2f}),
            wood);
-    for (const glm::vec2 leg : {glm::vec2(-0.9f, -0.5f), {0.9f, -0.5f}, {-0.9f, 0.5f}, {0.9f, 0.5f}})
+    for (const glm::vec2 leg :
+         {glm::vec2(-0.9f, -0.5f), {0.9f, -0.5f}, {-0.9f, 0.5f}, {0.9f, 0.5f}})
         mb.box(glm::scale(glm::translate(glm::mat4(1.0f), {leg.x, 0.43f, leg.y}),
                           {0.08f, 0.86f, 0.08f}),
                wood);
@@ -586,5 +598,56 @@ TEST_F(QualityTest, SmrtBeatsPcssBeyondTheSpheres) {
         }
         EXPECT_LT(beyond.acneBeyondBlur, 0.001) << c.name;
         EXPECT_LT(beyond.leakBeyondBlur, 0.001) << c.name;
+    }
+}
+
+// Casters stacked over one another: the table under a slatted roof (slats 0.15 wide, 0.25 apart,
+// 1.3 above the table top). Rays from under the table rise through the table top where a slat
+// hides it and come out between two slats: at the defaults they count as lit (half the umbra
+// under a spot or a bulb); smrt.hidden continues the table top under the slat and blocks them.
+TEST_F(QualityTest, SmrtHiddenSurfacesStopTheStackedCastersLeak) {
+    const Light spot{.name = "spot",
+                     .type = LightType::Spot,
+                     .position = {1.0f, 5.0f, 1.0f},
+                     .direction = glm::normalize(glm::vec3(-1.0f, -5.0f, -1.0f)),
+                     .intensity = 40.0f,
+                     .outerConeAngle = 0.8f,
+                     .radius = 0.5f};
+    const Light bulb{.name = "bulb",
+                     .type = LightType::Point,
+                     .position = {0.5f, 3.2f, 0.8f},
+                     .intensity = 8.0f,
+                     .radius = 0.3f};
+    const Light sun{.name = "sun",
+                    .type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.25f)),
+                    .angularDiameter = 4.0f};
+    for (const Light& light : {spot, bulb, sun}) {
+        Scene scene = tableUnder(light);
+        MeshBuilder mb(scene);
+        const uint32_t wood = mb.material("slats", {0.6f, 0.45f, 0.3f});
+        for (int i = -6; i <= 6; ++i)
+            mb.box(glm::scale(glm::translate(glm::mat4(1.0f), {0.25f * float(i), 2.2f, 0.0f}),
+                              {0.15f, 0.05f, 3.0f}),
+                   wood);
+        const Truth t = groundTruth(scene, {.width = 256, .height = 256, .samples = 128});
+        const RenderResult shown = renderRow(t, Technique::Smrt, {});
+        const RenderResult hidden = renderRow(t, Technique::Smrt, {{"smrt.hidden", "true"}});
+        const double pcss = errorOf(t, renderRow(t, Technique::Pcss, {})).rmse;
+        const double before = errorOf(t, shown).rmse, after = errorOf(t, hidden).rmse;
+        const double leakBefore = errorBeyondBlur(t, shown, Technique::Smrt).leakBeyondBlur;
+        const double leakAfter = errorBeyondBlur(t, hidden, Technique::Smrt).leakBeyondBlur;
+        std::printf("%-5s rmse pcss %.4f smrt %.4f, smrt.hidden %.4f; leak beyond blur %.3f%% -> "
+                    "%.3f%%\n",
+                    light.name.c_str(), pcss, before, after, 100 * leakBefore, 100 * leakAfter);
+        // Measured: leaks 54.9% -> 13.2% (spot), 49.6% -> 7.2% (bulb), 7.3% -> 0.28% (sun).
+        EXPECT_GT(leakBefore, 0.05) << light.name << ": the leak this guards";
+        EXPECT_LT(leakAfter, 0.3 * leakBefore) << light.name;
+        EXPECT_LT(after, before) << light.name;
+        // Under the sun smrt stays above pcss here (0.0272 against 0.0165), though its leak
+        // beyond the blur is gone (0.28%).
+        if (light.type != LightType::Directional) {
+            EXPECT_LT(after, pcss) << light.name;
+        }
     }
 }

@@ -9,6 +9,10 @@
 #include "smrt_march.h"
 #include "technique_input.glsl"
 
+// smrt.hidden, a constant of the pipeline: lavapipe runs the march loop's branches masked, and its
+// checks would cost every pixel where it is off.
+layout(constant_id = SPEC_SMRT_HIDDEN) const bool SMRT_HIDDEN = false;
+
 // The light view distance the map holds at map position uv (the nearest texel, clamped).
 float smrtStored(sampler2DArray map, ShadowViewData view, vec2 uv, uint mapSize, float layer) {
     ivec2 texel = clamp(ivec2(floor(uv * float(mapSize))), ivec2(0), ivec2(int(mapSize) - 1));
@@ -117,6 +121,17 @@ bool smrtStepCrosses(sampler2DArray map, ShadowViewData view, vec3 p, vec3 d, Sm
     return smrtCrosses(view, a, b, smrt.slope, margin);
 }
 
+// Whether the ray crossed a hidden surface before `front` (smrtCrossedHidden).
+bool smrtHiddenCrossed(sampler2DArray map, ShadowViewData view, SmrtHidden h, SmrtPoint front,
+                       uint mapSize, float layer) {
+    if (!smrtMayCrossHidden(h, front)) return false;
+    SmrtHiddenTexels t = smrtHiddenTexels(h, front, mapSize);
+    float size = float(mapSize), margin;
+    vec4 depths = vec4(fetchDepth(map, t.near.xy, size, layer), fetchDepth(map, t.near.zw, size, layer),
+                       fetchDepth(map, t.far.xy, size, layer), fetchDepth(map, t.far.zw, size, layer));
+    return smrtCrossedHidden(view, h, front, t, depths, mapSize, margin);
+}
+
 // x visibility, y rays blocked, z of those, the rays blocked only by extrapolation, w the mean
 // march length in texels of the map (over the rays traced).
 vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view,
@@ -145,6 +160,8 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         float jitter = fract(turns * 2.618034 + float(k) * 0.7548777);
         SmrtPoint last = receiver;
         bool crossed = false;
+        SmrtHidden hidden = smrtHiddenNone();
+        if (SMRT_HIDDEN) smrtTrackHidden(hidden, receiver);
         // Two loops, not one with a test of gapSamples in it: lavapipe runs a branch inside
         // the march masked, taken or not, and the gaps' reads would cost every pixel.
         if (gapSamples == 0u) {
@@ -153,7 +170,10 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 SmrtPoint next = smrtPoint(map, view, p, d, s, mapSize, r.layer);
                 grazed = grazed || smrtIsBehind(next);
                 if (smrtIsBehind(next) != smrtIsBehind(last))
-                    crossed = smrtStepCrosses(map, view, p, d, last, next, mapSize, r.layer);
+                    crossed = smrtStepCrosses(map, view, p, d, last, next, mapSize, r.layer) ||
+                              (SMRT_HIDDEN &&
+                               smrtHiddenCrossed(map, view, hidden, next, mapSize, r.layer));
+                if (SMRT_HIDDEN) smrtTrackHidden(hidden, next);
                 last = next;
             }
         } else {
@@ -173,12 +193,19 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                         grazed = grazed || smrtIsBehind(inside);
                         if (smrtIsBehind(inside) != smrtIsBehind(from))
                             crossed = smrtStepCrosses(map, view, p, d, from, inside, mapSize,
-                                                      r.layer);
+                                                      r.layer) ||
+                                      (SMRT_HIDDEN &&
+                                       smrtHiddenCrossed(map, view, hidden, inside, mapSize,
+                                                         r.layer));
+                        if (SMRT_HIDDEN) smrtTrackHidden(hidden, inside);
                         from = inside;
                     }
                 }
                 if (!crossed && smrtIsBehind(next) != smrtIsBehind(from))
-                    crossed = smrtStepCrosses(map, view, p, d, from, next, mapSize, r.layer);
+                    crossed = smrtStepCrosses(map, view, p, d, from, next, mapSize, r.layer) ||
+                              (SMRT_HIDDEN &&
+                               smrtHiddenCrossed(map, view, hidden, next, mapSize, r.layer));
+                if (SMRT_HIDDEN) smrtTrackHidden(hidden, next);
                 last = next;
             }
         }

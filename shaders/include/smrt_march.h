@@ -31,7 +31,10 @@ struct SmrtParams {      // std140
     uint gapSamples;     // smrt.gapSamples: samples added inside a long step in front of the
                          // surface that the map's bounds cannot prove clear (0: off)
     uint cubeGapSamples; // smrt.cubeGapSamples: smrt.gapSamples on a point light's cube faces
-    uint pad0, pad1, pad2;
+    uint hidden;         // smrt.hidden: 1: a ray that comes out from behind a caster crossed the
+                         // surface it comes out over where that surface, continued, hid it
+                         // (smrtCrossedHidden)
+    uint pad1, pad2;
 };
 
 // The rays per pixel (x) and samples per ray (y) in `view`. A point light's cube face (texel.y 2)
@@ -277,6 +280,94 @@ SHARED float smrtLitCeiling(IN(SmrtCeiling) c, float texels) {
 SHARED float smrtDepthOf(IN(ShadowViewData) view, float z) {
     float n = view.frustum.x, f = view.frustum.y;
     return view.texel.y > 0.5f ? f * (z - n) / (max(z, 1e-30f) * (f - n)) : (z - n) / (f - n);
+}
+
+// What the map hides (smrt.hidden). A ray behind the map's surface for a stretch, in front of it
+// again where smrtCrosses sees a silhouette, passed under what hid it, or through a surface the
+// map cannot show there: a table top under the slats of a roof above it. Where the surface the
+// ray comes out in front of, continued as a plane back to the stretch's first point, lies nearer
+// the light than that point did, the ray crossed it, hidden. The plane is the stored depth's (a
+// plane's depth is affine in the map, perspective or not), fitted through texels on the far
+// side, away from what hid the ray (docs/techniques.md, "Shadow-map ray tracing", step 11).
+struct SmrtHidden {
+    SmrtPoint first; // the stretch's first point
+    bool behind;     // the last point lay behind the surface (the stretch goes on)
+};
+
+SHARED SmrtHidden smrtHiddenNone() {
+    SmrtHidden h;
+    h.first.s = 0.0f;
+    h.first.z = 0.0f;
+    h.first.uv = vec2(0.0f, 0.0f);
+    h.first.behind = 0.0f;
+    h.first.slack = 0.0f;
+    h.behind = false;
+    return h;
+}
+
+// The stretch after point x of the march (every point, in order, the receiver first).
+SHARED void smrtTrackHidden(INOUT(SmrtHidden) h, IN(SmrtPoint) x) {
+    if (smrtIsBehind(x) && !h.behind) h.first = x;
+    h.behind = smrtIsBehind(x);
+}
+
+SHARED bool smrtMayCrossHidden(IN(SmrtHidden) h, IN(SmrtPoint) front) {
+    return h.behind && !smrtIsBehind(front);
+}
+
+SHARED float smrtHiddenBaseline() { return 8.0f; }
+
+// The texels where the surface in front of which the ray comes out is read: front's own (near.xy),
+// smrtHiddenBaseline / 2 (near.zw) and smrtHiddenBaseline (far.xy) texels beyond it, away from
+// the stretch's first point, and smrtHiddenBaseline texels to its side (far.zw).
+struct SmrtHiddenTexels {
+    ivec4 near;
+    ivec4 far;
+};
+
+SHARED SmrtHiddenTexels smrtHiddenTexels(IN(SmrtHidden) h, IN(SmrtPoint) front, uint mapSize) {
+    float size = float(mapSize);
+    vec2 along = (front.uv - h.first.uv) * size;
+    float texels = length(along);
+    vec2 step = texels > 1e-6f ? along / texels : vec2(1.0f, 0.0f);
+    vec2 side = vec2(-step.y, step.x);
+    vec2 at = front.uv * size;
+    ivec2 top = ivec2(int(mapSize) - 1, int(mapSize) - 1);
+    float b = smrtHiddenBaseline();
+    ivec2 own = clamp(ivec2(floor(at)), ivec2(0, 0), top);
+    ivec2 mid = clamp(ivec2(floor(at + 0.5f * b * step)), ivec2(0, 0), top);
+    ivec2 far = clamp(ivec2(floor(at + b * step)), ivec2(0, 0), top);
+    ivec2 beside = clamp(ivec2(floor(at + b * side)), ivec2(0, 0), top);
+    SmrtHiddenTexels t;
+    t.near = ivec4(own.x, own.y, mid.x, mid.y);
+    t.far = ivec4(far.x, far.y, beside.x, beside.y);
+    return t;
+}
+
+// Whether the ray crossed a hidden surface before `front` (smrtMayCrossHidden): `depths` as the
+// map stores them at smrtHiddenTexels' texels (x own, y mid, z far, w beside). The plane through
+// the own, far and side texels' centres, where the midway texel lies on it (an edge or a curve is
+// not continued), is continued to the first point; within two texels' change and the float's
+// steps. `margin` as smrtCrosses'.
+SHARED bool smrtCrossedHidden(IN(ShadowViewData) view, IN(SmrtHidden) h, IN(SmrtPoint) front,
+                              IN(SmrtHiddenTexels) t, vec4 depths, uint mapSize,
+                              OUT(float) margin) {
+    float size = float(mapSize);
+    vec2 own = vec2(t.near.x, t.near.y) + 0.5f, mid = vec2(t.near.z, t.near.w) + 0.5f;
+    vec2 a = vec2(t.far.x, t.far.y) + 0.5f - own, b = vec2(t.far.z, t.far.w) + 0.5f - own;
+    float det = a.x * b.y - a.y * b.x;
+    // The depth's gradient per texel: g . a = far - own, g . b = beside - own.
+    float da = depths.z - depths.x, db = depths.w - depths.x;
+    vec2 g = abs(det) > 1.0f ? vec2(da * b.y - db * a.y, db * a.x - da * b.x) / det
+                             : vec2(0.0f, 0.0f);
+    float step = length(g);
+    bool plane = abs(det) > 1.0f && abs(depths.y - depths.x - dot(g, mid - own)) <= step + 4e-7f;
+    vec2 to = h.first.uv * size - own;
+    float there = depths.x + dot(g, to);
+    float point = smrtDepthOf(view, h.first.z - h.first.slack - front.slack);
+    float tolerance = 2.0f * step + 4e-7f * (1.0f + length(to) / smrtHiddenBaseline());
+    margin = abs(point - there - tolerance);
+    return plane && point - there > tolerance;
 }
 
 // The rings of the proof: ring 0 is the 3x3 texels round p's; ring k >= 1 a 2x2 block of tiles of

@@ -157,7 +157,8 @@ namespace {
 
 // The module of a pass that evaluates techniques, for the technique its constants name:
 // `<shader>#<id>` holds that technique's code alone (cmake/Shaders.cmake, PER_TECHNIQUE).
-std::string techniqueModule(std::string_view shader, const std::vector<shadows::SpecConstant>& constants) {
+std::string techniqueModule(std::string_view shader,
+                            const std::vector<shadows::SpecConstant>& constants) {
     for (const shadows::SpecConstant& c : constants)
         if (c.id == SPEC_TECHNIQUE)
             return std::string(shader) + "#" + std::to_string(c.value);

@@ -178,6 +178,22 @@ glm::vec4 smrtReference(const FilterInput& in) {
         const float jitter = glm::fract(turns * 2.618034f + static_cast<float>(k) * 0.7548777f);
         gpu::SmrtPoint last = receiver;
         bool crossed = false;
+        gpu::SmrtHidden hidden = gpu::smrtHiddenNone();
+        gpu::smrtTrackHidden(hidden, receiver);
+        // smrtHiddenCrossed, transcribed, where smrtStepCrosses sees a silhouette.
+        auto crossedHidden = [&](const gpu::SmrtPoint& front) {
+            if (s.hidden == 0 || !gpu::smrtMayCrossHidden(hidden, front))
+                return false;
+            const gpu::SmrtHiddenTexels t = gpu::smrtHiddenTexels(hidden, front, mapSize);
+            const glm::vec4 depths{in.map.texel(t.near.x, t.near.y),
+                                   in.map.texel(t.near.z, t.near.w), in.map.texel(t.far.x, t.far.y),
+                                   in.map.texel(t.far.z, t.far.w)};
+            float margin = 0.0f;
+            const bool result =
+                gpu::smrtCrossedHidden(view, hidden, front, t, depths, mapSize, margin);
+            in.margins.see(margin, 0.0f);
+            return result;
+        };
         // smrtStepCrosses, transcribed.
         auto crosses = [&](gpu::SmrtPoint a, gpu::SmrtPoint b) {
             for (uint32_t j = 0; j < s.refine; ++j) {
@@ -201,12 +217,14 @@ glm::vec4 smrtReference(const FilterInput& in) {
                         pointAt(in, s, p, d, gpu::smrtGapDistance(last, next, j, gapSamples));
                     grazed = grazed || gpu::smrtIsBehind(inside);
                     if (gpu::smrtIsBehind(inside) != gpu::smrtIsBehind(from))
-                        crossed = crosses(from, inside);
+                        crossed = crosses(from, inside) || crossedHidden(inside);
+                    gpu::smrtTrackHidden(hidden, inside);
                     from = inside;
                 }
             }
             if (!crossed && gpu::smrtIsBehind(next) != gpu::smrtIsBehind(from))
-                crossed = crosses(from, next);
+                crossed = crosses(from, next) || crossedHidden(next);
+            gpu::smrtTrackHidden(hidden, next);
             last = next;
         }
         const bool hit = crossed || gpu::smrtIsBehind(last);
@@ -339,6 +357,14 @@ const TechniqueModule& smrtModule() {
               .unit = "samples",
               .description = "smrt.gapSamples on a point light's cube faces, whose rays towards "
                              "a close light's rim take the longest steps"},
+             {.key = "smrt.hidden",
+              .type = ParameterType::Bool,
+              .defaultValue = 0,
+              .description = "a ray that comes out from behind a caster in front of a surface "
+                             "crossed that surface where it, continued as a plane, hid the ray: "
+                             "casters stacked over one another (a table under a slatted roof) "
+                             "no longer leak; off by default, as it costs the analytic bulbs "
+                             "1-6% of their error"},
              {.key = "smrt.filter",
               .type = ParameterType::Int,
               .defaultValue = 1,
@@ -390,6 +416,11 @@ const TechniqueModule& smrtModule() {
                         .outputs = {"bounds"},
                         .dispatch = PostDispatch::MipChain}},
         .visibilityMap = "bounds",
+        .constants =
+            [](const ParameterValues& p) {
+                return std::vector<SpecConstant>{
+                    {SPEC_SMRT_HIDDEN, p.number("smrt.hidden") != 0.0 ? 1u : 0u}};
+            },
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 auto whole = [&](const char* key) { return static_cast<uint32_t>(p.number(key)); };
@@ -406,7 +437,8 @@ const TechniqueModule& smrtModule() {
                                           .skipLit = whole("smrt.skipLit"),
                                           .cubeAdaptive = whole("smrt.cubeAdaptive"),
                                           .gapSamples = whole("smrt.gapSamples"),
-                                          .cubeGapSamples = whole("smrt.cubeGapSamples")});
+                                          .cubeGapSamples = whole("smrt.cubeGapSamples"),
+                                          .hidden = whole("smrt.hidden")});
             },
         .reference = smrtReference,
         .modelsLightSize = true,
