@@ -121,15 +121,21 @@ bool smrtStepCrosses(sampler2DArray map, ShadowViewData view, vec3 p, vec3 d, Sm
     return smrtCrosses(view, a, b, smrt.slope, margin);
 }
 
-// Whether the ray crossed a hidden surface before `front` (smrtCrossedHidden).
+// Whether the ray crossed a hidden surface before `front` (smrtCrossedHidden; never without
+// SMRT_HIDDEN, which the pipeline's constant folds away with this code).
 bool smrtHiddenCrossed(sampler2DArray map, ShadowViewData view, SmrtHidden h, SmrtPoint front,
                        uint mapSize, float layer) {
-    if (!smrtMayCrossHidden(h, front)) return false;
+    if (!SMRT_HIDDEN || !smrtMayCrossHidden(h, front)) return false;
     SmrtHiddenTexels t = smrtHiddenTexels(h, front, mapSize);
     float size = float(mapSize), margin;
     vec4 depths = vec4(fetchDepth(map, t.near.xy, size, layer), fetchDepth(map, t.near.zw, size, layer),
                        fetchDepth(map, t.far.xy, size, layer), fetchDepth(map, t.far.zw, size, layer));
     return smrtCrossedHidden(view, h, front, t, depths, mapSize, margin);
+}
+
+// smrtTrackHidden where SMRT_HIDDEN is on (its constant folds the tracking away elsewhere).
+void smrtFollowHidden(inout SmrtHidden h, SmrtPoint x) {
+    if (SMRT_HIDDEN) smrtTrackHidden(h, x);
 }
 
 // x visibility, y rays blocked, z of those, the rays blocked only by extrapolation, w the mean
@@ -160,8 +166,7 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         float jitter = fract(turns * 2.618034 + float(k) * 0.7548777);
         SmrtPoint last = receiver;
         bool crossed = false;
-        SmrtHidden hidden = smrtHiddenNone();
-        if (SMRT_HIDDEN) smrtTrackHidden(hidden, receiver);
+        SmrtHidden hidden = smrtHiddenFrom(receiver);
         // Two loops, not one with a test of gapSamples in it: lavapipe runs a branch inside
         // the march masked, taken or not, and the gaps' reads would cost every pixel.
         if (gapSamples == 0u) {
@@ -171,9 +176,8 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 grazed = grazed || smrtIsBehind(next);
                 if (smrtIsBehind(next) != smrtIsBehind(last))
                     crossed = smrtStepCrosses(map, view, p, d, last, next, mapSize, r.layer) ||
-                              (SMRT_HIDDEN &&
-                               smrtHiddenCrossed(map, view, hidden, next, mapSize, r.layer));
-                if (SMRT_HIDDEN) smrtTrackHidden(hidden, next);
+                              smrtHiddenCrossed(map, view, hidden, next, mapSize, r.layer);
+                smrtFollowHidden(hidden, next);
                 last = next;
             }
         } else {
@@ -194,18 +198,16 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                         if (smrtIsBehind(inside) != smrtIsBehind(from))
                             crossed = smrtStepCrosses(map, view, p, d, from, inside, mapSize,
                                                       r.layer) ||
-                                      (SMRT_HIDDEN &&
-                                       smrtHiddenCrossed(map, view, hidden, inside, mapSize,
-                                                         r.layer));
-                        if (SMRT_HIDDEN) smrtTrackHidden(hidden, inside);
+                                      smrtHiddenCrossed(map, view, hidden, inside, mapSize,
+                                                        r.layer);
+                        smrtFollowHidden(hidden, inside);
                         from = inside;
                     }
                 }
                 if (!crossed && smrtIsBehind(next) != smrtIsBehind(from))
                     crossed = smrtStepCrosses(map, view, p, d, from, next, mapSize, r.layer) ||
-                              (SMRT_HIDDEN &&
-                               smrtHiddenCrossed(map, view, hidden, next, mapSize, r.layer));
-                if (SMRT_HIDDEN) smrtTrackHidden(hidden, next);
+                              smrtHiddenCrossed(map, view, hidden, next, mapSize, r.layer);
+                smrtFollowHidden(hidden, next);
                 last = next;
             }
         }

@@ -294,18 +294,15 @@ struct SmrtHidden {
     bool behind;     // the last point lay behind the surface (the stretch goes on)
 };
 
-SHARED SmrtHidden smrtHiddenNone() {
+// A ray's stretches from its first point, the receiver (`first` is read only while `behind`).
+SHARED SmrtHidden smrtHiddenFrom(IN(SmrtPoint) receiver) {
     SmrtHidden h;
-    h.first.s = 0.0f;
-    h.first.z = 0.0f;
-    h.first.uv = vec2(0.0f, 0.0f);
-    h.first.behind = 0.0f;
-    h.first.slack = 0.0f;
-    h.behind = false;
+    h.first = receiver;
+    h.behind = smrtIsBehind(receiver);
     return h;
 }
 
-// The stretch after point x of the march (every point, in order, the receiver first).
+// The stretch after point x of the march (every point after the receiver, in order).
 SHARED void smrtTrackHidden(INOUT(SmrtHidden) h, IN(SmrtPoint) x) {
     if (smrtIsBehind(x) && !h.behind) h.first = x;
     h.behind = smrtIsBehind(x);

@@ -10,6 +10,17 @@
 namespace penumbra::render {
 namespace {
 
+// The module of a pass that evaluates techniques, for the technique its constants name:
+// `<shader>#<id>` holds that technique's code alone (cmake/Shaders.cmake, PER_TECHNIQUE).
+std::string techniqueModule(std::string_view shader,
+                            const std::vector<shadows::SpecConstant>& constants) {
+    for (const shadows::SpecConstant& c : constants)
+        if (c.id == SPEC_TECHNIQUE)
+            return std::string(shader) + "#" + std::to_string(c.value);
+    PENUMBRA_CHECK(false, std::string(shader) + ": no technique among its constants");
+    return {};
+}
+
 constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
 constexpr VkDescriptorType kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
@@ -152,21 +163,6 @@ VkPipeline FramePipelines::specialized(std::map<Constants, vk::PipelineHandle>& 
 VkPipeline FramePipelines::marking(const Constants& constants) {
     return specialized(mMarking, markingLayout, "page_marking.comp", constants);
 }
-
-namespace {
-
-// The module of a pass that evaluates techniques, for the technique its constants name:
-// `<shader>#<id>` holds that technique's code alone (cmake/Shaders.cmake, PER_TECHNIQUE).
-std::string techniqueModule(std::string_view shader,
-                            const std::vector<shadows::SpecConstant>& constants) {
-    for (const shadows::SpecConstant& c : constants)
-        if (c.id == SPEC_TECHNIQUE)
-            return std::string(shader) + "#" + std::to_string(c.value);
-    PENUMBRA_CHECK(false, std::string(shader) + ": no technique among its constants");
-    return {};
-}
-
-} // namespace
 
 VkPipeline FramePipelines::visibility(const Constants& constants) {
     return specialized(mVisibility, visibilityLayout, techniqueModule("visibility.comp", constants),

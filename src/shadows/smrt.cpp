@@ -178,8 +178,7 @@ glm::vec4 smrtReference(const FilterInput& in) {
         const float jitter = glm::fract(turns * 2.618034f + static_cast<float>(k) * 0.7548777f);
         gpu::SmrtPoint last = receiver;
         bool crossed = false;
-        gpu::SmrtHidden hidden = gpu::smrtHiddenNone();
-        gpu::smrtTrackHidden(hidden, receiver);
+        gpu::SmrtHidden hidden = gpu::smrtHiddenFrom(receiver);
         // smrtHiddenCrossed, transcribed, where smrtStepCrosses sees a silhouette.
         auto crossedHidden = [&](const gpu::SmrtPoint& front) {
             if (s.hidden == 0 || !gpu::smrtMayCrossHidden(hidden, front))
