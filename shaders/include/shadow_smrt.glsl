@@ -181,34 +181,42 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 last = next;
             }
         } else {
-            for (uint i = 0u; i < samples && !crossed; ++i) {
-                float s = smrtSampleDistance(march, p, d, i, samples, jitter);
-                SmrtPoint next = smrtPoint(map, view, p, d, s, mapSize, r.layer);
-                grazed = grazed || smrtIsBehind(next);
-                SmrtPoint from = last;
+            // One loop, one read an iteration, for the main samples and the gaps' alike: lavapipe
+            // runs a loop nested in the march for every lane while one lane needs it, and lanes
+            // open long steps at different samples. The order of the points, and so every
+            // decision, is that of smrt.cpp's nested loops: a step that opens is sampled inside
+            // (j = 1 .. gapSamples), then its far end is read again (j = gapSamples + 1).
+            SmrtPoint from = last, next = last;
+            uint i = 0u, j = 0u;
+            bool gapping = false;
+            while (!crossed && (gapping || i < samples)) {
+                float s = !gapping             ? smrtSampleDistance(march, p, d, i, samples, jitter)
+                          : j <= gapSamples ? smrtGapDistance(last, next, j, gapSamples)
+                                            : next.s;
+                SmrtPoint x = smrtPoint(map, view, p, d, s, mapSize, r.layer);
+                grazed = grazed || smrtIsBehind(x);
                 // A long step in front of the surface that the bounds cannot prove clear: sampled
                 // again inside.
-                if (!smrtIsBehind(last) && !smrtIsBehind(next) &&
-                    smrtStepTexels(last, next, mapSize) > smrtLongStep() &&
-                    !smrtStepClear(shadowTable, view, last, next, mapSize, l, levels, boundsSize)) {
-                    for (uint j = 1u; j <= gapSamples && !crossed; ++j) {
-                        float s = smrtGapDistance(last, next, j, gapSamples);
-                        SmrtPoint inside = smrtPoint(map, view, p, d, s, mapSize, r.layer);
-                        grazed = grazed || smrtIsBehind(inside);
-                        if (smrtIsBehind(inside) != smrtIsBehind(from))
-                            crossed = smrtStepCrosses(map, view, p, d, from, inside, mapSize,
-                                                      r.layer) ||
-                                      smrtHiddenCrossed(map, view, hidden, inside, mapSize,
-                                                        r.layer);
-                        smrtFollowHidden(hidden, inside);
-                        from = inside;
-                    }
+                if (!gapping && !smrtIsBehind(from) && !smrtIsBehind(x) &&
+                    smrtStepTexels(from, x, mapSize) > smrtLongStep() &&
+                    !smrtStepClear(shadowTable, view, from, x, mapSize, l, levels, boundsSize)) {
+                    gapping = true;
+                    j = 1u;
+                    next = x;
+                    continue;
                 }
-                if (!crossed && smrtIsBehind(next) != smrtIsBehind(from))
-                    crossed = smrtStepCrosses(map, view, p, d, from, next, mapSize, r.layer) ||
-                              smrtHiddenCrossed(map, view, hidden, next, mapSize, r.layer);
-                smrtFollowHidden(hidden, next);
-                last = next;
+                if (smrtIsBehind(x) != smrtIsBehind(from))
+                    crossed = smrtStepCrosses(map, view, p, d, from, x, mapSize, r.layer) ||
+                              smrtHiddenCrossed(map, view, hidden, x, mapSize, r.layer);
+                smrtFollowHidden(hidden, x);
+                from = x;
+                if (gapping && j <= gapSamples) {
+                    ++j;
+                } else {
+                    gapping = false;
+                    last = x;
+                    ++i;
+                }
             }
         }
         // A ray that ends behind the surface is extrapolated on towards the light: it meets the
