@@ -12,6 +12,8 @@ layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData fra
 layout(constant_id = SPEC_FILTER_RADIUS) const int RADIUS = 1;
 layout(constant_id = SPEC_FILTER_TOLERANCE) const float TOLERANCE = 0.5;
 layout(constant_id = SPEC_FILTER_AXIS) const int AXIS = 0;
+// The radius inside a wide penumbra (visibilityFilterWide; RADIUS where it is not larger).
+layout(constant_id = SPEC_FILTER_WIDE) const int WIDE = 1;
 #include "gbuffer.glsl"
 
 layout(local_size_x = GROUP_SIZE, local_size_y = GROUP_SIZE) in;
@@ -47,8 +49,25 @@ void main() {
     // Not `AXIS == 0 ? ivec2(1, 0) : ivec2(0, 1)`: glslang folds that into a specialization
     // constant OpSelect on vectors, which lavapipe 22.3 evaluates to (1, 1).
     ivec2 axis = ivec2(1 - AXIS, AXIS);
+    // Inside a wide penumbra the pixel reaches as far as its neighbours stay in it on both sides
+    // (visibility_filter_weights.h, visibilityFilterInPenumbra), up to WIDE.
+    int reach = RADIUS;
+    if (WIDE > RADIUS && visibilityFilterInPenumbra(vp)) {
+        int run = WIDE;
+        for (int side = -1; side <= 1; side += 2)
+            for (int o = 1; o <= WIDE; ++o) {
+                ivec2 q = p + side * o * axis;
+                bool onImage = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(uvec2(q), size));
+                if (!onImage || isBackground(texelFetch(gDepth, q, 0).r) ||
+                    !visibilityFilterInPenumbra(readSource(ivec3(q, layer)))) {
+                    run = min(run, o - 1);
+                    break;
+                }
+            }
+        reach = max(RADIUS, run);
+    }
     float weights = 0.0, sum = 0.0;
-    for (int offset = -RADIUS; offset <= RADIUS; ++offset) {
+    for (int offset = -reach; offset <= reach; ++offset) {
         ivec2 q = p + offset * axis;
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), size))) continue;
         float qDepth = texelFetch(gDepth, q, 0).r;
@@ -57,11 +76,11 @@ void main() {
         float w = visibilityFilterWeight(world, normal, vp,
                                          worldPosition(frame.invViewProj, q, size, qDepth),
                                          shadingNormal(texelFetch(gNormal, q, 0)), vq, offset,
-                                         RADIUS, TOLERANCE);
+                                         reach, TOLERANCE);
         weights += w;
         sum += w * vq;
     }
-    // The pixel itself weighs RADIUS + 1. The clamp: a GPU's division may round sum / weights
+    // The pixel itself weighs reach + 1. The clamp: a GPU's division may round sum / weights
     // past 1 by an ulp or two where every neighbour is lit (a reciprocal, not an exact quotient).
     writeTarget(at, clamp(sum / weights, 0.0, 1.0));
 }

@@ -249,13 +249,25 @@ TEST_F(FilterTest, VisibilityFilterMatchesItsCpuReference) {
             // The same for the tolerance: the light's own 0.5, the other 0.9.
             o.parameters.set("smrt.filterTolerance", point ? "0.9" : "0.5");
             o.parameters.set("smrt.cubeFilterTolerance", point ? "0.5" : "0.9");
+            // And the radius inside wide penumbrae: the light's own 4, the other none.
+            o.parameters.set("smrt.filterWide", point ? "0" : "4");
+            o.parameters.set("smrt.cubeFilterWide", point ? "4" : "0");
             o.parameters.set("composite.fused", "true");
             return sharedRenderer().render(scene, o);
         };
         const RenderResult base = render("0"), gpu = render("2");
-        const std::vector<float> cpu =
+        const std::vector<float> cpu = shadows::filterVisibility(
+            base.width, base.height, base.position, base.normal, base.visibility[0],
+            {.radius = 2, .tolerance = 0.5f, .wide = 4});
+        // The wide penumbrae's reach must change some pixels, or the check above proves nothing.
+        const std::vector<float> narrow =
             shadows::filterVisibility(base.width, base.height, base.position, base.normal,
                                       base.visibility[0], {.radius = 2, .tolerance = 0.5f});
+        float widened = 0.0f;
+        for (size_t i = 0; i < cpu.size(); ++i)
+            if (!std::isnan(cpu[i]))
+                widened = std::max(widened, std::abs(cpu[i] - narrow[i]));
+        EXPECT_GT(widened, 0.01f) << name << ": no pixel reached into a wide penumbra";
         float worst = 0.0f, moved = 0.0f;
         size_t background = 0, outside = 0;
         for (size_t i = 0; i < cpu.size(); ++i) {
@@ -268,8 +280,9 @@ TEST_F(FilterTest, VisibilityFilterMatchesItsCpuReference) {
             outside += gpu.visibility[0][i] < 0.0f || gpu.visibility[0][i] > 1.0f;
             moved = std::max(moved, std::abs(gpu.visibility[0][i] - base.visibility[0][i]));
         }
-        std::printf("%-6s filter: GPU against CPU %.2g, moved up to %.3f, %zu background\n", name,
-                    worst, moved, background);
+        std::printf("%-6s filter: GPU against CPU %.2g, moved up to %.3f (wide penumbrae %.3f), "
+                    "%zu background\n",
+                    name, worst, moved, widened, background);
         EXPECT_LE(worst, 1e-4f) << name;
         EXPECT_EQ(outside, 0u) << name << ": filtered visibilities outside [0, 1]";
         EXPECT_GT(moved, 0.05f) << name << ": the filter changed nothing";

@@ -175,3 +175,53 @@ TEST(VisibilityFilter, PointLightsTakeTheCubeRadius) {
     EXPECT_TRUE((shadows::VisibilityFilter{.radius = 2}.runs()));
     EXPECT_FALSE(shadows::VisibilityFilter{}.runs());
 }
+
+// smrt.filterWide: inside a wide penumbra (every neighbour out to the wide radius, on the image
+// and on the surface, neither 0 nor 1) a pixel reaches that far, and the result is the wider
+// filter's; nearer the image's border it reaches only as far as the image goes.
+TEST(VisibilityFilter, WidensInsideAWidePenumbra) {
+    // Noise that a radius of 1 leaves much of (a checkerboard it would take out whole).
+    const Surface s = surface(
+        onPlane, up, [](int x, int y) { return 0.5f + 0.05f * float((x * 7 + y * 13) % 5 - 2); });
+    const std::vector<float> wide =
+        shadows::filterVisibility(kSize, kSize, s.position, s.normal, s.visibility,
+                                  {.radius = 1, .tolerance = 1.0f, .wide = 3});
+    const std::vector<float> three = filtered(s, 3, 1.0f), one = filtered(s, 1, 1.0f);
+    for (int y = 3; y < int(kSize) - 3; ++y)
+        for (int x = 3; x < int(kSize) - 3; ++x)
+            EXPECT_NEAR(wide[y * kSize + x], three[y * kSize + x], 1e-6f) << x << "," << y;
+    EXPECT_LT(variance(wide), 0.5 * variance(one));
+    // At the border's first pixel the run is 0: the rows reach 1, not 3.
+    const std::vector<float> rowsOne = shadows::filterVisibility(
+        kSize, 1, std::span(s.position).first(3 * kSize), std::span(s.normal).first(3 * kSize),
+        std::span(s.visibility).first(kSize), {.radius = 1, .tolerance = 1.0f, .wide = 3});
+    const std::vector<float> rowsRadiusOne = shadows::filterVisibility(
+        kSize, 1, std::span(s.position).first(3 * kSize), std::span(s.normal).first(3 * kSize),
+        std::span(s.visibility).first(kSize), {.radius = 1, .tolerance = 1.0f});
+    EXPECT_NEAR(rowsOne[0], rowsRadiusOne[0], 1e-6f);
+    EXPECT_GT(std::abs(rowsOne[3] - rowsRadiusOne[3]), 1e-3f);
+}
+
+// A narrow penumbra (four pixels between a 0 and a 1) stays within the radius: its runs end at
+// the settled pixels beside it, so the wide radius changes nothing there, nor on either side.
+TEST(VisibilityFilter, KeepsNarrowPenumbraeToTheRadius) {
+    const Surface s = surface(onPlane, up, [](int x, int) {
+        return x <= 5 ? 0.0f : x >= 10 ? 1.0f : 0.2f * float(x - 5);
+    });
+    const std::vector<float> wide =
+        shadows::filterVisibility(kSize, kSize, s.position, s.normal, s.visibility,
+                                  {.radius = 1, .tolerance = 1.0f, .wide = 3});
+    expectNear(wide, filtered(s, 1, 1.0f));
+}
+
+// The wide radius under each light: point lights the cube's; never below the radius; none where
+// the radius is 0 (no filter).
+TEST(VisibilityFilter, WideRadiusFollowsTheLightsRadius) {
+    const shadows::VisibilityFilter filter{.radius = 1, .cubeRadius = 2, .wide = 4, .cubeWide = 0};
+    EXPECT_EQ(filter.wideFor(LIGHT_SPOT), 4u);
+    EXPECT_EQ(filter.wideFor(LIGHT_DIRECTIONAL), 4u);
+    EXPECT_EQ(filter.wideFor(LIGHT_POINT), 2u);
+    EXPECT_EQ((shadows::VisibilityFilter{.radius = 3, .wide = 2}.wideFor(LIGHT_SPOT)), 3u);
+    EXPECT_EQ((shadows::VisibilityFilter{.wide = 4}.wideFor(LIGHT_SPOT)), 0u);
+    EXPECT_EQ((shadows::VisibilityFilter{.cubeRadius = 1, .cubeWide = 5}.wideFor(LIGHT_POINT)), 5u);
+}

@@ -37,6 +37,7 @@
 #define SPEC_FILTER_TOLERANCE 20 // ... its range tolerance (a float's bits)
 #define SPEC_FILTER_AXIS 21      // ... and its pass: 0 along rows, 1 along columns
 #define SPEC_SMRT_HIDDEN 22     // smrt.hidden (smrt's own, shadow_smrt.glsl)
+#define SPEC_FILTER_WIDE 23     // visibility_filter.comp: its radius inside wide penumbrae
 
 // Descriptor bindings, pass by pass.
 #define BIND_FRAME 0             // FrameData, in every pass that reads it

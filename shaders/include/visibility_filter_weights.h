@@ -30,6 +30,12 @@ SHARED float visibilityFilterWeight(vec3 p, vec3 n, float vp, vec3 q, vec3 m, fl
     return tent * plane * facing * range;
 }
 
+// A visibility inside a penumbra, not settled at 0 or 1: a wide penumbra's pixels widen the filter
+// while every neighbour out to the radius is one too (smrt.filterWide). The margin keeps a
+// settled pixel's filtered value, which a GPU's division may leave an ulp off 0 or 1, settled;
+// a ray's fraction is 1/64 or more away.
+SHARED bool visibilityFilterInPenumbra(float v) { return v > 1e-3f && v < 1.0f - 1e-3f; }
+
 PENUMBRA_GPU_END
 
 #endif

@@ -98,7 +98,8 @@ void dispatchFilter(PassContext& c, FramePipelines& p, const FrameSettings& s,
     const std::vector<shadows::SpecConstant> constants{
         {SPEC_FILTER_RADIUS, filter.radiusFor(light.type)},
         {SPEC_FILTER_TOLERANCE, std::bit_cast<uint32_t>(filter.toleranceFor(light.type))},
-        {SPEC_FILTER_AXIS, axis}};
+        {SPEC_FILTER_AXIS, axis},
+        {SPEC_FILTER_WIDE, filter.wideFor(light.type)}};
     dispatchOnLayerLayout(c, p, s, in, r, p.layer("visibility_filter.comp", constants), 0,
                           r.visibilityScratch, light);
 }

@@ -380,8 +380,27 @@ const TechniqueModule& smrtModule() {
               .max = 8,
               .unit = "pixels",
               .description = "smrt.filter under point lights, whose cube faces trace fewer rays "
-                             "(smrt.cubeRays); 2 suits bulbs whose penumbrae are many pixels "
-                             "wide"},
+                             "(smrt.cubeRays); smrt.cubeFilterWide widens it inside wide "
+                             "penumbrae"},
+             {.key = "smrt.filterWide",
+              .type = ParameterType::Int,
+              .defaultValue = 0,
+              .min = 0,
+              .max = 8,
+              .unit = "pixels",
+              .description = "the filter's radius inside a wide penumbra: a pixel whose "
+                             "neighbours out to this radius each side are in the penumbra too "
+                             "(neither 0 nor 1) reaches that far (at most as far as they stay "
+                             "in it); smrt.filter elsewhere (spots and suns; 0 or below "
+                             "smrt.filter: off)"},
+             {.key = "smrt.cubeFilterWide",
+              .type = ParameterType::Int,
+              .defaultValue = 3,
+              .min = 0,
+              .max = 8,
+              .unit = "pixels",
+              .description = "smrt.filterWide under point lights, whose wide penumbrae from a "
+                             "close bulb take few rays a pixel (smrt.cubeRays)"},
              {.key = "smrt.filterTolerance",
               .type = ParameterType::Float,
               .defaultValue = 0.15,
@@ -450,7 +469,9 @@ const TechniqueModule& smrtModule() {
                     .radius = static_cast<uint32_t>(p.number("smrt.filter")),
                     .tolerance = static_cast<float>(p.number("smrt.filterTolerance")),
                     .cubeRadius = static_cast<uint32_t>(p.number("smrt.cubeFilter")),
-                    .cubeTolerance = static_cast<float>(p.number("smrt.cubeFilterTolerance"))};
+                    .cubeTolerance = static_cast<float>(p.number("smrt.cubeFilterTolerance")),
+                    .wide = static_cast<uint32_t>(p.number("smrt.filterWide")),
+                    .cubeWide = static_cast<uint32_t>(p.number("smrt.cubeFilterWide"))};
             }};
     return module;
 }

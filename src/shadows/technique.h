@@ -140,9 +140,13 @@ struct VisibilityFilter {
     float tolerance = 0.5f;     // visibility steps beyond this stay sharp
     uint32_t cubeRadius = 0;    // radius under point lights (their cube faces' own budget)
     float cubeTolerance = 0.5f; // tolerance under point lights
-    // The radius and the tolerance for a light of this kind (LIGHT_*).
+    uint32_t wide = 0;          // radius inside a wide penumbra (at least `radius`; none where
+    uint32_t cubeWide = 0;      // `radius` is 0), and under point lights
+    // The radius, the tolerance and the radius inside a wide penumbra for a light of this kind
+    // (LIGHT_*).
     uint32_t radiusFor(uint32_t lightType) const;
     float toleranceFor(uint32_t lightType) const;
+    uint32_t wideFor(uint32_t lightType) const;
     bool runs() const { return radius > 0 || cubeRadius > 0; }
 };
 

@@ -16,6 +16,7 @@ std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const f
                               VisibilityFilter filter, int axis) {
     std::vector<float> out(source.begin(), source.end());
     const int radius = static_cast<int>(filter.radius);
+    const int wide = radius > 0 ? static_cast<int>(filter.wide) : 0; // as wideFor
     auto at = [&](std::span<const float> v, size_t i) {
         return glm::vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
     };
@@ -24,8 +25,29 @@ std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const f
             const size_t i = size_t{y} * width + x;
             if (std::isnan(position[3 * i]))
                 continue; // background
+            // How far the pixel reaches: as far as its neighbours stay in a penumbra on both sides,
+            // up to `wide`, where it is in one.
+            int reach = radius;
+            if (wide > radius && gpu::visibilityFilterInPenumbra(source[i])) {
+                int run = wide;
+                for (int side = -1; side <= 1; side += 2)
+                    for (int o = 1; o <= wide; ++o) {
+                        const int qx = static_cast<int>(x) + (axis == 0 ? side * o : 0);
+                        const int qy = static_cast<int>(y) + (axis == 1 ? side * o : 0);
+                        const bool onImage = qx >= 0 && qy >= 0 && qx < static_cast<int>(width) &&
+                                             qy < static_cast<int>(height);
+                        const size_t j =
+                            onImage ? static_cast<size_t>(qy) * width + static_cast<size_t>(qx) : 0;
+                        if (!onImage || std::isnan(position[3 * j]) ||
+                            !gpu::visibilityFilterInPenumbra(source[j])) {
+                            run = std::min(run, o - 1);
+                            break;
+                        }
+                    }
+                reach = std::max(radius, run);
+            }
             float weights = 0.0f, sum = 0.0f;
-            for (int offset = -radius; offset <= radius; ++offset) {
+            for (int offset = -reach; offset <= reach; ++offset) {
                 const int qx = static_cast<int>(x) + (axis == 0 ? offset : 0);
                 const int qy = static_cast<int>(y) + (axis == 1 ? offset : 0);
                 if (qx < 0 || qy < 0 || qx >= static_cast<int>(width) ||
@@ -36,7 +58,7 @@ std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const f
                     continue;
                 const float w = gpu::visibilityFilterWeight(
                     at(position, i), at(normal, i), source[i], at(position, j), at(normal, j),
-                    source[j], offset, radius, filter.tolerance);
+                    source[j], offset, reach, filter.tolerance);
                 weights += w;
                 sum += w * source[j];
             }
@@ -53,6 +75,11 @@ uint32_t VisibilityFilter::radiusFor(uint32_t lightType) const {
 
 float VisibilityFilter::toleranceFor(uint32_t lightType) const {
     return lightType == LIGHT_POINT ? cubeTolerance : tolerance;
+}
+
+uint32_t VisibilityFilter::wideFor(uint32_t lightType) const {
+    const uint32_t r = radiusFor(lightType);
+    return r > 0 ? std::max(r, lightType == LIGHT_POINT ? cubeWide : wide) : 0;
 }
 
 std::vector<float> filterVisibility(uint32_t width, uint32_t height,
