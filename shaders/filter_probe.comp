@@ -9,6 +9,8 @@
 #include "pass_types.h"
 layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
 layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = 0u;
+// The probed view's light kind, as the visibility pass has it (filter_probe.cpp).
+layout(constant_id = SPEC_LIGHT_TYPE) const uint LIGHT_TYPE = LIGHT_DIRECTIONAL;
 #include "techniques.glsl"
 
 layout(local_size_x = 64) in;

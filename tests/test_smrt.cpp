@@ -113,14 +113,17 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
     for (const ProbeLight& light : lights)
         for (const char* sets :
              // The cube face's adaptive stop the other way round from the spots' and suns'.
-             // The gaps' samples likewise (the first one's marches are too short for them).
+             // The gaps' samples likewise (the first one's marches are too short for them), and
+             // smrt.hidden: the spots' and suns' in the second, the cube face's in the third.
              {"smrt.rotation=none,smrt.refine=0,smrt.adaptive=0,smrt.cubeAdaptive=2,"
-              "smrt.maxRadius=3,smrt.gapSamples=0,smrt.cubeGapSamples=2",
+              "smrt.maxRadius=3,smrt.gapSamples=0,smrt.cubeGapSamples=2,smrt.cubeHidden=0",
               "smrt.rotation=ign,smrt.refine=3,smrt.adaptive=4,smrt.cubeAdaptive=0,"
-              "smrt.maxRadius=24,smrt.gapSamples=3,smrt.cubeGapSamples=0,smrt.hidden=1",
+              "smrt.maxRadius=24,smrt.gapSamples=3,smrt.cubeGapSamples=0,smrt.hidden=1,"
+              "smrt.cubeHidden=0",
               // Long marches, whose far steps the gaps' samples fill under every light.
               "smrt.rotation=random,smrt.refine=2,smrt.adaptive=0,smrt.cubeAdaptive=0,"
-              "smrt.maxRadius=128,smrt.gapSamples=4,smrt.cubeGapSamples=3,smrt.hidden=1"}) {
+              "smrt.maxRadius=128,smrt.gapSamples=4,smrt.cubeGapSamples=3,smrt.hidden=0,"
+              "smrt.cubeHidden=1"}) {
             ParameterValues params;
             params.set("smrt.rays", "16");
             params.set("smrt.cubeRays", "5");
@@ -144,6 +147,7 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
             // The same without smrt.hidden: the probes it moves.
             ParameterValues shown = params;
             shown.set("smrt.hidden", "false");
+            shown.set("smrt.cubeHidden", "false");
             const shadows::FilterSettings frameShown =
                 shadows::filterSettings(shadows::moduleOf(Technique::Smrt), shown, false, 8);
             const gpu::ShadowViewData view = render::probeViewData(light);
@@ -198,9 +202,12 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
             // reach its near plane within 17 texels, and a march cut at 3 texels has no long step.
             const double gaps =
                 params.number(light.cubeFace ? "smrt.cubeGapSamples" : "smrt.gapSamples");
-            // smrt.hidden: the probe map's steps hide surfaces from a few probes' rays (2 to 12).
-            if (params.number("smrt.hidden") != 0) {
+            // smrt.hidden (smrt.cubeHidden on the cube face): the probe map's steps hide surfaces
+            // from a few probes' rays (2 to 12); where it is off, from none.
+            if (params.number(light.cubeFace ? "smrt.cubeHidden" : "smrt.hidden") != 0) {
                 EXPECT_GT(hiddenMoved, 0u) << what << ": probes smrt.hidden moves";
+            } else {
+                EXPECT_EQ(hiddenMoved, 0u) << what << ": probes smrt.hidden moves";
             }
             if (gaps > 0 && light.perspective && params.number("smrt.maxRadius") > 10.0) {
                 EXPECT_GT(gapMoved, 10u) << what << ": probes the gaps' samples move";
@@ -623,8 +630,9 @@ TEST_F(QualityTest, SmrtBeatsPcssBeyondTheSpheres) {
 
 // Casters stacked over one another: the table under a slatted roof (slats 0.15 wide, 0.25 apart,
 // 1.3 above the table top). Rays from under the table rise through the table top where a slat
-// hides it and come out between two slats: at the defaults they count as lit (half the umbra
-// under a spot or a bulb); smrt.hidden continues the table top under the slat and blocks them.
+// hides it and come out between two slats: without smrt.hidden they count as lit (half the umbra
+// under a spot or a bulb); with it the table top is continued under the slat and blocks them. It
+// is on by default under point lights (smrt.cubeHidden), off under spots and suns.
 TEST_F(QualityTest, SmrtHiddenSurfacesStopTheStackedCastersLeak) {
     const auto [spot, bulb, sun] = tableLights();
     for (const Light& light : {spot, bulb, sun}) {
@@ -636,8 +644,19 @@ TEST_F(QualityTest, SmrtHiddenSurfacesStopTheStackedCastersLeak) {
                               {0.15f, 0.05f, 3.0f}),
                    wood);
         const Truth t = groundTruth(scene, {.width = 256, .height = 256, .samples = 128});
-        const RenderResult shown = renderRow(t, Technique::Smrt, {});
-        const RenderResult hidden = renderRow(t, Technique::Smrt, {{"smrt.hidden", "true"}});
+        const RenderResult shown =
+            renderRow(t, Technique::Smrt, {{"smrt.hidden", "false"}, {"smrt.cubeHidden", "false"}});
+        const RenderResult hidden =
+            renderRow(t, Technique::Smrt, {{"smrt.hidden", "true"}, {"smrt.cubeHidden", "true"}});
+        // The defaults: hidden surfaces under the bulb, shown under the spot and the sun.
+        const RenderResult defaults = renderRow(t, Technique::Smrt, {});
+        const bool point = light.type == LightType::Point;
+        const std::vector<float>& expected = (point ? hidden : shown).visibility.at(0);
+        size_t differ = 0;
+        for (size_t i = 0; i < expected.size(); ++i) // NaN: the background, in both or neither
+            differ += std::isnan(expected[i]) != std::isnan(defaults.visibility.at(0)[i]) ||
+                      (!std::isnan(expected[i]) && expected[i] != defaults.visibility.at(0)[i]);
+        EXPECT_EQ(differ, 0u) << light.name << ": pixels where the defaults differ";
         const double pcss = errorOf(t, renderRow(t, Technique::Pcss, {})).rmse;
         const double before = errorOf(t, shown).rmse, after = errorOf(t, hidden).rmse;
         const double leakBefore = errorBeyondBlur(t, shown, Technique::Smrt).leakBeyondBlur;

@@ -9,9 +9,11 @@
 #include "smrt_march.h"
 #include "technique_input.glsl"
 
-// smrt.hidden, a constant of the pipeline: lavapipe runs the march loop's branches masked, and its
-// checks would cost every pixel where it is off.
-layout(constant_id = SPEC_SMRT_HIDDEN) const bool SMRT_HIDDEN = false;
+// smrt.hidden (bit 0: spots and suns) and smrt.cubeHidden (bit 1: point lights), a constant of
+// the pipeline, as is its light's kind (LIGHT_TYPE): lavapipe runs the march loop's branches
+// masked, and its checks would cost every pixel where it is off.
+layout(constant_id = SPEC_SMRT_HIDDEN) const uint SMRT_HIDDEN_LIGHTS = 0u;
+const bool SMRT_HIDDEN = (SMRT_HIDDEN_LIGHTS & (LIGHT_TYPE == LIGHT_POINT ? 2u : 1u)) != 0u;
 
 // The light view distance the map holds at map position uv (the nearest texel, clamped).
 float smrtStored(sampler2DArray map, ShadowViewData view, vec2 uv, uint mapSize, float layer) {

@@ -33,8 +33,9 @@ struct SmrtParams {      // std140
     uint cubeGapSamples; // smrt.cubeGapSamples: smrt.gapSamples on a point light's cube faces
     uint hidden;         // smrt.hidden: 1: a ray that comes out from behind a caster crossed the
                          // surface it comes out over where that surface, continued, hid it
-                         // (smrtCrossedHidden)
-    uint pad1, pad2;
+                         // (smrtCrossedHidden; spots and suns)
+    uint cubeHidden;     // smrt.cubeHidden: smrt.hidden on a point light's cube faces
+    uint pad2;
 };
 
 // The rays per pixel (x) and samples per ray (y) in `view`. A point light's cube face (texel.y 2)
@@ -50,6 +51,11 @@ SHARED uvec2 smrtBudget(IN(ShadowViewData) view, IN(SmrtParams) params) {
 // their own).
 SHARED uint smrtAdaptive(IN(ShadowViewData) view, IN(SmrtParams) params) {
     return view.texel.y > 1.5f ? params.cubeAdaptive : params.adaptive;
+}
+
+// smrt.hidden where it applies (smrtBudget's faces take their own, smrt.cubeHidden).
+SHARED uint smrtHiddenOn(IN(ShadowViewData) view, IN(SmrtParams) params) {
+    return view.texel.y > 1.5f ? params.cubeHidden : params.hidden;
 }
 
 // The samples added inside a long step (smrt.gapSamples; smrtBudget's faces take their own).

@@ -13,13 +13,18 @@ namespace penumbra {
 namespace {
 
 // The visibility pass's constants but SPEC_VIRTUAL: the probe hands the technique a map's layer
-// (its texels written from the host), never a virtual map.
+// (its texels written from the host), never a virtual map. SPEC_LIGHT_TYPE: the kind of light
+// whose view it is.
 std::vector<shadows::SpecConstant> probeConstants(const shadows::TechniqueModule& module,
-                                                  const ParameterValues& params) {
+                                                  const ParameterValues& params,
+                                                  const ProbeLight& light) {
     std::vector<shadows::SpecConstant> constants = shadows::visibilityConstants(module, params);
     for (shadows::SpecConstant& c : constants)
         if (c.id == SPEC_VIRTUAL)
             c.value = 0u;
+    constants.push_back({SPEC_LIGHT_TYPE, light.cubeFace      ? uint32_t{LIGHT_POINT}
+                                          : light.perspective ? uint32_t{LIGHT_SPOT}
+                                                              : uint32_t{LIGHT_DIRECTIONAL}});
     return constants;
 }
 
@@ -132,7 +137,7 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
                             {r.views, render::Access::ComputeRead}},
                    .record = [&](render::PassContext& c) {
                        vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                                         p.probe(probeConstants(module, params)));
+                                         p.probe(probeConstants(module, params, probeLight)));
                        vk::PushDescriptors()
                            .uniformBuffer(BIND_FRAME, frameBuffer.get())
                            .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
