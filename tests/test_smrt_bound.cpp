@@ -266,3 +266,36 @@ TEST(SmrtStepCheck, CeilingHoldsEveryPointOfTheStep) {
         }
     }
 }
+
+// smrt.hidden's candidate (smrtNoteHidden): the first place a ray comes out in front after a
+// stretch behind, with that stretch. A later one does not replace it (the slat a ray rose under
+// stays the one checked when it passes another silhouette after it), and a point that is not
+// such a place (the ray in front before it, or still behind) is never one.
+TEST(SmrtHidden, TheFirstExitAfterAStretchBehindIsTheCandidate) {
+    auto point = [](float s, float behind) {
+        return gpu::SmrtPoint{
+            .s = s, .z = 5.0f, .uv = {0.5f, 0.5f}, .behind = behind, .slack = 0.01f};
+    };
+    const gpu::SmrtPoint receiver = point(0.0f, 0.0f);
+    gpu::SmrtHiddenCandidate c = gpu::smrtNoHiddenCandidate(receiver);
+    gpu::SmrtHidden h = gpu::smrtHiddenFrom(receiver);
+    EXPECT_FALSE(c.found);
+    // In front, then in front again: no stretch behind, no candidate.
+    gpu::smrtNoteHidden(c, h, point(0.1f, 0.0f));
+    EXPECT_FALSE(c.found);
+    // Behind from s = 0.2 to 0.3, out in front at 0.4: the candidate, with its stretch.
+    gpu::smrtTrackHidden(h, point(0.2f, 1.0f));
+    gpu::smrtTrackHidden(h, point(0.3f, 1.0f));
+    gpu::smrtNoteHidden(c, h, point(0.3f, 1.0f)); // still behind: not an exit
+    EXPECT_FALSE(c.found);
+    gpu::smrtNoteHidden(c, h, point(0.4f, 0.0f));
+    ASSERT_TRUE(c.found);
+    EXPECT_EQ(c.front.s, 0.4f);
+    EXPECT_EQ(c.stretch.first.s, 0.2f);
+    // A second stretch and exit later: the first stays.
+    gpu::smrtTrackHidden(h, point(0.4f, 0.0f));
+    gpu::smrtTrackHidden(h, point(0.6f, 1.0f));
+    gpu::smrtNoteHidden(c, h, point(0.7f, 0.0f));
+    EXPECT_EQ(c.front.s, 0.4f);
+    EXPECT_EQ(c.stretch.first.s, 0.2f);
+}

@@ -123,16 +123,22 @@ bool smrtStepCrosses(sampler2DArray map, ShadowViewData view, vec3 p, vec3 d, Sm
     return smrtCrosses(view, a, b, smrt.slope, margin);
 }
 
-// Whether the ray crossed a hidden surface before `front` (smrtCrossedHidden; never without
-// SMRT_HIDDEN, which the pipeline's constant folds away with this code).
-bool smrtHiddenCrossed(sampler2DArray map, ShadowViewData view, SmrtHidden h, SmrtPoint front,
+// Whether the ray crossed a hidden surface at the march's candidate (smrtNoteHidden,
+// smrtCrossedHidden; never without SMRT_HIDDEN, which the pipeline's constant folds away with
+// this code).
+bool smrtHiddenCrossed(sampler2DArray map, ShadowViewData view, SmrtHiddenCandidate c,
                        uint mapSize, float layer) {
-    if (!SMRT_HIDDEN || !smrtMayCrossHidden(h, front)) return false;
-    SmrtHiddenTexels t = smrtHiddenTexels(h, front, mapSize);
+    if (!SMRT_HIDDEN || !c.found) return false;
+    SmrtHiddenTexels t = smrtHiddenTexels(c.stretch, c.front, mapSize);
     float size = float(mapSize), margin;
     vec4 depths = vec4(fetchDepth(map, t.near.xy, size, layer), fetchDepth(map, t.near.zw, size, layer),
                        fetchDepth(map, t.far.xy, size, layer), fetchDepth(map, t.far.zw, size, layer));
-    return smrtCrossedHidden(view, h, front, t, depths, mapSize, margin);
+    return smrtCrossedHidden(view, c.stretch, c.front, t, depths, mapSize, margin);
+}
+
+// smrtNoteHidden where SMRT_HIDDEN is on.
+void smrtNoteHiddenHere(inout SmrtHiddenCandidate c, SmrtHidden h, SmrtPoint front) {
+    if (SMRT_HIDDEN) smrtNoteHidden(c, h, front);
 }
 
 // smrtTrackHidden where SMRT_HIDDEN is on (its constant folds the tracking away elsewhere).
@@ -169,6 +175,7 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         SmrtPoint last = receiver;
         bool crossed = false;
         SmrtHidden hidden = smrtHiddenFrom(receiver);
+        SmrtHiddenCandidate candidate = smrtNoHiddenCandidate(receiver);
         // Two loops, not one with a test of gapSamples in it: lavapipe runs a branch inside
         // the march masked, taken or not, and the gaps' reads would cost every pixel.
         if (gapSamples == 0u) {
@@ -176,9 +183,10 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 float s = smrtSampleDistance(march, p, d, i, samples, jitter);
                 SmrtPoint next = smrtPoint(map, view, p, d, s, mapSize, r.layer);
                 grazed = grazed || smrtIsBehind(next);
-                if (smrtIsBehind(next) != smrtIsBehind(last))
-                    crossed = smrtStepCrosses(map, view, p, d, last, next, mapSize, r.layer) ||
-                              smrtHiddenCrossed(map, view, hidden, next, mapSize, r.layer);
+                if (smrtIsBehind(next) != smrtIsBehind(last)) {
+                    crossed = smrtStepCrosses(map, view, p, d, last, next, mapSize, r.layer);
+                    if (!crossed) smrtNoteHiddenHere(candidate, hidden, next);
+                }
                 smrtFollowHidden(hidden, next);
                 last = next;
             }
@@ -207,9 +215,10 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                     next = x;
                     continue;
                 }
-                if (smrtIsBehind(x) != smrtIsBehind(from))
-                    crossed = smrtStepCrosses(map, view, p, d, from, x, mapSize, r.layer) ||
-                              smrtHiddenCrossed(map, view, hidden, x, mapSize, r.layer);
+                if (smrtIsBehind(x) != smrtIsBehind(from)) {
+                    crossed = smrtStepCrosses(map, view, p, d, from, x, mapSize, r.layer);
+                    if (!crossed) smrtNoteHiddenHere(candidate, hidden, x);
+                }
                 smrtFollowHidden(hidden, x);
                 from = x;
                 if (gapping && j <= gapSamples) {
@@ -221,6 +230,7 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 }
             }
         }
+        if (!crossed) crossed = smrtHiddenCrossed(map, view, candidate, mapSize, r.layer);
         // A ray that ends behind the surface is extrapolated on towards the light: it meets the
         // occluder it is behind (nothing lies nearer the light than the near plane).
         bool hit = crossed || smrtIsBehind(last);

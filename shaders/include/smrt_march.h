@@ -318,6 +318,36 @@ SHARED bool smrtMayCrossHidden(IN(SmrtHidden) h, IN(SmrtPoint) front) {
     return h.behind && !smrtIsBehind(front);
 }
 
+// The place the march checks for a hidden surface: the first where the ray came out in front of
+// the surface after a stretch behind it and the crossing test saw a silhouette, with that
+// stretch. It is checked once, after the march, and not where it is found: lavapipe runs the
+// check's reads for a group of pixels whenever one pixel of it needs them, and a march with the
+// check inside cost the bulbs 30% against 13% (docs/techniques.md, step 11). A ray that meets
+// the surface later is blocked anyway; only a second silhouette after a first that hid nothing
+// goes unchecked.
+struct SmrtHiddenCandidate {
+    SmrtHidden stretch;
+    SmrtPoint front;
+    bool found;
+};
+
+SHARED SmrtHiddenCandidate smrtNoHiddenCandidate(IN(SmrtPoint) receiver) {
+    SmrtHiddenCandidate c;
+    c.stretch = smrtHiddenFrom(receiver);
+    c.front = receiver;
+    c.found = false;
+    return c;
+}
+
+// After a side change the crossing test called a silhouette, at `front`.
+SHARED void smrtNoteHidden(INOUT(SmrtHiddenCandidate) c, IN(SmrtHidden) h, IN(SmrtPoint) front) {
+    if (!c.found && smrtMayCrossHidden(h, front)) {
+        c.stretch = h;
+        c.front = front;
+        c.found = true;
+    }
+}
+
 SHARED float smrtHiddenBaseline() { return 8.0f; }
 
 // The texels where the surface in front of which the ray comes out is read: front's own (near.xy),

@@ -179,17 +179,25 @@ glm::vec4 smrtReference(const FilterInput& in) {
         gpu::SmrtPoint last = receiver;
         bool crossed = false;
         gpu::SmrtHidden hidden = gpu::smrtHiddenFrom(receiver);
-        // smrtHiddenCrossed, transcribed, where smrtStepCrosses sees a silhouette.
-        auto crossedHidden = [&](const gpu::SmrtPoint& front) {
-            if (gpu::smrtHiddenOn(view, s) == 0 || !gpu::smrtMayCrossHidden(hidden, front))
+        gpu::SmrtHiddenCandidate candidate = gpu::smrtNoHiddenCandidate(receiver);
+        const bool hiddenOn = gpu::smrtHiddenOn(view, s) != 0;
+        // Where smrtStepCrosses sees a silhouette: the candidate (smrtNoteHiddenHere).
+        auto note = [&](const gpu::SmrtPoint& front) {
+            if (hiddenOn)
+                gpu::smrtNoteHidden(candidate, hidden, front);
+        };
+        // smrtHiddenCrossed, transcribed, after the march.
+        auto crossedHidden = [&]() {
+            if (!hiddenOn || !candidate.found)
                 return false;
-            const gpu::SmrtHiddenTexels t = gpu::smrtHiddenTexels(hidden, front, mapSize);
+            const gpu::SmrtHiddenTexels t =
+                gpu::smrtHiddenTexels(candidate.stretch, candidate.front, mapSize);
             const glm::vec4 depths{in.map.texel(t.near.x, t.near.y),
                                    in.map.texel(t.near.z, t.near.w), in.map.texel(t.far.x, t.far.y),
                                    in.map.texel(t.far.z, t.far.w)};
             float margin = 0.0f;
-            const bool result =
-                gpu::smrtCrossedHidden(view, hidden, front, t, depths, mapSize, margin);
+            const bool result = gpu::smrtCrossedHidden(view, candidate.stretch, candidate.front, t,
+                                                       depths, mapSize, margin);
             in.margins.see(margin, 0.0f);
             return result;
         };
@@ -215,17 +223,24 @@ glm::vec4 smrtReference(const FilterInput& in) {
                     const gpu::SmrtPoint inside =
                         pointAt(in, s, p, d, gpu::smrtGapDistance(last, next, j, gapSamples));
                     grazed = grazed || gpu::smrtIsBehind(inside);
-                    if (gpu::smrtIsBehind(inside) != gpu::smrtIsBehind(from))
-                        crossed = crosses(from, inside) || crossedHidden(inside);
+                    if (gpu::smrtIsBehind(inside) != gpu::smrtIsBehind(from)) {
+                        crossed = crosses(from, inside);
+                        if (!crossed)
+                            note(inside);
+                    }
                     gpu::smrtTrackHidden(hidden, inside);
                     from = inside;
                 }
             }
-            if (!crossed && gpu::smrtIsBehind(next) != gpu::smrtIsBehind(from))
-                crossed = crosses(from, next) || crossedHidden(next);
+            if (!crossed && gpu::smrtIsBehind(next) != gpu::smrtIsBehind(from)) {
+                crossed = crosses(from, next);
+                if (!crossed)
+                    note(next);
+            }
             gpu::smrtTrackHidden(hidden, next);
             last = next;
         }
+        crossed = crossed || crossedHidden();
         const bool hit = crossed || gpu::smrtIsBehind(last);
         blocked += hit ? 1.0f : 0.0f;
         extrapolated += hit && !crossed ? 1.0f : 0.0f;
