@@ -378,7 +378,7 @@ const TechniqueModule& smrtModule() {
                              "crossed that surface where it, continued as a plane, hid the ray: "
                              "casters stacked over one another (a table under a slatted roof) "
                              "no longer leak (spots and suns, smrt.cubeHidden on cube faces; "
-                             "off, as it costs their pass 20-30%)"},
+                             "off, as it costs their pass 7-14%)"},
              {.key = "smrt.cubeHidden",
               .type = ParameterType::Bool,
               .defaultValue = 1,
