@@ -169,6 +169,7 @@ glm::vec4 smrtReference(const FilterInput& in) {
     const gpu::SmrtPoint receiver = pointAt(in, s, p, glm::vec3(0.0f), 0.0f);
     float blocked = 0.0f, extrapolated = 0.0f, marched = 0.0f, traced = 0.0f;
     bool grazed = gpu::smrtIsBehind(receiver);
+    const bool hiddenOn = gpu::smrtHiddenOn(view, s) != 0;
     for (uint32_t ray = 0; ray < rays; ++ray) {
         const uint32_t k = rays - 1 - ray;
         if (ray > 0 && ray == adaptive && (blocked == traced || (blocked == 0.0f && !grazed)))
@@ -180,15 +181,15 @@ glm::vec4 smrtReference(const FilterInput& in) {
         bool crossed = false;
         gpu::SmrtHidden hidden = gpu::smrtHiddenFrom(receiver);
         gpu::SmrtHiddenCandidate candidate = gpu::smrtNoHiddenCandidate(receiver);
-        const bool hiddenOn = gpu::smrtHiddenOn(view, s) != 0;
         // Where smrtStepCrosses sees a silhouette: the candidate (smrtNoteHiddenHere).
         auto note = [&](const gpu::SmrtPoint& front) {
             if (hiddenOn)
                 gpu::smrtNoteHidden(candidate, hidden, front);
         };
-        // smrtHiddenCrossed, transcribed, after the march.
+        // smrtHiddenCrossed, transcribed, after the march (a candidate is only noted where
+        // smrt.hidden is on).
         auto crossedHidden = [&]() {
-            if (!hiddenOn || !candidate.found)
+            if (!candidate.found)
                 return false;
             const gpu::SmrtHiddenTexels t =
                 gpu::smrtHiddenTexels(candidate.stretch, candidate.front, mapSize);
