@@ -110,17 +110,31 @@ bool smrtStepClear(usampler2DArray bounds, ShadowViewData view, SmrtPoint a, Smr
     return uintBitsToFloat(nearest) >= smrtStepCeiling(view, a, b);
 }
 
-// Whether the ray crosses the map's surface between a and b, which lie on either side of it: the
-// interval halved smrt.refine times, then smrtCrosses.
-bool smrtStepCrosses(sampler2DArray map, ShadowViewData view, vec3 p, vec3 d, SmrtPoint a,
-                     SmrtPoint b, uint mapSize, float layer) {
-    for (uint j = 0u; j < smrt.refine; ++j) {
-        SmrtPoint m = smrtPoint(map, view, p, d, 0.5 * (a.s + b.s), mapSize, layer);
-        if (smrtIsBehind(m) == smrtIsBehind(a)) a = m;
-        else b = m;
-    }
-    float margin;
-    return smrtCrosses(view, a, b, smrt.slope, margin);
+// A side change between two reads of the march: the interval (a, b) is halved smrt.refine times,
+// then smrtCrosses decides whether the ray crossed the map's surface there (the mirror's
+// `crosses`, src/shadows/smrt.cpp). The halvings' reads are iterations of the march's own loop:
+// lavapipe runs a loop nested in the march for a whole group at every sample while one lane
+// needs it, and a side change comes once or twice a ray.
+struct SmrtRefine {
+    bool on;       // halving (a, b)
+    uint done;     // halvings done
+    SmrtPoint a, b;
+    SmrtPoint end; // the read that changed side, where the march goes on from
+};
+
+SmrtRefine smrtRefineOff(SmrtPoint at) {
+    return SmrtRefine(false, 0u, at, at, at);
+}
+
+SmrtRefine smrtRefineBetween(SmrtPoint from, SmrtPoint to) {
+    return SmrtRefine(true, 0u, from, to, to);
+}
+
+// One halving: the midpoint's read replaces the end on its side.
+void smrtHalve(inout SmrtRefine h, SmrtPoint m) {
+    if (smrtIsBehind(m) == smrtIsBehind(h.a)) h.a = m;
+    else h.b = m;
+    ++h.done;
 }
 
 // Whether the ray crossed a hidden surface at the march's candidate (smrtNoteHidden,
@@ -176,57 +190,94 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         bool crossed = false;
         SmrtHidden hidden = smrtHiddenFrom(receiver);
         SmrtHiddenCandidate candidate = smrtNoHiddenCandidate(receiver);
+        // A side change's halvings (SmrtRefine) run as the loop's own iterations; the march goes
+        // on from the read that changed side once smrtCrosses has decided. `advanced`: the read
+        // the march moved to this iteration, if it moved.
+        SmrtRefine h = smrtRefineOff(receiver);
+        uint i = 0u;
         // Two loops, not one with a test of gapSamples in it: lavapipe runs a branch inside
         // the march masked, taken or not, and the gaps' reads would cost every pixel.
         if (gapSamples == 0u) {
-            for (uint i = 0u; i < samples && !crossed; ++i) {
-                float s = smrtSampleDistance(march, p, d, i, samples, jitter);
-                SmrtPoint next = smrtPoint(map, view, p, d, s, mapSize, r.layer);
-                grazed = grazed || smrtIsBehind(next);
-                if (smrtIsBehind(next) != smrtIsBehind(last)) {
-                    crossed = smrtStepCrosses(map, view, p, d, last, next, mapSize, r.layer);
-                    if (!crossed) smrtNoteHiddenHere(candidate, hidden, next);
+            while (!crossed && (h.on || i < samples)) {
+                float s = h.on ? 0.5 * (h.a.s + h.b.s)
+                               : smrtSampleDistance(march, p, d, i, samples, jitter);
+                SmrtPoint x = smrtPoint(map, view, p, d, s, mapSize, r.layer);
+                bool moved = false;
+                SmrtPoint advanced = x;
+                if (h.on) {
+                    smrtHalve(h, x);
+                } else {
+                    grazed = grazed || smrtIsBehind(x);
+                    if (smrtIsBehind(x) != smrtIsBehind(last)) h = smrtRefineBetween(last, x);
+                    else moved = true;
                 }
-                smrtFollowHidden(hidden, next);
-                last = next;
+                if (h.on && h.done == smrt.refine) {
+                    float margin;
+                    crossed = smrtCrosses(view, h.a, h.b, smrt.slope, margin);
+                    if (!crossed) smrtNoteHiddenHere(candidate, hidden, h.end);
+                    advanced = h.end;
+                    moved = true;
+                    h.on = false;
+                }
+                if (moved) {
+                    smrtFollowHidden(hidden, advanced);
+                    last = advanced;
+                    ++i;
+                }
             }
         } else {
-            // One loop, one read an iteration, for the main samples and the gaps' alike: lavapipe
-            // runs a loop nested in the march for every lane while one lane needs it, and lanes
-            // open long steps at different samples. The order of the points, and so every
-            // decision, is that of smrt.cpp's nested loops: a step that opens is sampled inside
-            // (j = 1 .. gapSamples), then its far end is read again (j = gapSamples + 1).
+            // One loop, one read an iteration, for the main samples, the gaps' and the halvings'
+            // alike: lavapipe runs a loop nested in the march for every lane while one lane needs
+            // it, and lanes open long steps at different samples. The order of the points, and so
+            // every decision, is that of smrt.cpp's nested loops: a step that opens is sampled
+            // inside (j = 1 .. gapSamples), then its far end is read again (j = gapSamples + 1).
             SmrtPoint from = last, next = last;
-            uint i = 0u, j = 0u;
+            uint j = 0u;
             bool gapping = false;
-            while (!crossed && (gapping || i < samples)) {
-                float s = !gapping             ? smrtSampleDistance(march, p, d, i, samples, jitter)
+            while (!crossed && (h.on || gapping || i < samples)) {
+                float s = h.on         ? 0.5 * (h.a.s + h.b.s)
+                          : !gapping   ? smrtSampleDistance(march, p, d, i, samples, jitter)
                           : j <= gapSamples ? smrtGapDistance(last, next, j, gapSamples)
                                             : next.s;
                 SmrtPoint x = smrtPoint(map, view, p, d, s, mapSize, r.layer);
-                grazed = grazed || smrtIsBehind(x);
-                // A long step in front of the surface that the bounds cannot prove clear: sampled
-                // again inside.
-                if (!gapping && !smrtIsBehind(from) && !smrtIsBehind(x) &&
-                    smrtStepTexels(from, x, mapSize) > smrtLongStep() &&
-                    !smrtStepClear(shadowTable, view, from, x, mapSize, l, levels, boundsSize)) {
-                    gapping = true;
-                    j = 1u;
-                    next = x;
-                    continue;
-                }
-                if (smrtIsBehind(x) != smrtIsBehind(from)) {
-                    crossed = smrtStepCrosses(map, view, p, d, from, x, mapSize, r.layer);
-                    if (!crossed) smrtNoteHiddenHere(candidate, hidden, x);
-                }
-                smrtFollowHidden(hidden, x);
-                from = x;
-                if (gapping && j <= gapSamples) {
-                    ++j;
+                bool moved = false;
+                SmrtPoint advanced = x;
+                if (h.on) {
+                    smrtHalve(h, x);
                 } else {
-                    gapping = false;
-                    last = x;
-                    ++i;
+                    grazed = grazed || smrtIsBehind(x);
+                    // A long step in front of the surface that the bounds cannot prove clear:
+                    // sampled again inside.
+                    if (!gapping && !smrtIsBehind(from) && !smrtIsBehind(x) &&
+                        smrtStepTexels(from, x, mapSize) > smrtLongStep() &&
+                        !smrtStepClear(shadowTable, view, from, x, mapSize, l, levels, boundsSize)) {
+                        gapping = true;
+                        j = 1u;
+                        next = x;
+                    } else if (smrtIsBehind(x) != smrtIsBehind(from)) {
+                        h = smrtRefineBetween(from, x);
+                    } else {
+                        moved = true;
+                    }
+                }
+                if (h.on && h.done == smrt.refine) {
+                    float margin;
+                    crossed = smrtCrosses(view, h.a, h.b, smrt.slope, margin);
+                    if (!crossed) smrtNoteHiddenHere(candidate, hidden, h.end);
+                    advanced = h.end;
+                    moved = true;
+                    h.on = false;
+                }
+                if (moved) {
+                    smrtFollowHidden(hidden, advanced);
+                    from = advanced;
+                    if (gapping && j <= gapSamples) {
+                        ++j;
+                    } else {
+                        gapping = false;
+                        last = advanced;
+                        ++i;
+                    }
                 }
             }
         }
