@@ -171,6 +171,75 @@ TEST(SmrtLitCeiling, BlocksAndTheirChildrenHoldTheRing) {
     }
 }
 
+// What the proof's success says of each texel a march can read (within smrt.maxRadius and a
+// texel of the receiver, distance r to its nearest point): some ring k whose inner radius is no
+// more than r holds it in its block, and either its children cannot take over (level 0) or the
+// child holding it is checked, not passed over as the inner ring's (smrtInnerBlock). Its block's
+// ceiling and its child's are then both at distances no more than r: at least as strict as the
+// texel's own. Or it is one of p's 3x3 texels (ring 0).
+TEST(SmrtLitCeiling, EveryTexelTheMarchReadsIsCheckedAtItsDistance) {
+    std::mt19937 engine(5);
+    for (int mapSize : {1000, 1024, 77}) {
+        const int boundsSize = std::max(mapSize >> 1, 1);
+        int levels = 1;
+        while ((boundsSize >> levels) > 0)
+            ++levels;
+        std::uniform_real_distribution<float> position(0.0f, float(mapSize) - 1e-3f);
+        for (float maxRadius : {3.0f, 24.0f, 256.0f}) {
+            const uint32_t rings = gpu::smrtBoundsRings(maxRadius);
+            size_t skipped = 0;
+            for (int trial = 0; trial < 12; ++trial) {
+                const glm::vec2 at(position(engine), position(engine));
+                const glm::ivec2 home(glm::floor(at));
+                const int reach = int(maxRadius) + 2;
+                for (int ty = std::max(home.y - reach, 0); ty <= std::min(home.y + reach, mapSize - 1);
+                     ++ty)
+                    for (int tx = std::max(home.x - reach, 0);
+                         tx <= std::min(home.x + reach, mapSize - 1); ++tx) {
+                        const float dx = std::max({float(tx) - at.x, at.x - float(tx + 1), 0.0f});
+                        const float dy = std::max({float(ty) - at.y, at.y - float(ty + 1), 0.0f});
+                        const float r = std::hypot(dx, dy);
+                        if (r > maxRadius + 1.0f)
+                            continue;
+                        bool checked = std::abs(tx - home.x) <= 1 && std::abs(ty - home.y) <= 1;
+                        // Outermost first, as the shader: the rings that pass it over, then one
+                        // that checks it.
+                        for (uint32_t k = rings; k >= 1 && !checked; --k) {
+                            const int level = std::min(int(k), levels - 1);
+                            const int levelSize = std::max(boundsSize >> level, 1);
+                            const glm::ivec4 block =
+                                gpu::smrtBoundsBlock(at, uint32_t(level), levelSize);
+                            const int side = 2 << level;
+                            const glm::ivec2 tile(std::min(tx / side, levelSize - 1),
+                                                  std::min(ty / side, levelSize - 1));
+                            if (float(1u << (k - 1)) > r || !gpu::smrtInBlock(tile, block))
+                                continue;
+                            if (level == 0) {
+                                checked = true;
+                                continue;
+                            }
+                            const int childSize = std::max(boundsSize >> (level - 1), 1);
+                            const int childSide = 1 << level;
+                            const glm::ivec2 child(std::min(tx / childSide, childSize - 1),
+                                                   std::min(ty / childSide, childSize - 1));
+                            const bool passedOver = gpu::smrtInBlock(
+                                child, gpu::smrtInnerBlock(at, k, level, boundsSize));
+                            skipped += passedOver;
+                            checked = !passedOver;
+                        }
+                        ASSERT_TRUE(checked) << mapSize << " reach " << maxRadius << " at (" << at.x
+                                             << ", " << at.y << "): texel (" << tx << ", " << ty
+                                             << ") at " << r;
+                    }
+            }
+            // The inner rings' blocks are passed over, or the check above proves nothing new.
+            if (maxRadius > 10.0f) {
+                EXPECT_GT(skipped, 0u) << mapSize << " reach " << maxRadius;
+            }
+        }
+    }
+}
+
 // The proof compares stored depths with the ceiling's depth: smrtDepthOf inverts viewDistance
 // under both projections and keeps their order.
 TEST(SmrtLitCeiling, DepthOfInvertsViewDistance) {

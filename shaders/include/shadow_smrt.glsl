@@ -33,7 +33,7 @@ SmrtPoint smrtPoint(sampler2DArray map, ShadowViewData view, vec3 p, vec3 d, flo
 // distance, never nearer than the ring's inner radius (smrtLastChild, smrtTileDistance).
 bool smrtChildrenHold(usampler2DArray bounds, ShadowViewData view, SmrtCeiling c, vec2 at,
                       ivec4 block, int level, int boundsSize, uint mapSize, int layer,
-                      float inner) {
+                      float inner, ivec4 covered) {
     if (level == 0) return false;
     int child = level - 1;
     int levelSize = max(boundsSize >> level, 1), childSize = max(boundsSize >> child, 1);
@@ -41,6 +41,7 @@ bool smrtChildrenHold(usampler2DArray bounds, ShadowViewData view, SmrtCeiling c
     int lastY = smrtLastChild(block.w, levelSize, childSize);
     for (int y = 2 * block.y; y <= lastY; ++y)
         for (int x = 2 * block.x; x <= lastX; ++x) {
+            if (smrtInBlock(ivec2(x, y), covered)) continue; // the inner ring's (smrtInnerBlock)
             float d = smrtTileDistance(at, ivec2(x, y), child, childSize, mapSize);
             float ceiling = smrtDepthOf(view, smrtLitCeiling(c, max(inner, d)));
             if (uintBitsToFloat(texelFetch(bounds, ivec3(x, y, layer), child).r) < ceiling)
@@ -87,7 +88,8 @@ bool smrtProvenLit(sampler2DArray map, usampler2DArray bounds, ShadowViewData vi
         float inner = float(1u << (k - 1u));
         float ring = smrtDepthOf(view, smrtLitCeiling(c, inner));
         if (uintBitsToFloat(nearest) < ring &&
-            !smrtChildrenHold(bounds, view, c, at, block, level, boundsSize, mapSize, l, inner))
+            !smrtChildrenHold(bounds, view, c, at, block, level, boundsSize, mapSize, l, inner,
+                              smrtInnerBlock(at, k, level, boundsSize)))
             return false;
     }
     return true;

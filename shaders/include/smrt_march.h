@@ -424,6 +424,25 @@ SHARED ivec4 smrtBoundsBlock(vec2 at, uint level, int levelSize) {
     return ivec4(clamp(first, ivec2(0, 0), top), clamp(last, ivec2(0, 0), top));
 }
 
+// The inner ring's block at ring k's children's level, whose children ring k passes over: ring k-1
+// checks every texel of its own block at least as strictly as ring k would (at the ceiling of a
+// distance no larger than the texel's; nearer texels belong to rings further in). Without this
+// the outermost ring's tile round p, 512 texels wide under a 2048 map, held casters up to twice
+// the rays' reach against the ceiling at its inner radius, and failed the proof of most lit
+// pixels under a close bulb. None (an empty box) for ring 1, whose inner ring is p's 3x3 texels,
+// and where the levels run out (ring k's level clamped: its children lie a level below ring
+// k-1's block).
+SHARED ivec4 smrtInnerBlock(vec2 at, uint k, int level, int boundsSize) {
+    if (k < 2u || level != int(k)) return ivec4(1, 1, 0, 0);
+    int child = level - 1;
+    return smrtBoundsBlock(at, uint(child), max(boundsSize >> child, 1));
+}
+
+// Whether `tile` lies in `block` (first tile xy, last zw).
+SHARED bool smrtInBlock(ivec2 tile, ivec4 block) {
+    return tile.x >= block.x && tile.y >= block.y && tile.x <= block.z && tile.y <= block.w;
+}
+
 // A ring whose block fails as a whole is looked at once more, through its tiles' children (at
 // level - 1), each against the ceiling at its own distance from p: the block reaches three times
 // as far as the ring's inner radius, and a receiver's own tilted surface at its far side fails

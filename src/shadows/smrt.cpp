@@ -64,7 +64,7 @@ BoundsShape boundsShape(uint32_t mapSize) {
 
 // smrtChildrenHold, transcribed.
 bool childrenHold(const FilterInput& in, const gpu::SmrtCeiling& c, glm::vec2 at, glm::ivec4 block,
-                  int level, int boundsSize, float inner) {
+                  int level, int boundsSize, float inner, glm::ivec4 covered) {
     if (level == 0)
         return false;
     const int child = level - 1;
@@ -74,6 +74,8 @@ bool childrenHold(const FilterInput& in, const gpu::SmrtCeiling& c, glm::vec2 at
     const int lastY = gpu::smrtLastChild(block.w, levelSize, childSize);
     for (int y = 2 * block.y; y <= lastY; ++y)
         for (int x = 2 * block.x; x <= lastX; ++x) {
+            if (gpu::smrtInBlock({x, y}, covered))
+                continue;
             const float d = gpu::smrtTileDistance(at, {x, y}, child, childSize, in.map.size);
             const float ceiling =
                 gpu::smrtDepthOf(in.view, gpu::smrtLitCeiling(c, std::max(inner, d)));
@@ -119,7 +121,8 @@ bool provenLit(const FilterInput& in, const gpu::SmrtParams& s, glm::vec3 p) {
         const auto inner = static_cast<float>(1u << (k - 1));
         const float ring = gpu::smrtDepthOf(in.view, gpu::smrtLitCeiling(c, inner));
         if (below(nearest, ring) &&
-            !childrenHold(in, c, at, block, level, static_cast<int>(boundsSize), inner))
+            !childrenHold(in, c, at, block, level, static_cast<int>(boundsSize), inner,
+                          gpu::smrtInnerBlock(at, k, level, static_cast<int>(boundsSize))))
             return false;
     }
     return true;
