@@ -184,7 +184,7 @@ glm::vec4 smrtReference(const FilterInput& in) {
         bool crossed = false;
         gpu::SmrtHidden hidden = gpu::smrtHiddenFrom(receiver);
         gpu::SmrtHiddenCandidate candidate = gpu::smrtNoHiddenCandidate(receiver);
-        // Where smrtStepCrosses sees a silhouette: the candidate (smrtNoteHiddenHere).
+        // Where the crossing test sees a silhouette: the candidate (smrtNoteHiddenHere).
         auto note = [&](const gpu::SmrtPoint& front) {
             if (hiddenOn)
                 gpu::smrtNoteHidden(candidate, hidden, front);
@@ -205,7 +205,8 @@ glm::vec4 smrtReference(const FilterInput& in) {
             in.margins.see(margin, 0.0f);
             return result;
         };
-        // smrtStepCrosses, transcribed.
+        // The halvings and smrtCrosses, transcribed (the shader reads the halvings as
+        // iterations of its march's loop: SmrtRefine).
         auto crosses = [&](gpu::SmrtPoint a, gpu::SmrtPoint b) {
             for (uint32_t j = 0; j < s.refine; ++j) {
                 const gpu::SmrtPoint m = pointAt(in, s, p, d, 0.5f * (a.s + b.s));
