@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 using namespace penumbra;
 
@@ -120,16 +121,23 @@ glm::ivec2 tileTexels(int tile, int level, int levelSize, int mapSize) {
     return {tile * side, tile == levelSize - 1 ? mapSize - 1 : (tile + 1) * side - 1};
 }
 
+// The bounds of a map of mapSize texels: their size (half the map's, at least 1) and their levels
+// down to one tile (as smrt_bounds.comp builds them).
+std::pair<int, int> boundsShape(int mapSize) {
+    const int boundsSize = std::max(mapSize >> 1, 1);
+    int levels = 1;
+    while ((boundsSize >> levels) > 0)
+        ++levels;
+    return {boundsSize, levels};
+}
+
 // On maps whose bounds have odd-sized levels (1000: 500, 250, 125, 62, 31, 15, 7, 3, 1) and on a
 // power of two: ring k's 2x2 block holds every texel within 2^k of the receiver, and its tiles'
 // children (smrtLastChild) hold exactly the block's texels.
 TEST(SmrtLitCeiling, BlocksAndTheirChildrenHoldTheRing) {
     std::mt19937 engine(3);
     for (int mapSize : {1000, 1024, 77}) {
-        const int boundsSize = std::max(mapSize >> 1, 1);
-        int levels = 1;
-        while ((boundsSize >> levels) > 0)
-            ++levels;
+        const auto [boundsSize, levels] = boundsShape(mapSize);
         std::uniform_real_distribution<float> position(0.0f, float(mapSize) - 1e-3f);
         for (int trial = 0; trial < 400; ++trial) {
             const glm::vec2 at(position(engine), position(engine));
@@ -180,10 +188,7 @@ TEST(SmrtLitCeiling, BlocksAndTheirChildrenHoldTheRing) {
 TEST(SmrtLitCeiling, EveryTexelTheMarchReadsIsCheckedAtItsDistance) {
     std::mt19937 engine(5);
     for (int mapSize : {1000, 1024, 77}) {
-        const int boundsSize = std::max(mapSize >> 1, 1);
-        int levels = 1;
-        while ((boundsSize >> levels) > 0)
-            ++levels;
+        const auto [boundsSize, levels] = boundsShape(mapSize);
         std::uniform_real_distribution<float> position(0.0f, float(mapSize) - 1e-3f);
         for (float maxRadius : {3.0f, 24.0f, 256.0f}) {
             const uint32_t rings = gpu::smrtBoundsRings(maxRadius);
@@ -266,10 +271,7 @@ TEST(SmrtStepCheck, TilesHoldEveryTexelTheStepReads) {
     std::mt19937 engine(5);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int mapSize : {1000, 1024, 77}) {
-        const int boundsSize = std::max(mapSize >> 1, 1);
-        int levels = 1;
-        while ((boundsSize >> levels) > 0)
-            ++levels;
+        const auto [boundsSize, levels] = boundsShape(mapSize);
         for (int trial = 0; trial < 2000; ++trial) {
             gpu::SmrtPoint a{}, b{};
             a.uv = {unit(engine) * 1.1f - 0.05f, unit(engine) * 1.1f - 0.05f};

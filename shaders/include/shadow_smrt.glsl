@@ -162,6 +162,19 @@ void smrtFollowHidden(inout SmrtHidden h, SmrtPoint x) {
     if (SMRT_HIDDEN) smrtTrackHidden(h, x);
 }
 
+// After smrt.refine halvings, smrtCrosses decides whether the ray crossed the surface (`crossed`);
+// a side change it did not cross is smrt.hidden's candidate. The march then goes on from the read
+// that changed side (h.end). False while halvings remain, or with none under way.
+bool smrtSettled(ShadowViewData view, inout SmrtRefine h, inout SmrtHiddenCandidate candidate,
+                 SmrtHidden hidden, inout bool crossed) {
+    if (!h.on || h.done != smrt.refine) return false;
+    float margin;
+    crossed = smrtCrosses(view, h.a, h.b, smrt.slope, margin);
+    if (!crossed) smrtNoteHiddenHere(candidate, hidden, h.end);
+    h.on = false;
+    return true;
+}
+
 // x visibility, y rays blocked, z of those, the rays blocked only by extrapolation, w the mean
 // march length in texels of the map (over the rays traced).
 vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view,
@@ -213,13 +226,9 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                     if (smrtIsBehind(x) != smrtIsBehind(last)) h = smrtRefineBetween(last, x);
                     else moved = true;
                 }
-                if (h.on && h.done == smrt.refine) {
-                    float margin;
-                    crossed = smrtCrosses(view, h.a, h.b, smrt.slope, margin);
-                    if (!crossed) smrtNoteHiddenHere(candidate, hidden, h.end);
+                if (smrtSettled(view, h, candidate, hidden, crossed)) {
                     advanced = h.end;
                     moved = true;
-                    h.on = false;
                 }
                 if (moved) {
                     smrtFollowHidden(hidden, advanced);
@@ -262,13 +271,9 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                         moved = true;
                     }
                 }
-                if (h.on && h.done == smrt.refine) {
-                    float margin;
-                    crossed = smrtCrosses(view, h.a, h.b, smrt.slope, margin);
-                    if (!crossed) smrtNoteHiddenHere(candidate, hidden, h.end);
+                if (smrtSettled(view, h, candidate, hidden, crossed)) {
                     advanced = h.end;
                     moved = true;
-                    h.on = false;
                 }
                 if (moved) {
                     smrtFollowHidden(hidden, advanced);
