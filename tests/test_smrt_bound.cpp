@@ -197,8 +197,8 @@ TEST(SmrtLitCeiling, EveryTexelTheMarchReadsIsCheckedAtItsDistance) {
                 const glm::vec2 at(position(engine), position(engine));
                 const glm::ivec2 home(glm::floor(at));
                 const int reach = int(maxRadius) + 2;
-                for (int ty = std::max(home.y - reach, 0); ty <= std::min(home.y + reach, mapSize - 1);
-                     ++ty)
+                for (int ty = std::max(home.y - reach, 0);
+                     ty <= std::min(home.y + reach, mapSize - 1); ++ty)
                     for (int tx = std::max(home.x - reach, 0);
                          tx <= std::min(home.x + reach, mapSize - 1); ++tx) {
                         const float dx = std::max({float(tx) - at.x, at.x - float(tx + 1), 0.0f});
@@ -232,9 +232,9 @@ TEST(SmrtLitCeiling, EveryTexelTheMarchReadsIsCheckedAtItsDistance) {
                             skipped += passedOver;
                             checked = !passedOver;
                         }
-                        ASSERT_TRUE(checked) << mapSize << " reach " << maxRadius << " at (" << at.x
-                                             << ", " << at.y << "): texel (" << tx << ", " << ty
-                                             << ") at " << r;
+                        ASSERT_TRUE(checked)
+                            << mapSize << " reach " << maxRadius << " at (" << at.x << ", " << at.y
+                            << "): texel (" << tx << ", " << ty << ") at " << r;
                     }
             }
             // The inner rings' blocks are passed over, or the check above proves nothing new.

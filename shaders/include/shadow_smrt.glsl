@@ -132,11 +132,17 @@ SmrtRefine smrtRefineBetween(SmrtPoint from, SmrtPoint to) {
     return SmrtRefine(true, 0u, from, to, to);
 }
 
-// One halving: the midpoint's read replaces the end on its side.
-void smrtHalve(inout SmrtRefine h, SmrtPoint m) {
+// A read while halving replaces the end on its side (true); any other read counts towards the
+// adaptive stop's `grazed` (false), and the march classifies it.
+bool smrtHalving(inout SmrtRefine h, SmrtPoint m, inout bool grazed) {
+    if (!h.on) {
+        grazed = grazed || smrtIsBehind(m);
+        return false;
+    }
     if (smrtIsBehind(m) == smrtIsBehind(h.a)) h.a = m;
     else h.b = m;
     ++h.done;
+    return true;
 }
 
 // Whether the ray crossed a hidden surface at the march's candidate (smrtNoteHidden,
@@ -219,10 +225,7 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 SmrtPoint x = smrtPoint(map, view, p, d, s, mapSize, r.layer);
                 bool moved = false;
                 SmrtPoint advanced = x;
-                if (h.on) {
-                    smrtHalve(h, x);
-                } else {
-                    grazed = grazed || smrtIsBehind(x);
+                if (!smrtHalving(h, x, grazed)) {
                     if (smrtIsBehind(x) != smrtIsBehind(last)) h = smrtRefineBetween(last, x);
                     else moved = true;
                 }
@@ -253,10 +256,7 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 SmrtPoint x = smrtPoint(map, view, p, d, s, mapSize, r.layer);
                 bool moved = false;
                 SmrtPoint advanced = x;
-                if (h.on) {
-                    smrtHalve(h, x);
-                } else {
-                    grazed = grazed || smrtIsBehind(x);
+                if (!smrtHalving(h, x, grazed)) {
                     // A long step in front of the surface that the bounds cannot prove clear:
                     // sampled again inside.
                     if (!gapping && !smrtIsBehind(from) && !smrtIsBehind(x) &&
