@@ -9,6 +9,7 @@
 #include "frame_block.h"
 #include "bindings.h"
 #include "pass_types.h"
+#include "checkerboard.h"
 layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
 layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = 0u;
 layout(constant_id = SPEC_RECEIVER) const uint RECEIVER = RECEIVER_OFF;
@@ -32,6 +33,9 @@ layout(constant_id = SPEC_ADAPTIVE_BIAS) const bool ADAPTIVE = false;
 layout(constant_id = SPEC_FOOTPRINT) const bool FOOTPRINT = false;
 layout(constant_id = SPEC_BLOCKER_SEARCH) const bool BLOCKER_SEARCH = false;
 layout(constant_id = SPEC_TRACES_FIELD) const bool TRACES_FIELD = false;
+// Which pixels this dispatch traces: all, the checkerboard's even ones, or the trace list's
+// (checkerboard.h; visibility_fill.comp fills the others between the two).
+layout(constant_id = SPEC_CHECKERBOARD) const uint CHECKERBOARD = 0u;
 #include "gbuffer.glsl"
 #include "shadow_common.glsl"
 #include "techniques.glsl"
@@ -46,6 +50,10 @@ layout(set = 0, binding = VIS_VIEWS, std140) uniform Views { ShadowViewData view
 layout(set = 0, binding = VIS_INTERMEDIATES, rgba32f) uniform writeonly image2DArray intermediates;
 layout(set = 0, binding = VIS_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;
 layout(set = 0, binding = VIS_COLOR, rgba8) uniform writeonly image2D outColor;
+layout(set = 0, binding = VIS_TRACE_LIST, std430) readonly buffer TraceList {
+    TraceListHead head;
+    uint pixels[];
+} traceList;
 
 // The technique's intermediate results at the last view it was evaluated in (the viewer's
 // blocker-depth and penumbra views): evaluateTechnique's vector.
@@ -363,19 +371,31 @@ float throughCascade(CascadeBase b, uint i, ivec2 p) {
     return BLOCKER_SEARCH ? searchThroughCascades(b, i, p) : visibilityThroughCascade(b, i, p);
 }
 
+// The pixel this invocation evaluates (off the image: none).
+ivec2 invocationPixel() {
+    if (CHECKERBOARD == CHECKERBOARD_EVEN) return checkerboardPixel(gl_GlobalInvocationID.xy, 0u);
+    if (CHECKERBOARD == CHECKERBOARD_LIST) {
+        uint i = gl_WorkGroupID.x * CHECKERBOARD_LIST_GROUP + gl_LocalInvocationIndex;
+        return i < traceList.head.count ? unpackPixel(traceList.pixels[i]) : ivec2(-1);
+    }
+    return ivec2(gl_GlobalInvocationID.xy);
+}
+
 // Light i's visibility at the pixel, for the fused composite: this dispatch's own in `current`,
 // the earlier dispatches' from their layers.
 float current;
+ivec2 pixel;
 float visibilityOf(uint i, LightData light) {
     float layer = light.cone.w;
-    float stored = imageLoad(visibility, ivec3(gl_GlobalInvocationID.xy, max(int(layer), 0))).r;
+    float stored = imageLoad(visibility, ivec3(pixel, max(int(layer), 0))).r;
     return i == push.light.x ? current : layer >= 0.0 ? stored : 1.0;
 }
 #define LIGHT_VISIBILITY(i, light) visibilityOf(i, light)
 #include "shading.glsl"
 
 void main() {
-    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 p = invocationPixel();
+    pixel = p;
     uvec2 size = frame.imageSize.xy;
     if (any(greaterThanEqual(uvec2(p), size))) return;
     float depth = texelFetch(gDepth, p, 0).r;

@@ -5,6 +5,7 @@
 // tests/test_smrt.cpp.
 #include "light_geometry.h"
 #include "shadows/visibility_filter.h"
+#include "surface_images.h"
 
 #include <gtest/gtest.h>
 
@@ -14,36 +15,21 @@
 #include <vector>
 
 using namespace penumbra;
+using test::onPlane;
+using test::up;
 
 namespace {
 
 constexpr uint32_t kSize = 16;
 constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
 
-// A kSize x kSize image of a surface: position(x, y), normal(x, y) and visibility(x, y).
-struct Surface {
-    std::vector<float> position, normal, visibility;
-};
+using Surface = test::SurfaceImage;
 
+// A kSize x kSize image of a surface: position(x, y), normal(x, y) and visibility(x, y).
 Surface surface(const std::function<glm::vec3(int, int)>& position,
                 const std::function<glm::vec3(int, int)>& normal,
                 const std::function<float(int, int)>& visibility) {
-    Surface s;
-    for (int y = 0; y < int(kSize); ++y)
-        for (int x = 0; x < int(kSize); ++x) {
-            const glm::vec3 p = position(x, y), n = normal(x, y);
-            s.position.insert(s.position.end(), {p.x, p.y, p.z});
-            s.normal.insert(s.normal.end(), {n.x, n.y, n.z});
-            s.visibility.push_back(visibility(x, y));
-        }
-    return s;
-}
-
-glm::vec3 onPlane(int x, int y) {
-    return {0.1f * float(x), 0.1f * float(y), 0.0f};
-}
-glm::vec3 up(int, int) {
-    return {0.0f, 0.0f, 1.0f};
+    return test::surfaceImage(kSize, kSize, position, normal, visibility);
 }
 
 std::vector<float> filtered(const Surface& s, uint32_t radius, float tolerance) {

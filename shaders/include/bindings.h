@@ -38,6 +38,10 @@
 #define SPEC_FILTER_AXIS 21      // ... and its pass: 0 along rows, 1 along columns
 #define SPEC_SMRT_HIDDEN 22     // smrt.hidden (smrt's own, shadow_smrt.glsl)
 #define SPEC_FILTER_WIDE 23     // visibility_filter.comp: its radius inside wide penumbrae
+#define SPEC_CHECKERBOARD 24    // visibility.comp: which pixels it traces (CHECKERBOARD_*,
+                                // checkerboard.h)
+#define SPEC_FILL_RANGE 25      // visibility_fill.comp: the range of the neighbours it fills from
+                                // (a float's bits)
 
 // Descriptor bindings, pass by pass.
 #define BIND_FRAME 0             // FrameData, in every pass that reads it
@@ -68,6 +72,8 @@
                                  // written with SPEC_INTERMEDIATES (a 1x1 placeholder otherwise)
 #define VIS_GBUFFER_ALBEDO 11    // read and ...
 #define VIS_COLOR 12             // ... written by a dispatch with SPEC_FUSED_COMPOSITE (RGBA8)
+#define VIS_TRACE_LIST 13        // checkerboard.h's trace list, read with CHECKERBOARD_LIST (a
+                                 // placeholder of one head otherwise)
 #define COMPOSITE_LIGHTS 1       // composite.comp: LightData[], uniform
 #define COMPOSITE_GBUFFER_DEPTH 2
 #define COMPOSITE_GBUFFER_NORMAL 3
@@ -83,6 +89,7 @@
 #define LAYER_PARAMS 5           // the layer's parameter block (uniform)
 #define LAYER_RESULTS 6          // R32F array: the layer's own factor, with SPEC_INTERMEDIATES (a
                                  // 1x1 placeholder otherwise; the viewer's debug view)
+#define LAYER_TRACE_LIST 7       // checkerboard.h's trace list: visibility_fill.comp appends to it
 #define EXPORT_GBUFFER_DEPTH 1   // export.comp
 #define EXPORT_GBUFFER_NORMAL 2
 #define EXPORT_POSITION 3

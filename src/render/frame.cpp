@@ -65,12 +65,19 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.pageTable = graph.importBuffer(std::string(target::kPageTable), in.pageTable);
     if (s.virtualMaps)
         r.pageRequests = graph.importBuffer(std::string(target::kPageRequests), in.pageRequests);
+    r.traceList =
+        graph.declare(traceListDecl(s.sizes.width, s.sizes.height, checkerboardOf(s).runs));
     return r;
 }
 
 shadows::VisibilityFilter visibilityFilterOf(const FrameSettings& s) {
     return s.technique->visibilityFilter ? s.technique->visibilityFilter(*s.params)
                                          : shadows::VisibilityFilter{};
+}
+
+shadows::Checkerboard checkerboardOf(const FrameSettings& s) {
+    return s.technique->checkerboard && !s.intermediates ? s.technique->checkerboard(*s.params)
+                                                         : shadows::Checkerboard{};
 }
 
 FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const GpuScene& scene,

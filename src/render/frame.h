@@ -95,6 +95,7 @@ struct FrameResources {
     FilteredBindings filtered{};
     ResourceId frame = 0, lights = 0, views = 0, params = 0, layerParams = 0;
     ResourceId pageTable = 0, pageRequests = 0;
+    ResourceId traceList = 0; // checkerboard tracing's (a head alone when it does not run)
     // The map a module calls `name` (shadows::kDepthMap or one of its own).
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;
 };
@@ -102,6 +103,9 @@ struct FrameResources {
 // The technique's visibility filter under these settings (none runs where its radius for the
 // light's kind is 0).
 shadows::VisibilityFilter visibilityFilterOf(const FrameSettings& s);
+// The technique's checkerboard tracing under these settings (none with the viewer's
+// intermediates, which want every pixel's own).
+shadows::Checkerboard checkerboardOf(const FrameSettings& s);
 
 // Declares every target and input of a frame with these settings.
 FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const FrameInputs& in);

@@ -1,5 +1,6 @@
 #include "render/frame_targets.h"
 
+#include "checkerboard.h"
 #include "render/pipelines.h"
 
 namespace penumbra::render {
@@ -158,7 +159,18 @@ TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterV
     for (const ImageDecl& decl : screenDecls(false))
         bytes.screen += ResourcePool::bytesOf(decl, sizes);
     bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights).bytes;
+    const bool checkerboard = module.checkerboard && module.checkerboard(params).runs;
+    bytes.screen += traceListDecl(sizes.width, sizes.height, checkerboard).bytes;
     return bytes;
+}
+
+BufferDecl traceListDecl(uint32_t width, uint32_t height, bool checkerboard) {
+    const VkDeviceSize filled = (VkDeviceSize{width} * height + 1) / 2;
+    return {.name = std::string(target::kTraceList),
+            .size = SizeClass::Fixed,
+            .bytes = sizeof(gpu::TraceListHead) + (checkerboard ? filled * sizeof(uint32_t) : 0),
+            .usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                     VK_BUFFER_USAGE_TRANSFER_DST_BIT};
 }
 
 } // namespace penumbra::render

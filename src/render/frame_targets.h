@@ -27,6 +27,7 @@ inline constexpr std::string_view kPosition = "export.position";     // RGBA32F,
 inline constexpr std::string_view kNormal = "export.normal";         // RGBA32F, for the host
 inline constexpr std::string_view kFaceNormal = "export.faceNormal"; // RGBA32F, for the host
 inline constexpr std::string_view kReadback = "readback";            // host-visible buffer
+inline constexpr std::string_view kTraceList = "traceList"; // checkerboard.h's, for one light
 inline constexpr std::string_view kIntegerPlaceholder = "placeholder.integer";
 inline constexpr std::string_view kField = "field"; // the distance field, or its placeholder
 // The ring slot's uniform buffers (written by the host before the frame).
@@ -73,6 +74,9 @@ struct ReadbackLayout {
     VkDeviceSize bytes;
     BufferDecl decl() const;
 };
+
+// Checkerboard tracing's list (checkerboard.h): its head, then room for every pixel it fills.
+BufferDecl traceListDecl(uint32_t width, uint32_t height, bool checkerboard);
 
 // Device memory the frame's targets take for these sizes (declared images and the readback
 // buffer): what Renderer::check compares with the device's.

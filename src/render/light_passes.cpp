@@ -5,6 +5,7 @@
 // light's visibility layer. The composite shades every pixel from the lights' layers: fused into
 // the last light's visibility dispatch ("composite", composite.fused) when no layer runs after
 // it, else composite.comp on its own.
+#include "checkerboard.h"
 #include "render/frame.h"
 #include "render/pass_utils.h"
 #include "vk/pipelines.h"
@@ -23,12 +24,15 @@ size_t layerIndex(const shadows::LayerModule& layer) {
 
 // The visibility dispatch of one light with shadow views, into its layer of the visibility
 // image; `fused`: it also shades every pixel into the colour image (the last light's).
+// `checkerboard`: which of its pixels it traces (CHECKERBOARD_*).
 void dispatchVisibility(PassContext& c, FramePipelines& p, const FrameSettings& s,
                         const FrameInputs& in, const FrameResources& r, const LightDispatch& light,
-                        bool fused) {
+                        bool fused, uint32_t checkerboard = CHECKERBOARD_OFF) {
     std::vector<shadows::SpecConstant> constants = s.constants;
     constants.push_back({SPEC_LIGHT_TYPE, light.type});
     constants.push_back({SPEC_LIGHT_VIEWS, light.views});
+    if (checkerboard != CHECKERBOARD_OFF)
+        constants.push_back({SPEC_CHECKERBOARD, checkerboard});
     if (fused) {
         constants.insert(constants.end(), s.sceneLights.begin(), s.sceneLights.end());
         constants.push_back({SPEC_FUSED_COMPOSITE, 1u});
@@ -51,18 +55,25 @@ void dispatchVisibility(PassContext& c, FramePipelines& p, const FrameSettings& 
         .sampled(VIS_GBUFFER_ALBEDO, c.image(r.gbufferAlbedo).view(), in.nearest)
         .storageImage(VIS_COLOR, c.image(r.color).view())
         .storageBuffer(TECH_PAGE_TABLE, c.buffer(r.pageTable))
+        .storageBuffer(VIS_TRACE_LIST, c.buffer(r.traceList))
         .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibilityLayout);
     vkCmdPushConstants(c.cmd, p.visibilityLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                        sizeof light.push, &light.push);
-    vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+    if (checkerboard == CHECKERBOARD_LIST)
+        vkCmdDispatchIndirect(c.cmd, c.buffer(r.traceList), 0);
+    else if (checkerboard == CHECKERBOARD_EVEN)
+        vkCmdDispatch(c.cmd, groups(s.sizes.width), groups((s.sizes.height + 1) / 2), 1);
+    else
+        vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
 }
 
-// One dispatch over the image on the layers' pipeline layout for one light: every binding
-// written, the block at `paramsOffset` of the layer buffer, `results` at LAYER_RESULTS.
+// One dispatch over the image (`rows` high: the image's height unless given) on the layers'
+// pipeline layout for one light: every binding written, the block at `paramsOffset` of the layer
+// buffer, `results` at LAYER_RESULTS.
 void dispatchOnLayerLayout(PassContext& c, FramePipelines& p, const FrameSettings& s,
                            const FrameInputs& in, const FrameResources& r, VkPipeline pipeline,
                            VkDeviceSize paramsOffset, ResourceId results,
-                           const LightDispatch& light) {
+                           const LightDispatch& light, uint32_t rows = 0) {
     vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
     vk::PushDescriptors()
         .uniformBuffer(BIND_FRAME, in.frame)
@@ -72,10 +83,11 @@ void dispatchOnLayerLayout(PassContext& c, FramePipelines& p, const FrameSetting
         .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
         .uniformBuffer(LAYER_PARAMS, in.layerParams, paramsOffset, TECHNIQUE_BLOCK_BYTES)
         .storageImage(LAYER_RESULTS, c.image(results).view())
+        .storageBuffer(LAYER_TRACE_LIST, c.buffer(r.traceList))
         .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layerLayout);
     vkCmdPushConstants(c.cmd, p.layerLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                        sizeof light.push, &light.push);
-    vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+    vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(rows > 0 ? rows : s.sizes.height), 1);
 }
 
 // One layer's dispatch for one light: reads the G-buffer and the light's visibility layer and
@@ -137,6 +149,48 @@ std::vector<Use> visibilityUses(const FrameResources& r, Access visibility) {
             {r.color, Access::ComputeWrite}}; // bound by every dispatch
 }
 
+// Checkerboard tracing's passes for one light after its even pixels (checkerboard.h): the trace
+// list emptied, the odd pixels filled or listed, the list traced. The three are timed as
+// "visibility" with the even pixels' dispatch: the technique's whole cost. `first`: the first
+// light's emptying alone, before the even pixels' pass that binds the list.
+void addCheckerboardPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
+                           const FrameInputs& in, const FrameResources& r,
+                           shadows::Checkerboard checkerboard, size_t light, bool first) {
+    if (light > 0 || first)
+        graph.addPass({.name = "",
+                       .phase = Phase::PerLight,
+                       .uses = {{r.traceList, Access::TransferWrite}},
+                       .record = [list = r.traceList](PassContext& c) {
+                           const gpu::TraceListHead empty{.groupsY = 1, .groupsZ = 1};
+                           vkCmdUpdateBuffer(c.cmd, c.buffer(list), 0, sizeof empty, &empty);
+                       }});
+    if (first)
+        return;
+    std::vector<Use> fill =
+        layerLayoutUses(r, Access::ComputeReadWrite, r.layerResults, Access::ComputeWrite);
+    fill.push_back({r.traceList, Access::ComputeReadWrite});
+    graph.addPass({.name = "visibility",
+                   .phase = Phase::PerLight,
+                   .uses = fill,
+                   .record = [&p, &s, &in, r, checkerboard, light](PassContext& c) {
+                       const float range = checkerboard.rangeFor(s.shadowLights[light].type);
+                       const std::vector<shadows::SpecConstant> constants{
+                           {SPEC_FILL_RANGE, std::bit_cast<uint32_t>(range)}};
+                       dispatchOnLayerLayout(
+                           c, p, s, in, r, p.layer("visibility_fill.comp", constants), 0,
+                           r.layerResults, s.shadowLights[light], (s.sizes.height + 1) / 2);
+                   }});
+    std::vector<Use> trace = visibilityUses(r, Access::ComputeWrite);
+    trace.push_back({r.traceList, Access::IndirectRead});
+    graph.addPass({.name = "visibility",
+                   .phase = Phase::PerLight,
+                   .uses = trace,
+                   .record = [&p, &s, &in, r, light](PassContext& c) {
+                       dispatchVisibility(c, p, s, in, r, s.shadowLights[light], false,
+                                          CHECKERBOARD_LIST);
+                   }});
+}
+
 } // namespace
 
 void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
@@ -144,16 +198,26 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     // With no layer after it, the last light's visibility dispatch shades too: one pass fewer
     // over the G-buffer, and its position and normal reconstructed once.
     const shadows::VisibilityFilter filter = visibilityFilterOf(s);
-    const bool fused =
-        s.fuseComposite && !s.shadowLights.empty() && s.layers.empty() && !filter.runs();
+    const shadows::Checkerboard halves = checkerboardOf(s);
+    const bool checkerboard = halves.runs && !s.shadowLights.empty();
+    const bool fused = s.fuseComposite && !s.shadowLights.empty() && s.layers.empty() &&
+                       !filter.runs() && !checkerboard;
     const size_t separate = fused ? s.shadowLights.size() - 1 : s.shadowLights.size();
+    if (checkerboard) // the first light's list, emptied before the pass that binds it
+        addCheckerboardPasses(graph, p, s, in, r, halves, 0, true);
+    std::vector<Use> uses = visibilityUses(r, Access::ComputeWrite);
+    if (checkerboard)
+        uses.push_back({r.traceList, Access::ComputeRead});
     graph.addPass({.name = "visibility",
                    .phase = Phase::PerLight,
-                   .uses = visibilityUses(r, Access::ComputeWrite),
-                   .record = [&p, &s, &in, r, separate](PassContext& c) {
+                   .uses = uses,
+                   .record = [&p, &s, &in, r, separate, checkerboard](PassContext& c) {
                        for (size_t i = 0; i < separate; ++i)
-                           dispatchVisibility(c, p, s, in, r, s.shadowLights[i], false);
+                           dispatchVisibility(c, p, s, in, r, s.shadowLights[i], false,
+                                              checkerboard ? CHECKERBOARD_EVEN : CHECKERBOARD_OFF);
                    }});
+    for (size_t i = 0; checkerboard && i < s.shadowLights.size(); ++i)
+        addCheckerboardPasses(graph, p, s, in, r, halves, i, false);
     // The filter's two passes (both timed as "filter"): rows into the scratch, columns back.
     for (uint32_t axis = 0; filter.runs() && axis < 2; ++axis) {
         const Access read = Access::ComputeReadWrite, write = Access::ComputeWrite;

@@ -85,7 +85,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {VIS_INTERMEDIATES, kImage},
                                   {VIS_GBUFFER_ALBEDO, kSampled},
                                   {VIS_COLOR, kImage},
-                                  {TECH_PAGE_TABLE, kStorage}},
+                                  {TECH_PAGE_TABLE, kStorage},
+                                  {VIS_TRACE_LIST, kStorage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     markingLayout =
         vk::createPipelineLayout(ctx,
@@ -133,7 +134,8 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {LAYER_GBUFFER_NORMAL, kSampled},
                                   {LAYER_VISIBILITY, kImage},
                                   {LAYER_PARAMS, kUniform},
-                                  {LAYER_RESULTS, kImage}},
+                                  {LAYER_RESULTS, kImage},
+                                  {LAYER_TRACE_LIST, kStorage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
     readingDepthLayout = vk::createPipelineLayout(
         ctx, {{READ_MAP, kSampled}, {READ_TEXTURE, kSampled}}, kGraphicsStages,

@@ -88,7 +88,8 @@ enum class Access {
     TransferWrite,    // copied to
     UniformRead,      // a uniform buffer read by any shader stage
     ComputeRead,      // a storage buffer read by a compute shader
-    IndirectRead,     // indirect dispatch or draw arguments
+    IndirectRead,     // indirect dispatch or draw arguments (and the rest of their buffer, read
+                      // by the compute shaders they dispatch)
     HostRead,         // read by the host after the submission (a readback buffer)
 };
 bool writes(Access access);

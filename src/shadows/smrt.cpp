@@ -422,7 +422,7 @@ const TechniqueModule& smrtModule() {
                              "smrt.filter: off)"},
              {.key = "smrt.cubeFilterWide",
               .type = ParameterType::Int,
-              .defaultValue = 3,
+              .defaultValue = 6,
               .min = 0,
               .max = 8,
               .unit = "pixels",
@@ -445,6 +445,31 @@ const TechniqueModule& smrtModule() {
               .unit = "visibility",
               .description = "smrt.filterTolerance under point lights, whose fewer rays a "
                              "pixel (smrt.cubeRays) leave more noise to take"},
+             {.key = "smrt.checkerboard",
+              .type = ParameterType::Bool,
+              .defaultValue = 1,
+              .description = "trace half the pixels (a checkerboard), then fill each other "
+                             "pixel from its four neighbours on its surface where they agree "
+                             "within smrt.fillRange, and trace the rest (off: every pixel is "
+                             "traced; the viewer's technique views trace every pixel)"},
+             {.key = "smrt.fillRange",
+              .type = ParameterType::Float,
+              .defaultValue = 0.1,
+              .min = 0.0,
+              .max = 1.0,
+              .unit = "visibility",
+              .description = "smrt.checkerboard's agreement: a pixel whose neighbours' "
+                             "visibilities span more than this is traced (0: only where they "
+                             "are equal; spots and suns)"},
+             {.key = "smrt.cubeFillRange",
+              .type = ParameterType::Float,
+              .defaultValue = 0.3,
+              .min = 0.0,
+              .max = 1.0,
+              .unit = "visibility",
+              .description = "smrt.fillRange under point lights, whose fewer rays a pixel "
+                             "(smrt.cubeRays) differ by 1/8 from one pixel to the next in a "
+                             "smooth penumbra"},
              {.key = "smrt.rotation",
               .type = ParameterType::Choice,
               .defaultValue = 2,
@@ -502,6 +527,13 @@ const TechniqueModule& smrtModule() {
                     .cubeTolerance = static_cast<float>(p.number("smrt.cubeFilterTolerance")),
                     .wide = static_cast<uint32_t>(p.number("smrt.filterWide")),
                     .cubeWide = static_cast<uint32_t>(p.number("smrt.cubeFilterWide"))};
+            },
+        .checkerboard =
+            [](const ParameterValues& p) {
+                return Checkerboard{.runs = p.number("smrt.checkerboard") != 0.0,
+                                    .range = static_cast<float>(p.number("smrt.fillRange")),
+                                    .cubeRange =
+                                        static_cast<float>(p.number("smrt.cubeFillRange"))};
             }};
     return module;
 }

@@ -150,6 +150,15 @@ struct VisibilityFilter {
     bool runs() const { return radius > 0 || cubeRadius > 0; }
 };
 
+// Checkerboard tracing of a technique's visibility (shaders/include/checkerboard.h): half the
+// pixels traced, each other one filled from its four traced neighbours on its surface where they
+// lie within `range` of one another (`cubeRange` under point lights), the rest traced after.
+struct Checkerboard {
+    bool runs = false;
+    float range = 0.0f, cubeRange = 0.0f;
+    float rangeFor(uint32_t lightType) const;
+};
+
 struct TechniqueModule {
     TechniqueInfo info;                     // name, summary, paper, parameter families, rows
     std::vector<ParameterInfo> parameters;  // the technique's own family (`pcf.*`, ...)
@@ -200,6 +209,9 @@ struct TechniqueModule {
     // the layers (visibility_filter.comp; smrt's noise): its radius in pixels (0: none) and its
     // range tolerance, from the parameters.
     VisibilityFilter (*visibilityFilter)(const ParameterValues&) = nullptr;
+    // When set and it runs, its visibility is traced on a checkerboard (shaders/include/
+    // checkerboard.h; smrt).
+    Checkerboard (*checkerboard)(const ParameterValues&) = nullptr;
 };
 
 // The separable Gaussian blur of the blurred-moment techniques (vsm, esm, evsm, msm;

@@ -17,9 +17,6 @@ std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const f
     std::vector<float> out(source.begin(), source.end());
     const int radius = static_cast<int>(filter.radius);
     const int wide = radius > 0 ? static_cast<int>(filter.wide) : 0; // as wideFor
-    auto at = [&](std::span<const float> v, size_t i) {
-        return glm::vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-    };
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {
             const size_t i = size_t{y} * width + x;
@@ -48,17 +45,16 @@ std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const f
             }
             float weights = 0.0f, sum = 0.0f;
             for (int offset = -reach; offset <= reach; ++offset) {
-                const int qx = static_cast<int>(x) + (axis == 0 ? offset : 0);
-                const int qy = static_cast<int>(y) + (axis == 1 ? offset : 0);
-                if (qx < 0 || qy < 0 || qx >= static_cast<int>(width) ||
-                    qy >= static_cast<int>(height))
+                const std::optional<size_t> q = surfacePixel(
+                    width, height, position, static_cast<int>(x) + (axis == 0 ? offset : 0),
+                    static_cast<int>(y) + (axis == 1 ? offset : 0));
+                if (!q)
                     continue;
-                const size_t j = static_cast<size_t>(qy) * width + static_cast<size_t>(qx);
-                if (std::isnan(position[3 * j]))
-                    continue;
+                const size_t j = *q;
                 const float w = gpu::visibilityFilterWeight(
-                    at(position, i), at(normal, i), source[i], at(position, j), at(normal, j),
-                    source[j], offset, reach, filter.tolerance);
+                    pixelVector(position, i), pixelVector(normal, i), source[i],
+                    pixelVector(position, j), pixelVector(normal, j), source[j], offset, reach,
+                    filter.tolerance);
                 weights += w;
                 sum += w * source[j];
             }
@@ -68,6 +64,16 @@ std::vector<float> filterPass(uint32_t width, uint32_t height, std::span<const f
 }
 
 } // namespace
+
+std::optional<size_t> surfacePixel(uint32_t width, uint32_t height, std::span<const float> position,
+                                   int x, int y) {
+    if (x < 0 || y < 0 || x >= static_cast<int>(width) || y >= static_cast<int>(height))
+        return std::nullopt;
+    const size_t i = static_cast<size_t>(y) * width + static_cast<size_t>(x);
+    if (std::isnan(position[3 * i]))
+        return std::nullopt;
+    return i;
+}
 
 uint32_t VisibilityFilter::radiusFor(uint32_t lightType) const {
     return lightType == LIGHT_POINT ? cubeRadius : radius;
