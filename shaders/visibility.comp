@@ -375,7 +375,8 @@ float throughCascade(CascadeBase b, uint i, ivec2 p) {
 ivec2 invocationPixel() {
     if (CHECKERBOARD == CHECKERBOARD_EVEN) return checkerboardPixel(gl_GlobalInvocationID.xy, 0u);
     if (CHECKERBOARD == CHECKERBOARD_LIST) {
-        uint i = gl_WorkGroupID.x * CHECKERBOARD_LIST_GROUP + gl_LocalInvocationIndex;
+        uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+        uint i = group * CHECKERBOARD_LIST_GROUP + gl_LocalInvocationIndex;
         return i < traceList.head.count ? unpackPixel(traceList.pixels[i]) : ivec2(-1);
     }
     return ivec2(gl_GlobalInvocationID.xy);

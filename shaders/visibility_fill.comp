@@ -33,7 +33,7 @@ void main() {
     }
     vec3 world = worldPosition(frame.invViewProj, p, size, depth);
     vec3 normal = shadingNormal(texelFetch(gNormal, p, 0));
-    // Left, right, below, above: the mirror sums in the same order.
+    // Left, right, the row before, the row after: the mirror sums in the same order.
     const ivec2 steps[4] = ivec2[4](ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1));
     uint count = 0u;
     float lowest = 2.0, highest = -1.0, sum = 0.0;
@@ -57,5 +57,7 @@ void main() {
     }
     uint entry = atomicAdd(traceList.head.count, 1u);
     traceList.pixels[entry] = packPixel(p);
-    atomicMax(traceList.head.groupsX, entry / CHECKERBOARD_LIST_GROUP + 1u);
+    // The entry that opens a column of groups (one a row) adds it.
+    if (entry % (CHECKERBOARD_LIST_GROUP * traceList.head.groupsY) == 0u)
+        atomicAdd(traceList.head.groupsX, 1u);
 }

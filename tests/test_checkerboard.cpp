@@ -154,6 +154,21 @@ TEST(Checkerboard, NeverMixesOtherSurfacesOrTheBackground) {
     EXPECT_EQ(smooth.pixels[at(3, 4)], CheckerboardPixel::Filled);
 }
 
+// A list longer than a row of groups may hold spreads over rows; a short one takes one.
+TEST(Checkerboard, LongListsTakeRowsOfGroups) {
+    const uint32_t row = CHECKERBOARD_ROW_GROUPS * CHECKERBOARD_LIST_GROUP; // entries a row holds
+    EXPECT_EQ(gpu::checkerboardListRows(0), 1u);
+    EXPECT_EQ(gpu::checkerboardListRows(1), 1u);
+    EXPECT_EQ(gpu::checkerboardListRows(row), 1u);
+    EXPECT_EQ(gpu::checkerboardListRows(row + 1), 2u);
+    EXPECT_EQ(gpu::checkerboardListRows(3 * row), 3u);
+    // An image of 32768 x 32768: its odd pixels in rows of at most CHECKERBOARD_ROW_GROUPS.
+    const uint32_t odd = 32768u * 32768u / 2;
+    const uint32_t rows = gpu::checkerboardListRows(odd);
+    EXPECT_LE((odd + CHECKERBOARD_LIST_GROUP * rows - 1) / (CHECKERBOARD_LIST_GROUP * rows),
+              CHECKERBOARD_ROW_GROUPS);
+}
+
 // The ranges by light kind.
 TEST(Checkerboard, PointLightsTakeTheCubeRange) {
     const shadows::Checkerboard c{.runs = true, .range = 0.1f, .cubeRange = 0.3f};

@@ -165,6 +165,27 @@ TEST_F(ShadowTest, RefusesSizesPastTheDeviceLimit) {
     EXPECT_THROW(sharedRenderer().check(scene, o), InputError);
     o = {.camera = "no such camera"};
     EXPECT_THROW(sharedRenderer().check(scene, o), InputError);
+    // smrt's checkerboard list (2 bytes a pixel) past the device's storage buffers: refused,
+    // naming the limit; without the checkerboard the list is not what stops it.
+    const uint64_t range = sharedRenderer().device().maxStorageBufferRange;
+    const auto side = static_cast<uint32_t>(std::ceil(std::sqrt(double(range) / 2.0)));
+    if (side <= limit) {
+        o = {.width = side, .height = side, .technique = Technique::Smrt};
+        try {
+            sharedRenderer().check(scene, o);
+            ADD_FAILURE() << side << "x" << side << ": smrt's trace list was not refused";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("maxStorageBufferRange"), std::string::npos)
+                << e.what();
+        }
+        o.parameters.set("smrt.checkerboard", "false");
+        try {
+            sharedRenderer().check(scene, o);
+        } catch (const InputError& e) {
+            EXPECT_EQ(std::string(e.what()).find("maxStorageBufferRange"), std::string::npos)
+                << e.what();
+        }
+    }
 }
 
 TEST_F(QualityTest, HardMatchesTheRadiusZeroGroundTruthOutsideEdges) {

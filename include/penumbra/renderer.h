@@ -44,6 +44,7 @@ struct DeviceInfo {
     std::string name, type, driverName, driverInfo, apiVersion;
     uint32_t maxImageDimension2D = 0;
     uint32_t maxComputeWorkGroupInvocations = 0;
+    uint32_t maxStorageBufferRange = 0; // bytes a storage buffer binding may hold
     uint64_t deviceLocalBytes = 0;
     float timestampPeriodNs = 0.0f;
     bool depthLinearFilter = false;     // D32_SFLOAT linear (and hardware 2x2 PCF) filtering

@@ -1,6 +1,6 @@
-// Checkerboard tracing of a technique's visibility (TechniqueModule::checkerboardRange; smrt),
+// Checkerboard tracing of a technique's visibility (TechniqueModule::checkerboard; smrt),
 // compiled as GLSL and as C++ (the CPU mirror, src/shadows/checkerboard_fill.cpp). The visibility
-// pass traces the pixels whose x + y is even (CHECKERBOARD_EVEN: a dispatch half the image wide,
+// pass traces the pixels whose x + y is even (CHECKERBOARD_EVEN: a dispatch half the image high,
 // every lane a pixel); visibility_fill.comp gives each other pixel the mean of its four traced
 // neighbours on its own surface where they lie within the range of one another, and appends the
 // rest to the trace list; the visibility pass then traces the list (CHECKERBOARD_LIST, an
@@ -10,6 +10,7 @@
 #ifndef PENUMBRA_CHECKERBOARD_H
 #define PENUMBRA_CHECKERBOARD_H
 #include "shared_prelude.h"
+#include "bindings.h"
 #include "visibility_filter_weights.h"
 
 // The visibility pass's modes (SPEC_CHECKERBOARD).
@@ -18,14 +19,25 @@
 #define CHECKERBOARD_LIST 2u // the trace list's pixels
 // Invocations of a list dispatch's workgroup: GROUP_SIZE x GROUP_SIZE, one entry each.
 #define CHECKERBOARD_LIST_GROUP (GROUP_SIZE * GROUP_SIZE)
+// Groups a row of the list's dispatch at most: the least maxComputeWorkGroupCount[0] a device may
+// have. A longer list (over 4 million pixels: an image of 8 million and more) takes more rows.
+#define CHECKERBOARD_ROW_GROUPS 65535u
 
 PENUMBRA_GPU_BEGIN
 
-// The trace list's head: the indirect dispatch's group counts (x grows with the list; y and z
-// stay 1), then how many pixels the list holds. The pixels follow, packed by packPixel.
+// The trace list's head: the indirect dispatch's group counts (x grows with the list, a group
+// every groupsY x CHECKERBOARD_LIST_GROUP entries; y, the rows the host chose for the image, and
+// z stay), then how many pixels the list holds. The pixels follow, packed by packPixel.
 struct TraceListHead {
     uint groupsX, groupsY, groupsZ, count;
 };
+
+// The rows of groups a list of up to `entries` pixels takes: enough that no row passes
+// CHECKERBOARD_ROW_GROUPS, and at least one.
+SHARED uint checkerboardListRows(uint entries) {
+    uint groups = (entries + CHECKERBOARD_LIST_GROUP - 1u) / CHECKERBOARD_LIST_GROUP;
+    return max((groups + CHECKERBOARD_ROW_GROUPS - 1u) / CHECKERBOARD_ROW_GROUPS, 1u);
+}
 
 // The pixel of invocation g in a dispatch half the image high: the one of column g.x in the rows
 // 2 g.y, 2 g.y + 1 whose x + y has the parity `odd` (0: the traced ones, 1: the filled ones). A

@@ -78,8 +78,8 @@ struct ReadbackLayout {
 // Checkerboard tracing's list (checkerboard.h): its head, then room for every pixel it fills.
 BufferDecl traceListDecl(uint32_t width, uint32_t height, bool checkerboard);
 
-// Device memory the frame's targets take for these sizes (declared images and the readback
-// buffer): what Renderer::check compares with the device's.
+// Device memory the frame's targets take for these sizes (declared images, the readback buffer
+// and the trace list): what Renderer::check compares with the device's.
 struct TargetBytes {
     uint64_t shadowMaps, screen;
 };

@@ -160,8 +160,11 @@ void addCheckerboardPasses(FrameGraph& graph, FramePipelines& p, const FrameSett
         graph.addPass({.name = "",
                        .phase = Phase::PerLight,
                        .uses = {{r.traceList, Access::TransferWrite}},
-                       .record = [list = r.traceList](PassContext& c) {
-                           const gpu::TraceListHead empty{.groupsY = 1, .groupsZ = 1};
+                       .record = [list = r.traceList, &s](PassContext& c) {
+                           const auto entries = static_cast<uint32_t>(
+                               (uint64_t{s.sizes.width} * s.sizes.height + 1) / 2);
+                           const gpu::TraceListHead empty{
+                               .groupsY = gpu::checkerboardListRows(entries), .groupsZ = 1};
                            vkCmdUpdateBuffer(c.cmd, c.buffer(list), 0, sizeof empty, &empty);
                        }});
     if (first)

@@ -110,8 +110,21 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
                                      "buffers hold {} (maxUniformBufferRange {})",
                                      shadowLights, shadows.views, viewRecords,
                                      ctx.limits().maxUniformBufferRange));
-    // The frame's targets as it declares them (render/frame_targets.h), the readback included.
     const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
+    // Checkerboard tracing's list is one storage buffer. (Its pixels are packed 16 bits a
+    // coordinate: no device has maxImageDimension2D past 65536.)
+    if (module.checkerboard && module.checkerboard(o.parameters).runs) {
+        const VkDeviceSize list = render::traceListDecl(o.width, o.height, true).bytes;
+        if (list > ctx.limits().maxStorageBufferRange)
+            throw InputError("--width",
+                             fmt::format("{}x{} needs a trace list of {} bytes for checkerboard "
+                                         "tracing; this device's storage buffers hold {} "
+                                         "(maxStorageBufferRange): render smaller or set "
+                                         "smrt.checkerboard=false",
+                                         o.width, o.height, list,
+                                         ctx.limits().maxStorageBufferRange));
+    }
+    // The frame's targets as it declares them (render/frame_targets.h), the readback included.
     const render::TargetBytes bytes =
         render::targetBytes(module, o.parameters,
                             {.width = o.width,

@@ -24,7 +24,7 @@ CheckerboardFill fillCheckerboard(uint32_t width, uint32_t height, std::span<con
         .visibility = std::vector<float>(pixels, std::numeric_limits<float>::quiet_NaN()),
         .pixels = std::vector<CheckerboardPixel>(pixels, CheckerboardPixel::Background),
         .close = std::vector<bool>(pixels, false)};
-    // Left, right, below, above: the shader's order.
+    // Left, right, the row before, the row after: the shader's order.
     const glm::ivec2 steps[4] = {{-1, 0}, {1, 0}, {0, -1}, {0, 1}};
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {

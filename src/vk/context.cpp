@@ -201,6 +201,7 @@ DeviceInfo Instance::describe(VkPhysicalDevice device, uint32_t index,
                                               VK_API_VERSION_PATCH(p.apiVersion)),
                     .maxImageDimension2D = p.limits.maxImageDimension2D,
                     .maxComputeWorkGroupInvocations = p.limits.maxComputeWorkGroupInvocations,
+                    .maxStorageBufferRange = p.limits.maxStorageBufferRange,
                     .timestampPeriodNs = p.limits.timestampPeriod};
     VkPhysicalDeviceMemoryProperties memory{};
     vkGetPhysicalDeviceMemoryProperties(device, &memory);
