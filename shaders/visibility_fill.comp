@@ -42,12 +42,14 @@ void main() {
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(uvec2(q), size))) continue;
         float qDepth = texelFetch(gDepth, q, 0).r;
         if (isBackground(qDepth)) continue;
-        if (!checkerboardSameSurface(world, normal, worldPosition(frame.invViewProj, q, size, qDepth),
-                                     shadingNormal(texelFetch(gNormal, q, 0))))
-            continue;
+        // Every neighbour counts towards the span (a shadow's edge along an object's), only those
+        // on the pixel's surface towards the mean.
         float v = imageLoad(visibility, ivec3(q, layer)).r;
         lowest = min(lowest, v);
         highest = max(highest, v);
+        if (!checkerboardSameSurface(world, normal, worldPosition(frame.invViewProj, q, size, qDepth),
+                                     shadingNormal(texelFetch(gNormal, q, 0))))
+            continue;
         sum += v;
         ++count;
     }

@@ -109,8 +109,8 @@ TEST(Checkerboard, TracesWhereNeighboursDisagree) {
     }
 }
 
-// A neighbour off the pixel's surface (a step in depth, a crease, the background) does not count:
-// a pixel with none left is traced; the background stays NaN.
+// A neighbour off the pixel's surface (a step in depth, a crease, the background) does not count
+// towards the mean: a pixel with none left is traced; the background stays NaN.
 TEST(Checkerboard, NeverMixesOtherSurfacesOrTheBackground) {
     // Columns 0-5 a floor at z = 0, lit; columns 6-11 a wall standing on it (facing -x), dark;
     // row 8 background.
@@ -132,6 +132,17 @@ TEST(Checkerboard, NeverMixesOtherSurfacesOrTheBackground) {
                 EXPECT_EQ(f.visibility[at(x, y)], x < 6 ? 1.0f : 0.0f) << x << " " << y;
             }
         }
+    // With a range below the step, the pixels beside the crease are traced: their neighbours on
+    // the other surface count towards the span (a shadow's edge along an object's edge), not
+    // towards the mean.
+    const shadows::CheckerboardFill edged = fill(s, 0.5f);
+    for (int y = 0; y + 1 < int(kHeight); ++y)
+        for (int x = 0; x < int(kWidth); ++x)
+            if ((x + y) % 2) {
+                EXPECT_EQ(edged.pixels[at(x, y)],
+                          x == 5 || x == 6 ? CheckerboardPixel::Listed : CheckerboardPixel::Filled)
+                    << x << " " << y;
+            }
     // A pixel whose neighbours are all background or elsewhere is traced.
     auto lone = [](int x, int y) { return x == 3 && y == 4 ? onPlane(x, y) : glm::vec3(kNan); };
     const shadows::CheckerboardFill alone =

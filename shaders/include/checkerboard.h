@@ -59,8 +59,9 @@ SHARED bool checkerboardSameSurface(vec3 p, vec3 n, vec3 q, vec3 m) {
     return abs(dot(n, d)) <= FILTER_PLANE_SLOPE * length(d) && dot(n, m) >= FILTER_NORMAL_COS;
 }
 
-// Whether a pixel whose `count` neighbours on its surface span [lowest, highest] takes their mean
-// (else it is traced): some neighbour, all within `range` of one another.
+// Whether a pixel with `count` neighbours on its surface takes their mean (else it is traced):
+// some neighbour, and all its neighbours, on its surface or not, within `range` of one another
+// ([lowest, highest]): a shadow's edge that runs along an object's edge is traced.
 SHARED bool checkerboardFills(uint count, float lowest, float highest, float range) {
     return count > 0u && highest - lowest <= range;
 }

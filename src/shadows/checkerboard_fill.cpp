@@ -52,10 +52,10 @@ CheckerboardFill fillCheckerboard(uint32_t width, uint32_t height, std::span<con
                 const float facing = glm::dot(n, m) - FILTER_NORMAL_COS;
                 if (std::abs(plane) <= 1e-4f * glm::length(d) || std::abs(facing) <= 1e-4f)
                     out.close[i] = true;
-                if (!gpu::checkerboardSameSurface(p, n, q, m))
-                    continue;
                 lowest = std::min(lowest, visibility[j]);
                 highest = std::max(highest, visibility[j]);
+                if (!gpu::checkerboardSameSurface(p, n, q, m))
+                    continue;
                 sum += visibility[j];
                 ++count;
             }
