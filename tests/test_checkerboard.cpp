@@ -2,7 +2,7 @@
 // visibility_fill.comp in shaders/include/checkerboard.h) on images made in code: what it fills
 // (a smooth ramp, exactly), what it traces (edges past the range, lone pixels), what it never
 // mixes (other surfaces, the background). The GPU against this mirror: FilterTest in
-// tests/test_smrt.cpp.
+// tests/test_smrt_screen_passes.cpp.
 #include "checkerboard.h"
 #include "light_geometry.h"
 #include "shadows/checkerboard_fill.h"
@@ -44,11 +44,12 @@ size_t at(int x, int y) {
 
 } // namespace
 
-// The invocations of a dispatch half the image high reach every pixel of one parity once.
+// The invocations of a dispatch half the image high (checkerboardRows; the image's height is odd)
+// reach every pixel of one parity once.
 TEST(Checkerboard, InvocationsCoverEachParityOnce) {
     for (uint32_t odd = 0; odd < 2; ++odd) {
         std::vector<int> seen(kWidth * kHeight, 0);
-        for (uint32_t gy = 0; gy < (kHeight + 1) / 2; ++gy)
+        for (uint32_t gy = 0; gy < gpu::checkerboardRows(kHeight); ++gy)
             for (uint32_t gx = 0; gx < kWidth; ++gx) {
                 const glm::ivec2 p = gpu::checkerboardPixel({gx, gy}, odd);
                 if (p.y < int(kHeight))

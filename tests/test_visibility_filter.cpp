@@ -2,7 +2,7 @@
 // shared with the shader in shaders/include/visibility_filter_weights.h) on images made in code:
 // what it must keep (hard steps, depth steps, creases, linear ramps, the background) and what it
 // must remove (noise, along both axes). The GPU against this mirror: FilterTest in
-// tests/test_smrt.cpp.
+// tests/test_smrt_screen_passes.cpp.
 #include "light_geometry.h"
 #include "shadows/visibility_filter.h"
 #include "surface_images.h"

@@ -47,6 +47,10 @@ SHARED ivec2 checkerboardPixel(uvec2 g, uint odd) {
     return ivec2(int(g.x), int(2u * g.y + ((g.x + odd) & 1u)));
 }
 
+// The rows of invocations such a dispatch takes on an image `height` pixels high: one a pair of
+// rows, the last pair of an odd height half on the image.
+SHARED uint checkerboardRows(uint height) { return (height + 1u) / 2u; }
+
 SHARED uint packPixel(ivec2 p) { return uint(p.x) | (uint(p.y) << 16u); }
 SHARED ivec2 unpackPixel(uint packed) {
     return ivec2(int(packed & 0xffffu), int(packed >> 16u));

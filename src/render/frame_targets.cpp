@@ -164,8 +164,12 @@ TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterV
     return bytes;
 }
 
+uint32_t traceListEntries(uint32_t width, uint32_t height) {
+    return static_cast<uint32_t>((uint64_t{width} * height + 1) / 2);
+}
+
 BufferDecl traceListDecl(uint32_t width, uint32_t height, bool checkerboard) {
-    const VkDeviceSize filled = (VkDeviceSize{width} * height + 1) / 2;
+    const VkDeviceSize filled = traceListEntries(width, height);
     return {.name = std::string(target::kTraceList),
             .size = SizeClass::Fixed,
             .bytes = sizeof(gpu::TraceListHead) + (checkerboard ? filled * sizeof(uint32_t) : 0),

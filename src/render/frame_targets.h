@@ -75,7 +75,9 @@ struct ReadbackLayout {
     BufferDecl decl() const;
 };
 
-// Checkerboard tracing's list (checkerboard.h): its head, then room for every pixel it fills.
+// Checkerboard tracing's list (checkerboard.h): its head, then room for every pixel it fills
+// (traceListEntries: the odd pixels of the image).
+uint32_t traceListEntries(uint32_t width, uint32_t height);
 BufferDecl traceListDecl(uint32_t width, uint32_t height, bool checkerboard);
 
 // Device memory the frame's targets take for these sizes (declared images, the readback buffer

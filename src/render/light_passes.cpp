@@ -62,7 +62,8 @@ void dispatchVisibility(PassContext& c, FramePipelines& p, const FrameSettings& 
     if (checkerboard == CHECKERBOARD_LIST)
         vkCmdDispatchIndirect(c.cmd, c.buffer(r.traceList), 0);
     else if (checkerboard == CHECKERBOARD_EVEN)
-        vkCmdDispatch(c.cmd, groups(s.sizes.width), groups((s.sizes.height + 1) / 2), 1);
+        vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(gpu::checkerboardRows(s.sizes.height)),
+                      1);
     else
         vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
 }
@@ -149,26 +150,27 @@ std::vector<Use> visibilityUses(const FrameResources& r, Access visibility) {
             {r.color, Access::ComputeWrite}}; // bound by every dispatch
 }
 
-// Checkerboard tracing's passes for one light after its even pixels (checkerboard.h): the trace
-// list emptied, the odd pixels filled or listed, the list traced. The three are timed as
-// "visibility" with the even pixels' dispatch: the technique's whole cost. `first`: the first
-// light's emptying alone, before the even pixels' pass that binds the list.
-void addCheckerboardPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
-                           const FrameInputs& in, const FrameResources& r,
-                           shadows::Checkerboard checkerboard, size_t light, bool first) {
-    if (light > 0 || first)
-        graph.addPass({.name = "",
-                       .phase = Phase::PerLight,
-                       .uses = {{r.traceList, Access::TransferWrite}},
-                       .record = [list = r.traceList, &s](PassContext& c) {
-                           const auto entries = static_cast<uint32_t>(
-                               (uint64_t{s.sizes.width} * s.sizes.height + 1) / 2);
-                           const gpu::TraceListHead empty{
-                               .groupsY = gpu::checkerboardListRows(entries), .groupsZ = 1};
-                           vkCmdUpdateBuffer(c.cmd, c.buffer(list), 0, sizeof empty, &empty);
-                       }});
-    if (first)
-        return;
+// Checkerboard tracing's trace list emptied (checkerboard.h): its head's group count, and the
+// rows its groups take on this image.
+void addListEmptying(FrameGraph& graph, const FrameSettings& s, const FrameResources& r) {
+    graph.addPass({.name = "",
+                   .phase = Phase::PerLight,
+                   .uses = {{r.traceList, Access::TransferWrite}},
+                   .record = [list = r.traceList, &s](PassContext& c) {
+                       const gpu::TraceListHead empty{
+                           .groupsY = gpu::checkerboardListRows(
+                               traceListEntries(s.sizes.width, s.sizes.height)),
+                           .groupsZ = 1};
+                       vkCmdUpdateBuffer(c.cmd, c.buffer(list), 0, sizeof empty, &empty);
+                   }});
+}
+
+// Checkerboard tracing's passes for one light after its even pixels and its list's emptying: the
+// odd pixels filled or listed, the list traced. Both are timed as "visibility" with the even
+// pixels' dispatch: the technique's whole cost.
+void addFillAndList(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
+                    const FrameInputs& in, const FrameResources& r,
+                    shadows::Checkerboard checkerboard, size_t light) {
     std::vector<Use> fill =
         layerLayoutUses(r, Access::ComputeReadWrite, r.layerResults, Access::ComputeWrite);
     fill.push_back({r.traceList, Access::ComputeReadWrite});
@@ -179,9 +181,10 @@ void addCheckerboardPasses(FrameGraph& graph, FramePipelines& p, const FrameSett
                        const float range = checkerboard.rangeFor(s.shadowLights[light].type);
                        const std::vector<shadows::SpecConstant> constants{
                            {SPEC_FILL_RANGE, std::bit_cast<uint32_t>(range)}};
-                       dispatchOnLayerLayout(
-                           c, p, s, in, r, p.layer("visibility_fill.comp", constants), 0,
-                           r.layerResults, s.shadowLights[light], (s.sizes.height + 1) / 2);
+                       dispatchOnLayerLayout(c, p, s, in, r,
+                                             p.layer("visibility_fill.comp", constants), 0,
+                                             r.layerResults, s.shadowLights[light],
+                                             gpu::checkerboardRows(s.sizes.height));
                    }});
     std::vector<Use> trace = visibilityUses(r, Access::ComputeWrite);
     trace.push_back({r.traceList, Access::IndirectRead});
@@ -207,7 +210,7 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                        !filter.runs() && !checkerboard;
     const size_t separate = fused ? s.shadowLights.size() - 1 : s.shadowLights.size();
     if (checkerboard) // the first light's list, emptied before the pass that binds it
-        addCheckerboardPasses(graph, p, s, in, r, halves, 0, true);
+        addListEmptying(graph, s, r);
     std::vector<Use> uses = visibilityUses(r, Access::ComputeWrite);
     if (checkerboard)
         uses.push_back({r.traceList, Access::ComputeRead});
@@ -219,8 +222,11 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                            dispatchVisibility(c, p, s, in, r, s.shadowLights[i], false,
                                               checkerboard ? CHECKERBOARD_EVEN : CHECKERBOARD_OFF);
                    }});
-    for (size_t i = 0; checkerboard && i < s.shadowLights.size(); ++i)
-        addCheckerboardPasses(graph, p, s, in, r, halves, i, false);
+    for (size_t i = 0; checkerboard && i < s.shadowLights.size(); ++i) {
+        if (i > 0) // the lights take turns at one list
+            addListEmptying(graph, s, r);
+        addFillAndList(graph, p, s, in, r, halves, i);
+    }
     // The filter's two passes (both timed as "filter"): rows into the scratch, columns back.
     for (uint32_t axis = 0; filter.runs() && axis < 2; ++axis) {
         const Access read = Access::ComputeReadWrite, write = Access::ComputeWrite;
