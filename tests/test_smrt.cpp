@@ -235,6 +235,56 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
         }
 }
 
+// The stop short of the light (smrtNearestBehind) only on rays that near it: receivers on the
+// map's nearest surface (a little nearer the light than their texels store, as a steep surface's
+// point may lie within its texel), under a cube face whose
+// light's radius reaches past them, have rays that rise away from the light's plane, climb past
+// the ground's depth and fall behind it. The shader, which stops, against the mirror, which
+// marches every ray to its end: the same blocked rays.
+TEST_F(FilterTest, SmrtStopsOnlyOnRaysThatNearTheLight) {
+    constexpr uint32_t kSize = 95;
+    const std::vector<float> depth = occludersOverGround(7, kSize);
+    const shadows::ShadowMapView map{depth, kSize};
+    const float nearest = *std::min_element(depth.begin(), depth.end());
+    std::vector<FilterProbe> probes;
+    for (uint32_t y = 0; y < kSize; ++y)
+        for (uint32_t x = 0; x < kSize; ++x)
+            if (depth[y * kSize + x] < nearest + 0.02f)
+                probes.push_back(
+                    {.uv = {(float(x) + 0.5f) / float(kSize), (float(y) + 0.5f) / float(kSize)},
+                     .depth = depth[y * kSize + x] - 0.005f,
+                     .pixel = {x * 7u, y * 5u}});
+    ASSERT_GT(probes.size(), 20u);
+    const ProbeLight light{.perspective = true,
+                           .size = 0.4f,
+                           .nearPlane = 0.05f,
+                           .farPlane = 12.0f,
+                           .worldPerUv = {2.0f, 2.0f},
+                           .cubeFace = true};
+    ParameterValues params;
+    params.set("smrt.cubeAdaptive", "0");
+    const std::vector<glm::vec4> gpuResult =
+        sharedRenderer().probeTechnique(Technique::Smrt, params, depth, kSize, probes, light);
+    const shadows::FilterSettings frame =
+        shadows::filterSettings(shadows::moduleOf(Technique::Smrt), params, false, 8);
+    const gpu::ShadowViewData view = render::probeViewData(light);
+    size_t compared = 0, blocked = 0, differ = 0;
+    for (size_t i = 0; i < probes.size(); ++i) {
+        if (shadows::smallestComparisonMargin(Technique::Smrt, map, probes[i], frame, view) < 1e-5f)
+            continue;
+        ++compared;
+        const glm::vec4 cpu =
+            shadows::techniqueReference(Technique::Smrt, map, probes[i], frame, view);
+        blocked += cpu.y > 0.0f;
+        differ += cpu.y != gpuResult[i].y || std::abs(cpu.x - gpuResult[i].x) > 1e-5f;
+    }
+    std::printf("%zu of %zu probes compared, %zu with blocked rays, %zu differ\n", compared,
+                probes.size(), blocked, differ);
+    EXPECT_GT(compared, probes.size() / 2);
+    EXPECT_GT(blocked, compared / 4) << "probes whose rising rays fall behind the ground";
+    EXPECT_EQ(differ, 0u);
+}
+
 // The analytic set-ups at 384x384 against the truth (128 rays a pixel): at its defaults
 // smrt beats pcss wherever pcss's planar-blocker estimate fails (a wide spot, a sun, close
 // bulbs) and stays below it everywhere, with no acne or leak beyond its reach; its noise filter
@@ -254,8 +304,8 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
                     c.name.c_str(), pcss, smrt.rmse, everyPixel, 100 * beyond.acneBeyondBlur,
                     100 * beyond.leakBeyondBlur);
         // smrt.checkerboard: half the pixels traced and most of the others filled costs at most
-        // this much error (measured: 1.07x, 1.06x and 1.08x under the bulbs, whose 8 rays a pixel
-        // differ by 1/8 between neighbours: cubeFillRange 0.3, and cubeFilterWide 6 for the rays
+        // this much error (measured: 1.04x, 1.02x and 1.07x under the bulbs, whose 8 rays a pixel
+        // differ by 1/8 between neighbours: cubeFillRange 0.3, and cubeFilterWide 8 for the rays
         // the checkerboard does not trace; 1.00x-1.05x under spots and the sun, fillRange 0.1).
         EXPECT_LT(smrt.rmse, (c.name.rfind("point", 0) == 0 ? 1.2 : 1.1) * everyPixel) << c.name;
         EXPECT_LT(beyond.acneBeyondBlur, 0.001) << c.name;
@@ -264,14 +314,14 @@ TEST_F(QualityTest, SmrtFollowsTheTruthUnderEveryLight) {
         // Each set-up's measured error (lavapipe) and an eighth more.
         const std::map<std::string, double> measured = {
             {"spot 0.1", 0.0032},  {"spot 0.5", 0.0047},  {"spot 1.5", 0.0067}, {"sun 6", 0.0051},
-            {"point 0.1", 0.0106}, {"point 0.3", 0.0109}, {"point 0.5", 0.0175}};
+            {"point 0.1", 0.0114}, {"point 0.3", 0.0116}, {"point 0.5", 0.0178}};
         EXPECT_LT(smrt.rmse, 1.125 * measured.at(c.name)) << c.name;
         // pcss follows the bulbs' penumbrae on their faces up to pcss.cubeRadius (96 texels) and
-        // reads 0.029 at radius 0.3 against smrt's 0.013; at 0.5 its estimate fails again.
+        // reads 0.029 at radius 0.3 against smrt's 0.012; at 0.5 its estimate fails again.
         if (c.name == "spot 1.5" || c.name == "sun 6" || c.name == "point 0.3" ||
             c.name == "point 0.5")
             EXPECT_LT(smrt.rmse, 0.8 * pcss) << c.name;
-        else if (c.name == "point 0.1") // 0.0102 against 0.0133
+        else if (c.name == "point 0.1") // 0.0114 against 0.0133
             EXPECT_LT(smrt.rmse, 0.9 * pcss) << c.name;
         else // 0.0032 against 0.0036, 0.0046 against 0.0097
             EXPECT_LT(smrt.rmse, 0.95 * pcss) << c.name;
@@ -458,7 +508,7 @@ TEST_F(QualityTest, SoftTechniquesErrorAgainstCostTable) {
          Technique::Smrt,
          {{"smrt.gapSamples", "3"}, {"smrt.cubeGapSamples", "3"}}},
         {"smrt unfiltered", Technique::Smrt, {{"smrt.filter", "0"}, {"smrt.cubeFilter", "0"}}},
-        {"smrt +4 samples", Technique::Smrt, {{"smrt.samples", "12"}, {"smrt.cubeSamples", "20"}}},
+        {"smrt +4 samples", Technique::Smrt, {{"smrt.samples", "12"}, {"smrt.cubeSamples", "17"}}},
         {"smrt 2x rays", Technique::Smrt, {{"smrt.rays", "64"}, {"smrt.cubeRays", "16"}}},
         {"smrt 4x rays",
          Technique::Smrt,

@@ -37,12 +37,13 @@ struct Check {
 void march(const gpu::ShadowViewData& v, glm::vec3 p, glm::vec3 d, Check& check) {
     const float rate = v.texel.y > 0.5f ? gpu::smrtPerspectiveRate(v, p, d, kMapSize) : 0.0f;
     const float extent = gpu::smrtMarchLength(v, p, d, 256.0f, kMapSize, rate);
-    const glm::vec2 home = gpu::smrtProject(v, p) * float(kMapSize);
+    const gpu::SmrtScale scale = gpu::smrtScaleOf(v, kMapSize);
+    const glm::vec2 home = gpu::smrtProject(v, scale, p) * float(kMapSize);
     for (int i = 1; i <= 200; ++i) {
         const float s = extent * float(i) / 200.0f;
         const glm::vec3 q = p + s * d;
-        const float r = glm::length(gpu::smrtProject(v, q) * float(kMapSize) - home);
-        const float slack = 0.75f * kSlope * gpu::smrtTexelWorld(v, q.z, kMapSize);
+        const float r = glm::length(gpu::smrtProject(v, scale, q) * float(kMapSize) - home);
+        const float slack = gpu::smrtSlack(v, scale, q.z, kSlope);
         const float ceiling = gpu::smrtLitCeiling(gpu::smrtCeilingOf(v, p, kMapSize, kSlope), r);
         ++check.points;
         check.above += q.z - slack > ceiling;
@@ -319,7 +320,7 @@ TEST(SmrtStepCheck, CeilingHoldsEveryPointOfTheStep) {
         auto pointAt = [&](float z) {
             gpu::SmrtPoint q{};
             q.z = z;
-            q.slack = 0.75f * kSlope * gpu::smrtTexelWorld(v, z, kMapSize);
+            q.slack = gpu::smrtSlack(v, gpu::smrtScaleOf(v, kMapSize), z, kSlope);
             return q;
         };
         const float low = std::max(v.frustum.x, 0.0f) + 0.01f, high = v.frustum.y;
@@ -343,30 +344,87 @@ TEST(SmrtStepCheck, CeilingHoldsEveryPointOfTheStep) {
 // stays the one checked when it passes another silhouette after it), and a point that is not
 // such a place (the ray in front before it, or still behind) is never one.
 TEST(SmrtHidden, TheFirstExitAfterAStretchBehindIsTheCandidate) {
-    auto point = [](float s, float behind) {
-        return gpu::SmrtPoint{
-            .s = s, .z = 5.0f, .uv = {0.5f, 0.5f}, .behind = behind, .slack = 0.01f};
-    };
-    const gpu::SmrtPoint receiver = point(0.0f, 0.0f);
-    gpu::SmrtHiddenCandidate c = gpu::smrtNoHiddenCandidate(receiver);
-    gpu::SmrtHidden h = gpu::smrtHiddenFrom(receiver);
+    gpu::SmrtHiddenCandidate c = gpu::smrtNoHiddenCandidate();
+    gpu::SmrtHidden h = gpu::smrtHiddenFrom(false); // the receiver in front
     EXPECT_FALSE(c.found);
     // In front, then in front again: no stretch behind, no candidate.
-    gpu::smrtNoteHidden(c, h, point(0.1f, 0.0f));
+    gpu::smrtNoteHidden(c, h, 0.1f, false);
     EXPECT_FALSE(c.found);
     // Behind from s = 0.2 to 0.3, out in front at 0.4: the candidate, with its stretch.
-    gpu::smrtTrackHidden(h, point(0.2f, 1.0f));
-    gpu::smrtTrackHidden(h, point(0.3f, 1.0f));
-    gpu::smrtNoteHidden(c, h, point(0.3f, 1.0f)); // still behind: not an exit
+    gpu::smrtTrackHidden(h, 0.2f, true);
+    gpu::smrtTrackHidden(h, 0.3f, true);
+    gpu::smrtNoteHidden(c, h, 0.3f, true); // still behind: not an exit
     EXPECT_FALSE(c.found);
-    gpu::smrtNoteHidden(c, h, point(0.4f, 0.0f));
+    gpu::smrtNoteHidden(c, h, 0.4f, false);
     ASSERT_TRUE(c.found);
-    EXPECT_EQ(c.front.s, 0.4f);
-    EXPECT_EQ(c.stretch.first.s, 0.2f);
+    EXPECT_EQ(c.front, 0.4f);
+    EXPECT_EQ(c.first, 0.2f);
     // A second stretch and exit later: the first stays.
-    gpu::smrtTrackHidden(h, point(0.4f, 0.0f));
-    gpu::smrtTrackHidden(h, point(0.6f, 1.0f));
-    gpu::smrtNoteHidden(c, h, point(0.7f, 0.0f));
-    EXPECT_EQ(c.front.s, 0.4f);
-    EXPECT_EQ(c.stretch.first.s, 0.2f);
+    gpu::smrtTrackHidden(h, 0.4f, false);
+    gpu::smrtTrackHidden(h, 0.6f, true);
+    gpu::smrtNoteHidden(c, h, 0.7f, false);
+    EXPECT_EQ(c.front, 0.4f);
+    EXPECT_EQ(c.first, 0.2f);
+    // A receiver already behind: its stretch starts at the receiver, s = 0.
+    gpu::SmrtHiddenCandidate fromReceiver = gpu::smrtNoHiddenCandidate();
+    gpu::SmrtHidden behind = gpu::smrtHiddenFrom(true);
+    gpu::smrtTrackHidden(behind, 0.5f, true);
+    gpu::smrtNoteHidden(fromReceiver, behind, 0.6f, false);
+    ASSERT_TRUE(fromReceiver.found);
+    EXPECT_EQ(fromReceiver.first, 0.0f);
+    EXPECT_EQ(fromReceiver.front, 0.6f);
+}
+
+// The march's samples (smrtSampleDistance, with smrtMarch's share of a sample): they start at the
+// receiver, grow with i, and the last, jittered by a whole step, reaches the march's far end, in
+// distance (spots and suns) or in texels (cube faces).
+TEST(SmrtMarch, SamplesSpanTheMarch) {
+    for (const float kind : {0.0f, 1.0f, 2.0f}) {
+        const gpu::ShadowViewData v = view(kind, kind > 0.5f ? 0.1f : -5.0f, 30.0f,
+                                           kind > 0.5f ? glm::vec2(2.0f) : glm::vec2(30.0f), 0.3f);
+        const glm::vec3 p{0.7f, -1.1f, 9.0f};
+        const glm::vec3 d = glm::normalize(glm::vec3(0.2f, 0.1f, -1.0f));
+        for (const uint32_t n : {2u, 13u, 32u}) {
+            const gpu::SmrtMarch march = gpu::smrtMarch(v, p, d, 256.0f, kMapSize, n);
+            ASSERT_GT(march.extent, 0.0f);
+            EXPECT_EQ(gpu::smrtSampleDistance(march, p, d, 0, 0.0f), 0.0f);
+            EXPECT_NEAR(gpu::smrtSampleDistance(march, p, d, n - 1, 1.0f), march.extent,
+                        1e-5f * march.extent)
+                << kind << " " << n;
+            float previous = -1.0f;
+            for (uint32_t i = 0; i < n; ++i) {
+                const float s = gpu::smrtSampleDistance(march, p, d, i, 0.5f);
+                EXPECT_GT(s, previous) << kind << " " << n << " " << i;
+                EXPECT_LT(s, march.extent) << kind << " " << n << " " << i;
+                previous = s;
+            }
+        }
+    }
+}
+
+// A mark (SmrtMark) stands for its read: the point made again from its distance along the ray
+// and its `behind` is the read's, bit for bit, so the shader's march decides as the mirror's.
+TEST(SmrtMark, MakesTheReadsPointAgain) {
+    for (const float kind : {0.0f, 1.0f, 2.0f}) {
+        gpu::ShadowViewData v{};
+        v.frustum = {0.1f, 30.0f, kind > 0.5f ? 2.0f : 12.0f, kind > 0.5f ? 2.0f : 12.0f};
+        v.texel = {0.0f, kind, 0.0f, 0.3f};
+        const glm::vec3 p{0.7f, -1.1f, 9.0f};
+        const glm::vec3 d = glm::normalize(glm::vec3(0.2f, 0.1f, -1.0f));
+        for (const float s : {0.0f, 0.37f, 2.5f, 7.9f}) {
+            const gpu::SmrtScale scale = gpu::smrtScaleOf(v, 1024);
+            gpu::SmrtPoint read = gpu::smrtPointAt(v, scale, p, d, s);
+            gpu::smrtSetStored(read, v, scale, read.z - 0.013f * s, 8.0f);
+            const gpu::SmrtPoint again =
+                gpu::smrtMarkPoint(v, scale, p, d, gpu::smrtMarkOf(read), 8.0f);
+            EXPECT_EQ(again.s, read.s);
+            EXPECT_EQ(again.z, read.z);
+            EXPECT_EQ(again.uv, read.uv);
+            EXPECT_EQ(again.behind, read.behind);
+            EXPECT_EQ(again.slack, read.slack);
+            EXPECT_GT(read.slack, 0.0f);
+            EXPECT_EQ(gpu::smrtMarkBehind(v, scale, p, d, gpu::smrtMarkOf(read), 8.0f),
+                      gpu::smrtIsBehind(read));
+        }
+    }
 }

@@ -22,10 +22,10 @@ float smrtStored(sampler2DArray map, ShadowViewData view, vec2 uv, uint mapSize,
 }
 
 // The march's point at s along d from p, read against the map.
-SmrtPoint smrtPoint(sampler2DArray map, ShadowViewData view, vec3 p, vec3 d, float s,
-                    uint mapSize, float layer) {
-    SmrtPoint x = smrtPointAt(view, p, d, s);
-    smrtSetStored(x, view, smrtStored(map, view, x.uv, mapSize, layer), mapSize, smrt.slope);
+SmrtPoint smrtPoint(sampler2DArray map, ShadowViewData view, SmrtScale scale, vec3 p, vec3 d,
+                    float s, uint mapSize, float layer) {
+    SmrtPoint x = smrtPointAt(view, scale, p, d, s);
+    smrtSetStored(x, view, scale, smrtStored(map, view, x.uv, mapSize, layer), smrt.slope);
     return x;
 }
 
@@ -116,20 +116,23 @@ bool smrtStepClear(usampler2DArray bounds, ShadowViewData view, SmrtPoint a, Smr
 // then smrtCrosses decides whether the ray crossed the map's surface there (the mirror's
 // `crosses`, src/shadows/smrt.cpp). The halvings' reads are iterations of the march's own loop:
 // lavapipe runs a loop nested in the march for a whole group at every sample while one lane
-// needs it, and a side change comes once or twice a ray.
+// needs it, and a side change comes once or twice a ray. The ends are marks (SmrtMark).
 struct SmrtRefine {
     bool on;       // halving (a, b)
+    bool aBehind;  // the side a stays on (b, and end, lie on the other)
     uint done;     // halvings done
-    SmrtPoint a, b;
-    SmrtPoint end; // the read that changed side, where the march goes on from
+    SmrtMark a, b;
+    SmrtMark end;  // the read that changed side, where the march goes on from
 };
 
-SmrtRefine smrtRefineOff(SmrtPoint at) {
-    return SmrtRefine(false, 0u, at, at, at);
+SmrtRefine smrtRefineOff() {
+    SmrtMark none = SmrtMark(0.0, 0.0);
+    return SmrtRefine(false, false, 0u, none, none, none);
 }
 
-SmrtRefine smrtRefineBetween(SmrtPoint from, SmrtPoint to) {
-    return SmrtRefine(true, 0u, from, to, to);
+SmrtRefine smrtRefineBetween(SmrtMark from, bool fromBehind, SmrtPoint to) {
+    SmrtMark t = smrtMarkOf(to);
+    return SmrtRefine(true, fromBehind, 0u, from, t, t);
 }
 
 // A read while halving replaces the end on its side (true); any other read counts towards the
@@ -139,44 +142,49 @@ bool smrtHalving(inout SmrtRefine h, SmrtPoint m, inout bool grazed) {
         grazed = grazed || smrtIsBehind(m);
         return false;
     }
-    if (smrtIsBehind(m) == smrtIsBehind(h.a)) h.a = m;
-    else h.b = m;
+    if (smrtIsBehind(m) == h.aBehind) h.a = smrtMarkOf(m);
+    else h.b = smrtMarkOf(m);
     ++h.done;
     return true;
 }
 
-// Whether the ray crossed a hidden surface at the march's candidate (smrtNoteHidden,
-// smrtCrossedHidden; never without SMRT_HIDDEN, which the pipeline's constant folds away with
-// this code).
-bool smrtHiddenCrossed(sampler2DArray map, ShadowViewData view, SmrtHiddenCandidate c,
-                       uint mapSize, float layer) {
+// Whether the ray from p along d crossed a hidden surface at the march's candidate
+// (smrtNoteHidden, smrtCrossedHidden; never without SMRT_HIDDEN, which the pipeline's constant
+// folds away with this code).
+bool smrtHiddenCrossed(sampler2DArray map, ShadowViewData view, SmrtScale scale,
+                       SmrtHiddenCandidate c, vec3 p, vec3 d, uint mapSize, float layer) {
     if (!SMRT_HIDDEN || !c.found) return false;
-    SmrtHiddenTexels t = smrtHiddenTexels(c.stretch, c.front, mapSize);
+    // The check reads neither point's `behind`.
+    SmrtPoint first = smrtMarkPoint(view, scale, p, d, SmrtMark(c.first, 0.0), smrt.slope);
+    SmrtPoint front = smrtMarkPoint(view, scale, p, d, SmrtMark(c.front, 0.0), smrt.slope);
+    SmrtHiddenTexels t = smrtHiddenTexels(first, front, mapSize);
     float size = float(mapSize), margin;
     vec4 depths = vec4(fetchDepth(map, t.near.xy, size, layer), fetchDepth(map, t.near.zw, size, layer),
                        fetchDepth(map, t.far.xy, size, layer), fetchDepth(map, t.far.zw, size, layer));
-    return smrtCrossedHidden(view, c.stretch, c.front, t, depths, mapSize, margin);
+    return smrtCrossedHidden(view, first, front, t, depths, mapSize, margin);
 }
 
 // smrtNoteHidden where SMRT_HIDDEN is on.
-void smrtNoteHiddenHere(inout SmrtHiddenCandidate c, SmrtHidden h, SmrtPoint front) {
-    if (SMRT_HIDDEN) smrtNoteHidden(c, h, front);
+void smrtNoteHiddenHere(inout SmrtHiddenCandidate c, SmrtHidden h, float front, bool frontBehind) {
+    if (SMRT_HIDDEN) smrtNoteHidden(c, h, front, frontBehind);
 }
 
 // smrtTrackHidden where SMRT_HIDDEN is on (its constant folds the tracking away elsewhere).
-void smrtFollowHidden(inout SmrtHidden h, SmrtPoint x) {
-    if (SMRT_HIDDEN) smrtTrackHidden(h, x);
+void smrtFollowHidden(inout SmrtHidden h, float s, bool behind) {
+    if (SMRT_HIDDEN) smrtTrackHidden(h, s, behind);
 }
 
-// After smrt.refine halvings, smrtCrosses decides whether the ray crossed the surface (`crossed`);
-// a side change it did not cross is smrt.hidden's candidate. The march then goes on from the read
-// that changed side (h.end). False while halvings remain, or with none under way.
-bool smrtSettled(ShadowViewData view, inout SmrtRefine h, inout SmrtHiddenCandidate candidate,
-                 SmrtHidden hidden, inout bool crossed) {
+// After smrt.refine halvings, smrtCrosses decides whether the ray from p along d crossed the
+// surface (`crossed`); a side change it did not cross is smrt.hidden's candidate. The march then
+// goes on from the read that changed side (h.end). False while halvings remain, or with none
+// under way.
+bool smrtSettled(ShadowViewData view, SmrtScale scale, vec3 p, vec3 d, inout SmrtRefine h,
+                 inout SmrtHiddenCandidate candidate, SmrtHidden hidden, inout bool crossed) {
     if (!h.on || h.done != smrt.refine) return false;
     float margin;
-    crossed = smrtCrosses(view, h.a, h.b, smrt.slope, margin);
-    if (!crossed) smrtNoteHiddenHere(candidate, hidden, h.end);
+    crossed = smrtCrosses(view, smrtMarkPoint(view, scale, p, d, h.a, smrt.slope),
+                          smrtMarkPoint(view, scale, p, d, h.b, smrt.slope), smrt.slope, margin);
+    if (!crossed) smrtNoteHiddenHere(candidate, hidden, h.end.s, !h.aBehind);
     h.on = false;
     return true;
 }
@@ -190,14 +198,20 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
     uint rays = budget.x, samples = budget.y, adaptive = smrtAdaptive(view, smrt);
     uint gapSamples = smrtGapSamples(view, smrt);
     vec3 p = smrtViewPoint(view, r.uv, viewDistance(view, r.depth));
+    SmrtScale scale = smrtScaleOf(view, mapSize);
     if (smrt.skipLit != 0u && smrtProvenLit(map, shadowTable, view, p, r.uv, mapSize, r.layer))
         return vec4(1.0, 0.0, 0.0, 0.0);
-    SmrtPoint receiver = smrtPoint(map, view, p, vec3(0.0), 0.0, mapSize, r.layer);
+    SmrtPoint receiver = smrtPoint(map, view, scale, p, vec3(0.0), 0.0, mapSize, r.layer);
     float blocked = 0.0, extrapolated = 0.0, marched = 0.0, traced = 0.0;
     bool grazed = smrtIsBehind(receiver);
     int l = int(r.layer);
     int levels = VIRTUAL_MAPS ? 1 : textureQueryLevels(shadowTable);
     int boundsSize = VIRTUAL_MAPS ? 1 : textureSize(shadowTable, 0).x;
+    // The bounds' last level: one tile, the layer's nearest depth (virtual maps: none, no stop).
+    float nearest = VIRTUAL_MAPS
+                        ? -1e30
+                        : smrtNearestBehind(view, uintBitsToFloat(texelFetch(
+                                                      shadowTable, ivec3(0, 0, l), levels - 1).r));
     // From the light's rim inwards: the first rays reach round its rim.
     for (uint ray = 0u; ray < rays; ++ray) {
         uint k = rays - 1u - ray;
@@ -205,36 +219,43 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         // surface: fully in shadow or fully lit, no more rays.
         if (ray > 0u && ray == adaptive && (blocked == traced || (blocked == 0.0 && !grazed))) break;
         vec3 d = smrtRayDirection(view, p, k, rays, turns);
-        SmrtMarch march = smrtMarch(view, p, d, smrt.maxRadius, mapSize);
+        SmrtMarch march = smrtMarch(view, p, d, smrt.maxRadius, mapSize, samples);
         float jitter = fract(turns * 2.618034 + float(k) * 0.7548777);
-        SmrtPoint last = receiver;
+        // The stop short of the light, on a ray that nears it (smrtNearestBehind).
+        float stopAt = d.z < 0.0 ? nearest : -1e30;
+        // The receiver's mark: s = 0 on any ray is p itself.
+        SmrtMark last = smrtMarkOf(receiver);
         bool crossed = false;
-        SmrtHidden hidden = smrtHiddenFrom(receiver);
-        SmrtHiddenCandidate candidate = smrtNoHiddenCandidate(receiver);
+        SmrtHidden hidden = smrtHiddenFrom(smrtIsBehind(receiver));
+        SmrtHiddenCandidate candidate = smrtNoHiddenCandidate();
         // A side change's halvings (SmrtRefine) run as the loop's own iterations; the march goes
         // on from the read that changed side once smrtCrosses has decided. `advanced`: the read
         // the march moved to this iteration, if it moved.
-        SmrtRefine h = smrtRefineOff(receiver);
+        SmrtRefine h = smrtRefineOff();
         uint i = 0u;
         // Two loops, not one with a test of gapSamples in it: lavapipe runs a branch inside
         // the march masked, taken or not, and the gaps' reads would cost every pixel.
         if (gapSamples == 0u) {
             while (!crossed && (h.on || i < samples)) {
                 float s = h.on ? 0.5 * (h.a.s + h.b.s)
-                               : smrtSampleDistance(march, p, d, i, samples, jitter);
-                SmrtPoint x = smrtPoint(map, view, p, d, s, mapSize, r.layer);
+                               : smrtSampleDistance(march, p, d, i, jitter);
+                bool lastBehind = smrtMarkBehind(view, scale, p, d, last, smrt.slope);
+                // The rest of the ray lies nearer the light than any texel (smrtNearestBehind).
+                if (!h.on && !lastBehind && p.z + s * d.z < stopAt) break;
+                SmrtPoint x = smrtPoint(map, view, scale, p, d, s, mapSize, r.layer);
                 bool moved = false;
-                SmrtPoint advanced = x;
+                SmrtMark advanced = smrtMarkOf(x);
                 if (!smrtHalving(h, x, grazed)) {
-                    if (smrtIsBehind(x) != smrtIsBehind(last)) h = smrtRefineBetween(last, x);
+                    if (smrtIsBehind(x) != lastBehind) h = smrtRefineBetween(last, lastBehind, x);
                     else moved = true;
                 }
-                if (smrtSettled(view, h, candidate, hidden, crossed)) {
+                if (smrtSettled(view, scale, p, d, h, candidate, hidden, crossed)) {
                     advanced = h.end;
                     moved = true;
                 }
                 if (moved) {
-                    smrtFollowHidden(hidden, advanced);
+                    smrtFollowHidden(hidden, advanced.s,
+                                     smrtMarkBehind(view, scale, p, d, advanced, smrt.slope));
                     last = advanced;
                     ++i;
                 }
@@ -245,38 +266,45 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
             // it, and lanes open long steps at different samples. The order of the points, and so
             // every decision, is that of smrt.cpp's nested loops: a step that opens is sampled
             // inside (j = 1 .. gapSamples), then its far end is read again (j = gapSamples + 1).
-            SmrtPoint from = last, next = last;
+            SmrtMark from = last, next = last;
             uint j = 0u;
             bool gapping = false;
             while (!crossed && (h.on || gapping || i < samples)) {
                 float s = h.on         ? 0.5 * (h.a.s + h.b.s)
-                          : !gapping   ? smrtSampleDistance(march, p, d, i, samples, jitter)
-                          : j <= gapSamples ? smrtGapDistance(last, next, j, gapSamples)
+                          : !gapping   ? smrtSampleDistance(march, p, d, i, jitter)
+                          : j <= gapSamples ? smrtGapDistance(last.s, next.s, j, gapSamples)
                                             : next.s;
-                SmrtPoint x = smrtPoint(map, view, p, d, s, mapSize, r.layer);
+                SmrtPoint fromPoint = smrtMarkPoint(view, scale, p, d, from, smrt.slope);
+                bool fromBehind = smrtIsBehind(fromPoint);
+                // The last read already lies nearer the light than any texel, and so does the
+                // rest (a gap opened before it would hold points farther out): lit.
+                if (!h.on && !gapping && !fromBehind && fromPoint.z < stopAt) break;
+                SmrtPoint x = smrtPoint(map, view, scale, p, d, s, mapSize, r.layer);
                 bool moved = false;
-                SmrtPoint advanced = x;
+                SmrtMark advanced = smrtMarkOf(x);
                 if (!smrtHalving(h, x, grazed)) {
                     // A long step in front of the surface that the bounds cannot prove clear:
                     // sampled again inside.
-                    if (!gapping && !smrtIsBehind(from) && !smrtIsBehind(x) &&
-                        smrtStepTexels(from, x, mapSize) > smrtLongStep() &&
-                        !smrtStepClear(shadowTable, view, from, x, mapSize, l, levels, boundsSize)) {
+                    if (!gapping && !fromBehind && !smrtIsBehind(x) &&
+                        smrtStepTexels(fromPoint, x, mapSize) > smrtLongStep() &&
+                        !smrtStepClear(shadowTable, view, fromPoint, x, mapSize, l, levels,
+                                       boundsSize)) {
                         gapping = true;
                         j = 1u;
-                        next = x;
-                    } else if (smrtIsBehind(x) != smrtIsBehind(from)) {
-                        h = smrtRefineBetween(from, x);
+                        next = advanced;
+                    } else if (smrtIsBehind(x) != fromBehind) {
+                        h = smrtRefineBetween(from, fromBehind, x);
                     } else {
                         moved = true;
                     }
                 }
-                if (smrtSettled(view, h, candidate, hidden, crossed)) {
+                if (smrtSettled(view, scale, p, d, h, candidate, hidden, crossed)) {
                     advanced = h.end;
                     moved = true;
                 }
                 if (moved) {
-                    smrtFollowHidden(hidden, advanced);
+                    smrtFollowHidden(hidden, advanced.s,
+                                     smrtMarkBehind(view, scale, p, d, advanced, smrt.slope));
                     from = advanced;
                     if (gapping && j <= gapSamples) {
                         ++j;
@@ -288,13 +316,13 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 }
             }
         }
-        if (!crossed) crossed = smrtHiddenCrossed(map, view, candidate, mapSize, r.layer);
+        if (!crossed) crossed = smrtHiddenCrossed(map, view, scale, candidate, p, d, mapSize, r.layer);
         // A ray that ends behind the surface is extrapolated on towards the light: it meets the
         // occluder it is behind (nothing lies nearer the light than the near plane).
-        bool hit = crossed || smrtIsBehind(last);
+        bool hit = crossed || smrtMarkBehind(view, scale, p, d, last, smrt.slope);
         blocked += hit ? 1.0 : 0.0;
         extrapolated += hit && !crossed ? 1.0 : 0.0;
-        marched += length((smrtProject(view, p + march.extent * d) - r.uv) * float(mapSize));
+        marched += length((smrtProject(view, scale, p + march.extent * d) - r.uv) * float(mapSize));
         traced += 1.0;
     }
     // A division may round either way by 2.5 ulp (a GPU takes a reciprocal): with every ray

@@ -69,16 +69,31 @@ SHARED vec3 smrtViewPoint(IN(ShadowViewData) view, vec2 uv, float z) {
     return vec3((uv.x - 0.5f) * view.frustum.z * scale, (uv.y - 0.5f) * view.frustum.w * scale, z);
 }
 
-// Where point q of the view's space falls in the map (uv).
-SHARED vec2 smrtProject(IN(ShadowViewData) view, vec3 q) {
-    float scale = view.texel.y > 0.5f ? q.z : 1.0f;
-    float inverse = 1.0f / scale; // one division a sample: the march's inner loop
-    return vec2(q.x * inverse / view.frustum.z, q.y * inverse / view.frustum.w) + 0.5f;
+// The view's quotients the march takes at every read, once a pixel (smrtScaleOf): in the march's
+// loop a division costs several multiplications, and on lavapipe the bulbs' visibility pass ran
+// 7-11% longer with these in it.
+struct SmrtScale {
+    vec2 uvPerWorld;  // 1 / frustum.zw: uv units a world unit (perspective: at unit distance)
+    float texelWorld; // a texel's world size, frustum.z / mapSize (perspective: at unit distance)
+};
+
+SHARED SmrtScale smrtScaleOf(IN(ShadowViewData) view, uint mapSize) {
+    SmrtScale scale;
+    scale.uvPerWorld = vec2(1.0f / view.frustum.z, 1.0f / view.frustum.w);
+    scale.texelWorld = view.frustum.z / float(mapSize);
+    return scale;
 }
 
-// World size of a texel of a map of `mapSize` at light view distance z.
-SHARED float smrtTexelWorld(IN(ShadowViewData) view, float z, uint mapSize) {
-    return view.frustum.z * (view.texel.y > 0.5f ? z : 1.0f) / float(mapSize);
+// Where point q of the view's space falls in the map (uv).
+SHARED vec2 smrtProject(IN(ShadowViewData) view, IN(SmrtScale) scale, vec3 q) {
+    float inverse = view.texel.y > 0.5f ? 1.0f / q.z : 1.0f; // one division a read
+    return vec2(q.x * (inverse * scale.uvPerWorld.x), q.y * (inverse * scale.uvPerWorld.y)) +
+           0.5f;
+}
+
+// World size of a texel of the map at light view distance z.
+SHARED float smrtTexelWorld(IN(ShadowViewData) view, IN(SmrtScale) scale, float z) {
+    return scale.texelWorld * (view.texel.y > 0.5f ? z : 1.0f);
 }
 
 // The cosine of the half-angle of the cone the light fills seen from p: a sphere of radius
@@ -146,16 +161,20 @@ SHARED float smrtMarchLength(IN(ShadowViewData) view, vec3 p, vec3 d, float maxT
 // in distance along the ray, except on a point light's cube face (texel.y 2), where it is squared
 // in texels of the map: a ray towards a close light's rim sweeps most of its texels in its last
 // stretch, which samples squared in distance cross in a few long steps. Once per ray: the march's
-// length (extent), and on a cube face its lateral rate C and the texels its end lies from p's.
+// length (extent), and on a cube face its lateral rate C and the texels its end lies from p's; a
+// sample's share of it, 1 / samples, so that no sample divides by their count (SmrtScale).
 struct SmrtMarch {
     float extent;
     float rate;
     float texels;
     bool byTexels;
+    float perSample;
 };
 
-SHARED SmrtMarch smrtMarch(IN(ShadowViewData) view, vec3 p, vec3 d, float maxTexels, uint mapSize) {
+SHARED SmrtMarch smrtMarch(IN(ShadowViewData) view, vec3 p, vec3 d, float maxTexels, uint mapSize,
+                           uint samples) {
     SmrtMarch march;
+    march.perSample = 1.0f / float(samples);
     march.rate = view.texel.y > 0.5f ? smrtPerspectiveRate(view, p, d, mapSize) : 0.0f;
     march.extent = smrtMarchLength(view, p, d, maxTexels, mapSize, march.rate);
     march.byTexels = view.texel.y > 1.5f;
@@ -165,9 +184,9 @@ SHARED SmrtMarch smrtMarch(IN(ShadowViewData) view, vec3 p, vec3 d, float maxTex
     return march;
 }
 
-// Sample i of n along the march, offset by `jitter` of a step.
-SHARED float smrtSampleDistance(IN(SmrtMarch) march, vec3 p, vec3 d, uint i, uint n, float jitter) {
-    float t = (float(i) + jitter) / float(n);
+// Sample i along the march, offset by `jitter` of a step.
+SHARED float smrtSampleDistance(IN(SmrtMarch) march, vec3 p, vec3 d, uint i, float jitter) {
+    float t = (float(i) + jitter) * march.perSample;
     if (!march.byTexels) return march.extent * t * t;
     return min(smrtPerspectiveReach(p, d, march.rate, march.texels * t * t), march.extent);
 }
@@ -185,25 +204,76 @@ struct SmrtPoint {
 };
 
 // The point at s along direction d from p, before its texel is read.
-SHARED SmrtPoint smrtPointAt(IN(ShadowViewData) view, vec3 p, vec3 d, float s) {
+SHARED SmrtPoint smrtPointAt(IN(ShadowViewData) view, IN(SmrtScale) scale, vec3 p, vec3 d,
+                             float s) {
     vec3 q = p + s * d;
     SmrtPoint point;
     point.s = s;
     point.z = q.z;
-    point.uv = smrtProject(view, q);
+    point.uv = smrtProject(view, scale, q);
     point.behind = 0.0f;
     point.slack = 0.0f;
     return point;
 }
 
+// The stop short of the light (smrt.skipLit's bounds): no read of a point nearer the light than
+// the nearest depth its map layer holds can lie behind the surface, as every texel stores at least
+// that distance, and then smrtIsBehind's `behind` is negative. On a ray that nears the light
+// (d.z < 0: z only falls) the march stops before a read that near, with the last read in front:
+// nothing after it changes side, so the ray is lit, as the march to its end would find it (the
+// mirror, src/shadows/smrt.cpp, marches on, and the parity test holds the two equal). `depth`: the
+// nearest stored depth (the bounds' last level). Less 1e-5 of the distance and 4e-7 of the depth
+// range, for viewDistance's rounding: an orthographic view's distances may be negative or zero.
+SHARED float smrtNearestBehind(IN(ShadowViewData) view, float depth) {
+    float z = viewDistance(view, depth);
+    return z - (1e-5f * abs(z) + 4e-7f * abs(view.frustum.y - view.frustum.x));
+}
+
+// The slack of a point at light view distance z (SmrtPoint).
+SHARED float smrtSlack(IN(ShadowViewData) view, IN(SmrtScale) scale, float z, float slope) {
+    return 0.75f * slope * smrtTexelWorld(view, scale, z);
+}
+
 // The point against the map's surface there (light view distance `stored`).
-SHARED void smrtSetStored(INOUT(SmrtPoint) point, IN(ShadowViewData) view, float stored,
-                          uint mapSize, float slope) {
+SHARED void smrtSetStored(INOUT(SmrtPoint) point, IN(ShadowViewData) view, IN(SmrtScale) scale,
+                          float stored, float slope) {
     point.behind = point.z - stored;
-    point.slack = 0.75f * slope * smrtTexelWorld(view, point.z, mapSize);
+    point.slack = smrtSlack(view, scale, point.z, slope);
 }
 
 SHARED bool smrtIsBehind(IN(SmrtPoint) point) { return point.behind > point.slack; }
+
+// A read of the march as the shader carries it from one iteration of its loop to the next: how
+// far along the ray, and how far behind the map's surface. The rest of its SmrtPoint follows from
+// these and the ray (smrtMarkPoint), with no read of the map. lavapipe keeps a group's loop state
+// in the CPU's sixteen vector registers; six floats a point, for the last read, the ends of a
+// halving and the hidden stretch, spilled to memory at every sample, and the bulbs' pass ran a
+// tenth longer for it (docs/techniques.md, "Shadow-map ray tracing", step 13).
+struct SmrtMark {
+    float s;
+    float behind;
+};
+
+SHARED SmrtMark smrtMarkOf(IN(SmrtPoint) x) {
+    SmrtMark m;
+    m.s = x.s;
+    m.behind = x.behind;
+    return m;
+}
+
+// The point a mark stands for on the ray from p along d: the same arithmetic as the read's.
+SHARED SmrtPoint smrtMarkPoint(IN(ShadowViewData) view, IN(SmrtScale) scale, vec3 p, vec3 d,
+                               IN(SmrtMark) m, float slope) {
+    SmrtPoint x = smrtPointAt(view, scale, p, d, m.s);
+    x.behind = m.behind;
+    x.slack = smrtSlack(view, scale, x.z, slope);
+    return x;
+}
+
+SHARED bool smrtMarkBehind(IN(ShadowViewData) view, IN(SmrtScale) scale, vec3 p, vec3 d,
+                           IN(SmrtMark) m, float slope) {
+    return smrtIsBehind(smrtMarkPoint(view, scale, p, d, m, slope));
+}
 
 // Whether the ray crosses the map's surface between points a and b, one in front and one behind
 // (the march halves the interval smrt.refine times first): the one behind lies no farther behind
@@ -295,27 +365,30 @@ SHARED float smrtDepthOf(IN(ShadowViewData) view, float z) {
 // the light than that point did, the ray crossed it, hidden. The plane is the stored depth's (a
 // plane's depth is affine in the map, perspective or not), fitted through texels on the far
 // side, away from what hid the ray (docs/techniques.md, "Shadow-map ray tracing", step 11).
+// The march carries distances along the ray (`first`, `front`), not points (SmrtMark); the check
+// makes their points again (smrtMarkPoint), and reads nothing for them.
 struct SmrtHidden {
-    SmrtPoint first; // the stretch's first point
-    bool behind;     // the last point lay behind the surface (the stretch goes on)
+    float first; // how far along the ray the stretch's first point lies
+    bool behind; // the last point lay behind the surface (the stretch goes on)
 };
 
 // A ray's stretches from its first point, the receiver (`first` is read only while `behind`).
-SHARED SmrtHidden smrtHiddenFrom(IN(SmrtPoint) receiver) {
+SHARED SmrtHidden smrtHiddenFrom(bool receiverBehind) {
     SmrtHidden h;
-    h.first = receiver;
-    h.behind = smrtIsBehind(receiver);
+    h.first = 0.0f;
+    h.behind = receiverBehind;
     return h;
 }
 
-// The stretch after point x of the march (every point after the receiver, in order).
-SHARED void smrtTrackHidden(INOUT(SmrtHidden) h, IN(SmrtPoint) x) {
-    if (smrtIsBehind(x) && !h.behind) h.first = x;
-    h.behind = smrtIsBehind(x);
+// The stretch after the march's point s along the ray, behind the surface or not (every point
+// after the receiver, in order).
+SHARED void smrtTrackHidden(INOUT(SmrtHidden) h, float s, bool behind) {
+    if (behind && !h.behind) h.first = s;
+    h.behind = behind;
 }
 
-SHARED bool smrtMayCrossHidden(IN(SmrtHidden) h, IN(SmrtPoint) front) {
-    return h.behind && !smrtIsBehind(front);
+SHARED bool smrtMayCrossHidden(IN(SmrtHidden) h, bool frontBehind) {
+    return h.behind && !frontBehind;
 }
 
 // The place the march checks for a hidden surface: the first where the ray came out in front of
@@ -326,23 +399,24 @@ SHARED bool smrtMayCrossHidden(IN(SmrtHidden) h, IN(SmrtPoint) front) {
 // the surface later is blocked anyway; only a second silhouette after a first that hid nothing
 // goes unchecked.
 struct SmrtHiddenCandidate {
-    SmrtHidden stretch;
-    SmrtPoint front;
+    float first; // the stretch's first point (SmrtHidden), along the ray
+    float front; // where the ray came out in front, along the ray
     bool found;
 };
 
-SHARED SmrtHiddenCandidate smrtNoHiddenCandidate(IN(SmrtPoint) receiver) {
+SHARED SmrtHiddenCandidate smrtNoHiddenCandidate() {
     SmrtHiddenCandidate c;
-    c.stretch = smrtHiddenFrom(receiver);
-    c.front = receiver;
+    c.first = 0.0f;
+    c.front = 0.0f;
     c.found = false;
     return c;
 }
 
-// After a side change the crossing test called a silhouette, at `front`.
-SHARED void smrtNoteHidden(INOUT(SmrtHiddenCandidate) c, IN(SmrtHidden) h, IN(SmrtPoint) front) {
-    if (!c.found && smrtMayCrossHidden(h, front)) {
-        c.stretch = h;
+// After a side change the crossing test called a silhouette, at the point `front` along the ray.
+SHARED void smrtNoteHidden(INOUT(SmrtHiddenCandidate) c, IN(SmrtHidden) h, float front,
+                           bool frontBehind) {
+    if (!c.found && smrtMayCrossHidden(h, frontBehind)) {
+        c.first = h.first;
         c.front = front;
         c.found = true;
     }
@@ -358,9 +432,9 @@ struct SmrtHiddenTexels {
     ivec4 far;
 };
 
-SHARED SmrtHiddenTexels smrtHiddenTexels(IN(SmrtHidden) h, IN(SmrtPoint) front, uint mapSize) {
+SHARED SmrtHiddenTexels smrtHiddenTexels(IN(SmrtPoint) first, IN(SmrtPoint) front, uint mapSize) {
     float size = float(mapSize);
-    vec2 along = (front.uv - h.first.uv) * size;
+    vec2 along = (front.uv - first.uv) * size;
     float texels = length(along);
     vec2 step = texels > 1e-6f ? along / texels : vec2(1.0f, 0.0f);
     vec2 side = vec2(-step.y, step.x);
@@ -382,7 +456,7 @@ SHARED SmrtHiddenTexels smrtHiddenTexels(IN(SmrtHidden) h, IN(SmrtPoint) front, 
 // the own, far and side texels' centres, where the midway texel lies on it (an edge or a curve is
 // not continued), is continued to the first point; within two texels' change and the float's
 // steps. `margin` as smrtCrosses'.
-SHARED bool smrtCrossedHidden(IN(ShadowViewData) view, IN(SmrtHidden) h, IN(SmrtPoint) front,
+SHARED bool smrtCrossedHidden(IN(ShadowViewData) view, IN(SmrtPoint) first, IN(SmrtPoint) front,
                               IN(SmrtHiddenTexels) t, vec4 depths, uint mapSize,
                               OUT(float) margin) {
     float size = float(mapSize);
@@ -395,9 +469,9 @@ SHARED bool smrtCrossedHidden(IN(ShadowViewData) view, IN(SmrtHidden) h, IN(Smrt
                              : vec2(0.0f, 0.0f);
     float step = length(g);
     bool plane = abs(det) > 1.0f && abs(depths.y - depths.x - dot(g, mid - own)) <= step + 4e-7f;
-    vec2 to = h.first.uv * size - own;
+    vec2 to = first.uv * size - own;
     float there = depths.x + dot(g, to);
-    float point = smrtDepthOf(view, h.first.z - h.first.slack - front.slack);
+    float point = smrtDepthOf(view, first.z - first.slack - front.slack);
     float tolerance = 2.0f * step + 4e-7f * (1.0f + length(to) / smrtHiddenBaseline());
     margin = abs(point - there - tolerance);
     return plane && point - there > tolerance;
@@ -482,9 +556,9 @@ SHARED float smrtStepTexels(IN(SmrtPoint) a, IN(SmrtPoint) b, uint mapSize) {
     return length((b.uv - a.uv) * float(mapSize));
 }
 
-// Inside point j (1 .. n) of n evenly spaced between a and b, along the ray.
-SHARED float smrtGapDistance(IN(SmrtPoint) a, IN(SmrtPoint) b, uint j, uint n) {
-    return a.s + (b.s - a.s) * float(j) / float(n + 1u);
+// Inside point j (1 .. n) of n evenly spaced between the points a and b along the ray.
+SHARED float smrtGapDistance(float a, float b, uint j, uint n) {
+    return a + (b - a) * float(j) / float(n + 1u);
 }
 
 // The texels the step reads (the march's reads are clamped to the map): the first (xy) and last

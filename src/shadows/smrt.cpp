@@ -30,8 +30,9 @@ float stored(const FilterInput& in, glm::vec2 uv) {
 // smrtPoint, transcribed.
 gpu::SmrtPoint pointAt(const FilterInput& in, const gpu::SmrtParams& s, glm::vec3 p, glm::vec3 d,
                        float distance) {
-    gpu::SmrtPoint x = gpu::smrtPointAt(in.view, p, d, distance);
-    gpu::smrtSetStored(x, in.view, stored(in, x.uv), in.map.size, s.slope);
+    const gpu::SmrtScale scale = gpu::smrtScaleOf(in.view, in.map.size);
+    gpu::SmrtPoint x = gpu::smrtPointAt(in.view, scale, p, d, distance);
+    gpu::smrtSetStored(x, in.view, scale, stored(in, x.uv), s.slope);
     in.margins.see(x.behind / std::max(x.z, 1.0f), x.slack / std::max(x.z, 1.0f));
     return x;
 }
@@ -167,6 +168,7 @@ glm::vec4 smrtReference(const FilterInput& in) {
     const uint32_t gapSamples = gpu::smrtGapSamples(view, s);
     const glm::vec3 p =
         gpu::smrtViewPoint(view, in.probe.uv, gpu::viewDistance(view, in.probe.depth));
+    const gpu::SmrtScale scale = gpu::smrtScaleOf(view, mapSize);
     if (s.skipLit != 0 && provenLit(in, s, p))
         return {1.0f, 0.0f, 0.0f, 0.0f};
     const gpu::SmrtPoint receiver = pointAt(in, s, p, glm::vec3(0.0f), 0.0f);
@@ -178,30 +180,37 @@ glm::vec4 smrtReference(const FilterInput& in) {
         if (ray > 0 && ray == adaptive && (blocked == traced || (blocked == 0.0f && !grazed)))
             break;
         const glm::vec3 d = gpu::smrtRayDirection(view, p, k, rays, turns);
-        const gpu::SmrtMarch march = gpu::smrtMarch(view, p, d, s.maxRadius, mapSize);
+        const gpu::SmrtMarch march = gpu::smrtMarch(view, p, d, s.maxRadius, mapSize, samples);
         const float jitter = glm::fract(turns * 2.618034f + static_cast<float>(k) * 0.7548777f);
         gpu::SmrtPoint last = receiver;
         bool crossed = false;
-        gpu::SmrtHidden hidden = gpu::smrtHiddenFrom(receiver);
-        gpu::SmrtHiddenCandidate candidate = gpu::smrtNoHiddenCandidate(receiver);
+        gpu::SmrtHidden hidden = gpu::smrtHiddenFrom(gpu::smrtIsBehind(receiver));
+        gpu::SmrtHiddenCandidate candidate = gpu::smrtNoHiddenCandidate();
         // Where the crossing test sees a silhouette: the candidate (smrtNoteHiddenHere).
         auto note = [&](const gpu::SmrtPoint& front) {
             if (hiddenOn)
-                gpu::smrtNoteHidden(candidate, hidden, front);
+                gpu::smrtNoteHidden(candidate, hidden, front.s, gpu::smrtIsBehind(front));
+        };
+        auto track = [&](const gpu::SmrtPoint& x) {
+            gpu::smrtTrackHidden(hidden, x.s, gpu::smrtIsBehind(x));
         };
         // smrtHiddenCrossed, transcribed, after the march (a candidate is only noted where
         // smrt.hidden is on).
         auto crossedHidden = [&]() {
             if (!candidate.found)
                 return false;
-            const gpu::SmrtHiddenTexels t =
-                gpu::smrtHiddenTexels(candidate.stretch, candidate.front, mapSize);
+            // The points again from their distances along the ray, as the shader makes them.
+            const gpu::SmrtPoint first = gpu::smrtMarkPoint(
+                view, scale, p, d, gpu::SmrtMark{.s = candidate.first, .behind = 0.0f}, s.slope);
+            const gpu::SmrtPoint front = gpu::smrtMarkPoint(
+                view, scale, p, d, gpu::SmrtMark{.s = candidate.front, .behind = 0.0f}, s.slope);
+            const gpu::SmrtHiddenTexels t = gpu::smrtHiddenTexels(first, front, mapSize);
             const glm::vec4 depths{in.map.texel(t.near.x, t.near.y),
                                    in.map.texel(t.near.z, t.near.w), in.map.texel(t.far.x, t.far.y),
                                    in.map.texel(t.far.z, t.far.w)};
             float margin = 0.0f;
-            const bool result = gpu::smrtCrossedHidden(view, candidate.stretch, candidate.front, t,
-                                                       depths, mapSize, margin);
+            const bool result =
+                gpu::smrtCrossedHidden(view, first, front, t, depths, mapSize, margin);
             in.margins.see(margin, 0.0f);
             return result;
         };
@@ -219,21 +228,21 @@ glm::vec4 smrtReference(const FilterInput& in) {
         };
         for (uint32_t i = 0; i < samples && !crossed; ++i) {
             const gpu::SmrtPoint next =
-                pointAt(in, s, p, d, gpu::smrtSampleDistance(march, p, d, i, samples, jitter));
+                pointAt(in, s, p, d, gpu::smrtSampleDistance(march, p, d, i, jitter));
             grazed = grazed || gpu::smrtIsBehind(next);
             gpu::SmrtPoint from = last;
             if (gapSamples > 0 && !gpu::smrtIsBehind(last) && !gpu::smrtIsBehind(next) &&
                 isLongStep(in, last, next) && !stepClear(in, last, next)) {
                 for (uint32_t j = 1; j <= gapSamples && !crossed; ++j) {
                     const gpu::SmrtPoint inside =
-                        pointAt(in, s, p, d, gpu::smrtGapDistance(last, next, j, gapSamples));
+                        pointAt(in, s, p, d, gpu::smrtGapDistance(last.s, next.s, j, gapSamples));
                     grazed = grazed || gpu::smrtIsBehind(inside);
                     if (gpu::smrtIsBehind(inside) != gpu::smrtIsBehind(from)) {
                         crossed = crosses(from, inside);
                         if (!crossed)
                             note(inside);
                     }
-                    gpu::smrtTrackHidden(hidden, inside);
+                    track(inside);
                     from = inside;
                 }
             }
@@ -242,14 +251,14 @@ glm::vec4 smrtReference(const FilterInput& in) {
                 if (!crossed)
                     note(next);
             }
-            gpu::smrtTrackHidden(hidden, next);
+            track(next);
             last = next;
         }
         crossed = crossed || crossedHidden();
         const bool hit = crossed || gpu::smrtIsBehind(last);
         blocked += hit ? 1.0f : 0.0f;
         extrapolated += hit && !crossed ? 1.0f : 0.0f;
-        marched += glm::length((gpu::smrtProject(view, p + march.extent * d) - in.probe.uv) *
+        marched += glm::length((gpu::smrtProject(view, scale, p + march.extent * d) - in.probe.uv) *
                                static_cast<float>(mapSize));
         traced += 1.0f;
     }
@@ -301,7 +310,7 @@ const TechniqueModule& smrtModule() {
                              "limits the error more than the rays' noise"},
              {.key = "smrt.cubeSamples",
               .type = ParameterType::Int,
-              .defaultValue = 16,
+              .defaultValue = 13,
               .min = 2,
               .max = 64,
               .unit = "map samples per ray",
@@ -374,9 +383,10 @@ const TechniqueModule& smrtModule() {
               .min = 0,
               .max = 16,
               .unit = "samples",
-              .description = "smrt.gapSamples on a point light's cube faces, whose rays towards "
-                             "a close light's rim take the longest steps (off: 16 samples a ray "
-                             "read as well for less)"},
+              .description =
+                  "smrt.gapSamples on a point light's cube faces, whose rays towards "
+                  "a close light's rim take the longest steps (off: more plain samples a "
+                  "ray read as well for less)"},
              {.key = "smrt.hidden",
               .type = ParameterType::Bool,
               .defaultValue = 0,
@@ -422,7 +432,7 @@ const TechniqueModule& smrtModule() {
                              "smrt.filter: off)"},
              {.key = "smrt.cubeFilterWide",
               .type = ParameterType::Int,
-              .defaultValue = 6,
+              .defaultValue = 8,
               .min = 0,
               .max = 8,
               .unit = "pixels",
