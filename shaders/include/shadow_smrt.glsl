@@ -223,8 +223,10 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         float jitter = fract(turns * 2.618034 + float(k) * 0.7548777);
         // The stop short of the light, on a ray that nears it (smrtNearestBehind).
         float stopAt = d.z < 0.0 ? nearest : -1e30;
-        // The receiver's mark: s = 0 on any ray is p itself.
+        // The receiver's mark: s = 0 on any ray is p itself. Its side travels with it: each read
+        // knows its own, and the end of a halving lies opposite its start (SmrtRefine).
         SmrtMark last = smrtMarkOf(receiver);
+        bool lastBehind = smrtIsBehind(receiver);
         bool crossed = false;
         SmrtHidden hidden = smrtHiddenFrom(smrtIsBehind(receiver));
         SmrtHiddenCandidate candidate = smrtNoHiddenCandidate();
@@ -239,24 +241,25 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
             while (!crossed && (h.on || i < samples)) {
                 float s = h.on ? 0.5 * (h.a.s + h.b.s)
                                : smrtSampleDistance(march, p, d, i, jitter);
-                bool lastBehind = smrtMarkBehind(view, scale, p, d, last, smrt.slope);
                 // The rest of the ray lies nearer the light than any texel (smrtNearestBehind).
                 if (!h.on && !lastBehind && p.z + s * d.z < stopAt) break;
                 SmrtPoint x = smrtPoint(map, view, scale, p, d, s, mapSize, r.layer);
                 bool moved = false;
                 SmrtMark advanced = smrtMarkOf(x);
+                bool advancedBehind = smrtIsBehind(x);
                 if (!smrtHalving(h, x, grazed)) {
-                    if (smrtIsBehind(x) != lastBehind) h = smrtRefineBetween(last, lastBehind, x);
+                    if (advancedBehind != lastBehind) h = smrtRefineBetween(last, lastBehind, x);
                     else moved = true;
                 }
                 if (smrtSettled(view, scale, p, d, h, candidate, hidden, crossed)) {
                     advanced = h.end;
+                    advancedBehind = !h.aBehind;
                     moved = true;
                 }
                 if (moved) {
-                    smrtFollowHidden(hidden, advanced.s,
-                                     smrtMarkBehind(view, scale, p, d, advanced, smrt.slope));
+                    smrtFollowHidden(hidden, advanced.s, advancedBehind);
                     last = advanced;
+                    lastBehind = advancedBehind;
                     ++i;
                 }
             }
@@ -282,17 +285,18 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 SmrtPoint x = smrtPoint(map, view, scale, p, d, s, mapSize, r.layer);
                 bool moved = false;
                 SmrtMark advanced = smrtMarkOf(x);
+                bool advancedBehind = smrtIsBehind(x);
                 if (!smrtHalving(h, x, grazed)) {
                     // A long step in front of the surface that the bounds cannot prove clear:
                     // sampled again inside.
-                    if (!gapping && !fromBehind && !smrtIsBehind(x) &&
+                    if (!gapping && !fromBehind && !advancedBehind &&
                         smrtStepTexels(fromPoint, x, mapSize) > smrtLongStep() &&
                         !smrtStepClear(shadowTable, view, fromPoint, x, mapSize, l, levels,
                                        boundsSize)) {
                         gapping = true;
                         j = 1u;
                         next = advanced;
-                    } else if (smrtIsBehind(x) != fromBehind) {
+                    } else if (advancedBehind != fromBehind) {
                         h = smrtRefineBetween(from, fromBehind, x);
                     } else {
                         moved = true;
@@ -300,17 +304,18 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
                 }
                 if (smrtSettled(view, scale, p, d, h, candidate, hidden, crossed)) {
                     advanced = h.end;
+                    advancedBehind = !h.aBehind;
                     moved = true;
                 }
                 if (moved) {
-                    smrtFollowHidden(hidden, advanced.s,
-                                     smrtMarkBehind(view, scale, p, d, advanced, smrt.slope));
+                    smrtFollowHidden(hidden, advanced.s, advancedBehind);
                     from = advanced;
                     if (gapping && j <= gapSamples) {
                         ++j;
                     } else {
                         gapping = false;
                         last = advanced;
+                        lastBehind = advancedBehind;
                         ++i;
                     }
                 }
@@ -319,7 +324,7 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
         if (!crossed) crossed = smrtHiddenCrossed(map, view, scale, candidate, p, d, mapSize, r.layer);
         // A ray that ends behind the surface is extrapolated on towards the light: it meets the
         // occluder it is behind (nothing lies nearer the light than the near plane).
-        bool hit = crossed || smrtMarkBehind(view, scale, p, d, last, smrt.slope);
+        bool hit = crossed || lastBehind;
         blocked += hit ? 1.0 : 0.0;
         extrapolated += hit && !crossed ? 1.0 : 0.0;
         marched += length((smrtProject(view, scale, p + march.extent * d) - r.uv) * float(mapSize));

@@ -270,11 +270,6 @@ SHARED SmrtPoint smrtMarkPoint(IN(ShadowViewData) view, IN(SmrtScale) scale, vec
     return x;
 }
 
-SHARED bool smrtMarkBehind(IN(ShadowViewData) view, IN(SmrtScale) scale, vec3 p, vec3 d,
-                           IN(SmrtMark) m, float slope) {
-    return smrtIsBehind(smrtMarkPoint(view, scale, p, d, m, slope));
-}
-
 // Whether the ray crosses the map's surface between points a and b, one in front and one behind
 // (the march halves the interval smrt.refine times first): the one behind lies no farther behind
 // than the crossing can explain, the ray's own change of depth between them and what a surface of
