@@ -193,3 +193,60 @@ TEST(CliOutputs, RowsTheDeviceCannotHoldAreSkippedAndMarked) {
     EXPECT_NE(r.err.find("error: --shadow-map-size: vsm needs"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out / "none"));
 }
+
+// Skipped rows first, in the middle and last: every row that is kept renders with its own
+// options (its technique and parameters in its stats.json, its own image), in the order asked.
+TEST(CliOutputs, RowsSkippedAnywhereLeaveTheOthersTheirOwnOptions) {
+    setenv("PENUMBRA_DEVICE_MEMORY", std::to_string(512u << 20).c_str(), 1);
+    const fs::path out = outputScratch("skipped-anywhere");
+    // vsm, evsm and msm need moment maps of 8192^2 the 512 MiB device cannot hold; hard and pcf
+    // read the depth map alone.
+    const ProcessResult r = runCli({"compare",
+                                    "builtin:showcase",
+                                    "-o",
+                                    out.string(),
+                                    "--techniques",
+                                    "vsm,hard,evsm,pcf[box7],msm",
+                                    "--samples",
+                                    "1",
+                                    "--width",
+                                    "32",
+                                    "--height",
+                                    "24",
+                                    "--frames",
+                                    "1",
+                                    "--shadow-map-size",
+                                    "8192",
+                                    "--set",
+                                    "csm.cascades=1",
+                                    "--set",
+                                    "bias.constant=0.003"});
+    unsetenv("PENUMBRA_DEVICE_MEMORY");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* skipped : {"vsm", "evsm", "msm"}) {
+        EXPECT_NE(r.err.find(std::string("warning: ") + skipped + " skipped: "), std::string::npos)
+            << skipped << "\n"
+            << r.err;
+        EXPECT_FALSE(fs::exists(out / (std::string(skipped) + ".image.png"))) << skipped;
+    }
+    for (const auto& [file, technique] : {std::pair{"hard", "hard"}, {"pcf-box7", "pcf"}}) {
+        const auto stats = nlohmann::json::parse(slurp(out / (std::string(file) + ".stats.json")));
+        EXPECT_EQ(stats["technique"], technique);
+        EXPECT_EQ(stats["shadow_map_size"], 8192);
+        EXPECT_FLOAT_EQ(stats["parameters"]["bias.constant"].get<float>(), 0.003f);
+        EXPECT_TRUE(fs::exists(out / (std::string(file) + ".image.png"))) << file;
+    }
+    const auto pcf = nlohmann::json::parse(slurp(out / "pcf-box7.stats.json"))["parameters"];
+    EXPECT_EQ(pcf["pcf.filter"], "box");
+    EXPECT_EQ(pcf["pcf.size"], 7.0);
+    // The table keeps the order asked: rows, then the skipped ones.
+    const auto metrics = nlohmann::json::parse(slurp(out / "metrics.json"))["techniques"];
+    for (const char* row : {"vsm", "hard", "evsm", "pcf[box7]", "msm"})
+        EXPECT_TRUE(metrics.contains(row)) << row;
+    const size_t hard = r.out.find("\nhard "), box = r.out.find("\npcf[box7] ");
+    ASSERT_NE(hard, std::string::npos) << r.out;
+    ASSERT_NE(box, std::string::npos) << r.out;
+    EXPECT_LT(hard, box) << r.out;
+    EXPECT_NE(r.err.find("rendering hard (1/2)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("rendering pcf[box7] (2/2)"), std::string::npos) << r.err;
+}

@@ -86,6 +86,43 @@ TEST(Framing, ARoomIsSeenFromItsMostOpenPointAndLitUnderItsCeiling) {
     EXPECT_EQ(open.type, LightType::Directional) << "without a roof the sun reaches the room";
 }
 
+// A room open on one side: the closed room with a doorway 3 wide and 3 high in the middle of its
+// front wall. From the points in line with the doorway one of the eight horizontal rays leaves
+// the room; the room is still a room, seen from its centre, the most open point.
+TEST(Framing, ARoomWithADoorwayIsStillARoomSeenFromItsCentre) {
+    Scene s = room(true);
+    s.name = "room with a doorway";
+    s.indices.erase(s.indices.begin() + 12, s.indices.begin() + 18); // the front wall
+    MeshBuilder mb(s);
+    const uint32_t m = 0;
+    const float z = 6.0f;
+    const auto wall = [&](float a, float b, float y0, float y1) { // facing -z, as the room's
+        mb.quad({b, y0, z}, {a, y0, z}, {a, y1, z}, {b, y1, z}, m);
+    };
+    wall(-10.0f, -1.5f, 0.0f, 4.0f);
+    wall(1.5f, 10.0f, 0.0f, 4.0f);
+    wall(-1.5f, 1.5f, 3.0f, 4.0f); // the lintel
+    ASSERT_EQ(subjectBounds(s).max.z, 6.0f);
+    EXPECT_TRUE(isInterior(s));
+    const Camera c = interiorCamera(s);
+    EXPECT_EQ(c.position, glm::vec3(0, 2, 0)) << "the doorway's ray does not rule out the centre";
+    const Light l = defaultLightFor(s, c, true);
+    EXPECT_EQ(l.type, LightType::Point) << "under the ceiling";
+    // Two doorways facing each other leave two rays of eight: the line through them is no
+    // room's centre any more, though the rest of the room still is a room.
+    Scene two = s;
+    two.indices.erase(two.indices.begin() + 6, two.indices.begin() + 12); // the back wall
+    MeshBuilder back(two);
+    const auto backWall = [&](float a, float b, float y0, float y1) { // facing +z
+        back.quad({a, y0, -z}, {b, y0, -z}, {b, y1, -z}, {a, y1, -z}, m);
+    };
+    backWall(-10.0f, -1.5f, 0.0f, 4.0f);
+    backWall(1.5f, 10.0f, 0.0f, 4.0f);
+    backWall(-1.5f, 1.5f, 3.0f, 4.0f);
+    EXPECT_TRUE(isInterior(two));
+    EXPECT_NE(interiorCamera(two).position.x, 0.0f) << "six of eight rays are not enough";
+}
+
 TEST(Framing, ExteriorViewsFillTheFrameAndShowACastShadow) {
     struct Case {
         Scene scene;

@@ -1,0 +1,102 @@
+"""Each kind of Scene.edit against the CLI's same option: the same lights (a light aimed keeps its
+place, a light moved keeps its aim) and the same visibility and positions, bit for bit, for the
+sun, the spot and the bulb of the three-light asset."""
+import math
+
+import pytest
+
+import penumbra
+from conftest import VIEW, VIEW_ARGS, read_pfm, run_cli, same_bits
+
+W, H, MAP = 32, 24, 128
+
+# (name, Scene.edit's keywords, the CLI's options); each without the fixed view where it sets one.
+EDITS = [
+    ("sun_dir", {"sun_dir": (0.3, -1.0, 0.2)}, ["--sun-dir", "0.3,-1,0.2"]),
+    ("light_pos", {"light_pos": {"bulb": (0.5, 2.5, 0.5), "light1": (1.0, 4.0, 1.0)}},
+     ["--light-pos", "bulb=0.5,2.5,0.5", "--light-pos", "light1=1,4,1"]),
+    ("light_dir", {"light_dir": {"light1": (0.2, -1.0, 0.1), "light0": (-0.4, -1.0, 0.3)}},
+     ["--light-dir", "light1=0.2,-1,0.1", "--light-dir", "light0=-0.4,-1,0.3"]),
+    ("add_light", {"add_light": ["point:pos=1,2.5,1,radius=0.1", "sun:dir=0,-1,0.2"]},
+     ["--add-light", "point:pos=1,2.5,1,radius=0.1", "--add-light", "sun:dir=0,-1,0.2"]),
+    ("ground", {"ground": True}, ["--ground"]),
+    ("double_sided", {"double_sided": True}, ["--double-sided"]),
+]
+VIEWS = [
+    ("camera", {"camera_pos": (2.0, 7.0, 8.0), "look_at": (0.0, 0.5, 0.0), "fov": 40.0},
+     ["--camera-pos", "2,7,8", "--look-at", "0,0.5,0", "--fov", "40"]),
+    ("view", {"view": "exterior"}, ["--view", "exterior"]),
+]
+
+
+def render_both(asset, tmp_path, edit, args):
+    scene = penumbra.Scene.load(str(asset))
+    scene.edit(**edit)
+    result = penumbra.Renderer(scene, W, H, shadow_map_size=MAP, validation=True).render(
+        "hard", frames=1)
+    run_cli("render", asset, "-o", tmp_path, "--technique", "hard", "--width", W, "--height", H,
+            "--shadow-map-size", MAP, "--frames", 1, "--format", "pfm", *args)
+    return scene, result
+
+
+def assert_same_images(result, tmp_path, name):
+    for i, v in enumerate(result.visibility):
+        file = "visibility.pfm" if i == 0 else f"visibility_{i}.pfm"
+        assert same_bits(v, read_pfm(tmp_path / file)), f"{name}: {file}"
+    assert not (tmp_path / f"visibility_{len(result.visibility)}.pfm").exists(), name
+    assert same_bits(result.position, read_pfm(tmp_path / "position.pfm")), name
+
+
+@pytest.mark.parametrize("name,edit,args", EDITS, ids=[e[0] for e in EDITS])
+def test_each_edit_renders_as_the_clis_same_option(asset, tmp_path, name, edit, args):
+    scene, result = render_both(asset, tmp_path, {**VIEW, **edit}, [*VIEW_ARGS, *args])
+    assert_same_images(result, tmp_path, name)
+    assert [l["name"] for l in result.lights] == [l["name"] for l in scene.lights]
+
+
+@pytest.mark.parametrize("name,edit,args", VIEWS, ids=[e[0] for e in VIEWS])
+def test_each_view_edit_renders_as_the_clis_same_option(asset, tmp_path, name, edit, args):
+    _, result = render_both(asset, tmp_path, edit, args)
+    assert_same_images(result, tmp_path, name)
+
+
+def by_name(scene):
+    return {l["name"]: l for l in scene.lights}
+
+
+def test_aiming_keeps_a_lights_place_and_moving_keeps_its_aim(asset):
+    before = by_name(penumbra.Scene.load(str(asset)))
+    aimed = penumbra.Scene.load(str(asset))
+    aimed.edit(light_dir={"light1": (0.0, -2.0, 0.0), "light0": (3.0, -4.0, 0.0)})
+    after = by_name(aimed)
+    assert after["light1"]["position"] == pytest.approx(before["light1"]["position"])
+    assert after["light1"]["direction"] == pytest.approx([0.0, -1.0, 0.0])
+    assert after["light0"]["direction"] == pytest.approx([0.6, -0.8, 0.0]), "normalised"
+    assert after["bulb"] == before["bulb"], "only the named lights"
+
+    moved = penumbra.Scene.load(str(asset))
+    moved.edit(light_pos={"light1": (1.0, 5.0, -1.0), "bulb": (0.0, 2.0, 0.0)})
+    after = by_name(moved)
+    assert after["light1"]["position"] == pytest.approx([1.0, 5.0, -1.0])
+    assert after["light1"]["direction"] == pytest.approx(before["light1"]["direction"])
+    assert after["bulb"]["position"] == pytest.approx([0.0, 2.0, 0.0])
+    assert after["light0"] == before["light0"]
+
+    added = penumbra.Scene.load(str(asset))
+    added.edit(sun_dir=(0.0, -3.0, 4.0))
+    lights = added.lights
+    assert len(lights) == len(before) + 1
+    assert lights[-1]["type"] == "directional"
+    assert lights[-1]["direction"] == pytest.approx([0.0, -0.6, 0.8])
+    assert math.isclose(sum(x * x for x in lights[-1]["direction"]), 1.0, rel_tol=1e-6)
+
+
+def test_a_refused_edit_leaves_the_scene_as_it_was(asset):
+    scene = penumbra.Scene.load(str(asset))
+    before = scene.lights
+    with pytest.raises(penumbra.InputError, match="--light-dir"):
+        scene.edit(light_pos={"bulb": (0.0, 9.0, 0.0)}, light_dir={"nobody": (0.0, -1.0, 0.0)})
+    assert scene.lights == before
+    with pytest.raises(penumbra.InputError, match="--light-dir"):
+        scene.edit(light_dir={"bulb": (0.0, -1.0, 0.0)})  # a point light has no aim
+    assert scene.lights == before
