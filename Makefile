@@ -125,11 +125,18 @@ renderdiff-store: build
 # Plants each mutation of tests/mutations/*.toml in a scratch copy (build/mutation/tree), rebuilds,
 # runs the ctest labels that can see it and reports the survivors (docs/testing.md). Not part of
 # `make test`. MUTATIONS=id,id runs a few; MUTATION_LABEL=filters those of one area.
+# RANDOM=N plants N mutants nobody chose instead, drawn by tools/random_mutants.py in the lines
+# changed since SINCE (default HEAD~1, the working tree against it) with seed SEED (default 1);
+# the report goes to build/mutation/random-report.md.
 MUTATIONS ?=
 MUTATION_LABEL ?=
+RANDOM ?=
+SINCE ?=
+SEED ?=
 mutation-test: deps
 	python3 tools/mutation_test.py --jobs $(JOBS) $(if $(MUTATIONS),--only $(MUTATIONS)) \
-	    $(if $(MUTATION_LABEL),--label $(MUTATION_LABEL))
+	    $(if $(MUTATION_LABEL),--label $(MUTATION_LABEL)) $(if $(RANDOM),--random $(RANDOM)) \
+	    $(if $(SINCE),--since $(SINCE)) $(if $(SEED),--seed $(SEED))
 
 demo: build
 	$(BUILDDIR)/apps/penumbra/penumbra compare builtin:demo -o out/demo

@@ -6,6 +6,11 @@ rebuilds incrementally, runs the ctest labels that can see the change (stopping 
 failing test) and reports which mutations no test caught. The working tree is never modified.
 
     tools/mutation_test.py [--only ID,ID...] [--label L] [--list] [--jobs N] [--keep-going]
+    tools/mutation_test.py --random N [--since REV] [--seed S] [--no-rest] [--report PATH] [--list]
+
+--random N: N mutants nobody chose, drawn in the lines changed since REV (tools/random_mutants.py),
+each run on the labels tests/mutations/coverage.toml maps its file to, then (a survivor) on every
+other test; the kill rate and survivors' diffs go to build/mutation/random-report.md (and .json).
 
 The scratch tree lives in build/mutation/tree (its build in build/mutation/tree/build/release)
 and is reused between runs: only files that changed are copied, so a second run rebuilds little.
@@ -20,7 +25,11 @@ import time
 import tomllib
 from pathlib import Path
 
+import random_mutants
+
 ROOT = Path(__file__).resolve().parent.parent
+MUTATIONS = ROOT / "tests" / "mutations"
+LOGS = ROOT / "build" / "mutation" / "logs"
 SCRATCH = ROOT / "build" / "mutation" / "tree"
 BUILD = SCRATCH / "build" / "release"
 KINDS = {"sign", "compare", "off-by-one", "swap", "constant", "drop", "logic"}
@@ -151,8 +160,9 @@ def targets_by_label():
         executable = Path(test["command"][0]).name
         labels = next((p["value"] for p in test.get("properties", []) if p["name"] == "LABELS"),
                       [])
-        for label in labels:
-            targets.setdefault(label, set()).add(executable)
+        built = Path(test["command"][0]).resolve().is_relative_to(BUILD.resolve())
+        for label in labels:  # a test run by an interpreter (pytest) needs the whole build: None
+            targets.setdefault(label, set()).add(executable if built else None)
             if executable == "penumbra_cli_tests":
                 targets[label].add("penumbra")
     return targets
@@ -171,14 +181,124 @@ def first_failure(log):
     return "?"
 
 
-def run_tests(labels, jobs, log, timeout):
-    env_cmd = ["ctest", "--test-dir", str(BUILD), "-L", label_regex(labels), "-j", str(jobs),
+def needed_targets(labels, executables):
+    """The targets to build for `labels`' tests; [] (everything) if one needs the whole build."""
+    needed = {t for label in labels for t in executables.get(label, ())}
+    return [] if None in needed else sorted(needed)
+
+
+def run_tests(labels, jobs, log, timeout, exclude=False):
+    """ctest on the tests of `labels` (None: every test); exclude: on those none of them labels."""
+    select = [] if labels is None else ["-LE" if exclude else "-L", label_regex(labels)]
+    env_cmd = ["ctest", "--test-dir", str(BUILD), *select, "-j", str(jobs),
                "--stop-on-failure", "--timeout", str(timeout), "--output-on-failure"]
     return run(env_cmd, log, timeout=timeout * 4)
 
 
 def fmt_seconds(s):
     return f"{int(s) // 60}m{int(s) % 60:02d}s"
+
+
+def eta(elapsed, done, wanted):
+    """Seconds left for `wanted` mutants at the pace of the `done` ones so far."""
+    return elapsed / max(done, 1) * (wanted - done)
+
+
+def prepare(args, labels):
+    """Syncs and builds the scratch tree; `labels`' tests (None: all) must pass on it."""
+    LOGS.mkdir(parents=True, exist_ok=True)
+    SCRATCH.mkdir(parents=True, exist_ok=True)
+    print(f"mutation-test: scratch tree {SCRATCH.relative_to(ROOT)}: "
+          f"{sync_scratch()} files copied", flush=True)
+    print("mutation-test: building the unmutated tree ...", flush=True)
+    if not build(args.jobs, LOGS / "baseline-build.log"):
+        print(f"error: the unmutated tree does not build (see {LOGS / 'baseline-build.log'})",
+              file=sys.stderr)
+        return False
+    what = "every test" if labels is None else "labels " + ", ".join(labels)
+    print(f"mutation-test: baseline: {what} must pass unmutated ...", flush=True)
+    if run_tests(labels, args.jobs, LOGS / "baseline-tests.log", args.timeout) != 0:
+        print(f"error: tests fail on the unmutated tree (see {LOGS / 'baseline-tests.log'})",
+              file=sys.stderr)
+        return False
+    return True
+
+
+def try_mutant(m, args, executables, rest=False, all_labels=()):
+    """(status, outcome) of mutant `m` in the scratch tree; rest: a survivor of its labels'
+    tests meets every other test."""
+    originals = apply(m, SCRATCH)
+    labels, log, build_log = m["labels"], LOGS / f"{m['id']}.log", LOGS / f"{m['id']}.build.log"
+    everything = set(labels) >= set(all_labels)
+    try:
+        if not build(args.jobs, build_log, needed_targets(labels, executables)):
+            return "invalid", "INVALID (does not build)"
+        if run_tests(labels, args.jobs, log, args.timeout) != 0:
+            return "killed", f"killed by {first_failure(log)}"
+        if not rest or everything:
+            return "survived", "SURVIVED"
+        if not build(args.jobs, build_log):
+            return "invalid", "INVALID (the rest of the tree does not build)"
+        if run_tests(labels, args.jobs, log, args.timeout, exclude=True) != 0:
+            return "killed", f"killed by {first_failure(log)} (outside its labels)"
+        return "survived", "SURVIVED (every test)"
+    finally:
+        for target, text in originals.items():
+            target.write_text(text)
+
+
+def random_main(args):
+    try:
+        mutants = random_mutants.Mutants(ROOT, args.since, args.seed, MUTATIONS / "coverage.toml")
+        equivalent = random_mutants.load_equivalent(MUTATIONS / "equivalent_random.toml")
+    except (subprocess.CalledProcessError, OSError, KeyError, tomllib.TOMLDecodeError) as e:
+        print(f"error: random mutants since {args.since}: {getattr(e, 'stderr', '') or e}",
+              file=sys.stderr)
+        return 2
+    print(f"mutation-test: {mutants.summary()}", flush=True)
+    try:
+        source, wanted = mutants.select(args.random, args.only, args.label)
+    except ValueError as e:
+        print(f"error: --only: {e}", file=sys.stderr)
+        return 2
+    if args.list:
+        for m in random_mutants.first(source, wanted, equivalent):
+            print(random_mutants.listing(m, equivalent))
+        return 0
+
+    started, all_labels = time.monotonic(), mutants.all_labels
+    if not prepare(args, None if args.rest else mutants.labels()):
+        return 2
+    executables = targets_by_label()
+    results, counted, invalid, loop_start = [], 0, 0, time.monotonic()
+    while counted < wanted and invalid <= wanted:
+        m = next(source, None)
+        if m is None:
+            break
+        if m["id"] in equivalent:
+            results.append({**m, "status": "equivalent", "outcome": equivalent[m["id"]]})
+            continue
+        t0 = time.monotonic()
+        status, outcome = try_mutant(m, args, executables, args.rest, all_labels)
+        counted += status != "invalid"
+        invalid += status == "invalid"
+        results.append({**m, "status": status, "outcome": outcome,
+                        "seconds": time.monotonic() - t0})
+        left = eta(time.monotonic() - loop_start, counted, wanted)
+        k = "  -" if status == "invalid" else f"{counted:3}"  # an invalid one is replaced
+        print(f"[{k}/{wanted}] {m['id']:44} {outcome} ({time.monotonic() - t0:.0f} s), "
+              f"ETA {fmt_seconds(left)}", flush=True)
+    build(args.jobs, LOGS / "restore-build.log")
+    killed = mutants.write_report(args.report, results, wanted, args.rest)
+    print(f"mutation-test: {fmt_seconds(time.monotonic() - started)} in all; report "
+          f"{args.report}; {invalid} invalid (do not build), "
+          f"{sum(r['status'] == 'equivalent' for r in results)} equivalent, not counted")
+    for r in results:
+        if r["status"] == "survived":
+            print(f"  survivor: {r['id']} ({r['files']}:{r['line']})")
+    print(f"mutation-test: killed {killed} of {counted} "
+          f"({100.0 * killed / counted if counted else 0.0:.1f}%)")
+    return 0
 
 
 def main():
@@ -189,12 +309,23 @@ def main():
     parser.add_argument("--list", action="store_true", help="print the mutations and exit")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     parser.add_argument("--timeout", type=int, default=600, help="seconds per test")
+    parser.add_argument("--random", type=int, metavar="N", help="N random mutants instead")
+    parser.add_argument("--since", default="HEAD~1", help="random: lines changed since REV "
+                        "(the working tree against it; default HEAD~1)")
+    parser.add_argument("--seed", type=int, default=1, help="random: the draw's seed (1)")
+    parser.add_argument("--report", type=Path, default=ROOT / "build" / "mutation" /
+                        "random-report.md", help="random: the Markdown report (JSON beside it)")
+    parser.add_argument("--survivors-everything", dest="rest", action="store_true", default=True,
+                        help="random: a survivor of its labels meets every other test (default)")
+    parser.add_argument("--no-rest", dest="rest", action="store_false", help="random: no rest")
     args = parser.parse_args()
     os.environ.setdefault("XDG_RUNTIME_DIR", f"/tmp/penumbra-xdg-{os.getuid()}")
     Path(os.environ["XDG_RUNTIME_DIR"]).mkdir(mode=0o700, parents=True, exist_ok=True)
+    if args.random is not None:
+        return random_main(args)
 
     try:
-        mutations = load_mutations(ROOT / "tests" / "mutations")
+        mutations = load_mutations(MUTATIONS)
         for m in mutations:  # every entry must apply to today's code before anything runs
             for e in m["edits"]:
                 locate(m, e, (ROOT / e["file"]).read_text())
@@ -216,24 +347,9 @@ def main():
             print(f"{m['id']:44} {m['kind']:10} {','.join(m['labels']):22} {m['files']}{note}")
         return 0
 
-    logs = ROOT / "build" / "mutation" / "logs"
-    logs.mkdir(parents=True, exist_ok=True)
-    started = time.monotonic()
-    SCRATCH.mkdir(parents=True, exist_ok=True)
-    print(f"mutation-test: scratch tree {SCRATCH.relative_to(ROOT)}: "
-          f"{sync_scratch()} files copied", flush=True)
-    print("mutation-test: building the unmutated tree ...", flush=True)
-    if not build(args.jobs, logs / "baseline-build.log"):
-        print(f"error: the unmutated tree does not build (see {logs / 'baseline-build.log'})",
-              file=sys.stderr)
-        return 2
+    logs, started = LOGS, time.monotonic()  # build/mutation/logs
     active = [m for m in mutations if "equivalent" not in m]
-    labels = sorted({label for m in active for label in m["labels"]})
-    print(f"mutation-test: baseline: labels {', '.join(labels)} must pass unmutated ...",
-          flush=True)
-    if run_tests(labels, args.jobs, logs / "baseline-tests.log", args.timeout) != 0:
-        print(f"error: tests fail on the unmutated tree (see {logs / 'baseline-tests.log'})",
-              file=sys.stderr)
+    if not prepare(args, sorted({label for m in active for label in m["labels"]})):
         return 2
     print(f"mutation-test: baseline passed after {fmt_seconds(time.monotonic() - started)}; "
           f"{len(active)} mutations", flush=True)
@@ -242,23 +358,8 @@ def main():
     killed, survivors, invalid = [], [], []
     for n, m in enumerate(active, 1):
         t0 = time.monotonic()
-        originals = apply(m, SCRATCH)
-        log = logs / f"{m['id']}.log"
-        needed = sorted({t for label in m["labels"] for t in executables.get(label, ())})
-        try:
-            if not build(args.jobs, logs / f"{m['id']}.build.log", needed):
-                outcome = "INVALID (does not build)"
-                invalid.append(m)
-            else:
-                if run_tests(m["labels"], args.jobs, log, args.timeout) != 0:
-                    outcome = f"killed by {first_failure(log)}"
-                    killed.append(m)
-                else:
-                    outcome = "SURVIVED"
-                    survivors.append(m)
-        finally:
-            for target, text in originals.items():
-                target.write_text(text)
+        status, outcome = try_mutant(m, args, executables)
+        {"killed": killed, "survived": survivors, "invalid": invalid}[status].append(m)
         print(f"[{n:3}/{len(active)}] {m['id']:44} {outcome} "
               f"({time.monotonic() - t0:.0f} s)", flush=True)
 
