@@ -173,7 +173,11 @@ TEST_F(QualityTest, PointLightShadowsAlongFaceBordersMatchTheTruth) {
 }
 
 // With nothing to cast a shadow, a low bulb over a plane lights every pixel fully through every
-// face and across every border, with every filter.
+// face and across every border, with every filter; through virtual pages too, at the default
+// level and four times coarser, for the kernels that stay within a few texels (hard, bilinear,
+// pcss without blockers). Wider kernels through 128-texel pages darken this plane today (box 15:
+// 3822 of 36864 pixels at the default level, darkest 0.88; Poisson radius 12: 12391, 0.69; none
+// with 512-texel pages): a known defect, docs/techniques.md ("Virtual shadow maps").
 TEST_F(BiasTest, PointLightOverAnEmptyPlaneIsLitEverywhere) {
     Scene scene = polesOnFaceBorders(0.0f, 25.0f);
     scene.indices.resize(6); // the plane alone, tilted so that its depth changes along every face
@@ -189,15 +193,25 @@ TEST_F(BiasTest, PointLightOverAnEmptyPlaneIsLitEverywhere) {
              {Technique::Pcf, {{"pcf.filter", "poisson"}, {"pcf.radius", "12"}}},
              {Technique::Pcss, {}},
              {Technique::SecondDepth, {}}}) {
-        const RenderResult r = renderRow(t, technique, sets, 512);
-        size_t counted = 0, dark = 0;
-        for (size_t i = 0; i < mask.size(); ++i)
-            if (mask[i]) {
-                ++counted;
-                dark += r.visibility[0][i] < 1.0f;
-            }
-        EXPECT_GT(counted, 20000u);
-        EXPECT_EQ(dark, 0u) << techniqueName(technique) << (sets.empty() ? "" : sets[0].second);
+        for (const char* pages : {"", "-0.5", "2"}) {
+            Sets with = sets;
+            const bool narrow = technique == Technique::Hard || technique == Technique::Pcss ||
+                                (!sets.empty() && sets[0].second == "bilinear");
+            if (*pages && !narrow)
+                continue; // second-depth reads no pages; the wide kernels' defect above
+            if (*pages)
+                with.insert(with.end(), {{"virtual.enabled", "1"}, {"virtual.lodBias", pages}});
+            const RenderResult r = renderRow(t, technique, with, 512);
+            size_t counted = 0, dark = 0;
+            for (size_t i = 0; i < mask.size(); ++i)
+                if (mask[i]) {
+                    ++counted;
+                    dark += r.visibility[0][i] < 1.0f;
+                }
+            EXPECT_GT(counted, 20000u);
+            EXPECT_EQ(dark, 0u) << techniqueName(technique) << (sets.empty() ? "" : sets[0].second)
+                                << " pages " << pages;
+        }
     }
 }
 
