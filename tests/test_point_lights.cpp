@@ -175,9 +175,10 @@ TEST_F(QualityTest, PointLightShadowsAlongFaceBordersMatchTheTruth) {
 // With nothing to cast a shadow, a low bulb over a plane lights every pixel fully through every
 // face and across every border, with every filter; through virtual pages too, at the default
 // level and four times coarser, for the kernels that stay within a few texels (hard, bilinear,
-// pcss without blockers). Wider kernels through 128-texel pages darken this plane today (box 15:
-// 3822 of 36864 pixels at the default level, darkest 0.88; Poisson radius 12: 12391, 0.69; none
-// with 512-texel pages): a known defect, docs/techniques.md ("Virtual shadow maps").
+// pcss without blockers). Wider kernels darken this plane where a face's texels are coarse, on a
+// cube as through pages (box 15: none at a 512 cube, 34675 of 36864 pixels at 128; pages pick
+// texels of about a pixel, coarser than 512 here): a known defect, docs/techniques.md ("Point
+// lights: six cube faces with a guard band").
 TEST_F(BiasTest, PointLightOverAnEmptyPlaneIsLitEverywhere) {
     Scene scene = polesOnFaceBorders(0.0f, 25.0f);
     scene.indices.resize(6); // the plane alone, tilted so that its depth changes along every face
