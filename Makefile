@@ -127,16 +127,18 @@ renderdiff-store: build
 # `make test`. MUTATIONS=id,id runs a few; MUTATION_LABEL=filters those of one area.
 # RANDOM=N plants N mutants nobody chose instead, drawn by tools/random_mutants.py in the lines
 # changed since SINCE (default HEAD~1, the working tree against it) with seed SEED (default 1);
-# the report goes to build/mutation/random-report.md.
+# the report goes to build/mutation/random-report.md; MIN_RATE=85 fails the run below that rate.
 MUTATIONS ?=
 MUTATION_LABEL ?=
 RANDOM ?=
 SINCE ?=
 SEED ?=
+MIN_RATE ?=
 mutation-test: deps
 	python3 tools/mutation_test.py --jobs $(JOBS) $(if $(MUTATIONS),--only $(MUTATIONS)) \
 	    $(if $(MUTATION_LABEL),--label $(MUTATION_LABEL)) $(if $(RANDOM),--random $(RANDOM)) \
-	    $(if $(SINCE),--since $(SINCE)) $(if $(SEED),--seed $(SEED))
+	    $(if $(SINCE),--since $(SINCE)) $(if $(SEED),--seed $(SEED)) \
+	    $(if $(MIN_RATE),--min-rate $(MIN_RATE))
 
 demo: build
 	$(BUILDDIR)/apps/penumbra/penumbra compare builtin:demo -o out/demo

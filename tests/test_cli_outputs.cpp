@@ -249,4 +249,20 @@ TEST(CliOutputs, RowsSkippedAnywhereLeaveTheOthersTheirOwnOptions) {
     EXPECT_LT(hard, box) << r.out;
     EXPECT_NE(r.err.find("rendering hard (1/2)"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("rendering pcf[box7] (2/2)"), std::string::npos) << r.err;
+    const size_t vsm = r.out.find("\nvsm "), evsm = r.out.find("\nevsm "),
+                 msm = r.out.find("\nmsm ");
+    EXPECT_LT(box, vsm) << r.out;
+    EXPECT_LT(vsm, evsm) << r.out << "the skipped rows in the order asked";
+    EXPECT_LT(evsm, msm) << r.out;
+    EXPECT_LT(r.err.find("warning: vsm skipped"), r.err.find("warning: evsm skipped")) << r.err;
+
+    // When none fits, the error is the first row's.
+    setenv("PENUMBRA_DEVICE_MEMORY", std::to_string(512u << 20).c_str(), 1);
+    const ProcessResult none =
+        runCli({"compare", "builtin:showcase", "-o", (out / "none").string(), "--techniques",
+                "evsm,vsm", "--samples", "1", "--width", "32", "--height", "24", "--frames", "1",
+                "--shadow-map-size", "8192", "--set", "csm.cascades=1"});
+    unsetenv("PENUMBRA_DEVICE_MEMORY");
+    EXPECT_EQ(none.exitCode, 2);
+    EXPECT_NE(none.err.find("error: --shadow-map-size: evsm needs"), std::string::npos) << none.err;
 }

@@ -106,6 +106,12 @@ TEST(Framing, ARoomWithADoorwayIsStillARoomSeenFromItsCentre) {
     EXPECT_TRUE(isInterior(s));
     const Camera c = interiorCamera(s);
     EXPECT_EQ(c.position, glm::vec3(0, 2, 0)) << "the doorway's ray does not rule out the centre";
+    const Bounds all = s.bounds();
+    for (int k = 0; k < 8; ++k) { // every corner of the scene lies within the far plane
+        const glm::vec3 corner((k & 1) ? all.max.x : all.min.x, (k & 2) ? all.max.y : all.min.y,
+                               (k & 4) ? all.max.z : all.min.z);
+        EXPECT_LT(glm::length(corner - c.position), c.zfar) << k;
+    }
     const Light l = defaultLightFor(s, c, true);
     EXPECT_EQ(l.type, LightType::Point) << "under the ceiling";
     // Two doorways facing each other leave two rays of eight: the line through them is no

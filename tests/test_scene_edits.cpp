@@ -143,7 +143,13 @@ TEST(SceneEdits, CameraPosLookAtAndFovMakeTheFirstCamera) {
     EXPECT_NE(refused({.fovDegrees = 40.0f}).find("go together"), std::string::npos);
     EXPECT_NE(refused({.cameraPosition = glm::vec3(1), .lookAt = glm::vec3(1)}).find("--look-at"),
               std::string::npos);
-    for (float fov : {0.0f, 0.5f, 175.0f})
+    for (float fov : {1.0f, 170.0f}) // the range's ends are accepted
+        EXPECT_EQ(
+            refused(
+                {.cameraPosition = glm::vec3(0, 1, 5), .lookAt = glm::vec3(0), .fovDegrees = fov}),
+            "")
+            << fov;
+    for (float fov : {0.0f, 0.5f, 0.999f, 170.01f, 175.0f})
         EXPECT_NE(
             refused(
                 {.cameraPosition = glm::vec3(0, 1, 5), .lookAt = glm::vec3(0), .fovDegrees = fov})

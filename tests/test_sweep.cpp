@@ -205,6 +205,12 @@ TEST(TruthCache, ComputesOnceAndReadsBackWhatItStored) {
     EXPECT_TRUE(computed);
     EXPECT_EQ(computations, 2);
     EXPECT_TRUE(cache.load("k1").has_value());
+    // Nor is one with bytes past its end.
+    std::ofstream(cache.fileOf("k1"), std::ios::binary | std::ios::app) << 'x';
+    EXPECT_FALSE(cache.load("k1").has_value()) << "a file longer than its layout";
+    cachedTruth(&cache, "k1", compute, &computed);
+    EXPECT_TRUE(computed);
+    EXPECT_TRUE(cache.load("k1").has_value());
     // A truth without occluder distances keeps them unknown.
     ReferenceResult bare = fakeTruth(4, 4, 1.0f);
     bare.occluderDistance.clear();

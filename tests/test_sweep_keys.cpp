@@ -98,7 +98,9 @@ std::vector<Edit> truthEdits() {
         content("vertex alpha" + which, [at](Scene& s) { at(s).color.w = 0.25f; });
     }
     content("indices", [](Scene& s) { std::swap(s.indices[0], s.indices[1]); });
-    content("last index", [](Scene& s) { std::swap(s.indices.back(), s.indices[0]); });
+    content("last index", [](Scene& s) { // the first stays: a hash of a prefix misses it
+        std::swap(s.indices.back(), s.indices[s.indices.size() - 2]);
+    });
     content("a vertex more", [](Scene& s) { s.vertices.push_back(s.vertices.back()); });
     content("alpha mode", [](Scene& s) { s.materials[0].alphaMode = AlphaMode::Opaque; });
     content("alpha cutoff", [](Scene& s) { s.materials[0].alphaCutoff = 0.3f; });
@@ -189,6 +191,7 @@ TEST(SweepTasks, EveryFieldOfATaskChangesItsIdAndOnlyThose) {
         {"light position z", [](Plan& p) { p.lights[0].position->z = 3; }},
         {"light without a position", [](Plan& p) { p.lights[0].position.reset(); }},
         {"light direction x", [](Plan& p) { p.lights[0].direction->x = 0.5f; }},
+        {"light direction y", [](Plan& p) { p.lights[0].direction->y = -0.5f; }},
         {"light direction z", [](Plan& p) { p.lights[0].direction->z = 0.5f; }},
         {"light without a direction", [](Plan& p) { p.lights[0].direction.reset(); }},
         {"cone", [](Plan& p) { p.lights[0].coneDegrees = 40.0f; }},
@@ -240,6 +243,7 @@ TaskRecord costed(const std::string& setting, double rmse, double shadowMs, doub
     }
     r.shadowMs = shadowMs;
     r.visibilityMs = visibilityMs;
+    r.device = "gpu " + setting;
     return r;
 }
 
@@ -263,9 +267,14 @@ TEST(SweepMerge, TheFrontIsRmseAgainstShadowTimeWorkedOutByHand) {
     const std::set<std::string> expected = {"a", "b", "d", "e"};
     for (const GroupSummary& g : m.groups) {
         ASSERT_EQ(g.settings.size(), records.size()) << g.name;
-        for (const SettingSummary& s : g.settings) {
+        for (size_t i = 0; i < g.settings.size(); ++i) {
+            const SettingSummary& s = g.settings[i];
             EXPECT_EQ(s.onFront, expected.count(s.setting) == 1) << g.name << ": " << s.setting;
             EXPECT_EQ(s.views, 1u);
+            EXPECT_EQ(s.setting, records[i].setting) << "sorted by name";
+            EXPECT_EQ(s.visibilityMs, records[i].visibilityMs) << s.setting;
+            EXPECT_EQ(s.shadowMs, records[i].shadowMs) << s.setting;
+            EXPECT_EQ(s.devices, std::vector<std::string>{"gpu " + s.setting});
         }
     }
     // A setting without a finite time is on no front and takes no one off it.
@@ -290,6 +299,34 @@ TEST(SweepMerge, TheFrontIsRmseAgainstShadowTimeWorkedOutByHand) {
     EXPECT_NEAR(x->metrics.at("rmse").value, 0.15, 1e-12);
     EXPECT_NEAR(x->shadowMs, 4.0, 1e-12);
     EXPECT_TRUE(x->onFront);
+    EXPECT_NEAR(x->visibilityMs, 0.0, 1e-12);
+    EXPECT_EQ(x->devices, std::vector<std::string>{"gpu x"}) << "one device, named once";
     for (const SettingSummary& s : corpus)
         EXPECT_TRUE(!s.onFront || (s.setting != "f" && s.setting != "g")) << s.setting;
+}
+
+// Records that disagree on what they hold: a view with fewer bootstrap replicates than another
+// (the interval takes the replicates both have), a record without a metric (the mean is unknown,
+// NaN, and ranks last, 0, never first).
+TEST(SweepMerge, UnevenRecordsMergeOnWhatTheyShare) {
+    std::vector<TaskRecord> records = {costed("a", 0.2, 1.0, 1.0), costed("a", 0.4, 1.0, 1.0),
+                                       costed("b", 0.5, 2.0, 2.0), costed("c", 0.1, 3.0, 3.0)};
+    records[1].id = "a2";
+    records[1].scene = "t";
+    records[0].replicates["rmse"] = {0.25, 0.15, 0.30};
+    records[1].replicates["rmse"] = {0.45, 0.35};
+    records[3].metrics.erase("acne");
+    const MergeResult m = mergeRecords(records);
+    const SettingSummary& a = m.groups[0].settings[0];
+    ASSERT_EQ(a.setting, "a");
+    EXPECT_NEAR(a.metrics.at("rmse").value, 0.3, 1e-12);
+    // Replicate-wise means of the two both views have: 0.35 and 0.25; reflected about 0.3.
+    EXPECT_NEAR(a.metrics.at("rmse").lo, 2 * 0.3 - 0.35, 1e-3);
+    EXPECT_NEAR(a.metrics.at("rmse").hi, 2 * 0.3 - 0.25, 1e-3);
+    const SettingSummary& c = m.groups[0].settings[2];
+    ASSERT_EQ(c.setting, "c");
+    EXPECT_TRUE(std::isnan(c.metrics.at("acne").value));
+    EXPECT_EQ(c.metrics.at("acne").rank, 0) << "unknown ranks last";
+    EXPECT_EQ(c.metrics.at("rmse").rank, 1);
+    EXPECT_EQ(a.metrics.at("acne").rank, 1) << "the others tie";
 }

@@ -95,10 +95,11 @@ def apply(m, root):
         target = root / e["file"]
         text = originals.get(target)
         if text is None:
-            text = originals[target] = target.read_text()
-        current = target.read_text()
+            text = originals[target] = target.read_text(errors="surrogateescape")
+        current = target.read_text(errors="surrogateescape")
         at = locate(m, e, current)
-        target.write_text(current[:at] + e["replace"] + current[at + len(e["find"]):])
+        target.write_text(current[:at] + e["replace"] + current[at + len(e["find"]):],
+                          errors="surrogateescape")
     return originals
 
 
@@ -244,22 +245,29 @@ def try_mutant(m, args, executables, rest=False, all_labels=()):
         return "survived", "SURVIVED (every test)"
     finally:
         for target, text in originals.items():
-            target.write_text(text)
+            target.write_text(text, errors="surrogateescape")
 
 
 def random_main(args):
     try:
         mutants = random_mutants.Mutants(ROOT, args.since, args.seed, MUTATIONS / "coverage.toml")
         equivalent = random_mutants.load_equivalent(MUTATIONS / "equivalent_random.toml")
-    except (subprocess.CalledProcessError, OSError, KeyError, tomllib.TOMLDecodeError) as e:
+    except (subprocess.CalledProcessError, OSError, KeyError, ValueError,
+            tomllib.TOMLDecodeError) as e:
         print(f"error: random mutants since {args.since}: {getattr(e, 'stderr', '') or e}",
               file=sys.stderr)
         return 2
     print(f"mutation-test: {mutants.summary()}", flush=True)
+    if not mutants.candidates:
+        print(f"error: no line changed since {args.since} can be mutated", file=sys.stderr)
+        return 2
+    if len(mutants.candidates) < args.random:
+        print(f"mutation-test: warning: {len(mutants.candidates)} candidates, fewer than the "
+              f"{args.random} asked for: every one is drawn", flush=True)
     try:
         source, wanted = mutants.select(args.random, args.only, args.label)
     except ValueError as e:
-        print(f"error: --only: {e}", file=sys.stderr)
+        print(f"error: {e}", file=sys.stderr)
         return 2
     if args.list:
         for m in random_mutants.first(source, wanted, equivalent):
@@ -267,6 +275,13 @@ def random_main(args):
         return 0
 
     started, all_labels = time.monotonic(), mutants.all_labels
+    try:  # a report that cannot be written fails now, not after hours of mutants
+        args.report.parent.mkdir(parents=True, exist_ok=True)
+        with open(args.report, "a"):
+            pass
+    except OSError as e:
+        print(f"error: --report: {args.report}: {e.strerror}", file=sys.stderr)
+        return 2
     if not prepare(args, None if args.rest else mutants.labels()):
         return 2
     executables = targets_by_label()
@@ -296,8 +311,12 @@ def random_main(args):
     for r in results:
         if r["status"] == "survived":
             print(f"  survivor: {r['id']} ({r['files']}:{r['line']})")
-    print(f"mutation-test: killed {killed} of {counted} "
-          f"({100.0 * killed / counted if counted else 0.0:.1f}%)")
+    rate = 100.0 * killed / counted if counted else 0.0
+    print(f"mutation-test: killed {killed} of {counted} ({rate:.1f}%)")
+    if args.min_rate is not None and (rate < args.min_rate or counted < wanted):
+        print(f"mutation-test: below the standard: {rate:.1f}% of {counted} counted, "
+              f"{args.min_rate:g}% of {wanted} required", file=sys.stderr)
+        return 1
     return 0
 
 
@@ -310,15 +329,30 @@ def main():
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 2)
     parser.add_argument("--timeout", type=int, default=600, help="seconds per test")
     parser.add_argument("--random", type=int, metavar="N", help="N random mutants instead")
-    parser.add_argument("--since", default="HEAD~1", help="random: lines changed since REV "
+    parser.add_argument("--since", help="random: lines changed since REV "
                         "(the working tree against it; default HEAD~1)")
-    parser.add_argument("--seed", type=int, default=1, help="random: the draw's seed (1)")
-    parser.add_argument("--report", type=Path, default=ROOT / "build" / "mutation" /
-                        "random-report.md", help="random: the Markdown report (JSON beside it)")
-    parser.add_argument("--survivors-everything", dest="rest", action="store_true", default=True,
+    parser.add_argument("--seed", type=int, help="random: the draw's seed (1)")
+    parser.add_argument("--report", type=Path, help="random: the Markdown report (JSON beside "
+                        "it; default build/mutation/random-report.md)")
+    parser.add_argument("--survivors-everything", dest="rest", action="store_true", default=None,
                         help="random: a survivor of its labels meets every other test (default)")
     parser.add_argument("--no-rest", dest="rest", action="store_false", help="random: no rest")
+    parser.add_argument("--min-rate", type=float, metavar="P", help="random: exit 1 unless at "
+                        "least P%% of N counted mutants are killed (the standard: 85, N >= 30)")
     args = parser.parse_args()
+    random_only = [name for name in ("since", "seed", "report", "rest", "min_rate")
+                   if getattr(args, name) is not None]
+    if args.random is None and random_only:
+        flag = "--" + random_only[0].replace("_", "-").replace("rest", "no-rest")
+        print(f"error: {flag} goes with --random", file=sys.stderr)
+        return 2
+    if args.random is not None and args.random < 1:
+        print(f"error: --random: {args.random} mutants; at least 1", file=sys.stderr)
+        return 2
+    args.since = "HEAD~1" if args.since is None else args.since
+    args.seed = 1 if args.seed is None else args.seed
+    args.report = args.report or ROOT / "build" / "mutation" / "random-report.md"
+    args.rest = True if args.rest is None else args.rest
     os.environ.setdefault("XDG_RUNTIME_DIR", f"/tmp/penumbra-xdg-{os.getuid()}")
     Path(os.environ["XDG_RUNTIME_DIR"]).mkdir(mode=0o700, parents=True, exist_ok=True)
     if args.random is not None:

@@ -86,8 +86,22 @@ def parse_diff(text):
 
 
 def git(root, *args):
-    return subprocess.run(["git", *args], cwd=root, check=True, capture_output=True,
-                          text=True).stdout
+    # Paths as they are (no octal quoting of non-ASCII names); bytes that are not UTF-8 kept
+    # as they are, so a file in another encoding neither stops the draw nor is written back
+    # changed.
+    return subprocess.run(["git", "-c", "core.quotepath=off", *args], cwd=root, check=True,
+                          capture_output=True, text=True, errors="surrogateescape").stdout
+
+
+def verified_revision(root, since):
+    """The commit `since` names; ValueError for an option, a range or a name git does not know."""
+    if not since or since.startswith("-") or ".." in since:
+        raise ValueError(f"'{since}' is not a revision")
+    try:
+        return git(root, "rev-parse", "--verify", "--quiet", "--end-of-options",
+                   since + "^{commit}").strip()
+    except subprocess.CalledProcessError:
+        raise ValueError(f"'{since}' is not a commit of this repository") from None
 
 
 def changed_lines(root, since, untracked=True):
@@ -99,7 +113,7 @@ def changed_lines(root, since, untracked=True):
         for name in git(root, "ls-files", "-o", "--exclude-standard", "-z").split("\0"):
             path = Path(root) / name
             if name and language(name) and path.is_file():
-                count = len(path.read_text(errors="replace").splitlines())
+                count = len(path.read_text(errors="surrogateescape").splitlines())
                 changed[name] = set(range(1, count + 1))
     return {p: lines for p, lines in changed.items() if language(p)}
 
@@ -439,6 +453,20 @@ def _matching(blanked, at):
     return None
 
 
+# A function's or constructor's declaration, not a call: `= delete;`, `= default;`, `= 0;`, a
+# return type before the name (`void f(int);`), or parameters written with their types
+# (`Layout(uint32_t width);`). Deleting one does not build or changes nothing.
+DECLARES_FUNCTION = re.compile(
+    r"=\s*(?:delete|default|0)\s*;\Z"
+    r"|\A(?:[\w:]+(?:<[^;()]*>)?[&*\s]+)+[~\w:]+\s*\("
+    r"|\(\s*(?:const\s+)?[\w:]+(?:<[^;()]*>)?[&*\s]+[&*]*\w+\s*(?:[,)=]|\Z)")
+
+
+def declares_function(code):
+    call = re.match(r"\s*(?:return\b|[\w.:\[\]>-]+\s*[-+*/%&|^]?=)", code)
+    return call is None and DECLARES_FUNCTION.search(code) is not None
+
+
 def line_edits(line, lang, assigned):
     """(column, new line, operator, kind) for the whole-line candidates: drop and if."""
     code = line.blank.strip()
@@ -460,7 +488,7 @@ def line_edits(line, lang, assigned):
     m = DROP_C.match(code) or STEP_C.match(code)
     if line.head and line.depth == 0 and line.depth_end == 0 and m and code.endswith(";") \
             and m.group(1) not in C_KEYWORDS and line.prev_end in (";", "{", "}") \
-            and "{" not in code and "}" not in code:
+            and "{" not in code and "}" not in code and not declares_function(code):
         out.append((len(indent), "", "drop", "drop"))
     for k in re.finditer(r"\bif\s*\(", line.blank):
         open_at = k.end() - 1
@@ -513,7 +541,8 @@ def collect(root, since, untracked=True):
     changed = changed_lines(root, since, untracked)
     out = []
     for path in sorted(changed):
-        out += file_candidates(path, (root / path).read_text(errors="replace"), changed[path])
+        out += file_candidates(path, (root / path).read_text(errors="surrogateescape"),
+                               changed[path])
     return out, changed
 
 
@@ -637,7 +666,17 @@ def load_equivalent(path):
         return {}
     with open(path, "rb") as f:
         data = tomllib.load(f)
-    return {e["id"]: e["reason"] for e in data.get("equivalent", [])}
+    entries = data.get("equivalent", [])
+    if not isinstance(entries, list):
+        raise ValueError(f"{path}: write each entry as [[equivalent]]")
+    out = {}
+    for k, e in enumerate(entries):
+        if not isinstance(e, dict) or not e.get("id") or not e.get("reason"):
+            raise ValueError(f"{path}: entry {k + 1} needs an id and a reason")
+        if e["id"] in out:
+            raise ValueError(f"{path}: '{e['id']}' is listed twice")
+        out[e["id"]] = e["reason"]
+    return out
 
 
 class Mutants:
@@ -646,8 +685,9 @@ class Mutants:
 
     def __init__(self, root, since, seed, coverage_path, untracked=True):
         self.root, self.since, self.seed = Path(root), since, seed
-        self.candidates, self.changed = collect(root, since, untracked)
-        self.base = git(root, "rev-parse", "--short", since).strip()
+        commit = verified_revision(root, since)
+        self.candidates, self.changed = collect(root, commit, untracked)
+        self.base = commit[:7]
         self.ids = assign_ids(self.candidates)
         self.order = draw(self.candidates, seed)
         self.all_labels, self.rules = load_coverage(coverage_path)
@@ -656,7 +696,7 @@ class Mutants:
     def mutant(self, c):
         text = self._texts.get(c.file)
         if text is None:
-            text = self._texts[c.file] = (self.root / c.file).read_text(errors="replace")
+            text = self._texts[c.file] = (self.root / c.file).read_text(errors="surrogateescape")
         return mutant(c, text, self.ids[c], labels_for(c.file, self.rules, self.all_labels))
 
     def __iter__(self):
@@ -668,13 +708,15 @@ class Mutants:
         (comma-separated; ValueError for one no candidate has); `label`: those it names."""
         source = iter(self)
         if only:
-            wanted = set(only.split(","))
+            wanted = {i for i in only.split(",") if i}
             unknown = wanted - set(self.ids.values())
             if unknown:
-                raise ValueError(f"unknown mutant ids {sorted(unknown)}")
+                raise ValueError(f"--only: unknown mutant ids {sorted(unknown)}")
             source = (self.mutant(c) for c in sorted(self.candidates) if self.ids[c] in wanted)
             n = len(wanted)
         if label:
+            if label not in self.all_labels:
+                raise ValueError(f"--label: no label '{label}' (one of {', '.join(self.all_labels)})")
             source = (m for m in source if label in m["labels"])
         return source, n
 

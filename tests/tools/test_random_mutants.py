@@ -3,6 +3,7 @@ tools/mutation_test.py it plugs into: the operators (exact replacements), what i
 the changed-lines parsing, the seeded draw, the coverage map, ids, occurrences and the report.
 Pure Python: no build, no GPU (ctest label "tools")."""
 import json
+import re
 import random
 import subprocess
 import sys
@@ -1212,3 +1213,116 @@ def test_hand_written_mode_runs_each_list_entry(monkeypatch, tmp_path, capsys):
     (tmp_path / "src" / "x.cpp").write_text("int f() { return a * b; }\n")  # the list is stale
     assert mutation_test.main() == 2
     assert capsys.readouterr().err.startswith("error: tests/mutations: m1: 'find' occurs 0 times")
+
+
+# --- refusals before anything is built --------------------------------------------------------
+
+@pytest.mark.parametrize("argv,message", [
+    (["--random", "0", "--since", "HEAD", "--list"], "error: --random: 0 mutants; at least 1"),
+    (["--random", "-3", "--since", "HEAD"], "error: --random: -3 mutants; at least 1"),
+    (["--since", "HEAD", "--list"], "error: --since goes with --random"),
+    (["--seed", "4"], "error: --seed goes with --random"),
+    (["--min-rate", "85"], "error: --min-rate goes with --random"),
+    (["--no-rest"], "error: --no-rest goes with --random"),
+    (["--random", "3", "--since=--output=x", "--list"], "error: random mutants since "
+                                                           "--output=x: '--output=x' is not a"),
+    (["--random", "3", "--since", "HEAD~1..HEAD", "--list"], "is not a revision"),
+    (["--random", "3", "--since", "HEAD", "--label", "nolabel", "--list"],
+     "error: --label: no label 'nolabel'"),
+    (["--random", "3", "--since", "HEAD", "--only", "r-x,", "--list"],
+     "error: --only: unknown mutant ids ['r-x']"),
+])
+def test_bad_options_are_one_error_line(monkeypatch, repo, capsys, argv, message):
+    in_repo(monkeypatch, repo, argv)
+    assert mutation_test.main() == 2
+    err = capsys.readouterr().err
+    assert message in err and err.count("\n") == 1, err
+
+
+def test_no_changed_line_is_an_error_and_fewer_than_asked_a_warning(monkeypatch, repo, capsys):
+    git(repo, "add", "-A")
+    git(repo, "commit", "-q", "-m", "all")
+    in_repo(monkeypatch, repo, ["--random", "3", "--since", "HEAD", "--list"])
+    assert mutation_test.main() == 2
+    assert "error: no line changed since HEAD can be mutated" in capsys.readouterr().err
+    in_repo(monkeypatch, repo, ["--random", "500", "--since", "HEAD~1", "--list"])
+    assert mutation_test.main() == 0
+    out = capsys.readouterr().out
+    assert "warning: 20 candidates, fewer than the 500 asked for" in out, out
+
+
+def test_an_option_as_revision_reaches_no_git_command(tmp_path, repo):
+    target = tmp_path / "written.txt"
+    with pytest.raises(ValueError):
+        rm.Mutants(repo, f"--output={target}", 1, repo / "tests" / "mutations" / "coverage.toml")
+    assert not target.exists()
+
+
+def test_non_utf8_and_non_ascii_files_are_mutated_and_written_back_unchanged(repo):
+    name = repo / "src" / "café.cpp"
+    raw = b"// caf\xe9\nint f(int a) {\n    return a + 1;\n}\n"
+    name.write_bytes(raw)
+    mutants = [m for m in rm.Mutants(repo, "HEAD", 1, repo / "tests" / "mutations" /
+                                     "coverage.toml") if m["files"] == "src/café.cpp"]
+    assert mutants, "the file's lines are candidates"
+    originals = mutation_test.apply(mutants[0], repo)
+    for target, text in originals.items():
+        target.write_text(text, errors="surrogateescape")
+    assert name.read_bytes() == raw
+
+
+@pytest.mark.parametrize("text,message", [
+    ('[equivalent]\nid = "r-a"\nreason = "x"\n', "[[equivalent]]"),
+    ('[[equivalent]]\nid = "r-a"\n', "entry 1 needs an id and a reason"),
+    ('[[equivalent]]\nreason = "x"\n', "entry 1 needs an id and a reason"),
+    ('[[equivalent]]\nid = "r-a"\nreason = "x"\n[[equivalent]]\nid = "r-a"\nreason = "y"\n',
+     "'r-a' is listed twice"),
+])
+def test_a_malformed_equivalent_list_is_refused(tmp_path, text, message):
+    path = tmp_path / "equivalent_random.toml"
+    path.write_text(text)
+    with pytest.raises(ValueError, match=re.escape(message)):
+        rm.load_equivalent(path)
+
+
+def test_min_rate_fails_a_run_below_the_standard(monkeypatch, repo, capsys):
+    for rate, code in ((60, 0), (70, 1)):
+        in_repo(monkeypatch, repo, ["--random", "3", "--since", "HEAD", "--min-rate", str(rate),
+                                    "--report", str(repo / "build" / "r.md")])
+        outcomes = iter([("killed", "k"), ("killed", "k"), ("survived", "S")] * 2)
+        monkeypatch.setattr(mutation_test, "prepare", lambda args, labels: True)
+        monkeypatch.setattr(mutation_test, "targets_by_label", lambda: {})
+        monkeypatch.setattr(mutation_test, "build", lambda jobs, log: True)
+        monkeypatch.setattr(mutation_test, "try_mutant", lambda *a: next(outcomes))
+        assert mutation_test.main() == code, rate
+        assert ("below the standard" in capsys.readouterr().err) == bool(code)
+
+
+def test_an_unwritable_report_stops_the_run_before_the_build(monkeypatch, repo, capsys):
+    (repo / "build" / "file").write_text("")
+    in_repo(monkeypatch, repo, ["--random", "3", "--since", "HEAD",
+                                "--report", str(repo / "build" / "file" / "r.md")])
+    assert mutation_test.main() == 2
+    assert capsys.readouterr().err.startswith("error: --report: ")
+
+
+@pytest.mark.parametrize("code,declares", [
+    ("StagedOutputDir(StagedOutputDir&& other) noexcept;", True),
+    ("ReadbackLayout(uint32_t width, uint32_t height);", True),
+    ("Foo(const Foo&) = delete;", True),
+    ("Foo& operator=(Foo&&) = default;", True),
+    ("virtual void run() = 0;", True),
+    ("void record(VkCommandBuffer cmd, const Prepared& p);", True),
+    ("static Scene load(const std::string& path);", True),
+    ("track(next);", False),
+    ("vkCmdDispatch(c.cmd, groups(w), groups(h), 1);", False),
+    ("mesh.add(v);", False),
+    ("i += step(a, b);", False),
+    ("next = advanced;", False),
+    ("print(uint32_t(x));", False),
+])
+def test_declarations_are_never_deleted(code, declares):
+    assert rm.declares_function(code) == declares
+    text = "struct S {\n    int a;\n    " + code + "\n};\n"
+    drops = [c for c in rm.file_candidates("src/s.h", text, {3}) if c.op == "drop"]
+    assert bool(drops) != declares, drops
