@@ -590,8 +590,9 @@ def stable_id(c):
     stripped = c.original.lstrip()
     shift = len(c.original) - len(stripped)
     key = "\0".join([c.file, stripped, c.op, str(c.col - shift), c.mutated.strip()])
-    digest = hashlib.sha1(key.encode()).hexdigest()[:8]
-    return f"r-{Path(c.file).stem.replace('_', '-')}-{c.op}-{digest}"
+    digest = hashlib.sha1(key.encode(errors="surrogateescape")).hexdigest()[:8]
+    stem = re.sub(r"[^A-Za-z0-9]+", "-", Path(c.file).stem).strip("-") or "file"
+    return f"r-{stem}-{c.op}-{digest}"
 
 
 def unified_diff(path, before, after):

@@ -1326,3 +1326,19 @@ def test_declarations_are_never_deleted(code, declares):
     text = "struct S {\n    int a;\n    " + code + "\n};\n"
     drops = [c for c in rm.file_candidates("src/s.h", text, {3}) if c.op == "drop"]
     assert bool(drops) != declares, drops
+
+
+def test_a_mutated_line_in_another_encoding_and_a_spaced_name_get_plain_ids(repo):
+    (repo / "src" / "two words.cpp").write_bytes(b'int f(int a) {\n    return a + 1; // caf\xe9\n}\n')
+    mutants = [m for m in rm.Mutants(repo, "HEAD", 1, repo / "tests" / "mutations" /
+                                     "coverage.toml") if m["files"] == "src/two words.cpp"]
+    assert mutants
+    assert all(re.fullmatch(r"r-two-words-[\w-]+-[0-9a-f]{8}(-\d+)?", m["id"]) for m in mutants), \
+        [m["id"] for m in mutants]
+
+
+def test_a_list_cut_short_by_its_reader_ends_quietly(repo):
+    done = subprocess.run(
+        f"{sys.executable} {ROOT / 'tools' / 'mutation_test.py'} --list | head -1",
+        shell=True, capture_output=True, text=True, cwd=ROOT)
+    assert "Traceback" not in done.stderr and "BrokenPipe" not in done.stderr, done.stderr
