@@ -216,3 +216,18 @@ TEST_F(FrameTest, AGraphOfImagesAndBuffersRunsWithoutAHazard) {
             ASSERT_EQ(v, value) << "frame " << frame;
     }
 }
+
+// What Renderer::check counts for a buffer of each size class: per view times the views (at
+// least one), per pixel times the pixels, the declared bytes otherwise.
+TEST_F(FrameTest, BufferBytesFollowTheirSizeClass) {
+    const FrameSizes sizes{.width = 30, .height = 20, .shadowMapSize = 64, .shadowViews = 6};
+    const auto bytes = [&](SizeClass size, const FrameSizes& s) {
+        return ResourcePool::bytesOf(BufferDecl{.name = "b", .size = size, .bytes = 12, .usage = 0},
+                                     s);
+    };
+    EXPECT_EQ(bytes(SizeClass::ShadowView, sizes), 12u * 6u);
+    EXPECT_EQ(bytes(SizeClass::ShadowView, FrameSizes{}), 12u) << "no view: room for one";
+    EXPECT_EQ(bytes(SizeClass::Screen, sizes), 12u * 30u * 20u);
+    EXPECT_EQ(bytes(SizeClass::Scene, sizes), 12u);
+    EXPECT_EQ(bytes(SizeClass::Fixed, sizes), 12u);
+}

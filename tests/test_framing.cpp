@@ -269,4 +269,17 @@ TEST(Framing, AnInsideOutBoxOnAWideGroundIsAMisWoundModelNotARoom) {
     EXPECT_LT(v.room->coverage, 0.1f);
     EXPECT_FALSE(v.interior());
     EXPECT_NEAR(measureView(room(true), subjectBounds(room(true))).room->coverage, 1.0f, 1e-3f);
+    // A larger inside-out box, between a quarter and a half of the footprint: still no room.
+    Scene wide;
+    MeshBuilder wb(wide);
+    const uint32_t wm = wb.material("m", glm::vec3(0.5f));
+    wb.quad({-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}, wm);
+    wb.box(boxAt({0, 1, 0}, glm::vec3(6.4f, 2.0f, 6.4f)), wm);
+    for (size_t t = 6; t + 2 < wide.indices.size(); t += 3)
+        std::swap(wide.indices[t + 1], wide.indices[t + 2]);
+    const ViewMeasure w = measureView(wide, subjectBounds(wide));
+    ASSERT_TRUE(w.room.has_value());
+    EXPECT_GT(w.room->coverage, 0.25f);
+    EXPECT_LT(w.room->coverage, 0.5f);
+    EXPECT_FALSE(w.interior());
 }
