@@ -24,14 +24,15 @@ Bounds boundsOf(glm::vec3 lo, glm::vec3 hi) {
     return b;
 }
 
-// A card over a ground plane, its material 8x8 texels (alpha 255 where `covered`), alpha-tested.
-Scene maskedCard(bool (*covered)(uint32_t x, uint32_t y)) {
+// A card over a ground plane, its material `texels` x `texels` (alpha 255 where `covered`),
+// alpha-tested.
+Scene maskedCard(bool (*covered)(uint32_t x, uint32_t y), uint32_t texels = 8) {
     Scene scene;
     MeshBuilder mb(scene);
     mb.quad({-4, 0, 4}, {4, 0, 4}, {4, 0, -4}, {-4, 0, -4}, mb.material("ground", glm::vec3(0.7f)));
-    TextureImage image{.name = "mask", .width = 8, .height = 8};
-    for (uint32_t y = 0; y < 8; ++y)
-        for (uint32_t x = 0; x < 8; ++x)
+    TextureImage image{.name = "mask", .width = texels, .height = texels};
+    for (uint32_t y = 0; y < texels; ++y)
+        for (uint32_t x = 0; x < texels; ++x)
             image.rgba.insert(image.rgba.end(), {200, 200, 200, uint8_t(covered(x, y) ? 255 : 0)});
     const uint32_t card = mb.texturedMaterial(
         "card", image,
@@ -79,6 +80,50 @@ TEST(SdfField, AlphaTestedTrianglesAreMergedWhereCovered) {
     EXPECT_LT(half.alphaPieces, 1000u);
     EXPECT_GE(outlined, 1u);
     EXPECT_LT(outlined, half.alphaPieces);
+}
+
+// The cut is as coarse as the field allows: its finest pieces are at most 1.5 voxels across and
+// more than half that (one subdivision fewer would pass 1.5). A fine random mask leaves single
+// grid pieces uncovered next to covered ones, so the finest pieces are the grid's. Under a small
+// budget the grid coarsens until n^2 fits, and the budget shrinks by n^2.
+TEST(SdfField, AlphaTestedPiecesAreAsCoarseAsTheFieldAllows) {
+    const Scene scene = maskedCard(
+        [](uint32_t x, uint32_t y) { return ((x * 73856093u) ^ (y * 19349663u)) % 3u != 0u; }, 256);
+    auto finestPiece = [&](float voxel, uint64_t& budget) {
+        std::vector<gpu::FieldTriangle> pieces;
+        for (size_t t = 2; t < 4; ++t) { // the card's two triangles, after the ground's
+            const std::array<const Vertex*, 3> v{&scene.vertices[scene.indices[3 * t]],
+                                                 &scene.vertices[scene.indices[3 * t + 1]],
+                                                 &scene.vertices[scene.indices[3 * t + 2]]};
+            cutByCoverage(scene, v, voxel, budget, pieces);
+        }
+        float finest = std::numeric_limits<float>::infinity();
+        for (const gpu::FieldTriangle& p : pieces) {
+            const glm::vec3 a(p.a), b(p.b), c(p.c);
+            finest = std::min(
+                finest, std::max({glm::distance(a, b), glm::distance(b, c), glm::distance(c, a)}));
+        }
+        EXPECT_GT(pieces.size(), 2u) << "the mask leaves holes";
+        return finest;
+    };
+    // The card's triangles are 4 x 4 x 5.66: 8 x 8 pieces of 0.707 at a voxel of 0.5 (1.41
+    // voxels); 16 x 16 would be 0.71 voxels, 4 x 4 2.83 voxels.
+    for (const float voxel : {0.5f, 0.25f, 0.2f}) {
+        uint64_t budget = 1'000'000;
+        const float finest = finestPiece(voxel, budget) / voxel;
+        EXPECT_LE(finest, 1.5f + 1e-4f) << "voxel " << voxel;
+        EXPECT_GT(finest, 0.75f) << "voxel " << voxel;
+        const uint64_t n =
+            static_cast<uint64_t>(std::lround(4.0f * std::sqrt(2.0f) / (finest * voxel)));
+        EXPECT_EQ(budget, 1'000'000 - 2 * n * n) << "voxel " << voxel;
+    }
+    uint64_t ample = 1'000'000;
+    EXPECT_NEAR(finestPiece(0.001f, ample), 4.0f * std::sqrt(2.0f) / 64.0f, 1e-4f)
+        << "64 x 64 pieces at most, however fine the field";
+    uint64_t small = 70; // the first triangle takes 8 x 8; 6 are left for the second
+    const float coarse = finestPiece(0.5f, small);
+    EXPECT_NEAR(coarse, 4.0f * std::sqrt(2.0f) / 8.0f, 1e-4f) << "the first triangle's 8 x 8";
+    EXPECT_EQ(small, 70u - 64u - 4u) << "then 2 x 2, the largest square within the 6 left";
 }
 
 // Each brick's nearest triangle: exact where one of its list is within a brick of its centre;
