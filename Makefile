@@ -33,14 +33,24 @@ deps:
 	    | grep -q 'install ok installed' || echo $$p; done); \
 	if [ -n "$$missing" ]; then \
 	    echo "penumbra: installing missing packages:" $$missing; \
-	    $(SUDO) apt-get update -qq && \
-	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends $$missing; \
+	    tools/timed.sh "the missing packages installed" sh -c '$(SUDO) apt-get update -qq && \
+	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends '"$$missing"; \
 	fi
+
+# The Python module for the current user's /usr/bin/python3: `make build` and `make demo` leave
+# `import penumbra` working (docs/python.md).
+define install_python_module
+	@site=$$(/usr/bin/python3 -m site --user-site) && mkdir -p "$$site" && \
+	    cp $(BUILDDIR)/python/penumbra.*.so $(BUILDDIR)/python/penumbra.pyi "$$site"/ && \
+	    echo "penumbra: import penumbra works in /usr/bin/python3 (the module is in $$site)"
+endef
 
 build: deps
 	@mkdir -p $(XDG_RUNTIME_DIR) && chmod 700 $(XDG_RUNTIME_DIR)
 	cmake --preset $(PRESET) >/dev/null
-	cmake --build --preset $(PRESET) -j $(JOBS)
+	@tools/timed.sh "everything built (the CLI, the viewer, the Python module, the tests)" \
+	    cmake --build --preset $(PRESET) -j $(JOBS)
+	$(install_python_module)
 
 test: build
 	ctest --preset $(PRESET) -j $(JOBS)
@@ -100,21 +110,19 @@ FUZZ_CLI_SECONDS ?= 600
 fuzz-cli: build
 	python3 tools/fuzz_cli.py --seconds $(FUZZ_CLI_SECONDS) --jobs $(JOBS) --out build/fuzz-cli
 
-# Cross-device image agreement (tests/test_render_diff.cpp): every comparison row against the
-# images stored in tests/renderdiff/, on whichever device the suite picks. renderdiff-store
-# rewrites them (on lavapipe, after a deliberate change to what a technique draws).
-# The Python module and its type stubs, installed for the current user (docs/python.md).
+# The Python module (which `make build` installs for the current user) and what its example
+# plots with (docs/python.md).
 python: build
 	@$(MAKE) --no-print-directory deps PACKAGES="$(PYTHON_PACKAGES)"
-	@site=$$(/usr/bin/python3 -m site --user-site) && mkdir -p "$$site" && \
-	    cp build/$(PRESET)/python/penumbra.*.so build/$(PRESET)/python/penumbra.pyi "$$site"/ && \
-	    echo "penumbra: the module is in $$site (for /usr/bin/python3)"
 
 # docs/cli.md's option tables refreshed from the CLI's own definitions (the build makes the page in
 # build/$(PRESET)/docs; CliDocs.UpToDate fails until it is copied here).
 cli-docs: build
 	cp build/$(PRESET)/docs/cli.md docs/cli.md
 
+# Cross-device image agreement (tests/test_render_diff.cpp): every comparison row against the
+# images stored in tests/renderdiff/, on whichever device the suite picks. renderdiff-store
+# rewrites them (on lavapipe, after a deliberate change to what a technique draws).
 renderdiff: build
 	build/$(PRESET)/tests/penumbra_gpu_tests --gtest_filter='RenderDiffTest.*'
 
@@ -140,8 +148,15 @@ mutation-test: deps
 	    $(if $(SINCE),--since $(SINCE)) $(if $(SEED),--seed $(SEED)) \
 	    $(if $(MIN_RATE),--min-rate $(MIN_RATE))
 
-demo: build
-	$(BUILDDIR)/apps/penumbra/penumbra compare builtin:demo -o out/demo
+# Only what the demo needs: the CLI and the Python module, not the tests (`make test` builds those).
+demo: deps
+	@mkdir -p $(XDG_RUNTIME_DIR) && chmod 700 $(XDG_RUNTIME_DIR)
+	cmake --preset $(PRESET) >/dev/null
+	@tools/timed.sh "the CLI and the Python module built" \
+	    cmake --build --preset $(PRESET) -j $(JOBS) --target penumbra penumbra_python
+	$(install_python_module)
+	@tools/timed.sh "the comparison written (out/demo/report.html)" \
+	    $(BUILDDIR)/apps/penumbra/penumbra compare builtin:demo -o out/demo
 
 bench: build
 	$(BUILDDIR)/bench/penumbra_bench_gltf

@@ -109,16 +109,29 @@ struct PyResult {
     RenderOptions options;
     std::string name; // the row, e.g. "pcf[box7]"
 
+    // Per pass, and "total" as metrics.json sums it: the passes' medians (not the median of
+    // the frames' sums).
     py::dict gpuMs() const {
         py::dict d;
-        for (const PassTime& p : result->passes)
+        double total = 0.0;
+        for (const PassTime& p : result->passes) {
             d[py::str(p.pass)] = p.medianMs;
+            total += p.medianMs;
+        }
+        d["total"] = total;
         return d;
     }
+    // Per pass, and "total": each frame's passes summed.
     py::dict gpuMsPerFrame() const {
         py::dict d;
-        for (const PassTime& p : result->passes)
+        std::vector<double> total;
+        for (const PassTime& p : result->passes) {
             d[py::str(p.pass)] = p.frameMs;
+            total.resize(std::max(total.size(), p.frameMs.size()), 0.0);
+            for (size_t f = 0; f < p.frameMs.size(); ++f)
+                total[f] += p.frameMs[f];
+        }
+        d["total"] = total;
         return d;
     }
     py::dict parameters() const {
@@ -377,8 +390,11 @@ PYBIND11_MODULE(penumbra, m) {
             },
             "(height, width, 3) float32: unit world-space normal, NaN for background.")
         .def_property_readonly("gpu_ms", &PyResult::gpuMs,
-                               "GPU milliseconds per pass: the median of the timed frames.")
-        .def_property_readonly("gpu_ms_per_frame", &PyResult::gpuMsPerFrame)
+                               "GPU milliseconds per pass, the median of the timed frames, and "
+                               "'total', their sum (metrics.json's total).")
+        .def_property_readonly("gpu_ms_per_frame", &PyResult::gpuMsPerFrame,
+                               "Every timed frame's GPU milliseconds per pass, and 'total', "
+                               "each frame's sum.")
         .def_property_readonly("parameters", &PyResult::parameters,
                                "Every parameter in effect, as --set would spell it.")
         .def_property_readonly("lights", &PyResult::lights)

@@ -70,9 +70,11 @@ class Result:
         """(height, width, 3): unit world-space normal, NaN for background."""
     @property
     def gpu_ms(self) -> dict[str, float]:
-        """GPU milliseconds per pass, the median of the timed frames."""
+        """GPU milliseconds per pass, the median of the timed frames, and 'total', their sum
+        (metrics.json's total)."""
     @property
-    def gpu_ms_per_frame(self) -> dict[str, list[float]]: ...
+    def gpu_ms_per_frame(self) -> dict[str, list[float]]:
+        """Every timed frame's GPU milliseconds per pass, and 'total', each frame's sum."""
     @property
     def parameters(self) -> dict[str, str]:
         """Every parameter in effect, as --set would spell it."""

@@ -266,3 +266,51 @@ TEST(CliOutputs, RowsSkippedAnywhereLeaveTheOthersTheirOwnOptions) {
     EXPECT_EQ(none.exitCode, 2);
     EXPECT_NE(none.err.find("error: --shadow-map-size: evsm needs"), std::string::npos) << none.err;
 }
+
+// The truth traces one exact ray towards a light without a size, and every output says so:
+// metrics.json's rays per light, the report's words, the progress line, reference.json. A soft
+// row (pcss) ranked against that hard truth gets a note naming the light; a hard row (pcf) none.
+TEST(CliOutputs, ALightWithoutASizeGetsOneExactRayAndSoftRowsANote) {
+    const fs::path asset = threeLightAsset(outputScratch("hard-truth-asset"));
+    const fs::path out = outputScratch("hard-truth");
+    const std::vector<std::string> sizes = {"--light-radius", "0.2", "--light-angle", "0"};
+    std::vector<std::string> args = withView({"compare", asset.string(), "-o", out.string(),
+                                              "--techniques", "pcf,pcss", "--samples", "8",
+                                              "--frames", "1", "--shadow-map-size", "256"});
+    args.insert(args.end(), sizes.begin(), sizes.end());
+    ProcessResult r = runCli(args);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string words = "8 rays per pixel towards the 2 lights with a size, 1 exact ray "
+                              "towards the 1 light without";
+    EXPECT_NE(r.err.find("ground truth, " + words), std::string::npos) << r.err;
+    const nlohmann::json metrics = nlohmann::json::parse(slurp(out / "metrics.json"));
+    EXPECT_EQ(metrics["reference"]["rays_per_pixel"], (nlohmann::json{1, 8, 8}))
+        << "the sun (angle 0), the spot and the bulb (radius 0.2)";
+    ASSERT_GE(metrics["notes"].size(), 1u);
+    const std::string note = metrics["notes"][0];
+    EXPECT_NE(note.find("towards light0 "), std::string::npos) << note;
+    EXPECT_NE(note.find("penumbrae of pcss"), std::string::npos) << note; // its rows
+    EXPECT_EQ(note.find("pcf"), std::string::npos) << "pcf models no light size: " << note;
+    const std::string html = slurp(out / "report.html");
+    EXPECT_NE(html.find(words), std::string::npos);
+    EXPECT_NE(html.find("note hard-truth"), std::string::npos);
+
+    const fs::path hardRows = outputScratch("hard-truth-pcf");
+    args = withView({"compare", asset.string(), "-o", hardRows.string(), "--techniques", "pcf",
+                     "--samples", "8", "--frames", "1", "--shadow-map-size", "256"});
+    args.insert(args.end(), sizes.begin(), sizes.end());
+    r = runCli(args);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(slurp(hardRows / "metrics.json").find("The truth is hard"), std::string::npos);
+
+    const fs::path traced = outputScratch("hard-truth-reference");
+    r = runCli(withView({"reference", asset.string(), "-o", traced.string(), "--samples", "8",
+                         "--light-radius", "0", "--light-angle", "0", "--format", "pfm"}));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("1 exact ray per pixel and light (no light has a size"),
+              std::string::npos)
+        << r.err;
+    const nlohmann::json ref = nlohmann::json::parse(slurp(traced / "reference.json"));
+    EXPECT_EQ(ref["rays_per_pixel"], (nlohmann::json{1, 1, 1}));
+    EXPECT_EQ(ref["samples"], 8) << "what was asked for stays";
+}

@@ -71,9 +71,20 @@ nlohmann::json layoutIn(const fs::path& page, int width) {
     const std::string check = R"JS(<script>
 window.addEventListener("load", function () { setTimeout(function () {
   const W = document.documentElement.clientWidth, found = { width: W, wide: [], overlaps: [],
-    labels: 0, slider: false, sorted: false };
+    labels: 0, slider: false, sorted: false, clipped: [] };
+  // The pixel counts under the percentages as wide as a 4K frame's ("9.99M/9.99M"): a small
+  // test image must not hide a table that only a large one pushes past the window.
+  document.querySelectorAll("table .count").forEach(function (c) {
+    c.innerHTML = c.innerHTML.replace(/[0-9][0-9.]*[kM]?/g, "9.99M"); });
   found.scroll = document.documentElement.scrollWidth;
   function boxes() {
+    document.querySelectorAll("body *").forEach(function (el) {
+      const style = getComputedStyle(el);
+      if (/auto|scroll|hidden/.test(style.overflowX) && el.scrollWidth > el.clientWidth + 0.5 &&
+          el.tagName !== "svg" && !el.closest("td"))  // an ellipsis inside a cell is meant
+        found.clipped.push(el.tagName + "." + el.getAttribute("class") + " " + el.scrollWidth +
+                           " > " + el.clientWidth);
+    });
     document.querySelectorAll("body *").forEach(function (el) {
       const r = el.getBoundingClientRect();
       if (r.width > 0 && (r.right > W + 0.5 || r.left < -0.5))
@@ -149,7 +160,7 @@ window.addEventListener("load", function () { setTimeout(function () {
 } // namespace
 
 // The three reports at 1000, 1400 and 1920 pixels: no sideways scrolling, nothing wider than
-// the window; report.html's plot labels clear of each other and of the points on both cost
+// the window, no table scrolled inside its card (with a 4K frame's pixel counts); report.html's plot labels clear of each other and of the points on both cost
 // axes, its comparer's slider changing the picture, a click on RMSE sorting by it.
 TEST(Cli, ReportsReadAtThreeWidthsWithoutOverlapsInChromium) {
     const fs::path bench = scratch("widths-bench"), tune = scratch("widths-tune");
@@ -171,6 +182,8 @@ TEST(Cli, ReportsReadAtThreeWidthsWithoutOverlapsInChromium) {
             ASSERT_FALSE(found.is_null());
             EXPECT_LE(found["scroll"].get<int>(), found["width"].get<int>()) << found.dump();
             EXPECT_TRUE(found["wide"].empty()) << found["wide"].dump(1);
+            EXPECT_TRUE(found["clipped"].empty()) << "a column scrolled out of its card: "
+                                                  << found["clipped"].dump(1);
             if (page.filename() != "report.html")
                 continue;
             EXPECT_TRUE(found["overlaps"].empty()) << found["overlaps"].dump(1);
@@ -200,6 +213,7 @@ TEST(Cli, MergeReportReadsAtThreeWidthsInChromium) {
         ASSERT_FALSE(found.is_null());
         EXPECT_LE(found["scroll"].get<int>(), found["width"].get<int>()) << found.dump();
         EXPECT_TRUE(found["wide"].empty()) << found["wide"].dump(1);
+        EXPECT_TRUE(found["clipped"].empty()) << found["clipped"].dump(1);
         EXPECT_TRUE(found["overlaps"].empty()) << found["overlaps"].dump(1);
     }
 }

@@ -3,6 +3,7 @@
 #include "report/heatmap.h"
 #include "report/html_report.h"
 #include "report/report_plot.h"
+#include "report/truth_notes.h"
 #include "report/tune_report.h"
 
 #include <gtest/gtest.h>
@@ -197,9 +198,11 @@ TEST(MetricsJson, HasExactlyTheContractKeys) {
     ASSERT_EQ(j["notes"].size(), 1u);
     EXPECT_NE(j["notes"][0].get<std::string>().find("300 fully shadowed"), std::string::npos);
     nlohmann::json& ref = j["reference"];
-    EXPECT_EQ(keysOf(ref), (std::set<std::string>{"samples", "seconds", "rays_per_second", "lights",
-                                                  "scene", "width", "height", "device"}));
+    EXPECT_EQ(keysOf(ref),
+              (std::set<std::string>{"samples", "rays_per_pixel", "seconds", "rays_per_second",
+                                     "lights", "scene", "width", "height", "device"}));
     EXPECT_EQ(ref["samples"], 64);
+    EXPECT_EQ(ref["rays_per_pixel"], (nlohmann::json{64, 64})) << "both lights have a size";
     EXPECT_EQ(ref["seconds"], 12.5);
     EXPECT_EQ(ref["rays_per_second"], 1.25e6);
     EXPECT_EQ(ref["lights"], nlohmann::json(d.lights));
@@ -225,7 +228,7 @@ TEST(MetricsJson, HasExactlyTheContractKeys) {
         row.metrics.truthShadowed = kFewJudgedPixels;
     EXPECT_TRUE(metricsJson(plenty)["notes"].empty());
     const std::string html = renderHtmlReport(d);
-    EXPECT_NE(html.find("12/40.2k"), std::string::npos) << "the pixels under each percentage";
+    EXPECT_NE(html.find("12/<wbr>40.2k"), std::string::npos) << "the pixels under each percentage";
     EXPECT_NE(html.find("title=\"150 of 300 pixels\""), std::string::npos);
     EXPECT_NE(html.find("class=\"note few-pixels\""), std::string::npos);
     EXPECT_EQ(renderHtmlReport(plenty).find("class=\"note few-pixels\""), std::string::npos);
@@ -264,6 +267,94 @@ std::vector<std::vector<uint8_t>> embeddedImages(const std::string& html) {
         images.push_back(test::decodeBase64(html.substr(at, end - at)));
     }
     return images;
+}
+
+// The truth's rays in words: every light with a size, none, a mix (either way round), none at
+// all; one ray asked for is still "1 ray", not an exact one, towards a light with a size.
+TEST(TruthNotes, TheRaysAreCountedPerLightAsTheTruthTracesThem) {
+    EXPECT_EQ(truthRays(256, {true, false, true}), (std::vector<uint32_t>{256, 1, 256}));
+    EXPECT_EQ(truthRays(256, {}), std::vector<uint32_t>{});
+    EXPECT_EQ(truthRaysText(256, {true, true}), "256 rays per pixel and light");
+    EXPECT_EQ(truthRaysText(1, {true}), "1 ray per pixel and light");
+    EXPECT_EQ(truthRaysText(256, {false}),
+              "1 exact ray per pixel (the light has no size: a hard truth)");
+    EXPECT_EQ(truthRaysText(256, {false, false}),
+              "1 exact ray per pixel and light (no light has a size: a hard truth)");
+    EXPECT_EQ(truthRaysText(64, {true, false, false}),
+              "64 rays per pixel towards the 1 light with a size, 1 exact ray towards the 2 lights "
+              "without");
+    EXPECT_EQ(truthRaysText(64, {false, true, true}),
+              "64 rays per pixel towards the 2 lights with a size, 1 exact ray towards the 1 light "
+              "without");
+    EXPECT_EQ(truthRaysText(64, {}), "no shadow-casting light");
+}
+
+// A soft technique ranked against a hard truth is told so, naming the lights without a size and
+// the rows that model one; not when every light has a size, when no row models one, or when the
+// only such row was skipped. The report and metrics.json carry it, and the rays per light.
+TEST(TruthNotes, SoftRowsAgainstAHardTruthGetANote) {
+    ReportData d = makeReport();
+    d.rows[1].modelsLightSize = true;
+    EXPECT_EQ(hardTruthNote(d), "") << "both lights have a size";
+    d.lightSized = {true, false};
+    const std::string note = hardTruthNote(d);
+    EXPECT_NE(note.find("towards lamp "), std::string::npos) << note;
+    EXPECT_EQ(note.find("sun"), std::string::npos) << "the sun has a size: " << note;
+    EXPECT_NE(note.find("of a<b&\"c\" count"), std::string::npos) << note;
+    EXPECT_EQ(note.find("hard,"), std::string::npos) << "hard models no size: " << note;
+    nlohmann::json j = metricsJson(d);
+    EXPECT_EQ(j["reference"]["rays_per_pixel"], (nlohmann::json{64, 1}));
+    ASSERT_EQ(j["notes"].size(), 2u) << "the hard truth's and the few pixels'";
+    EXPECT_EQ(j["notes"][0], note);
+    const std::string html = renderHtmlReport(d);
+    EXPECT_NE(html.find("<p class=\"note hard-truth\"><strong>" + escapeHtml(note)),
+              std::string::npos);
+    EXPECT_NE(html.find("64 rays per pixel towards the 1 light with a size, 1 exact ray towards "
+                        "the 1 light without"),
+              std::string::npos);
+
+    ReportData hardRows = d;
+    hardRows.rows[1].modelsLightSize = false;
+    EXPECT_EQ(hardTruthNote(hardRows), "");
+    EXPECT_EQ(renderHtmlReport(hardRows).find("note hard-truth"), std::string::npos);
+    ReportData skipped = d;
+    skipped.rows[1].skipped = "the device cannot hold it";
+    EXPECT_EQ(hardTruthNote(skipped), "");
+    ReportData sized = d;
+    sized.lightSized = {true, true};
+    EXPECT_EQ(hardTruthNote(sized), "");
+    EXPECT_EQ(metricsJson(sized)["notes"].size(), 1u);
+
+    TuneData t{.scene = "s", .technique = "pcss", .samples = 32, .lightSized = {false}};
+    t.candidates.push_back(TuneCandidate{});
+    EXPECT_EQ(tuneJson(t)["rays_per_pixel"], (nlohmann::json{1}));
+    EXPECT_NE(tuneHtml(t).find("1 exact ray per pixel"), std::string::npos);
+}
+
+// The best value of a column is marked only where the rows differ: the lower RMSE of two, not
+// a Max every row shares, nor a column of one row.
+TEST(HtmlReport, TheBestIsMarkedOnlyWhereValuesDiffer) {
+    const ReportData d = makeReport(); // RMSE 0.2 and 0.1, MAE half; every other error the same
+    const std::string html = renderHtmlReport(d);
+    auto count = [](const std::string& text, const std::string& what) {
+        size_t n = 0;
+        for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+            ++n;
+        return n;
+    };
+    EXPECT_EQ(count(html, "<td data-value=\"0.1\" class=\"best\">0.1000</td>"), 1u);
+    EXPECT_EQ(count(html, "<td data-value=\"0.05\" class=\"best\">0.0500</td>"), 1u);
+    EXPECT_EQ(count(html, "class=\"best"), 2u) << "RMSE's and MAE's alone";
+    ReportData worse = d;
+    worse.rows[0].metrics.max = 0.5;
+    worse.rows[1].metrics.acne = 0.0;
+    const std::string two = renderHtmlReport(worse);
+    EXPECT_EQ(count(two, "<td data-value=\"0.5\" class=\"best\">0.5000</td>"), 1u);
+    EXPECT_EQ(count(two, "<td data-value=\"0\" class=\"best first\" title=\"12 of"), 1u);
+    EXPECT_EQ(count(two, "class=\"best"), 4u);
+    ReportData one = worse;
+    one.rows.resize(1);
+    EXPECT_EQ(count(renderHtmlReport(one), "class=\"best"), 0u);
 }
 
 TEST(HtmlReport, IsSelfContainedAndEscaped) {

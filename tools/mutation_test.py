@@ -71,6 +71,16 @@ def load_mutations(directory):
     return mutations
 
 
+def check_labels(mutations, all_labels):
+    """ListError for a label no test carries: ctest would run nothing, and the mutant survive
+    unseen (coverage.toml's `all` is tests/CMakeLists.txt's labels; tests/tools checks it)."""
+    for m in mutations:
+        unknown = sorted(set(m["labels"]) - set(all_labels))
+        if unknown:
+            raise ListError(f"{m['list']}: {m['id']}: no test carries the label(s) "
+                            f"{', '.join(unknown)}")
+
+
 def locate(m, e, text):
     """Offset of the edit's `find` in `text`; ListError unless it is unambiguous."""
     count = text.count(e["find"])
@@ -360,6 +370,7 @@ def main():
 
     try:
         mutations = load_mutations(MUTATIONS)
+        check_labels(mutations, random_mutants.load_coverage(MUTATIONS / "coverage.toml")[0])
         for m in mutations:  # every entry must apply to today's code before anything runs
             for e in m["edits"]:
                 locate(m, e, (ROOT / e["file"]).read_text())

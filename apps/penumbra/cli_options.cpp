@@ -294,6 +294,14 @@ void writeFloatImage(StagedOutputDir& out, const std::string& stem, FloatFormat 
         out.write(stem + ".exr", encodeExr(width, height, channels, pixels));
 }
 
+std::vector<bool> shadowLightsSized(const Scene& lit, const RenderResult& gbuffer) {
+    std::vector<bool> sized;
+    for (const LightShadow& s : gbuffer.lights)
+        if (s.visibilityIndex >= 0)
+            sized.push_back(lit.lights.at(s.sceneLight).hasSize());
+    return sized;
+}
+
 void writeViewFiles(StagedOutputDir& out, const RenderResult& g,
                     const std::vector<std::vector<float>>& visibility, FloatFormat format) {
     for (size_t i = 0; i < visibility.size(); ++i)

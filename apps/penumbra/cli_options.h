@@ -99,6 +99,9 @@ std::string_view namingExtension(FloatFormat format);
 void writeFloatImage(StagedOutputDir& out, const std::string& stem, FloatFormat format,
                      uint32_t width, uint32_t height, uint32_t channels,
                      std::span<const float> pixels);
+// Per shadow-casting light of the view, in visibility order: whether it has a size in `lit` (the
+// scene with the light-size overrides applied): what the truth traced towards it.
+std::vector<bool> shadowLightsSized(const Scene& lit, const RenderResult& gbuffer);
 // visibility / visibility_<i>, position and normal as float images (docs/cli.md).
 void writeViewFiles(StagedOutputDir& out, const RenderResult& gbuffer,
                     const std::vector<std::vector<float>>& visibility, FloatFormat format);

@@ -13,6 +13,7 @@
 #include "report/metrics.h"
 #include "report/page_image.h"
 #include "report/stats.h"
+#include "report/truth_notes.h"
 #include "shadows/technique.h"
 #include "truth_cache_option.h"
 
@@ -117,9 +118,10 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     }
     Scene lit = scene; // the light sizes the reference must use
     applyLightSizeOverrides(lit, args.options.lightRadiusOverride, args.options.lightAngleOverride);
-    std::fprintf(stderr, "penumbra: ground truth, %u samples per pixel and light\n",
-                 args.reference.samples);
     const RenderResult& gbuffer = results.front(); // every row sees the same view
+    const std::vector<bool> sized = shadowLightsSized(lit, gbuffer);
+    std::fprintf(stderr, "penumbra: ground truth, %s\n",
+                 truthRaysText(args.reference.samples, sized).c_str());
     const ReferenceResult truth =
         truthThroughCache(args.truthCache, lit, args.options.camera, gbuffer, args.reference);
     const uint32_t w = gbuffer.width, h = gbuffer.height;
@@ -134,6 +136,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                       .referenceSeconds = truth.seconds,
                       .raysPerSecond =
                           truth.traceSeconds > 0 ? double(truth.rays) / truth.traceSeconds : 0};
+    report.lightSized = sized;
     std::vector<std::vector<uint8_t>> masks;
     for (const LightShadow& s : gbuffer.lights)
         if (s.visibilityIndex >= 0) {
@@ -167,6 +170,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                       .metrics = metricsAgainstTruth(lit, result, truth.visibility, masks,
                                                      blurRadiusTexels(rowOptions[r]),
                                                      truth.occluderDistance),
+                      .modelsLightSize = shadows::moduleOf(rows[r].technique).modelsLightSize,
                       .shimmer = shimmer.empty() ? NAN : shimmer[r].shimmer,
                       .pathPagesRendered =
                           shimmer.empty() ? std::vector<uint32_t>{} : shimmer[r].pagesRendered,

@@ -3,6 +3,7 @@
 #include "penumbra/reference.h"
 #include "penumbra/renderer.h"
 #include "report/stats.h"
+#include "report/truth_notes.h"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -31,10 +32,12 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
     StagedOutputDir out(args.output);
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     renderer.check(scene, options);
-    std::fprintf(stderr, "penumbra: reference for %s, %ux%u, %u samples per pixel and light\n",
-                 scene.name.c_str(), options.width, options.height, args.reference.samples);
     const RenderResult gbuffer = renderer.render(scene, options);
     applyLightSizeOverrides(scene, options.lightRadiusOverride, options.lightAngleOverride);
+    const std::vector<bool> sized = shadowLightsSized(scene, gbuffer);
+    std::fprintf(stderr, "penumbra: reference for %s, %ux%u, %s\n", scene.name.c_str(),
+                 options.width, options.height,
+                 truthRaysText(args.reference.samples, sized).c_str());
     const ReferenceResult truth = computeReference(scene, gbuffer, args.reference);
     writeViewFiles(out, gbuffer, truth.visibility, args.format);
     const double raysPerSecond =
@@ -43,6 +46,7 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
                                  {"width", options.width},
                                  {"height", options.height},
                                  {"samples", args.reference.samples},
+                                 {"rays_per_pixel", truthRays(args.reference.samples, sized)},
                                  {"rays", truth.rays},
                                  {"seconds", truth.seconds},
                                  {"rays_per_second", raysPerSecond},

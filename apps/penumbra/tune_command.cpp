@@ -6,6 +6,7 @@
 #include "penumbra/error.h"
 #include "report/blur_band.h"
 #include "report/light_mask.h"
+#include "report/truth_notes.h"
 #include "report/tune_report.h"
 #include "shadows/technique.h"
 #include "truth_cache_option.h"
@@ -169,9 +170,11 @@ int runTune(const TuneArgs& args, const GlobalOptions& global) {
     for (const std::string& camera : cameras) {
         ViewTruth v{.options = base};
         v.options.camera = camera;
-        std::fprintf(stderr, "penumbra: ground truth for view %s, %u samples per pixel and light\n",
-                     camera.empty() ? "(default)" : camera.c_str(), args.reference.samples);
         const RenderResult gbuffer = uploaded.render(v.options);
+        data.lightSized = shadowLightsSized(lit, gbuffer); // the same lights in every view
+        std::fprintf(stderr, "penumbra: ground truth for view %s, %s\n",
+                     camera.empty() ? "(default)" : camera.c_str(),
+                     truthRaysText(args.reference.samples, data.lightSized).c_str());
         v.truth = truthThroughCache(args.truthCache, lit, camera, gbuffer, args.reference);
         data.truthSeconds += v.truth.seconds;
         for (const LightShadow& s : gbuffer.lights)

@@ -74,6 +74,11 @@ struct Light {
     float radius = 0.0f;                    // world units, spot/point area light size (0 = point)
     float angularDiameter = 0.0f;           // degrees, directional light size (0 = parallel)
     bool castsShadow = true;
+    // A radius (spot, point) or an angle (directional): its shadows have penumbrae, and the
+    // truth traces `--samples` rays towards it; without, one exact ray (a hard truth).
+    bool hasSize() const {
+        return type == LightType::Directional ? angularDiameter > 0.0f : radius > 0.0f;
+    }
 };
 
 struct Camera {

@@ -31,7 +31,7 @@ LightCone coneTowards(const Light& light, const glm::dvec3& p) {
         cone.axis = -glm::normalize(glm::dvec3(light.direction));
         const double half = 0.5 * glm::radians(static_cast<double>(light.angularDiameter));
         cone.oneMinusCosAlpha = 2.0 * std::sin(0.5 * half) * std::sin(0.5 * half);
-        cone.single = half <= 0.0;
+        cone.single = !light.hasSize();
         return cone;
     }
     cone.toInfinity = false;
@@ -41,7 +41,7 @@ LightCone coneTowards(const Light& light, const glm::dvec3& p) {
     const double d = glm::length(toCenter);
     cone.axis = d > 0.0 ? toCenter / d : glm::dvec3(0, 1, 0);
     cone.inside = d <= cone.radius;
-    cone.single = cone.radius <= 0.0 || cone.inside;
+    cone.single = !light.hasSize() || cone.inside;
     if (!cone.single) {
         const double sinAlpha = cone.radius / d;
         // 1 - cos a = sin^2 a / (1 + cos a): no cancellation for small lights far away.

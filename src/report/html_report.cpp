@@ -3,6 +3,7 @@
 #include "core/base64.h"
 #include "report/report_plot.h"
 #include "report/report_script.h"
+#include "report/truth_notes.h"
 
 #include "penumbra/error.h"
 
@@ -108,10 +109,11 @@ void writeHeader(std::string& s, const ReportData& d) {
                    "<dt>Scene</dt><dd>{}</dd>\n<dt>Device</dt><dd>{}</dd>\n"
                    "<dt>Driver</dt><dd>{}</dd>\n<dt>Image</dt><dd>{} &times; {}</dd>\n"
                    "<dt>Shadow map</dt><dd>{} &times; {}</dd>\n"
-                   "<dt>Reference</dt><dd>{} rays per pixel and light, {:.2f} s, {} rays/s</dd>\n"
+                   "<dt>Reference</dt><dd>{}, {:.2f} s, {} rays/s</dd>\n"
                    "<dt>Lights</dt><dd><ul>",
                    escapeHtml(d.scene), escapeHtml(d.device), escapeHtml(d.driver), d.width,
-                   d.height, d.shadowMapSize, d.shadowMapSize, d.samples, d.referenceSeconds,
+                   d.height, d.shadowMapSize, d.shadowMapSize,
+                   escapeHtml(truthRaysText(d.samples, lightsSized(d))), d.referenceSeconds,
                    humanCount(d.raysPerSecond));
     for (const std::string& light : d.lights)
         fmt::format_to(out, "<li>{}</li>", escapeHtml(light));
@@ -182,12 +184,15 @@ void writeTable(std::string& s, const ReportData& d) {
     header("Per pixel", "visibility and composite (and the contact layer)");
     header("Total", "every pass, the G-buffer included (the cell's tooltip lists them)");
     s += "</tr></thead>\n<tbody>\n";
-    // The lowest value of each error column is highlighted when there is something to compare.
+    // The lowest value of each error column is highlighted when there is something to compare:
+    // two rows or more whose values differ (a Max of 1 on every row marks none).
     auto bestOf = [&](double ErrorMetrics::*field) {
-        double best = INFINITY;
-        for (const ReportRow& row : d.rows)
+        double best = INFINITY, worst = -INFINITY;
+        for (const ReportRow& row : d.rows) {
             best = std::min(best, row.metrics.*field);
-        return d.rows.size() > 1 ? best : NAN;
+            worst = std::max(worst, row.metrics.*field);
+        }
+        return best < worst ? best : NAN;
     };
     auto number = [&](double v, std::string text, std::string_view cls = "",
                       std::string_view title = "") {
@@ -206,8 +211,9 @@ void writeTable(std::string& s, const ReportData& d) {
         if (!countKey.empty()) {
             const nlohmann::json c = metricCountsJson(row.metrics)[std::string(countKey)];
             const uint64_t n = c["pixels"], of = c["of"];
-            text +=
-                fmt::format("<div class=\"count\">{}/{}</div>", compactCount(n), compactCount(of));
+            // It may break after the slash: a narrow window keeps every column in view.
+            text += fmt::format("<div class=\"count\">{}/<wbr>{}</div>", compactCount(n),
+                                compactCount(of));
             title = fmt::format("{} of {} pixels", n, of);
         }
         number(v, text, best ? fmt::format("best{}", extra) : std::string(extra), title);
@@ -251,6 +257,9 @@ void writeTable(std::string& s, const ReportData& d) {
         s += "</tr>\n";
     }
     s += "</tbody></table></section>\n";
+    if (const std::string note = hardTruthNote(d); !note.empty())
+        fmt::format_to(out, "<p class=\"note hard-truth\"><strong>{}</strong></p>\n",
+                       escapeHtml(note));
     if (!d.rows.empty() && !fewPixelsNote(d.rows.front().metrics).empty())
         fmt::format_to(out, "<p class=\"note few-pixels\"><strong>{}</strong></p>\n",
                        fewPixelsNote(d.rows.front().metrics));
@@ -272,9 +281,9 @@ void writeImages(std::string& s, const ReportData& d) {
     s += "<h2>Images</h2>\n<div class=\"grid-images\">\n";
     fmt::format_to(out,
                    "<figure class=\"card reference\"><figcaption><strong>Reference visibility"
-                   "</strong><span class=\"tech\">{} rays per pixel and light</span></figcaption>"
+                   "</strong><span class=\"tech\">{}</span></figcaption>"
                    "{}</figure>\n",
-                   d.samples,
+                   escapeHtml(truthRaysText(d.samples, lightsSized(d))),
                    imageTag(d.referenceVisibilityPng, "reference", "reference visibility"));
     for (const ReportRow& row : d.rows) {
         const std::string name = escapeHtml(row.name);
@@ -362,6 +371,7 @@ std::string renderHtmlReport(const ReportData& all) {
 nlohmann::json metricsJson(const ReportData& data) {
     nlohmann::json j;
     j["reference"] = {{"samples", data.samples},
+                      {"rays_per_pixel", truthRays(data.samples, lightsSized(data))},
                       {"seconds", data.referenceSeconds},
                       {"rays_per_second", data.raysPerSecond},
                       {"lights", data.lights},
@@ -388,6 +398,8 @@ nlohmann::json metricsJson(const ReportData& data) {
     }
     j["techniques"] = techniques;
     j["notes"] = nlohmann::json::array();
+    if (const std::string note = hardTruthNote(data); !note.empty())
+        j["notes"].push_back(note);
     for (const ReportRow& row : data.rows)
         if (row.skipped.empty()) { // the truth, and so the counts, are the same for every row
             if (!fewPixelsNote(row.metrics).empty())

@@ -27,6 +27,7 @@ struct ReportRow {
     std::vector<uint8_t> imagePng, visibilityPng, heatmapPng; // at page size (page_image.h)
     std::string imageFile, heatmapFile; // the full-size files beside report.html; may be empty
     std::string skipped;  // why it did not run (the device cannot hold it); empty: it ran
+    bool modelsLightSize = false; // its penumbra follows the light's size (pcss, vssm, ...)
     double shimmer = NAN; // mean frame-to-frame change along the camera path; NaN: no path
     // Virtual maps along the path: pages each frame rendered and those resident (else empty).
     std::vector<uint32_t> pathPagesRendered, pathPagesResident;
@@ -37,9 +38,12 @@ struct ReportData {
     std::string scene, device, driver; // e.g. "builtin:showcase", "llvmpipe (...)"
     uint32_t width = 0, height = 0, shadowMapSize = 0;
     uint32_t pageScale = 1; // the images are shown reduced by this factor (pageScale())
-    uint32_t samples = 0;   // reference rays per pixel and light
+    uint32_t samples = 0;   // reference rays per pixel towards a light with a size
     double referenceSeconds = 0, raysPerSecond = 0;
     std::vector<std::string> lights; // one description per shadow-casting light
+    // Per light: whether it has a size (the truth traces `samples` rays towards it, else one
+    // exact ray: truth_notes.h); empty: every light has one.
+    std::vector<bool> lightSized;
     std::string cameraPath;          // "dolly", "orbit", "sun"; empty: no shimmer measured
     uint32_t pathFrames = 0;
     std::vector<uint8_t> referenceVisibilityPng;

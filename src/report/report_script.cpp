@@ -162,7 +162,7 @@ table.results { font-size: 13.5px; }
 table.results th, table.results td { padding: 5px 6px; }
 table.results .group, table.results td.first { border-left: 1px solid var(--line); }
 td.name { text-align: left; max-width: 190px; }
-table.results td .count { color: var(--muted); font-size: 11px; }
+table.results td .count { color: var(--muted); font-size: 11px; white-space: normal; }
 td.name .params { color: var(--muted); font-weight: 400; font-size: 12px; overflow: hidden;
   text-overflow: ellipsis; white-space: nowrap; max-width: 190px; }
 .plot-switch { display: flex; gap: 16px; margin-bottom: 8px; font-size: 14px; }

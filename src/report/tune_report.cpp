@@ -2,6 +2,7 @@
 
 #include "report/html_report.h"
 #include "report/report_plot.h"
+#include "report/truth_notes.h"
 
 #include <fmt/format.h>
 
@@ -159,6 +160,7 @@ nlohmann::json tuneJson(const TuneData& d) {
             {"height", d.height},
             {"shadow_map_size", d.shadowMapSize},
             {"samples", d.samples},
+            {"rays_per_pixel", truthRays(d.samples, d.lightSized)},
             {"truth_seconds", d.truthSeconds},
             {"objective", "acne_beyond_blur + leak_beyond_blur"},
             {"candidates", candidates},
@@ -178,7 +180,7 @@ std::string tuneHtml(const TuneData& d) {
         "th{{background:#eee}}td.l{{text-align:left}}tr.rec td{{background:#e6f4e6}}"
         "tr.def td{{font-weight:bold}}code{{background:#f3f3f3;padding:2px 4px}}</style></head>"
         "<body><h1>penumbra tune: {} on {}</h1><p>{} candidate settings on {} view(s), {}x{}, "
-        "shadow map {}, truth {} rays per pixel and light ({:.1f} s, traced once per view), {}."
+        "shadow map {}, truth {} ({:.1f} s, traced once per view), {}."
         "</p><p>Acne: truly lit pixels (ground truth 1) the technique darkens below 0.9; leak: "
         "truly shadowed pixels it lights above 0.1; both counted beyond the technique's blur "
         "band (its declared filter radius on the screen, 2 to 8 pixels from the truth's shadow "
@@ -187,8 +189,8 @@ std::string tuneHtml(const TuneData& d) {
         "<code>{}</code>"
         "</p>",
         escapeHtml(d.technique), escapeHtml(d.scene), escapeHtml(d.technique), escapeHtml(d.scene),
-        d.candidates.size(), d.views.size(), d.width, d.height, d.shadowMapSize, d.samples,
-        d.truthSeconds, escapeHtml(d.device),
+        d.candidates.size(), d.views.size(), d.width, d.height, d.shadowMapSize,
+        escapeHtml(truthRaysText(d.samples, d.lightSized)), d.truthSeconds, escapeHtml(d.device),
         setLine.empty() ? "the defaults" : escapeHtml(setLine));
     html += frontChart(d);
     html += "<p>Red: the front (no other setting has both less acne and less leak). Black ring: "

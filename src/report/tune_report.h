@@ -29,6 +29,7 @@ struct TuneData {
     std::vector<std::string> views;    // camera names ("" : the scene's default view)
     std::vector<std::string> baseSets; // --set given, applied to every candidate
     uint32_t width = 0, height = 0, shadowMapSize = 0, samples = 0;
+    std::vector<bool> lightSized; // per shadow-casting light: has a size (truth_notes.h)
     double truthSeconds = 0.0;
     std::vector<TuneCandidate> candidates;
     size_t recommended = 0, defaults = 0; // indices into candidates

@@ -40,8 +40,15 @@ def test_arrays_have_the_contract_shapes_dtypes_and_nan_background():
     assert not background[-1].any(), "the ground fills the bottom row"
     assert np.array_equal(np.isnan(v), background)
     assert np.nanmin(v) >= 0 and np.nanmax(v) <= 1
-    assert set(result.gpu_ms) >= {"shadow", "gbuffer", "composite"}
+    assert set(result.gpu_ms) >= {"shadow", "gbuffer", "composite", "total"}
     assert all(ms >= 0 for ms in result.gpu_ms.values())
+    passes = {k: v for k, v in result.gpu_ms.items() if k != "total"}
+    assert result.gpu_ms["total"] == pytest.approx(sum(passes.values()), rel=1e-12)
+    assert result.gpu_ms["total"] > max(passes.values()), "every pass takes some time"
+    frames = result.gpu_ms_per_frame
+    assert set(frames) == set(result.gpu_ms)
+    assert frames["total"] == pytest.approx(
+        [sum(f) for f in zip(*(v for k, v in frames.items() if k != "total"))], rel=1e-12)
     assert result.parameters["bias.mode"] == "adaptive"
 
 
@@ -79,6 +86,8 @@ def test_metrics_equal_compares_metrics_json(renderer, asset, tmp_path):
             if key != "gpu_ms":  # times differ from run to run; everything else is exact
                 assert ours[key] == theirs[key], f"{row}: {key}"
         assert set(ours["gpu_ms"]) == set(theirs["gpu_ms"])
+        result = renderer.render(row, frames=1)
+        assert penumbra.metrics(result, truth)["gpu_ms"] == result.gpu_ms, "one total, one sum"
 
 
 def test_metrics_read_the_arrays_as_they_are(renderer):

@@ -588,6 +588,28 @@ def test_the_coverage_map_sends_the_tools_to_their_tests():
     assert rm.labels_for("tools/fuzz_cli.py", rules, all_labels) == all_labels
 
 
+def test_every_hand_written_mutation_names_labels_that_tests_carry():
+    # A label no test carries runs nothing: the mutant would survive unseen.
+    all_labels, _ = rm.load_coverage(ROOT / "tests" / "mutations" / "coverage.toml")
+    mutations = mutation_test.load_mutations(ROOT / "tests" / "mutations")
+    assert len(mutations) > 500
+    mutation_test.check_labels(mutations, all_labels)
+    bad = [dict(mutations[0], labels=["frame"])]
+    with pytest.raises(mutation_test.ListError, match="no test carries the label.s. frame"):
+        mutation_test.check_labels(bad, all_labels)
+
+
+def test_every_parameter_table_is_seen_by_the_range_tests():
+    # Parameters.EveryRangeIsInclusiveAtBothEndsAndNoWider (label params) reads every module's
+    # table: a default moved past its range fails there, and only there.
+    all_labels, rules = rm.load_coverage(ROOT / "tests" / "mutations" / "coverage.toml")
+    tables = [p for p in sorted((ROOT / "src").rglob("*.cpp")) if ".defaultValue" in p.read_text()]
+    assert len(tables) >= 10
+    for path in tables:
+        rel = path.relative_to(ROOT).as_posix()
+        assert "params" in rm.labels_for(rel, rules, all_labels), rel
+
+
 # --- mutants in mutation_test.py's shape ---------------------------------------------------------
 
 TWICE = "{\n        x = y + 1;\n    x = y + 1;\n    x = y + 1;\n}\n"
@@ -957,6 +979,8 @@ def test_try_mutant_builds_runs_the_labels_then_the_rest(monkeypatch, tmp_path):
 def write_list(directory, text):
     directory.mkdir(parents=True, exist_ok=True)
     (directory / "a.toml").write_text(text)
+    coverage = ROOT / "tests" / "mutations" / "coverage.toml"  # the labels the lists may name
+    (directory / "coverage.toml").write_text(coverage.read_text())
     return directory
 
 
