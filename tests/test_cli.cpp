@@ -314,6 +314,12 @@ TEST(Cli, RenderWithTheDistanceFieldWritesItsSlice) {
     EXPECT_EQ(be32(20), scale * voxels[1].get<uint32_t>());
     EXPECT_GE(std::max(be32(16), be32(20)), 512u);
     EXPECT_NE(r.out.find("distance field"), std::string::npos);
+    // The progress line names the size built, as stats.json does.
+    const std::string built = "building the distance field: " +
+                              std::to_string(voxels[0].get<uint32_t>()) + "x" +
+                              std::to_string(voxels[1].get<uint32_t>()) + "x" +
+                              std::to_string(voxels[2].get<uint32_t>()) + " voxels";
+    EXPECT_NE(r.err.find(built), std::string::npos) << r.err;
 
     for (const std::vector<std::string>& bad :
          {std::vector<std::string>{"--field-slice", "w"},

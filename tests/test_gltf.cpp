@@ -72,6 +72,42 @@ TEST(Gltf, StripsAndFansBecomeTriangleLists) {
     }
 }
 
+// Triangles without area are dropped with one warning that counts them and names the meshes
+// most come from (the three largest, then the rest summed); a scene without any gets none.
+TEST(Gltf, TrianglesWithoutAreaAreCountedAndTheirMeshesNamed) {
+    GltfBuilder b;
+    b.ground();
+    // Six vertices on a line: a strip of four triangles, every one without area.
+    const int line = b.positions({0, 1, 0, 1, 1, 0, 2, 1, 0, 3, 1, 0, 4, 1, 0, 5, 1, 0});
+    // One real triangle and one repeating a corner.
+    const int p = b.positions({0, 2, 0, 1, 2, 0, 0, 2, 1});
+    const int someFlat =
+        b.accessor(b.view(std::vector<uint16_t>{0, 2, 1, 0, 0, 1}), 5123, 6, "SCALAR");
+    const int meshes[] = {b.mesh(line, -1, 5), b.mesh(p, someFlat), b.mesh(line, -1, 5),
+                          b.mesh(line, -1, 5), b.mesh(p, someFlat)};
+    const char* names[] = {"wire", "chip", "", "rail", "chip2"};
+    for (int k = 0; k < 5; ++k) {
+        if (*names[k])
+            b.j["meshes"][meshes[k]]["name"] = names[k];
+        b.node({{"mesh", meshes[k]}});
+    }
+    std::vector<std::string> warnings;
+    const Scene s = load(b.writeGltf(dir() / "flat.gltf"), &warnings);
+    EXPECT_EQ(s.triangleCount(), 2u + 2u) << "the ground and the two real triangles";
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("flat.gltf: 14 triangles without area"), std::string::npos)
+        << warnings[0];
+    EXPECT_NE(warnings[0].find("dropped: 4 in meshes[1] 'wire', 4 in meshes[3], 4 in meshes[4] "
+                               "'rail', 2 in 2 other meshes"),
+              std::string::npos)
+        << warnings[0];
+
+    GltfBuilder clean = floatingQuad();
+    warnings.clear();
+    load(clean.writeGltf(dir() / "clean.gltf"), &warnings);
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+}
+
 TEST(Gltf, EveryIndexComponentTypeAndStridedSparsePositions) {
     GltfBuilder b = componentTypes();
     const Scene s = load(b.writeGltf(dir() / "types.gltf"));

@@ -204,6 +204,10 @@ DistanceField buildDistanceField(const vk::Context& ctx, FramePipelines& pipelin
     const auto cpuStart = std::chrono::steady_clock::now();
     DistanceField field{.layout = fieldFits(ctx, scene.bounds(), resolution)};
     const shadows::FieldLayout& layout = field.layout;
+    if (progress) // the size chosen, not sdf.resolution's 0 for "automatic"
+        progress(fmt::format("building the distance field: {}x{}x{} voxels of {:.3g} units{}",
+                             layout.size.x, layout.size.y, layout.size.z, layout.voxel,
+                             resolution == 0 ? " (sdf.resolution automatic)" : ""));
     field.thickness = thicknessVoxels * layout.voxel;
     const shadows::FieldGeometry geometry = shadows::fieldGeometry(scene, layout, field.thickness);
     field.sceneTriangles = geometry.sceneTriangles;

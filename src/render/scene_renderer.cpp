@@ -154,9 +154,6 @@ SceneRenderer::Impl::fieldFor(const ParameterValues& p, const ProgressFn& progre
                                              p.number("sdf.thickness")};
     built = !field || fieldKey != wanted;
     if (built) {
-        if (progress)
-            progress(fmt::format("building the distance field ({} voxels on the longest axis)",
-                                 wanted.first));
         VK_CHECK(vkDeviceWaitIdle(ctx().device())); // a frame in flight may still trace it
         field.reset();                              // its memory first
         field = render::buildDistanceField(ctx(), pipelines(), scene, wanted.first,

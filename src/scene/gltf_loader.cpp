@@ -10,14 +10,17 @@
 #include "scene/gltf_images.h"
 #include "scene/gltf_validate.h"
 #include "scene/interior.h"
+#include "scene/sanitize.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 
 namespace penumbra {
 namespace {
@@ -120,6 +123,7 @@ struct Flattener {
     std::vector<int> texCoordSet; // per material: the TEXCOORD_n its base-colour texture reads
     uint32_t defaultMaterial = 0; // for primitives without one
     size_t skippedPointsOrLines = 0;
+    std::map<size_t, size_t> unusableByMesh; // mesh index -> triangles dropInvalidTriangles drops
 
     void warn(const std::string& w) const {
         if (options.warnings)
@@ -226,8 +230,43 @@ struct Flattener {
             scene.vertices[v].normal =
                 glm::dot(n, n) > 0.0f ? glm::normalize(n) : glm::vec3(0, 1, 0);
         }
+        for (size_t t = 0; t + 2 < tri.size(); t += 3)
+            if (!triangleIsUsable(scene.vertices[base + tri[t]].position,
+                                  scene.vertices[base + tri[t + 1]].position,
+                                  scene.vertices[base + tri[t + 2]].position))
+                ++unusableByMesh[meshIndex];
         for (uint32_t i : tri)
             scene.indices.push_back(base + i);
+    }
+
+    // One line for every triangle the scene loses: how many, and the meshes most of them come
+    // from (the three largest counts by name, then the rest summed).
+    void warnUnusable() const {
+        size_t total = 0;
+        std::vector<std::pair<size_t, size_t>> meshes; // count, mesh index
+        for (const auto& [mesh, n] : unusableByMesh) {
+            total += n;
+            meshes.emplace_back(n, mesh);
+        }
+        if (total == 0)
+            return;
+        std::stable_sort(meshes.begin(), meshes.end(),
+                         [](const auto& a, const auto& b) { return a.first > b.first; });
+        std::string where;
+        for (size_t k = 0; k < meshes.size() && k < 3; ++k) {
+            const auto [n, mesh] = meshes[k];
+            const std::string& name = m.meshes[mesh].name;
+            where += fmt::format("{}{} in meshes[{}]{}", k == 0 ? "" : ", ", n, mesh,
+                                 name.empty() ? "" : fmt::format(" '{}'", name));
+        }
+        if (meshes.size() > 3) {
+            size_t rest = 0;
+            for (size_t k = 3; k < meshes.size(); ++k)
+                rest += meshes[k].first;
+            where += fmt::format(", {} in {} other meshes", rest, meshes.size() - 3);
+        }
+        warn(fmt::format("{} triangle{} without area (or past the coordinate limit) dropped: {}",
+                         total, total == 1 ? "" : "s", where));
     }
 
     // A vertex attribute as count x size floats; empty when the primitive lacks it.
@@ -390,6 +429,7 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
     flat.texCoordSet.push_back(0);
     if (!model.scenes.empty())
         flat.walk(model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes);
+    flat.warnUnusable();
     dropInvalidTriangles(scene);
     if (scene.triangleCount() == 0)
         throw InputError(file.string(),

@@ -1,3 +1,5 @@
+#include "scene/sanitize.h"
+
 #include "penumbra/scene.h"
 
 #include <cmath>
@@ -13,7 +15,17 @@ bool usable(const glm::vec3& p) {
     return true;
 }
 
+glm::dvec3 areaNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    // In double: float cross products of large, nearly parallel edges round to zero.
+    return glm::cross(glm::dvec3(b - a), glm::dvec3(c - a));
+}
+
 } // namespace
+
+bool triangleIsUsable(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    const glm::dvec3 n = areaNormal(a, b, c);
+    return usable(a) && usable(b) && usable(c) && glm::dot(n, n) > 0.0;
+}
 
 size_t dropInvalidTriangles(Scene& scene) {
     const size_t vertexCount = scene.vertices.size();
@@ -29,12 +41,11 @@ size_t dropInvalidTriangles(Scene& scene) {
         const glm::vec3& a = scene.vertices[i[0]].position;
         const glm::vec3& b = scene.vertices[i[1]].position;
         const glm::vec3& c = scene.vertices[i[2]].position;
-        // Area in double: float cross products of large, nearly parallel edges round to zero.
-        const glm::dvec3 n = glm::cross(glm::dvec3(b - a), glm::dvec3(c - a));
-        if (!usable(a) || !usable(b) || !usable(c) || glm::dot(n, n) <= 0.0) {
+        if (!triangleIsUsable(a, b, c)) {
             ++dropped;
             continue;
         }
+        const glm::dvec3 n = areaNormal(a, b, c);
         kept.insert(kept.end(), i, i + 3);
         const glm::vec3 face = glm::vec3(glm::normalize(n));
         for (uint32_t v : i) {
