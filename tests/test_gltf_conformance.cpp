@@ -185,6 +185,23 @@ INSTANTIATE_TEST_SUITE_P(
                                              {"bufferView", b.j["bufferViews"].size() - 1}});
              }),
              "buffers[1]: no uri and so no data; nothing drawn reads it, so it is left out"},
+        // A mesh no node places reads it, beside a node without a mesh: a missing index is no
+        // index, not the second mesh.
+        Case{"buffer_without_uri_read_by_a_mesh_no_node_places", gltf([](GltfBuilder& b) {
+                 b.j["buffers"] = J::array({J::object(), {{"byteLength", 36}}});
+                 b.j["bufferViews"].push_back({{"buffer", 1}, {"byteLength", 36}});
+                 b.j["accessors"].push_back({{"type", "VEC3"},
+                                             {"componentType", 5126},
+                                             {"count", 3},
+                                             {"bufferView", b.j["bufferViews"].size() - 1},
+                                             {"min", {0, 0, 0}},
+                                             {"max", {1, 1, 1}}});
+                 b.j["meshes"].push_back(
+                     {{"primitives",
+                       J::array({{{"attributes", {{"POSITION", b.j["accessors"].size() - 1}}}}})}});
+                 b.node({{"name", "empty"}});
+             }),
+             "buffers[1]: no uri and so no data; nothing drawn reads it, so it is left out"},
         Case{"glb_with_bytes_after_its_length", // the validator's GLB_EXTRA_DATA
              glb([](GltfBuilder&) {}, [](std::vector<uint8_t>& v) { v.push_back(0); }),
              "GLB: 1 bytes after the header's length"},

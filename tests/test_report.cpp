@@ -476,6 +476,42 @@ TEST(ReportPlot, AxesTickAtRoundNumbers) {
     EXPECT_EQ(none.max, 1.0);
 }
 
+// On both cost axes every point and grid line lies inside the plot (x from 70 to 740), in the
+// order of the costs; on the logarithmic one the geometric mean of two costs lies halfway
+// between them. Costs that straddle 1 ms (0.2 to 50): log10 of the axis' ends differ in sign.
+TEST(ReportPlot, CostsLieInsideThePlotOnBothAxes) {
+    std::vector<ReportRow> rows;
+    const double costs[] = {0.2, std::sqrt(0.2 * 50.0), 50.0};
+    for (const double ms : costs)
+        rows.push_back(makeRow("r" + std::to_string(rows.size()), 0.1, {{"shadow", ms}}));
+    auto numbers = [](const std::string& svg, const std::string& key) {
+        std::vector<double> xs;
+        for (size_t at = svg.find(key); at != std::string::npos; at = svg.find(key, at + 1))
+            xs.push_back(std::stod(svg.substr(at + key.size())));
+        return xs;
+    };
+    for (const bool log : {false, true}) {
+        const std::string svg = errorVsCostSvg(rows, log);
+        const std::vector<double> cx = numbers(svg, "<circle cx=\""),
+                                  grid = numbers(svg, "<line class=\"grid\" x1=\"");
+        ASSERT_EQ(cx.size(), 3u);
+        for (const double x : cx) {
+            EXPECT_GE(x, 70.0 - 0.05) << log;
+            EXPECT_LE(x, 740.0 + 0.05) << log;
+        }
+        EXPECT_LT(cx[0], cx[1]);
+        EXPECT_LT(cx[1], cx[2]);
+        for (const double x : grid) {
+            EXPECT_GE(x, 70.0 - 0.05) << log;
+            EXPECT_LE(x, 740.0 + 0.05) << log;
+        }
+        if (log) {
+            EXPECT_NEAR(cx[1], 0.5 * (cx[0] + cx[2]), 0.11) << "the geometric mean halfway";
+            EXPECT_GT(cx[2] - cx[0], 0.5 * 670) << "the costs span most of the axis";
+        }
+    }
+}
+
 TEST(HtmlReport, PlotHandlesASingleZeroRow) {
     ReportData d;
     d.rows.push_back(ReportRow{.name = "none"});
