@@ -331,6 +331,25 @@ TEST(TruthNotes, SoftRowsAgainstAHardTruthGetANote) {
     EXPECT_NE(tuneHtml(t).find("1 exact ray per pixel"), std::string::npos);
 }
 
+// The cost columns group the passes: the shadow maps' (the depth pass and the technique's own),
+// the per-pixel ones (visibility, composite, the contact layer), and the total of every pass,
+// the G-buffer's too, worked out by hand.
+TEST(HtmlReport, CostColumnsGroupThePasses) {
+    ReportData d = makeReport();
+    d.rows.resize(1);
+    d.rows[0].gpuMs = {{"shadow", 0.5},      {"blur", 0.25},      {"gbuffer", 2.0},
+                       {"visibility", 1.0},  {"composite", 0.125}, {"contact_march", 0.0625}};
+    const std::string html = renderHtmlReport(d);
+    EXPECT_NE(html.find("<td data-value=\"0.75\" class=\"first\">0.750</td>"), std::string::npos)
+        << "shadow + blur";
+    EXPECT_NE(html.find("<td data-value=\"1.1875\">"), std::string::npos)
+        << "visibility + composite + contact_march";
+    EXPECT_NE(html.find("<td data-value=\"3.9375\" title=\"shadow 0.500, blur 0.250, gbuffer "
+                        "2.000, visibility 1.000, composite 0.125, contact_march 0.062\">"),
+              std::string::npos)
+        << "every pass";
+}
+
 // The best value of a column is marked only where the rows differ: the lower RMSE of two, not
 // a Max every row shares, nor a column of one row.
 TEST(HtmlReport, TheBestIsMarkedOnlyWhereValuesDiffer) {
