@@ -256,6 +256,25 @@ TEST(Framing, DoubleSidedMakesEveryMaterialDoubleSided) {
         EXPECT_TRUE(m.doubleSided) << m.name;
 }
 
+// The footprint a room covers is the box of the walls its rays meet, wherever in the room the
+// candidate stands: a room the width of the ground along one side covers 10 x 3.4 of 10 x 10,
+// measured from a candidate off its centre (a box taken through the candidate, mirrored, would
+// poke out of the ground and cover less).
+TEST(Framing, ARoomsCoverageIsTheBoxOfItsWalls) {
+    Scene s;
+    MeshBuilder mb(s);
+    const uint32_t m = mb.material("m", glm::vec3(0.5f));
+    mb.quad({-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}, m);
+    mb.box(boxAt({0, 1, -3.3f}, glm::vec3(10.0f, 2.0f, 3.4f)), m);
+    for (size_t t = 6; t + 2 < s.indices.size(); t += 3)
+        std::swap(s.indices[t + 1], s.indices[t + 2]); // walls facing in
+    const ViewMeasure v = measureView(s, subjectBounds(s));
+    ASSERT_TRUE(v.room.has_value());
+    const glm::vec2 offCentre(v.room->position.x, v.room->position.z + 3.3f);
+    EXPECT_GT(glm::length(offCentre), 0.05f) << "the test needs a candidate off the centre";
+    EXPECT_NEAR(v.room->coverage, 10.0f * 3.4f / 100.0f, 2e-3f);
+}
+
 TEST(Framing, AnInsideOutBoxOnAWideGroundIsAMisWoundModelNotARoom) {
     Scene s;
     MeshBuilder mb(s);
