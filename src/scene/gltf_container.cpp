@@ -20,15 +20,16 @@ namespace {
 constexpr uint32_t kGlbMagic = 0x46546C67;  // "glTF"
 constexpr uint32_t kChunkJson = 0x4E4F534A; // "JSON"
 constexpr uint32_t kChunkBin = 0x004E4942;  // "BIN\0"
-// KHR_texture_transform is not here: texture coordinates are used untransformed, so an asset
-// that requires it would render (and cast alpha-tested shadows) wrongly.
+// KHR_texture_transform: on the base colour (its alpha tests holes too), applied to the vertices'
+// coordinates at load time.
 // KHR_texture_basisu and EXT_texture_webp: their images are not decoded, and their textures
 // fall back to the colour factor with a warning (shadows do not depend on them).
-constexpr std::array<std::string_view, 8> kSupportedRequired = {
+constexpr std::array<std::string_view, 9> kSupportedRequired = {
     "KHR_lights_punctual",        "KHR_materials_emissive_strength",
     "KHR_materials_unlit",        "KHR_mesh_quantization",
     "KHR_draco_mesh_compression", "EXT_meshopt_compression",
-    "KHR_texture_basisu",         "EXT_texture_webp"};
+    "KHR_texture_basisu",         "EXT_texture_webp",
+    "KHR_texture_transform"};
 
 uint32_t readU32(const std::vector<uint8_t>& b, size_t at) {
     uint32_t v = 0;

@@ -115,12 +115,72 @@ double extraNumber(const tinygltf::Value& extras, const char* key, double fallba
     return extras.Get(key).GetNumberAsDouble();
 }
 
+// KHR_texture_transform on a textureInfo: uv' = T R S uv (offset, rotation counter-clockwise in
+// radians, scale), as a 2x3 matrix, and the texture coordinate set it reads.
+struct UvTransform {
+    glm::vec2 u{1, 0}, v{0, 1}, offset{0, 0}; // uv' = u * uv.x + v * uv.y + offset
+    int texCoord = 0;
+    glm::vec2 apply(glm::vec2 uv) const { return u * uv.x + v * uv.y + offset; }
+};
+
+// The extension's numbers, each checked: `count` finite numbers at `key`, else the default.
+std::vector<double> transformNumbers(const std::filesystem::path& file, const std::string& path,
+                                     const tinygltf::Value& ext, const char* key, size_t count,
+                                     std::vector<double> fallback) {
+    if (!ext.Has(key))
+        return fallback;
+    const tinygltf::Value& v = ext.Get(key);
+    std::vector<double> out;
+    if (count == 1 && v.IsNumber())
+        out.push_back(v.GetNumberAsDouble());
+    else if (count > 1 && v.IsArray() && v.ArrayLen() == count)
+        for (size_t i = 0; i < count; ++i)
+            if (v.Get(static_cast<int>(i)).IsNumber())
+                out.push_back(v.Get(static_cast<int>(i)).GetNumberAsDouble());
+    if (out.size() != count || !std::all_of(out.begin(), out.end(), [](double x) {
+            return std::isfinite(x) && std::abs(x) < 1e15;
+        }))
+        throw InputError(file.string(),
+                         fmt::format("{}.{}: {} expected", path, key,
+                                     count == 1 ? "a finite number"
+                                                : fmt::format("{} finite numbers", count)));
+    return out;
+}
+
+UvTransform uvTransformOf(const std::filesystem::path& file, const std::string& path,
+                          const tinygltf::TextureInfo& info) {
+    UvTransform t{.texCoord = info.texCoord};
+    const auto e = info.extensions.find("KHR_texture_transform");
+    if (e == info.extensions.end())
+        return t;
+    const std::string at = path + ".extensions.KHR_texture_transform";
+    if (!e->second.IsObject())
+        throw InputError(file.string(), at + ": an object is expected");
+    const std::vector<double> offset = transformNumbers(file, at, e->second, "offset", 2, {0, 0});
+    const double rotation = transformNumbers(file, at, e->second, "rotation", 1, {0})[0];
+    const std::vector<double> scale = transformNumbers(file, at, e->second, "scale", 2, {1, 1});
+    if (e->second.Has("texCoord")) {
+        const tinygltf::Value& c = e->second.Get("texCoord");
+        if (!c.IsInt() || c.GetNumberAsInt() < 0)
+            throw InputError(file.string(), at + ".texCoord: a non-negative integer expected");
+        t.texCoord = c.GetNumberAsInt();
+    }
+    // The ratified matrix: rotating the coordinates counter-clockwise turns the image clockwise
+    // (its example: offset (0, 1), a quarter turn and half scale read the lower-left quadrant).
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    t.u = glm::vec2(glm::dvec2(c * scale[0], -s * scale[0]));
+    t.v = glm::vec2(glm::dvec2(s * scale[1], c * scale[1]));
+    t.offset = glm::vec2(glm::dvec2(offset[0], offset[1]));
+    return t;
+}
+
 struct Flattener {
     const std::filesystem::path& file;
     const tinygltf::Model& m;
     Scene& scene;
     const GltfOptions& options;
-    std::vector<int> texCoordSet; // per material: the TEXCOORD_n its base-colour texture reads
+    std::vector<UvTransform> uvTransform; // per material: its base-colour texture's set and
+                                          // KHR_texture_transform
     uint32_t defaultMaterial = 0; // for primitives without one
     size_t skippedPointsOrLines = 0;
     std::map<size_t, size_t> unusableByMesh; // mesh index -> triangles dropInvalidTriangles drops
@@ -190,8 +250,9 @@ struct Flattener {
         }
         const uint32_t material =
             p.material >= 0 ? static_cast<uint32_t>(p.material) : defaultMaterial;
+        const UvTransform& transform = uvTransform[material];
         const std::vector<float> uv =
-            attribute(p, fmt::format("TEXCOORD_{}", texCoordSet[material]), count, 2);
+            attribute(p, fmt::format("TEXCOORD_{}", transform.texCoord), count, 2);
         const int colorAccessor =
             p.attributes.contains("COLOR_0") ? p.attributes.at("COLOR_0") : -1;
         const size_t colorSize =
@@ -207,8 +268,8 @@ struct Flattener {
             if (!normals.empty())
                 n = normalMatrix * n;
             Vertex out{glm::vec3(world * glm::vec4(local, 1.0f)), n, material};
-            if (!uv.empty())
-                out.uv = glm::vec2(uv[2 * v], uv[2 * v + 1]);
+            if (!uv.empty()) // affine, so transforming the corners transforms every point
+                out.uv = transform.apply(glm::vec2(uv[2 * v], uv[2 * v + 1]));
             if (!color.empty())
                 out.color = glm::vec4(color[colorSize * v], color[colorSize * v + 1],
                                       color[colorSize * v + 2],
@@ -420,13 +481,17 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
              .alphaMode = mode,
              .alphaCutoff = static_cast<float>(mat.alphaCutoff),
              .doubleSided = mat.doubleSided});
-        flat.texCoordSet.push_back(texture.texCoord);
+        flat.uvTransform.push_back(uvTransformOf(
+            file,
+            fmt::format("materials[{}].pbrMetallicRoughness.baseColorTexture",
+                        scene.materials.size() - 1),
+            texture));
     }
     // glTF's default material: white, opaque, single-sided.
     flat.defaultMaterial = static_cast<uint32_t>(scene.materials.size());
     scene.materials.push_back(
         {.name = "default", .baseColor = glm::vec4(1.0f), .doubleSided = false});
-    flat.texCoordSet.push_back(0);
+    flat.uvTransform.push_back(UvTransform{});
     if (!model.scenes.empty())
         flat.walk(model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes);
     flat.warnUnusable();

@@ -1,6 +1,6 @@
 // The parts of a glTF asset Penumbra does not use: animations, skins, camera aspect ratios and
 // material extensions. Their references are checked (a bad one is reported, never followed) and
-// their presence is said once per class.
+// their presence is said once per class. (KHR_texture_transform on the base colour is used.)
 #include "scene/gltf_validate.h"
 
 #include <fmt/format.h>
@@ -8,16 +8,6 @@
 namespace penumbra::gltf {
 
 void reportUnusedParts(const tinygltf::Model& m, OnceWarnings& once) {
-    for (size_t i = 0; i < m.materials.size(); ++i) {
-        const auto& pbr = m.materials[i].pbrMetallicRoughness;
-        if (pbr.baseColorTexture.extensions.contains("KHR_texture_transform"))
-            once.add(
-                "texture transform",
-                fmt::format("materials[{}].pbrMetallicRoughness.baseColorTexture.extensions."
-                            "KHR_texture_transform",
-                            i),
-                "ignored; texture coordinates (and alpha-tested holes) are used untransformed");
-    }
     const auto accessorRef = [&](const std::string& path, int i, bool required, const char* cls,
                                  const char* part) {
         if ((i < 0 && !required) || (i >= 0 && static_cast<size_t>(i) < m.accessors.size()))
