@@ -377,8 +377,11 @@ TEST(Cli, CompareWritesMetricsForEveryTechnique) {
         EXPECT_TRUE(fs::exists(out / (prefix + ".image.png"))) << name;
         EXPECT_TRUE(fs::exists(out / (prefix + ".heatmap.png"))) << name;
     }
-    for (const char* f : {"report.html", "visibility.pfm", "position.pfm", "normal.pfm"})
+    // One float format by default, OpenEXR: what image tools open, and far smaller than PFM.
+    for (const char* f : {"report.html", "visibility.exr", "position.exr", "normal.exr"})
         EXPECT_TRUE(fs::exists(out / f)) << f;
+    for (const auto& e : fs::directory_iterator(out))
+        EXPECT_NE(e.path().extension(), ".pfm") << e.path().filename();
 }
 
 TEST(Cli, CompareMetricsHeatMapsAndTruthFollowFromTheFilesItWrote) {
@@ -389,7 +392,8 @@ TEST(Cli, CompareMetricsHeatMapsAndTruthFollowFromTheFilesItWrote) {
     const ProcessResult r =
         runCli({"compare", "builtin:showcase", "-o", out.string(), "--techniques",
                 "hard,pcf[box7],pcss", "--width", "96", "--height", "64", "--shadow-map-size",
-                "512", "--frames", "1", "--samples", "16", "--light-angle", "6"});
+                "512", "--frames", "1", "--samples", "16", "--light-angle", "6", "--format",
+                "both"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const FloatImage truthFile = readPfm(out / "visibility.pfm");
     RenderResult g{.width = truthFile.width, .height = truthFile.height};

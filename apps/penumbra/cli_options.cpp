@@ -272,13 +272,17 @@ void addSceneArgument(CLI::App& cmd, std::string& scene) {
 void addFormatOption(CLI::App& cmd, FloatFormat& format) {
     const std::map<std::string, FloatFormat> names{
         {"pfm", FloatFormat::Pfm}, {"exr", FloatFormat::Exr}, {"both", FloatFormat::Both}};
+    std::string shown = "both"; // the command's own default, as `format` holds it
+    for (const auto& [name, f] : names)
+        if (f == format)
+            shown = name;
     cmd.add_option("--format", format,
                    "the float images (visibility, position, normal; compare's differences and "
                    "occluder distances) as `pfm`, `exr` (OpenEXR: 32-bit float, lossless ZIP, "
                    "what tev, Blender, Nuke and OpenImageIO open) or `both`")
         ->transform(CLI::CheckedTransformer(names))
         ->type_name("FORMAT")
-        ->default_str("both");
+        ->default_str(shown);
 }
 
 std::string_view namingExtension(FloatFormat format) {

@@ -91,7 +91,7 @@ void addSceneArgument(CLI::App& cmd, std::string& scene);
 // Which files a float image becomes (`--format`): PFM, OpenEXR or both (the default: PFM is the
 // contract tools depend on, OpenEXR what image tools open).
 enum class FloatFormat { Pfm, Exr, Both };
-// --format pfm|exr|both (render, reference, compare).
+// --format pfm|exr|both (render, reference, compare); the default is what `format` holds.
 void addFormatOption(CLI::App& cmd, FloatFormat& format);
 // The extension stats.json names a float image by: pfm unless only OpenEXR is written.
 std::string_view namingExtension(FloatFormat format);

@@ -35,7 +35,9 @@ struct CompareArgs {
     std::string cameraPath; // empty: no shimmer
     std::string truthCache; // empty: no cache
     uint32_t pathFrames = 8;
-    FloatFormat format = FloatFormat::Both;
+    // OpenEXR alone: what image tools open, and 50 to 250 times smaller than PFM for these
+    // images (docs/cli.md); `--format pfm` or `both` on request.
+    FloatFormat format = FloatFormat::Exr;
 };
 
 // File-name prefix of a row: "pcf[box7]" -> "pcf-box7", "pcf[box3]+contact" -> "pcf-box3-contact".
