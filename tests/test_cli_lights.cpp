@@ -115,8 +115,8 @@ TEST(CliLights, ViewGroundDoubleSidedAndOpenGeometryFromTheCommandLine) {
     ProcessResult r = render({"--technique", "second-depth"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     // The ground quad is open: 2 of its 14 triangles (the box's 12 are closed).
-    EXPECT_NE(r.err.find("2 of 14 triangles lie on open edges and 0 on mis-wound ones; "
-                         "`second-depth`"),
+    EXPECT_NE(r.err.find("2 of 14 triangles lie on surfaces with open edges and 0 on "
+                         "mis-wound ones; `second-depth`"),
               std::string::npos)
         << r.err;
     std::string stats = slurp(out / "stats.json");

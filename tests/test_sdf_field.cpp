@@ -131,6 +131,9 @@ TEST(SdfField, ClosedSurfacesAreFoundByTheirEdges) {
         EXPECT_EQ(c.closed[t], closed) << t;
         EXPECT_EQ(c.flipped[t], t >= boxEnd && t < flippedEnd) << t;
     }
+    // Open by an edge: the quad's 2 and the open box's 10, every one of them (the box's far
+    // faces too, which touch no open edge).
+    EXPECT_EQ(c.openEdged, 2u + 10u);
 
     // An alpha-tested material is never closed: its holes are not in the triangles.
     Scene masked;
@@ -140,6 +143,12 @@ TEST(SdfField, ClosedSurfacesAreFoundByTheirEdges) {
     mm.box(glm::mat4(1.0f), leaf);
     for (bool closed : closedSurfaces(masked).closed)
         EXPECT_FALSE(closed);
+    EXPECT_EQ(closedSurfaces(masked).openEdged, 0u) << "alpha-tested: meant thin, not open";
+    // With one triangle of its 12 gone, a masked box counts as open-edged only when opaque.
+    masked.indices.resize(masked.indices.size() - 3);
+    EXPECT_EQ(closedSurfaces(masked).openEdged, 0u);
+    masked.materials[leaf].alphaMode = AlphaMode::Opaque;
+    EXPECT_EQ(closedSurfaces(masked).openEdged, 11u);
 }
 
 // A column meets a closed mesh's surface an even number of times, entering +1 and leaving -1,

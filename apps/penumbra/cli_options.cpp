@@ -6,6 +6,7 @@
 #include "penumbra/scene.h"
 #include "report/stats.h"
 #include "scene/mesh_closure.h"
+#include "shadows/sdf_field.h"
 
 #include <fmt/format.h>
 
@@ -98,15 +99,18 @@ void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques)
     if (needing.empty())
         return;
     // A few open triangles are a ground quad or a leaf: what the techniques handle as thin
-    // shells. Warned: any mis-wound triangle, or open ones past 1% of the scene.
+    // shells. Warned: any mis-wound triangle, or open ones past 1% of the scene. Open counts
+    // every triangle of a surface that one open edge leaves open, as the `sdf` field takes it
+    // (a helmet with a few gaps is a thin shell whole); alpha-tested cards are meant thin.
     const MeshClosure c = meshClosure(scene);
-    if (c.misWound == 0 && c.open * 100 <= c.triangles)
+    const uint64_t open = shadows::closedSurfaces(scene).openEdged;
+    if (c.misWound == 0 && open * 100 <= c.triangles)
         return;
     std::fprintf(stderr,
-                 "penumbra: warning: scene '%s': %llu of %llu triangles lie on open edges and "
-                 "%llu on mis-wound ones; %s take a model's inside from closed, consistently "
-                 "wound surfaces and may leak or show acne there\n",
-                 scene.name.c_str(), static_cast<unsigned long long>(c.open),
+                 "penumbra: warning: scene '%s': %llu of %llu triangles lie on surfaces with "
+                 "open edges and %llu on mis-wound ones; %s take a model's inside from closed, "
+                 "consistently wound surfaces and may leak or show acne there\n",
+                 scene.name.c_str(), static_cast<unsigned long long>(open),
                  static_cast<unsigned long long>(c.triangles),
                  static_cast<unsigned long long>(c.misWound), needing.c_str());
 }

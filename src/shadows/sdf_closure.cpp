@@ -144,7 +144,7 @@ Closure closedSurfaces(const Scene& scene) {
         for (int k = 0; k < 3; ++k)
             ++directedEdges[edgeKey(w[k], w[(k + 1) % 3])];
     }
-    std::vector<bool> open(welder.next, false);
+    std::vector<bool> open(welder.next, false), edgeOpen(welder.next, false);
     std::vector<double> volume(welder.next, 0.0);
     for (size_t t = 0; t < count; ++t) {
         const auto& w = welded[t];
@@ -161,7 +161,7 @@ Closure closedSurfaces(const Scene& scene) {
             auto back = directedEdges.find(edgeKey(v, u));
             if (directedEdges[edgeKey(u, v)] != 1 || back == directedEdges.end() ||
                 back->second != 1)
-                open[root] = true;
+                open[root] = edgeOpen[root] = true;
         }
         const glm::dvec3 a(scene.vertices[scene.indices[3 * t]].position);
         const glm::dvec3 b(scene.vertices[scene.indices[3 * t + 1]].position);
@@ -169,8 +169,12 @@ Closure closedSurfaces(const Scene& scene) {
         volume[root] += glm::dot(a, glm::cross(b, c)) / 6.0;
     }
     std::vector<uint32_t> rootOf(count);
-    for (size_t t = 0; t < count; ++t)
+    for (size_t t = 0; t < count; ++t) {
         rootOf[t] = findRoot(parent, welded[t][0]);
+        const uint32_t material = scene.vertices[scene.indices[3 * t]].material;
+        const bool alpha = material < scene.materials.size() && scene.materials[material].alphaTested();
+        out.openEdged += edgeOpen[rootOf[t]] && !alpha;
+    }
     for (const Shell& shell : holdingShells(scene, rootOf, open, volume)) {
         open[shell.root] = true;
         out.shells.push_back(shell.warning);

@@ -73,6 +73,9 @@ struct FieldGeometry {
 struct Closure {
     std::vector<bool> closed, flipped;
     std::vector<std::string> shells;
+    // Triangles on connected surfaces left open by an edge (not alpha-tested ones, nor closed
+    // shells): what a warning about open geometry counts.
+    uint64_t openEdged = 0;
 };
 Closure closedSurfaces(const Scene& scene);
 
