@@ -34,7 +34,8 @@ deps:
 	if [ -n "$$missing" ]; then \
 	    echo "penumbra: installing missing packages:" $$missing; \
 	    tools/timed.sh "the missing packages installed" sh -c '$(SUDO) apt-get update -qq && \
-	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends '"$$missing"; \
+	    DEBIAN_FRONTEND=noninteractive $(SUDO) apt-get install -y -qq --no-install-recommends "$$@"' \
+	    sh $$missing; \
 	fi
 
 # The Python module for the current user's /usr/bin/python3: `make build` and `make demo` leave
