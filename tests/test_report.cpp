@@ -325,6 +325,11 @@ TEST(TruthNotes, SoftRowsAgainstAHardTruthGetANote) {
     EXPECT_EQ(hardTruthNote(sized), "");
     EXPECT_EQ(metricsJson(sized)["notes"].size(), 1u);
 
+    ReportData uneven = d;
+    uneven.lightSized = {false}; // one flag for two lights: a programmer's error
+    EXPECT_DEATH(hardTruthNote(uneven), "one per light");
+    EXPECT_DEATH(metricsJson(uneven), "one per light");
+
     TuneData t{.scene = "s", .technique = "pcss", .samples = 32, .lightSized = {false}};
     t.candidates.push_back(TuneCandidate{});
     EXPECT_EQ(tuneJson(t)["rays_per_pixel"], (nlohmann::json{1}));

@@ -2,6 +2,8 @@
 
 #include "report/html_report.h"
 
+#include "penumbra/error.h"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -40,6 +42,8 @@ std::string truthRaysText(uint32_t samples, const std::vector<bool>& sized) {
 }
 
 std::vector<bool> lightsSized(const ReportData& data) {
+    PENUMBRA_CHECK(data.lightSized.empty() || data.lightSized.size() == data.lights.size(),
+                   "a report's light sizes are one per light");
     return data.lightSized.empty() ? std::vector<bool>(data.lights.size(), true)
                                    : data.lightSized;
 }
@@ -47,7 +51,7 @@ std::vector<bool> lightsSized(const ReportData& data) {
 std::string hardTruthNote(const ReportData& data) {
     const std::vector<bool> sized = lightsSized(data);
     std::vector<std::string> hard, soft;
-    for (size_t l = 0; l < sized.size() && l < data.lights.size(); ++l)
+    for (size_t l = 0; l < sized.size(); ++l)
         if (!sized[l]) // "sun: directional, ..." -> "sun"
             hard.push_back(data.lights[l].substr(0, data.lights[l].find(':')));
     for (const ReportRow& row : data.rows)
