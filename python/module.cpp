@@ -128,8 +128,8 @@ struct PyResult {
         for (const PassTime& p : result->passes) {
             d[py::str(p.pass)] = p.frameMs;
             total.resize(std::max(total.size(), p.frameMs.size()), 0.0);
-            for (size_t f = 0; f < p.frameMs.size(); ++f)
-                total[f] += p.frameMs[f];
+            for (size_t f = 0; f < p.frameMs.size(); ++f) // checked: a bound off by one throws
+                total.at(f) += p.frameMs.at(f);
         }
         d["total"] = total;
         return d;
