@@ -315,10 +315,10 @@ TEST(Cli, RenderWithTheDistanceFieldWritesItsSlice) {
     EXPECT_GE(std::max(be32(16), be32(20)), 512u);
     EXPECT_NE(r.out.find("distance field"), std::string::npos);
     // The progress line names the size built, as stats.json does.
-    const std::string built = "building the distance field: " +
-                              std::to_string(voxels[0].get<uint32_t>()) + "x" +
-                              std::to_string(voxels[1].get<uint32_t>()) + "x" +
-                              std::to_string(voxels[2].get<uint32_t>()) + " voxels";
+    const std::string built =
+        "building the distance field: " + std::to_string(voxels[0].get<uint32_t>()) + "x" +
+        std::to_string(voxels[1].get<uint32_t>()) + "x" +
+        std::to_string(voxels[2].get<uint32_t>()) + " voxels";
     EXPECT_NE(r.err.find(built), std::string::npos) << r.err;
 
     for (const std::vector<std::string>& bad :
@@ -389,11 +389,26 @@ TEST(Cli, CompareMetricsHeatMapsAndTruthFollowFromTheFilesItWrote) {
     // G-buffer files and the light size asked for, each row's metrics and heat map from the row's
     // visibility and the truth, on the pixels the light can reach.
     const fs::path out = scratch("compare-consistent");
-    const ProcessResult r =
-        runCli({"compare", "builtin:showcase", "-o", out.string(), "--techniques",
-                "hard,pcf[box7],pcss", "--width", "96", "--height", "64", "--shadow-map-size",
-                "512", "--frames", "1", "--samples", "16", "--light-angle", "6", "--format",
-                "both"});
+    const ProcessResult r = runCli({"compare",
+                                    "builtin:showcase",
+                                    "-o",
+                                    out.string(),
+                                    "--techniques",
+                                    "hard,pcf[box7],pcss",
+                                    "--width",
+                                    "96",
+                                    "--height",
+                                    "64",
+                                    "--shadow-map-size",
+                                    "512",
+                                    "--frames",
+                                    "1",
+                                    "--samples",
+                                    "16",
+                                    "--light-angle",
+                                    "6",
+                                    "--format",
+                                    "both"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const FloatImage truthFile = readPfm(out / "visibility.pfm");
     RenderResult g{.width = truthFile.width, .height = truthFile.height};

@@ -274,9 +274,9 @@ TEST(CliOutputs, ALightWithoutASizeGetsOneExactRayAndSoftRowsANote) {
     const fs::path asset = threeLightAsset(outputScratch("hard-truth-asset"));
     const fs::path out = outputScratch("hard-truth");
     const std::vector<std::string> sizes = {"--light-radius", "0.2", "--light-angle", "0"};
-    std::vector<std::string> args = withView({"compare", asset.string(), "-o", out.string(),
-                                              "--techniques", "pcf,pcss", "--samples", "8",
-                                              "--frames", "1", "--shadow-map-size", "256"});
+    std::vector<std::string> args =
+        withView({"compare", asset.string(), "-o", out.string(), "--techniques", "pcf,pcss",
+                  "--samples", "8", "--frames", "1", "--shadow-map-size", "256"});
     args.insert(args.end(), sizes.begin(), sizes.end());
     ProcessResult r = runCli(args);
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -307,8 +307,7 @@ TEST(CliOutputs, ALightWithoutASizeGetsOneExactRayAndSoftRowsANote) {
     r = runCli(withView({"reference", asset.string(), "-o", traced.string(), "--samples", "8",
                          "--light-radius", "0", "--light-angle", "0", "--format", "pfm"}));
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("1 exact ray per pixel and light (no light has a size"),
-              std::string::npos)
+    EXPECT_NE(r.err.find("1 exact ray per pixel and light (no light has a size"), std::string::npos)
         << r.err;
     const nlohmann::json ref = nlohmann::json::parse(slurp(traced / "reference.json"));
     EXPECT_EQ(ref["rays_per_pixel"], (nlohmann::json{1, 1, 1}));

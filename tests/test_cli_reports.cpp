@@ -160,8 +160,9 @@ window.addEventListener("load", function () { setTimeout(function () {
 } // namespace
 
 // The three reports at 1000, 1400 and 1920 pixels: no sideways scrolling, nothing wider than
-// the window, no table scrolled inside its card (with a 4K frame's pixel counts); report.html's plot labels clear of each other and of the points on both cost
-// axes, its comparer's slider changing the picture, a click on RMSE sorting by it.
+// the window, no table scrolled inside its card (with a 4K frame's pixel counts); report.html's
+// plot labels clear of each other and of the points on both cost axes, its comparer's slider
+// changing the picture, a click on RMSE sorting by it.
 TEST(Cli, ReportsReadAtThreeWidthsWithoutOverlapsInChromium) {
     const fs::path bench = scratch("widths-bench"), tune = scratch("widths-tune");
     ASSERT_EQ(runCli({"bench", "builtin:showcase", "-o", (bench / "b.json").string(),
@@ -182,8 +183,8 @@ TEST(Cli, ReportsReadAtThreeWidthsWithoutOverlapsInChromium) {
             ASSERT_FALSE(found.is_null());
             EXPECT_LE(found["scroll"].get<int>(), found["width"].get<int>()) << found.dump();
             EXPECT_TRUE(found["wide"].empty()) << found["wide"].dump(1);
-            EXPECT_TRUE(found["clipped"].empty()) << "a column scrolled out of its card: "
-                                                  << found["clipped"].dump(1);
+            EXPECT_TRUE(found["clipped"].empty())
+                << "a column scrolled out of its card: " << found["clipped"].dump(1);
             if (page.filename() != "report.html")
                 continue;
             EXPECT_TRUE(found["overlaps"].empty()) << found["overlaps"].dump(1);

@@ -342,8 +342,8 @@ TEST(TruthNotes, SoftRowsAgainstAHardTruthGetANote) {
 TEST(HtmlReport, CostColumnsGroupThePasses) {
     ReportData d = makeReport();
     d.rows.resize(1);
-    d.rows[0].gpuMs = {{"shadow", 0.5},      {"blur", 0.25},      {"gbuffer", 2.0},
-                       {"visibility", 1.0},  {"composite", 0.125}, {"contact_march", 0.0625}};
+    d.rows[0].gpuMs = {{"shadow", 0.5},     {"blur", 0.25},       {"gbuffer", 2.0},
+                       {"visibility", 1.0}, {"composite", 0.125}, {"contact_march", 0.0625}};
     const std::string html = renderHtmlReport(d);
     EXPECT_NE(html.find("<td data-value=\"0.75\" class=\"first\">0.750</td>"), std::string::npos)
         << "shadow + blur";

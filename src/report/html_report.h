@@ -26,9 +26,9 @@ struct ReportRow {
     std::vector<std::pair<std::string, double>> gpuMs;        // pass -> median ms, frame order
     std::vector<uint8_t> imagePng, visibilityPng, heatmapPng; // at page size (page_image.h)
     std::string imageFile, heatmapFile; // the full-size files beside report.html; may be empty
-    std::string skipped;  // why it did not run (the device cannot hold it); empty: it ran
+    std::string skipped;          // why it did not run (the device cannot hold it); empty: it ran
     bool modelsLightSize = false; // its penumbra follows the light's size (pcss, vssm, ...)
-    double shimmer = NAN; // mean frame-to-frame change along the camera path; NaN: no path
+    double shimmer = NAN;         // mean frame-to-frame change along the camera path; NaN: no path
     // Virtual maps along the path: pages each frame rendered and those resident (else empty).
     std::vector<uint32_t> pathPagesRendered, pathPagesResident;
 };
@@ -44,7 +44,7 @@ struct ReportData {
     // Per light: whether it has a size (the truth traces `samples` rays towards it, else one
     // exact ray: truth_notes.h); empty: every light has one.
     std::vector<bool> lightSized;
-    std::string cameraPath;          // "dolly", "orbit", "sun"; empty: no shimmer measured
+    std::string cameraPath; // "dolly", "orbit", "sun"; empty: no shimmer measured
     uint32_t pathFrames = 0;
     std::vector<uint8_t> referenceVisibilityPng;
     std::vector<ReportRow> rows;

@@ -44,8 +44,7 @@ std::string truthRaysText(uint32_t samples, const std::vector<bool>& sized) {
 std::vector<bool> lightsSized(const ReportData& data) {
     PENUMBRA_CHECK(data.lightSized.empty() || data.lightSized.size() == data.lights.size(),
                    "a report's light sizes are one per light");
-    return data.lightSized.empty() ? std::vector<bool>(data.lights.size(), true)
-                                   : data.lightSized;
+    return data.lightSized.empty() ? std::vector<bool>(data.lights.size(), true) : data.lightSized;
 }
 
 std::string hardTruthNote(const ReportData& data) {

@@ -140,10 +140,10 @@ std::vector<double> transformNumbers(const std::filesystem::path& file, const st
     if (out.size() != count || !std::all_of(out.begin(), out.end(), [](double x) {
             return std::isfinite(x) && std::abs(x) < 1e15;
         }))
-        throw InputError(file.string(),
-                         fmt::format("{}.{}: {} expected", path, key,
-                                     count == 1 ? "a finite number"
-                                                : fmt::format("{} finite numbers", count)));
+        throw InputError(
+            file.string(),
+            fmt::format("{}.{}: {} expected", path, key,
+                        count == 1 ? "a finite number" : fmt::format("{} finite numbers", count)));
     return out;
 }
 
@@ -181,7 +181,7 @@ struct Flattener {
     const GltfOptions& options;
     std::vector<UvTransform> uvTransform; // per material: its base-colour texture's set and
                                           // KHR_texture_transform
-    uint32_t defaultMaterial = 0; // for primitives without one
+    uint32_t defaultMaterial = 0;         // for primitives without one
     size_t skippedPointsOrLines = 0;
     std::map<size_t, size_t> unusableByMesh; // mesh index -> triangles dropInvalidTriangles drops
 
@@ -481,11 +481,11 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
              .alphaMode = mode,
              .alphaCutoff = static_cast<float>(mat.alphaCutoff),
              .doubleSided = mat.doubleSided});
-        flat.uvTransform.push_back(uvTransformOf(
-            file,
-            fmt::format("materials[{}].pbrMetallicRoughness.baseColorTexture",
-                        scene.materials.size() - 1),
-            texture));
+        flat.uvTransform.push_back(
+            uvTransformOf(file,
+                          fmt::format("materials[{}].pbrMetallicRoughness.baseColorTexture",
+                                      scene.materials.size() - 1),
+                          texture));
     }
     // glTF's default material: white, opaque, single-sided.
     flat.defaultMaterial = static_cast<uint32_t>(scene.materials.size());

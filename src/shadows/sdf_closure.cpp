@@ -144,7 +144,7 @@ Closure closedSurfaces(const Scene& scene) {
         for (int k = 0; k < 3; ++k)
             ++directedEdges[edgeKey(w[k], w[(k + 1) % 3])];
     }
-    std::vector<bool> open(welder.next, false), edgeOpen(welder.next, false);
+    std::vector<bool> open(welder.next, false), edgeOpen(welder.next, false), alpha(count);
     std::vector<double> volume(welder.next, 0.0);
     for (size_t t = 0; t < count; ++t) {
         const auto& w = welded[t];
@@ -154,7 +154,8 @@ Closure closedSurfaces(const Scene& scene) {
                 ? nullptr
                 : &scene.materials[std::min<size_t>(scene.vertices[scene.indices[3 * t]].material,
                                                     scene.materials.size() - 1)];
-        if (m && m->alphaTested())
+        alpha[t] = m && m->alphaTested();
+        if (alpha[t])
             open[root] = true;
         for (int k = 0; k < 3; ++k) {
             const uint32_t u = w[k], v = w[(k + 1) % 3];
@@ -171,9 +172,7 @@ Closure closedSurfaces(const Scene& scene) {
     std::vector<uint32_t> rootOf(count);
     for (size_t t = 0; t < count; ++t) {
         rootOf[t] = findRoot(parent, welded[t][0]);
-        const uint32_t material = scene.vertices[scene.indices[3 * t]].material;
-        const bool alpha = material < scene.materials.size() && scene.materials[material].alphaTested();
-        out.openEdged += edgeOpen[rootOf[t]] && !alpha;
+        out.openEdged += edgeOpen[rootOf[t]] && !alpha[t];
     }
     for (const Shell& shell : holdingShells(scene, rootOf, open, volume)) {
         open[shell.root] = true;
