@@ -13,6 +13,7 @@
 #include "report/blur_band.h"
 #include "report/html_report.h"
 #include "report/light_mask.h"
+#include "scene/first_picture.h"
 #include "shadows/technique.h"
 
 #include <pybind11/stl.h>
@@ -42,17 +43,24 @@ std::vector<float> toList(const glm::vec3& v) {
 struct PyScene {
     std::shared_ptr<Scene> scene;
     std::vector<std::string> warnings;
+    bool noGround = false; // load's no_ground holds for every edit after it
 
-    static PyScene load(const std::string& path, uint64_t maxFileSize, uint64_t maxTriangles) {
+    // As the CLI loads a scene without scene options: the automatic ground unless noGround.
+    static PyScene load(const std::string& path, uint64_t maxFileSize, uint64_t maxTriangles,
+                        bool noGround) {
         PyScene s;
         s.scene = std::make_shared<Scene>(loadScene(
             path,
             {.maxFileSize = maxFileSize, .maxTriangles = maxTriangles, .warnings = &s.warnings}));
+        s.noGround = noGround;
+        applySceneEdits(*s.scene, {.noGround = noGround});
+        if (s.scene->automaticGround)
+            s.warnings.push_back(automaticGroundNote(*s.scene));
         return s;
     }
-    static PyScene builtin(const std::string& name) {
+    static PyScene builtin(const std::string& name, bool noGround) {
         return load(name.starts_with("builtin:") ? name : "builtin:" + name, uint64_t{1} << 30,
-                    100'000'000);
+                    100'000'000, noGround);
     }
 
     // The CLI's scene options (--sun-dir, --light-pos, --light-dir, --camera-pos, --look-at,
@@ -62,7 +70,8 @@ struct PyScene {
               std::optional<Vec3> lookAt, std::optional<float> fov,
               const std::vector<std::string>& addLight, std::optional<std::string> view,
               bool ground, bool doubleSided) {
-        SceneEdits edits{.ground = ground, .doubleSided = doubleSided};
+        SceneEdits edits{
+            .ground = ground, .noGround = noGround && !ground, .doubleSided = doubleSided};
         if (view)
             edits.view = parseViewChoice(*view);
         for (const std::string& text : addLight)
@@ -326,9 +335,11 @@ PYBIND11_MODULE(penumbra, m) {
     py::class_<PyScene>(m, "Scene", "A scene in memory: a glTF file or a built-in scene.")
         .def_static("load", &PyScene::load, py::arg("path"),
                     py::arg("max_file_size") = uint64_t{1} << 30,
-                    py::arg("max_triangles") = uint64_t{100'000'000},
-                    "Loads a glTF 2.0 file (.gltf, .glb). Raises InputError naming the file.")
-        .def_static("builtin", &PyScene::builtin, py::arg("name"),
+                    py::arg("max_triangles") = uint64_t{100'000'000}, py::arg("no_ground") = false,
+                    "Loads a glTF 2.0 file (.gltf, .glb) as the CLI does: a ground is added "
+                    "when it puts a cast shadow in view (warnings says so) unless no_ground. "
+                    "Raises InputError naming the file.")
+        .def_static("builtin", &PyScene::builtin, py::arg("name"), py::arg("no_ground") = false,
                     "A built-in scene: 'demo', 'showcase', ... (or 'builtin:demo').")
         .def("edit", &PyScene::edit, py::kw_only(), py::arg("sun_dir") = py::none(),
              py::arg("light_pos") = std::map<std::string, Vec3>{},

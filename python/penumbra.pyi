@@ -18,11 +18,17 @@ class Scene:
     """A scene in memory: a glTF file or a built-in scene."""
 
     @staticmethod
-    def load(path: str, max_file_size: int = 1 << 30, max_triangles: int = 100_000_000) -> Scene:
-        """Loads a glTF 2.0 file (.gltf, .glb) or 'builtin:NAME'. Raises InputError naming the
-        file."""
+    def load(
+        path: str,
+        max_file_size: int = 1 << 30,
+        max_triangles: int = 100_000_000,
+        no_ground: bool = False,
+    ) -> Scene:
+        """Loads a glTF 2.0 file (.gltf, .glb) or 'builtin:NAME' as the CLI does: a ground is
+        added where nothing in view receives a cast shadow (warnings says so) unless no_ground.
+        Raises InputError naming the file."""
     @staticmethod
-    def builtin(name: str) -> Scene:
+    def builtin(name: str, no_ground: bool = False) -> Scene:
         """A built-in scene: 'demo', 'showcase', ... (or 'builtin:demo')."""
     def edit(
         self,

@@ -99,8 +99,10 @@ inline Scene loneObject() {
 }
 
 // What `camera` sees of `scene` in a w x h image: the share of pixels that show the subject
-// (a surface inside subjectBounds), and the share that show a surface facing the sun `light`
-// with another triangle between it and the sun (a cast shadow, not a surface turned away).
+// (a surface inside subjectBounds), and the share that show any surface facing `light` (within a
+// spot's cone) with another triangle between it and the light (a cast shadow, not a surface
+// turned away). By brute force over every triangle: a census independent of the hierarchy the
+// product's own measure (scene/first_picture.h) uses.
 struct ViewCensus {
     float subject = 0.0f, castShadow = 0.0f;
 };
@@ -113,14 +115,15 @@ inline ViewCensus viewCensus(const Scene& scene, const Camera& camera, const Lig
             const glm::vec2 ndc((2.0f * static_cast<float>(x) + 1.0f) / static_cast<float>(w) - 1,
                                 1 - (2.0f * static_cast<float>(y) + 1.0f) / static_cast<float>(h));
             const glm::vec2 half = f.halfExtentPerDistance;
-            rays.push_back({.origin = f.position,
+            rays.push_back({.origin = f.position + ndc.x * f.halfExtent.x * f.right +
+                                      ndc.y * f.halfExtent.y * f.up,
                             .direction = glm::normalize(f.forward + ndc.x * half.x * f.right +
                                                         ndc.y * half.y * f.up)});
         }
-    const auto hits = firstHits(scene, rays);
+    const auto hits = firstHitsBruteForce(scene, rays);
     subject.min -= 1e-3f, subject.max += 1e-3f;
     std::vector<Ray> shadowRays;
-    const glm::vec3 toLight = -light.direction;
+    std::vector<float> reach;
     for (size_t i = 0; i < rays.size(); ++i) {
         if (!hits[i])
             continue;
@@ -131,11 +134,19 @@ inline ViewCensus viewCensus(const Scene& scene, const Camera& camera, const Lig
             glm::cross(scene.vertices[t[1]].position - a, scene.vertices[t[2]].position - a));
         if (glm::dot(n, rays[i].direction) > 0) // the side the camera sees
             n = -n;
-        const bool inSubject = glm::all(glm::lessThanEqual(subject.min, p)) &&
-                               glm::all(glm::lessThanEqual(p, subject.max));
-        if (!inSubject || glm::dot(n, toLight) <= 0.05f)
+        glm::vec3 toLight = -light.direction;
+        float distance = std::numeric_limits<float>::infinity();
+        if (light.type != LightType::Directional) {
+            distance = glm::length(light.position - p);
+            toLight = (light.position - p) / distance;
+            if (light.type == LightType::Spot &&
+                glm::dot(-toLight, light.direction) < std::cos(light.outerConeAngle))
+                continue;
+        }
+        if (glm::dot(n, toLight) <= 0.05f)
             continue;
         shadowRays.push_back({.origin = p + 1e-3f * n, .direction = toLight});
+        reach.push_back(distance - 1e-3f);
     }
     int subjectPixels = 0;
     for (size_t i = 0; i < rays.size(); ++i)
@@ -144,13 +155,13 @@ inline ViewCensus viewCensus(const Scene& scene, const Camera& camera, const Lig
             subjectPixels += glm::all(glm::lessThanEqual(subject.min, p)) &&
                              glm::all(glm::lessThanEqual(p, subject.max));
         }
-    const auto blocked = firstHits(scene, shadowRays);
+    const auto blocked = firstHitsBruteForce(scene, shadowRays);
+    int shadowed = 0;
+    for (size_t i = 0; i < blocked.size(); ++i)
+        shadowed += blocked[i] && blocked[i]->distance < reach[i];
     const float pixels = static_cast<float>(rays.size());
     return {.subject = static_cast<float>(subjectPixels) / pixels,
-            .castShadow =
-                static_cast<float>(std::count_if(blocked.begin(), blocked.end(),
-                                                 [](const auto& b) { return b.has_value(); })) /
-                pixels};
+            .castShadow = static_cast<float>(shadowed) / pixels};
 }
 
 } // namespace penumbra::test

@@ -5,6 +5,7 @@
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
 #include "report/stats.h"
+#include "scene/first_picture.h"
 #include "scene/mesh_closure.h"
 #include "shadows/sdf_field.h"
 
@@ -134,6 +135,7 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
     if (!o.view.empty())
         edits.view = parseViewChoice(o.view);
     edits.ground = o.ground;
+    edits.noGround = o.noGround;
     edits.doubleSided = o.doubleSided;
     std::vector<std::string> warnings;
     Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
@@ -142,6 +144,8 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
     for (const std::string& w : warnings)
         std::fprintf(stderr, "penumbra: warning: %s\n", w.c_str());
     applySceneEdits(scene, edits);
+    if (scene.automaticGround)
+        std::fprintf(stderr, "penumbra: note: %s\n", automaticGroundNote(scene).c_str());
     const auto has = [&](auto kind) {
         return std::any_of(scene.lights.begin(), scene.lights.end(), kind);
     };
@@ -196,9 +200,14 @@ void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
     group(cmd.add_flag("--double-sided", scene.doubleSided,
                        "draws every material's back faces too (a mis-wound or open mesh shows "
                        "holes where single-sided back faces are culled)"));
-    group(cmd.add_flag("--ground", scene.ground,
-                       "adds a ground quad under the subject, three times its width, to catch "
-                       "the shadows of a lone object"));
+    CLI::Option* ground =
+        group(cmd.add_flag("--ground", scene.ground,
+                           "adds a ground quad under the subject, three times its width, to "
+                           "catch the shadows of a lone object (without it, added when it "
+                           "puts a cast shadow in view)"));
+    group(cmd.add_flag("--no-ground", scene.noGround,
+                       "never adds the automatic ground (a lone object floats on the sky)"))
+        ->excludes(ground);
     group(cmd.add_option("--sun-dir", scene.sunDirection,
                          "a sun whose light travels along X,Y,Z (world space, any length but 0): "
                          "replaces the default light of a scene without lights, else is added "

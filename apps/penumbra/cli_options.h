@@ -33,7 +33,7 @@ struct SceneOptions {
     std::vector<std::string> lightPositions, lightDirections, addedLights;
     std::optional<float> fovDegrees;
     std::string view; // --view
-    bool ground = false, doubleSided = false;
+    bool ground = false, noGround = false, doubleSided = false;
 };
 
 // "a,b,c" -> {"a", "b", "c"}; an empty list or an empty item is an InputError(option).

@@ -128,7 +128,8 @@ struct SceneEdits {
     std::vector<AddedLight> addedLights;                            // --add-light
     std::optional<ViewChoice> view;                                 // --view
     bool ground = false;                                            // --ground
-    bool doubleSided = false;                                       // --double-sided
+    bool noGround = false;    // --no-ground: no automatic ground (docs/scenes.md)
+    bool doubleSided = false; // --double-sided
     bool empty() const;
 };
 
@@ -141,8 +142,9 @@ struct Scene {
     std::vector<TextureImage> images;
     std::vector<Light> lights;
     std::vector<Camera> cameras;
-    bool defaultLight = false; // lights[0] is the loader's stand-in for an asset without lights
-    SceneEdits edits;          // what applySceneEdits changed
+    bool defaultLight = false;    // lights[0] is the loader's stand-in for an asset without lights
+    bool automaticGround = false; // applySceneEdits added a ground to catch a shadow
+    SceneEdits edits;             // what applySceneEdits changed
 
     size_t triangleCount() const { return indices.size() / 3; }
     // The coverage (alpha) of `material` at a texture coordinate and vertex alpha, as the
@@ -211,6 +213,8 @@ glm::vec2 visibleDepthRange(const Scene& scene, const Camera& camera, float aspe
 // suns), --camera-pos with --look-at and --fov (a camera named "command line" that becomes the
 // scene's first). Throws InputError naming the option.
 // --ground adds a ground quad under the subject (scene/framing.h), three times its width;
+// without --ground or --no-ground, the same quad is added when it adds a cast shadow to the first
+// camera's view (scene/first_picture.h), and scene.automaticGround says so;
 // --double-sided makes every material double-sided;
 // --view puts the automatic camera of that kind first (a default light follows it).
 // --add-light adds its lights after --sun-dir's (replacing the loader's default light too), each
@@ -223,8 +227,8 @@ AddedLight parseAddedLight(std::string_view text);
 // "auto", "exterior", "interior"; InputError("--view", ...) otherwise.
 ViewChoice parseViewChoice(std::string_view text);
 std::string_view viewChoiceName(ViewChoice choice);
-// The quad --ground adds.
-void addGround(Scene& scene);
+// The quad --ground adds, its material named `material`.
+void addGround(Scene& scene, std::string_view material = "ground (--ground)");
 // The light an --add-light makes in `scene` (the index-th): unless given, a sun as bright as
 // --sun-dir's (2), a spot or point light as bright at the scene's centre, a spot's cone 45
 // degrees with a soft rim (inner 0.8 of the outer), sizes 0.

@@ -47,6 +47,8 @@ nlohmann::json sceneEditsJson(const SceneEdits& e) {
         j["view"] = viewChoiceName(*e.view);
     if (e.ground)
         j["ground"] = true;
+    if (e.noGround)
+        j["no_ground"] = true;
     if (e.doubleSided)
         j["double_sided"] = true;
     return j;
@@ -69,6 +71,7 @@ nlohmann::json renderStats(const RenderRun& run) {
                    {"target", vec(camera.target)},
                    {"yfov_degrees", glm::degrees(camera.yfov)}};
     j["scene"]["default_light"] = run.scene.defaultLight;
+    j["scene"]["automatic_ground"] = run.scene.automaticGround;
     j["scene"]["edits"] = sceneEditsJson(run.scene.edits);
     j["image"] = {{"width", o.width}, {"height", o.height}};
     j["shadow_map_size"] = o.shadowMapSize;

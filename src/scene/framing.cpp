@@ -128,45 +128,4 @@ Camera exteriorCamera(const Scene& scene, const Bounds& subject) {
     return c;
 }
 
-std::vector<std::optional<RayHit>> firstHits(const Scene& scene, std::span<const Ray> rays) {
-    std::vector<std::optional<RayHit>> best(rays.size());
-    for (size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
-        const glm::vec3 a = scene.vertices[scene.indices[t]].position;
-        const glm::vec3 e1 = scene.vertices[scene.indices[t + 1]].position - a;
-        const glm::vec3 e2 = scene.vertices[scene.indices[t + 2]].position - a;
-        for (size_t r = 0; r < rays.size(); ++r) {
-            const glm::vec3& dir = rays[r].direction;
-            // Moller-Trumbore.
-            const glm::vec3 p = glm::cross(dir, e2);
-            const float det = glm::dot(e1, p);
-            if (std::abs(det) < 1e-20f)
-                continue;
-            const glm::vec3 s = rays[r].origin - a;
-            // Edges inclusive (with round-off): a ray through the diagonal of a quad hits it.
-            constexpr float kEdge = 1e-5f;
-            const float u = glm::dot(s, p) / det;
-            if (u < -kEdge || u > 1.0f + kEdge)
-                continue;
-            const glm::vec3 q = glm::cross(s, e1);
-            const float v = glm::dot(dir, q) / det;
-            if (v < -kEdge || u + v > 1.0f + kEdge)
-                continue;
-            const float distance = glm::dot(e2, q) / det;
-            if (distance <= 0.0f || (best[r] && distance >= best[r]->distance))
-                continue;
-            // The front is counter-clockwise (glTF): the ray meets it when it runs against
-            // n = cross(e1, e2), and det = dot(e1, cross(dir, e2)) = -dot(dir, n).
-            best[r] = RayHit{.distance = distance,
-                             .front = det > 0.0f,
-                             .triangle = static_cast<uint32_t>(t / 3)};
-        }
-    }
-    return best;
-}
-
-std::optional<RayHit> firstHit(const Scene& scene, const glm::vec3& origin, const glm::vec3& dir) {
-    const Ray ray{.origin = origin, .direction = dir};
-    return firstHits(scene, std::span(&ray, 1)).front();
-}
-
 } // namespace penumbra

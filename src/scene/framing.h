@@ -9,9 +9,7 @@
 //   +z), 20 degrees above the horizon for a compact subject and up to 50 degrees for a flat one
 //   (a level), as near as keeps the subject's box inside a 16:9 view.
 #include "penumbra/scene.h"
-
-#include <optional>
-#include <span>
+#include "scene/ray_cast.h"
 
 namespace penumbra {
 
@@ -23,20 +21,5 @@ Bounds subjectBounds(const Scene& scene);
 // stop: photometric lights (lux, candela) come out as bright as the default sun.
 float automaticExposure(const Scene& scene);
 Camera exteriorCamera(const Scene& scene, const Bounds& subject);
-
-// The nearest triangle along a ray and whether the ray meets its front (counter-clockwise, by
-// winding only: exporters mark closed models double-sided as often as not); nullopt for a miss.
-struct RayHit {
-    float distance = 0.0f;
-    bool front = false;
-    uint32_t triangle = 0;
-};
-struct Ray {
-    glm::vec3 origin{0.0f}, direction{0.0f, -1.0f, 0.0f};
-};
-// Brute force over every triangle for a batch of rays: the few hundred rays the framing rules
-// cast once per load.
-std::vector<std::optional<RayHit>> firstHits(const Scene& scene, std::span<const Ray> rays);
-std::optional<RayHit> firstHit(const Scene& scene, const glm::vec3& origin, const glm::vec3& dir);
 
 } // namespace penumbra

@@ -4,6 +4,7 @@
 #include "scene/gltf_loader.h"
 
 #include "penumbra/error.h"
+#include "scene/first_picture.h"
 #include "scene/gltf_accessors.h"
 #include "scene/gltf_compression.h"
 #include "scene/gltf_container.h"
@@ -511,6 +512,12 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
                                                : exteriorCamera(scene, subject);
             if (!measure.interior())
                 camera.name = "auto (exterior)";
+            // A level or an interior with lights of its own is seen from near them.
+            const glm::vec3 extent = subject.extent();
+            const bool level = extent.y <= 0.5f * std::max(extent.x, extent.z);
+            if (!scene.lights.empty())
+                if (auto near = cameraFromLights(scene, camera, level || measure.interior()))
+                    camera = std::move(*near);
             scene.cameras.push_back(std::move(camera));
         }
         if (scene.lights.empty()) {

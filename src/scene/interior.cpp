@@ -1,5 +1,7 @@
 #include "scene/interior.h"
 
+#include "scene/first_picture.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -174,6 +176,10 @@ Light defaultSun(const Camera& camera) {
 }
 
 Light defaultLightFor(const Scene& scene, const Camera& camera, bool interior) {
+    return chooseDefaultLight(scene, camera, standardLightFor(scene, camera, interior));
+}
+
+Light standardLightFor(const Scene& scene, const Camera& camera, bool interior) {
     const Light sun = defaultSun(camera);
     if (!interior)
         return sun;

@@ -14,7 +14,7 @@
 // - An interior's automatic camera stands at the most open room point (the largest clearance to
 //   the nearest wall; of equals, the nearest to the subject's centre) and looks along its longest
 //   horizontal free line, 70 degrees of vertical view.
-// - The default light is a sun from the camera's front left, 45 degrees up, so that cast
+// - The standard default light is a sun from the camera's front left, 45 degrees up, so that cast
 //   shadows fall to the right and away, in view. An interior whose camera the sun cannot reach
 //   gets a point light instead, half way to the ceiling above the camera (or the bounds' top),
 //   as bright on the floor below it as the sun would be.
@@ -52,6 +52,9 @@ Camera automaticCamera(const Scene& scene, ViewChoice choice);
 // The stand-in sun for a scene without lights, placed for a camera as above.
 Light defaultSun(const Camera& camera = Camera{});
 // defaultSun(camera), or for an interior camera the sun cannot reach, the point light above.
+Light standardLightFor(const Scene& scene, const Camera& camera, bool interior);
+// The standard light, or when it shows too little cast shadow in the camera's view, a better
+// placed one (scene/first_picture.h).
 Light defaultLightFor(const Scene& scene, const Camera& camera, bool interior);
 
 } // namespace penumbra

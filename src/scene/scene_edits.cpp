@@ -2,6 +2,7 @@
 // that render, the ground truth, the report and stats.json all see the same lights and camera.
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
+#include "scene/first_picture.h"
 #include "scene/framing.h"
 #include "scene/interior.h"
 #include "scene/mesh_builder.h"
@@ -88,7 +89,8 @@ NamedVector parseNamedVector3(std::string_view text, std::string_view option) {
 
 bool SceneEdits::empty() const {
     return !sunDirection && lightPositions.empty() && lightDirections.empty() && !cameraPosition &&
-           !lookAt && !fovDegrees && addedLights.empty() && !view && !ground && !doubleSided;
+           !lookAt && !fovDegrees && addedLights.empty() && !view && !ground && !noGround &&
+           !doubleSided;
 }
 
 ViewChoice parseViewChoice(std::string_view text) {
@@ -105,14 +107,14 @@ std::string_view viewChoiceName(ViewChoice choice) {
     return "auto";
 }
 
-void addGround(Scene& scene) {
+void addGround(Scene& scene, std::string_view material) {
     const Bounds s = subjectBounds(scene);
     const glm::vec3 c = s.center();
     const float half = std::max(1.5f * std::max(s.extent().x, s.extent().z), 1e-3f);
     const float y = s.min.y;
     MeshBuilder mb(scene);
     mb.quad({c.x - half, y, c.z + half}, {c.x + half, y, c.z + half}, {c.x + half, y, c.z - half},
-            {c.x - half, y, c.z - half}, mb.material("ground (--ground)", glm::vec3(0.6f)));
+            {c.x - half, y, c.z - half}, mb.material(std::string(material), glm::vec3(0.6f)));
 }
 
 void applySceneEdits(Scene& scene, const SceneEdits& e) {
@@ -122,7 +124,9 @@ void applySceneEdits(Scene& scene, const SceneEdits& e) {
             scene.lights.front() = defaultLightFor(scene, scene.cameras.front(),
                                                    scene.cameras.front().name == "auto (interior)");
     }
-    if (e.ground) // after the framing: the view is of the subject, not of the ground
+    if (e.ground && e.noGround)
+        throw InputError("--no-ground", "--ground and --no-ground contradict each other");
+    if (e.ground && !scene.automaticGround) // after the framing: the view is of the subject
         addGround(scene);
     if (e.doubleSided)
         for (Material& m : scene.materials)
@@ -189,6 +193,9 @@ void applySceneEdits(Scene& scene, const SceneEdits& e) {
                                                            .znear = depth.x,
                                                            .zfar = depth.y});
     }
+    // Last: whether a ground adds a shadow depends on the camera and the lights chosen above.
+    if (!e.ground && !e.noGround && !scene.automaticGround)
+        addGroundWhereNothingReceives(scene);
     scene.edits = e;
 }
 

@@ -1,0 +1,323 @@
+#include "scene/first_picture.h"
+
+#include "scene/framing.h"
+#include "scene/interior.h"
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+constexpr int kGridWidth = 64, kGridHeight = 36; // the default image's 16:9
+constexpr float kSunAzimuths[] = {85.0f, -85.0f, 45.0f, -45.0f, 135.0f, -135.0f, 0.0f};
+constexpr float kSunElevations[] = {45.0f, 30.0f, 60.0f};
+constexpr float kBulbAlong[] = {0.0f, 0.3f, 0.6f}; // of the free line ahead
+constexpr float kBulbSide[] = {0.0f, -0.3f, 0.3f}; // of the free line ahead, clamped by walls
+constexpr float kBulbHeights[] = {0.5f, 0.8f};     // of the way to the ceiling
+constexpr int kLightViews = 8;                     // cameras round a light's spot
+constexpr size_t kMostLights = 4;                  // lights a camera is sought near
+constexpr float kLightViewElevation = 35.0f;       // degrees
+constexpr float kInteriorFovDegrees = 70.0f;
+constexpr int kFloorGrid = 9;       // rays down per horizontal axis of the subject
+constexpr float kFloorBand = 0.02f; // of the subject's height: where the rays down start
+constexpr float kFloorShare = 0.5f; // of the rays: the subject stands on a floor
+
+float sceneSize(const Scene& scene) {
+    return std::max(glm::length(scene.bounds().extent()), 1e-6f);
+}
+
+glm::vec3 flatForward(const Camera& camera) {
+    glm::vec3 f = camera.target - camera.position;
+    f.y = 0.0f;
+    return glm::length(f) > 1e-6f ? glm::normalize(f) : glm::vec3(0, 0, -1);
+}
+
+// How far a ray runs before it meets a surface; `otherwise` when it meets none.
+float freeDistance(const TriangleBvh& bvh, const glm::vec3& from, const glm::vec3& dir,
+                   float otherwise) {
+    const auto hit = bvh.firstHit({.origin = from, .direction = dir});
+    return hit ? hit->distance : otherwise;
+}
+
+bool lightsTheView(const ViewShadow& v) {
+    return v.lit >= kLeastLit * v.covered;
+}
+
+// A bulb as bright on the floor under it as the default sun.
+Light bulbAt(const TriangleBvh& bvh, const glm::vec3& position, const Light& standard, float size) {
+    const float height = freeDistance(bvh, position, glm::vec3(0, -1, 0), size);
+    Light l = standard;
+    l.position = position;
+    l.intensity = defaultSun().intensity * std::max(height * height, 1e-6f);
+    return l;
+}
+
+std::vector<Light> bulbCandidates(const Scene& scene, const TriangleBvh& bvh, const Camera& camera,
+                                  const Light& standard) {
+    const float size = sceneSize(scene);
+    const glm::vec3 forward = flatForward(camera);
+    const glm::vec3 right = glm::cross(forward, glm::vec3(0, 1, 0));
+    const float ahead = freeDistance(bvh, camera.position, forward, 0.5f * size);
+    std::vector<Light> lights;
+    for (float along : kBulbAlong) {
+        const glm::vec3 base = camera.position + along * ahead * forward;
+        for (float side : kBulbSide) {
+            const glm::vec3 dir = side < 0.0f ? -right : right;
+            const float room = 0.7f * freeDistance(bvh, base, dir, size);
+            const glm::vec3 foot = base + std::min(std::abs(side) * ahead, room) * dir;
+            const float up =
+                freeDistance(bvh, foot, glm::vec3(0, 1, 0), scene.bounds().max.y - foot.y);
+            for (float h : kBulbHeights)
+                lights.push_back(bulbAt(bvh, foot + glm::vec3(0, h * up, 0), standard, size));
+        }
+    }
+    return lights;
+}
+
+std::vector<Light> sunCandidates(const Camera& camera, const Light& standard) {
+    const glm::vec3 forward = flatForward(camera);
+    const glm::vec3 right = glm::cross(forward, glm::vec3(0, 1, 0));
+    std::vector<Light> lights;
+    for (float elevation : kSunElevations)
+        for (float azimuth : kSunAzimuths) {
+            const float round = glm::radians(azimuth), up = glm::radians(elevation);
+            // Towards the light: turned `round` from straight behind the camera, to its left.
+            const glm::vec3 towards =
+                std::cos(up) * (-std::cos(round) * forward - std::sin(round) * right) +
+                std::sin(up) * glm::vec3(0, 1, 0);
+            Light l = standard;
+            l.direction = -glm::normalize(towards);
+            lights.push_back(l);
+        }
+    return lights;
+}
+
+glm::vec2 depthRange(const Scene& scene, const glm::vec3& from) {
+    const Bounds b = scene.bounds();
+    float farthest = 0.0f;
+    for (int k = 0; k < 8; ++k)
+        farthest = std::max(
+            farthest, glm::length(glm::vec3(k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y,
+                                            k & 4 ? b.max.z : b.min.z) -
+                                  from));
+    const float zfar = std::max(1.1f * farthest, 1e-3f);
+    return {zfar * 1e-4f, zfar};
+}
+
+// Whether something under the subject can receive its shadow: at least half of a 9 x 9 grid of
+// rays down over its footprint, from 2% of its height above its bottom, meet the front of a
+// surface (one facing up) below. A ray that meets a back face first (the underside of a model,
+// from within) goes on through it: a lone model's feet are no floor, the ground under a
+// floating ball is.
+bool somethingBelow(const Scene& scene, const TriangleBvh& bvh) {
+    constexpr int kCrossings = 4; // back faces a ray goes through
+    const Bounds subject = subjectBounds(scene);
+    const glm::vec3 extent = subject.extent();
+    const float band = kFloorBand * std::max(extent.y, 1e-3f * std::max(extent.x, extent.z));
+    int floors = 0;
+    for (int i = 0; i < kFloorGrid; ++i)
+        for (int k = 0; k < kFloorGrid; ++k) {
+            Ray ray{
+                .origin = {subject.min.x + (static_cast<float>(i) + 0.5f) / kFloorGrid * extent.x,
+                           subject.min.y + band,
+                           subject.min.z + (static_cast<float>(k) + 0.5f) / kFloorGrid * extent.z}};
+            for (int crossing = 0; crossing < kCrossings; ++crossing) {
+                const auto hit = bvh.firstHit(ray);
+                if (!hit)
+                    break;
+                if (hit->front) {
+                    ++floors;
+                    break;
+                }
+                ray.origin.y -= hit->distance + 1e-4f * band;
+            }
+        }
+    return static_cast<float>(floors) >= kFloorShare * kFloorGrid * kFloorGrid;
+}
+
+} // namespace
+
+ViewProbe::ViewProbe(const Scene& scene, const TriangleBvh& bvh, const Camera& camera)
+    : mBvh(bvh), mPixels(size_t{kGridWidth} * kGridHeight), mOffset(1e-4f * sceneSize(scene)) {
+    const ViewFrustum f = viewFrustum(camera, static_cast<float>(kGridWidth) / kGridHeight);
+    Bounds subject = subjectBounds(scene);
+    subject.min -= mOffset, subject.max += mOffset;
+    for (int y = 0; y < kGridHeight; ++y)
+        for (int x = 0; x < kGridWidth; ++x) {
+            const glm::vec2 ndc((2.0f * static_cast<float>(x) + 1.0f) / kGridWidth - 1.0f,
+                                1.0f - (2.0f * static_cast<float>(y) + 1.0f) / kGridHeight);
+            const Ray ray{.origin = f.position + ndc.x * f.halfExtent.x * f.right +
+                                    ndc.y * f.halfExtent.y * f.up,
+                          .direction = glm::normalize(f.forward +
+                                                      ndc.x * f.halfExtentPerDistance.x * f.right +
+                                                      ndc.y * f.halfExtentPerDistance.y * f.up)};
+            const auto hit = bvh.firstHit(ray);
+            if (!hit)
+                continue;
+            const glm::vec3 p = ray.origin + hit->distance * ray.direction;
+            const uint32_t* t = &scene.indices[3 * size_t{hit->triangle}];
+            const glm::vec3 a = scene.vertices[t[0]].position;
+            glm::vec3 n =
+                glm::cross(scene.vertices[t[1]].position - a, scene.vertices[t[2]].position - a);
+            n = glm::length(n) > 0.0f ? glm::normalize(n) : -ray.direction;
+            if (glm::dot(n, ray.direction) > 0.0f) // the side the camera sees
+                n = -n;
+            mSamples.push_back({.point = p,
+                                .normal = n,
+                                .inSubject = glm::all(glm::lessThanEqual(subject.min, p)) &&
+                                             glm::all(glm::lessThanEqual(p, subject.max))});
+        }
+}
+
+ViewShadow ViewProbe::measure(const Light& light) const {
+    size_t lit = 0, shadowed = 0;
+    for (const Sample& s : mSamples) {
+        glm::vec3 toLight = -light.direction;
+        float reach = std::numeric_limits<float>::infinity();
+        if (light.type != LightType::Directional) {
+            toLight = light.position - s.point;
+            reach = glm::length(toLight);
+            if (!(reach > 0.0f))
+                continue;
+            toLight /= reach;
+            if (light.type == LightType::Spot &&
+                glm::dot(-toLight, light.direction) < std::cos(light.outerConeAngle))
+                continue; // outside the cone: unlit, not shadowed
+        }
+        if (glm::dot(s.normal, toLight) <= 0.05f)
+            continue; // turned away (or grazing): dark whatever casts
+        const Ray ray{.origin = s.point + mOffset * s.normal, .direction = toLight};
+        if (mBvh.occluded(ray, reach))
+            ++shadowed;
+        else
+            ++lit;
+    }
+    return {.covered = share(mSamples.size()),
+            .subject = subject(),
+            .lit = share(lit),
+            .castShadow = share(shadowed)};
+}
+
+float ViewProbe::subject() const {
+    return share(static_cast<size_t>(std::count_if(mSamples.begin(), mSamples.end(),
+                                                   [](const Sample& s) { return s.inSubject; })));
+}
+
+float ViewProbe::share(size_t pixels) const {
+    return static_cast<float>(pixels) / static_cast<float>(mPixels);
+}
+
+float ViewProbe::castShadow(std::span<const Light> lights) const {
+    float most = 0.0f;
+    for (const Light& l : lights)
+        if (castsShadowMap(l))
+            most = std::max(most, measure(l).castShadow);
+    return most;
+}
+
+Light chooseDefaultLight(const Scene& scene, const Camera& camera, const Light& standard) {
+    if (scene.triangleCount() == 0)
+        return standard;
+    const TriangleBvh bvh(scene);
+    const ViewProbe probe(scene, bvh, camera);
+    const ViewShadow first = probe.measure(standard);
+    if (first.castShadow >= kEnoughShadow)
+        return standard;
+    Light best = standard;
+    float most = lightsTheView(first) ? first.castShadow : -1.0f;
+    const std::vector<Light> candidates = standard.type == LightType::Directional
+                                              ? sunCandidates(camera, standard)
+                                              : bulbCandidates(scene, bvh, camera, standard);
+    for (const Light& l : candidates) {
+        const ViewShadow v = probe.measure(l);
+        if (lightsTheView(v) && v.castShadow > most) {
+            best = l;
+            most = v.castShadow;
+        }
+    }
+    return best;
+}
+
+bool addGroundWhereNothingReceives(Scene& scene) {
+    if (scene.cameras.empty() || scene.triangleCount() == 0)
+        return false;
+    const Camera camera = scene.cameras.front();
+    float before = 0.0f;
+    {
+        const TriangleBvh bvh(scene);
+        if (somethingBelow(scene, bvh))
+            return false;
+        before = ViewProbe(scene, bvh, camera).castShadow(scene.lights);
+    }
+    Scene grounded = scene;
+    addGround(grounded, "ground (automatic)");
+    if (grounded.defaultLight)
+        grounded.lights.front() =
+            defaultLightFor(grounded, camera, camera.name == "auto (interior)");
+    const TriangleBvh bvh(grounded);
+    const float after = ViewProbe(grounded, bvh, camera).castShadow(grounded.lights);
+    if (!(after >= before + kGroundGain))
+        return false;
+    grounded.automaticGround = true;
+    scene = std::move(grounded);
+    return true;
+}
+
+std::string automaticGroundNote(const Scene& scene) {
+    return "added a ground under '" + scene.name +
+           "': nothing in view received its cast shadow (--no-ground leaves it out)";
+}
+
+std::optional<Camera> cameraFromLights(const Scene& scene, const Camera& standard,
+                                       bool levelOrInterior) {
+    std::vector<const Light*> bulbs;
+    for (const Light& l : scene.lights)
+        if (l.type != LightType::Directional && castsShadowMap(l) && bulbs.size() < kMostLights)
+            bulbs.push_back(&l);
+    if (bulbs.empty() || scene.triangleCount() == 0)
+        return std::nullopt;
+    const TriangleBvh bvh(scene);
+    const auto score = [&](const Camera& c) {
+        const ViewProbe probe(scene, bvh, c);
+        return probe.subject() >= kLeastSubject ? probe.castShadow(scene.lights) : -1.0f;
+    };
+    if (!levelOrInterior && ViewProbe(scene, bvh, standard).subject() >= kLeastSubject)
+        return std::nullopt; // an exterior framed as it should be
+    float best = score(standard);
+    std::optional<Camera> chosen;
+    const float size = sceneSize(scene);
+    for (const Light* l : bulbs) {
+        const glm::vec3 aim = l->type == LightType::Spot ? l->direction : glm::vec3(0, -1, 0);
+        const auto spot = bvh.firstHit({.origin = l->position, .direction = aim});
+        if (!spot)
+            continue;
+        const glm::vec3 target = l->position + spot->distance * aim;
+        const float reach = std::max(1.5f * spot->distance, 1e-3f * size);
+        for (int a = 0; a < kLightViews; ++a) {
+            const float round = 2.0f * glm::pi<float>() * static_cast<float>(a) / kLightViews;
+            const float up = glm::radians(kLightViewElevation);
+            const glm::vec3 dir(std::cos(up) * std::cos(round), std::sin(up),
+                                std::cos(up) * std::sin(round));
+            const glm::vec3 from = target + 1e-4f * size * dir;
+            const float distance = std::min(reach, 0.8f * freeDistance(bvh, from, dir, 2 * reach));
+            if (distance < 0.25f * spot->distance)
+                continue; // a wall at the spot: no view of it
+            Camera c{.name = "auto (from the lights)",
+                     .position = target + distance * dir,
+                     .target = target,
+                     .yfov = glm::radians(kInteriorFovDegrees)};
+            const glm::vec2 depth = depthRange(scene, c.position);
+            c.znear = depth.x, c.zfar = depth.y;
+            if (const float s = score(c); s > best) {
+                best = s;
+                chosen = c;
+            }
+        }
+    }
+    return chosen;
+}
+
+} // namespace penumbra

@@ -1,0 +1,353 @@
+// A shadow in the first picture (scene/first_picture.h, scene/ray_cast.h): the hierarchy answers
+// as testing every triangle does; the view's cast shadow counted exactly on scenes laid out on
+// the probe's grid under every light type; the default light moved only when its shadow is out
+// of view; a ground added where nothing receives a shadow and nowhere else; levels lit by their
+// own bulbs seen from near them.
+#include "generated_scenes.h"
+#include "gltf_builder.h"
+#include "penumbra/error.h"
+#include "scene/first_picture.h"
+#include "scene/gltf_loader.h"
+#include "scene/interior.h"
+#include "scratch_dir.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+bool sameHit(const std::optional<RayHit>& a, const std::optional<RayHit>& b) {
+    if (!a || !b)
+        return !a && !b;
+    return a->distance == b->distance && a->front == b->front && a->triangle == b->triangle;
+}
+
+// Random triangles, some huge, some tiny, some coplanar twins (ties at equal distance, the lower
+// index first), and axis-aligned rays (direction components of zero) among random ones.
+Scene randomTriangles(uint32_t seed, int count) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-10.0f, 10.0f), s(0.01f, 3.0f);
+    Scene scene;
+    const auto triangle = [&](const glm::vec3* p) {
+        for (int k = 0; k < 3; ++k) {
+            scene.indices.push_back(static_cast<uint32_t>(scene.vertices.size()));
+            scene.vertices.push_back({.position = p[k], .normal = {0, 1, 0}, .material = 0});
+        }
+    };
+    for (int i = 0; i < count; ++i) {
+        const glm::vec3 c(u(rng), u(rng), u(rng));
+        const float size = i % 17 == 0 ? 40.0f : s(rng);
+        glm::vec3 p[3];
+        for (auto& v : p)
+            v = c + size * glm::vec3(u(rng), u(rng), u(rng)) / 10.0f;
+        triangle(p);
+        if (i % 5 == 0)
+            triangle(p); // a twin: the same distance, a higher index
+    }
+    return scene;
+}
+
+// A ground of 80 x 60 and a square plate of 8 x 8 at height `height`, its edges on whole units:
+// from straight above, an orthographic view 64 x 36 units wide sees each unit square as one of
+// the probe's 64 x 36 pixels, sampled at its centre, so that shadows with whole-unit edges are
+// counted exactly.
+Scene plateOverGround(float height) {
+    Scene scene;
+    MeshBuilder mb(scene);
+    const uint32_t m = mb.material("m", glm::vec3(0.6f));
+    mb.quad({-40, 0, 30}, {40, 0, 30}, {40, 0, -30}, {-40, 0, -30}, m);
+    mb.quad({-10, height, 4}, {-2, height, 4}, {-2, height, -4}, {-10, height, -4}, m);
+    scene.cameras.push_back({.name = "above",
+                             .position = {0, 50, 0},
+                             .target = {0, 0, 0},
+                             .up = {0, 0, -1},
+                             .orthographic = true,
+                             .ymag = 18.0f,
+                             .znear = 1.0f,
+                             .zfar = 100.0f});
+    return scene;
+}
+
+ViewShadow measured(const Scene& scene, const Light& light) {
+    const TriangleBvh bvh(scene);
+    return ViewProbe(scene, bvh, scene.cameras.front()).measure(light);
+}
+
+// A warehouse: a closed shell facing out (an exterior by the measure, a level by its shape),
+// crates on its floor, two bulbs under its roof.
+Scene warehouse() {
+    Scene s;
+    s.name = "warehouse";
+    MeshBuilder mb(s);
+    const uint32_t m = mb.material("m", glm::vec3(0.6f));
+    mb.box(boxAt({0, 3, 0}, {40, 6, 30}), m);
+    mb.quad({-19.9f, 0.01f, 14.9f}, {19.9f, 0.01f, 14.9f}, {19.9f, 0.01f, -14.9f},
+            {-19.9f, 0.01f, -14.9f}, m);
+    for (int i = 0; i < 6; ++i)
+        mb.box(boxAt({-12.0f + 5.0f * static_cast<float>(i), 0.75f, i % 2 ? 4.0f : -4.0f},
+                     glm::vec3(1.5f)),
+               m);
+    s.lights = {{.name = "a", .type = LightType::Point, .position = {-8, 5, 0}, .intensity = 50},
+                {.name = "b", .type = LightType::Point, .position = {8, 5, 0}, .intensity = 50}};
+    return s;
+}
+
+// The scene's triangles as one glTF mesh, its point lights as KHR_lights_punctual nodes; no
+// camera.
+std::filesystem::path asGltf(const Scene& s, const std::string& name) {
+    GltfBuilder b;
+    std::vector<float> xyz;
+    for (const Vertex& v : s.vertices)
+        xyz.insert(xyz.end(), {v.position.x, v.position.y, v.position.z});
+    const int p = b.positions(xyz);
+    b.node({{"mesh", b.mesh(p, b.accessor(b.view(s.indices), 5125, s.indices.size(), "SCALAR"))}});
+    nlohmann::json lights = nlohmann::json::array();
+    for (const Light& l : s.lights) {
+        b.node({{"extensions", {{"KHR_lights_punctual", {{"light", lights.size()}}}}},
+                {"translation", {l.position.x, l.position.y, l.position.z}}});
+        lights.push_back({{"type", "point"}, {"intensity", l.intensity}});
+    }
+    if (!lights.empty()) {
+        b.j["extensions"] = {{"KHR_lights_punctual", {{"lights", lights}}}};
+        b.j["extensionsUsed"] = {"KHR_lights_punctual"};
+    }
+    return b.writeGltf(scratchDir("gltf", "first-picture") / (name + ".gltf"));
+}
+
+constexpr float kPixels = 64.0f * 36.0f;
+
+} // namespace
+
+TEST(RayCast, TheHierarchyAnswersAsTestingEveryTriangleInOrder) {
+    for (uint32_t seed : {1u, 2u, 3u}) {
+        const Scene scene = randomTriangles(seed, 400);
+        const TriangleBvh bvh(scene);
+        std::mt19937 rng(seed + 100);
+        std::uniform_real_distribution<float> u(-12.0f, 12.0f);
+        std::vector<Ray> rays;
+        for (int i = 0; i < 600; ++i) {
+            glm::vec3 d(u(rng), u(rng), u(rng));
+            if (i % 3 == 0)
+                d = glm::vec3(0.0f), d[i % 9 / 3] = i % 2 ? 1.0f : -1.0f; // along an axis
+            rays.push_back(
+                {.origin = glm::vec3(u(rng), u(rng), u(rng)), .direction = glm::normalize(d)});
+        }
+        // Rays down the normals of twins (triangles 0, 6, 12, ...: every fifth made, then its
+        // twin) through their centres: two hits at one distance.
+        for (uint32_t t = 0; t < 48; t += 6) {
+            const glm::vec3 a = scene.vertices[scene.indices[3 * t]].position;
+            const glm::vec3 b = scene.vertices[scene.indices[3 * t + 1]].position;
+            const glm::vec3 c = scene.vertices[scene.indices[3 * t + 2]].position;
+            const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+            rays.push_back({.origin = (a + b + c) / 3.0f + 0.01f * n, .direction = -n});
+        }
+        const auto truth = firstHitsBruteForce(scene, rays);
+        int hits = 0, twins = 0;
+        for (size_t r = 0; r < rays.size(); ++r) {
+            const auto hit = bvh.firstHit(rays[r]);
+            ASSERT_TRUE(sameHit(hit, truth[r])) << "seed " << seed << " ray " << r;
+            hits += hit.has_value();
+            if (r >= 600 && hit && hit->triangle == 6 * (r - 600))
+                ++twins; // of the twins, the lower index
+            if (!truth[r])
+                continue;
+            // Occluded within a segment: strictly nearer than its end.
+            EXPECT_TRUE(bvh.occluded(rays[r], truth[r]->distance * 1.0001f));
+            EXPECT_FALSE(bvh.occluded(rays[r], truth[r]->distance)) << "the end is open";
+            EXPECT_FALSE(bvh.firstHit(rays[r], truth[r]->distance).has_value());
+        }
+        EXPECT_GT(hits, 150) << "rays that meet something, in numbers";
+        EXPECT_GE(twins, 6);
+        EXPECT_TRUE(sameHit(firstHits(scene, rays).back(), truth.back()));
+    }
+    const Scene empty;
+    EXPECT_FALSE(TriangleBvh(empty).firstHit({}).has_value());
+}
+
+TEST(FirstPicture, TheProbeCountsCastShadowPixelByPixelUnderEveryLightType) {
+    // A sun travelling at 45 degrees towards +x: the plate at height 12 casts its 8 x 8 shadow 12
+    // units along, x from 2 to 10, clear of the plate itself (x -10 to -2).
+    const Scene high = plateOverGround(12.0f);
+    const Light sun{.type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(1, -1, 0))};
+    ViewShadow v = measured(high, sun);
+    EXPECT_EQ(v.covered, 1.0f);
+    EXPECT_EQ(v.castShadow * kPixels, 64.0f);
+    EXPECT_EQ(v.lit * kPixels, kPixels - 64.0f) << "the plate's top is lit, its shadow not";
+    // Straight down, the shadow lies under the plate, out of view.
+    EXPECT_EQ(measured(high, {.direction = {0, -1, 0}}).castShadow, 0.0f);
+    // From below the ground: every surface in view is turned away.
+    v = measured(high, {.direction = {0, 1, 0}});
+    EXPECT_EQ(v.lit + v.castShadow, 0.0f);
+
+    // A bulb at (-18, 8, 0) over the plate at height 4: the shadow is the plate scaled by
+    // 8 / (8 - 4) = 2 from the light's foot, x from -2 to 14 and z from -8 to 8: 16 x 16 pixels.
+    const Scene low = plateOverGround(4.0f);
+    const Light bulb{.type = LightType::Point, .position = {-18, 8, 0}};
+    const ViewShadow b = measured(low, bulb);
+    EXPECT_EQ(b.castShadow * kPixels, 256.0f);
+    EXPECT_EQ((b.lit + b.castShadow) * kPixels, kPixels) << "everything in view faces it";
+    // A spot there aimed at (6, 0, 0) with a 30-degree cone holds the whole shadow and less of
+    // the ground.
+    Light spot = bulb;
+    spot.type = LightType::Spot;
+    spot.direction = glm::normalize(glm::vec3(6, 0, 0) - spot.position);
+    spot.outerConeAngle = glm::radians(30.0f);
+    const ViewShadow s = measured(low, spot);
+    EXPECT_EQ(s.castShadow * kPixels, 256.0f);
+    EXPECT_LT(s.lit, 0.5f * b.lit) << "outside the cone is neither lit nor in shadow";
+    EXPECT_GT(s.lit, 0.05f);
+    // A bulb under the plate's height lights the plate's top not at all, and casts nothing.
+    EXPECT_EQ(measured(low, {.type = LightType::Point, .position = {-6, 2, 0}}).castShadow, 0.0f);
+    // The largest of several lights; a light that casts no shadow does not count.
+    const TriangleBvh bvh(low);
+    const ViewProbe probe(low, bvh, low.cameras.front());
+    Light quiet = bulb;
+    quiet.castsShadow = false;
+    EXPECT_EQ(probe.castShadow(std::vector{spot, sun}), 256.0f / kPixels);
+    EXPECT_EQ(probe.castShadow(std::vector{quiet}), 0.0f);
+    EXPECT_EQ(probe.subject(), v.subject);
+}
+
+// A ball on a ground framed with the ball at the right edge: the standard sun (from the front
+// left) throws its shadow to the right, out of the frame; a sun from the right throws it into
+// view.
+TEST(FirstPicture, TheDefaultSunMovesOnlyWhenItsShadowIsOutOfView) {
+    Scene scene;
+    MeshBuilder mb(scene);
+    const uint32_t m = mb.material("m", glm::vec3(0.6f));
+    mb.quad({-30, 0, 30}, {30, 0, 30}, {30, 0, -30}, {-30, 0, -30}, m);
+    mb.sphere({0, 1.5f, 0}, 1.5f, m); // enough triangles that the subject is the ball
+    const Camera edge{.name = "edge", .position = {-8, 4, 10}, .target = {-5, 1, 0}};
+    const Light standard = defaultSun(edge);
+    const ViewCensus before = viewCensus(scene, edge, standard, scene.bounds());
+    ASSERT_LT(before.castShadow, kEnoughShadow) << "the set-up: the shadow leaves the frame";
+    const Light chosen = defaultLightFor(scene, edge, false);
+    EXPECT_EQ(chosen.type, LightType::Directional);
+    EXPECT_EQ(chosen.intensity, standard.intensity);
+    const ViewCensus after = viewCensus(scene, edge, chosen, scene.bounds());
+    EXPECT_GE(after.castShadow, kEnoughShadow);
+    // Framed as the automatic camera frames it, the standard sun's shadow is in view: kept.
+    const Camera framed = automaticCamera(scene, ViewChoice::Auto);
+    const Light kept = defaultLightFor(scene, framed, false);
+    EXPECT_EQ(kept.direction, defaultSun(framed).direction);
+    EXPECT_GE(viewCensus(scene, framed, kept, scene.bounds()).castShadow, kEnoughShadow);
+}
+
+// A room with crates in front of its camera and the standard bulb right above the camera: each
+// crate's shadow falls behind it, where the camera cannot see. A bulb to the side shows them.
+TEST(FirstPicture, AnInteriorBulbIsPlacedWhereItsShadowsShow) {
+    Scene scene = room(true);
+    MeshBuilder mb(scene);
+    const uint32_t m = mb.material("crates", glm::vec3(0.5f));
+    for (float x : {-7.0f, -4.0f, 4.0f, 7.0f})
+        mb.box(boxAt({x, 0.5f, -0.5f}, glm::vec3(1.0f)), m);
+    const Camera camera = interiorCamera(scene);
+    const Light standard = standardLightFor(scene, camera, true);
+    ASSERT_EQ(standard.type, LightType::Point);
+    const Bounds subject = subjectBounds(scene);
+    ASSERT_LT(viewCensus(scene, camera, standard, subject).castShadow, kEnoughShadow);
+    const Light chosen = defaultLightFor(scene, camera, true);
+    ASSERT_EQ(chosen.type, LightType::Point);
+    EXPECT_GE(viewCensus(scene, camera, chosen, subject).castShadow, kEnoughShadow);
+    EXPECT_TRUE(glm::all(glm::lessThan(glm::vec3(-10, 0, -6), chosen.position)) &&
+                glm::all(glm::lessThan(chosen.position, glm::vec3(10, 4, 6))))
+        << "inside the room";
+    // As bright on the floor under it as the default sun.
+    EXPECT_NEAR(chosen.intensity / (chosen.position.y * chosen.position.y), defaultSun().intensity,
+                1e-3f);
+}
+
+TEST(FirstPicture, ALoneObjectGetsAGroundAndAGroundedOneNone) {
+    const auto staged = [](Scene s) {
+        s.cameras = {automaticCamera(s, ViewChoice::Auto)};
+        s.lights = {defaultLightFor(s, s.cameras.front(), false)};
+        s.defaultLight = true;
+        return s;
+    };
+    Scene lone = staged(loneObject());
+    const size_t triangles = lone.triangleCount();
+    const Bounds subject = subjectBounds(lone);
+    Scene floating = lone;
+    applySceneEdits(floating, {.noGround = true});
+    EXPECT_FALSE(floating.automaticGround);
+    EXPECT_EQ(floating.triangleCount(), triangles);
+    applySceneEdits(lone, {});
+    ASSERT_TRUE(lone.automaticGround);
+    EXPECT_EQ(lone.triangleCount(), triangles + 2);
+    EXPECT_EQ(lone.materials.back().name, "ground (automatic)");
+    EXPECT_EQ(lone.vertices.back().position.y, subject.min.y) << "under the subject";
+    const ViewCensus v = viewCensus(lone, lone.cameras.front(), lone.lights.front(), subject);
+    EXPECT_GE(v.castShadow, 0.01f);
+    EXPECT_GE(v.subject, 0.15f);
+    EXPECT_NE(automaticGroundNote(lone).find("--no-ground"), std::string::npos);
+    // Once is enough; --ground on a grounded scene adds no second quad.
+    applySceneEdits(lone, {.ground = true});
+    EXPECT_EQ(lone.triangleCount(), triangles + 2);
+    EXPECT_THROW(applySceneEdits(lone, {.ground = true, .noGround = true}), InputError);
+
+    // Scenes with floors of their own gain nothing from another.
+    for (Scene s : {staged(levelUnderSky()), staged(courtyard()), staged(room(true))}) {
+        const size_t before = s.triangleCount();
+        applySceneEdits(s, {});
+        EXPECT_FALSE(s.automaticGround) << s.name;
+        EXPECT_EQ(s.triangleCount(), before) << s.name;
+    }
+    for (std::string_view name : builtinSceneNames()) {
+        Scene s = loadScene("builtin:" + std::string(name));
+        const size_t before = s.triangleCount();
+        applySceneEdits(s, {});
+        EXPECT_FALSE(s.automaticGround) << name;
+        EXPECT_EQ(s.triangleCount(), before) << name;
+    }
+}
+
+// From outside the warehouse only its roof shows; near the bulbs, their crates' shadows.
+TEST(FirstPicture, ALevelLitByItsOwnBulbsIsSeenFromNearThem) {
+    const Scene s = warehouse();
+    const Bounds subject = subjectBounds(s);
+    const Camera outside = exteriorCamera(s, subject);
+    EXPECT_LT(viewCensus(s, outside, s.lights[0], subject).castShadow, 0.01f);
+    const auto near = cameraFromLights(s, outside, true);
+    ASSERT_TRUE(near.has_value());
+    EXPECT_EQ(near->name, "auto (from the lights)");
+    EXPECT_TRUE(glm::all(glm::lessThan(glm::vec3(-20, 0, -15), near->position)) &&
+                glm::all(glm::lessThan(near->position, glm::vec3(20, 6, 15))))
+        << "inside the warehouse";
+    float most = 0.0f;
+    for (const Light& l : s.lights)
+        most = std::max(most, viewCensus(s, *near, l, subject).castShadow);
+    EXPECT_GE(most, 0.01f);
+    EXPECT_GE(viewCensus(s, *near, s.lights[0], subject).subject, kLeastSubject);
+    // Not a level, framed well from outside: left as it is. Lit by suns only: nothing to seek.
+    Scene lone = loneObject();
+    lone.lights = {{.type = LightType::Point, .position = {3, 4, 3}, .intensity = 20}};
+    EXPECT_FALSE(cameraFromLights(lone, automaticCamera(lone, {}), false).has_value());
+    Scene sunny = s;
+    sunny.lights = {defaultSun()};
+    EXPECT_FALSE(cameraFromLights(sunny, outside, true).has_value());
+}
+
+// The loader's path: a level's own bulbs frame it; a lone model without lights or camera gets a
+// ground once the scene options are applied, as every command applies them.
+TEST(FirstPicture, TheLoaderFramesALevelFromItsBulbsAndGroundsALoneModel) {
+    const Scene level = loadGltf(asGltf(warehouse(), "warehouse"));
+    ASSERT_EQ(level.cameras.size(), 1u);
+    EXPECT_EQ(level.cameras.front().name, "auto (from the lights)");
+    EXPECT_FALSE(level.defaultLight);
+
+    Scene lone = loadGltf(asGltf(loneObject(), "lone"));
+    ASSERT_TRUE(lone.defaultLight);
+    const size_t triangles = lone.triangleCount();
+    applySceneEdits(lone, {});
+    EXPECT_TRUE(lone.automaticGround);
+    EXPECT_EQ(lone.triangleCount(), triangles + 2);
+    const ViewCensus v =
+        viewCensus(lone, lone.cameras.front(), lone.lights.front(), subjectBounds(lone));
+    EXPECT_GE(v.castShadow, 0.01f);
+    EXPECT_GE(v.subject, 0.15f);
+}
