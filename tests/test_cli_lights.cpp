@@ -141,3 +141,56 @@ TEST(CliLights, ViewGroundDoubleSidedAndOpenGeometryFromTheCommandLine) {
     r = render({"--view", "exterior", "--camera", "x"});
     EXPECT_NE(r.exitCode, 0) << "--view and --camera exclude each other";
 }
+
+// A lone box without lights, camera or ground: one note line, the ground in stats.json and
+// reference.json, both commands seeing the same triangles; --no-ground leaves it out; the two
+// options together are one error line.
+TEST(CliLights, ALoneModelGetsAGroundWithANoteUnlessNoGround) {
+    GltfBuilder b;
+    const int p = b.positions(
+        {-1, 0, -1, 1, 0, -1, 1, 2, -1, -1, 2, -1, -1, 0, 1, 1, 0, 1, 1, 2, 1, -1, 2, 1});
+    const int i = b.accessor(
+        b.view(std::vector<uint16_t>{0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 7, 3, 0, 4, 7,
+                                     1, 6, 5, 1, 2, 6, 3, 6, 2, 3, 7, 6, 0, 5, 4, 0, 1, 5}),
+        5123, 36, "SCALAR");
+    b.node({{"mesh", b.mesh(p, i)}});
+    const fs::path where = outputScratch("lone-asset");
+    fs::create_directories(where);
+    const fs::path asset = b.writeGltf(where / "lone.gltf");
+    const fs::path out = outputScratch("lone-render"), truth = outputScratch("lone-truth");
+    const std::vector<std::string> small = {"--width", "32", "--height", "18", "--format", "pfm"};
+    const auto run = [&](std::string command, const fs::path& to, std::vector<std::string> extra) {
+        std::vector<std::string> args = {command, asset.string(), "-o", to.string()};
+        args.insert(args.end(), small.begin(), small.end());
+        if (command == "render")
+            args.insert(args.end(), {"--frames", "1", "--shadow-map-size", "64"});
+        else
+            args.insert(args.end(), {"--samples", "1"});
+        args.insert(args.end(), extra.begin(), extra.end());
+        return runCli(args);
+    };
+    ProcessResult r = run("render", out, {});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string note = "penumbra: note: added a ground under 'lone'";
+    ASSERT_NE(r.err.find(note), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find(note, r.err.find(note) + 1), std::string::npos) << "one line";
+    std::string stats = slurp(out / "stats.json");
+    EXPECT_NE(stats.find("\"automatic_ground\": true"), std::string::npos) << stats;
+    EXPECT_NE(stats.find("\"triangles\": 14"), std::string::npos) << "the box's 12 and 2";
+    r = run("reference", truth, {});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(slurp(truth / "reference.json").find("\"automatic_ground\": true"),
+              std::string::npos);
+
+    r = run("render", out, {"--no-ground"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("added a ground"), std::string::npos) << r.err;
+    stats = slurp(out / "stats.json");
+    EXPECT_NE(stats.find("\"automatic_ground\": false"), std::string::npos);
+    EXPECT_NE(stats.find("\"no_ground\": true"), std::string::npos);
+    EXPECT_NE(stats.find("\"triangles\": 12"), std::string::npos);
+
+    r = run("render", out, {"--ground", "--no-ground"});
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.err.find("error: --ground excludes --no-ground"), std::string::npos) << r.err;
+}

@@ -168,6 +168,34 @@ TEST(RayCast, TheHierarchyAnswersAsTestingEveryTriangleInOrder) {
     EXPECT_FALSE(TriangleBvh(empty).firstHit({}).has_value());
 }
 
+// What the hierarchy is for: a ray that misses every box tests no triangle, even with no end; one
+// into a ball of 16k triangles, or out of it, a few hundred (median splits; the brute force tests
+// all 16k).
+TEST(RayCast, TheHierarchyTestsAFewTrianglesARay) {
+    Scene ball;
+    MeshBuilder mb(ball);
+    mb.sphere({0, 0, 0}, 1.0f, mb.material("m", glm::vec3(0.5f)), 128, 64);
+    ASSERT_GT(ball.triangleCount(), 16000u);
+    const TriangleBvh bvh(ball);
+    const float endless = std::numeric_limits<float>::infinity();
+    EXPECT_FALSE(bvh.occluded({.origin = {5, 5, 5}, .direction = {0, 1, 0}}, endless));
+    EXPECT_FALSE(bvh.firstHit({.origin = {5, 5, 5}, .direction = {0, 1, 0}}).has_value());
+    EXPECT_EQ(bvh.trianglesTested(), 0u);
+    size_t tested = 0;
+    // Away from the poles, where a UV sphere's 128 slivers share one corner.
+    for (const glm::vec3 d :
+         {glm::vec3(0, 0, -1), glm::vec3(0.6f, 0, -0.8f), glm::vec3(0, -0.6f, -0.8f)}) {
+        const auto hit = bvh.firstHit({.origin = -5.0f * d, .direction = d});
+        ASSERT_TRUE(hit.has_value());
+        EXPECT_NEAR(hit->distance, 4.0f, 1e-3f);
+        EXPECT_LT(bvh.trianglesTested() - tested, 500u) << "into the ball";
+        tested = bvh.trianglesTested();
+        EXPECT_FALSE(bvh.occluded({.origin = -1.001f * d, .direction = -d}, endless));
+        EXPECT_LT(bvh.trianglesTested() - tested, 500u) << "out of it";
+        tested = bvh.trianglesTested();
+    }
+}
+
 TEST(FirstPicture, TheProbeCountsCastShadowPixelByPixelUnderEveryLightType) {
     // A sun travelling at 45 degrees towards +x: the plate at height 12 casts its 8 x 8 shadow 12
     // units along, x from 2 to 10, clear of the plate itself (x -10 to -2).
@@ -221,7 +249,7 @@ TEST(FirstPicture, TheDefaultSunMovesOnlyWhenItsShadowIsOutOfView) {
     MeshBuilder mb(scene);
     const uint32_t m = mb.material("m", glm::vec3(0.6f));
     mb.quad({-30, 0, 30}, {30, 0, 30}, {30, 0, -30}, {-30, 0, -30}, m);
-    mb.sphere({0, 1.5f, 0}, 1.5f, m); // enough triangles that the subject is the ball
+    mb.sphere({0, 1.5f, 0}, 1.5f, m, 32, 16); // enough triangles that the subject is the ball
     const Camera edge{.name = "edge", .position = {-8, 4, 10}, .target = {-5, 1, 0}};
     const Light standard = defaultSun(edge);
     const ViewCensus before = viewCensus(scene, edge, standard, scene.bounds());
@@ -262,6 +290,35 @@ TEST(FirstPicture, AnInteriorBulbIsPlacedWhereItsShadowsShow) {
                 1e-3f);
 }
 
+// A room whose most open point stands over a table in its middle, looking along its longest
+// free line at an empty wall: no bulb shows a shadow there. Turned towards the cabinet and
+// looking down, the camera shows one.
+TEST(FirstPicture, AnInteriorCameraTurnsToWhereItsShadowsShow) {
+    Scene scene = room(true);
+    scene.indices.resize(scene.indices.size() - 36); // the room without its table
+    MeshBuilder mb(scene);
+    const uint32_t m = mb.material("furniture", glm::vec3(0.5f));
+    mb.box(boxAt({0, 0.4f, 0}, {3, 0.8f, 2}), m);     // a low table in the middle
+    mb.box(boxAt({-2, 1, -5}, {3, 2, 1.5f}), m);      // a cabinet against the back wall
+    mb.box(boxAt({-8.5f, 0.5f, 4}, glm::vec3(1)), m); // a box in a corner
+    ASSERT_TRUE(isInterior(scene));
+    const Camera standard = interiorCamera(scene);
+    const Bounds subject = subjectBounds(scene);
+    const auto shown = [&](const Camera& c) {
+        return viewCensus(scene, c, defaultLightFor(scene, c, true), subject).castShadow;
+    };
+    if (shown(standard) >= kEnoughShadow) {
+        EXPECT_FALSE(betterInteriorView(scene, standard).has_value());
+        GTEST_SKIP() << "the set-up: the standard view shows enough already";
+    }
+    const auto turned = betterInteriorView(scene, standard);
+    ASSERT_TRUE(turned.has_value());
+    EXPECT_EQ(turned->position, standard.position);
+    EXPECT_EQ(turned->yfov, standard.yfov);
+    EXPECT_GE(shown(*turned), kEnoughShadow);
+    EXPECT_GT(shown(*turned), shown(standard));
+}
+
 TEST(FirstPicture, ALoneObjectGetsAGroundAndAGroundedOneNone) {
     const auto staged = [](Scene s) {
         s.cameras = {automaticCamera(s, ViewChoice::Auto)};
@@ -290,6 +347,19 @@ TEST(FirstPicture, ALoneObjectGetsAGroundAndAGroundedOneNone) {
     EXPECT_EQ(lone.triangleCount(), triangles + 2);
     EXPECT_THROW(applySceneEdits(lone, {.ground = true, .noGround = true}), InputError);
 
+    // A camera that looks away from the model would not see the ground: none, and the scene as
+    // it was (the quad tried in place is taken back, the default light as it was).
+    Scene away = staged(loneObject());
+    away.cameras.front() = {.name = "away", .position = {0, 2, 10}, .target = {0, 2, 20}};
+    away.lights.front() = defaultSun(away.cameras.front());
+    const Scene original = away;
+    applySceneEdits(away, {});
+    EXPECT_FALSE(away.automaticGround);
+    EXPECT_EQ(away.vertices.size(), original.vertices.size());
+    EXPECT_EQ(away.indices, original.indices);
+    EXPECT_EQ(away.materials.size(), original.materials.size());
+    EXPECT_EQ(away.lights.front().direction, original.lights.front().direction);
+
     // Scenes with floors of their own gain nothing from another.
     for (Scene s : {staged(levelUnderSky()), staged(courtyard()), staged(room(true))}) {
         const size_t before = s.triangleCount();
@@ -297,6 +367,40 @@ TEST(FirstPicture, ALoneObjectGetsAGroundAndAGroundedOneNone) {
         EXPECT_FALSE(s.automaticGround) << s.name;
         EXPECT_EQ(s.triangleCount(), before) << s.name;
     }
+    // A model on a thick base of its own (the rays from just above the bottom start inside the
+    // base and pass through its underside; from a quarter of the height they meet its top) and
+    // a terrain of hills (from its bottom the rays start under the slopes): none.
+    Scene based = loneObject();
+    for (Vertex& vertex : based.vertices)
+        vertex.position.y += 0.6f;
+    MeshBuilder(based).box(boxAt({0.5f, 0.3f, 0}, {5, 0.6f, 4}), 0);
+    Scene hills;
+    hills.name = "hills";
+    MeshBuilder hb(hills);
+    const uint32_t grass = hb.material("grass", glm::vec3(0.4f));
+    const auto height = [](float x, float z) { return 2.0f + std::sin(x) * std::cos(0.7f * z); };
+    for (int i = -10; i < 10; ++i)
+        for (int k = -10; k < 10; ++k) {
+            const float x = static_cast<float>(i), z = static_cast<float>(k);
+            hb.quad({x, height(x, z + 1), z + 1}, {x + 1, height(x + 1, z + 1), z + 1},
+                    {x + 1, height(x + 1, z), z}, {x, height(x, z), z}, grass);
+        }
+    for (Scene s : {staged(based), staged(hills)}) {
+        const size_t before = s.triangleCount();
+        applySceneEdits(s, {});
+        EXPECT_FALSE(s.automaticGround) << s.name;
+        EXPECT_EQ(s.triangleCount(), before) << s.name;
+    }
+    // A tall pole's ground reaches three times its height, where a low sun throws its shadow.
+    Scene pole;
+    MeshBuilder(pole).box(boxAt({0, 5, 0}, {0.4f, 10, 0.4f}), MeshBuilder(pole).material("m", {}));
+    addGround(pole);
+    Bounds quad;
+    for (size_t corner = pole.vertices.size() - 4; corner < pole.vertices.size(); ++corner)
+        quad.grow(pole.vertices[corner].position);
+    EXPECT_NEAR(quad.extent().x, 30.0f, 1e-3f);
+    EXPECT_NEAR(quad.extent().z, 30.0f, 1e-3f);
+
     for (std::string_view name : builtinSceneNames()) {
         Scene s = loadScene("builtin:" + std::string(name));
         const size_t before = s.triangleCount();

@@ -200,11 +200,11 @@ void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
     group(cmd.add_flag("--double-sided", scene.doubleSided,
                        "draws every material's back faces too (a mis-wound or open mesh shows "
                        "holes where single-sided back faces are culled)"));
-    CLI::Option* ground =
-        group(cmd.add_flag("--ground", scene.ground,
-                           "adds a ground quad under the subject, three times its width, to "
-                           "catch the shadows of a lone object (without it, added when it "
-                           "puts a cast shadow in view)"));
+    CLI::Option* ground = group(
+        cmd.add_flag("--ground", scene.ground,
+                     "adds a ground quad under the subject, three times its largest extent, to "
+                     "catch the shadows of a lone object (without it, added when it "
+                     "puts a cast shadow in view)"));
     group(cmd.add_flag("--no-ground", scene.noGround,
                        "never adds the automatic ground (a lone object floats on the sky)"))
         ->excludes(ground);

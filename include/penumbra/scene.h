@@ -212,7 +212,7 @@ glm::vec2 visibleDepthRange(const Scene& scene, const Camera& camera, float aspe
 // --light-dir (a light by name: a position for spots and point lights, a direction for spots and
 // suns), --camera-pos with --look-at and --fov (a camera named "command line" that becomes the
 // scene's first). Throws InputError naming the option.
-// --ground adds a ground quad under the subject (scene/framing.h), three times its width;
+// --ground adds a ground quad under the subject (scene/framing.h), three times its largest extent;
 // without --ground or --no-ground, the same quad is added when it adds a cast shadow to the first
 // camera's view (scene/first_picture.h), and scene.automaticGround says so;
 // --double-sided makes every material double-sided;

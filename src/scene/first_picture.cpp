@@ -21,8 +21,12 @@ constexpr int kLightViews = 8;                     // cameras round a light's sp
 constexpr size_t kMostLights = 4;                  // lights a camera is sought near
 constexpr float kLightViewElevation = 35.0f;       // degrees
 constexpr float kInteriorFovDegrees = 70.0f;
-constexpr int kFloorGrid = 9;       // rays down per horizontal axis of the subject
-constexpr float kFloorBand = 0.02f; // of the subject's height: where the rays down start
+constexpr int kInteriorViews = 8;                   // directions an interior camera may turn to
+constexpr float kInteriorPitches[] = {0.0f, 20.0f}; // degrees down
+constexpr int kFloorGrid = 9;                       // rays down per horizontal axis of the subject
+// Where the rays down start, in the subject's height above its bottom: just above it (a ground),
+// a quarter and half way up (a terrain's hills, a model's own thick base).
+constexpr float kFloorStarts[] = {0.02f, 0.25f, 0.5f};
 constexpr float kFloorShare = 0.5f; // of the rays: the subject stands on a floor
 
 float sceneSize(const Scene& scene) {
@@ -107,33 +111,57 @@ glm::vec2 depthRange(const Scene& scene, const glm::vec3& from) {
     return {zfar * 1e-4f, zfar};
 }
 
-// Whether something under the subject can receive its shadow: at least half of a 9 x 9 grid of
-// rays down over its footprint, from 2% of its height above its bottom, meet the front of a
-// surface (one facing up) below. A ray that meets a back face first (the underside of a model,
-// from within) goes on through it: a lone model's feet are no floor, the ground under a
-// floating ball is.
+// Whether a ray down the column (i, k) of a kFloorGrid grid over the subject's footprint, from
+// above it, leaves the scene through the front of a surface: an open surface facing up at the
+// bottom (a terrain, a ground), not the underside of a closed model, met from within.
+bool endsOnAnOpenSurface(const TriangleBvh& bvh, const Bounds& subject, int i, int k) {
+    constexpr int kMostCrossings = 16;
+    const glm::vec3 extent = subject.extent();
+    const float x = (static_cast<float>(i) + 0.5f) / kFloorGrid;
+    const float z = (static_cast<float>(k) + 0.5f) / kFloorGrid;
+    const float step = 1e-5f * std::max(glm::length(extent), 1e-6f);
+    Ray ray{.origin = glm::vec3(subject.min.x + x * extent.x, subject.max.y + 0.01f * extent.y,
+                                subject.min.z + z * extent.z)};
+    bool lastFront = false;
+    for (int crossing = 0; crossing < kMostCrossings; ++crossing) {
+        const auto hit = bvh.firstHit(ray);
+        if (!hit)
+            return lastFront;
+        lastFront = hit->front;
+        ray.origin.y -= hit->distance + step;
+    }
+    return false;
+}
+
+// Whether something under the subject can receive its shadow: in at least half of a 9 x 9 grid
+// of columns over its footprint, a ray down from 2%, 25% or 50% of its height above its bottom
+// meets the front of a surface (one facing up), or one from above it leaves through the front
+// of an open surface. A ray that meets a back face first (the underside of a model, from
+// within) goes on through it: a lone model's feet are no floor; the ground under a floating
+// ball, a terrain and a model's own thick base are.
 bool somethingBelow(const Scene& scene, const TriangleBvh& bvh) {
     constexpr int kCrossings = 4; // back faces a ray goes through
     const Bounds subject = subjectBounds(scene);
     const glm::vec3 extent = subject.extent();
-    const float band = kFloorBand * std::max(extent.y, 1e-3f * std::max(extent.x, extent.z));
+    const float height = std::max(extent.y, 1e-3f * std::max(extent.x, extent.z));
     int floors = 0;
     for (int i = 0; i < kFloorGrid; ++i)
         for (int k = 0; k < kFloorGrid; ++k) {
-            Ray ray{
-                .origin = {subject.min.x + (static_cast<float>(i) + 0.5f) / kFloorGrid * extent.x,
-                           subject.min.y + band,
-                           subject.min.z + (static_cast<float>(k) + 0.5f) / kFloorGrid * extent.z}};
-            for (int crossing = 0; crossing < kCrossings; ++crossing) {
-                const auto hit = bvh.firstHit(ray);
-                if (!hit)
-                    break;
-                if (hit->front) {
-                    ++floors;
-                    break;
+            bool floor = false;
+            for (float start : kFloorStarts) {
+                const float x = (static_cast<float>(i) + 0.5f) / kFloorGrid;
+                const float z = (static_cast<float>(k) + 0.5f) / kFloorGrid;
+                Ray ray{.origin =
+                            subject.min + glm::vec3(x * extent.x, start * height, z * extent.z)};
+                for (int crossing = 0; crossing < kCrossings && !floor; ++crossing) {
+                    const auto hit = bvh.firstHit(ray);
+                    if (!hit)
+                        break;
+                    floor = hit->front;
+                    ray.origin.y -= hit->distance + 1e-5f * height;
                 }
-                ray.origin.y -= hit->distance + 1e-4f * band;
             }
+            floors += floor || endsOnAnOpenSurface(bvh, subject, i, k);
         }
     return static_cast<float>(floors) >= kFloorShare * kFloorGrid * kFloorGrid;
 }
@@ -141,9 +169,12 @@ bool somethingBelow(const Scene& scene, const TriangleBvh& bvh) {
 } // namespace
 
 ViewProbe::ViewProbe(const Scene& scene, const TriangleBvh& bvh, const Camera& camera)
+    : ViewProbe(scene, bvh, camera, subjectBounds(scene)) {}
+
+ViewProbe::ViewProbe(const Scene& scene, const TriangleBvh& bvh, const Camera& camera,
+                     Bounds subject)
     : mBvh(bvh), mPixels(size_t{kGridWidth} * kGridHeight), mOffset(1e-4f * sceneSize(scene)) {
     const ViewFrustum f = viewFrustum(camera, static_cast<float>(kGridWidth) / kGridHeight);
-    Bounds subject = subjectBounds(scene);
     subject.min -= mOffset, subject.max += mOffset;
     for (int y = 0; y < kGridHeight; ++y)
         for (int x = 0; x < kGridWidth; ++x) {
@@ -218,27 +249,68 @@ float ViewProbe::castShadow(std::span<const Light> lights) const {
     return most;
 }
 
-Light chooseDefaultLight(const Scene& scene, const Camera& camera, const Light& standard) {
-    if (scene.triangleCount() == 0)
-        return standard;
-    const TriangleBvh bvh(scene);
-    const ViewProbe probe(scene, bvh, camera);
+namespace {
+
+// The light and the cast shadow it shows (-1 when no candidate lights the view).
+struct Lit {
+    Light light;
+    float shadow = -1.0f;
+};
+
+Lit bestDefaultLight(const Scene& scene, const TriangleBvh& bvh, const Bounds& subject,
+                     const Camera& camera, const Light& standard) {
+    const ViewProbe probe(scene, bvh, camera, subject);
     const ViewShadow first = probe.measure(standard);
+    Lit best{standard, lightsTheView(first) ? first.castShadow : -1.0f};
     if (first.castShadow >= kEnoughShadow)
-        return standard;
-    Light best = standard;
-    float most = lightsTheView(first) ? first.castShadow : -1.0f;
+        return {standard, first.castShadow};
     const std::vector<Light> candidates = standard.type == LightType::Directional
                                               ? sunCandidates(camera, standard)
                                               : bulbCandidates(scene, bvh, camera, standard);
     for (const Light& l : candidates) {
         const ViewShadow v = probe.measure(l);
-        if (lightsTheView(v) && v.castShadow > most) {
-            best = l;
-            most = v.castShadow;
-        }
+        if (lightsTheView(v) && v.castShadow > best.shadow)
+            best = {l, v.castShadow};
     }
     return best;
+}
+
+} // namespace
+
+Light chooseDefaultLight(const Scene& scene, const Camera& camera, const Light& standard) {
+    if (scene.triangleCount() == 0)
+        return standard;
+    const TriangleBvh bvh(scene);
+    return bestDefaultLight(scene, bvh, subjectBounds(scene), camera, standard).light;
+}
+
+std::optional<Camera> betterInteriorView(const Scene& scene, const Camera& standard) {
+    if (scene.triangleCount() == 0)
+        return std::nullopt;
+    const TriangleBvh bvh(scene);
+    const Bounds subject = subjectBounds(scene);
+    const auto shadowOf = [&](const Camera& c) {
+        return bestDefaultLight(scene, bvh, subject, c, standardLightFor(scene, c, true)).shadow;
+    };
+    float best = shadowOf(standard);
+    if (best >= kEnoughShadow)
+        return std::nullopt;
+    const float reach = std::max(glm::length(standard.target - standard.position), 1e-6f);
+    std::optional<Camera> chosen;
+    for (int a = 0; a < kInteriorViews; ++a)
+        for (float pitch : kInteriorPitches) {
+            const float round = 2.0f * glm::pi<float>() * static_cast<float>(a) / kInteriorViews;
+            const float down = glm::radians(pitch);
+            Camera c = standard;
+            c.target =
+                c.position + reach * glm::vec3(std::cos(down) * std::cos(round), -std::sin(down),
+                                               std::cos(down) * std::sin(round));
+            if (const float s = shadowOf(c); s > best) {
+                best = s;
+                chosen = c;
+            }
+        }
+    return chosen;
 }
 
 bool addGroundWhereNothingReceives(Scene& scene) {
@@ -252,18 +324,25 @@ bool addGroundWhereNothingReceives(Scene& scene) {
             return false;
         before = ViewProbe(scene, bvh, camera).castShadow(scene.lights);
     }
-    Scene grounded = scene;
-    addGround(grounded, "ground (automatic)");
-    if (grounded.defaultLight)
-        grounded.lights.front() =
-            defaultLightFor(grounded, camera, camera.name == "auto (interior)");
-    const TriangleBvh bvh(grounded);
-    const float after = ViewProbe(grounded, bvh, camera).castShadow(grounded.lights);
-    if (!(after >= before + kGroundGain))
-        return false;
-    grounded.automaticGround = true;
-    scene = std::move(grounded);
-    return true;
+    // Tried in place and taken back when it gains too little: a copy of the scene would copy
+    // its decoded images too.
+    const size_t vertices = scene.vertices.size(), indices = scene.indices.size(),
+                 materials = scene.materials.size();
+    const std::vector<Light> lights = scene.lights;
+    addGround(scene, "ground (automatic)");
+    if (scene.defaultLight)
+        scene.lights.front() = defaultLightFor(scene, camera, camera.name == "auto (interior)");
+    const TriangleBvh bvh(scene);
+    const float after = ViewProbe(scene, bvh, camera).castShadow(scene.lights);
+    if (after >= before + kGroundGain) {
+        scene.automaticGround = true;
+        return true;
+    }
+    scene.vertices.resize(vertices);
+    scene.indices.resize(indices);
+    scene.materials.resize(materials);
+    scene.lights = lights;
+    return false;
 }
 
 std::string automaticGroundNote(const Scene& scene) {
@@ -280,11 +359,12 @@ std::optional<Camera> cameraFromLights(const Scene& scene, const Camera& standar
     if (bulbs.empty() || scene.triangleCount() == 0)
         return std::nullopt;
     const TriangleBvh bvh(scene);
+    const Bounds subject = subjectBounds(scene);
     const auto score = [&](const Camera& c) {
-        const ViewProbe probe(scene, bvh, c);
+        const ViewProbe probe(scene, bvh, c, subject);
         return probe.subject() >= kLeastSubject ? probe.castShadow(scene.lights) : -1.0f;
     };
-    if (!levelOrInterior && ViewProbe(scene, bvh, standard).subject() >= kLeastSubject)
+    if (!levelOrInterior && ViewProbe(scene, bvh, standard, subject).subject() >= kLeastSubject)
         return std::nullopt; // an exterior framed as it should be
     float best = score(standard);
     std::optional<Camera> chosen;

@@ -11,11 +11,13 @@
 //   18 bulbs in an interior (along the view, to its sides, at two heights under the ceiling), the
 //   one that shows the most, among those that light at least a quarter of what is in view.
 // - A ground (scene/framing.h's quad under the subject) is added when nothing lies under the
-//   subject to receive its shadow (fewer than half of a 9 x 9 grid of rays down over its
-//   footprint meet a surface facing up, through the model's own underside) and the ground adds
-//   at least half a percent of the view in cast shadow: a lone object's shadow falls on
-//   nothing; a model on a floor, a terrain (the ground would lie under it, unseen) and a view
-//   that does not show it get none.
+//   subject to receive its shadow (in fewer than half of a 9 x 9 grid of columns over its
+//   footprint does a ray down from 2%, 25% or 50% of its height meet a surface facing up,
+//   through the model's own underside) and the ground adds at least half a percent of the view
+//   in cast shadow: a lone object's shadow falls on nothing; a model on a floor or a thick
+//   base, a terrain and a view that does not show it get none.
+// - An interior without camera or lights whose view shows under 2% with its best light turns
+//   its camera (8 directions, level or 20 degrees down) to the view that shows the most.
 // - A scene without a camera whose own bulbs or spots light a level or an interior is seen from
 //   near them: from 8 sides of the spot each light makes on what it shines at, when that shows
 //   more cast shadow than the standard framing with the subject at least 15% of the view.
@@ -44,6 +46,8 @@ struct ViewShadow {
 class ViewProbe {
 public:
     ViewProbe(const Scene& scene, const TriangleBvh& bvh, const Camera& camera);
+    // With the scene's subjectBounds given: many cameras of one scene measure it once.
+    ViewProbe(const Scene& scene, const TriangleBvh& bvh, const Camera& camera, Bounds subject);
     ViewShadow measure(const Light& light) const;
     // The largest cast shadow of the scene's lights that cast shadows (0 without any).
     float castShadow(std::span<const Light> lights) const;
@@ -63,6 +67,11 @@ private:
 
 // The standard light (defaultLightFor's rule), or a better placed one as above.
 Light chooseDefaultLight(const Scene& scene, const Camera& camera, const Light& standard);
+
+// For an interior camera (scene/interior.h) whose best default light shows less than 2% of the
+// view in cast shadow: the same camera turned to one of 8 directions, level or 20 degrees down,
+// where the best default light shows the most; nullopt when none shows more.
+std::optional<Camera> betterInteriorView(const Scene& scene, const Camera& standard);
 
 // Adds the ground quad named "ground (automatic)" when nothing lies under the subject and the
 // ground adds kGroundGain of the first camera's view in cast shadow (a default light is chosen

@@ -515,9 +515,13 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
             // A level or an interior with lights of its own is seen from near them.
             const glm::vec3 extent = subject.extent();
             const bool level = extent.y <= 0.5f * std::max(extent.x, extent.z);
-            if (!scene.lights.empty())
+            if (!scene.lights.empty()) {
                 if (auto near = cameraFromLights(scene, camera, level || measure.interior()))
                     camera = std::move(*near);
+            } else if (measure.interior()) {
+                if (auto turned = betterInteriorView(scene, camera))
+                    camera = std::move(*turned);
+            }
             scene.cameras.push_back(std::move(camera));
         }
         if (scene.lights.empty()) {

@@ -14,14 +14,17 @@ glm::vec3 corner(const Scene& scene, uint32_t t, int k) {
     return scene.vertices[scene.indices[3 * size_t{t} + static_cast<size_t>(k)]].position;
 }
 
-// The slab test: the distance at which the ray enters `box`, or infinity when it misses it or
-// enters beyond `limit`.
-float entry(const Bounds& box, const glm::vec3& origin, const glm::vec3& inverse, float limit) {
+// The slab test: the distance at which the ray enters `box`, or nullopt when it misses it or
+// enters beyond `limit` (which may be infinite: a miss must not compare equal to it).
+std::optional<float> entry(const Bounds& box, const glm::vec3& origin, const glm::vec3& inverse,
+                           float limit) {
     const glm::vec3 a = (box.min - origin) * inverse, b = (box.max - origin) * inverse;
     const glm::vec3 lo = glm::min(a, b), hi = glm::max(a, b);
     const float enter = std::max({lo.x, lo.y, lo.z, 0.0f});
     const float leave = std::min({hi.x, hi.y, hi.z, limit});
-    return enter <= leave ? enter : std::numeric_limits<float>::infinity();
+    if (enter <= leave)
+        return enter;
+    return std::nullopt;
 }
 
 bool closer(const RayHit& a, const std::optional<RayHit>& best) {
@@ -121,23 +124,24 @@ void TriangleBvh::traverse(const Ray& ray, float& limit, Visit&& visit) const {
         inverse[k] = 1.0f / (ray.direction[k] == 0.0f ? 1e-30f : ray.direction[k]);
     std::array<uint32_t, 128> stack{};
     size_t size = 0;
-    if (entry(mNodes[0].box, ray.origin, inverse, limit) <= limit)
+    if (entry(mNodes[0].box, ray.origin, inverse, limit))
         stack[size++] = 0;
     while (size > 0) {
         const Node& node = mNodes[stack[--size]];
         if (node.count > 0) {
+            mTested += node.count;
             for (uint32_t i = node.first; i < node.first + node.count; ++i)
                 if (!visit(mOrder[i]))
                     return;
             continue;
         }
         const uint32_t children[2] = {node.first - 1, node.first};
-        float near[2];
+        std::optional<float> near[2];
         for (int c = 0; c < 2; ++c)
             near[c] = entry(mNodes[children[c]].box, ray.origin, inverse, limit);
-        const int first = near[1] < near[0]; // the nearer child is visited first
+        const int first = near[1] && (!near[0] || *near[1] < *near[0]); // the nearer goes first
         for (int c : {1 - first, first})
-            if (near[c] <= limit && size < stack.size())
+            if (near[c] && size < stack.size())
                 stack[size++] = children[c];
     }
 }

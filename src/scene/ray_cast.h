@@ -35,6 +35,8 @@ public:
     firstHit(const Ray& ray, float maxDistance = std::numeric_limits<float>::infinity()) const;
     // Whether any triangle lies along the ray closer than maxDistance.
     bool occluded(const Ray& ray, float maxDistance) const;
+    // How many triangle tests the rays so far took: what the hierarchy saves is tested.
+    size_t trianglesTested() const { return mTested; }
 
 private:
     struct Node {
@@ -47,6 +49,7 @@ private:
     const Scene& mScene;
     std::vector<Node> mNodes;
     std::vector<uint32_t> mOrder; // triangle indices, leaf by leaf
+    mutable size_t mTested = 0;
 };
 
 // Brute force over every triangle for a batch of rays (the reference the hierarchy is tested

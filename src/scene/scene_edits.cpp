@@ -110,7 +110,8 @@ std::string_view viewChoiceName(ViewChoice choice) {
 void addGround(Scene& scene, std::string_view material) {
     const Bounds s = subjectBounds(scene);
     const glm::vec3 c = s.center();
-    const float half = std::max(1.5f * std::max(s.extent().x, s.extent().z), 1e-3f);
+    // Three times its largest extent: a tall model's shadow is as long as it is tall.
+    const float half = std::max(1.5f * std::max({s.extent().x, s.extent().y, s.extent().z}), 1e-3f);
     const float y = s.min.y;
     MeshBuilder mb(scene);
     mb.quad({c.x - half, y, c.z + half}, {c.x + half, y, c.z + half}, {c.x + half, y, c.z - half},
