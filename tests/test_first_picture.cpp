@@ -455,3 +455,44 @@ TEST(FirstPicture, TheLoaderFramesALevelFromItsBulbsAndGroundsALoneModel) {
     EXPECT_GE(v.castShadow, 0.01f);
     EXPECT_GE(v.subject, 0.15f);
 }
+
+// A lone model whose own bulb stands between it and the automatic camera: its shadow falls behind
+// it, out of sight. After the ground, the view turns round the model to where the shadow shows.
+TEST(FirstPicture, AnExteriorViewTurnsToWhereItsShadowShows) {
+    Scene s = loneObject();
+    const Camera standard = automaticCamera(s, ViewChoice::Auto);
+    ASSERT_EQ(standard.name, "auto (exterior)");
+    s.cameras = {standard};
+    const glm::vec3 towards = standard.position - standard.target;
+    s.lights = {{.name = "bulb",
+                 .type = LightType::Point,
+                 .position = standard.target + 0.6f * towards + glm::vec3(0, 1, 0),
+                 .intensity = 20}};
+    Scene kept = s;
+    applySceneEdits(kept, {}); // the ground, then the turn
+    ASSERT_TRUE(kept.automaticGround);
+    Scene unturned = s;
+    ASSERT_TRUE(addGroundWhereNothingReceives(unturned));
+    const Bounds subject = subjectBounds(s);
+    const float before = viewCensus(unturned, standard, s.lights[0], subject).castShadow;
+    ASSERT_LT(before, kEnoughShadow) << "the set-up: the shadow hides behind the model";
+    const Camera& turned = kept.cameras.front();
+    EXPECT_EQ(turned.target, standard.target);
+    EXPECT_NEAR(glm::length(turned.position - turned.target), glm::length(towards), 1e-3f);
+    EXPECT_NEAR(turned.position.y, standard.position.y, 1e-3f);
+    EXPECT_GT(viewCensus(kept, turned, s.lights[0], subject).castShadow, before);
+    EXPECT_GE(viewCensus(kept, turned, s.lights[0], subject).castShadow, kEnoughShadow);
+    // A camera of the file (or the command line) stays where it is.
+    Scene own = s;
+    own.cameras.front().name = "eye";
+    applySceneEdits(own, {});
+    EXPECT_EQ(own.cameras.front().position, standard.position);
+}
+
+// A candidate light counts when it lights a quarter of what is in view, not less.
+TEST(FirstPicture, ACandidateLightMustLightAQuarterOfWhatIsInView) {
+    EXPECT_TRUE(lightsTheView({.covered = 0.8f, .lit = 0.2f}));
+    EXPECT_FALSE(lightsTheView({.covered = 0.8f, .lit = 0.19f}));
+    EXPECT_FALSE(lightsTheView({.covered = 1.0f, .lit = 0.2f, .castShadow = 0.8f}));
+    EXPECT_TRUE(lightsTheView({}));
+}

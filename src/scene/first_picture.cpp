@@ -13,14 +13,15 @@ namespace {
 
 constexpr int kGridWidth = 64, kGridHeight = 36; // the default image's 16:9
 constexpr float kSunAzimuths[] = {85.0f, -85.0f, 45.0f, -45.0f, 135.0f, -135.0f, 0.0f};
-constexpr float kSunElevations[] = {45.0f, 30.0f, 60.0f};
-constexpr float kBulbAlong[] = {0.0f, 0.3f, 0.6f}; // of the free line ahead
+constexpr float kSunElevations[] = {45.0f, 30.0f, 60.0f, 20.0f}; // the standard's first
+constexpr float kBulbAlong[] = {0.0f, 0.3f, 0.6f};               // of the free line ahead
 constexpr float kBulbSide[] = {0.0f, -0.3f, 0.3f}; // of the free line ahead, clamped by walls
 constexpr float kBulbHeights[] = {0.5f, 0.8f};     // of the way to the ceiling
 constexpr int kLightViews = 8;                     // cameras round a light's spot
 constexpr size_t kMostLights = 4;                  // lights a camera is sought near
 constexpr float kLightViewElevation = 35.0f;       // degrees
 constexpr float kInteriorFovDegrees = 70.0f;
+constexpr int kExteriorViews = 8;                   // directions round an exterior's target
 constexpr int kInteriorViews = 8;                   // directions an interior camera may turn to
 constexpr float kInteriorPitches[] = {0.0f, 20.0f}; // degrees down
 constexpr int kFloorGrid = 9;                       // rays down per horizontal axis of the subject
@@ -44,10 +45,6 @@ float freeDistance(const TriangleBvh& bvh, const glm::vec3& from, const glm::vec
                    float otherwise) {
     const auto hit = bvh.firstHit({.origin = from, .direction = dir});
     return hit ? hit->distance : otherwise;
-}
-
-bool lightsTheView(const ViewShadow& v) {
-    return v.lit >= kLeastLit * v.covered;
 }
 
 // A bulb as bright on the floor under it as the default sun.
@@ -249,6 +246,10 @@ float ViewProbe::castShadow(std::span<const Light> lights) const {
     return most;
 }
 
+bool lightsTheView(const ViewShadow& v) {
+    return v.lit >= kLeastLit * v.covered;
+}
+
 namespace {
 
 // The light and the cast shadow it shows (-1 when no candidate lights the view).
@@ -343,6 +344,45 @@ bool addGroundWhereNothingReceives(Scene& scene) {
     scene.materials.resize(materials);
     scene.lights = lights;
     return false;
+}
+
+bool turnExteriorView(Scene& scene) {
+    if (scene.cameras.empty() || scene.cameras.front().name != "auto (exterior)" ||
+        scene.triangleCount() == 0)
+        return false;
+    const TriangleBvh bvh(scene);
+    const Bounds subject = subjectBounds(scene);
+    const auto shown = [&](const Camera& c) -> Lit {
+        const ViewProbe probe(scene, bvh, c, subject);
+        if (probe.subject() < kLeastSubject)
+            return {};
+        if (scene.defaultLight) // the default light follows the camera
+            return bestDefaultLight(scene, bvh, subject, c, defaultSun(c));
+        return {Light{}, probe.castShadow(scene.lights)};
+    };
+    const Camera standard = scene.cameras.front();
+    Lit best = shown(standard);
+    if (best.shadow >= kEnoughShadow)
+        return false;
+    std::optional<Camera> chosen;
+    const glm::vec3 offset = standard.position - standard.target;
+    for (int a = 1; a < kExteriorViews; ++a) {
+        const float round = 2.0f * glm::pi<float>() * static_cast<float>(a) / kExteriorViews;
+        const float c = std::cos(round), s = std::sin(round);
+        Camera turned = standard;
+        turned.position = standard.target + glm::vec3(c * offset.x + s * offset.z, offset.y,
+                                                      -s * offset.x + c * offset.z);
+        if (const Lit l = shown(turned); l.shadow > best.shadow) {
+            best = l;
+            chosen = turned;
+        }
+    }
+    if (!chosen)
+        return false;
+    scene.cameras.front() = *chosen;
+    if (scene.defaultLight)
+        scene.lights.front() = best.light;
+    return true;
 }
 
 std::string automaticGroundNote(const Scene& scene) {

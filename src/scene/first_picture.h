@@ -7,7 +7,7 @@
 //   a spot's cone, and another surface lies between it and the light. Surfaces turned away are
 //   not counted: they are dark whatever the technique does.
 // - The default light keeps its standard placement (scene/interior.h) when that shows at least
-//   2% of the view in cast shadow; else of 21 suns round the camera (7 azimuths, 3 elevations) or
+//   2% of the view in cast shadow; else of 28 suns round the camera (7 azimuths, 4 elevations) or
 //   18 bulbs in an interior (along the view, to its sides, at two heights under the ceiling), the
 //   one that shows the most, among those that light at least a quarter of what is in view.
 // - A ground (scene/framing.h's quad under the subject) is added when nothing lies under the
@@ -18,6 +18,7 @@
 //   base, a terrain and a view that does not show it get none.
 // - An interior without camera or lights whose view shows under 2% with its best light turns
 //   its camera (8 directions, level or 20 degrees down) to the view that shows the most.
+// - An automatic exterior view that shows under 2% (after the ground) turns round its target.
 // - A scene without a camera whose own bulbs or spots light a level or an interior is seen from
 //   near them: from 8 sides of the spot each light makes on what it shines at, when that shows
 //   more cast shadow than the standard framing with the subject at least 15% of the view.
@@ -65,6 +66,10 @@ private:
     float mOffset = 0.0f; // how far a shadow ray starts off its surface
 };
 
+// Whether a candidate light lights at least kLeastLit of what is in view (a bulb inside a wall
+// shadows everything and lights nothing).
+bool lightsTheView(const ViewShadow& v);
+
 // The standard light (defaultLightFor's rule), or a better placed one as above.
 Light chooseDefaultLight(const Scene& scene, const Camera& camera, const Light& standard);
 
@@ -77,6 +82,11 @@ std::optional<Camera> betterInteriorView(const Scene& scene, const Camera& stand
 // ground adds kGroundGain of the first camera's view in cast shadow (a default light is chosen
 // again for the grounded scene); sets scene.automaticGround. Returns whether it did.
 bool addGroundWhereNothingReceives(Scene& scene);
+// An automatic exterior camera ("auto (exterior)") whose view shows under 2% in cast shadow with
+// the scene's lights (a default light: its best) turns round its target, at its height and
+// distance: of 8 directions, the one that shows the most with the subject at least 15% of the
+// view (a default light follows it). Returns whether it turned.
+bool turnExteriorView(Scene& scene);
 // The one line that says so: "added a ground under 'NAME' ... (--no-ground leaves it out)".
 std::string automaticGroundNote(const Scene& scene);
 

@@ -197,6 +197,7 @@ void applySceneEdits(Scene& scene, const SceneEdits& e) {
     // Last: whether a ground adds a shadow depends on the camera and the lights chosen above.
     if (!e.ground && !e.noGround && !scene.automaticGround)
         addGroundWhereNothingReceives(scene);
+    turnExteriorView(scene); // where the shadow on it shows
     scene.edits = e;
 }
 

@@ -1,7 +1,11 @@
 """Each kind of Scene.edit against the CLI's same option: the same lights (a light aimed keeps its
 place, a light moved keeps its aim) and the same visibility and positions, bit for bit, for the
 sun, the spot and the bulb of the three-light asset."""
+import base64
+import json
 import math
+import struct
+from pathlib import Path
 
 import pytest
 
@@ -100,3 +104,45 @@ def test_a_refused_edit_leaves_the_scene_as_it_was(asset):
     with pytest.raises(penumbra.InputError, match="--light-dir"):
         scene.edit(light_dir={"bulb": (0.0, -1.0, 0.0)})  # a point light has no aim
     assert scene.lights == before
+
+
+def lone_box_gltf(path):
+    """A 2-unit box with no ground, light or camera: a lone model the loader grounds."""
+    xyz = [-1, 0, -1, 1, 0, -1, 1, 2, -1, -1, 2, -1, -1, 0, 1, 1, 0, 1, 1, 2, 1, -1, 2, 1]
+    indices = [0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 7, 3, 0, 4, 7,
+               1, 6, 5, 1, 2, 6, 3, 6, 2, 3, 7, 6, 0, 5, 4, 0, 1, 5]
+    data = struct.pack(f"<{len(xyz)}f", *xyz) + struct.pack(f"<{len(indices)}H", *indices)
+    gltf = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+        "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "accessors": [
+            {"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3",
+             "min": [-1, 0, -1], "max": [1, 2, 1]},
+            {"bufferView": 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 4 * len(xyz)},
+                        {"buffer": 0, "byteOffset": 4 * len(xyz), "byteLength": 2 * len(indices)}],
+        "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64,"
+                     + base64.b64encode(data).decode()}],
+    }
+    Path(path).write_text(json.dumps(gltf))
+    return Path(path)
+
+
+def test_the_automatic_ground_is_the_clis_and_no_ground_holds_for_later_edits(tmp_path):
+    box = lone_box_gltf(tmp_path / "lone.gltf")
+    grounded = penumbra.Scene.load(str(box))
+    assert grounded.triangles == 14
+    assert any("added a ground under 'lone'" in w for w in grounded.warnings)
+    bare = penumbra.Scene.load(str(box), no_ground=True)
+    assert bare.triangles == 12
+    assert not any("added a ground" in w for w in bare.warnings)
+    bare.edit(sun_dir=(0.3, -1.0, 0.2))  # a later edit keeps the load's no_ground
+    assert bare.triangles == 12
+    bare.edit(ground=True)  # an explicit ground is still the user's to add
+    assert bare.triangles == 14
+    result = penumbra.Renderer(grounded, W, H, shadow_map_size=MAP, validation=True).render(
+        "hard", frames=1)
+    run_cli("render", box, "-o", tmp_path / "cli", "--technique", "hard", "--width", W,
+            "--height", H, "--shadow-map-size", MAP, "--frames", 1, "--format", "pfm")
+    assert same_bits(result.visibility[0], read_pfm(tmp_path / "cli" / "visibility.pfm"))
