@@ -147,13 +147,7 @@ TEST(CliLights, ViewGroundDoubleSidedAndOpenGeometryFromTheCommandLine) {
 // options together are one error line.
 TEST(CliLights, ALoneModelGetsAGroundWithANoteUnlessNoGround) {
     GltfBuilder b;
-    const int p = b.positions(
-        {-1, 0, -1, 1, 0, -1, 1, 2, -1, -1, 2, -1, -1, 0, 1, 1, 0, 1, 1, 2, 1, -1, 2, 1});
-    const int i = b.accessor(
-        b.view(std::vector<uint16_t>{0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 7, 3, 0, 4, 7,
-                                     1, 6, 5, 1, 2, 6, 3, 6, 2, 3, 7, 6, 0, 5, 4, 0, 1, 5}),
-        5123, 36, "SCALAR");
-    b.node({{"mesh", b.mesh(p, i)}});
+    twoUnitBox(b, true);
     const fs::path where = outputScratch("lone-asset");
     fs::create_directories(where);
     const fs::path asset = b.writeGltf(where / "lone.gltf");

@@ -4,19 +4,28 @@
 #include "gltf_builder.h"
 
 #include <filesystem>
+#include <utility>
+#include <vector>
 
 namespace penumbra::test {
+
+// A 2-unit box standing on y = 0, its triangles wound as groundAndBox has always had them, or
+// reversed (`outward`: counter-clockwise seen from outside, a closed model as exporters write
+// it).
+inline void twoUnitBox(GltfBuilder& b, bool outward) {
+    const int p = b.positions(
+        {-1, 0, -1, 1, 0, -1, 1, 2, -1, -1, 2, -1, -1, 0, 1, 1, 0, 1, 1, 2, 1, -1, 2, 1});
+    std::vector<uint16_t> indices = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 3, 7, 0, 7, 4,
+                                     1, 5, 6, 1, 6, 2, 3, 2, 6, 3, 6, 7, 0, 4, 5, 0, 5, 1};
+    for (size_t t = 0; outward && t < indices.size(); t += 3)
+        std::swap(indices[t + 1], indices[t + 2]);
+    b.node({{"mesh", b.mesh(p, b.accessor(b.view(indices), 5123, 36, "SCALAR"))}});
+}
 
 // A 10 x 10 ground with a 2-unit box standing on it, no lights.
 inline void groundAndBox(GltfBuilder& b) {
     b.ground();
-    const int p = b.positions(
-        {-1, 0, -1, 1, 0, -1, 1, 2, -1, -1, 2, -1, -1, 0, 1, 1, 0, 1, 1, 2, 1, -1, 2, 1});
-    const int i = b.accessor(
-        b.view(std::vector<uint16_t>{0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6, 0, 3, 7, 0, 7, 4,
-                                     1, 5, 6, 1, 6, 2, 3, 2, 6, 3, 6, 7, 0, 4, 5, 0, 5, 1}),
-        5123, 36, "SCALAR");
-    b.node({{"mesh", b.mesh(p, i)}});
+    twoUnitBox(b, false);
 }
 
 // The ground and box under a sun, a spot and a point light.
