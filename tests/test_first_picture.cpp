@@ -169,7 +169,7 @@ TEST(RayCast, TheHierarchyAnswersAsTestingEveryTriangleInOrder) {
 }
 
 // What the hierarchy is for: a ray that misses every box tests no triangle, even with no end; one
-// into a ball of 16k triangles, or out of it, a few hundred (median splits; the brute force tests
+// into a ball of 16k triangles, or out of it, a few dozen to a few hundred (the brute force tests
 // all 16k).
 TEST(RayCast, TheHierarchyTestsAFewTrianglesARay) {
     Scene ball;
@@ -182,16 +182,23 @@ TEST(RayCast, TheHierarchyTestsAFewTrianglesARay) {
     EXPECT_FALSE(bvh.firstHit({.origin = {5, 5, 5}, .direction = {0, 1, 0}}).has_value());
     EXPECT_EQ(bvh.trianglesTested(), 0u);
     size_t tested = 0;
-    // Away from the poles, where a UV sphere's 128 slivers share one corner.
-    for (const glm::vec3 d :
-         {glm::vec3(0, 0, -1), glm::vec3(0.6f, 0, -0.8f), glm::vec3(0, -0.6f, -0.8f)}) {
+    // Away from the poles, where a UV sphere's 128 slivers share one corner. The bounds are
+    // about 1.5 times what the median splits test today (28/0, 24/16, 140/124): the root visited
+    // twice or splits along one axis only give right answers at twice the work or more.
+    struct Probe {
+        glm::vec3 direction;
+        size_t into, out;
+    };
+    for (const Probe& p : {Probe{{0, 0, -1}, 40, 10}, Probe{{0.6f, 0, -0.8f}, 40, 25},
+                           Probe{{0, -0.6f, -0.8f}, 200, 190}}) {
+        const glm::vec3 d = p.direction;
         const auto hit = bvh.firstHit({.origin = -5.0f * d, .direction = d});
         ASSERT_TRUE(hit.has_value());
         EXPECT_NEAR(hit->distance, 4.0f, 1e-3f);
-        EXPECT_LT(bvh.trianglesTested() - tested, 500u) << "into the ball";
+        EXPECT_LE(bvh.trianglesTested() - tested, p.into) << "into the ball";
         tested = bvh.trianglesTested();
         EXPECT_FALSE(bvh.occluded({.origin = -1.001f * d, .direction = -d}, endless));
-        EXPECT_LT(bvh.trianglesTested() - tested, 500u) << "out of it";
+        EXPECT_LE(bvh.trianglesTested() - tested, p.out) << "out of it";
         tested = bvh.trianglesTested();
     }
 }
