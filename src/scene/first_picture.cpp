@@ -62,6 +62,7 @@ std::vector<Light> bulbCandidates(const Scene& scene, const TriangleBvh& bvh, co
     const glm::vec3 forward = flatForward(camera);
     const glm::vec3 right = glm::cross(forward, glm::vec3(0, 1, 0));
     const float ahead = freeDistance(bvh, camera.position, forward, 0.5f * size);
+    const float top = scene.bounds().max.y;
     std::vector<Light> lights;
     for (float along : kBulbAlong) {
         const glm::vec3 base = camera.position + along * ahead * forward;
@@ -69,8 +70,7 @@ std::vector<Light> bulbCandidates(const Scene& scene, const TriangleBvh& bvh, co
             const glm::vec3 dir = side < 0.0f ? -right : right;
             const float room = 0.7f * freeDistance(bvh, base, dir, size);
             const glm::vec3 foot = base + std::min(std::abs(side) * ahead, room) * dir;
-            const float up =
-                freeDistance(bvh, foot, glm::vec3(0, 1, 0), scene.bounds().max.y - foot.y);
+            const float up = freeDistance(bvh, foot, glm::vec3(0, 1, 0), top - foot.y);
             for (float h : kBulbHeights)
                 lights.push_back(bulbAt(bvh, foot + glm::vec3(0, h * up, 0), standard, size));
         }
@@ -94,18 +94,6 @@ std::vector<Light> sunCandidates(const Camera& camera, const Light& standard) {
             lights.push_back(l);
         }
     return lights;
-}
-
-glm::vec2 depthRange(const Scene& scene, const glm::vec3& from) {
-    const Bounds b = scene.bounds();
-    float farthest = 0.0f;
-    for (int k = 0; k < 8; ++k)
-        farthest = std::max(
-            farthest, glm::length(glm::vec3(k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y,
-                                            k & 4 ? b.max.z : b.min.z) -
-                                  from));
-    const float zfar = std::max(1.1f * farthest, 1e-3f);
-    return {zfar * 1e-4f, zfar};
 }
 
 // Whether a ray down the column (i, k) of a kFloorGrid grid over the subject's footprint, from
@@ -429,7 +417,7 @@ std::optional<Camera> cameraFromLights(const Scene& scene, const Camera& standar
                      .position = target + distance * dir,
                      .target = target,
                      .yfov = glm::radians(kInteriorFovDegrees)};
-            const glm::vec2 depth = depthRange(scene, c.position);
+            const glm::vec2 depth = depthRangeFrom(scene, c.position);
             c.znear = depth.x, c.zfar = depth.y;
             if (const float s = score(c); s > best) {
                 best = s;

@@ -82,6 +82,18 @@ float automaticExposure(const Scene& scene) {
     return std::clamp(std::round(2.0f * std::log2(kTarget / brightest)) / 2.0f, -30.0f, 30.0f);
 }
 
+glm::vec2 depthRangeFrom(const Scene& scene, const glm::vec3& position) {
+    const Bounds b = scene.bounds();
+    float farthest = 0.0f;
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 c(corner & 1 ? b.max.x : b.min.x, corner & 2 ? b.max.y : b.min.y,
+                          corner & 4 ? b.max.z : b.min.z);
+        farthest = std::max(farthest, glm::length(c - position));
+    }
+    const float zfar = std::max(1.1f * farthest, 1e-3f);
+    return {zfar * 1e-4f, zfar};
+}
+
 Camera exteriorCamera(const Scene& scene, const Bounds& subject) {
     const glm::vec3 extent = glm::max(subject.extent(), glm::vec3(1e-6f));
     const float width = std::max(extent.x, extent.z);

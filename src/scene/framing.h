@@ -21,5 +21,9 @@ Bounds subjectBounds(const Scene& scene);
 // stop: photometric lights (lux, candela) come out as bright as the default sun.
 float automaticExposure(const Scene& scene);
 Camera exteriorCamera(const Scene& scene, const Bounds& subject);
+// Near and far planes that hold the whole scene seen from `position` (the far plane 1.1 times
+// the farthest corner of its box, the near one 1e-4 of that): a camera placed by a rule or by
+// --camera-pos.
+glm::vec2 depthRangeFrom(const Scene& scene, const glm::vec3& position);
 
 } // namespace penumbra

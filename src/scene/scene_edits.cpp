@@ -43,19 +43,6 @@ glm::vec3 unitDirection(const glm::vec3& d, const char* option) {
     return glm::normalize(d);
 }
 
-// Near and far planes that hold the whole scene seen from `position`.
-glm::vec2 depthRangeFrom(const Scene& scene, const glm::vec3& position) {
-    const Bounds b = scene.bounds();
-    float farthest = 0.0f;
-    for (int corner = 0; corner < 8; ++corner) {
-        const glm::vec3 c(corner & 1 ? b.max.x : b.min.x, corner & 2 ? b.max.y : b.min.y,
-                          corner & 4 ? b.max.z : b.min.z);
-        farthest = std::max(farthest, glm::length(c - position));
-    }
-    const float zfar = std::max(1.1f * farthest, 1e-3f);
-    return {zfar * 1e-4f, zfar};
-}
-
 } // namespace
 
 glm::vec3 parseVector3(std::string_view text, std::string_view option) {
