@@ -503,3 +503,122 @@ TEST(FirstPicture, ACandidateLightMustLightAQuarterOfWhatIsInView) {
     EXPECT_FALSE(lightsTheView({.covered = 1.0f, .lit = 0.2f, .castShadow = 0.8f}));
     EXPECT_TRUE(lightsTheView({}));
 }
+
+// A column of surfaces over a ground: the ray down follows at most kMostSurfacesDown of them.
+// Thin closed slabs (two surfaces each), an open shelf facing up (one) and the ground (one).
+TEST(FirstPicture, AColumnIsFollowedThroughSixteenSurfacesAndNoMore) {
+    const auto column = [](int slabs, bool shelf) {
+        Scene s;
+        MeshBuilder mb(s);
+        const uint32_t m = mb.material("m", glm::vec3(0.5f));
+        mb.quad({-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}, m);
+        if (shelf)
+            mb.quad({-1, 0.5f, 1}, {1, 0.5f, 1}, {1, 0.5f, -1}, {-1, 0.5f, -1}, m);
+        for (int i = 0; i < slabs; ++i)
+            mb.box(boxAt({0, 1.0f + static_cast<float>(i), 0}, {2, 0.2f, 2}), m);
+        return s;
+    };
+    const auto ends = [](const Scene& s) {
+        const TriangleBvh bvh(s);
+        return endsOnAnOpenSurface(bvh, {0.1f, 40, 0.2f}, 1e-4f);
+    };
+    EXPECT_TRUE(ends(column(7, false)));  // 15 surfaces
+    EXPECT_TRUE(ends(column(7, true)));   // 16
+    EXPECT_FALSE(ends(column(8, false))); // 17: given up
+    EXPECT_TRUE(ends(column(0, false)));  // the ground alone
+    Scene slab;                           // a slab over nothing: its underside, met from within
+    MeshBuilder mb(slab);
+    mb.box(boxAt({0, 1, 0}, {2, 0.2f, 2}), mb.material("m", glm::vec3(0.5f)));
+    EXPECT_FALSE(ends(slab));
+}
+
+namespace {
+
+// The documented candidate suns: straight behind the camera, and turned 45, 85 and 135 degrees
+// either way round it, at 20, 30, 45 and 60 degrees up.
+std::vector<Light> documentedSuns(const Camera& camera) {
+    glm::vec3 back = camera.position - camera.target;
+    back.y = 0.0f;
+    back = glm::normalize(back);
+    std::vector<Light> suns;
+    for (float turn : {0.0f, 45.0f, -45.0f, 85.0f, -85.0f, 135.0f, -135.0f})
+        for (float up : {20.0f, 30.0f, 45.0f, 60.0f}) {
+            const float t = glm::radians(turn), e = glm::radians(up);
+            const glm::vec3 flat(std::cos(t) * back.x + std::sin(t) * back.z, 0.0f,
+                                 -std::sin(t) * back.x + std::cos(t) * back.z);
+            Light l = defaultSun(camera);
+            l.direction = -(std::cos(e) * flat + std::sin(e) * glm::vec3(0, 1, 0));
+            suns.push_back(l);
+        }
+    return suns;
+}
+
+} // namespace
+
+// Where the standard sun shows too little, the chosen one shows as much as the best documented
+// candidate that lights the view: on generated scenes seen from many sides and heights.
+TEST(FirstPicture, TheChosenSunIsTheBestOfTheDocumentedCandidates) {
+    int moved = 0, compared = 0;
+    for (Scene s : {loneObject(), solidBox(), courtyard(), levelUnderSky(), buildingWithRooms()}) {
+        addGround(s);
+        const TriangleBvh bvh(s);
+        const Bounds subject = subjectBounds(s);
+        const float r = glm::length(subject.extent());
+        for (int a = 0; a < 8; ++a)
+            for (float height : {0.1f, 0.5f, 1.2f}) {
+                const float round = glm::radians(45.0f * static_cast<float>(a) + 10.0f);
+                const Camera c{.name = "probe",
+                               .position = subject.center() +
+                                           r * glm::vec3(std::cos(round), height, std::sin(round)),
+                               .target =
+                                   subject.center() +
+                                   0.3f * r * glm::vec3(std::sin(round), 0, -std::cos(round))};
+                const ViewProbe probe(s, bvh, c, subject);
+                const Light standard = defaultSun(c);
+                if (probe.measure(standard).castShadow >= kEnoughShadow)
+                    continue;
+                ++compared;
+                float best = -1.0f;
+                for (const Light& l : documentedSuns(c))
+                    if (const ViewShadow v = probe.measure(l); lightsTheView(v))
+                        best = std::max(best, v.castShadow);
+                const Light chosen = chooseDefaultLight(s, c, standard);
+                moved += chosen.direction != standard.direction;
+                if (best >= 0.0f) {
+                    EXPECT_GE(probe.measure(chosen).castShadow, best - 2.0f / kPixels)
+                        << s.name << " camera " << a << " height " << height;
+                }
+            }
+    }
+    EXPECT_GE(compared, 10) << "the set-up: views where the standard shows too little";
+    EXPECT_GE(moved, 5);
+}
+
+// The warehouse, and a third bulb far out over a pad of its own, beyond the subject: a view of its
+// spot shows nothing of the subject and is no candidate. The chosen camera stands
+// at most 1.5 times its light's height over the spot away from it, with the spot in sight.
+TEST(FirstPicture, ACameraNearTheLightsShowsTheSubjectAndSeesItsSpot) {
+    Scene s = warehouse();
+    MeshBuilder mb(s);
+    mb.quad({230, 0, 20}, {270, 0, 20}, {270, 0, -20}, {230, 0, -20},
+            mb.material("pad", glm::vec3(0.4f)));
+    s.lights.push_back(
+        {.name = "far", .type = LightType::Point, .position = {250, 5, 0}, .intensity = 50});
+    const Bounds subject = subjectBounds(s);
+    ASSERT_LT(subject.max.x, 100.0f) << "the set-up: the far bulb stands beyond the subject";
+    const auto near = cameraFromLights(s, exteriorCamera(s, subject), true);
+    ASSERT_TRUE(near.has_value());
+    const TriangleBvh bvh(s);
+    EXPECT_GE(ViewProbe(s, bvh, *near, subject).subject(), kLeastSubject);
+    const Light* light = nullptr;
+    for (const Light& l : s.lights)
+        if (std::abs(l.position.x - near->target.x) < 1e-3f &&
+            std::abs(l.position.z - near->target.z) < 1e-3f)
+            light = &l;
+    ASSERT_NE(light, nullptr) << "the target is a spot straight under a bulb";
+    const glm::vec3 toCamera = near->position - near->target;
+    EXPECT_LE(glm::length(toCamera), 1.5f * (light->position.y - near->target.y) + 1e-3f);
+    EXPECT_FALSE(bvh.occluded({.origin = near->target + 1e-3f * glm::normalize(toCamera),
+                               .direction = glm::normalize(toCamera)},
+                              glm::length(toCamera)));
+}

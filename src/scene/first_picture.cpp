@@ -96,26 +96,17 @@ std::vector<Light> sunCandidates(const Camera& camera, const Light& standard) {
     return lights;
 }
 
-// Whether a ray down the column (i, k) of a kFloorGrid grid over the subject's footprint, from
-// above it, leaves the scene through the front of a surface: an open surface facing up at the
-// bottom (a terrain, a ground), not the underside of a closed model, met from within.
-bool endsOnAnOpenSurface(const TriangleBvh& bvh, const Bounds& subject, int i, int k) {
-    constexpr int kMostCrossings = 16;
+// Whether the ray down the column (i, k) of a kFloorGrid grid over the subject's footprint, from
+// above it, leaves the scene through the front of an open surface.
+bool columnEndsOnAnOpenSurface(const TriangleBvh& bvh, const Bounds& subject, int i, int k) {
     const glm::vec3 extent = subject.extent();
     const float x = (static_cast<float>(i) + 0.5f) / kFloorGrid;
     const float z = (static_cast<float>(k) + 0.5f) / kFloorGrid;
-    const float step = 1e-5f * std::max(glm::length(extent), 1e-6f);
-    Ray ray{.origin = glm::vec3(subject.min.x + x * extent.x, subject.max.y + 0.01f * extent.y,
-                                subject.min.z + z * extent.z)};
-    bool lastFront = false;
-    for (int crossing = 0; crossing < kMostCrossings; ++crossing) {
-        const auto hit = bvh.firstHit(ray);
-        if (!hit)
-            return lastFront;
-        lastFront = hit->front;
-        ray.origin.y -= hit->distance + step;
-    }
-    return false;
+    return endsOnAnOpenSurface(bvh,
+                               glm::vec3(subject.min.x + x * extent.x,
+                                         subject.max.y + 0.01f * extent.y,
+                                         subject.min.z + z * extent.z),
+                               1e-5f * std::max(glm::length(extent), 1e-6f));
 }
 
 // Whether something under the subject can receive its shadow: in at least half of a 9 x 9 grid
@@ -146,12 +137,26 @@ bool somethingBelow(const Scene& scene, const TriangleBvh& bvh) {
                     ray.origin.y -= hit->distance + 1e-5f * height;
                 }
             }
-            floors += floor || endsOnAnOpenSurface(bvh, subject, i, k);
+            floors += floor || columnEndsOnAnOpenSurface(bvh, subject, i, k);
         }
     return static_cast<float>(floors) >= kFloorShare * kFloorGrid * kFloorGrid;
 }
 
 } // namespace
+
+bool endsOnAnOpenSurface(const TriangleBvh& bvh, const glm::vec3& top, float step) {
+    Ray ray{.origin = top};
+    bool lastFront = false;
+    for (int met = 0;; ++met) {
+        const auto hit = bvh.firstHit(ray);
+        if (!hit)
+            return lastFront;
+        if (met == kMostSurfacesDown)
+            return false; // one surface more than it follows
+        lastFront = hit->front;
+        ray.origin.y -= hit->distance + step;
+    }
+}
 
 ViewProbe::ViewProbe(const Scene& scene, const TriangleBvh& bvh, const Camera& camera)
     : ViewProbe(scene, bvh, camera, subjectBounds(scene)) {}

@@ -66,6 +66,12 @@ private:
     float mOffset = 0.0f; // how far a shadow ray starts off its surface
 };
 
+// Whether a ray straight down from `top` leaves the scene through the front of a surface: an open
+// surface facing up at the bottom (a terrain, a ground), not the underside of a closed model met
+// from within. It follows at most kMostSurfacesDown surfaces (moving `step` past each); a column
+// with more is taken as ending on none.
+inline constexpr int kMostSurfacesDown = 16;
+bool endsOnAnOpenSurface(const TriangleBvh& bvh, const glm::vec3& top, float step);
 // Whether a candidate light lights at least kLeastLit of what is in view (a bulb inside a wall
 // shadows everything and lights nothing).
 bool lightsTheView(const ViewShadow& v);
