@@ -168,6 +168,44 @@ TEST(RayCast, TheHierarchyAnswersAsTestingEveryTriangleInOrder) {
     EXPECT_FALSE(TriangleBvh(empty).firstHit({}).has_value());
 }
 
+// The hit test reaches a hundred-thousandth of an edge past each triangle (so that rays at shared
+// edges meet one of the two); the boxes must reach as far. Rays from above at a flat grid of
+// squares (boxes with no thickness, edges along the axes): at its corners, along its seams, and
+// just past its outer edges, within that reach.
+TEST(RayCast, TheBoxesReachAsFarAsTheHitTest) {
+    Scene grid;
+    MeshBuilder mb(grid);
+    const uint32_t m = mb.material("m", glm::vec3(0.5f));
+    for (int i = 0; i < 8; ++i)
+        for (int k = 0; k < 8; ++k) {
+            const float x = static_cast<float>(i) - 4.0f, z = static_cast<float>(k) - 4.0f;
+            mb.quad({x, 0, z + 1}, {x + 1, 0, z + 1}, {x + 1, 0, z}, {x, 0, z}, m);
+        }
+    const TriangleBvh bvh(grid);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-6.0f, 6.0f);
+    std::vector<Ray> rays;
+    for (int i = 0; i <= 8; ++i)
+        for (int k = 0; k <= 8; ++k)
+            for (float past : {0.0f, 4e-6f}) {
+                // Outer edges pushed out by `past` of a square's side; inner seams stay.
+                const auto out = [&](int n) {
+                    return static_cast<float>(n) - 4.0f + (n == 0 ? -past : n == 8 ? past : 0.0f);
+                };
+                const glm::vec3 at(out(i), 0.0f, out(k));
+                const glm::vec3 from(u(rng), 5.0f, u(rng));
+                rays.push_back({.origin = from, .direction = glm::normalize(at - from)});
+                rays.push_back({.origin = at + glm::vec3(0, 3, 0), .direction = {0, -1, 0}});
+            }
+    const auto truth = firstHitsBruteForce(grid, rays);
+    int hits = 0;
+    for (size_t r = 0; r < rays.size(); ++r) {
+        EXPECT_TRUE(sameHit(bvh.firstHit(rays[r]), truth[r])) << "ray " << r;
+        hits += truth[r].has_value();
+    }
+    EXPECT_EQ(hits, static_cast<int>(rays.size())) << "every ray meets the grid";
+}
+
 // What the hierarchy is for: a ray that misses every box tests no triangle, even with no end; one
 // into a ball of 16k triangles, or out of it, a few dozen to a few hundred (the brute force tests
 // all 16k).
@@ -349,6 +387,9 @@ TEST(FirstPicture, ALoneObjectGetsAGroundAndAGroundedOneNone) {
     EXPECT_GE(v.castShadow, 0.01f);
     EXPECT_GE(v.subject, 0.15f);
     EXPECT_NE(automaticGroundNote(lone).find("--no-ground"), std::string::npos);
+    // The default light is the rule's for the scene as it now stands, ground and all.
+    EXPECT_EQ(lone.lights.front().direction,
+              defaultLightFor(lone, lone.cameras.front(), false).direction);
     // Once is enough; --ground on a grounded scene adds no second quad.
     applySceneEdits(lone, {.ground = true});
     EXPECT_EQ(lone.triangleCount(), triangles + 2);
@@ -358,7 +399,7 @@ TEST(FirstPicture, ALoneObjectGetsAGroundAndAGroundedOneNone) {
     // it was (the quad tried in place is taken back, the default light as it was).
     Scene away = staged(loneObject());
     away.cameras.front() = {.name = "away", .position = {0, 2, 10}, .target = {0, 2, 20}};
-    away.lights.front() = defaultSun(away.cameras.front());
+    away.lights.front().direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f)); // not the rule's
     const Scene original = away;
     applySceneEdits(away, {});
     EXPECT_FALSE(away.automaticGround);
@@ -594,14 +635,16 @@ TEST(FirstPicture, TheChosenSunIsTheBestOfTheDocumentedCandidates) {
     EXPECT_GE(moved, 5);
 }
 
-// The warehouse, and a third bulb far out over a pad of its own, beyond the subject: a view of its
-// spot shows nothing of the subject and is no candidate. The chosen camera stands
-// at most 1.5 times its light's height over the spot away from it, with the spot in sight.
+// The warehouse, and a third bulb far out over a pad of its own with a plate between, beyond the
+// subject: a view of its spot shows a wide shadow but nothing of the subject, and is no candidate.
+// The chosen camera stands at most 1.5 times its light's height over the spot away from it, with
+// the spot in sight.
 TEST(FirstPicture, ACameraNearTheLightsShowsTheSubjectAndSeesItsSpot) {
     Scene s = warehouse();
     MeshBuilder mb(s);
     mb.quad({230, 0, 20}, {270, 0, 20}, {270, 0, -20}, {230, 0, -20},
             mb.material("pad", glm::vec3(0.4f)));
+    mb.quad({247, 2, 3}, {253, 2, 3}, {253, 2, -3}, {247, 2, -3}, 0); // its shadow on the pad
     s.lights.push_back(
         {.name = "far", .type = LightType::Point, .position = {250, 5, 0}, .intensity = 50});
     const Bounds subject = subjectBounds(s);
@@ -609,7 +652,14 @@ TEST(FirstPicture, ACameraNearTheLightsShowsTheSubjectAndSeesItsSpot) {
     const auto near = cameraFromLights(s, exteriorCamera(s, subject), true);
     ASSERT_TRUE(near.has_value());
     const TriangleBvh bvh(s);
-    EXPECT_GE(ViewProbe(s, bvh, *near, subject).subject(), kLeastSubject);
+    const ViewProbe probe(s, bvh, *near, subject);
+    EXPECT_GE(probe.subject(), kLeastSubject);
+    // A bulb just outside the wall shadows most of the view and lights none of it: no shadow
+    // to show.
+    const Light outside{.type = LightType::Point, .position = {21, 3, 0}, .intensity = 50};
+    EXPECT_GT(probe.measure(outside).castShadow, 0.25f);
+    EXPECT_EQ(probe.castShadow(std::span(&outside, 1)), 0.0f);
+    EXPECT_GT(probe.castShadow(std::span(&s.lights[0], 2)), 0.0f);
     const Light* light = nullptr;
     for (const Light& l : s.lights)
         if (std::abs(l.position.x - near->target.x) < 1e-3f &&

@@ -235,7 +235,8 @@ float ViewProbe::castShadow(std::span<const Light> lights) const {
     float most = 0.0f;
     for (const Light& l : lights)
         if (castsShadowMap(l))
-            most = std::max(most, measure(l).castShadow);
+            if (const ViewShadow v = measure(l); lightsTheView(v))
+                most = std::max(most, v.castShadow);
     return most;
 }
 

@@ -50,7 +50,9 @@ public:
     // With the scene's subjectBounds given: many cameras of one scene measure it once.
     ViewProbe(const Scene& scene, const TriangleBvh& bvh, const Camera& camera, Bounds subject);
     ViewShadow measure(const Light& light) const;
-    // The largest cast shadow of the scene's lights that cast shadows (0 without any).
+    // The largest cast shadow of the scene's lights that cast shadows and light the view
+    // (lightsTheView: a bulb behind a wall shadows the whole view and shows no shadow); 0
+    // without any.
     float castShadow(std::span<const Light> lights) const;
     float subject() const; // ViewShadow::subject, which needs no light
 
