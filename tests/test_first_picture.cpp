@@ -335,6 +335,30 @@ TEST(FirstPicture, AnInteriorBulbIsPlacedWhereItsShadowsShow) {
                 1e-3f);
 }
 
+// A corridor 40 long and 2.4 wide, seen along its length: the bulbs to the sides of the view
+// stop short of its walls, all 18 inside it.
+TEST(FirstPicture, TheCandidateBulbsStayInsideTheWalls) {
+    Scene corridor = room(true);
+    for (Vertex& v : corridor.vertices)
+        v.position *= glm::vec3(2.0f, 1.0f, 0.2f);
+    const Camera camera{
+        .name = "auto (interior)", .position = {-18, 1.6f, 0}, .target = {0, 1.6f, 0}};
+    const TriangleBvh bvh(corridor);
+    const auto bulbs =
+        defaultLightCandidates(corridor, bvh, camera, standardLightFor(corridor, camera, true));
+    ASSERT_EQ(bulbs.size(), 18u);
+    int aside = 0;
+    for (const Light& l : bulbs) {
+        EXPECT_EQ(l.type, LightType::Point);
+        EXPECT_TRUE(glm::all(glm::lessThan(glm::vec3(-20, 0, -1.2f), l.position)) &&
+                    glm::all(glm::lessThan(l.position, glm::vec3(20, 4, 1.2f))))
+            << l.position.x << " " << l.position.y << " " << l.position.z;
+        aside += std::abs(l.position.z) > 0.5f;
+    }
+    EXPECT_EQ(aside, 12) << "two of three columns to the sides";
+    EXPECT_EQ(defaultLightCandidates(corridor, bvh, camera, defaultSun(camera)).size(), 28u);
+}
+
 // A room whose most open point stands over a table in its middle, looking along its longest
 // free line at an empty wall: no bulb shows a shadow there. Turned towards the cabinet and
 // looking down, the camera shows one.
@@ -475,10 +499,17 @@ TEST(FirstPicture, ALevelLitByItsOwnBulbsIsSeenFromNearThem) {
         most = std::max(most, viewCensus(s, *near, l, subject).castShadow);
     EXPECT_GE(most, 0.01f);
     EXPECT_GE(viewCensus(s, *near, s.lights[0], subject).subject, kLeastSubject);
-    // Not a level, framed well from outside: left as it is. Lit by suns only: nothing to seek.
+    // Not a level, framed well from outside: left as it is, though a view near its bulb would
+    // show more (as a level it would move). Lit by suns only: nothing to seek.
     Scene lone = loneObject();
-    lone.lights = {{.type = LightType::Point, .position = {3, 4, 3}, .intensity = 20}};
-    EXPECT_FALSE(cameraFromLights(lone, automaticCamera(lone, {}), false).has_value());
+    addGround(lone);
+    lone.lights = {{.type = LightType::Point, .position = {1.5f, 3, 1.2f}, .intensity = 20}};
+    Camera framed = automaticCamera(lone, {});
+    framed.position = framed.target + 0.8f * (framed.position - framed.target); // the model larger
+    ASSERT_GE(viewCensus(lone, framed, lone.lights[0], subjectBounds(lone)).subject, kLeastSubject);
+    EXPECT_FALSE(cameraFromLights(lone, framed, false).has_value());
+    EXPECT_TRUE(cameraFromLights(lone, framed, true).has_value())
+        << "the set-up: a view to move to";
     Scene sunny = s;
     sunny.lights = {defaultSun()};
     EXPECT_FALSE(cameraFromLights(sunny, outside, true).has_value());

@@ -240,6 +240,12 @@ float ViewProbe::castShadow(std::span<const Light> lights) const {
     return most;
 }
 
+std::vector<Light> defaultLightCandidates(const Scene& scene, const TriangleBvh& bvh,
+                                          const Camera& camera, const Light& standard) {
+    return standard.type == LightType::Directional ? sunCandidates(camera, standard)
+                                                   : bulbCandidates(scene, bvh, camera, standard);
+}
+
 bool lightsTheView(const ViewShadow& v) {
     return v.lit >= kLeastLit * v.covered;
 }
@@ -259,10 +265,7 @@ Lit bestDefaultLight(const Scene& scene, const TriangleBvh& bvh, const Bounds& s
     Lit best{standard, lightsTheView(first) ? first.castShadow : -1.0f};
     if (first.castShadow >= kEnoughShadow)
         return {standard, first.castShadow};
-    const std::vector<Light> candidates = standard.type == LightType::Directional
-                                              ? sunCandidates(camera, standard)
-                                              : bulbCandidates(scene, bvh, camera, standard);
-    for (const Light& l : candidates) {
+    for (const Light& l : defaultLightCandidates(scene, bvh, camera, standard)) {
         const ViewShadow v = probe.measure(l);
         if (lightsTheView(v) && v.castShadow > best.shadow)
             best = {l, v.castShadow};

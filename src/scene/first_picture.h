@@ -78,6 +78,10 @@ bool endsOnAnOpenSurface(const TriangleBvh& bvh, const glm::vec3& top, float ste
 // shadows everything and lights nothing).
 bool lightsTheView(const ViewShadow& v);
 
+// The lights chooseDefaultLight weighs against `standard`: for a sun, the 28 suns; for a bulb,
+// the 18 bulbs, their feet short of the walls.
+std::vector<Light> defaultLightCandidates(const Scene& scene, const TriangleBvh& bvh,
+                                          const Camera& camera, const Light& standard);
 // The standard light (defaultLightFor's rule), or a better placed one as above.
 Light chooseDefaultLight(const Scene& scene, const Camera& camera, const Light& standard);
 
