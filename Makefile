@@ -26,7 +26,7 @@ FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
 FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
                 -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
 
-.PHONY: deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python slurm-test
+.PHONY: quality deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python slurm-test
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -130,6 +130,16 @@ renderdiff: build
 renderdiff-store: build
 	PENUMBRA_RENDERDIFF_STORE=1 build/$(PRESET)/tests/penumbra_gpu_tests \
 	    --gtest_filter='RenderDiffTest.*'
+
+# The corpus gate (docs/testing.md, "The corpus gate"): every generated family at the plan's
+# seeds (or SEEDS=1,2,...), every technique at its defaults, against the truth; writes
+# build/quality/quality.md and .json and fails naming each figure past bench/plans/quality.toml's
+# bounds. FAMILIES=a,b runs a few families.
+SEEDS ?=
+FAMILIES ?=
+quality: build
+	python3 tools/quality.py --penumbra build/$(PRESET)/apps/penumbra/penumbra --jobs 1 \
+	    $(if $(SEEDS),--seeds $(SEEDS)) $(if $(FAMILIES),--families $(FAMILIES))
 
 # Plants each mutation of tests/mutations/*.toml in a scratch copy (build/mutation/tree), rebuilds,
 # runs the ctest labels that can see it and reports the survivors (docs/testing.md). Not part of

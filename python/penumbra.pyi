@@ -29,7 +29,8 @@ class Scene:
         Raises InputError naming the file."""
     @staticmethod
     def builtin(name: str, no_ground: bool = False) -> Scene:
-        """A built-in scene: 'demo', 'showcase', ... (or 'builtin:demo')."""
+        """A built-in scene: 'demo', 'showcase', ... (or 'builtin:demo'), or a generated one:
+        'gen/FAMILY?seed=N[&scale=S]' (docs/scenes.md, "Generated scenes")."""
     def edit(
         self,
         *,

@@ -73,6 +73,10 @@ TEST(SweepPlan, RefusesEachMistakeNamingItsKey) {
         {"samples = 1.5\n" + base + kTechniques, "samples: expected a whole number"},
         {"scenes = [\"builtin:nothing\"]\n" + kLights + kTechniques, "scenes[0]: no built-in"},
         {"scenes = [\"missing.gltf\"]\n" + kLights + kTechniques, "scenes[0]: no such file"},
+        {"scenes = [\"builtin:gen/plates?seed=x\"]\n" + kLights + kTechniques,
+         "scenes[0]: builtin:gen/plates?seed=x: seed 'x'"},
+        {"scenes = [\"builtin:gen/cave\"]\n" + kLights + kTechniques,
+         "scenes[0]: builtin:gen/cave: no such generated family"},
         {base + "[[techniques]]\nname = \"blur\"\n", "techniques[0].name: no technique 'blur'"},
         {base + "[[techniques]]\nname = \"pcf\"\npcf.colour = [1]\n", "techniques[0].pcf.colour:"},
         {base + "[[techniques]]\nname = \"pcf\"\npcf.size = [3, 1000]\n",
@@ -93,6 +97,9 @@ TEST(SweepPlan, RefusesEachMistakeNamingItsKey) {
         EXPECT_EQ(why.rfind(expected, 0), 0u) << "got '" << why << "' for:\n" << text;
     }
     EXPECT_EQ(refusal(base + kTechniques), "");
+    EXPECT_EQ(refusal("scenes = [\"builtin:gen/plates?seed=3\", \"builtin:gen/plates?seed=4\"]\n" +
+                      kLights + kTechniques),
+              "");
 }
 
 TEST(SweepTasks, IdsDependOnWhatATaskComputesNotOnThePlansOrder) {

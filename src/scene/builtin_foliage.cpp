@@ -21,14 +21,14 @@ struct Random {
     }
 };
 
-// Tileable leaves: ellipses with anti-aliased edges (alpha = covered fraction, about), greens
-// varying per leaf. Repeat-wrapped, so the pergola can tile it.
-TextureImage leafImage() {
+} // namespace
+
+TextureImage leafImage(uint32_t seed, int count) {
     constexpr uint32_t kSize = kLeafTextureSize;
     TextureImage image{.name = "leaves", .width = kSize, .height = kSize};
     image.rgba.assign(size_t{kSize} * kSize * 4, 0);
-    Random random{12345u};
-    for (int leaf = 0; leaf < 150; ++leaf) {
+    Random random{seed};
+    for (int leaf = 0; leaf < count; ++leaf) {
         const float cx = random.next() * kSize, cy = random.next() * kSize;
         const float angle = random.next() * glm::pi<float>();
         const float a = 9.0f + 9.0f * random.next(), b = 3.5f + 3.5f * random.next();
@@ -62,6 +62,8 @@ TextureImage leafImage() {
     }
     return image;
 }
+
+namespace {
 
 // A square lattice: bars kLatticeBar texels wide every kLatticePeriod, open between.
 TextureImage latticeImage() {

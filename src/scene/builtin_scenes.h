@@ -59,6 +59,9 @@ inline constexpr uint32_t kDenseSphereSlices = 66, kDenseSphereStacks = 32;
 inline constexpr float kDenseHalfSize = 14.0f;
 inline constexpr glm::vec3 kDenseSpotPosition{-4.0f, 14.0f, -5.0f};
 
+// Tileable leaves (builtin:foliage's texture, kLeafTextureSize square): `count` ellipses with
+// anti-aliased edges (alpha = covered fraction, about), greens varying per leaf; repeat-wrapped.
+TextureImage leafImage(uint32_t seed = 12345u, int count = 150);
 // The outdoor scenes' sun: kSunDirection, 0.53 degrees wide (the real sun's size), warm white.
 Light sun();
 // A built-in scene's camera: "main", near plane 0.1.

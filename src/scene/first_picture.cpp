@@ -116,6 +116,12 @@ bool columnEndsOnAnOpenSurface(const TriangleBvh& bvh, const Bounds& subject, in
 // within) goes on through it: a lone model's feet are no floor; the ground under a floating
 // ball, a terrain and a model's own thick base are.
 bool somethingBelow(const Scene& scene, const TriangleBvh& bvh) {
+    return floorShare(scene, bvh) >= kFloorShare;
+}
+
+} // namespace
+
+float floorShare(const Scene& scene, const TriangleBvh& bvh) {
     constexpr int kCrossings = 4; // back faces a ray goes through
     const Bounds subject = subjectBounds(scene);
     const glm::vec3 extent = subject.extent();
@@ -139,10 +145,8 @@ bool somethingBelow(const Scene& scene, const TriangleBvh& bvh) {
             }
             floors += floor || columnEndsOnAnOpenSurface(bvh, subject, i, k);
         }
-    return static_cast<float>(floors) >= kFloorShare * kFloorGrid * kFloorGrid;
+    return static_cast<float>(floors) / (kFloorGrid * kFloorGrid);
 }
-
-} // namespace
 
 bool endsOnAnOpenSurface(const TriangleBvh& bvh, const glm::vec3& top, float step) {
     Ray ray{.origin = top};

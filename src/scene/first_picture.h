@@ -68,6 +68,10 @@ private:
     float mOffset = 0.0f; // how far a shadow ray starts off its surface
 };
 
+// The share of a 9 x 9 grid of columns over the subject's footprint (at the cells' centres) in
+// which something lies below to receive a shadow (the rule above); a ground is considered
+// below half.
+float floorShare(const Scene& scene, const TriangleBvh& bvh);
 // Whether a ray straight down from `top` leaves the scene through the front of a surface: an open
 // surface facing up at the bottom (a terrain, a ground), not the underside of a closed model met
 // from within. It follows at most kMostSurfacesDown surfaces (moving `step` past each); a column

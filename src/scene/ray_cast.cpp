@@ -100,7 +100,9 @@ TriangleBvh::TriangleBvh(const Scene& scene) : mScene(scene) {
             mNodes[task.node].count = task.end - task.begin;
             continue;
         }
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                         : extent.y >= extent.z                       ? 1
+                                                                      : 2;
         const uint32_t middle = task.begin + (task.end - task.begin) / 2;
         std::nth_element(
             mOrder.begin() + task.begin, mOrder.begin() + middle, mOrder.begin() + task.end,

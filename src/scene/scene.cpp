@@ -2,6 +2,7 @@
 #include "penumbra/error.h"
 #include "scene/builtin_scenes.h"
 #include "scene/framing.h"
+#include "scene/generated.h"
 #include "scene/gltf_loader.h"
 
 #include <fmt/format.h>
@@ -84,13 +85,16 @@ Scene loadScene(std::string_view spec, const SceneLoadOptions& options) {
     constexpr std::string_view prefix = "builtin:";
     if (spec.starts_with(prefix)) {
         const std::string_view name = spec.substr(prefix.size());
+        if (name.starts_with("gen/"))
+            return generatedScene(name.substr(4));
         for (const auto& b : kBuiltins)
             if (b.name == name)
                 return b.make();
         std::string names;
         for (const auto& b : kBuiltins)
             names += (names.empty() ? "" : ", ") + std::string(b.name);
-        throw InputError(std::string(spec), "no such built-in scene (built-in: " + names + ")");
+        throw InputError(std::string(spec),
+                         "no such built-in scene (built-in: " + names + ", or gen/FAMILY?seed=N)");
     }
     const std::filesystem::path path(spec);
     const std::string ext = path.extension().string();

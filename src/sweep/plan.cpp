@@ -5,6 +5,7 @@
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
+#include "scene/generated.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -98,7 +99,13 @@ public:
             if (!text || text->empty())
                 fail(key, "expected a scene name or path");
             PlanScene scene{.label = *text, .spec = *text};
-            if (text->rfind("builtin:", 0) == 0) {
+            if (text->rfind("builtin:gen/", 0) == 0) {
+                try {
+                    parseGeneratedSpec(text->substr(12));
+                } catch (const InputError& e) {
+                    fail(key, e.what());
+                }
+            } else if (text->rfind("builtin:", 0) == 0) {
                 if (std::find(builtins.begin(), builtins.end(), text->substr(8)) == builtins.end())
                     fail(key, fmt::format("no built-in scene '{}'", text->substr(8)));
             } else {

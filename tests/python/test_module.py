@@ -201,6 +201,16 @@ def test_the_gil_is_released_while_the_device_or_embree_works(busy_renderer, wor
     assert ticks >= 20, (ticks, elapsed)
 
 
+def test_generated_scenes_load_as_the_cli_names_them():
+    a = penumbra.Scene.builtin("gen/spheres?seed=3", no_ground=True)
+    b = penumbra.Scene.builtin("builtin:gen/spheres?seed=3", no_ground=True)
+    assert a.name == "gen/spheres?seed=3" and a.triangles == b.triangles > 2
+    assert a.lights == b.lights and a.cameras == ["generated"]
+    assert penumbra.Scene.builtin("gen/spheres?seed=4", no_ground=True).lights != a.lights
+    with pytest.raises(penumbra.InputError, match="no such generated family 'caves'"):
+        penumbra.Scene.builtin("gen/caves?seed=1")
+
+
 def test_techniques_are_the_clis_list():
     listed = json.loads(run_cli("techniques", "--json"))
     assert penumbra.techniques() == listed

@@ -1,0 +1,199 @@
+// Generated scene families (scene/generated.h): the spec's syntax and its errors, the same scene
+// from the same spec, every family's seeds valid, varied (every light type, sizes zero and not)
+// and showing a cast shadow in their own camera's view, each family holding what it promises.
+#include "generated_scenes.h"
+#include "penumbra/error.h"
+#include "scene/first_picture.h"
+#include "scene/framing.h"
+#include "scene/generated.h"
+#include "scene/mesh_closure.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+constexpr int kSeeds = 24;
+
+std::string specOf(std::string_view family, int seed) {
+    return "builtin:gen/" + std::string(family) + "?seed=" + std::to_string(seed);
+}
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+} // namespace
+
+TEST(Generated, TheSpecIsReadOrRefusedWithItsReason) {
+    const GeneratedSpec plain = parseGeneratedSpec("plates");
+    EXPECT_EQ(plain.family, "plates");
+    EXPECT_EQ(plain.seed, 1u);
+    EXPECT_EQ(plain.scale, 1.0f);
+    const GeneratedSpec full = parseGeneratedSpec("long?seed=9223372036854775807&scale=0.001");
+    EXPECT_EQ(full.seed, 9223372036854775807ull);
+    EXPECT_EQ(full.scale, 0.001f);
+    EXPECT_EQ(parseGeneratedSpec("open?scale=10000&seed=0").seed, 0u);
+    const auto refused = [](const std::string& spec, const std::string& why) {
+        try {
+            loadScene("builtin:gen/" + spec);
+            ADD_FAILURE() << spec << " was accepted";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.subject(), "builtin:gen/" + spec);
+            EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+        }
+    };
+    refused("nope?seed=1", "no such generated family 'nope' (families: plates, spheres");
+    refused("", "no such generated family");
+    refused("plates?seed=-1", "seed '-1'");
+    refused("plates?seed=1.5", "seed '1.5'");
+    refused("plates?seed=", "seed ''");
+    refused("plates?seed=9223372036854775808", "seed '9223372036854775808'");
+    refused("plates?seed=99999999999999999999999", "seed");
+    refused("plates?scale=0.0009", "scale '0.0009' is not a number from 0.001 to 10000");
+    refused("plates?scale=10001", "scale '10001'");
+    refused("plates?scale=nan", "scale 'nan'");
+    refused("plates?scale=2x", "scale '2x'");
+    refused("plates?colour=red", "unknown key 'colour' (keys: seed, scale)");
+    refused("plates?seed", "seed ''");
+}
+
+TEST(Generated, ASpecGivesTheSameSceneEveryTimeAndSeedsDiffer) {
+    for (std::string_view family : generatedFamilies()) {
+        const Scene a = loadScene(specOf(family, 5)), b = loadScene(specOf(family, 5));
+        EXPECT_EQ(a.name, "gen/" + std::string(family) + "?seed=5");
+        ASSERT_EQ(a.vertices.size(), b.vertices.size()) << family;
+        for (size_t i = 0; i < a.vertices.size(); ++i)
+            ASSERT_EQ(a.vertices[i].position, b.vertices[i].position) << family;
+        EXPECT_EQ(a.indices, b.indices) << family;
+        EXPECT_EQ(a.lights.front().direction, b.lights.front().direction) << family;
+        EXPECT_EQ(a.cameras.front().position, b.cameras.front().position) << family;
+        const Scene c = loadScene(specOf(family, 6));
+        EXPECT_TRUE(c.vertices.size() != a.vertices.size() ||
+                    c.vertices.front().position != a.vertices.front().position ||
+                    c.cameras.front().position != a.cameras.front().position)
+            << family << ": seeds 5 and 6 alike";
+    }
+    // The family is part of the stream: one seed, two families, two lights.
+    EXPECT_NE(loadScene(specOf("plates", 3)).lights.front().direction,
+              loadScene(specOf("open", 3)).lights.front().direction);
+}
+
+// Every family over kSeeds seeds: finite geometry, one light and one camera, a cast shadow in the
+// camera's view (measured with rays) in nearly every seed, and across the seeds every light type
+// the family draws, with and without a size.
+TEST(Generated, EverySeedIsAValidSceneThatShowsAShadow) {
+    const std::map<std::string_view, std::set<LightType>> kinds = {
+        {"plates", {LightType::Directional, LightType::Spot, LightType::Point}},
+        {"spheres", {LightType::Directional, LightType::Spot, LightType::Point}},
+        {"leaves", {LightType::Directional, LightType::Spot, LightType::Point}},
+        {"open", {LightType::Directional, LightType::Spot, LightType::Point}},
+        {"curved", {LightType::Directional, LightType::Spot, LightType::Point}},
+        {"interior", {LightType::Directional, LightType::Spot, LightType::Point}},
+        {"grazing", {LightType::Directional, LightType::Spot}},
+        {"long", {LightType::Directional}},
+        {"clutter", {LightType::Spot, LightType::Point}}};
+    ASSERT_EQ(kinds.size(), generatedFamilies().size());
+    for (std::string_view family : generatedFamilies()) {
+        std::set<LightType> seen;
+        int sized = 0, shadowed = 0;
+        for (int seed = 1; seed <= kSeeds; ++seed) {
+            const Scene s = loadScene(specOf(family, seed));
+            ASSERT_GT(s.triangleCount(), 2u) << s.name;
+            for (const Vertex& v : s.vertices)
+                ASSERT_TRUE(finite(v.position) && finite(v.normal)) << s.name;
+            for (uint32_t i : s.indices)
+                ASSERT_LT(i, s.vertices.size()) << s.name;
+            ASSERT_EQ(s.lights.size(), 1u) << s.name;
+            ASSERT_EQ(s.cameras.size(), 1u) << s.name;
+            const Light& l = s.lights.front();
+            const Camera& c = s.cameras.front();
+            EXPECT_NEAR(glm::length(l.direction), 1.0f, 1e-5f) << s.name;
+            EXPECT_GT(l.intensity, 0.0f) << s.name;
+            EXPECT_LT(c.znear, c.zfar) << s.name;
+            EXPECT_GT(glm::length(c.target - c.position), c.znear) << s.name;
+            seen.insert(l.type);
+            sized += l.hasSize();
+            const TriangleBvh bvh(s);
+            shadowed += ViewProbe(s, bvh, c).measure(l).castShadow >= 0.005f;
+        }
+        EXPECT_EQ(seen, kinds.at(family)) << family;
+        EXPECT_GE(sized, kSeeds / 2) << family;
+        EXPECT_LT(sized, kSeeds) << family << ": some lights without a size";
+        EXPECT_GE(shadowed, kSeeds * 9 / 10) << family << ": seeds showing a cast shadow";
+    }
+}
+
+// `scale` makes the whole scene larger and leaves what the light does to it as it was.
+TEST(Generated, AScaledSceneIsTheSameSceneLarger) {
+    for (std::string_view family : {"spheres", "clutter", "interior"})
+        for (float scale : {0.01f, 250.0f}) {
+            const Scene one = loadScene(specOf(family, 4));
+            const Scene big =
+                loadScene(specOf(family, 4) + "&scale=" + (scale < 1 ? "0.01" : "250"));
+            EXPECT_NE(big.name.find("&scale="), std::string::npos);
+            ASSERT_EQ(one.vertices.size(), big.vertices.size());
+            for (size_t i = 0; i < one.vertices.size(); i += 7)
+                EXPECT_NEAR(
+                    glm::distance(big.vertices[i].position, scale * one.vertices[i].position), 0.0f,
+                    1e-5f * scale * (1.0f + glm::length(one.vertices[i].position)));
+            const Light &a = one.lights.front(), &b = big.lights.front();
+            EXPECT_NEAR(b.radius, scale * a.radius, 1e-5f * scale);
+            EXPECT_EQ(b.angularDiameter, a.angularDiameter);
+            const glm::vec3 at = one.cameras.front().target;
+            if (a.type != LightType::Directional) {
+                const float before = a.intensity / glm::dot(a.position - at, a.position - at);
+                const glm::vec3 bAt = big.cameras.front().target;
+                const float after = b.intensity / glm::dot(b.position - bAt, b.position - bAt);
+                EXPECT_NEAR(after, before, 1e-3f * before) << family;
+            }
+            EXPECT_NEAR(big.cameras.front().zfar, scale * one.cameras.front().zfar,
+                        1e-4f * scale * one.cameras.front().zfar);
+        }
+}
+
+// Each family holds what its name promises.
+TEST(Generated, EachFamilyHoldsWhatItPromises) {
+    int misWound = 0, openEdged = 0, alpha = 0, inside = 0, grazing = 0;
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+        Scene open = loadScene(specOf("open", seed));
+        open.indices.erase(open.indices.begin(), open.indices.begin() + 6); // the ground
+        const MeshClosure closure = meshClosure(open);
+        openEdged += closure.open > 0;
+        misWound += closure.misWound > 0;
+        const Scene leaves = loadScene(specOf("leaves", seed));
+        for (const Material& m : leaves.materials)
+            alpha += m.alphaMode == AlphaMode::Mask && m.baseColorTexture >= 0;
+        // Seen from inside: the camera within the walls, a ceiling above it, walls without windows
+        // beside and behind it.
+        const Scene room = loadScene(specOf("interior", seed));
+        const glm::vec3 eye = room.cameras.front().position;
+        const TriangleBvh walls(room);
+        bool enclosed = walls.firstHit({.origin = eye, .direction = {0, 1, 0}}).has_value();
+        for (const glm::vec3 d : {glm::vec3(-1, 0, 0), glm::vec3(0, 0, 1), glm::vec3(0, -1, 0)})
+            enclosed = enclosed && walls.firstHit({.origin = eye, .direction = d}).has_value();
+        inside += enclosed && glm::all(glm::lessThan(room.bounds().min, eye)) &&
+                  glm::all(glm::lessThan(eye, room.bounds().max));
+        const Light& low = loadScene(specOf("grazing", seed)).lights.front();
+        grazing += low.type == LightType::Spot ||
+                   (-low.direction.y <= std::sin(glm::radians(12.0f)) + 1e-6f &&
+                    -low.direction.y >= std::sin(glm::radians(3.0f)) - 1e-6f);
+        const Scene far = loadScene(specOf("long", seed));
+        EXPECT_GE(far.bounds().extent().z, 300.0f);
+        const Scene clutter = loadScene(specOf("clutter", seed));
+        EXPECT_GE(clutter.triangleCount(), 30u * 12u / 2);
+        const Bounds b = subjectBounds(clutter);
+        EXPECT_LE(clutter.lights.front().position.y, b.max.y + 1.0f + 1e-4f) << "close";
+    }
+    EXPECT_GE(openEdged, kSeeds / 2);
+    EXPECT_GE(misWound, kSeeds / 4);
+    EXPECT_EQ(alpha, kSeeds);
+    EXPECT_EQ(inside, kSeeds);
+    EXPECT_EQ(grazing, kSeeds);
+}

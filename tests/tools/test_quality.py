@@ -1,0 +1,116 @@
+"""The corpus gate's arithmetic and its run (tools/quality.py), with a stand-in for penumbra that
+writes the metrics.json a compare would."""
+import json
+import math
+import stat
+import subprocess
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+import quality  # noqa: E402
+
+TOOL = Path(quality.__file__)
+
+
+def row(rmse, acne=0.0, acne_of=5000, leak=0.0, leak_of=5000, misclassified=0.0):
+    return {"rmse": rmse, "acne_beyond_blur": acne, "leak_beyond_blur": leak,
+            "misclassified_outside_edges": misclassified,
+            "counts": {"acne_beyond_blur": {"of": acne_of}, "leak_beyond_blur": {"of": leak_of}}}
+
+
+def test_percentile_interpolates_between_order_statistics():
+    assert quality.percentile([4, 1, 3, 2], 0.5) == 2.5
+    assert math.isclose(quality.percentile([1, 2, 3, 4], 0.95), 3.85)
+    assert quality.percentile([7], 0.95) == 7
+    assert math.isnan(quality.percentile([], 0.5))
+
+
+def test_figures_count_only_where_they_rest_on_enough_pixels():
+    results = {
+        ("plates", 1): {"techniques": {"hard": row(0.02), "pcss": row(0.01),
+                                       "pcf": row(0.03, acne=0.004, leak=0.5, leak_of=999)}},
+        ("open", 1): {"techniques": {"hard": row(0.01), "pcss": row(0.02),
+                                     "pcf": row(0.01, acne=0.001, leak_of=1000,
+                                                misclassified=0.002)}},
+    }
+    s = quality.summarize(results, {"least_pixels": 1000})
+    pcf = s["pcf"]
+    assert pcf["acne_beyond_blur"]["worst"] == 0.004
+    assert pcf["acne_beyond_blur"]["worst_scene"] == "plates?seed=1"
+    assert pcf["acne_beyond_blur"]["scenes"] == 2
+    assert pcf["leak_beyond_blur"]["scenes"] == 1, "999 pixels are too few, 1000 enough"
+    assert pcf["leak_beyond_blur"]["worst"] == 0.0
+    assert pcf["vs_hard"]["worst"] == 1.5 and pcf["vs_hard"]["median"] == 1.25
+    assert pcf["vs_pcss"]["worst"] == 3.0 and pcf["vs_pcss"]["worst_scene"] == "plates?seed=1"
+    assert pcf["misclassified"]["worst"] == 0.002
+    assert s["pcf @ open"]["acne_beyond_blur"]["worst"] == 0.001
+    assert s["hard"]["vs_hard"]["worst"] == 1.0
+
+
+def test_every_figure_past_its_bound_is_named_with_its_scene():
+    summary = {"pcf": {"acne_beyond_blur": {"p95": 0.01, "worst": 0.02, "worst_scene": "a?seed=2"},
+                       "vs_hard": {"median": 1.0, "worst": math.nan, "worst_scene": ""}}}
+    assert quality.check(summary, {"pcf": {"acne_beyond_blur.worst": 0.02}}) == []
+    failed = quality.check(summary, {"pcf": {"acne_beyond_blur.worst": 0.019,
+                                             "vs_hard.worst": 0.5}})
+    assert failed == ["pcf acne_beyond_blur.worst = 0.02 > 0.019 (worst: a?seed=2)"]
+    assert quality.check(summary, {"sdf": {"vs_hard.median": 1}}) == ["sdf: no figures (not run?)"]
+
+
+FAKE = """#!/usr/bin/env python3
+import json, sys
+from pathlib import Path
+args = sys.argv[1:]
+if args[0] == "--validation":
+    args = args[1:]
+    if "leaves" in args[1]:
+        print("vulkan validation: an error", file=sys.stderr)
+spec, out = args[1], Path(args[args.index("-o") + 1])
+if "bad" in spec:
+    print("error: " + spec + ": no such generated family", file=sys.stderr)
+    sys.exit(2)
+seed = int(spec.split("seed=")[1])
+out.mkdir(parents=True, exist_ok=True)
+row = lambda rmse, acne: {"rmse": rmse, "acne_beyond_blur": acne, "leak_beyond_blur": 0.0,
+                          "misclassified_outside_edges": 0.0,
+                          "counts": {"acne_beyond_blur": {"of": 4000},
+                                     "leak_beyond_blur": {"of": 4000}}}
+(out / "metrics.json").write_text(json.dumps({"techniques": {
+    "hard": row(0.02, 0.0), "pcss": row(0.01, 0.0), "pcf": row(0.03, 0.001 * seed)}}))
+"""
+
+
+def run(tmp_path, *extra):
+    fake = tmp_path / "penumbra"
+    fake.write_text(FAKE)
+    fake.chmod(fake.stat().st_mode | stat.S_IXUSR)
+    plan = tmp_path / "plan.toml"
+    plan.write_text('width = 8\nheight = 8\nsamples = 4\nshadow_map_size = 64\nseeds = [1]\n'
+                    'families = ["plates", "open"]\ntechniques = ["hard", "pcss", "pcf"]\n'
+                    '[bounds]\npcf = { "acne_beyond_blur.worst" = 0.0025 }\n')
+    return subprocess.run([sys.executable, str(TOOL), "--plan", str(plan), "--penumbra",
+                           str(fake), "--out", str(tmp_path / "out"), *extra],
+                          capture_output=True, text=True)
+
+
+def test_a_run_writes_its_table_and_fails_past_a_bound(tmp_path):
+    done = run(tmp_path, "--seeds", "1,2")
+    assert done.returncode == 0, done.stderr
+    assert "quality: [4/4]" in done.stdout and "left" in done.stdout
+    table = (tmp_path / "out/quality.md").read_text()
+    assert "| pcf | 0.20 | 0.20 (4) |" in table
+    figures = json.loads((tmp_path / "out/quality.json").read_text())
+    assert figures["seeds"] == [1, 2] and "pcf @ open" in figures["summary"]
+    past = run(tmp_path, "--seeds", "3")
+    assert past.returncode == 1
+    assert "pcf acne_beyond_blur.worst = 0.003 > 0.0025 (worst: " in past.stderr
+
+
+def test_a_failing_scene_or_a_validation_message_stops_the_run(tmp_path):
+    failed = run(tmp_path, "--families", "plates,bad")
+    assert failed.returncode == 2
+    assert "error: builtin:gen/bad?seed=1: error: builtin:gen/bad?seed=1" in failed.stderr
+    spoke = run(tmp_path, "--families", "leaves", "--validation")
+    assert spoke.returncode == 2 and "the validation layer spoke" in spoke.stderr
+    assert run(tmp_path, "--families", "leaves").returncode == 0
