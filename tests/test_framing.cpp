@@ -29,6 +29,19 @@ bool inside(const Bounds& b, const glm::vec3& p) {
 
 } // namespace
 
+// The far plane of a camera placed by a rule holds the whole scene, 1.1 times its farthest
+// corner, at any scale; the near plane 1e-4 of it.
+TEST(Framing, DepthRangeHoldsTheSceneAtAnyScale) {
+    for (float scale : {1e-3f, 1.0f, 1e3f}) {
+        Scene s;
+        MeshBuilder(s).box(boxAt({0, 0, 0}, glm::vec3(2.0f * scale)), 0);
+        const glm::vec2 range = depthRangeFrom(s, {3.0f * scale, 0, 0});
+        const float farthest = scale * std::sqrt(16.0f + 1.0f + 1.0f); // to (-1, +-1, +-1)
+        EXPECT_NEAR(range.y, 1.1f * farthest, 1e-5f * farthest) << scale;
+        EXPECT_NEAR(range.x, 1e-4f * range.y, 1e-9f * range.y) << scale;
+    }
+}
+
 TEST(Framing, SubjectBoundsIgnoreSkyPlanesAndOutliers) {
     const Bounds s = subjectBounds(levelUnderSky());
     EXPECT_LT(s.max.y, 10.0f) << "the sky backdrop does not count";

@@ -102,6 +102,19 @@ TEST(Gltf, TrianglesWithoutAreaAreCountedAndTheirMeshesNamed) {
               std::string::npos)
         << warnings[0];
 
+    // One: "1 triangle", singular.
+    GltfBuilder one;
+    one.ground();
+    const int chip = one.positions({0, 2, 0, 1, 2, 0, 0, 2, 1});
+    one.node(
+        {{"mesh", one.mesh(chip, one.accessor(one.view(std::vector<uint16_t>{0, 2, 1, 0, 0, 1}),
+                                              5123, 6, "SCALAR"))}});
+    warnings.clear();
+    load(one.writeGltf(dir() / "one-flat.gltf"), &warnings);
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("one-flat.gltf: 1 triangle without area"), std::string::npos)
+        << warnings[0];
+
     GltfBuilder clean = floatingQuad();
     warnings.clear();
     load(clean.writeGltf(dir() / "clean.gltf"), &warnings);

@@ -301,6 +301,21 @@ TEST(Reference, ShadowRaysEndAtTheLightAndReceiversInsideItAreLit) {
     EXPECT_GT(near, 100u);
 }
 
+// One exact ray for a light without a size, and for a receiver inside a sphere light (fully lit);
+// a cone of rays otherwise, its angle from the sphere's radius.
+TEST(Sampling, APointLightOrAReceiverInsideTheLightGetsOneRay) {
+    const Light bulb{.type = LightType::Point, .position = {0, 2, 0}, .radius = 0.5f};
+    const Light point{.type = LightType::Point, .position = {0, 2, 0}};
+    EXPECT_TRUE(coneTowards(point, {0, 0, 0}).single);
+    EXPECT_FALSE(coneTowards(bulb, {0, 0, 0}).single);
+    EXPECT_NEAR(coneTowards(bulb, {0, 0, 0}).oneMinusCosAlpha, 1.0 - std::sqrt(1.0 - 0.0625),
+                1e-12);
+    const LightCone within = coneTowards(bulb, {0, 2.3, 0});
+    EXPECT_TRUE(within.inside);
+    EXPECT_TRUE(within.single);
+    EXPECT_FALSE(std::isnan(within.oneMinusCosAlpha));
+}
+
 TEST(Sampling, HammersleyPointsAreAZeroMNetInBaseTwo) {
     // For n = 2^m unshifted points, every box [a/2^k, (a+1)/2^k) x [b/2^(m-k), (b+1)/2^(m-k))
     // holds exactly one point, for every k: the property that makes the truth's penumbrae

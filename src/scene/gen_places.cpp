@@ -204,6 +204,9 @@ Scene clutter(GenRandom& random) {
             mb.beam({x, 0, z}, {x, height, z}, 0.15f * size, m);
             content.grow({x, height, z});
         }
+        // The object's whole footprint, not only its centre: the camera frames all of it.
+        content.grow({x - size / 2, 0, z - size / 2}),
+            content.grow({x + size / 2, 0, z + size / 2});
     }
     Light light = drawLight(random, content, {.sun = false});
     const float x = random.uniform(-0.8f * spread, 0.8f * spread);
