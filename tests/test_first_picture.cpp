@@ -1,8 +1,8 @@
-// A shadow in the first picture (scene/first_picture.h, scene/ray_cast.h): the hierarchy answers
-// as testing every triangle does; the view's cast shadow counted exactly on scenes laid out on
-// the probe's grid under every light type; the default light moved only when its shadow is out
-// of view; a ground added where nothing receives a shadow and nowhere else; levels lit by their
-// own bulbs seen from near them.
+// A shadow in the first picture (scene/first_picture.h): the view's cast shadow counted exactly
+// on scenes laid out on the probe's grid under every light type; the default light moved only
+// when its shadow is out of view; a ground added where nothing receives a shadow and nowhere
+// else; levels lit by their own bulbs seen from near them. The hierarchy it casts with:
+// test_ray_cast.cpp.
 #include "generated_scenes.h"
 #include "gltf_builder.h"
 #include "penumbra/error.h"
@@ -13,43 +13,10 @@
 
 #include <gtest/gtest.h>
 
-#include <random>
-
 using namespace penumbra;
 using namespace penumbra::test;
 
 namespace {
-
-bool sameHit(const std::optional<RayHit>& a, const std::optional<RayHit>& b) {
-    if (!a || !b)
-        return !a && !b;
-    return a->distance == b->distance && a->front == b->front && a->triangle == b->triangle;
-}
-
-// Random triangles, some huge, some tiny, some coplanar twins (ties at equal distance, the lower
-// index first), and axis-aligned rays (direction components of zero) among random ones.
-Scene randomTriangles(uint32_t seed, int count) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-10.0f, 10.0f), s(0.01f, 3.0f);
-    Scene scene;
-    const auto triangle = [&](const glm::vec3* p) {
-        for (int k = 0; k < 3; ++k) {
-            scene.indices.push_back(static_cast<uint32_t>(scene.vertices.size()));
-            scene.vertices.push_back({.position = p[k], .normal = {0, 1, 0}, .material = 0});
-        }
-    };
-    for (int i = 0; i < count; ++i) {
-        const glm::vec3 c(u(rng), u(rng), u(rng));
-        const float size = i % 17 == 0 ? 40.0f : s(rng);
-        glm::vec3 p[3];
-        for (auto& v : p)
-            v = c + size * glm::vec3(u(rng), u(rng), u(rng)) / 10.0f;
-        triangle(p);
-        if (i % 5 == 0)
-            triangle(p); // a twin: the same distance, a higher index
-    }
-    return scene;
-}
 
 // A ground of 80 x 60 and a square plate of 8 x 8 at height `height`, its edges on whole units:
 // from straight above, an orthographic view 64 x 36 units wide sees each unit square as one of
@@ -134,139 +101,6 @@ Scene furnishedRoom() {
 constexpr float kPixels = 64.0f * 36.0f;
 
 } // namespace
-
-TEST(RayCast, TheHierarchyAnswersAsTestingEveryTriangleInOrder) {
-    for (uint32_t seed : {1u, 2u, 3u}) {
-        const Scene scene = randomTriangles(seed, 400);
-        const TriangleBvh bvh(scene);
-        std::mt19937 rng(seed + 100);
-        std::uniform_real_distribution<float> u(-12.0f, 12.0f);
-        std::vector<Ray> rays;
-        for (int i = 0; i < 600; ++i) {
-            glm::vec3 d(u(rng), u(rng), u(rng));
-            if (i % 3 == 0)
-                d = glm::vec3(0.0f), d[i % 9 / 3] = i % 2 ? 1.0f : -1.0f; // along an axis
-            rays.push_back(
-                {.origin = glm::vec3(u(rng), u(rng), u(rng)), .direction = glm::normalize(d)});
-        }
-        // Rays down the normals of twins (triangles 0, 6, 12, ...: every fifth made, then its
-        // twin) through their centres: two hits at one distance.
-        for (uint32_t t = 0; t < 48; t += 6) {
-            const glm::vec3 a = scene.vertices[scene.indices[3 * t]].position;
-            const glm::vec3 b = scene.vertices[scene.indices[3 * t + 1]].position;
-            const glm::vec3 c = scene.vertices[scene.indices[3 * t + 2]].position;
-            const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
-            rays.push_back({.origin = (a + b + c) / 3.0f + 0.01f * n, .direction = -n});
-        }
-        const auto truth = firstHitsBruteForce(scene, rays);
-        int hits = 0, twins = 0;
-        for (size_t r = 0; r < rays.size(); ++r) {
-            const auto hit = bvh.firstHit(rays[r]);
-            ASSERT_TRUE(sameHit(hit, truth[r])) << "seed " << seed << " ray " << r;
-            hits += hit.has_value();
-            if (r >= 600 && hit && hit->triangle == 6 * (r - 600))
-                ++twins; // of the twins, the lower index
-            if (!truth[r])
-                continue;
-            // Occluded within a segment: strictly nearer than its end.
-            EXPECT_TRUE(bvh.occluded(rays[r], truth[r]->distance * 1.0001f));
-            EXPECT_FALSE(bvh.occluded(rays[r], truth[r]->distance)) << "the end is open";
-            EXPECT_FALSE(bvh.firstHit(rays[r], truth[r]->distance).has_value());
-        }
-        EXPECT_GT(hits, 150) << "rays that meet something, in numbers";
-        EXPECT_GE(twins, 6);
-        const auto batch = firstHits(scene, rays); // through the hierarchy: 600 rays and more
-        ASSERT_EQ(batch.size(), truth.size());
-        for (size_t r = 0; r < rays.size(); ++r)
-            ASSERT_TRUE(sameHit(batch[r], truth[r])) << "seed " << seed << " ray " << r;
-    }
-    const Scene empty;
-    EXPECT_FALSE(TriangleBvh(empty).firstHit({}).has_value());
-}
-
-// The hit test reaches a hundred-thousandth of an edge past each triangle (so that rays at shared
-// edges meet one of the two); the boxes must reach as far. Rays from above at a flat grid of
-// squares (boxes with no thickness, edges along the axes): at its corners, along its seams, and
-// just past its outer edges, within that reach.
-TEST(RayCast, TheBoxesReachAsFarAsTheHitTest) {
-    Scene grid;
-    MeshBuilder mb(grid);
-    const uint32_t m = mb.material("m", glm::vec3(0.5f));
-    for (int i = 0; i < 8; ++i)
-        for (int k = 0; k < 8; ++k) {
-            const float x = static_cast<float>(i) - 4.0f, z = static_cast<float>(k) - 4.0f;
-            mb.quad({x, 0, z + 1}, {x + 1, 0, z + 1}, {x + 1, 0, z}, {x, 0, z}, m);
-        }
-    const TriangleBvh bvh(grid);
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> u(-6.0f, 6.0f);
-    std::vector<Ray> rays;
-    for (int i = 0; i <= 8; ++i)
-        for (int k = 0; k <= 8; ++k)
-            for (float past : {0.0f, 4e-6f}) {
-                // Outer edges pushed out by `past` of a square's side; inner seams stay.
-                const auto out = [&](int n) {
-                    return static_cast<float>(n) - 4.0f + (n == 0 ? -past : n == 8 ? past : 0.0f);
-                };
-                const glm::vec3 at(out(i), 0.0f, out(k));
-                const glm::vec3 from(u(rng), 5.0f, u(rng));
-                rays.push_back({.origin = from, .direction = glm::normalize(at - from)});
-                rays.push_back({.origin = at + glm::vec3(0, 3, 0), .direction = {0, -1, 0}});
-            }
-    const auto truth = firstHitsBruteForce(grid, rays);
-    int hits = 0;
-    for (size_t r = 0; r < rays.size(); ++r) {
-        EXPECT_TRUE(sameHit(bvh.firstHit(rays[r]), truth[r])) << "ray " << r;
-        hits += truth[r].has_value();
-    }
-    EXPECT_EQ(hits, static_cast<int>(rays.size())) << "every ray meets the grid";
-}
-
-// What the hierarchy is for: a ray that misses every box tests no triangle, even with no end; one
-// into a ball of 16k triangles, or out of it, a few dozen to a few hundred (the brute force tests
-// all 16k).
-TEST(RayCast, TheHierarchyTestsAFewTrianglesARay) {
-    Scene ball;
-    MeshBuilder mb(ball);
-    mb.sphere({0, 0, 0}, 1.0f, mb.material("m", glm::vec3(0.5f)), 128, 64);
-    ASSERT_GT(ball.triangleCount(), 16000u);
-    const TriangleBvh bvh(ball);
-    const float endless = std::numeric_limits<float>::infinity();
-    EXPECT_FALSE(bvh.occluded({.origin = {5, 5, 5}, .direction = {0, 1, 0}}, endless));
-    EXPECT_FALSE(bvh.firstHit({.origin = {5, 5, 5}, .direction = {0, 1, 0}}).has_value());
-    EXPECT_EQ(bvh.trianglesTested(), 0u);
-    size_t tested = 0;
-    // Away from the poles, where a UV sphere's 128 slivers share one corner. The bounds are
-    // about 1.5 times what the median splits test today (19/0, 8/8, 12/12): the root visited
-    // twice or splits along one axis only give right answers at twice the work or more.
-    struct Probe {
-        glm::vec3 direction;
-        size_t into, out;
-    };
-    for (const Probe& p : {Probe{{0, 0, -1}, 28, 4}, Probe{{0.6f, 0, -0.8f}, 12, 12},
-                           Probe{{0, -0.6f, -0.8f}, 18, 18}}) {
-        const glm::vec3 d = p.direction;
-        const auto hit = bvh.firstHit({.origin = -5.0f * d, .direction = d});
-        ASSERT_TRUE(hit.has_value());
-        EXPECT_NEAR(hit->distance, 4.0f, 1e-3f);
-        EXPECT_LE(bvh.trianglesTested() - tested, p.into) << "into the ball";
-        tested = bvh.trianglesTested();
-        EXPECT_FALSE(bvh.occluded({.origin = -1.001f * d, .direction = -d}, endless));
-        EXPECT_LE(bvh.trianglesTested() - tested, p.out) << "out of it";
-        tested = bvh.trianglesTested();
-    }
-    // A row of 200 flat boxes along z, each wider than tall: split along the longest axis (z),
-    // a ray down onto one tests 11 triangles; split along another, hundreds (the splits took
-    // x for z until this test: 383).
-    Scene row;
-    MeshBuilder rb(row);
-    const uint32_t m = rb.material("m", glm::vec3(0.5f));
-    for (int i = 0; i < 200; ++i)
-        rb.box(boxAt({0, 0, 2.0f * static_cast<float>(i)}, {1, 0.5f, 1}), m);
-    const TriangleBvh rowBvh(row);
-    ASSERT_TRUE(rowBvh.firstHit({.origin = {0.1f, 5, 200.2f}, .direction = {0, -1, 0}}));
-    EXPECT_LE(rowBvh.trianglesTested(), 16u);
-}
 
 TEST(FirstPicture, TheProbeCountsCastShadowPixelByPixelUnderEveryLightType) {
     // A sun travelling at 45 degrees towards +x: the plate at height 12 casts its 8 x 8 shadow 12
@@ -671,7 +505,8 @@ TEST(FirstPicture, AColumnIsFollowedThroughSixteenSurfacesAndNoMore) {
 
 // The grid of columns at its cells' centres: a slope (an open surface facing up) is found in
 // every column, from above where the rays from within start under it; a floor under the far 5 of
-// 9 rows of a floating slab in 45 of 81; a slab over nothing in none.
+// 9 rows of a floating slab in 45 of 81; a slab over nothing in none; a floor under 3 sheets
+// seen from below everywhere, under 4 nowhere.
 TEST(FirstPicture, TheColumnsDownCoverTheFootprintCellByCell) {
     const auto share = [](const Scene& s) { return floorShare(s, TriangleBvh(s)); };
     Scene slope;
@@ -687,6 +522,24 @@ TEST(FirstPicture, TheColumnsDownCoverTheFootprintCellByCell) {
     Scene slab;
     MeshBuilder(slab).box(boxAt({4.5f, 1.5f, 4.5f}, {9, 1, 9}), m);
     EXPECT_EQ(share(slab), 0.0f);
+    // A ray from within goes through 4 back faces at most: sheets facing down at 4.8, 4.6, ...,
+    // a floor facing up at 4 and a last sheet facing down at 0 (so that the column from above
+    // ends on a back face). The 50% ray starts at 5 (a wall at the edge makes the subject 10
+    // high; rays down pass beside it).
+    const auto sheets = [&](int down) {
+        Scene s;
+        MeshBuilder b(s);
+        b.quad({9, 0, 0}, {9, 0, 9}, {9, 10, 9}, {9, 10, 0}, m);
+        for (int k = 0; k < down; ++k) {
+            const float y = 4.8f - 0.2f * static_cast<float>(k);
+            b.quad({0, y, 0}, {9, y, 0}, {9, y, 9}, {0, y, 9}, m);
+        }
+        b.quad({0, 4, 9}, {9, 4, 9}, {9, 4, 0}, {0, 4, 0}, m);
+        b.quad({0, 0, 0}, {9, 0, 0}, {9, 0, 9}, {0, 0, 9}, m);
+        return s;
+    };
+    EXPECT_EQ(share(sheets(3)), 1.0f) << "a floor under 3 back faces";
+    EXPECT_EQ(share(sheets(4)), 0.0f) << "a floor under 4 back faces";
 }
 
 // Nothing to stand on: no camera to measure from, or no triangles. Left as it is.

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -199,12 +200,17 @@ TEST(Generated, EachFamilyHoldsWhatItPromises) {
 }
 
 // Over 200 seeds, the shares the docs give: a grazing scene's light is a low spot in about 3 of
-// 10; a long view looks 40 to 120 ahead, near and far.
+// 10; a long view looks 40 to 120 ahead, near and far; a room's table stands left and right.
 TEST(Generated, TheDrawsFollowTheDocumentedShares) {
-    int spots = 0;
+    int spots = 0, tablesLeft = 0, tablesRight = 0;
     float nearest = 1e9f, farthest = 0.0f;
     for (int seed = 1; seed <= 200; ++seed) {
         spots += loadScene(specOf("grazing", seed)).lights.front().type == LightType::Spot;
+        // A room's camera looks at its table, anywhere in the middle half of the room's width.
+        const Scene room = loadScene(specOf("interior", seed));
+        const float tableX = room.cameras.front().target.x / room.bounds().max.x;
+        EXPECT_LE(std::abs(tableX), 0.5f) << room.name;
+        tablesLeft += tableX<-0.25f, tablesRight += tableX> 0.25f;
         const Camera c = loadScene(specOf("long", seed)).cameras.front();
         const float ahead = c.position.z - c.target.z - 10.0f; // the camera stands at z = 10
         EXPECT_GE(ahead, 40.0f - 10.0f);
@@ -215,6 +221,8 @@ TEST(Generated, TheDrawsFollowTheDocumentedShares) {
     EXPECT_LE(spots, 80);
     EXPECT_LT(nearest, 50.0f);
     EXPECT_GT(farthest, 110.0f);
+    EXPECT_GE(tablesLeft, 25);
+    EXPECT_GE(tablesRight, 25);
 }
 
 // A camera drawn round the content keeps every object in view (all but the ground's corners
@@ -236,8 +244,68 @@ TEST(Generated, TheCameraKeepsTheContentInView) {
         }
 }
 
+// The camera round the content centres on it and stands as near as keeps a sphere round it in the
+// view's height: the content is the family's footprint and every vertex after the ground's (so
+// nothing a family adds is left out of the light's aim or the frame, and nothing else is in).
+TEST(Generated, TheCameraFramesTheFootprintAndEveryObject) {
+    const auto check = [](std::string_view family, int seed, Bounds content) {
+        const Scene s = loadScene(specOf(family, seed));
+        for (size_t v = 4; v < s.vertices.size(); ++v)
+            content.grow(s.vertices[v].position);
+        const Camera& c = s.cameras.front();
+        const float radius = 0.5f * glm::length(content.extent());
+        EXPECT_LT(glm::length(c.target - content.center()), 1e-4f * radius) << s.name;
+        EXPECT_NEAR(glm::length(c.position - c.target) * std::sin(0.5f * c.yfov), radius,
+                    1e-4f * radius)
+            << s.name;
+    };
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+        for (std::string_view family : {"plates", "spheres", "leaves", "open", "curved"})
+            check(family, seed, {.min = {-3, 0, -3}, .max = {3, 0, 3}});
+        check("grazing", seed, {.min = {-4, 0, -4}, .max = {4, 0.5f, 4}});
+    }
+}
+
+// Each object of the curved family is one surface: 2 to 5 of them a seed (a corrugated sheet's
+// strips meet along their creases; spheres, tori and tubes are whole).
+TEST(Generated, EachCurvedObjectIsOneSurface) {
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+        const Scene s = loadScene(specOf("curved", seed));
+        // Vertices welded on a grid of 1e-4: each joins the first vertex within one cell.
+        std::map<std::array<int64_t, 3>, uint32_t> cells;
+        std::vector<uint32_t> parent(s.vertices.size());
+        const auto find = [&](uint32_t v) {
+            while (parent[v] != v)
+                v = parent[v] = parent[parent[v]];
+            return v;
+        };
+        for (uint32_t v = 4; v < s.vertices.size(); ++v) {
+            parent[v] = v;
+            const glm::vec3 p = s.vertices[v].position * 1e4f;
+            const std::array<int64_t, 3> cell{std::llround(p.x), std::llround(p.y),
+                                              std::llround(p.z)};
+            for (int n = 0; n < 27; ++n) {
+                const auto it =
+                    cells.find({cell[0] + n % 3 - 1, cell[1] + n / 3 % 3 - 1, cell[2] + n / 9 - 1});
+                if (it != cells.end())
+                    parent[find(v)] = find(it->second);
+            }
+            cells.emplace(cell, v);
+        }
+        for (size_t t = 6; t < s.indices.size(); t += 3)
+            for (int k = 1; k < 3; ++k)
+                parent[find(s.indices[t + k])] = find(s.indices[t]);
+        std::set<uint32_t> surfaces;
+        for (uint32_t v = 4; v < s.vertices.size(); ++v)
+            surfaces.insert(find(v));
+        EXPECT_GE(surfaces.size(), 2u) << s.name;
+        EXPECT_LE(surfaces.size(), 5u) << s.name;
+    }
+}
+
 // Every face of the open family stands upright or lies flat (boxes turned about the vertical,
-// walls standing), and the plates' slabs are turned any way about the vertical: 0 to 90 degrees.
+// walls standing); the plates' slabs are turned any way about the vertical (0 to 90 degrees) and
+// every face of theirs is a rectangle.
 TEST(Generated, FacesStandAsTheirFamiliesSay) {
     const auto normal = [](const Scene& s, size_t t) {
         const glm::vec3 a = s.vertices[s.indices[t]].position;
@@ -252,6 +320,14 @@ TEST(Generated, FacesStandAsTheirFamiliesSay) {
             EXPECT_TRUE(up < 1e-4f || up > 1.0f - 1e-4f) << open.name << " triangle " << t / 3;
         }
         const Scene plates = loadScene(specOf("plates", seed));
+        // Slabs, shelves and posts are boxes and quads: rectangles, two triangles of one area.
+        const auto area = [&](size_t t) {
+            const glm::vec3 a = plates.vertices[plates.indices[t]].position;
+            return glm::length(glm::cross(plates.vertices[plates.indices[t + 1]].position - a,
+                                          plates.vertices[plates.indices[t + 2]].position - a));
+        };
+        for (size_t t = 0; t < plates.indices.size(); t += 6)
+            EXPECT_NEAR(area(t), area(t + 3), 1e-4f * area(t)) << plates.name << " quad " << t / 6;
         for (size_t t = 0; t < plates.indices.size(); t += 3) {
             const glm::vec3 n = normal(plates, t);
             const float angle = std::fmod(glm::degrees(std::atan2(n.z, n.x)) + 360.0f, 90.0f);

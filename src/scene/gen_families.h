@@ -26,6 +26,10 @@ Camera orbitCamera(GenRandom& random, const Scene& scene, const Bounds& content,
 uint32_t groundAnd(MeshBuilder& mb, GenRandom& random, float half, const std::string& objects);
 // The box from (-half, 0, -half) to (half, height, half): the content's footprint.
 Bounds footprint(float half, float height = 0.0f);
+// The vertices groundAnd adds first: one quad.
+inline constexpr size_t kGroundVertices = 4;
+// What the light and the camera hold: `around` grown by every vertex after the ground's.
+Bounds contentOf(const Scene& scene, Bounds around);
 // A drawn grey-ish colour, so that materials differ between seeds.
 glm::vec3 drawColor(GenRandom& random);
 

@@ -21,14 +21,9 @@ glm::mat4 placed(const glm::vec3& centre, float turn, const glm::vec3& size) {
     return glm::scale(m, size);
 }
 
-// Grows `b` by the corners of the unit cube under `m`.
-void grow(Bounds& b, const glm::mat4& m) {
-    for (int k = 0; k < 8; ++k)
-        b.grow(glm::vec3(
-            m * glm::vec4(k & 1 ? 0.5f : -0.5f, k & 2 ? 0.5f : -0.5f, k & 4 ? 0.5f : -0.5f, 1.0f)));
-}
-
-Scene finish(Scene scene, GenRandom& random, const Bounds& content, const LightChoice& choice) {
+// The light and the camera over the content: the 3-unit footprint and every object on the ground.
+Scene finish(Scene scene, GenRandom& random, const LightChoice& choice) {
+    const Bounds content = contentOf(scene, footprint(3.0f));
     scene.lights.push_back(drawLight(random, content, choice));
     scene.cameras.push_back(orbitCamera(random, scene, content));
     return scene;
@@ -42,7 +37,6 @@ Scene plates(GenRandom& random) {
     Scene s;
     MeshBuilder mb(s);
     const uint32_t m = groundAnd(mb, random, kGround, "plates");
-    Bounds content = footprint(3.0f);
     const int stacks = random.integer(1, 3);
     for (int k = 0; k < stacks; ++k) {
         const float x = random.uniform(-2.5f, 2.5f);
@@ -59,11 +53,9 @@ Scene plates(GenRandom& random) {
             if (shelves) { // shelves stay square to their posts
                 mb.quad({x - w / 2, y, z + d / 2}, {x + w / 2, y, z + d / 2},
                         {x + w / 2, y, z - d / 2}, {x - w / 2, y, z - d / 2}, m);
-                content.grow({x - w / 2, y, z - d / 2}), content.grow({x + w / 2, y, z + d / 2});
             } else {
                 const glm::mat4 slab = placed({x, y, z}, turn, {w, thick, d});
                 mb.box(slab, m);
-                grow(content, slab);
             }
             y += random.uniform(0.15f, 1.2f);
         }
@@ -74,7 +66,7 @@ Scene plates(GenRandom& random) {
                 mb.beam({px, 0, pz}, {px, y, pz}, 0.04f, m);
             }
     }
-    return finish(std::move(s), random, content, {});
+    return finish(std::move(s), random, {});
 }
 
 // 1 to 5 spheres (64 x 32 facets) of radius 0.3 to 1.5, resting on the ground or floating up to
@@ -83,7 +75,6 @@ Scene spheres(GenRandom& random) {
     Scene s;
     MeshBuilder mb(s);
     const uint32_t m = groundAnd(mb, random, kGround, "spheres");
-    Bounds content = footprint(3.0f);
     const int count = random.integer(1, 5);
     for (int i = 0; i < count; ++i) {
         const float r = random.uniform(0.3f, 1.5f);
@@ -92,9 +83,8 @@ Scene spheres(GenRandom& random) {
         const float gap = random.chance(0.3f) ? 0.0f : random.uniform(0.05f, 2.0f) * r;
         const glm::vec3 c(x, r + gap, z);
         mb.sphere(c, r, m);
-        content.grow(c - r), content.grow(c + r);
     }
-    return finish(std::move(s), random, content, {});
+    return finish(std::move(s), random, {});
 }
 
 // 5 to 30 leaf cards (alpha-tested quads of a leaf texture drawn from the seed) tilted at random
@@ -107,7 +97,6 @@ Scene leaves(GenRandom& random) {
     const uint32_t leaf =
         mb.texturedMaterial("leaves", builtin::leafImage(texture, random.integer(60, 200)), {},
                             AlphaMode::Mask, builtin::kFoliageAlphaCutoff);
-    Bounds content = footprint(3.0f);
     const int cards = random.integer(5, 30);
     for (int i = 0; i < cards; ++i) {
         const float size = random.uniform(0.4f, 2.0f);
@@ -123,7 +112,6 @@ Scene leaves(GenRandom& random) {
         for (int k = 0; k < 4; ++k) {
             corner[k] = glm::vec3(m * glm::vec4((k == 1 || k == 2 ? 0.5f : -0.5f) * size, 0.0f,
                                                 (k < 2 ? 0.5f : -0.5f) * size, 1.0f));
-            content.grow(corner[k]);
         }
         mb.quad(corner[0], corner[1], corner[2], corner[3], leaf);
     }
@@ -133,9 +121,8 @@ Scene leaves(GenRandom& random) {
             mb.beam({post & 1 ? 2.5f : -2.5f, 0, post & 2 ? 2.0f : -2.0f},
                     {post & 1 ? 2.5f : -2.5f, h, post & 2 ? 2.0f : -2.0f}, 0.1f, wood);
         mb.quad({-2.5f, h, 2}, {2.5f, h, 2}, {2.5f, h, -2}, {-2.5f, h, -2}, leaf, {2.0f, 1.6f});
-        content.grow({0, h, 0});
     }
-    return finish(std::move(s), random, content, {});
+    return finish(std::move(s), random, {});
 }
 
 // Open boxes (1 to 3 faces missing), single-sided walls, and closed boxes with some triangles
@@ -144,7 +131,6 @@ Scene open(GenRandom& random) {
     Scene s;
     MeshBuilder mb(s);
     const uint32_t m = groundAnd(mb, random, kGround, "open");
-    Bounds content = footprint(3.0f);
     const int count = random.integer(2, 6);
     for (int i = 0; i < count; ++i) {
         const float w = random.uniform(0.5f, 2.0f);
@@ -156,7 +142,6 @@ Scene open(GenRandom& random) {
         const size_t first = s.indices.size();
         const glm::mat4 box = placed({x, lift + h / 2, z}, random.uniform(0.0f, 1.5f), {w, h, w});
         mb.box(box, m);
-        grow(content, box);
         if (kind == 0) { // faces removed: two triangles each
             const int missing = random.integer(1, 3);
             const auto face = static_cast<size_t>(random.integer(0, 6 - missing));
@@ -176,7 +161,7 @@ Scene open(GenRandom& random) {
                     foot - across * w + glm::vec3(0, h, 0), m);
         }
     }
-    return finish(std::move(s), random, content, {});
+    return finish(std::move(s), random, {});
 }
 
 // Creases and curved tessellation: tori, tubes and spheres of few facets (smooth-shaded, so the
@@ -185,7 +170,6 @@ Scene curved(GenRandom& random) {
     Scene s;
     MeshBuilder mb(s);
     const uint32_t m = groundAnd(mb, random, kGround, "curved");
-    Bounds content = footprint(3.0f);
     const int count = random.integer(2, 5);
     for (int i = 0; i < count; ++i) {
         const float x = random.uniform(-3.0f, 3.0f);
@@ -200,20 +184,17 @@ Scene curved(GenRandom& random) {
             const float tilt = random.uniform(0.0f, 1.5f);
             mb.torus(c, glm::vec3(std::sin(tilt), std::cos(tilt), 0), r, 0.35f * r, m, segments,
                      sides);
-            content.grow(c - 1.35f * r), content.grow(c + 1.35f * r);
             break;
         }
         case 1: {
             const auto slices = static_cast<uint32_t>(random.integer(5, 24));
             const float h = random.uniform(0.5f, 3.0f);
             mb.tube({x, lift, z}, {x, lift + h, z}, 0.5f * r, m, slices);
-            content.grow({x - r, lift, z - r}), content.grow({x + r, lift + h, z + r});
             break;
         }
         case 2: {
             const auto slices = static_cast<uint32_t>(random.integer(6, 24));
             mb.sphere(c, r, m, slices, std::max(3u, slices / 2));
-            content.grow(c - r), content.grow(c + r);
             break;
         }
         default: { // a corrugated sheet: strips folded alternately up and down
@@ -222,17 +203,16 @@ Scene curved(GenRandom& random) {
             const float length = random.uniform(1.0f, 3.0f);
             const float y = lift + random.uniform(0.3f, 1.5f);
             for (int k = 0; k < strips; ++k) {
-                const float x0 = x + strip * static_cast<float>(k), x1 = x0 + strip;
+                const float x0 = x + strip * static_cast<float>(k);
+                const float x1 = x + strip * static_cast<float>(k + 1); // the next strip's x0
                 const float y0 = y + (k % 2 ? fold : 0.0f), y1 = y + (k % 2 ? 0.0f : fold);
                 mb.quad({x0, y0, z + length / 2}, {x1, y1, z + length / 2},
                         {x1, y1, z - length / 2}, {x0, y0, z - length / 2}, m);
             }
-            content.grow({x, y, z - length / 2});
-            content.grow({x + strip * static_cast<float>(strips), y + fold, z + length / 2});
         }
         }
     }
-    return finish(std::move(s), random, content, {});
+    return finish(std::move(s), random, {});
 }
 
 } // namespace penumbra::gen

@@ -113,7 +113,6 @@ Scene grazing(GenRandom& random) {
     Scene s;
     MeshBuilder mb(s);
     const uint32_t m = groundAnd(mb, random, 30.0f, "blocks");
-    Bounds content = footprint(4.0f, 0.5f);
     const int count = random.integer(2, 8);
     for (int i = 0; i < count; ++i) {
         const float x = random.uniform(-4.0f, 4.0f);
@@ -125,7 +124,7 @@ Scene grazing(GenRandom& random) {
     }
     const float rise = random.uniform(0.05f, 0.5f); // a ramp: a receiver tilted off the ground
     mb.quad({-4, 0, 6}, {4, 0, 6}, {4, 4 * rise, 2}, {-4, 4 * rise, 2}, m);
-    content.grow({4, 4 * rise, 6});
+    const Bounds content = contentOf(s, footprint(4.0f, 0.5f));
     LightChoice choice{.spot = false, .point = false, .lowestSun = 3.0f, .highestSun = 12.0f};
     Light light = drawLight(random, content, choice);
     if (random.chance(0.3f)) { // a spot low at the side instead
@@ -183,7 +182,6 @@ Scene clutter(GenRandom& random) {
     MeshBuilder mb(s);
     const uint32_t m = groundAnd(mb, random, 10.0f, "clutter");
     const float spread = random.uniform(1.0f, 2.0f);
-    Bounds content = footprint(spread, 0.1f);
     const int count = random.integer(30, 80);
     for (int i = 0; i < count; ++i) {
         const float x = random.uniform(-spread, spread);
@@ -195,19 +193,14 @@ Scene clutter(GenRandom& random) {
             mb.box(
                 boxBetween({x - size / 2, 0, z - size / 2}, {x + size / 2, height, z + size / 2}),
                 m);
-            content.grow({x, height, z});
         } else if (kind == 1) {
             mb.sphere({x, size / 2, z}, size / 2, m, 12, 6);
-            content.grow({x, size, z});
         } else {
             const float height = random.uniform(2.0f, 5.0f) * size;
             mb.beam({x, 0, z}, {x, height, z}, 0.15f * size, m);
-            content.grow({x, height, z});
         }
-        // The object's whole footprint, not only its centre: the camera frames all of it.
-        content.grow({x - size / 2, 0, z - size / 2}),
-            content.grow({x + size / 2, 0, z + size / 2});
     }
+    const Bounds content = contentOf(s, footprint(spread, 0.1f));
     Light light = drawLight(random, content, {.sun = false});
     const float x = random.uniform(-0.8f * spread, 0.8f * spread);
     const float z = random.uniform(-0.8f * spread, 0.8f * spread);

@@ -210,6 +210,12 @@ Bounds footprint(float half, float height) {
     return {.min = {-half, 0.0f, -half}, .max = {half, height, half}};
 }
 
+Bounds contentOf(const Scene& scene, Bounds around) {
+    for (size_t v = kGroundVertices; v < scene.vertices.size(); ++v)
+        around.grow(scene.vertices[v].position);
+    return around;
+}
+
 glm::vec3 drawColor(GenRandom& random) {
     const float r = random.uniform(0.3f, 0.8f);
     const float g = random.uniform(0.3f, 0.8f);
