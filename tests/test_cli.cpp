@@ -356,6 +356,23 @@ TEST(Cli, TechniquesListsEveryParameterWithRange) {
             EXPECT_TRUE(p.contains("default") && p.contains("min") && p.contains("max"));
         }
     EXPECT_TRUE(sawSlope);
+    // Whole numbers as they are typed (`--set sdf.steps=128`), fractions as numbers.
+    for (const auto& t : j)
+        for (const auto& p : t["parameters"]) {
+            if (p["type"] == "int") {
+                EXPECT_TRUE(p["default"].is_number_integer() && p["min"].is_number_integer() &&
+                            p["max"].is_number_integer())
+                    << p.dump();
+            }
+            if (p["key"] == "sdf.steps") {
+                EXPECT_EQ(p["default"].dump(), "128");
+            }
+            if (p["key"] == "bias.slope") {
+                EXPECT_TRUE(p["default"].is_number_float());
+            }
+        }
+    const ProcessResult text = runCli({"techniques"});
+    EXPECT_NE(text.out.find("--set sdf.steps=128  int [4, 1024]"), std::string::npos) << text.out;
 }
 
 TEST(Cli, InfoNamesTheDevice) {

@@ -6,10 +6,13 @@
 #include "scratch_dir.h"
 #include "three_light_asset.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <string>
+#include <tuple>
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -96,6 +99,20 @@ TEST(CliLights, LightSizesNoLightTakesAreWarnedAbout) {
                 "--shadow-map-size", "64", "--frames", "1", "--light-angle", "2"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("warning: --light-angle: scene"), std::string::npos) << r.err;
+    // Sizes that are not finite numbers in range: one line each, the range in plain numbers.
+    for (const auto& [option, value, words] :
+         {std::tuple{"--light-radius", "nan", "is not a finite number >= 0"},
+          std::tuple{"--light-radius", "-1", "is not a finite number >= 0"},
+          std::tuple{"--light-radius", "1e39", "is not a finite number >= 0"},
+          std::tuple{"--light-angle", "nan", "is not a number from 0 to 30"},
+          std::tuple{"--light-angle", "30.5", "is not a number from 0 to 30"}}) {
+        r = with({option, value});
+        EXPECT_NE(r.exitCode, 0) << option << " " << value;
+        EXPECT_NE(r.err.find(fmt::format("error: {}: '{}' {}", option, value, words)),
+                  std::string::npos)
+            << r.err;
+    }
+    EXPECT_EQ(with({"--light-angle", "30"}).exitCode, 0);
     r = with({"--add-light", "spot:pos=0,3,0"});
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find("error: --add-light: 'spot:pos=0,3,0': it needs dir="), std::string::npos)
@@ -116,7 +133,7 @@ TEST(CliLights, ViewGroundDoubleSidedAndOpenGeometryFromTheCommandLine) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     // The ground quad is open: 2 of its 14 triangles (the box's 12 are closed).
     EXPECT_NE(r.err.find("2 of 14 triangles lie on surfaces with open edges and 0 on "
-                         "mis-wound ones; `second-depth`"),
+                         "mis-wound ones; `second-depth` takes a model's inside"),
               std::string::npos)
         << r.err;
     std::string stats = slurp(out / "stats.json");
@@ -171,14 +188,21 @@ TEST(CliLights, ALoneModelGetsAGroundWithANoteUnlessNoGround) {
     std::string stats = slurp(out / "stats.json");
     EXPECT_NE(stats.find("\"automatic_ground\": true"), std::string::npos) << stats;
     EXPECT_NE(stats.find("\"triangles\": 14"), std::string::npos) << "the box's 12 and 2";
+    // What the picture shows, measured: a shadow on at least 1% of it, the box on 15%.
+    const nlohmann::json view = nlohmann::json::parse(stats)["view"];
+    EXPECT_GE(view["cast_shadow"].get<double>(), 0.01) << stats;
+    EXPECT_GE(view["subject"].get<double>(), 0.15) << stats;
     r = run("reference", truth, {});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(slurp(truth / "reference.json").find("\"automatic_ground\": true"),
-              std::string::npos);
+    const nlohmann::json reference = nlohmann::json::parse(slurp(truth / "reference.json"));
+    EXPECT_EQ(reference["automatic_ground"], true);
+    EXPECT_EQ(reference["view"], view) << "the same scene, the same view";
 
     r = run("render", out, {"--no-ground"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(r.err.find("added a ground"), std::string::npos) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(slurp(out / "stats.json"))["view"]["cast_shadow"], 0.0)
+        << "nothing receives the box's shadow";
     stats = slurp(out / "stats.json");
     EXPECT_NE(stats.find("\"automatic_ground\": false"), std::string::npos);
     EXPECT_NE(stats.find("\"no_ground\": true"), std::string::npos);

@@ -137,14 +137,69 @@ TEST(FirstPicture, TheProbeCountsCastShadowPixelByPixelUnderEveryLightType) {
     EXPECT_GT(s.lit, 0.05f);
     // A bulb under the plate's height lights the plate's top not at all, and casts nothing.
     EXPECT_EQ(measured(low, {.type = LightType::Point, .position = {-6, 2, 0}}).castShadow, 0.0f);
-    // The largest of several lights; a light that casts no shadow does not count.
+    // A light that casts no shadow does not count.
     const TriangleBvh bvh(low);
     const ViewProbe probe(low, bvh, low.cameras.front());
     Light quiet = bulb;
     quiet.castsShadow = false;
-    EXPECT_EQ(probe.castShadow(std::vector{spot, sun}), 256.0f / kPixels);
+    EXPECT_EQ(probe.castShadow(std::vector{spot}), 256.0f / kPixels);
     EXPECT_EQ(probe.castShadow(std::vector{quiet}), 0.0f);
     EXPECT_EQ(probe.subject(), v.subject);
+    // A surface facing a sun at a cosine of 0.04 is grazed: neither lit nor in shadow; at 0.06
+    // it is lit.
+    for (const float cosine : {0.04f, 0.06f}) {
+        const Light grazing{.direction = {-std::sqrt(1.0f - cosine * cosine), -cosine, 0.0f}};
+        const ViewShadow g = measured(high, grazing);
+        EXPECT_EQ(g.lit + g.castShadow > 0.0f, cosine > 0.05f) << cosine;
+    }
+}
+
+// Under several lights a pixel shows a shadow where they bring it under half their light: the
+// plate at height 4 under a sun towards +x at 45 degrees (its shadow x -6 to 2, the visible part
+// x -2 to 2: 32 pixels) and a bulb above (256 pixels, x -2 to 14 and z -8 to 8, over the
+// sun's). The brighter one's shadow shows; two equal suns from either side wash out each other's.
+TEST(FirstPicture, SeveralLightsShowTheShadowsThatDarkenThePicture) {
+    const Scene low = plateOverGround(4.0f);
+    const TriangleBvh bvh(low);
+    const ViewProbe probe(low, bvh, low.cameras.front());
+    const Light sun{.type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(1, -1, 0))};
+    Light bulb{.type = LightType::Point, .position = {-18, 8, 0}};
+    EXPECT_EQ(probe.castShadow(std::vector{bulb, sun}) * kPixels, 32.0f) << "the sun outshines it";
+    bulb.intensity = 1e4f;
+    EXPECT_EQ(probe.castShadow(std::vector{bulb, sun}) * kPixels, 256.0f) << "it outshines the sun";
+    bulb.color = {0.0f, 0.0f, 1e-3f}; // blue, a thousandth: its colour counts
+    EXPECT_EQ(probe.castShadow(std::vector{bulb, sun}) * kPixels, 32.0f);
+    bulb.color = glm::vec3(1.0f), bulb.range = 10.0f; // the ground is out of its reach
+    EXPECT_EQ(probe.castShadow(std::vector{bulb, sun}) * kPixels, 32.0f);
+    // A spot's cone: its edge brings nothing (glTF's smooth falloff from the inner cone).
+    Light spot{.type = LightType::Spot,
+               .position = {-18, 8, 0},
+               .direction = glm::normalize(glm::vec3(24, -8, 0)),
+               .intensity = 1e4f,
+               .innerConeAngle = glm::radians(60.0f),
+               .outerConeAngle = glm::radians(70.0f)};
+    EXPECT_EQ(probe.castShadow(std::vector{spot, sun}) * kPixels, 256.0f);
+    // The other sun's shadow: x -14 to -6, its visible part x -14 to -10 (32 pixels).
+    const Light other{.type = LightType::Directional,
+                      .direction = glm::normalize(glm::vec3(-1, -1, 0))};
+    EXPECT_EQ(probe.castShadow(std::vector{sun, other}), 0.0f) << "each lit by the other";
+    Light brighter = other;
+    brighter.intensity = 1.01f;
+    EXPECT_EQ(probe.castShadow(std::vector{sun, brighter}) * kPixels, 32.0f);
+}
+
+// A box standing on the ground shadows the ground from its foot: 4 x 4 x 4 at x 4 to 8 under a
+// sun towards +x at 45 degrees, its shadow x 8 to 12 (32 pixels). Shadow rays start a hair off
+// the receiver: a start a hundredth of the scene up would lose the shadow's far unit.
+TEST(FirstPicture, AShadowIsCountedFromTheCastersFoot) {
+    Scene s = plateOverGround(4.0f);
+    s.indices.resize(6); // the ground only
+    MeshBuilder mb(s);
+    mb.box(boxAt({6, 2, 0}, {4, 4, 8}), 0);
+    const Light sun{.type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(1, -1, 0))};
+    EXPECT_EQ(measured(s, sun).castShadow * kPixels, 32.0f);
 }
 
 // A ball on a ground framed with the ball at the right edge: the standard sun (from the front
@@ -353,6 +408,28 @@ TEST(FirstPicture, ALoneObjectGetsAGroundAndAGroundedOneNone) {
         applySceneEdits(s, {});
         EXPECT_FALSE(s.automaticGround) << name;
         EXPECT_EQ(s.triangleCount(), before) << name;
+    }
+}
+
+// A lone object a hundred-millionth or a hundred million times the size of the one above gets
+// its ground and shows its shadow as that one does: the ground's size, the probe's offsets and
+// the hit test all follow the scene's size.
+TEST(FirstPicture, ALoneObjectGetsItsGroundAtAnyScale) {
+    for (const float scale : {1e-8f, 1e-4f, 1e4f, 1e8f}) {
+        Scene s = loneObject();
+        for (Vertex& v : s.vertices)
+            v.position *= scale;
+        s.cameras = {automaticCamera(s, ViewChoice::Auto)};
+        s.lights = {defaultLightFor(s, s.cameras.front(), false)};
+        s.defaultLight = true;
+        applySceneEdits(s, {});
+        ASSERT_TRUE(s.automaticGround) << scale;
+        const glm::vec3 a = s.vertices[s.vertices.size() - 2].position;
+        const float side = glm::length(s.vertices.back().position - a);
+        EXPECT_NEAR(side, 9.0f * scale, 1e-4f * 9.0f * scale) << "three times the height";
+        const PictureMeasure m = measurePicture(s, s.cameras.front());
+        EXPECT_GE(m.castShadow, 0.01f) << scale;
+        EXPECT_GE(m.subject, 0.15f) << scale;
     }
 }
 

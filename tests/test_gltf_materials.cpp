@@ -165,16 +165,25 @@ TEST(GltfMaterials, TextureTransformMovesTheCoordinatesAsTheSpecificationSays) {
     EXPECT_EQ(vertexAt(t, {-1, 2, -1})->uv, glm::vec2(0.5f, 0.25f));
 
     for (const auto& [bad, what] :
-         {std::pair{J{{"rotation", "a quarter"}}, "rotation: a finite number expected"},
-          std::pair{J{{"scale", {2}}}, "scale: 2 finite numbers expected"},
-          std::pair{J{{"offset", {0, 1e300}}}, "offset: 2 finite numbers expected"},
-          std::pair{J{{"texCoord", -1}}, "texCoord: a non-negative integer expected"}}) {
+         {std::pair{J{{"rotation", "a quarter"}},
+                    "rotation: a number of magnitude below 1e15 expected"},
+          std::pair{J{{"rotation", -1e16}}, "rotation: a number of magnitude below 1e15 expected"},
+          std::pair{J{{"scale", {2}}}, "scale: 2 numbers of magnitude below 1e15 expected"},
+          std::pair{J{{"offset", {0, -1e300}}},
+                    "offset: 2 numbers of magnitude below 1e15 expected"},
+          std::pair{J{{"texCoord", -1}}, "texCoord: a non-negative integer expected"},
+          std::pair{J{{"texCoord", 1.5}}, "texCoord: a non-negative integer expected"}}) {
         info["extensions"] = {{"KHR_texture_transform", bad}};
         expectRefused(b.writeGltf(dir("transform") / "bad.gltf"),
                       std::string("materials[0].pbrMetallicRoughness.baseColorTexture.extensions."
                                   "KHR_texture_transform.") +
                           what);
     }
+    // A set the primitive lacks, named by the extension rather than the textureInfo.
+    info["extensions"] = {{"KHR_texture_transform", {{"texCoord", 3}}}};
+    expectRefused(b.writeGltf(dir("transform") / "set.gltf"),
+                  "]: no TEXCOORD_3 for materials[0]'s base colour texture (its "
+                  "KHR_texture_transform.texCoord)");
 }
 
 TEST(GltfMaterials, CoverageIsTheGpuAlphaTest) {

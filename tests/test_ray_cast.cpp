@@ -178,3 +178,32 @@ TEST(RayCast, TheHierarchyTestsAFewTrianglesARay) {
     ASSERT_TRUE(rowBvh.firstHit({.origin = {0.1f, 5, 200.2f}, .direction = {0, -1, 0}}));
     EXPECT_LE(rowBvh.trianglesTested(), 16u);
 }
+
+// A world a million-millionth the size is hit as the same world: rays at the triangles' centres
+// meet the same triangles at distances scaled alike (the parallel test is relative to the edges).
+TEST(RayCast, ATinyWorldIsHitAsTheSameWorld) {
+    const Scene world = randomTriangles(11, 200);
+    Scene tiny = world;
+    for (Vertex& v : tiny.vertices)
+        v.position *= 1e-12f;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-12.0f, 12.0f);
+    std::vector<Ray> rays, tinyRays;
+    for (uint32_t t = 0; t < world.triangleCount(); ++t) {
+        glm::vec3 centre(0.0f);
+        for (int k = 0; k < 3; ++k)
+            centre += world.vertices[world.indices[3 * t + k]].position / 3.0f;
+        const glm::vec3 from(u(rng), u(rng), u(rng));
+        rays.push_back({.origin = from, .direction = glm::normalize(centre - from)});
+        tinyRays.push_back({.origin = from * 1e-12f, .direction = rays.back().direction});
+    }
+    const TriangleBvh big(world), small(tiny);
+    int agree = 0;
+    for (size_t r = 0; r < rays.size(); ++r) {
+        const auto a = big.firstHit(rays[r]), b = small.firstHit(tinyRays[r]);
+        ASSERT_TRUE(a.has_value() && b.has_value()) << "ray " << r;
+        agree += a->triangle == b->triangle &&
+                 std::abs(b->distance - 1e-12f * a->distance) <= 1e-4f * 1e-12f * a->distance;
+    }
+    EXPECT_GE(agree, static_cast<int>(rays.size()) - 2) << "all but rays at a shared edge";
+}

@@ -12,10 +12,28 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 
 namespace penumbra::cli {
+namespace {
+
+// A number from `lo` to `hi`: CLI11's own ranges let NaN through (no comparison fails) and
+// print their unbounded end as DBL_MAX's 309 digits.
+CLI::Validator finiteBetween(double lo, double hi, const std::string& words) {
+    return CLI::Validator(
+        [lo, hi, words](std::string& text) -> std::string {
+            double v = 0.0;
+            if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < lo || v > hi)
+                return fmt::format("'{}' is not {}", text, words);
+            return {};
+        },
+        "");
+}
+
+} // namespace
 
 std::vector<std::string> splitList(std::string_view text, std::string_view option) {
     std::vector<std::string> items;
@@ -94,11 +112,13 @@ TechniqueRow rowNamed(const std::string& name, std::string_view option) {
 
 void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques) {
     std::string needing;
+    int needed = 0;
     for (Technique t : {Technique::Sdf, Technique::SecondDepth})
         if (std::find(techniques.begin(), techniques.end(), t) != techniques.end())
-            needing += fmt::format("{}`{}`", needing.empty() ? "" : " and ", techniqueName(t));
-    if (needing.empty())
+            needing += fmt::format("{}`{}`", needed++ ? " and " : "", techniqueName(t));
+    if (needed == 0)
         return;
+    needing += needed == 1 ? " takes" : " take";
     // A few open triangles are a ground quad or a leaf: what the techniques handle as thin
     // shells. Warned: any mis-wound triangle, or open ones past 1% of the scene. Open counts
     // every triangle of a surface that one open edge leaves open, as the `sdf` field takes it
@@ -109,7 +129,7 @@ void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques)
         return;
     std::fprintf(stderr,
                  "penumbra: warning: scene '%s': %llu of %llu triangles lie on surfaces with "
-                 "open edges and %llu on mis-wound ones; %s take a model's inside from closed, "
+                 "open edges and %llu on mis-wound ones; %s a model's inside from closed, "
                  "consistently wound surfaces and may leak or show acne there\n",
                  scene.name.c_str(), static_cast<unsigned long long>(open),
                  static_cast<unsigned long long>(c.triangles),
@@ -232,12 +252,12 @@ void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
                          "every spot and point light's radius in world units (default: the "
                          "scene's); the size soft techniques and the ground truth use"))
         ->type_name("R")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finiteBetween(0.0, std::numeric_limits<float>::max(), "a finite number >= 0"));
     group(cmd.add_option("--light-angle", o.lightAngleOverride,
                          "every directional light's angular diameter, 0..30 degrees (default: "
                          "the scene's)"))
         ->type_name("DEG")
-        ->check(CLI::Range(0.0, 30.0));
+        ->check(finiteBetween(0.0, 30.0, "a number from 0 to 30"));
 }
 
 void addTechniqueOptions(CLI::App& cmd, RenderOptions& o, std::vector<std::string>& sets) {
@@ -357,6 +377,10 @@ nlohmann::json describeParameter(const ParameterInfo& p) {
         j["default"] = p.choices[static_cast<size_t>(p.defaultValue)];
     } else if (p.type == ParameterType::Bool) {
         j["default"] = p.defaultValue != 0.0;
+    } else if (p.type == ParameterType::Int) { // whole numbers, as they are typed
+        j["default"] = static_cast<int64_t>(p.defaultValue);
+        j["min"] = static_cast<int64_t>(p.min);
+        j["max"] = static_cast<int64_t>(p.max);
     } else {
         j["default"] = p.defaultValue;
         j["min"] = p.min;

@@ -54,7 +54,8 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
                                  {"embree", embreeVersion()},
                                  {"camera", scene.camera(options.camera).name},
                                  {"scene_edits", sceneEditsJson(scene.edits)},
-                                 {"automatic_ground", scene.automaticGround}};
+                                 {"automatic_ground", scene.automaticGround},
+                                 {"view", viewJson(scene, scene.camera(options.camera))}};
     out.write("reference.json", bytesOf(info.dump(2) + "\n"));
     if (renderer.validationErrors() > 0)
         throw std::runtime_error(fmt::format("vulkan validation: {} error(s); no output written",

@@ -1,5 +1,7 @@
 #include "report/stats.h"
 
+#include "scene/first_picture.h"
+
 #include <fmt/format.h>
 
 namespace penumbra {
@@ -54,6 +56,11 @@ nlohmann::json sceneEditsJson(const SceneEdits& e) {
     return j;
 }
 
+nlohmann::json viewJson(const Scene& scene, const Camera& camera) {
+    const PictureMeasure view = measurePicture(scene, camera);
+    return {{"cast_shadow", view.castShadow}, {"subject", view.subject}};
+}
+
 nlohmann::json renderStats(const RenderRun& run) {
     const RenderOptions& o = run.options;
     const Bounds bounds = run.scene.bounds();
@@ -72,6 +79,7 @@ nlohmann::json renderStats(const RenderRun& run) {
                    {"yfov_degrees", glm::degrees(camera.yfov)}};
     j["scene"]["default_light"] = run.scene.defaultLight;
     j["scene"]["automatic_ground"] = run.scene.automaticGround;
+    j["view"] = viewJson(run.scene, camera);
     j["scene"]["edits"] = sceneEditsJson(run.scene.edits);
     j["image"] = {{"width", o.width}, {"height", o.height}};
     j["shadow_map_size"] = o.shadowMapSize;

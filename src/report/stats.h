@@ -22,6 +22,9 @@ struct RenderRun {
 nlohmann::json renderStats(const RenderRun& run);
 // The command line's scene control as applied (stats.json's and reference.json's scene edits).
 nlohmann::json sceneEditsJson(const SceneEdits& edits);
+// What the first picture shows from `camera` (scene/first_picture.h): `cast_shadow`, the share of
+// the view in a visible cast shadow, and `subject`, the share showing the subject.
+nlohmann::json viewJson(const Scene& scene, const Camera& camera);
 // The device as stats.json and the bench's JSON name it.
 nlohmann::json deviceJson(const DeviceInfo& device);
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace penumbra {
 namespace {
@@ -197,29 +198,45 @@ ViewProbe::ViewProbe(const Scene& scene, const TriangleBvh& bvh, const Camera& c
         }
 }
 
+std::optional<ViewProbe::Arrival> ViewProbe::arrival(const Sample& s, const Light& light) const {
+    glm::vec3 toLight = -light.direction;
+    float reach = std::numeric_limits<float>::infinity(), falloff = 1.0f;
+    if (light.type != LightType::Directional) {
+        toLight = light.position - s.point;
+        reach = glm::length(toLight);
+        if (!(reach > 0.0f))
+            return std::nullopt;
+        toLight /= reach;
+        // KHR_lights_punctual as shading.glsl shades it: inverse square, the range's window.
+        const float window =
+            light.range > 0.0f ? std::clamp(1.0f - std::pow(reach / light.range, 4.0f), 0.0f, 1.0f)
+                               : 1.0f;
+        falloff = window * window / (reach * reach);
+        if (light.type == LightType::Spot) {
+            const float cosine = glm::dot(-toLight, light.direction);
+            const float outer = std::cos(light.outerConeAngle);
+            if (cosine < outer)
+                return std::nullopt; // outside the cone: unlit, not shadowed
+            const float inner = std::cos(light.innerConeAngle);
+            const float t =
+                inner > outer ? std::clamp((cosine - outer) / (inner - outer), 0.0f, 1.0f) : 1.0f;
+            falloff *= t * t * (3.0f - 2.0f * t);
+        }
+    }
+    const float lambert = glm::dot(s.normal, toLight);
+    if (lambert <= 0.05f)
+        return std::nullopt; // turned away (or grazing): dark whatever casts
+    const Ray ray{.origin = s.point + mOffset * s.normal, .direction = toLight};
+    const glm::vec3 colour = light.color * light.intensity;
+    return Arrival{.irradiance = lambert * falloff * (colour.x + colour.y + colour.z) / 3.0f,
+                   .visible = !mBvh.occluded(ray, reach)};
+}
+
 ViewShadow ViewProbe::measure(const Light& light) const {
     size_t lit = 0, shadowed = 0;
-    for (const Sample& s : mSamples) {
-        glm::vec3 toLight = -light.direction;
-        float reach = std::numeric_limits<float>::infinity();
-        if (light.type != LightType::Directional) {
-            toLight = light.position - s.point;
-            reach = glm::length(toLight);
-            if (!(reach > 0.0f))
-                continue;
-            toLight /= reach;
-            if (light.type == LightType::Spot &&
-                glm::dot(-toLight, light.direction) < std::cos(light.outerConeAngle))
-                continue; // outside the cone: unlit, not shadowed
-        }
-        if (glm::dot(s.normal, toLight) <= 0.05f)
-            continue; // turned away (or grazing): dark whatever casts
-        const Ray ray{.origin = s.point + mOffset * s.normal, .direction = toLight};
-        if (mBvh.occluded(ray, reach))
-            ++shadowed;
-        else
-            ++lit;
-    }
+    for (const Sample& s : mSamples)
+        if (const auto a = arrival(s, light))
+            ++(a->visible ? lit : shadowed);
     return {.covered = share(mSamples.size()),
             .subject = subject(),
             .lit = share(lit),
@@ -236,12 +253,26 @@ float ViewProbe::share(size_t pixels) const {
 }
 
 float ViewProbe::castShadow(std::span<const Light> lights) const {
-    float most = 0.0f;
+    std::vector<const Light*> counted;
     for (const Light& l : lights)
-        if (castsShadowMap(l))
-            if (const ViewShadow v = measure(l); lightsTheView(v))
-                most = std::max(most, v.castShadow);
-    return most;
+        if (castsShadowMap(l) && lightsTheView(measure(l)))
+            counted.push_back(&l);
+    // A pixel shows a shadow when what reaches it is under half of what would.
+    size_t shadowed = 0;
+    for (const Sample& s : mSamples) {
+        double reaching = 0.0, unblocked = 0.0;
+        for (const Light* l : counted)
+            if (const auto a = arrival(s, *l))
+                reaching += a->irradiance, unblocked += a->visible ? a->irradiance : 0.0f;
+        shadowed += reaching > 0.0 && unblocked < kVisibleShadow * reaching;
+    }
+    return share(shadowed);
+}
+
+PictureMeasure measurePicture(const Scene& scene, const Camera& camera) {
+    const TriangleBvh bvh(scene);
+    const ViewProbe probe(scene, bvh, camera);
+    return {.castShadow = probe.castShadow(scene.lights), .subject = probe.subject()};
 }
 
 std::vector<Light> defaultLightCandidates(const Scene& scene, const TriangleBvh& bvh,

@@ -50,9 +50,11 @@ public:
     // With the scene's subjectBounds given: many cameras of one scene measure it once.
     ViewProbe(const Scene& scene, const TriangleBvh& bvh, const Camera& camera, Bounds subject);
     ViewShadow measure(const Light& light) const;
-    // The largest cast shadow of the scene's lights that cast shadows and light the view
-    // (lightsTheView: a bulb behind a wall shadows the whole view and shows no shadow); 0
-    // without any.
+    // The share of the view in a visible cast shadow of the scene's lights that cast shadows and
+    // light the view (lightsTheView: a bulb behind a wall shadows the whole view and shows no
+    // shadow): the pixels that some of them face and whose light from them, as shaded (colour,
+    // intensity, inverse square, range, cone, cosine), is blocked to under kVisibleShadow of what
+    // it would be (one light: measure(light).castShadow within its range). 0 without any.
     float castShadow(std::span<const Light> lights) const;
     float subject() const; // ViewShadow::subject, which needs no light
 
@@ -61,12 +63,27 @@ private:
         glm::vec3 point{0.0f}, normal{0.0f}; // the normal turned to the camera
         bool inSubject = false;
     };
+    struct Arrival {
+        float irradiance = 0.0f; // unshadowed, the channels' mean
+        bool visible = false;    // nothing between
+    };
+    // The light `light` would bring `s`, and whether it does; none where it cannot (turned
+    // away, grazing, outside a spot's cone).
+    std::optional<Arrival> arrival(const Sample& s, const Light& light) const;
     float share(size_t pixels) const;
     const TriangleBvh& mBvh;
     std::vector<Sample> mSamples; // the rays that met a surface
     size_t mPixels = 0;
     float mOffset = 0.0f; // how far a shadow ray starts off its surface
 };
+
+// What the first picture shows: the share of `camera`'s view in a visible cast shadow of the
+// scene's lights (ViewProbe::castShadow) and the share that shows the subject (stats.json's
+// `view`).
+struct PictureMeasure {
+    float castShadow = 0.0f, subject = 0.0f;
+};
+PictureMeasure measurePicture(const Scene& scene, const Camera& camera);
 
 // The share of a 9 x 9 grid of columns over the subject's footprint (at the cells' centres) in
 // which something lies below to receive a shadow (the rule above); a ground is considered
@@ -78,6 +95,8 @@ float floorShare(const Scene& scene, const TriangleBvh& bvh);
 // with more is taken as ending on none.
 inline constexpr int kMostSurfacesDown = 16;
 bool endsOnAnOpenSurface(const TriangleBvh& bvh, const glm::vec3& top, float step);
+// A pixel shows a shadow when its lights bring it under this share of their light.
+inline constexpr float kVisibleShadow = 0.5f;
 // Whether a candidate light lights at least kLeastLit of what is in view (a bulb inside a wall
 // shadows everything and lights nothing).
 bool lightsTheView(const ViewShadow& v);

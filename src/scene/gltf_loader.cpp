@@ -141,10 +141,9 @@ std::vector<double> transformNumbers(const std::filesystem::path& file, const st
     if (out.size() != count || !std::all_of(out.begin(), out.end(), [](double x) {
             return std::isfinite(x) && std::abs(x) < 1e15;
         }))
-        throw InputError(
-            file.string(),
-            fmt::format("{}.{}: {} expected", path, key,
-                        count == 1 ? "a finite number" : fmt::format("{} finite numbers", count)));
+        throw InputError(file.string(),
+                         fmt::format("{}.{}: {} of magnitude below 1e15 expected", path, key,
+                                     count == 1 ? "a number" : fmt::format("{} numbers", count)));
     return out;
 }
 
@@ -252,6 +251,13 @@ struct Flattener {
         const uint32_t material =
             p.material >= 0 ? static_cast<uint32_t>(p.material) : defaultMaterial;
         const UvTransform& transform = uvTransform[material];
+        // validateModel checked the texture's own set; KHR_texture_transform may name another.
+        if (scene.materials[material].baseColorTexture >= 0 &&
+            !p.attributes.contains(fmt::format("TEXCOORD_{}", transform.texCoord)))
+            throw InputError(file.string(),
+                             fmt::format("meshes[{}]: no TEXCOORD_{} for materials[{}]'s base "
+                                         "colour texture (its KHR_texture_transform.texCoord)",
+                                         meshIndex, transform.texCoord, material));
         const std::vector<float> uv =
             attribute(p, fmt::format("TEXCOORD_{}", transform.texCoord), count, 2);
         const int colorAccessor =

@@ -9,6 +9,8 @@ namespace {
 
 constexpr uint32_t kLeafSize = 4;
 constexpr size_t kBruteForceRays = 16; // fewer rays than this: no hierarchy
+// |det| / (|e1| |e2|): the cosine of the ray to the normal times the sine between the edges.
+constexpr float kParallel = 1e-9f;
 
 glm::vec3 corner(const Scene& scene, uint32_t t, int k) {
     return scene.vertices[scene.indices[3 * size_t{t} + static_cast<size_t>(k)]].position;
@@ -40,7 +42,9 @@ std::optional<RayHit> hitTriangle(const Scene& scene, uint32_t t, const Ray& ray
     const glm::vec3& dir = ray.direction;
     const glm::vec3 p = glm::cross(dir, e2);
     const float det = glm::dot(e1, p);
-    if (std::abs(det) < 1e-20f)
+    // Parallel to the plane, or a triangle without area: relative to the edges, so that a world
+    // a billionth the size is hit as the same world.
+    if (!(std::abs(det) > kParallel * glm::length(e1) * glm::length(e2)))
         return std::nullopt;
     const glm::vec3 s = ray.origin - a;
     constexpr float kEdge = 1e-5f;

@@ -97,8 +97,10 @@ std::string_view viewChoiceName(ViewChoice choice) {
 void addGround(Scene& scene, std::string_view material) {
     const Bounds s = subjectBounds(scene);
     const glm::vec3 c = s.center();
-    // Three times its largest extent: a tall model's shadow is as long as it is tall.
-    const float half = std::max(1.5f * std::max({s.extent().x, s.extent().y, s.extent().z}), 1e-3f);
+    // Three times its largest extent: a tall model's shadow is as long as it is tall. A subject
+    // of no size (one point) gets a ground of 2e-3; any other, however small, its own.
+    const float longest = std::max({s.extent().x, s.extent().y, s.extent().z});
+    const float half = longest > 0.0f ? 1.5f * longest : 1e-3f;
     const float y = s.min.y;
     MeshBuilder mb(scene);
     mb.quad({c.x - half, y, c.z + half}, {c.x + half, y, c.z + half}, {c.x + half, y, c.z - half},
