@@ -203,6 +203,9 @@ TEST(CliLights, ALoneModelGetsAGroundWithANoteUnlessNoGround) {
     EXPECT_EQ(r.err.find("added a ground"), std::string::npos) << r.err;
     EXPECT_EQ(nlohmann::json::parse(slurp(out / "stats.json"))["view"]["cast_shadow"], 0.0)
         << "nothing receives the box's shadow";
+    r = run("render", out, {"--no-ground", "--technique", "second-depth"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("open edges"), std::string::npos) << "a closed box: " << r.err;
     stats = slurp(out / "stats.json");
     EXPECT_NE(stats.find("\"automatic_ground\": false"), std::string::npos);
     EXPECT_NE(stats.find("\"no_ground\": true"), std::string::npos);

@@ -3,6 +3,7 @@
 // and showing a cast shadow in their own camera's view, each family holding what it promises.
 #include "generated_scenes.h"
 #include "penumbra/error.h"
+#include "scene/builtin_scenes.h"
 #include "scene/first_picture.h"
 #include "scene/framing.h"
 #include "scene/generated.h"
@@ -28,6 +29,40 @@ std::string specOf(std::string_view family, int seed) {
 
 bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// The scene's surfaces after the ground (its first quad): triangles joined by shared corners
+// (vertices welded on a grid of 1e-4), each surface's triangle indices.
+std::vector<std::vector<uint32_t>> surfaces(const Scene& s) {
+    std::map<std::array<int64_t, 3>, uint32_t> cells;
+    std::vector<uint32_t> parent(s.vertices.size());
+    const auto find = [&](uint32_t v) {
+        while (parent[v] != v)
+            v = parent[v] = parent[parent[v]];
+        return v;
+    };
+    for (uint32_t v = 4; v < s.vertices.size(); ++v) {
+        parent[v] = v;
+        const glm::vec3 p = s.vertices[v].position * 1e4f;
+        const std::array<int64_t, 3> cell{std::llround(p.x), std::llround(p.y), std::llround(p.z)};
+        for (int n = 0; n < 27; ++n) {
+            const auto it =
+                cells.find({cell[0] + n % 3 - 1, cell[1] + n / 3 % 3 - 1, cell[2] + n / 9 - 1});
+            if (it != cells.end())
+                parent[find(v)] = find(it->second);
+        }
+        cells.emplace(cell, v);
+    }
+    for (size_t t = 6; t < s.indices.size(); t += 3)
+        for (int k = 1; k < 3; ++k)
+            parent[find(s.indices[t + k])] = find(s.indices[t]);
+    std::map<uint32_t, std::vector<uint32_t>> byRoot;
+    for (uint32_t t = 2; t < s.triangleCount(); ++t)
+        byRoot[find(s.indices[3 * t])].push_back(t);
+    std::vector<std::vector<uint32_t>> out;
+    for (auto& [root, triangles] : byRoot)
+        out.push_back(std::move(triangles));
+    return out;
 }
 
 } // namespace
@@ -225,6 +260,58 @@ TEST(Generated, TheDrawsFollowTheDocumentedShares) {
     EXPECT_GE(tablesRight, 25);
 }
 
+// A grazing scene's sun, 3 degrees up at the least, lays every block's shadow on its ground (the
+// ramp's, up to 2 high, may run off it); a
+// room's sun comes through the window at -z, 20 to 55 degrees up, aside by at most half its
+// run; a room is clear from wall to wall: from its centre, +x is as far as -x (or open).
+TEST(Generated, ShadowsFallOnTheGroundAndSunsThroughTheWindow) {
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+        const Scene low = loadScene(specOf("grazing", seed));
+        const Light& sun = low.lights.front();
+        const float half = low.vertices[0].position.x > 0 ? low.vertices[0].position.x
+                                                          : -low.vertices[0].position.x;
+        if (sun.type == LightType::Directional)
+            for (size_t v = 4; v + 4 < low.vertices.size(); ++v) { // the blocks, not the ramp
+                const glm::vec3 p = low.vertices[v].position;
+                const glm::vec3 ground = p - (p.y / sun.direction.y) * sun.direction;
+                EXPECT_LE(std::max(std::abs(ground.x), std::abs(ground.z)), half + 1e-3f)
+                    << low.name << " vertex " << v;
+            }
+        const Scene room = loadScene(specOf("interior", seed));
+        const Light& l = room.lights.front();
+        if (l.type == LightType::Directional) {
+            ASSERT_GT(l.direction.z, 0.0f) << room.name;
+            const float up = std::atan(-l.direction.y / l.direction.z);
+            EXPECT_GE(up, glm::radians(20.0f) - 1e-4f) << room.name;
+            EXPECT_LE(up, glm::radians(55.0f) + 1e-4f) << room.name;
+            EXPECT_LE(std::abs(l.direction.x / l.direction.z), 0.5f + 1e-5f) << room.name;
+        }
+        const Bounds b = room.bounds();
+        const glm::vec3 centre(0.0f, 0.5f * b.max.y, 0.0f);
+        const TriangleBvh walls(room);
+        const auto left = walls.firstHit({.origin = centre, .direction = {-1, 0, 0}});
+        const auto right = walls.firstHit({.origin = centre, .direction = {1, 0, 0}});
+        ASSERT_TRUE(left.has_value()) << room.name;
+        if (right) {
+            EXPECT_GE(right->distance, left->distance - 1e-4f) << room.name;
+        }
+    }
+}
+
+// The leaf texture holds as many leaves as asked: none is no leaf; more cover more.
+TEST(Generated, TheLeafTextureHoldsTheLeavesAsked) {
+    const auto covered = [](int count) {
+        const TextureImage image = builtin::leafImage(7, count);
+        size_t n = 0;
+        for (size_t i = 3; i < image.rgba.size(); i += 4)
+            n += image.rgba[i] > 0;
+        return n;
+    };
+    EXPECT_EQ(covered(0), 0u);
+    EXPECT_GT(covered(1), 0u);
+    EXPECT_LT(covered(60), covered(200));
+}
+
 // A camera drawn round the content keeps every object in view (all but the ground's corners
 // project inside the 16:9 frame, in front of the camera).
 TEST(Generated, TheCameraKeepsTheContentInView) {
@@ -271,36 +358,40 @@ TEST(Generated, TheCameraFramesTheFootprintAndEveryObject) {
 TEST(Generated, EachCurvedObjectIsOneSurface) {
     for (int seed = 1; seed <= kSeeds; ++seed) {
         const Scene s = loadScene(specOf("curved", seed));
-        // Vertices welded on a grid of 1e-4: each joins the first vertex within one cell.
-        std::map<std::array<int64_t, 3>, uint32_t> cells;
-        std::vector<uint32_t> parent(s.vertices.size());
-        const auto find = [&](uint32_t v) {
-            while (parent[v] != v)
-                v = parent[v] = parent[parent[v]];
-            return v;
-        };
-        for (uint32_t v = 4; v < s.vertices.size(); ++v) {
-            parent[v] = v;
-            const glm::vec3 p = s.vertices[v].position * 1e4f;
-            const std::array<int64_t, 3> cell{std::llround(p.x), std::llround(p.y),
-                                              std::llround(p.z)};
-            for (int n = 0; n < 27; ++n) {
-                const auto it =
-                    cells.find({cell[0] + n % 3 - 1, cell[1] + n / 3 % 3 - 1, cell[2] + n / 9 - 1});
-                if (it != cells.end())
-                    parent[find(v)] = find(it->second);
-            }
-            cells.emplace(cell, v);
-        }
-        for (size_t t = 6; t < s.indices.size(); t += 3)
-            for (int k = 1; k < 3; ++k)
-                parent[find(s.indices[t + k])] = find(s.indices[t]);
-        std::set<uint32_t> surfaces;
-        for (uint32_t v = 4; v < s.vertices.size(); ++v)
-            surfaces.insert(find(v));
-        EXPECT_GE(surfaces.size(), 2u) << s.name;
-        EXPECT_LE(surfaces.size(), 5u) << s.name;
+        EXPECT_GE(surfaces(s).size(), 2u) << s.name;
+        EXPECT_LE(surfaces(s).size(), 5u) << s.name;
     }
+}
+
+// 1 to 5 spheres, each one surface; the open family's walls stand alone (a box replaced by a
+// wall is gone: no box has a wall's centre), in some seeds.
+TEST(Generated, SpheresAndWallsAreAsManyAsTheDocsSay) {
+    int walls = 0;
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+        const Scene balls = loadScene(specOf("spheres", seed));
+        EXPECT_GE(surfaces(balls).size(), 1u) << balls.name;
+        EXPECT_LE(surfaces(balls).size(), 5u) << balls.name;
+        const Scene open = loadScene(specOf("open", seed));
+        const std::vector<std::vector<uint32_t>> parts = surfaces(open);
+        const auto centreOf = [&](const std::vector<uint32_t>& part) {
+            glm::vec3 sum(0.0f);
+            for (uint32_t t : part)
+                for (int k = 0; k < 3; ++k)
+                    sum += open.vertices[open.indices[3 * size_t{t} + k]].position;
+            return sum / (3.0f * static_cast<float>(part.size()));
+        };
+        for (const std::vector<uint32_t>& wall : parts) {
+            if (wall.size() != 2)
+                continue;
+            ++walls;
+            for (const std::vector<uint32_t>& box : parts)
+                if (box.size() == 12) {
+                    EXPECT_GT(glm::length(centreOf(box) - centreOf(wall)), 1e-3f)
+                        << open.name << ": a wall in a box";
+                }
+        }
+    }
+    EXPECT_GT(walls, 0);
 }
 
 // Every face of the open family stands upright or lies flat (boxes turned about the vertical,

@@ -184,6 +184,52 @@ TEST_F(FieldTest, TracerMatchesItsCpuMirrorOverTheSameField) {
     }
 }
 
+// A closed plate 3 x 3 and 0.03 thick, 1 above the ground, under a sun of 4 degrees straight down:
+// the umbra is the plate's square less the penumbra's inner half (1 x tan 2 degrees, 0.035) each
+// side. Inside a plate a few voxels deep, how deep the ray runs says nothing of how wide the plate
+// is: the umbra must be dark at a coarse field and the automatic one alike, and lit beyond the
+// penumbra's outer half.
+TEST_F(FieldTest, AThinPlateHidesTheWholeLightUnderIt) {
+    Scene scene;
+    MeshBuilder mb(scene);
+    const float g = 2.5f;
+    mb.quad({-g, 0, g}, {g, 0, g}, {g, 0, -g}, {-g, 0, -g}, mb.material("ground", glm::vec3(0.7f)));
+    mb.box(glm::scale(glm::translate(glm::mat4(1.0f), {0, 1, 0}), {3.0f, 0.03f, 3.0f}),
+           mb.material("plate", glm::vec3(0.7f)));
+    scene.lights.push_back({.name = "sun",
+                            .type = LightType::Directional,
+                            .direction = {0, -1, 0},
+                            .angularDiameter = 4.0f});
+    scene.cameras.push_back({.name = "slanted",
+                             .position = {0, 4, 4},
+                             .target = {0, 0, 0},
+                             .yfov = 0.9f,
+                             .znear = 0.1f,
+                             .zfar = 50.0f});
+    SceneRenderer renderer(sharedRenderer(), scene);
+    for (const char* resolution : {"256", "0"}) { // the plate 1.5 voxels thick, and 2
+        RenderOptions o{.width = 96, .height = 96, .frames = 1, .technique = Technique::Sdf};
+        o.parameters.set("sdf.resolution", resolution);
+        const RenderResult r = renderer.render(o);
+        size_t umbra = 0, lit = 0, leaking = 0, dark = 0;
+        for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
+            if (!onGround(r, i))
+                continue;
+            const glm::vec3 p = pixelVec(r.position, i);
+            const float out = std::max(std::abs(p.x), std::abs(p.z)) - 1.5f; // past the edge
+            if (out < -0.035f - 0.02f)
+                ++umbra, leaking += r.visibility[0][i] > 0.1f;
+            else if (out > 0.035f + 0.02f)
+                ++lit, dark += r.visibility[0][i] < 0.9f;
+        }
+        ASSERT_GT(umbra, 500u);
+        ASSERT_GT(lit, 500u);
+        EXPECT_LE(leaking, umbra / 200) << "resolution " << resolution << ": " << leaking << " of "
+                                        << umbra << " umbra pixels over 0.1";
+        EXPECT_LE(dark, lit / 200) << "resolution " << resolution;
+    }
+}
+
 // Built once per scene and field setting: another technique, camera, light size or tracing
 // parameter reuses it; another resolution or thickness rebuilds it.
 TEST_F(FieldTest, FieldIsBuiltOncePerSceneAndFieldSetting) {

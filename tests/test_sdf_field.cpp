@@ -324,3 +324,56 @@ TEST(SdfMath, TracesStartOnTheReceiversOwnRay) {
         gpu::traceStart(world, face, glm::normalize(glm::vec3(0.3f, -1.0f, 0.0f)), 0.1f, along);
     EXPECT_NEAR(start.y, -0.1f, 1e-5f);
 }
+
+// Inside a solid: the cone's radius is where coneEdge reaches 1 (t tan R, or t / k); the nearest
+// way out of the solid among the probes sets the edge, by the linear zero crossing between the
+// sample and the probe; -1 when every probe is inside.
+TEST(SdfMath, AcrossEdgeFindsTheNearestWayOut) {
+    EXPECT_NEAR(gpu::coneRadius(2.0f, 0.6f, 0.0f), 1.5f, 1e-6f); // tan R = 0.75
+    EXPECT_NEAR(gpu::coneRadius(2.0f, 0.0f, 4.0f), 0.5f, 1e-6f);
+    EXPECT_NEAR(gpu::coneEdge(gpu::coneRadius(2.0f, 0.0f, 4.0f), 2.0f, 0.0f, 4.0f), 1.0f, 1e-6f);
+    EXPECT_EQ(gpu::acrossEdge(-0.1f, glm::vec4(-0.1f, -0.05f, -0.2f, -0.1f)), -1.0f);
+    // Out at 0.1 / 0.4 of r one way, 0.1 / 0.2 another: the nearer counts.
+    EXPECT_NEAR(gpu::acrossEdge(-0.1f, glm::vec4(0.3f, -0.1f, 0.1f, -0.1f)), -0.25f, 1e-6f);
+    EXPECT_NEAR(gpu::acrossEdge(-0.1f, glm::vec4(-0.1f, 0.1f, -0.1f, -0.1f)), -0.5f, 1e-6f);
+}
+
+// Each probe lies r across the ray (four ways: two opposite pairs at right angles) and in the
+// plane of the surface through the sample; a ray grazing its surface is not slid.
+TEST(SdfMath, AcrossProbesStayInTheSurfacesPlane) {
+    const glm::vec3 p(0.3f, 1.0f, -0.2f), toLight = glm::normalize(glm::vec3(0.4f, 1.0f, 0.2f));
+    const glm::vec3 n = glm::normalize(glm::vec3(-0.3f, 1.0f, 0.5f));
+    const float r = 0.2f;
+    glm::vec3 across[4];
+    for (int k = 0; k < 4; ++k) {
+        const glm::vec3 q = gpu::acrossProbe(p, toLight, n, r, k);
+        EXPECT_NEAR(glm::dot(q - p, n), 0.0f, 1e-5f) << k;
+        across[k] = (q - p) - glm::dot(q - p, toLight) * toLight;
+        EXPECT_NEAR(glm::length(across[k]), r, 1e-5f) << k;
+    }
+    EXPECT_NEAR(glm::length(across[0] + across[1]), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(across[2] + across[3]), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::dot(across[0], across[2]), 0.0f, 1e-5f);
+    const glm::vec3 flat = glm::normalize(glm::cross(toLight, glm::vec3(0, 0, 1)));
+    EXPECT_NEAR(glm::dot(gpu::acrossProbe(p, toLight, flat, r, 0) - p, toLight), 0.0f, 1e-6f);
+}
+
+// A slab 0.04 thick filling a field box of 1 x 1 x 1 at y = 0.5, over receivers at y = 0.1,
+// under a sun of 20 degrees straight above: its depth alone would leave a third of the sun open
+// (asin(0.02 / 0.4) over asin(sin 10 degrees)). In the middle every probe is inside: dark. At
+// 0.03 from the box's side the probes past it read open (the field holds nothing there): lit
+// in part.
+TEST(SdfMath, AcrossProbesOutsideTheFieldAreOpen) {
+    FieldGrid field{.origin = glm::vec3(0.0f), .voxel = 1.0f / 64.0f, .size = glm::uvec3(64)};
+    field.values.resize(64 * 64 * 64);
+    for (uint32_t z = 0; z < 64; ++z)
+        for (uint32_t y = 0; y < 64; ++y)
+            for (uint32_t x = 0; x < 64; ++x)
+                field.values[(size_t{z} * 64 + y) * 64 + x] =
+                    std::abs((static_cast<float>(y) + 0.5f) / 64.0f - 0.5f) - 0.02f;
+    const Light sun{.type = LightType::Directional, .direction = {0, -1, 0}, .angularDiameter = 20};
+    const TraceSettings s{
+        .steps = 256, .startOffset = 1.0f, .minStep = 0.25f, .thickness = 0.0f, .horizon = false};
+    EXPECT_EQ(traceFieldVisibility(field, sun, {0.5f, 0.1f, 0.5f}, {0, 1, 0}, s), 0.0f);
+    EXPECT_GT(traceFieldVisibility(field, sun, {0.03f, 0.1f, 0.5f}, {0, 1, 0}, s), 0.05f);
+}

@@ -169,10 +169,44 @@ SHARED bool ownSurface(float h, float plane, float shell, float slack) {
     return h >= plane - shell - slack;
 }
 
+// The light's cone's radius at distance t from the receiver: where coneEdge is 1.
+SHARED float coneRadius(float t, float sinRadius, float k) {
+    if (k > 0.0f) return t / k;
+    return t * sinRadius / sqrt(max(1.0f - sinRadius * sinRadius, 1e-12f));
+}
+
+// Inside a solid the samples along the ray tell how deep it runs, not how far the solid reaches
+// across the light's cone: a plate a few voxels thick hides a sun however wide the plate is, and
+// its depth alone (coneEdge of h < 0) left the umbra half lit. So inside, the ray is moved across
+// by the cone's radius r (four ways: +-u, +-v) and slid along itself back to the plane of the
+// surface it runs in (normal n, the field's gradient): the probe lies at the sample's depth in the
+// same solid, or past where the solid ends. Probe k of 4; the slide kept within 4 r (a ray
+// running along its surface).
+SHARED vec3 acrossProbe(vec3 p, vec3 toLight, vec3 n, float r, int k) {
+    vec3 u = normalize(cross(toLight, abs(toLight.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f)
+                                                           : vec3(0.0f, 1.0f, 0.0f)));
+    vec3 v = cross(toLight, u);
+    vec3 side = r * (k == 0 ? u : k == 1 ? -u : k == 2 ? v : -v);
+    float along = dot(toLight, n);
+    float slide = abs(along) > 0.25f ? dot(side, n) / along : 0.0f;
+    return p + side - clamp(slide, -4.0f * r, 4.0f * r) * toLight;
+}
+
+// The edge (light radii, as coneEdge) the probes across give a sample inside (h < 0): the solid
+// ends where the field crosses zero between the sample and a probe with a positive value
+// (linearly), the nearest such way out sets it; -1 when every probe is inside.
+SHARED float acrossEdge(float h, vec4 probes) {
+    float wayOut = 1.0f;
+    for (int k = 0; k < 4; ++k)
+        if (probes[k] > 0.0f) wayOut = min(wayOut, h / (h - probes[k]));
+    return -wayOut;
+}
+
+// `across`: acrossEdge for a sample inside (1 elsewhere).
 SHARED bool coneTraceStep(INOUT(ConeTrace) c, float h, float apex, float sinRadius, float k,
-                          float minStep, bool own) {
+                          float minStep, bool own, float across) {
     vec2 miss = closestApproach(h, c.previous, c.step, c.t);
-    if (!own) c.edge = min(c.edge, coneEdge(miss.x, miss.y + apex, sinRadius, k));
+    if (!own) c.edge = min(c.edge, min(coneEdge(miss.x, miss.y + apex, sinRadius, k), across));
     c.previous = own ? -1.0f : h; // no closest approach between the own surface and another
     c.step = max(abs(h), minStep);
     c.t += c.step;

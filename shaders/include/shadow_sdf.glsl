@@ -27,6 +27,22 @@ bool insideFieldBox(vec3 p) {
            all(lessThanEqual(p, frame.fieldOrigin.xyz + extent));
 }
 
+// acrossEdge at p, inside a solid: the field's gradient (central differences, half a voxel) gives
+// the surface's plane; a probe outside the field's box is outside every solid.
+float acrossField(sampler3D field, vec3 p, vec3 toLight, float h, float r) {
+    float e = 0.5 * frame.fieldOrigin.w;
+    vec3 g = vec3(fieldAt(field, p + vec3(e, 0, 0)) - fieldAt(field, p - vec3(e, 0, 0)),
+                  fieldAt(field, p + vec3(0, e, 0)) - fieldAt(field, p - vec3(0, e, 0)),
+                  fieldAt(field, p + vec3(0, 0, e)) - fieldAt(field, p - vec3(0, 0, e)));
+    vec3 n = dot(g, g) > 0.0 ? normalize(g) : toLight;
+    vec4 probes;
+    for (int k = 0; k < 4; ++k) {
+        vec3 q = acrossProbe(p, toLight, n, r, k);
+        probes[k] = insideFieldBox(q) ? fieldAt(field, q) : r;
+    }
+    return acrossEdge(h, probes);
+}
+
 // `face`: the receiver's triangle normal (towards the viewer); `sinRadius`: the sine of the
 // light's angular radius at the receiver; `horizon`: whether its tangent plane clips the light.
 float shadowSdf(sampler3D field, LightData light, vec3 world, vec3 face, float sinRadius,
@@ -63,7 +79,10 @@ float shadowSdf(sampler3D field, LightData light, vec3 world, vec3 face, float s
         if (!insideFieldBox(p)) break;
         float h = fieldAt(field, p);
         bool own = horizon && ownSurface(h, dot(p - world, up), sdf.thickness * voxel, 0.05 * voxel);
-        if (!coneTraceStep(c, h, apex, sinRadius, k, minStep, own)) return 0.0;
+        float across = 1.0;
+        if (h < 0.0 && !own && (sinRadius > 0.0 || k > 0.0))
+            across = acrossField(field, p, toLight, h, coneRadius(c.t + apex, sinRadius, k));
+        if (!coneTraceStep(c, h, apex, sinRadius, k, minStep, own, across)) return 0.0;
     }
     return discFraction(c.edge);
 }

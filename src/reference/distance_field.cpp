@@ -106,6 +106,29 @@ TraceSettings traceSettingsOf(const ParameterValues& parameters) {
             .horizon = horizon};
 }
 
+namespace {
+
+// shadow_sdf.glsl's acrossField on the CPU.
+float acrossField(const FieldGrid& field, const glm::vec3& p, const glm::vec3& toLight, float h,
+                  float r) {
+    const float e = 0.5f * field.voxel;
+    glm::vec3 g(0.0f);
+    for (int axis = 0; axis < 3; ++axis) {
+        glm::vec3 d(0.0f);
+        d[axis] = e;
+        g[axis] = field.sample(p + d) - field.sample(p - d);
+    }
+    const glm::vec3 n = glm::dot(g, g) > 0.0f ? glm::normalize(g) : toLight;
+    glm::vec4 probes;
+    for (int k = 0; k < 4; ++k) {
+        const glm::vec3 q = gpu::acrossProbe(p, toLight, n, r, k);
+        probes[k] = field.contains(q) ? field.sample(q) : r;
+    }
+    return gpu::acrossEdge(h, probes);
+}
+
+} // namespace
+
 float traceFieldVisibility(const FieldGrid& field, const Light& light, const glm::vec3& world,
                            const glm::vec3& face, const TraceSettings& s) {
     glm::vec3 toLight;
@@ -137,7 +160,10 @@ float traceFieldVisibility(const FieldGrid& field, const Light& light, const glm
         const bool own =
             s.horizon && gpu::ownSurface(h, glm::dot(p - world, up), s.thickness * field.voxel,
                                          0.05f * field.voxel);
-        if (!gpu::coneTraceStep(c, h, apex, sinRadius, s.k, s.minStep * field.voxel, own))
+        float across = 1.0f;
+        if (h < 0.0f && !own && (sinRadius > 0.0f || s.k > 0.0f))
+            across = acrossField(field, p, toLight, h, gpu::coneRadius(c.t + apex, sinRadius, s.k));
+        if (!gpu::coneTraceStep(c, h, apex, sinRadius, s.k, s.minStep * field.voxel, own, across))
             return 0.0f;
     }
     return gpu::discFraction(c.edge);
