@@ -430,6 +430,25 @@ TEST(FirstPicture, ALoneObjectGetsItsGroundAtAnyScale) {
         const PictureMeasure m = measurePicture(s, s.cameras.front());
         EXPECT_GE(m.castShadow, 0.01f) << scale;
         EXPECT_GE(m.subject, 0.15f) << scale;
+        // Nothing in view lies before the near plane: the ground reaches nearer the camera than
+        // the subject does.
+        const Camera& c = s.cameras.front();
+        const glm::vec3 forward = glm::normalize(c.target - c.position);
+        const glm::vec3 right = glm::normalize(glm::cross(forward, c.up));
+        const glm::vec3 up = glm::cross(right, forward);
+        const float tanHalf = std::tan(0.5f * c.yfov);
+        const TriangleBvh bvh(s);
+        float nearest = std::numeric_limits<float>::max();
+        for (int y = 0; y <= 8; ++y)
+            for (int x = 0; x <= 8; ++x) {
+                const float u = static_cast<float>(x) / 4.0f - 1.0f;
+                const float v = static_cast<float>(y) / 4.0f - 1.0f;
+                const glm::vec3 d =
+                    glm::normalize(forward + u * tanHalf * 16.0f / 9.0f * right + v * tanHalf * up);
+                if (const auto hit = bvh.firstHit({.origin = c.position, .direction = d}))
+                    nearest = std::min(nearest, hit->distance * glm::dot(d, forward));
+            }
+        EXPECT_GT(nearest, c.znear) << scale;
     }
 }
 

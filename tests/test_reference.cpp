@@ -340,6 +340,14 @@ TEST(Sampling, HammersleyPointsAreAZeroMNetInBaseTwo) {
                 ASSERT_EQ(count[box], 1) << "n " << n << ", split " << k << ", box " << box;
         }
     }
+    // The first coordinate sits at the centres of its n strata: the set's mean is 1/2, so a
+    // light's disc is sampled without a drift of half a stratum towards one side.
+    for (uint32_t n : {1u, 7u, 256u}) {
+        double sum = 0.0;
+        for (uint32_t i = 0; i < n; ++i)
+            sum += hammersley(i, n, glm::dvec2(0.0)).x;
+        EXPECT_NEAR(sum / n, 0.5, 1e-12) << n;
+    }
     // A shift moves every point by the same amount, modulo 1 (Cranley-Patterson rotation).
     const glm::dvec2 shift(0.3, 0.85);
     for (uint32_t i = 0; i < 16; ++i) {
