@@ -396,6 +396,14 @@ TEST(Cli, CompareWritesMetricsForEveryTechnique) {
         const std::string prefix = rowFilePrefix(name);
         EXPECT_TRUE(fs::exists(out / (prefix + ".image.png"))) << name;
         EXPECT_TRUE(fs::exists(out / (prefix + ".heatmap.png"))) << name;
+        // Every row's stats.json gives the one view's measure.
+        const auto view = nlohmann::json::parse(slurp(out / (prefix + ".stats.json")))["view"];
+        EXPECT_GT(view["subject"].get<double>(), 0.0) << name;
+        EXPECT_GE(view["cast_shadow"].get<double>(), 0.0) << name;
+        EXPECT_EQ(view, nlohmann::json::parse(
+                            slurp(out / (rowFilePrefix(metrics["techniques"].begin().key()) +
+                                         ".stats.json")))["view"])
+            << name;
     }
     // One float format by default, OpenEXR: what image tools open, and far smaller than PFM.
     for (const char* f : {"report.html", "visibility.exr", "position.exr", "normal.exr"})

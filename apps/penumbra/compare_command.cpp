@@ -165,6 +165,8 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         report.pathFrames = args.pathFrames;
     }
 
+    // One view for every row: its measure once, not a ray hierarchy per row.
+    const nlohmann::json view = viewJson(scene, scene.camera(args.options.camera));
     for (size_t r = 0; r < rows.size(); ++r) {
         const RenderResult& result = results[r];
         ReportRow row{.name = rows[r].name,
@@ -208,8 +210,13 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                 writeFloatImage(out, prefix + ".difference" + light, args.format, w, h, 1,
                                 signedError(result.visibility[l], truth.visibility[l]));
         }
-        const RenderRun run{args.scene, scene,  rowOptions[r],
-                            device,     result, namingExtension(args.format)};
+        const RenderRun run{.sceneSpec = args.scene,
+                            .scene = scene,
+                            .options = rowOptions[r],
+                            .device = device,
+                            .result = result,
+                            .floatExtension = namingExtension(args.format),
+                            .view = &view};
         out.write(prefix + ".stats.json", bytesOf(renderStats(run).dump(2) + "\n"));
         report.rows.push_back(std::move(row));
     }

@@ -79,7 +79,7 @@ nlohmann::json renderStats(const RenderRun& run) {
                    {"yfov_degrees", glm::degrees(camera.yfov)}};
     j["scene"]["default_light"] = run.scene.defaultLight;
     j["scene"]["automatic_ground"] = run.scene.automaticGround;
-    j["view"] = viewJson(run.scene, camera);
+    j["view"] = run.view ? *run.view : viewJson(run.scene, camera);
     j["scene"]["edits"] = sceneEditsJson(run.scene.edits);
     j["image"] = {{"width", o.width}, {"height", o.height}};
     j["shadow_map_size"] = o.shadowMapSize;

@@ -17,6 +17,9 @@ struct RenderRun {
     const DeviceInfo& device;
     const RenderResult& result;
     std::string_view floatExtension = "pfm"; // the visibility files stats.json names
+    // viewJson(scene, the options' camera), when the caller measured it once for many runs of
+    // one view (compare's rows); measured here when empty.
+    const nlohmann::json* view = nullptr;
 };
 
 nlohmann::json renderStats(const RenderRun& run);
