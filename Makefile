@@ -26,7 +26,7 @@ FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
 FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
                 -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
 
-.PHONY: quality deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python slurm-test
+.PHONY: baselines quality deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python slurm-test
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -130,6 +130,12 @@ renderdiff: build
 renderdiff-store: build
 	PENUMBRA_RENDERDIFF_STORE=1 build/$(PRESET)/tests/penumbra_gpu_tests \
 	    --gtest_filter='RenderDiffTest.*'
+
+# Stored figures afresh (docs/testing.md, "Baselines"): runs the tests that own them, prints
+# every figure that moved (build/baselines/diff.md) and stores them in tests/baselines unless one
+# got worse and tests/accepted_regressions.toml does not name it.
+baselines: build
+	/usr/bin/python3 tools/baselines.py store --tests build/$(PRESET)/tests/penumbra_gpu_tests
 
 # The corpus gate (docs/testing.md, "The corpus gate"): every generated family at the plan's
 # seeds (or SEEDS=1,2,...), every technique at its defaults, against the truth; writes

@@ -141,7 +141,7 @@ inline void expectStored(const std::string& what, double measured, double stored
     const double slack = std::max(relative * stored, floor);
     EXPECT_LE(measured, stored + slack) << what << ": worse than the stored " << stored;
     EXPECT_GE(measured, stored - slack)
-        << what << ": better than the stored " << stored << " (re-measure and update the table)";
+        << what << ": better than the stored " << stored << " (run `make baselines`)";
 }
 
 // RMSE over the pixels whose truth is not fully lit, grown by `grow` pixels (a square), among
