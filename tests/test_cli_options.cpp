@@ -76,7 +76,10 @@ TEST(CliOptions, OneTechniqueNamesOneRowWithItsLayers) {
     EXPECT_EQ(layered.layers, std::vector<std::string>{"contact"});
     EXPECT_FALSE(layered.sets.empty());
     EXPECT_EQ(rowNamed("hard+contact", "--technique").layers, std::vector<std::string>{"contact"});
-    // "pcf+contact" is every pcf row with the layer: not one row.
-    for (const char* bad : {"nope", "pcf[nope]", "hard+nope", "pcf+contact", "hard,pcf"})
+    // "pcf+contact" is pcf's defaults row with the layer, as "hard+contact" is hard's.
+    const TechniqueRow pcfLayered = rowNamed("pcf+contact", "--technique");
+    EXPECT_TRUE(pcfLayered.sets.empty());
+    EXPECT_EQ(pcfLayered.layers, std::vector<std::string>{"contact"});
+    for (const char* bad : {"nope", "pcf[nope]", "hard+nope", "pcf[box3]+", "hard,pcf"})
         EXPECT_EQ(subjectOf([&] { rowNamed(bad, "--tech"); }), "--tech") << bad;
 }

@@ -70,10 +70,15 @@ TEST(Techniques, ComparisonRowsCarryTheLayersNamedAfterThem) {
     EXPECT_EQ(rows[0].layers, std::vector<std::string>{"contact"});
     EXPECT_EQ(rows[1].name, "hard");
     EXPECT_TRUE(rows[1].layers.empty());
-    // A technique's name with a layer: each of its rows with the layer.
-    for (const TechniqueRow& row : comparisonRows("pcf+contact")) {
-        EXPECT_TRUE(row.name.starts_with("pcf[")) << row.name;
-        EXPECT_TRUE(row.name.ends_with("]+contact")) << row.name;
+    // A technique's name with a layer: each of its rows with the layer, its defaults' first.
+    const std::vector<TechniqueRow> pcfRows = comparisonRows("pcf+contact");
+    ASSERT_GT(pcfRows.size(), 2u);
+    EXPECT_EQ(pcfRows[0].name, "pcf+contact");
+    EXPECT_TRUE(pcfRows[0].sets.empty());
+    for (size_t i = 1; i < pcfRows.size(); ++i) {
+        EXPECT_TRUE(pcfRows[i].name.starts_with("pcf[")) << pcfRows[i].name;
+        EXPECT_TRUE(pcfRows[i].name.ends_with("]+contact")) << pcfRows[i].name;
+        EXPECT_EQ(pcfRows[i].layers, std::vector<std::string>{"contact"});
     }
     EXPECT_THROW(comparisonRows("hard+nonsense"), InputError);
     EXPECT_THROW(comparisonRows("hard+"), InputError);

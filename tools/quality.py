@@ -8,7 +8,10 @@ misclassified away from edges. Writes quality.json and quality.md into --out and
 figures against the plan's [bounds]: exit 1 naming every figure past its bound.
 
     tools/quality.py [--plan bench/plans/quality.toml] [--seeds 1,2] [--families a,b]
-                     [--penumbra BIN] [--out DIR] [--jobs N] [--validation]
+                     [--penumbra BIN] [--out DIR] [--jobs N] [--validation] [--propose-bounds F]
+
+--propose-bounds F prints a [bounds] block for the plan: each bounded figure of each technique's
+defaults row at F times its value over this run, rounded up to two significant digits.
 """
 import argparse
 import concurrent.futures
@@ -106,6 +109,38 @@ def check(summary, bounds):
     return failures
 
 
+# The figures a plan's bounds hold, per technique at its defaults (the row named as the technique):
+# worsts only, which no subset of the scenes exceeds (a 95th percentile or a median of the CI's
+# nine scenes may lie above the same figure over hundreds).
+BOUNDED = ["acne_beyond_blur.worst", "leak_beyond_blur.worst", "vs_hard.worst",
+           "misclassified.worst"]
+
+
+def round_up(value, digits=2):
+    """value rounded up to `digits` significant digits (0 stays 0)."""
+    if value <= 0 or math.isnan(value):
+        return 0.0
+    scale = 10 ** (math.floor(math.log10(value)) - digits + 1)
+    return math.ceil(round(value / scale, 9)) * scale
+
+
+def propose_bounds(summary, techniques, factor):
+    """A [bounds] block: every bounded figure of each technique's row at factor times its value;
+    a figure that rests on no scene is left out."""
+    lines = ["[bounds]"]
+    for technique in techniques:
+        if technique not in summary:
+            continue
+        figures = []
+        for name in BOUNDED:
+            figure, stat = name.rsplit(".", 1)
+            value = summary[technique][figure][stat]
+            if summary[technique][figure]["scenes"] and not math.isnan(value):
+                figures.append(f'"{name}" = {round_up(factor * value):.2g}')
+        lines.append(f'"{technique}" = {{ {", ".join(figures)} }}')
+    return "\n".join(lines) + "\n"
+
+
 def markdown(summary, seeds):
     lines = [f"Generated corpus, seeds {', '.join(map(str, seeds))}: acne and leak beyond blur "
              "in percent (p95 / worst, scenes counted), RMSE as a multiple of hard's and pcss's "
@@ -137,6 +172,8 @@ def main():
     parser.add_argument("--jobs", type=int, default=1, help="compares at once")
     parser.add_argument("--validation", action="store_true",
                         help="the Khronos validation layer on; any message fails the run")
+    parser.add_argument("--propose-bounds", type=float, metavar="F",
+                        help="print bounds at F times this run's figures (a plan's [bounds])")
     args = parser.parse_args()
     try:
         plan = tomllib.loads(args.plan.read_text())
@@ -169,6 +206,8 @@ def main():
     table = markdown(summary, seeds)
     (args.out / "quality.md").write_text(table)
     print(table)
+    if args.propose_bounds:
+        print(propose_bounds(summary, plan["techniques"], args.propose_bounds))
     failures = check(summary, plan.get("bounds", {}))
     for line in failures:
         print(f"quality: past its bound: {line}", file=sys.stderr)

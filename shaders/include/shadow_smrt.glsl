@@ -8,6 +8,7 @@
 #include "kernels.h"
 #include "smrt_march.h"
 #include "technique_input.glsl"
+#include "shadow_hard.glsl"
 
 // smrt.hidden (bit 0: spots and suns) and smrt.cubeHidden (bit 1: point lights), a constant of
 // the pipeline, as is its light's kind (LIGHT_TYPE): lavapipe runs the march loop's branches
@@ -335,7 +336,11 @@ vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewDa
     return vec4(max(1.0 - blocked / traced, 0.0), blocked, extrapolated, marched / traced);
 }
 
+// A light without size (texel.w 0) sends every ray along the one line the hard test answers:
+// smrt answers it as hard does (its texel, its bias), so that the two agree exactly there instead
+// of by the march's own slack.
 vec4 evaluateSmrt(TechniqueInput at) {
+    if (at.view.texel.w <= 0.0) return evaluateHard(at);
     return shadowSmrtDetail(shadowMap, at.r, at.mapSize, at.view, at.pixel);
 }
 

@@ -75,8 +75,10 @@ const TechniqueModule& pcfModule() {
              .reference = "Reeves, Salesin, Cook 1987, 'Rendering antialiased shadows with depth "
                           "maps'; Isidoro 2006 (edge-only PCF); Tuft 2010 (receiver-plane bias)",
              .families = {"bias", "pcf", "csm", "composite"},
+             // The defaults first (box 5x5), as every technique's row of its defaults.
              .variants =
-                 {{.label = "bilinear", .sets = {{"pcf.filter", "bilinear"}}},
+                 {{.label = ""},
+                  {.label = "bilinear", .sets = {{"pcf.filter", "bilinear"}}},
                   {.label = "hardware", .sets = {{"pcf.filter", "hardware"}}},
                   {.label = "box3", .sets = {{"pcf.filter", "box"}, {"pcf.size", "3"}}},
                   {.label = "box7", .sets = {{"pcf.filter", "box"}, {"pcf.size", "7"}}},

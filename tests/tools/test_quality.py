@@ -4,6 +4,7 @@ import json
 import math
 import stat
 import subprocess
+import tomllib
 import sys
 from pathlib import Path
 
@@ -114,3 +115,46 @@ def test_a_failing_scene_or_a_validation_message_stops_the_run(tmp_path):
     spoke = run(tmp_path, "--families", "leaves", "--validation")
     assert spoke.returncode == 2 and "the validation layer spoke" in spoke.stderr
     assert run(tmp_path, "--families", "leaves").returncode == 0
+
+
+def test_round_up_keeps_two_significant_digits_and_never_rounds_down():
+    assert math.isclose(quality.round_up(0.01234), 0.013)
+    assert math.isclose(quality.round_up(0.3), 0.3), "an exact value stays"
+    assert math.isclose(quality.round_up(1.2301), 1.3)
+    assert math.isclose(quality.round_up(0.00012), 0.00012)
+    assert math.isclose(quality.round_up(8.61), 8.7)
+    assert quality.round_up(0.0) == 0.0
+    assert quality.round_up(math.nan) == 0.0
+
+
+def test_proposed_bounds_hold_the_run_they_come_from_and_name_only_default_rows():
+    results = {
+        ("plates", 1): {"techniques": {"hard": row(0.02), "pcss": row(0.01, leak=0.004),
+                                       "pcss[fast]": row(0.05, leak=0.5)}},
+        ("open", 1): {"techniques": {"hard": row(0.01), "pcss": row(0.03, acne=0.002,
+                                                                   misclassified=0.001),
+                                     "pcss[fast]": row(0.05)}},
+    }
+    summary = quality.summarize(results, {"least_pixels": 1000})
+    text = quality.propose_bounds(summary, ["hard", "pcss"], 1.25)
+    bounds = tomllib.loads(text)["bounds"]
+    assert set(bounds) == {"hard", "pcss"}, "variants are not bounded"
+    assert set(bounds["pcss"]) == set(quality.BOUNDED)
+    assert math.isclose(bounds["pcss"]["leak_beyond_blur.worst"], 0.005)
+    assert math.isclose(bounds["pcss"]["acne_beyond_blur.worst"], 0.0025)
+    assert math.isclose(bounds["pcss"]["vs_hard.worst"], 3.8)  # 3.0 x 1.25 = 3.75
+    assert math.isclose(bounds["pcss"]["misclassified.worst"], 0.0013)  # 0.00125 rounded up
+    assert quality.check(summary, bounds) == []
+    # A figure 1.3 times as bad passes no bound made at 1.25.
+    worse = dict(results)
+    worse[("long", 1)] = {"techniques": {"hard": row(0.01), "pcss": row(0.01, leak=0.0052)}}
+    failed = quality.check(quality.summarize(worse, {"least_pixels": 1000}), bounds)
+    assert failed == ["pcss leak_beyond_blur.worst = 0.0052 > 0.005 (worst: long?seed=1)"]
+
+
+def test_the_plans_bounds_name_every_technique_and_only_bounded_figures():
+    plan = tomllib.loads((Path(quality.ROOT) / "bench/plans/quality.toml").read_text())
+    assert set(plan["bounds"]) == set(plan["techniques"])
+    for technique, limits in plan["bounds"].items():
+        assert set(limits) <= set(quality.BOUNDED), technique
+        assert all(v >= 0 for v in limits.values()), technique
