@@ -69,6 +69,40 @@ std::vector<float> occludersOverGround(uint32_t seed, uint32_t size) {
     return depth;
 }
 
+// `count` probes over the map of occludersOverGround, seven in ten on the ground, at random
+// pixels (the rotation's input).
+std::vector<FilterProbe> probesOverGround(uint32_t seed, size_t count) {
+    std::mt19937 engine(seed);
+    auto unit = [&] { return float(engine() >> 8) / 16777216.0f; };
+    std::vector<FilterProbe> probes(count);
+    for (FilterProbe& p : probes) {
+        p.uv = {0.05f + 0.9f * unit(), 0.05f + 0.9f * unit()};
+        p.depth = unit() < 0.7f ? 0.6995f : 0.3f + 0.3f * unit(); // mostly on the ground
+        p.pixel = {engine() % 1920, engine() % 1080};
+    }
+    return probes;
+}
+
+// A sun, a spot and a cube face for the parity tests, with the sizes given.
+std::array<ProbeLight, 3> parityLights(float sunSize, float size) {
+    return {{{.perspective = false,
+              .size = sunSize,
+              .nearPlane = 1.0f,
+              .farPlane = 21.0f,
+              .worldPerUv = {12.0f, 12.0f}},
+             {.perspective = true,
+              .size = size,
+              .nearPlane = 0.5f,
+              .farPlane = 12.0f,
+              .worldPerUv = {2.0f, 2.0f}},
+             {.perspective = true,
+              .size = size,
+              .nearPlane = 0.5f,
+              .farPlane = 12.0f,
+              .worldPerUv = {2.0f, 2.0f},
+              .cubeFace = true}}};
+}
+
 } // namespace
 
 // The shader against its CPU mirror on synthetic maps, for both light models, every march
@@ -84,31 +118,9 @@ TEST_F(FilterTest, SmrtMatchesItsCpuReference) {
         for (uint32_t x = kSize - 3; x < kSize; ++x)
             depth[y * kSize + x] = 0.3f;
     const shadows::ShadowMapView map{depth, kSize};
-    std::mt19937 engine(5);
-    auto unit = [&] { return float(engine() >> 8) / 16777216.0f; };
-    std::vector<FilterProbe> probes(2000);
-    for (FilterProbe& p : probes) {
-        p.uv = {0.05f + 0.9f * unit(), 0.05f + 0.9f * unit()};
-        p.depth = unit() < 0.7f ? 0.6995f : 0.3f + 0.3f * unit(); // mostly on the ground
-        p.pixel = {engine() % 1920, engine() % 1080};
-    }
-    const ProbeLight lights[] = {{.perspective = false,
-                                  .size = 0.0524f,
-                                  .nearPlane = 1.0f,
-                                  .farPlane = 21.0f,
-                                  .worldPerUv = {12.0f, 12.0f}},
-                                 {.perspective = true,
-                                  .size = 0.4f,
-                                  .nearPlane = 0.5f,
-                                  .farPlane = 12.0f,
-                                  .worldPerUv = {2.0f, 2.0f}},
-                                 // A cube face: smrt.cubeRays and smrt.cubeSamples (5, 6 here).
-                                 {.perspective = true,
-                                  .size = 0.4f,
-                                  .nearPlane = 0.5f,
-                                  .farPlane = 12.0f,
-                                  .worldPerUv = {2.0f, 2.0f},
-                                  .cubeFace = true}};
+    const std::vector<FilterProbe> probes = probesOverGround(5, 2000);
+    // The cube face: smrt.cubeRays and smrt.cubeSamples (5, 6 here).
+    const std::array<ProbeLight, 3> lights = parityLights(0.0524f, 0.4f);
     for (const ProbeLight& light : lights)
         for (const char* sets :
              // The cube face's adaptive stop the other way round from the spots' and suns'.
@@ -243,30 +255,8 @@ TEST_F(FilterTest, SmrtIsTheHardTestUnderALightWithoutSize) {
     constexpr uint32_t kSize = 64;
     const std::vector<float> depth = occludersOverGround(11, kSize);
     const shadows::ShadowMapView map{depth, kSize};
-    std::mt19937 engine(3);
-    auto unit = [&] { return float(engine() >> 8) / 16777216.0f; };
-    std::vector<FilterProbe> probes(1000);
-    for (FilterProbe& p : probes) {
-        p.uv = {0.05f + 0.9f * unit(), 0.05f + 0.9f * unit()};
-        p.depth = unit() < 0.7f ? 0.6995f : 0.3f + 0.3f * unit();
-        p.pixel = {engine() % 1920, engine() % 1080};
-    }
-    const ProbeLight lights[] = {{.perspective = false,
-                                  .size = 0.0f,
-                                  .nearPlane = 1.0f,
-                                  .farPlane = 21.0f,
-                                  .worldPerUv = {12.0f, 12.0f}},
-                                 {.perspective = true,
-                                  .size = 0.0f,
-                                  .nearPlane = 0.5f,
-                                  .farPlane = 12.0f,
-                                  .worldPerUv = {2.0f, 2.0f}},
-                                 {.perspective = true,
-                                  .size = 0.0f,
-                                  .nearPlane = 0.5f,
-                                  .farPlane = 12.0f,
-                                  .worldPerUv = {2.0f, 2.0f},
-                                  .cubeFace = true}};
+    const std::vector<FilterProbe> probes = probesOverGround(3, 1000);
+    const std::array<ProbeLight, 3> lights = parityLights(0.0f, 0.0f);
     ParameterValues params; // smrt's defaults, and hard's (the bias family)
     const shadows::FilterSettings frame =
         shadows::filterSettings(shadows::moduleOf(Technique::Smrt), params, false, 8);
