@@ -271,6 +271,28 @@ TEST(VirtualMaps, APixelTakesTheFinestLevelNoFinerThanItself) {
     EXPECT_EQ(gpu::virtualLevelFor(1e6f, texel0, 0.0f, 5u), 4u) << "coarser than the last";
 }
 
+// virtual.lodFromImage: virtual.lodBias counts from a 1920x1080 image, half a level finer per
+// halving of the pixels, two levels finer at most, one coarser at most.
+TEST(VirtualMaps, TheLevelBiasFollowsTheImagesPixelCount) {
+    const VirtualSettings v{.lodBias = -0.5f};
+    EXPECT_FLOAT_EQ(v.levelBias(1920, 1080), -0.5f);
+    EXPECT_FLOAT_EQ(v.levelBias(960, 540), -1.5f); // a quarter of the pixels: one level finer
+    EXPECT_FLOAT_EQ(v.levelBias(1920, 540), -1.0f);
+    EXPECT_FLOAT_EQ(v.levelBias(480, 270), -2.5f);
+    EXPECT_FLOAT_EQ(v.levelBias(320, 180), -2.5f); // the finest it goes
+    EXPECT_NEAR(v.levelBias(512, 512), -0.5f + 0.5f * std::log2(512.0f * 512.0f / 2073600.0f),
+                1e-5f);
+    EXPECT_FLOAT_EQ(v.levelBias(3840, 2160), 0.5f);
+    EXPECT_FLOAT_EQ(v.levelBias(7680, 4320), 0.5f); // the coarsest
+    const VirtualSettings off{.lodBias = 1.25f, .lodFromImage = false};
+    EXPECT_FLOAT_EQ(off.levelBias(320, 180), 1.25f);
+    EXPECT_FLOAT_EQ(off.levelBias(3840, 2160), 1.25f);
+    ParameterValues p;
+    EXPECT_TRUE(VirtualSettings::of(p).lodFromImage);
+    p.set("virtual.lodFromImage", "false");
+    EXPECT_FALSE(VirtualSettings::of(p).lodFromImage);
+}
+
 TEST(VirtualMaps, AnAtlasTexelBelongsToOnePageAndOneTexel) {
     const uint32_t pageSize = 8, side = 4;
     std::set<std::pair<int, int>> seen;

@@ -122,6 +122,7 @@ struct VirtualMapInfo {
     uint32_t poolPages = 0; // the pool's capacity
     uint64_t poolBytes = 0, tableBytes = 0;
     uint32_t pageSize = 0, virtualSize = 0;
+    float levelBias = 0.0f; // the level bias the image read with (VirtualSettings::levelBias)
     std::vector<uint32_t> renderedPerFrame; // every frame's, the warm-up first
     uint32_t droppedFrames = 0;             // frames whose pool was too small for their view
 };

@@ -91,7 +91,19 @@ VirtualSettings VirtualSettings::of(const ParameterValues& p) {
             .pageSize = static_cast<uint32_t>(p.number("virtual.pageSize")),
             .levels = static_cast<uint32_t>(p.number("virtual.levels")),
             .poolSize = static_cast<uint32_t>(p.number("virtual.poolSize")),
-            .lodBias = static_cast<float>(p.number("virtual.lodBias"))};
+            .lodBias = static_cast<float>(p.number("virtual.lodBias")),
+            .lodFromImage = p.number("virtual.lodFromImage") != 0.0};
+}
+
+float VirtualSettings::levelBias(uint32_t width, uint32_t height) const {
+    if (!lodFromImage || width == 0 || height == 0)
+        return lodBias;
+    constexpr double kReferencePixels = 1920.0 * 1080.0;
+    // Two levels finer at most (a 480x270 image), one coarser (3840x2160).
+    constexpr double kFinest = -2.0, kCoarsest = 1.0;
+    const double pixels = double(width) * double(height);
+    const double image = std::clamp(0.5 * std::log2(pixels / kReferencePixels), kFinest, kCoarsest);
+    return static_cast<float>(lodBias + image);
 }
 
 uint32_t VirtualSettings::localLevels() const {

@@ -31,8 +31,13 @@ struct VirtualSettings {
     uint32_t levels = 12;     // virtual.levels: a sun's clipmap levels up to the scene's extent
     uint32_t poolSize = 8192; // virtual.poolSize: the physical pool's side in texels
     float lodBias = -0.5f;    // virtual.lodBias: levels coarser (+) or finer (-) than a pixel
+    bool lodFromImage = true; // virtual.lodFromImage: lodBias relative to a 1920x1080 image
 
     static VirtualSettings of(const ParameterValues& p);
+    // The level bias a width x height image reads with: lodBias, and with lodFromImage half a
+    // level finer per halving of the pixel count below 1920x1080 (coarser above), within
+    // kImageLevels: about the pages a 1080p image asks for, whatever the image.
+    float levelBias(uint32_t width, uint32_t height) const;
     uint32_t pagesPerSide() const { return size / pageSize; }
     uint32_t poolPagesPerSide() const { return poolSize / pageSize; }
     uint32_t poolPages() const { return poolPagesPerSide() * poolPagesPerSide(); }

@@ -39,8 +39,8 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
         // neighbouring pages instead: the bilinear comparison is done by hand.
         const double reach = std::max({shadows::widestRadiusTexels(module, params), 1.0,
                                        module.searchCap ? module.searchCap(params) : 0.0});
-        f.virtualLod = {static_cast<float>(params.number("virtual.lodBias")),
-                        static_cast<float>(std::ceil(reach)), 0.0f, 0.0f};
+        f.virtualLod = {v.levelBias(o.width, o.height), static_cast<float>(std::ceil(reach)), 0.0f,
+                        0.0f};
         f.biasMode.y = 0u;
     }
     return f;

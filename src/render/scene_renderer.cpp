@@ -414,6 +414,7 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
     pageInfo.tableBytes = uint64_t{p.tableEntries} * sizeof(uint32_t);
     pageInfo.pageSize = v.pageSize;
     pageInfo.virtualSize = v.size;
+    pageInfo.levelBias = v.levelBias(p.settings.sizes.width, p.settings.sizes.height);
     pageInfo.renderedPerFrame.push_back(pageInfo.rendered);
     pageInfo.droppedFrames += u.dropped > 0;
 }

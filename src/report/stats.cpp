@@ -126,6 +126,7 @@ nlohmann::json renderStats(const RenderRun& run) {
             {"page_table_bytes", v->tableBytes},
             {"page_size", v->pageSize},
             {"virtual_size", v->virtualSize},
+            {"level_bias", v->levelBias},
             {"pages_rendered_per_frame", v->renderedPerFrame},
             {"frames_short_of_pool", v->droppedFrames}};
     nlohmann::json lights = nlohmann::json::array();

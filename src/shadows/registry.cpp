@@ -199,7 +199,15 @@ const std::vector<ParameterInfo>& parameterTable() {
          .max = 4.0,
          .unit = "levels",
          .description = "a pixel reads the finest level whose texel is no finer than itself, "
-                        "this many levels coarser (+) or finer (-)"}};
+                        "this many levels coarser (+) or finer (-)"},
+        {.key = "virtual.lodFromImage",
+         .type = ParameterType::Bool,
+         .defaultValue = 1, // docs/techniques.md: half four cascades' error at 512x512
+         .unit = "",
+         .description = "virtual.lodBias counts from a 1920x1080 image: a smaller one reads "
+                        "half a level finer per halving of its pixels (at most 2 levels, a "
+                        "480x270 image), a larger one coarser (at most 1): about the pages a "
+                        "1080p image asks for, at any size"}};
     static const std::vector<ParameterInfo> composite{
         {.key = "composite.shadowIntensity",
          .type = ParameterType::Float,
