@@ -169,10 +169,14 @@ def versions(root, name):
 
 
 def check(args):
+    # The history is the source tree's own: a copy inside another repository's work tree (a
+    # tarball unpacked in one, the mutation runner's scratch tree) has none.
     try:
-        git(args.root, "rev-parse", "--git-dir")
+        top = Path(git(args.root, "rev-parse", "--show-toplevel").strip()).resolve()
     except (OSError, subprocess.CalledProcessError):
-        print(f"baselines: {args.root} is not a git checkout: no history to check")
+        top = None
+    if top != Path(args.root).resolve():
+        print(f"baselines: {args.root} is not a git checkout of its own: no history to check")
         return SKIP
     names = set(git(args.root, "log", "--format=", "--name-only", "--", STORE).split())
     names |= set(load_tree(args.root / STORE))

@@ -110,6 +110,17 @@ def test_history_check_skips_outside_git(tmp_path):
     assert run("--root", str(tmp_path), "check").returncode == baselines.SKIP
 
 
+def test_history_check_skips_a_copy_inside_another_repository(tmp_path):
+    """A source tree copied into another repository's work tree (an ignored folder, as the
+    mutation runner's scratch tree) has no history of its own: skipped, not failed."""
+    outer = repo(tmp_path, {"hard": {"rmse": 0.02}})
+    (outer / ".gitignore").write_text("copy/\n")
+    copy = outer / "copy"
+    write_rows(copy, {"hard": {"rmse": 0.03}})
+    accept(copy, [{"file": FILE, "row": "hard", "figures": {"rmse": [0.02, 0.03]}}])
+    assert run("--root", str(copy), "check").returncode == baselines.SKIP
+
+
 def test_store_refuses_an_unnamed_regression_and_stores_nothing(tmp_path):
     root = tmp_path / "src"
     write_rows(root, {"hard": {"rmse": 0.020}, "pcf": {"rmse": 0.030}})
