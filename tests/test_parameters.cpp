@@ -153,6 +153,18 @@ TEST(Parameters, EveryRangeIsInclusiveAtBothEndsAndNoWider) {
     }
 }
 
+// A boolean's default is false or true (0 or 1), as `set` could store it: any other number
+// would print as neither in `penumbra techniques` and docs/cli.md.
+TEST(Parameters, EveryBooleanDefaultIsFalseOrTrue) {
+    size_t booleans = 0;
+    for (const ParameterInfo& p : allParameters())
+        if (p.type == ParameterType::Bool) {
+            ++booleans;
+            EXPECT_TRUE(p.defaultValue == 0.0 || p.defaultValue == 1.0) << p.key;
+        }
+    EXPECT_GT(booleans, 10u);
+}
+
 TEST(Parameters, ChoicesAndBooleansAcceptTheirNamesOnly) {
     for (const ParameterInfo& p : allParameters()) {
         ParameterValues v;

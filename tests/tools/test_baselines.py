@@ -85,7 +85,10 @@ def test_history_check_fails_on_an_unnamed_regression_and_passes_once_named(tmp_
     root = repo(tmp_path, {"hard": {"rmse": 0.020, "acne": 0.001}})
     write_rows(root, {"hard": {"rmse": 0.010, "acne": 0.001}})
     commit(root, "better")
-    assert run("--root", str(root), "check").returncode == 0
+    passed = run("--root", str(root), "check")
+    assert passed.returncode == 0
+    # Two steps: the first commit to the second, the second to the working tree.
+    assert "baselines: 1 files, 2 re-stores checked" in passed.stdout
     write_rows(root, {"hard": {"rmse": 0.010, "acne": 0.002}})
     commit(root, "worse acne")
     failed = run("--root", str(root), "check")
