@@ -7,7 +7,6 @@
 // docs/techniques.md ("Shadow-map ray tracing").
 #include "kernels.h"
 #include "penumbra/renderer.h"
-#include "shadows/cpu_filters.h"
 #include "shadows/technique.h"
 #include "smrt_march.h"
 
@@ -160,10 +159,8 @@ bool stepClear(const FilterInput& in, const gpu::SmrtPoint& a, const gpu::SmrtPo
 // mean march length in texels (over the rays traced).
 glm::vec4 smrtReference(const FilterInput& in) {
     // evaluateSmrt: a light without size is answered by the hard test.
-    if (in.view.texel.w <= 0.0f) {
-        const glm::vec2 dzRange(in.frame.biasParams.x, in.frame.biasParams.y);
-        return {hardTest(in.map, in.probe, in.margins, dzRange), 0.0f, 0.0f, 0.0f};
-    }
+    if (in.view.texel.w <= 0.0f)
+        return moduleOf(Technique::Hard).reference(in);
     const gpu::SmrtParams s = in.params.get<gpu::SmrtParams>();
     const gpu::ShadowViewData& view = in.view;
     const uint32_t mapSize = in.map.size;
