@@ -36,6 +36,7 @@ void main() {
     at.r.kernelScale = 1.0;
     at.r.curve = probe.adaptive.xy;
     at.r.planeRange = probe.adaptive.zw;
+    at.r.creaseLimit = probe.uvDepth.w;
     at.view = view;
     at.mapSize = push.counts.y;
     at.pixel = uvec2(probe.gradientPixel.zw);

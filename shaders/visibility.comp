@@ -122,13 +122,15 @@ float surfaceCurvature(ivec2 p, float depth, vec3 world, vec3 normal) {
 
 // bias.mode=adaptive's terms at a receiver of `view` (bias.h, adaptiveBiasTerms): the
 // lift comes off its depth; the curvature terms go with it to every tap.
-void applyAdaptiveBias(inout Receiver r, float texelWorld, float depthPerWorld, float cosine) {
+void applyAdaptiveBias(inout Receiver r, float texelWorld, float depthPerWorld, float cosine,
+                       float sinRadius) {
     vec4 t = adaptiveBiasTerms(texelWorld, float(push.light.z), depthPerWorld, cosine,
                                receiverCurvature, frame.biasParams.z, frame.biasParams.w,
                                length(r.gradient));
     r.depth -= t.x;
     r.curve = t.yz;
     r.planeRange = vec2(-1e30, t.w);
+    r.creaseLimit = creaseLimit(t.z, sinRadius, frame.filterLimits.y);
 }
 
 // The ray through pixel q (from its point on the near plane, reverse-Z depth 1, through its
@@ -175,7 +177,7 @@ Receiver makeReceiver(LightData light, ShadowViewData view, ivec2 p, vec3 world,
         if (view.texel.y > 0.5) texelWorld *= max((view.shadowMatrix * vec4(world, 1.0)).w, 0.0);
         applyAdaptiveBias(r, texelWorld,
                           abs(dot(lightDepthGradient(view.shadowMatrix, world), toLight)),
-                          dot(receiverFace, toLight));
+                          dot(receiverFace, toLight), lightSine(light, view, world));
     } else if (RECEIVER == RECEIVER_LIGHT) {
         r.gradient = receiverGradientFromNormal(view.shadowMatrix, world, normal);
     } else if (RECEIVER == RECEIVER_SCREEN) {
@@ -200,7 +202,7 @@ struct CascadeBase {
     float depthAlong;  // ... and its change per world unit of offset
     vec2 gradient;     // the receiver plane's d depth / d uv in the first cascade
     vec4 footprint;    // the pixel's uv footprint in the first cascade (FOOTPRINT)
-    float depthPerWorld, cosine; // bias.mode=adaptive: shared by every cascade
+    float depthPerWorld, cosine, sinRadius; // bias.mode=adaptive: shared by every cascade
 };
 
 CascadeBase cascadeBase(LightData light, ivec2 p, vec3 world, vec3 normal, float depth) {
@@ -219,6 +221,7 @@ CascadeBase cascadeBase(LightData light, ivec2 p, vec3 world, vec3 normal, float
     b.depthPerWorld = ADAPTIVE ? abs(dot(lightDepthGradient(first.shadowMatrix, world), toLight))
                                : 0.0;
     b.cosine = dot(receiverFace, toLight);
+    b.sinRadius = lightSine(light, first, world); // a sun's: every cascade's the same
     return b;
 }
 
@@ -234,7 +237,7 @@ Receiver cascadeReceiver(CascadeBase b, ShadowViewData view, out bool inside) {
     r.uvDx = b.footprint.xy * view.fromFirst.xy;
     r.uvDy = b.footprint.zw * view.fromFirst.xy;
     noAdaptiveTerms(r);
-    if (ADAPTIVE) applyAdaptiveBias(r, view.texel.x, b.depthPerWorld, b.cosine);
+    if (ADAPTIVE) applyAdaptiveBias(r, view.texel.x, b.depthPerWorld, b.cosine, b.sinRadius);
     return r;
 }
 
@@ -309,7 +312,7 @@ bool holds(Receiver r, bool inside, float radius) {
 }
 
 // A technique that searches blockers (BLOCKER_SEARCH) for a pixel of a sun's cascade `i`. Its
-// kernels follow the light's size, and frame.search.x caps them in texels of the map sampled: the
+// kernels follow the light's size, and frame.filterLimits.x caps them in texels of the map sampled: the
 // blocker search runs in the finest cascade from i whose texels hold it under the cap (else the
 // coarsest that holds the pixel, else i), and the penumbra is filtered in the finest cascade from
 // i that holds it (else where the search ran), so contact shadows keep the fine texels and wide
@@ -318,7 +321,7 @@ bool holds(Receiver r, bool inside, float radius) {
 // cascades chosen first: the loops over cascades unroll and only pick.
 float searchThroughCascades(CascadeBase b, uint i, ivec2 p) {
     uint mapSize = push.light.z;
-    float cap = frame.search.x;
+    float cap = frame.filterLimits.x;
     uint searchIn = i;
     bool found = false, settled = false;
     for (uint j = 0u; j < LIGHT_VIEWS; ++j) {
@@ -422,7 +425,7 @@ void main() {
             // No shadow map: the field holds the whole scene, the tracer its own horizon.
             TechniqueInput at = techniqueInput(Receiver(vec2(0.0), 0.0, vec2(0.0), 0.0, 1.0,
                                                         vec2(0.0), vec2(0.0), vec2(0.0),
-                                                        vec2(-1e30, 1e30)),
+                                                        vec2(-1e30, 1e30), 0.0),
                                                viewOf(k), p, STAGE_WHOLE);
             at.light = light;
             at.world = world;

@@ -1,14 +1,16 @@
 // bias.mode=adaptive's maths (shaders/include/bias.h: adaptiveBiasTerms, tapDepth,
 // lightDepthGradient), which the visibility pass and the CPU reference share, against answers
 // derived independently: a circle's departure from its tangent line measured along the light's
-// rays, a projection's depth derivative by finite differences.
+// rays, a projection's depth derivative by finite differences; the crease rule (creaseTests,
+// creaseLimit) on planes built in (u, v, depth) and against rays to every point of a light.
+#include "bias.h"
 #include "core/light_space.h"
 #include "core/projection.h"
-#include "bias.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 using namespace penumbra;
 
@@ -120,6 +122,115 @@ TEST(AdaptiveBias, LightDepthGradientIsTheProjectionsDerivative) {
             EXPECT_NEAR(g[axis], (depth(p + h) - depth(p - h)) / 2e-3,
                         2e-3 * std::abs(g[axis]) + 1e-6)
                 << (perspective ? "perspective " : "orthographic ") << axis;
+        }
+    }
+}
+
+// Four gathered depths (textureGather's order: x (i, j+1), y (i+1, j+1), z (i+1, j), w (i, j))
+// of the plane depth(u, v) = at + g . (uv - centre), texels `texel` apart round `centre`.
+glm::vec4 planeGather(float at, glm::vec2 g, float texel) {
+    const float h = 0.5f * texel;
+    return {at + g.x * -h + g.y * h, at + g.x * h + g.y * h, at + g.x * h + g.y * -h,
+            at + g.x * -h + g.y * -h};
+}
+
+constexpr float kTexel = 1.0f / 1024.0f;
+const glm::vec4 kBlocked(0.0f);
+
+TEST(AdaptiveBias, CreaseAWallRisingFromTheReceiversFloorTestsLit) {
+    // The floor: depth 0.5 at the receiver (uv 0), rising 0.2 per uv. A wall from the crease
+    // at u = 0.01 comes towards the light at 3 per uv; a gather on it at u = 0.015.
+    const float crease = 0.5f + 0.2f * 0.01f;
+    const float u = 0.015f;
+    const glm::vec4 wall = planeGather(crease - 3.0f * (u - 0.01f), {-3.0f, 0.0f}, kTexel);
+    // Continued to the receiver the wall lies 0.03 + 0.002 behind it: lit, whatever the taps said.
+    EXPECT_EQ(gpu::creaseTests(kBlocked, wall, {-u, 0.0f}, kTexel, 0.5f, 10.0f, 1e-3f),
+              glm::vec4(1.0f));
+    // The same wall 0.05 nearer the light everywhere passes in front of the receiver: kept.
+    const glm::vec4 nearer = wall - 0.05f;
+    EXPECT_EQ(gpu::creaseTests(kBlocked, nearer, {-u, 0.0f}, kTexel, 0.5f, 10.0f, 1e-3f), kBlocked);
+    // A plate parallel to the map over the floor: its plane is in front.
+    const glm::vec4 plate = planeGather(0.3f, {0.0f, 0.0f}, kTexel);
+    EXPECT_EQ(
+        gpu::creaseTests(glm::vec4(0, 1, 0, 1), plate, {-u, 0.0f}, kTexel, 0.5f, 10.0f, 1e-3f),
+        glm::vec4(0, 1, 0, 1));
+}
+
+TEST(AdaptiveBias, CreaseAPlaneSteeperThanTheLimitOrWithinTheMarginKeepsItsTests) {
+    const glm::vec2 offset(-0.01f, 0.004f);
+    const glm::vec2 g(-3.0f, 4.0f); // |g| = 5
+    // The plane's depth at the receiver: 0.6 + g . offset = 0.6 + 0.03 + 0.016 = 0.646.
+    const glm::vec4 d = planeGather(0.6f, g, kTexel);
+    EXPECT_EQ(gpu::creaseTests(kBlocked, d, offset, kTexel, 0.64f, 5.01f, 0.0f), glm::vec4(1.0f));
+    EXPECT_EQ(gpu::creaseTests(kBlocked, d, offset, kTexel, 0.64f, 4.99f, 0.0f), kBlocked);
+    EXPECT_EQ(gpu::creaseTests(kBlocked, d, offset, kTexel, 0.64f, 0.0f, 0.0f), kBlocked);
+    // Behind by 0.006: a margin of 0.005 lets it count, 0.007 does not; at the receiver's own
+    // depth plus the margin exactly it counts (at or behind).
+    EXPECT_EQ(gpu::creaseTests(kBlocked, d, offset, kTexel, 0.64f, 10.0f, 0.005f), glm::vec4(1.0f));
+    EXPECT_EQ(gpu::creaseTests(kBlocked, d, offset, kTexel, 0.64f, 10.0f, 0.007f), kBlocked);
+    EXPECT_EQ(gpu::creaseTests(kBlocked, planeGather(0.5f, {0.0f, 0.0f}, kTexel), offset, kTexel,
+                               0.25f, 10.0f, 0.25f),
+              glm::vec4(1.0f));
+}
+
+TEST(AdaptiveBias, CreaseTheGathersGradientIsItsPlanesAlongEachAxis) {
+    // Gradients along u alone and v alone, each on the limit's either side: a swapped or halved
+    // axis in the fit would decide differently.
+    for (const glm::vec2 g : {glm::vec2(6.0f, 0.0f), glm::vec2(0.0f, 6.0f), glm::vec2(-6.0f, 0.0f),
+                              glm::vec2(0.0f, -6.0f)}) {
+        const glm::vec4 d = planeGather(0.5f, g, kTexel);
+        const glm::vec2 offset = 0.01f * glm::normalize(g); // where the plane lies deeper
+        // At the receiver the plane lies at 0.56: behind 0.55, in front of 0.57.
+        EXPECT_EQ(gpu::creaseTests(kBlocked, d, offset, kTexel, 0.55f, 6.01f, 0.0f),
+                  glm::vec4(1.0f))
+            << g.x << "," << g.y;
+        EXPECT_EQ(gpu::creaseTests(kBlocked, d, offset, kTexel, 0.57f, 6.01f, 0.0f), kBlocked);
+        EXPECT_EQ(gpu::creaseTests(kBlocked, d, offset, kTexel, 0.55f, 5.99f, 0.0f), kBlocked);
+        EXPECT_EQ(gpu::creaseTests(kBlocked, d, -offset, kTexel, 0.5f, 6.01f, 0.0f), kBlocked);
+    }
+}
+
+TEST(AdaptiveBias, CreaseTheLimitFollowsTheLightsSize) {
+    EXPECT_FLOAT_EQ(gpu::creaseLimit(0.5f, 0.0f, 20.0f), 10.0f);  // a point: bias.crease alone
+    EXPECT_FLOAT_EQ(gpu::creaseLimit(0.5f, 0.01f, 20.0f), 10.0f); // cot(0.57 deg) = 100 > 20
+    EXPECT_NEAR(gpu::creaseLimit(0.5f, 0.5f, 20.0f), 0.5f * std::sqrt(3.0f), 1e-6f); // cot 30
+    EXPECT_FLOAT_EQ(gpu::creaseLimit(0.5f, 1.0f, 20.0f), 0.0f); // inside the light
+    EXPECT_FLOAT_EQ(gpu::creaseLimit(0.5f, 0.0f, 0.0f), 0.0f);  // bias.crease=0: off
+    EXPECT_FLOAT_EQ(gpu::creaseLimit(0.0f, 0.0f, 20.0f), 0.0f); // bias.mode=fixed: off
+}
+
+// The rule's claim in world space, by rays: a plane at angle b to the ray from receiver P to the
+// light's centre, passing behind P, with cot b within creaseLimit's slope (perUv 1), leaves every
+// point of a spherical light of angular radius a on P's side: no segment from P to the light
+// crosses it. Past the limit, with the plane through P, some point lies across.
+TEST(AdaptiveBias, CreaseAPlaneWithinTheLimitHidesNoPointOfTheLight) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int trial = 0; trial < 200; ++trial) {
+        const float distance = 1.0f + 20.0f * unit(rng);
+        const float sine = 0.9f * unit(rng) * unit(rng);
+        const float radius = sine * distance;
+        const float slope = gpu::creaseLimit(1.0f, sine, 1e6f);
+        const glm::vec3 centre(0.0f, 0.0f, distance); // P at the origin, the ray along +z
+        const float turn = 6.2831853f * unit(rng);    // the plane's normal turned about the ray
+        for (const float factor : {0.999f, 1.05f}) {
+            const float b = std::atan(1.0f / (slope * factor));
+            const float behind = factor < 1.0f ? 0.5f * unit(rng) : 0.0f;
+            const glm::vec3 n(std::cos(b) * std::cos(turn), std::cos(b) * std::sin(turn),
+                              std::sin(b));
+            const glm::vec3 x(0.0f, 0.0f, -behind); // where the plane meets the ray
+            int across = 0;
+            for (int k = 0; k < 400; ++k) { // points on the light's sphere
+                const float z = 2.0f * unit(rng) - 1.0f, phi = 6.2831853f * unit(rng);
+                const float s = std::sqrt(1.0f - z * z);
+                const glm::vec3 q =
+                    centre + radius * glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
+                across += glm::dot(n, q - x) < 0.0f;
+            }
+            if (factor < 1.0f)
+                EXPECT_EQ(across, 0) << "trial " << trial << ": sin a " << sine;
+            else
+                EXPECT_GT(across, 0) << "trial " << trial << ": sin a " << sine;
         }
     }
 }

@@ -353,9 +353,10 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
             << m->info.name;
         // The shared settings carry the blocker search's cap where there is one, else 0.
         const shadows::FilterSettings s = shadows::filterSettings(*m, defaults, false, 8);
-        EXPECT_EQ(s.frame.search.x, m == &shadows::pcssModule()
-                                        ? static_cast<float>(defaults.number("pcss.maxRadius"))
-                                        : 0.0f)
+        EXPECT_EQ(s.frame.filterLimits.x,
+                  m == &shadows::pcssModule()
+                      ? static_cast<float>(defaults.number("pcss.maxRadius"))
+                      : 0.0f)
             << m->info.name;
     }
     poisson.assign("bias.mode=adaptive");

@@ -55,6 +55,9 @@ std::vector<FilterProbe> syntheticProbes(uint32_t seed, bool withGradient,
         if (withAdaptive) {
             p.curve = {60.0f * unit(), 0.5f * unit()};
             p.planeRange = {-1e30f, 0.02f * unit()};
+            // The crease rule: the map's waves rise up to ~8 depth per uv, its blocks' edges far
+            // more; limits from 0 (off) to 40 take some gathers as planes and leave others.
+            p.creaseLimit = 40.0f * unit();
         }
     }
     return probes;

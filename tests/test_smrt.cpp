@@ -687,7 +687,8 @@ std::array<Light, 3> tableLights() {
 // faces), objects resting on a plane (contact) and a table with a ball on it, under a bulb and a
 // spot. smrt at its defaults stays below pcss and has no acne or leak beyond its blur. Under a
 // 4-degree sun over the table it reads above pcss (0.0091 against 0.0068): both are far below
-// 0.02, and docs/techniques.md says so.
+// 0.02, and docs/techniques.md says so. In the room pcss met smrt (0.0139 both) when the crease
+// rule took its acne off the room's wall creases (pcss was over 5% above before).
 TEST_F(QualityTest, SmrtBeatsPcssBeyondTheSpheres) {
     const auto [spot, bulb, sun] = tableLights();
     struct Setup {
@@ -696,7 +697,7 @@ TEST_F(QualityTest, SmrtBeatsPcssBeyondTheSpheres) {
         double measured; // smrt's RMSE on lavapipe
         bool belowPcss;
     };
-    const Setup setups[] = {{"room", loadScene("builtin:room"), 0.0135, true},
+    const Setup setups[] = {{"room", loadScene("builtin:room"), 0.0139, false},
                             {"resting, bulb", restingObjects(bulb), 0.0332, true},
                             {"resting, spot", restingObjects(spot), 0.0157, true},
                             {"table, spot", tableUnder(spot), 0.0138, true},
@@ -724,7 +725,7 @@ TEST_F(QualityTest, SmrtBeatsPcssBeyondTheSpheres) {
 // 1.3 above the table top). Rays from under the table rise through the table top where a slat
 // hides it and come out between two slats: without smrt.hidden they count as lit (half the umbra
 // under a spot or a bulb); with it the table top is continued under the slat and blocks them. It
-// is on by default under point lights (smrt.cubeHidden), off under spots and suns.
+// is on by default under every light (smrt.hidden, smrt.cubeHidden).
 TEST_F(QualityTest, SmrtHiddenSurfacesStopTheStackedCastersLeak) {
     const auto [spot, bulb, sun] = tableLights();
     for (const Light& light : {spot, bulb, sun}) {
@@ -740,10 +741,9 @@ TEST_F(QualityTest, SmrtHiddenSurfacesStopTheStackedCastersLeak) {
             renderRow(t, Technique::Smrt, {{"smrt.hidden", "false"}, {"smrt.cubeHidden", "false"}});
         const RenderResult hidden =
             renderRow(t, Technique::Smrt, {{"smrt.hidden", "true"}, {"smrt.cubeHidden", "true"}});
-        // The defaults: hidden surfaces under the bulb, shown under the spot and the sun.
+        // The defaults: hidden surfaces under every light.
         const RenderResult defaults = renderRow(t, Technique::Smrt, {});
-        const bool point = light.type == LightType::Point;
-        const std::vector<float>& expected = (point ? hidden : shown).visibility.at(0);
+        const std::vector<float>& expected = hidden.visibility.at(0);
         ASSERT_EQ(expected.size(), defaults.visibility.at(0).size());
         EXPECT_EQ(0, std::memcmp(expected.data(), defaults.visibility.at(0).data(),
                                  expected.size() * sizeof(float)))

@@ -181,6 +181,7 @@ struct FilterProbe {
     // receiver's own range for the plane's correction.
     glm::vec2 curve{0.0f};
     glm::vec2 planeRange{-1e30f, 1e30f};
+    float creaseLimit = 0.0f; // the crease rule's steepest plane, d depth / d uv (0: off)
 };
 
 // The light behind a probed shadow map, for techniques that need its geometry (PCSS).

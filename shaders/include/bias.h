@@ -38,6 +38,45 @@ SHARED float tapDepth(float depth, vec2 gradient, vec2 offset, vec2 dzRange, vec
            min(curve.x * s2, curve.y * sqrt(s2));
 }
 
+// bias.mode=adaptive's crease rule, for the four texels of one gather: taken as one plane (the
+// gradient of their depths, d depth / d uv, `texel` uv apart) and continued to the receiver,
+// `offset` uv from the gather's centre. A plane the light sees that passes at or behind the
+// receiver there leaves the receiver on the light's side of it, and nothing on that plane can
+// hide the light from it: a wall rising from the floor the receiver lies on, the face of a box
+// standing on it, a convex caster's tangent plane. Those texels test lit. A gather steeper than
+// `slopeLimit` (d depth / d uv; 0: the rule is off) is taken to straddle a caster's edge, not
+// one surface, and keeps its tests.
+SHARED vec4 creaseTests(vec4 tests, vec4 depths, vec2 offset, float texel, float receiverDepth,
+                        float slopeLimit, float margin) {
+    vec2 g = vec2((depths.y - depths.x) + (depths.z - depths.w),
+                  (depths.x - depths.w) + (depths.y - depths.z)) * (0.5f / texel);
+    // Only a gather wholly in front of the receiver: one that holds a lit texel straddles a crease
+    // or an edge, and its plane mixes two surfaces (the floor the receiver lies on continued in
+    // front of a wall it stands behind).
+    if (slopeLimit <= 0.0f || length(g) > slopeLimit) return tests;
+    float centre = 0.25f * (depths.x + depths.y + depths.z + depths.w);
+    return centre + dot(g, offset) >= receiverDepth + margin ? vec4(1.0f) : tests;
+}
+
+// How far behind the receiver a plane must pass for the crease rule, in texels of a 45-degree
+// surface: the receiver's own bias (its lift and normal offset) moves it towards the light, and
+// a plane meeting its surface at a shallow angle (a ramp's foot on the floor) would otherwise
+// pass behind the moved receiver while the receiver itself lies beyond it.
+#define CREASE_MARGIN_TEXELS 2.0f
+
+// The crease rule's slope limit for a light of angular radius a (sin a = sinRadius; 0: a point):
+// a plane at angle b to the ray through the receiver, passing behind it, leaves the whole light
+// on the receiver's side when the light's centre lies at least its radius from the plane, sin b
+// >= sin a, so its slope cot b may reach cot a; and `maxSlope` (bias.crease) at most: a step
+// from a caster's edge to the floor behind it is steeper wherever the gap exceeds that many
+// texels' width. `perUv`: a 45-degree surface's d depth / d uv at the receiver. The result is in
+// d depth / d uv, 0 where the rule is off.
+SHARED float creaseLimit(float perUv, float sinRadius, float maxSlope) {
+    float s = clamp(sinRadius, 0.0f, 1.0f);
+    float slope = s > 0.0f ? min(maxSlope, sqrt(1.0f - s * s) / s) : maxSlope;
+    return perUv * max(slope, 0.0f);
+}
+
 // A comparison tap of the texture unit (pcf.filter=hardware) tests its four texels against one
 // depth: under bias.mode=adaptive the receiver comes nearer the light by its plane's largest rise
 // over the tap's footprint (texel centres within a texel of it on each axis, `size` texels per

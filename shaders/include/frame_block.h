@@ -21,8 +21,9 @@ struct FrameData {       // std140 uniform block: the camera, the image and the 
                          // w bias.mode
     vec4 biasParams;     // xy: range of a tap's receiver-plane depth correction (light depth),
                          // z bias.adaptive (texels), w bias.curvature
-    vec4 search;         // x: the widest blocker search and filter, texels of the view sampled
-                         // (TechniqueModule::searchCap; SPEC_BLOCKER_SEARCH's cascade choice)
+    vec4 filterLimits;   // x: the widest blocker search and filter, texels of the view sampled
+                         // (TechniqueModule::searchCap; SPEC_BLOCKER_SEARCH's cascade choice),
+                         // y: bias.crease, the steepest plane the crease rule takes (0: off)
     vec4 fieldOrigin;    // the scene's distance field when one is built: xyz its lowest corner,
                          // w a voxel's side
     uvec4 fieldSize;     // xyz its voxels per axis (zero: no field)
@@ -41,7 +42,7 @@ namespace penumbra::gpu {
 static_assert(sizeof(FrameData) == 832 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, cameraForward) == 192 && offsetof(FrameData, biasMode) == 208 &&
-              offsetof(FrameData, biasParams) == 224 && offsetof(FrameData, search) == 240 &&
+              offsetof(FrameData, biasParams) == 224 && offsetof(FrameData, filterLimits) == 240 &&
               offsetof(FrameData, fieldOrigin) == 256 && offsetof(FrameData, fieldSize) == 272 &&
               offsetof(FrameData, virtualPages) == 288 &&
               offsetof(FrameData, virtualLod) == 304 && offsetof(FrameData, poisson) == 320);

@@ -52,7 +52,7 @@ struct CasterPush {      // push constants of shadow_mask.frag and shadow_peel.f
 };
 
 struct ProbeReceiver {   // std430, filter_probe.comp's input (Renderer::probeTechnique)
-    vec4 uvDepth;        // u, v, receiver depth
+    vec4 uvDepth;        // u, v, receiver depth, Receiver::creaseLimit
     vec4 gradientPixel;  // d depth / du, d depth / dv, pixel x, pixel y (rotations use it)
     vec4 footprint;      // xy: d uv / d pixel x, zw: d uv / d pixel y (vsm.filter=mip)
     vec4 adaptive;       // bias.mode=adaptive's per-tap terms: xy Receiver::curve, zw

@@ -21,12 +21,14 @@ struct Receiver {
     // bias.mode=adaptive (adaptiveBiasTerms): the per-tap curvature lift (tapDepth) and the
     // receiver's own range for the plane's correction, within the frame's dzRange.
     vec2 curve, planeRange;
+    float creaseLimit; // the crease rule's steepest plane, d depth / d uv (creaseTests; 0: off)
 };
 
 // The receiver's fields that bias.mode=adaptive leaves alone otherwise.
 void noAdaptiveTerms(inout Receiver r) {
     r.curve = vec2(0.0);
     r.planeRange = vec2(-1e30, 1e30);
+    r.creaseLimit = 0.0;
 }
 
 float texelTest(Receiver r, float stored, vec2 texelUv, vec2 dzRange) {
@@ -40,10 +42,11 @@ vec4 gatherTests(sampler2DArray map, ivec2 base, float size, Receiver r, vec2 dz
     vec4 d = gatherDepths(map, base, size, r.layer);
     vec2 c = (vec2(base) + 0.5) / size;
     float t = 1.0 / size;
-    return vec4(texelTest(r, d.x, c + vec2(0.0, t), dzRange),
-                texelTest(r, d.y, c + vec2(t, t), dzRange),
-                texelTest(r, d.z, c + vec2(t, 0.0), dzRange),
-                texelTest(r, d.w, c, dzRange));
+    vec4 tests = vec4(texelTest(r, d.x, c + vec2(0.0, t), dzRange),
+                      texelTest(r, d.y, c + vec2(t, t), dzRange),
+                      texelTest(r, d.z, c + vec2(t, 0.0), dzRange), texelTest(r, d.w, c, dzRange));
+    return creaseTests(tests, d, r.uv - c - 0.5 * t, t, r.depth, r.creaseLimit,
+                       CREASE_MARGIN_TEXELS * t * r.curve.y);
 }
 
 // One bilinear comparison tap at `texelPos` (texel units: the map spans [0, size]).

@@ -49,6 +49,7 @@ float shadowPcfUnsnapped(sampler2DArray map, sampler2DArrayShadow mapCompare, Re
         noPlane.depth -= lift;
         noPlane.gradient = vec2(0.0);
         noPlane.curve = vec2(0.0);
+        noPlane.creaseLimit = 0.0; // one reference depth for all four texels: no plane of theirs
         return bilinearTap(map, r.uv * float(mapSize), float(mapSize), noPlane, dzRange);
     }
     float early;

@@ -42,7 +42,7 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     std::vector<gpu::ProbeReceiver> gpuProbes;
     for (const FilterProbe& p : probes)
         gpuProbes.push_back(
-            {{p.uv, p.depth, 0.0f},
+            {{p.uv, p.depth, p.creaseLimit},
              {p.gradient, static_cast<float>(p.pixel.x), static_cast<float>(p.pixel.y)},
              {p.uvDx, p.uvDy},
              {p.curve, p.planeRange}});

@@ -23,10 +23,24 @@ glm::vec4 gatherTests(const ShadowMapView& map, glm::ivec2 base, float size, con
                       glm::vec2 dzRange, const MarginTracker& m) {
     const glm::vec2 c = (glm::vec2(base) + 0.5f) / size;
     const float t = 1.0f / size;
-    return {texelTest(r, map.texel(base.x, base.y + 1), c + glm::vec2(0.0f, t), dzRange, m),
-            texelTest(r, map.texel(base.x + 1, base.y + 1), c + glm::vec2(t, t), dzRange, m),
-            texelTest(r, map.texel(base.x + 1, base.y), c + glm::vec2(t, 0.0f), dzRange, m),
-            texelTest(r, map.texel(base.x, base.y), c, dzRange, m)};
+    const glm::vec4 depths(map.texel(base.x, base.y + 1), map.texel(base.x + 1, base.y + 1),
+                           map.texel(base.x + 1, base.y), map.texel(base.x, base.y));
+    const glm::vec4 tests(texelTest(r, depths.x, c + glm::vec2(0.0f, t), dzRange, m),
+                          texelTest(r, depths.y, c + glm::vec2(t, t), dzRange, m),
+                          texelTest(r, depths.z, c + glm::vec2(t, 0.0f), dzRange, m),
+                          texelTest(r, depths.w, c, dzRange, m));
+    const glm::vec2 offset = r.uv - c - 0.5f * t;
+    const float slopeLimit = r.creaseLimit;
+    const float margin = CREASE_MARGIN_TEXELS * t * r.curve.y;
+    if (slopeLimit > 0.0f) { // the crease rule's two decisions, as close calls for the probes
+        const glm::vec2 g = glm::vec2((depths.y - depths.x) + (depths.z - depths.w),
+                                      (depths.x - depths.w) + (depths.y - depths.z)) *
+                            (0.5f / t);
+        m.see(glm::length(g) / slopeLimit, 1.0f); // relative: the limit is in depth per uv
+        m.see(0.25f * (depths.x + depths.y + depths.z + depths.w) + glm::dot(g, offset),
+              r.depth + margin);
+    }
+    return gpu::creaseTests(tests, depths, offset, t, r.depth, slopeLimit, margin);
 }
 
 float bilinearTap(const ShadowMapView& map, glm::vec2 texelPos, float size, const CpuReceiver& r,
@@ -79,7 +93,7 @@ float poissonTaps(const ShadowMapView& map, const CpuReceiver& r, const gpu::Fra
 }
 
 CpuReceiver receiverOf(const FilterProbe& p) {
-    return {p.uv, p.depth, p.gradient, p.curve, p.planeRange};
+    return {p.uv, p.depth, p.gradient, p.curve, p.planeRange, p.creaseLimit};
 }
 
 float hardTest(const ShadowMapView& map, const FilterProbe& probe, const MarginTracker& m,

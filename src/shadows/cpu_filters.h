@@ -16,6 +16,7 @@ struct CpuReceiver {
     float depth;
     glm::vec2 gradient;
     glm::vec2 curve{0.0f}, planeRange{-1e30f, 1e30f}; // bias.mode=adaptive (FilterProbe's)
+    float creaseLimit = 0.0f;
 };
 
 CpuReceiver receiverOf(const FilterProbe& probe);

@@ -65,6 +65,17 @@ const std::vector<ParameterInfo>& parameterTable() {
          .description = "bias.mode=adaptive: scales the surface's measured curvature in each "
                         "tap's lift and in the reach of the receiver plane's correction (0: "
                         "flat surfaces everywhere)"},
+        {.key = "bias.crease",
+         .type = ParameterType::Float,
+         .defaultValue = 20.0, // measured: docs/techniques.md, "Creases"
+         .min = 0.0,
+         .max = 100.0,
+         .unit = "slope (cot of the angle between a surface and the light's rays)",
+         .description = "bias.mode=adaptive: a filter tap whose 2x2 texels lie on a plane that "
+                        "passes behind the receiver (a wall rising from its floor, a box standing "
+                        "on it) tests lit, nothing on that plane can hide the light; planes "
+                        "steeper than this, or than the light's size allows, are taken for a "
+                        "caster's edge (0: off)"},
         {.key = "bias.constant",
          .type = ParameterType::Float,
          .defaultValue = 0.0005,

@@ -392,12 +392,12 @@ const TechniqueModule& smrtModule() {
                   "ray read as well for less)"},
              {.key = "smrt.hidden",
               .type = ParameterType::Bool,
-              .defaultValue = 0,
+              .defaultValue = 1, // measured: docs/techniques.md, smrt step 11
               .description = "a ray that comes out from behind a caster in front of a surface "
                              "crossed that surface where it, continued as a plane, hid the ray: "
                              "casters stacked over one another (a table under a slatted roof) "
                              "no longer leak (spots and suns, smrt.cubeHidden on cube faces; "
-                             "off, as it costs their pass 7-14%)"},
+                             "it costs their pass 7-14%)"},
              {.key = "smrt.cubeHidden",
               .type = ParameterType::Bool,
               .defaultValue = 1,

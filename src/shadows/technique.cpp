@@ -166,8 +166,8 @@ void setSharedSettings(gpu::FrameData& f, const TechniqueModule& module, const P
     f.biasParams = {-limit, index("bias.receiverSides") == 0 ? limit : 0.0f,
                     static_cast<float>(p.number("bias.adaptive")),
                     static_cast<float>(p.number("bias.curvature"))};
-    f.search = {module.searchCap ? static_cast<float>(module.searchCap(p)) : 0.0f, 0.0f, 0.0f,
-                0.0f};
+    f.filterLimits = {module.searchCap ? static_cast<float>(module.searchCap(p)) : 0.0f,
+                      static_cast<float>(p.number("bias.crease")), 0.0f, 0.0f};
     const auto& disk = poissonDisk();
     for (size_t i = 0; i < kPoissonPoints / 2; ++i)
         f.poisson[i] = {disk[2 * i].x, disk[2 * i].y, disk[2 * i + 1].x, disk[2 * i + 1].y};
