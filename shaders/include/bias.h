@@ -46,10 +46,15 @@ SHARED float tapDepth(float depth, vec2 gradient, vec2 offset, vec2 dzRange, vec
 // standing on it, a convex caster's tangent plane. Those texels test lit. A gather steeper than
 // `slopeLimit` (d depth / d uv; 0: the rule is off) is taken to straddle a caster's edge, not
 // one surface, and keeps its tests.
+// The plane of a gather's four depths (textureGather's order), `texel` uv apart: d depth / d uv.
+SHARED vec2 gatherGradient(vec4 depths, float texel) {
+    return vec2((depths.y - depths.x) + (depths.z - depths.w),
+                (depths.x - depths.w) + (depths.y - depths.z)) * (0.5f / texel);
+}
+
 SHARED vec4 creaseTests(vec4 tests, vec4 depths, vec2 offset, float texel, float receiverDepth,
                         float slopeLimit, float margin) {
-    vec2 g = vec2((depths.y - depths.x) + (depths.z - depths.w),
-                  (depths.x - depths.w) + (depths.y - depths.z)) * (0.5f / texel);
+    vec2 g = gatherGradient(depths, texel);
     // Only a gather wholly in front of the receiver: one that holds a lit texel straddles a crease
     // or an edge, and its plane mixes two surfaces (the floor the receiver lies on continued in
     // front of a wall it stands behind).

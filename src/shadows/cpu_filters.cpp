@@ -33,9 +33,7 @@ glm::vec4 gatherTests(const ShadowMapView& map, glm::ivec2 base, float size, con
     const float slopeLimit = r.creaseLimit;
     const float margin = CREASE_MARGIN_TEXELS * t * r.curve.y;
     if (slopeLimit > 0.0f) { // the crease rule's two decisions, as close calls for the probes
-        const glm::vec2 g = glm::vec2((depths.y - depths.x) + (depths.z - depths.w),
-                                      (depths.x - depths.w) + (depths.y - depths.z)) *
-                            (0.5f / t);
+        const glm::vec2 g = gpu::gatherGradient(depths, t);
         m.see(glm::length(g) / slopeLimit, 1.0f); // relative: the limit is in depth per uv
         m.see(0.25f * (depths.x + depths.y + depths.z + depths.w) + glm::dot(g, offset),
               r.depth + margin);
