@@ -12,6 +12,8 @@ PENUMBRA_GPU_BEGIN
 #define VSSM_MAX_SUBDIVISION 4    // vssm.subdivision's and msm-soft.subdivision's largest value
 #define VSSM_NO_BLOCKERS 1e-4f    // a blocking fraction at most this: nothing in the way
 #define VSSM_MIN_CELL 2.0f        // texels: no sub-kernel is cut narrower
+#define VSSM_NARROW_SEARCH 4.0f   // texels: the search's half-width where the light's box finds none
+#define VSSM_REFINE_STEPS 2       // searches over the penumbra's box (vssm.refine)
 // The half-width of the box with the variance of a disc of unit radius (sqrt(3) / 2): the box
 // the summed-area members filter a penumbra of radius r over is this times r.
 #define VSSM_BOX_PER_RADIUS 0.8660254f
@@ -171,6 +173,14 @@ SHARED vec2 chebyshevBlockers(vec2 moments, float t, float minVariance) {
     float p = chebyshevUpperBound(moments, t, minVariance);
     if (p >= 1.0f) return vec2(0.0f);
     return vec2(1.0f - p, moments.x - p * t);
+}
+
+// A receiver's own spread over a box: `plane` x its mean depth there, y its mean square. Its
+// variance, taken out of the box's second moment, leaves the spread of what is not the receiver:
+// a floor seen at a grazing angle otherwise reads, through Chebyshev's bound, as light, and a
+// search over it finds no blocker (docs/techniques.md, "vssm").
+SHARED vec2 withoutReceiverSpread(vec2 moments, vec2 plane) {
+    return vec2(moments.x, moments.y - max(plane.y - plane.x * plane.x, 0.0f));
 }
 
 // The light view distance of a moment depth (momentDepth's inverse: linear in both projections).

@@ -79,6 +79,21 @@ float planeTableDepth(uint kind, Receiver r, ShadowViewData view, vec2 c, float 
     return kind == MOMENTS_MSM ? 2.0 * z - 1.0 : z - 0.5;
 }
 
+// The receiver's plane over the cell [from, to] (texels) as `kind`'s table holds depths: x its
+// mean, y its mean square, by Gauss-Legendre quadrature (2 x 2 points, exact for a cubic; 3 x 3
+// moved no corpus figure). Under a spot's perspective a plane in the map's depth is not one in
+// the moments' linear depth (1 / (a + b v) across a grazing floor), so it is sampled, not
+// taken from the gradient alone.
+vec2 planeCellMoments(uint kind, Receiver r, ShadowViewData view, vec2 from, vec2 to, float size) {
+    vec2 c = 0.5 * (from + to), h = (0.5 / sqrt(3.0)) * (to - from), sum = vec2(0.0);
+    for (int j = -1; j <= 1; j += 2)
+        for (int i = -1; i <= 1; i += 2) {
+            float z = planeTableDepth(kind, r, view, c + h * vec2(i, j), size);
+            sum += 0.25 * vec2(z, z * z);
+        }
+    return sum;
+}
+
 // The summed-area soft members' settings: vssm (MOMENTS_VSM) or msm-soft (MOMENTS_MSM).
 struct SoftSettings {
     uint kind;
@@ -119,8 +134,11 @@ vec3 softKernel(usampler2DArray table, SoftSettings s, Receiver r, ShadowViewDat
                                 : vec2(clamp(1.0 - momentOcclusion(moments, t, bias), 0.0, 1.0), 0.0);
             } else {
                 float minVariance = vssm.minVariance;
-                result = search ? chebyshevBlockers(moments.xy, t, minVariance)
-                                : vec2(reduceLightBleeding(chebyshevUpperBound(moments.xy, t,
+                // The receiver's own spread is no evidence of a blocker (withoutReceiverSpread).
+                vec2 m = withoutReceiverSpread(moments.xy,
+                                               planeCellMoments(s.kind, r, view, from, to, size));
+                result = search ? chebyshevBlockers(m, t, minVariance)
+                                : vec2(reduceLightBleeding(chebyshevUpperBound(m, t,
                                                                                minVariance),
                                                            vssm.bleedReduction),
                                        0.0);
@@ -142,11 +160,14 @@ float softBlockerDistance(uint kind, vec3 found, ShadowViewData view) {
 // [Fernando 2005] on a summed-area table, each at a constant cost whatever the light's size:
 // a blocker search over the light's extent (PCSS's search radius, as a box), the average blocker
 // depth from the moments, the penumbra from similar triangles, then the filter over a box of
-// that width. `refine` searches again over the penumbra's box: blockers at the estimated depth
-// hide part of the light only from within it (at a blocker's depth, the search region is its
-// penumbra's), so far-off blockers do not widen the estimate; the narrower of the two penumbrae
-// is kept (a second estimate nearer the light comes from fewer blockers, and Chebyshev's bias
-// towards the light is then what widens it). vssm [Yang et al. 2010] bounds
+// that width. Where the light's box finds no blocker, a box of VSSM_NARROW_SEARCH texels
+// searches again: a blocker seen edge-on (a ramp under a low spot) spreads its depths over a wide
+// box so far that Chebyshev's bound reads it as light, while the texels next to the receiver
+// still say it is hidden. `refine` searches again over the penumbra's box (VSSM_REFINE_STEPS
+// times): blockers at the estimated depth hide part of the light only from within it (at a
+// blocker's depth, the search region is its penumbra's), so far-off blockers do not widen the
+// estimate; the narrowest penumbra is kept (an estimate nearer the light comes from fewer
+// blockers, and Chebyshev's bias towards the light is then what widens it). vssm [Yang et al. 2010] bounds
 // with Chebyshev; msm-soft [Peters et al. 2016] with the Hamburger reconstruction.
 vec4 shadowSoftDetail(usampler2DArray table, uint kind, Receiver r, uint mapSize,
                       ShadowViewData view) {
@@ -156,9 +177,13 @@ vec4 shadowSoftDetail(usampler2DArray table, uint kind, Receiver r, uint mapSize
     vec2 lo, hi;
     satBox(r, clamp(momentSearchRadius(view, zReceiver, mapSize), 0.5, s.cap), size, lo, hi);
     vec3 found = softKernel(table, s, r, view, lo, hi, size, true);
+    if (found.x <= VSSM_NO_BLOCKERS * found.z) {
+        satBox(r, VSSM_NARROW_SEARCH, size, lo, hi);
+        found = softKernel(table, s, r, view, lo, hi, size, true);
+    }
     if (found.x <= VSSM_NO_BLOCKERS * found.z) return vec4(1.0, 1.0, 0.0, 0.0);
     float radius = penumbraRadius(view, zReceiver, softBlockerDistance(kind, found, view), mapSize);
-    if (s.refine) {
+    for (int step = 0; step < (s.refine ? VSSM_REFINE_STEPS : 0); ++step) {
         satBox(r, VSSM_BOX_PER_RADIUS * clamp(radius, 0.5, s.cap), size, lo, hi);
         found = softKernel(table, s, r, view, lo, hi, size, true);
         if (found.x <= VSSM_NO_BLOCKERS * found.z) return vec4(1.0, 1.0, 0.0, 0.0);

@@ -7,6 +7,7 @@
 #include "penumbra/renderer.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace penumbra::shadows {
 
@@ -25,6 +26,19 @@ float planeTableDepth(uint32_t kind, const FilterProbe& r, const gpu::ShadowView
     const float z =
         gpu::momentDepth(view, gpu::receiverDepthAt(r.depth, r.gradient, c / size - r.uv, sides));
     return kind == MOMENTS_MSM ? 2.0f * z - 1.0f : z - 0.5f;
+}
+
+// planeCellMoments.
+glm::vec2 planeCellMoments(uint32_t kind, const FilterProbe& r, const gpu::ShadowViewData& view,
+                           const gpu::FrameData& f, glm::vec2 from, glm::vec2 to, float size) {
+    const glm::vec2 c = 0.5f * (from + to), h = (0.5f / std::sqrt(3.0f)) * (to - from);
+    glm::vec2 sum(0.0f);
+    for (int j = -1; j <= 1; j += 2)
+        for (int i = -1; i <= 1; i += 2) {
+            const float z = planeTableDepth(kind, r, view, f, c + h * glm::vec2(i, j), size);
+            sum += 0.25f * glm::vec2(z, z * z);
+        }
+    return sum;
 }
 
 struct SoftSettings {
@@ -65,7 +79,8 @@ glm::vec3 softKernel(const MomentTable& table, const SoftSettings& s, const gpu:
                                          0.0f);
             } else {
                 const float minVariance = p.minVariance;
-                const glm::vec2 m(moments);
+                const glm::vec2 m = gpu::withoutReceiverSpread(
+                    glm::vec2(moments), planeCellMoments(s.kind, r, view, f, from, to, size));
                 result = search ? gpu::chebyshevBlockers(m, t, minVariance)
                                 : glm::vec2(gpu::reduceLightBleeding(
                                                 gpu::chebyshevUpperBound(m, t, minVariance),
@@ -101,11 +116,15 @@ glm::vec4 softReference(uint32_t kind, const gpu::SoftParams& p, const FilterInp
     satBox(probe.uv, std::clamp(gpu::momentSearchRadius(view, zReceiver, map.size), 0.5f, s.cap),
            size, lo, hi);
     glm::vec3 found = softKernel(table, s, p, probe, view, f, lo, hi, size, true);
+    if (found.x <= VSSM_NO_BLOCKERS * found.z) {
+        satBox(probe.uv, VSSM_NARROW_SEARCH, size, lo, hi);
+        found = softKernel(table, s, p, probe, view, f, lo, hi, size, true);
+    }
     if (found.x <= VSSM_NO_BLOCKERS * found.z)
         return {1.0f, 1.0f, 0.0f, 0.0f};
     float radius =
         gpu::penumbraRadius(view, zReceiver, softBlockerDistance(kind, found, view), map.size);
-    if (s.refine) {
+    for (int step = 0; step < (s.refine ? VSSM_REFINE_STEPS : 0); ++step) {
         satBox(probe.uv, VSSM_BOX_PER_RADIUS * std::clamp(radius, 0.5f, s.cap), size, lo, hi);
         found = softKernel(table, s, p, probe, view, f, lo, hi, size, true);
         if (found.x <= VSSM_NO_BLOCKERS * found.z)

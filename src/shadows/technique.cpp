@@ -108,7 +108,7 @@ std::vector<ParameterInfo> SoftSearch::parameters() const {
             cubeRadiusParameter(cubeRadiusKey),
             {.key = subdivisionKey,
              .type = ParameterType::Int,
-             .defaultValue = 3,
+             .defaultValue = static_cast<double>(defaultSubdivision),
              .min = 1,
              .max = VSSM_MAX_SUBDIVISION,
              .unit = "sub-kernels per axis",

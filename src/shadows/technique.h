@@ -247,6 +247,7 @@ ParameterInfo cubeRadiusParameter(std::string_view key);
 // texels, the kernel subdivision and the refining second search.
 struct SoftSearch {
     std::string_view maxRadiusKey, cubeRadiusKey, subdivisionKey, refineKey;
+    int defaultSubdivision = 3; // by measurement, per member (docs/techniques.md)
     std::vector<ParameterInfo> parameters() const;
     // The cap, the subdivision, the refining search and the table's fixed-point scale (the
     // member fills in its own bound's settings).

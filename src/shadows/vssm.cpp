@@ -24,7 +24,9 @@ constexpr SummedAreaTable kTable{.rowsShader = "vssm_sum_rows.comp",
 constexpr SoftSearch kSearch{.maxRadiusKey = "vssm.maxRadius",
                              .cubeRadiusKey = "vssm.cubeRadius",
                              .subdivisionKey = "vssm.subdivision",
-                             .refineKey = "vssm.refine"};
+                             .refineKey = "vssm.refine",
+                             // 4 by measurement on the corpus's grazing spots (docs/techniques.md).
+                             .defaultSubdivision = 4};
 
 std::vector<ParameterInfo> vssmParameters() {
     std::vector<ParameterInfo> parameters = kSearch.parameters();
