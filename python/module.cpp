@@ -10,6 +10,7 @@
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
+#include "reference/field_refusal.h"
 #include "report/blur_band.h"
 #include "report/html_report.h"
 #include "report/light_mask.h"
@@ -237,6 +238,7 @@ public:
         {
             py::gil_scoped_release release;
             *result = mScene->render(options);
+            refuseUnheldField(*mScene, options, *result); // sdf.refuse: an InputError
         }
         failOnValidation();
         return {result, mLit, options, row.name};

@@ -137,7 +137,8 @@ class Renderer:
         **keywords: Any,
     ) -> Result:
         """A technique or compare row ('pcf[box7]'); parameters as params={'pcf.size': 7} or
-        pcf_size=7, checked before the device sees them (InputError)."""
+        pcf_size=7, checked before the device sees them (InputError). sdf audits its picture
+        and raises InputError where its field cannot hold the view (sdf.refuse, docs/cli.md)."""
     def reference(
         self, samples: int = 256, embree_config: str = "", gbuffer: Optional[Result] = None
     ) -> Truth:

@@ -4,7 +4,8 @@ on every family of builtin:gen/ for each seed, every technique at its defaults; 
 over the corpus and per family: the 95th percentile and the worst of acne and leak beyond blur
 (each counted only on scenes where it rests on at least --least-pixels pixels), the median
 and worst RMSE as a multiple of hard's and of pcss's on the same scene, and the worst share
-misclassified away from edges. Writes quality.json and quality.md into --out and checks the
+misclassified away from edges, and the share of scenes whose row was refused (sdf.refuse) or
+skipped, which the other figures leave out. Writes quality.json and quality.md into --out and checks the
 figures against the plan's [bounds]: exit 1 naming every figure past its bound.
 
     tools/quality.py [--plan bench/plans/quality.toml] [--seeds 1,2] [--families a,b]
@@ -66,7 +67,10 @@ def summarize(results, plan):
         for technique, row in rows.items():
             for key in (technique, f"{technique} @ {family}"):
                 g = groups.setdefault(key, {f: [] for f in FIGURES + ["vs_hard", "vs_pcss",
-                                                                     "misclassified"]})
+                                                                     "misclassified", "refused"]})
+                g["refused"].append("skipped" in row)
+                if "skipped" in row:  # refused (sdf.refuse) or past the device: no figures
+                    continue
                 for f in FIGURES:
                     if row["counts"][f]["of"] >= least:
                         g[f].append((row[f], f"{family}?seed={seed}"))
@@ -89,6 +93,8 @@ def summarize(results, plan):
             worst = max(g[f], default=(math.nan, ""))
             s[f] = {"median": percentile(values, 0.5), "worst": worst[0],
                     "worst_scene": worst[1], "scenes": len(values)}
+        s["refused"] = {"share": sum(g["refused"]) / max(len(g["refused"]), 1),
+                        "scenes": len(g["refused"])}
         summary[key] = s
     return summary
 
@@ -114,6 +120,9 @@ def check(summary, bounds):
 # nine scenes may lie above the same figure over hundreds).
 BOUNDED = ["acne_beyond_blur.worst", "leak_beyond_blur.worst", "vs_hard.worst",
            "misclassified.worst"]
+# Figures a plan bounds by hand, never proposed: the share of scenes a technique refuses
+# (sdf.refuse), which a change may push to every scene while the kept ones' figures improve.
+HAND_BOUNDED = ["refused.share"]
 
 
 def round_up(value, digits=2):
@@ -144,9 +153,11 @@ def propose_bounds(summary, techniques, factor):
 def markdown(summary, seeds):
     lines = [f"Generated corpus, seeds {', '.join(map(str, seeds))}: acne and leak beyond blur "
              "in percent (p95 / worst, scenes counted), RMSE as a multiple of hard's and pcss's "
-             "(median / worst), misclassified away from edges in percent (worst).", "",
+             "(median / worst), misclassified away from edges in percent (worst), scenes whose "
+             "row was refused or skipped in percent (the other figures leave them out).", "",
              "| technique | acne>b p95 | acne>b worst | leak>b p95 | leak>b worst | "
-             "x hard | x pcss | misclass. worst |", "|---|---|---|---|---|---|---|---|"]
+             "x hard | x pcss | misclass. worst | refused |",
+             "|---|---|---|---|---|---|---|---|---|"]
     for key in sorted(k for k in summary if "@" not in k):
         s = summary[key]
         pct = lambda v: "-" if math.isnan(v) else f"{100 * v:.2f}"
@@ -158,7 +169,7 @@ def markdown(summary, seeds):
             f"{pct(s['leak_beyond_blur']['worst'])} ({s['leak_beyond_blur']['scenes']}) | "
             f"{ratio(s['vs_hard']['median'])} / {ratio(s['vs_hard']['worst'])} | "
             f"{ratio(s['vs_pcss']['median'])} / {ratio(s['vs_pcss']['worst'])} | "
-            f"{pct(s['misclassified']['worst'])} |")
+            f"{pct(s['misclassified']['worst'])} | {pct(s['refused']['share'])} |")
     return "\n".join(lines) + "\n"
 
 

@@ -6,6 +6,7 @@
 #include "penumbra/error.h"
 #include "penumbra/reference.h"
 #include "penumbra/renderer.h"
+#include "reference/field_refusal.h"
 #include "report/blur_band.h"
 #include "report/heatmap.h"
 #include "report/html_report.h"
@@ -107,9 +108,11 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     warnOpenGeometry(scene, techniques);     // after every check
     SceneRenderer uploaded(renderer, scene); // one upload and one set of targets for all rows
     std::vector<RenderResult> results;
-    for (size_t r = 0; r < rows.size(); ++r) {
+    const size_t rendering = rows.size();
+    std::vector<size_t> refusedWhileRendering; // of `skipped`: warned once the rest is rendered
+    for (size_t r = 0, shown = 1; r < rows.size(); ++shown) {
         std::fprintf(stderr, "penumbra: rendering %s (%zu/%zu) on %s\n", rows[r].name.c_str(),
-                     r + 1, rows.size(), device.name.c_str());
+                     shown, rendering, device.name.c_str());
         // The distance field's build (sdf: once, minutes on a large scene) and warnings; not
         // each frame's stages.
         results.push_back(uploaded.render(rowOptions[r], [](const std::string& stage) {
@@ -117,7 +120,27 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                 stage.rfind("warning:", 0) == 0)
                 std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
         }));
+        try { // sdf.refuse: a row whose field cannot hold the view's casters is skipped
+            refuseUnheldField(uploaded, rowOptions[r], results.back(), [](const std::string& line) {
+                std::fprintf(stderr, "penumbra: %s\n", line.c_str());
+            });
+            ++r;
+        } catch (const InputError& e) {
+            firstRefusal = std::current_exception();
+            refusedWhileRendering.push_back(skipped.size());
+            skipped.push_back({.name = rows[r].name,
+                               .technique = std::string(techniqueName(rows[r].technique)),
+                               .skipped = e.what()});
+            results.pop_back();
+            rows.erase(rows.begin() + std::ptrdiff_t(r));
+            rowOptions.erase(rowOptions.begin() + std::ptrdiff_t(r));
+        }
     }
+    if (rows.empty())
+        std::rethrow_exception(firstRefusal); // one error line, no warning before it
+    for (size_t k : refusedWhileRendering)
+        std::fprintf(stderr, "penumbra: warning: %s skipped: %s\n", skipped[k].name.c_str(),
+                     skipped[k].skipped.c_str());
     Scene lit = scene; // the light sizes the reference must use
     applyLightSizeOverrides(lit, args.options.lightRadiusOverride, args.options.lightAngleOverride);
     const RenderResult& gbuffer = results.front(); // every row sees the same view

@@ -3,6 +3,7 @@
 #include "core/output_dir.h"
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
+#include "reference/field_refusal.h"
 #include "report/field_slice.h"
 #include "report/stats.h"
 #include "shadows/sdf_field.h"
@@ -62,6 +63,10 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     SceneRenderer sceneRenderer(renderer, scene);
     const RenderResult result = sceneRenderer.render(options, [](const std::string& stage) {
         std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
+    });
+    // sdf.refuse: an error line and no output where the field cannot hold the view's casters.
+    refuseUnheldField(sceneRenderer, options, result, [](const std::string& line) {
+        std::fprintf(stderr, "penumbra: %s\n", line.c_str());
     });
     writeOutputs(out, result,
                  {args.scene, scene, options, device, result, namingExtension(args.format)},

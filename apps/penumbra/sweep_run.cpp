@@ -2,6 +2,7 @@
 #include "sweep_run.h"
 
 #include "penumbra/error.h"
+#include "reference/field_refusal.h"
 #include "report/blur_band.h"
 #include "report/light_mask.h"
 #include "shadows/technique.h"
@@ -98,6 +99,7 @@ void measure(sweep::TaskRecord& record, const sweep::SweepTask& task, const Load
     applyRow(row, options.parameters, view.scene.bounds().radius());
     uploaded.check(options);
     const RenderResult result = uploaded.render(options);
+    refuseUnheldField(uploaded, options, result); // sdf.refuse: a failed task, with the reason
     std::vector<std::vector<uint8_t>> masks;
     for (const LightShadow& s : gbuffer.lights)
         if (s.visibilityIndex >= 0)

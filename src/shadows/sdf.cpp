@@ -63,6 +63,20 @@ const TechniqueModule& sdfModule() {
               .unit = "voxels",
               .description = "the ray starts this far from the receiver along its face normal, "
                              "out of its own surface's reach (self-shadowing)"},
+             {.key = "sdf.refuse",
+              .type = ParameterType::Float,
+              .defaultValue = 1.2,
+              .min = 0.0,
+              .max = 100.0,
+              .unit = "x hard's RMSE",
+              .description = "sdf refuses a view (an error naming the scene; a row compare "
+                             "skips) whose shadow, checked with the ground truth's rays on a grid "
+                             "of at least 128 columns of its pixels, errs more than this many "
+                             "times the hard technique's (RMSE, one grid pixel wholly wrong "
+                             "allowed besides), or lights over 0.3% of the umbra or darkens over "
+                             "0.3% of the fully lit pixels away from edges (where those stand for "
+                             "1000 pixels, as the corpus gate counts): its field cannot hold "
+                             "these casters; 0 never refuses"},
              {.key = "sdf.k",
               .type = ParameterType::Float,
               .defaultValue = 0.0,

@@ -239,3 +239,12 @@ def test_the_docs_show_the_sweep_example_as_it_is():
     root = Path(__file__).resolve().parents[2]
     example = (root / "examples" / "sweep_pcf.py").read_text()
     assert "```python\n" + example + "```" in (root / "docs" / "python.md").read_text()
+
+
+def test_sdf_refuses_a_view_its_field_cannot_hold_as_the_cli_does():
+    scene = penumbra.Scene.builtin("gen/long?seed=2")
+    r = penumbra.Renderer(scene, 256, 144, shadow_map_size=1024, validation=True)
+    with pytest.raises(penumbra.InputError, match=r"gen/long\?seed=2: sdf refuses this view"):
+        r.render("sdf")
+    kept = r.render("sdf", sdf_refuse=0)  # the user's decision: rendered without the audit
+    assert kept.visibility[0].shape == (144, 256)

@@ -49,6 +49,26 @@ def test_figures_count_only_where_they_rest_on_enough_pixels():
     assert s["hard"]["vs_hard"]["worst"] == 1.0
 
 
+def test_refused_rows_count_apart_and_leave_the_figures():
+    refused = {"skipped": "gen/long?seed=2: sdf refuses this view: ..."}
+    results = {
+        ("plates", 1): {"techniques": {"hard": row(0.02), "sdf": row(0.01, acne=0.001)}},
+        ("long", 1): {"techniques": {"hard": row(0.01), "sdf": refused}},
+        ("open", 1): {"techniques": {"hard": row(0.01), "sdf": refused}},
+    }
+    s = quality.summarize(results, {"least_pixels": 1000})
+    assert math.isclose(s["sdf"]["refused"]["share"], 2 / 3) and s["sdf"]["refused"]["scenes"] == 3
+    assert s["sdf"]["vs_hard"]["scenes"] == 1 and s["sdf"]["vs_hard"]["worst"] == 0.5
+    assert s["sdf"]["acne_beyond_blur"]["scenes"] == 1
+    assert s["hard"]["refused"]["share"] == 0.0
+    assert s["sdf @ long"]["refused"]["share"] == 1.0
+    assert quality.check(s, {"sdf": {"refused.share": 0.6}}) == [
+        "sdf refused.share = 0.66667 > 0.6 (worst: )"]
+    assert "| sdf | 0.10 | 0.10 (1) |" in quality.markdown(s, [1])
+    assert [l for l in quality.markdown(s, [1]).splitlines() if l.startswith("| sdf |")][0].endswith(
+        "| 66.67 |")
+
+
 def test_every_figure_past_its_bound_is_named_with_its_scene():
     summary = {"pcf": {"acne_beyond_blur": {"p95": 0.01, "worst": 0.02, "worst_scene": "a?seed=2"},
                        "vs_hard": {"median": 1.0, "worst": math.nan, "worst_scene": ""}}}
@@ -156,5 +176,5 @@ def test_the_plans_bounds_name_every_technique_and_only_bounded_figures():
     plan = tomllib.loads((Path(quality.ROOT) / "bench/plans/quality.toml").read_text())
     assert set(plan["bounds"]) == set(plan["techniques"])
     for technique, limits in plan["bounds"].items():
-        assert set(limits) <= set(quality.BOUNDED), technique
+        assert set(limits) <= set(quality.BOUNDED + quality.HAND_BOUNDED), technique
         assert all(v >= 0 for v in limits.values()), technique

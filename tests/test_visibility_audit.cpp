@@ -1,0 +1,212 @@
+// The audit behind sdf.refuse (src/reference/visibility_audit.h) on the CPU: which pixels it
+// reads, what it measures them against, and where it refuses. The G-buffer is a synthetic grid on
+// the plane under a sphere; the "techniques" are the ground truth itself, made wrong on purpose.
+#include "analytic_scenes.h"
+#include "penumbra/reference.h"
+#include "reference/visibility_audit.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+constexpr uint32_t kWidth = 256, kHeight = 144; // a grid every 2 pixels: 128 x 72
+
+// Pixels on the plane y = 0 over the sphere's shadow under acceptanceSun, 3.2 x 1.8 units.
+RenderResult planeView() {
+    RenderResult g{.width = kWidth, .height = kHeight};
+    for (uint32_t y = 0; y < kHeight; ++y)
+        for (uint32_t x = 0; x < kWidth; ++x) {
+            const float px = 0.4f + 3.2f * ((float(x) + 0.5f) / kWidth - 0.5f);
+            const float pz = 0.3f + 1.8f * ((float(y) + 0.5f) / kHeight - 0.5f);
+            g.position.insert(g.position.end(), {px, 0.0f, pz});
+            g.normal.insert(g.normal.end(), {0.0f, 1.0f, 0.0f});
+        }
+    return g;
+}
+
+bool gridCentre(size_t i) { // the pixel the audit reads in its 2 x 2 cell
+    return (i % kWidth) % 2 == 1 && (i / kWidth) % 2 == 1;
+}
+
+struct Views {
+    Scene scene = sphereOverPlane(acceptanceSun(6.0f));
+    RenderResult gbuffer = planeView();
+    ReferenceResult truth = computeReference(scene, gbuffer, {.samples = 256});
+    // `visibility` at the grid's centres, its opposite everywhere else: reading any other pixel
+    // of a cell shows as a large error.
+    RenderResult technique(const std::vector<float>& visibility) const {
+        RenderResult r = gbuffer;
+        r.visibility = {visibility};
+        for (size_t i = 0; i < visibility.size(); ++i)
+            if (!gridCentre(i))
+                r.visibility[0][i] = 1.0f - visibility[i];
+        return r;
+    }
+    std::vector<float> centreRays() const { // an exact hard shadow
+        std::vector<float> v;
+        for (float d : truth.occluderDistance[0])
+            v.push_back(std::isinf(d) ? 1.0f : 0.0f);
+        return v;
+    }
+};
+
+const Views& views() {
+    static const Views v;
+    return v;
+}
+
+} // namespace
+
+TEST(Audit, ReadsEachCellsCentreAgainstTheRays) {
+    const Views& v = views();
+    const RenderResult soft = v.technique(v.truth.visibility[0]);
+    const RenderResult hard = v.technique(v.centreRays());
+    const VisibilityAudit audit = auditVisibility(v.scene, soft, hard);
+    EXPECT_EQ(audit.stride, 2u);
+    EXPECT_EQ(audit.pixels, uint64_t{128} * 72);
+    // The hard shadow's error over the cells' centres, from the full view's truth: the audit's
+    // rays are another draw of the same estimate (256 rays a pixel).
+    double squared = 0.0;
+    size_t count = 0;
+    for (size_t i = 0; i < v.truth.visibility[0].size(); ++i)
+        if (gridCentre(i)) {
+            const double e = v.centreRays()[i] - v.truth.visibility[0][i];
+            squared += e * e, ++count;
+        }
+    const double expectedHard = std::sqrt(squared / double(count));
+    ASSERT_GT(expectedHard, 0.05) << "the view must hold a penumbra";
+    EXPECT_NEAR(audit.hardRmse, expectedHard, 0.1 * expectedHard);
+    // Two draws of 256 rays differ by about 0.03 RMS in the penumbra only.
+    EXPECT_LT(audit.rmse, 0.2 * expectedHard);
+    EXPECT_EQ(auditRefusal(audit, 1.5), "");
+    // The same pictures swapped: the audited one now errs as hard does, against a perfect hard.
+    const VisibilityAudit swapped = auditVisibility(v.scene, hard, soft);
+    EXPECT_NEAR(swapped.rmse, audit.hardRmse, 1e-9);
+    EXPECT_NEAR(swapped.hardRmse, audit.rmse, 1e-9);
+    EXPECT_NE(auditRefusal(swapped, 1.5), "");
+    EXPECT_EQ(auditRefusal(swapped, 0.0), "") << "sdf.refuse=0 never refuses";
+}
+
+TEST(Audit, CountsTheShadowLostAndAdded) {
+    const Views& v = views();
+    const RenderResult hard = v.technique(v.centreRays());
+    const std::vector<float> ones(size_t{kWidth} * kHeight, 1.0f), zeros(ones.size(), 0.0f);
+    const VisibilityAudit lit = auditVisibility(v.scene, v.technique(ones), hard);
+    EXPECT_EQ(lit.lost, 1.0);
+    EXPECT_EQ(lit.added, 0.0);
+    const VisibilityAudit dark = auditVisibility(v.scene, v.technique(zeros), hard);
+    EXPECT_EQ(dark.lost, 0.0);
+    EXPECT_EQ(dark.added, 1.0);
+    // compare's leak and acne, away from the edges: every settled umbra pixel leaks in the lit
+    // picture, every settled lit one is acne in the dark one; a soft shadow that is right has
+    // neither.
+    EXPECT_GT(lit.umbra, 100u);
+    EXPECT_EQ(lit.leaked, lit.umbra);
+    EXPECT_EQ(lit.acne, 0u);
+    EXPECT_GT(dark.fullyLit, 1000u);
+    EXPECT_EQ(dark.acne, dark.fullyLit);
+    EXPECT_EQ(dark.leaked, 0u);
+    EXPECT_EQ(dark.umbra, lit.umbra);
+    const VisibilityAudit right =
+        auditVisibility(v.scene, v.technique(v.truth.visibility[0]), hard);
+    EXPECT_EQ(right.leaked, 0u);
+    EXPECT_EQ(right.acne, 0u);
+
+    const std::string reason = auditRefusal(lit, 1.5);
+    EXPECT_NE(reason.find("loses 100.0% of the shadowed pixels"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("sdf.refuse=0"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("sdf.resolution"), std::string::npos) << reason;
+}
+
+// Under a sun without size the umbra's cells border lit ones: those on the edge are left out, as
+// compare leaves out pixels within 2 of a shadow's edge.
+TEST(Audit, LeavesTheUmbrasEdgeOut) {
+    const Scene scene = sphereOverPlane(acceptanceSun(0.0f));
+    RenderResult view = planeView();
+    const ReferenceResult truth = computeReference(scene, view, {.samples = 1});
+    view.visibility = {std::vector<float>(size_t{kWidth} * kHeight, 1.0f)};
+    const VisibilityAudit audit = auditVisibility(scene, view, view);
+    const auto shadowed = [&](int x, int y) { // grid cell (x, y), off the grid: not
+        return x >= 0 && y >= 0 && x < int(kWidth / 2) && y < int(kHeight / 2) &&
+               truth.visibility[0][size_t(2 * y + 1) * kWidth + size_t(2 * x + 1)] == 0.0f;
+    };
+    uint64_t cells = 0, inside = 0;
+    for (int y = 0; y < int(kHeight / 2); ++y)
+        for (int x = 0; x < int(kWidth / 2); ++x)
+            if (shadowed(x, y)) {
+                ++cells;
+                const bool edge = (x > 0 && !shadowed(x - 1, y)) ||
+                                  (x + 1 < int(kWidth / 2) && !shadowed(x + 1, y)) ||
+                                  (y > 0 && !shadowed(x, y - 1)) ||
+                                  (y + 1 < int(kHeight / 2) && !shadowed(x, y + 1));
+                inside += !edge;
+            }
+    ASSERT_GT(cells, inside + 20) << "the view must hold an edge";
+    EXPECT_EQ(audit.umbra, inside);
+    EXPECT_EQ(audit.leaked, inside);
+}
+
+TEST(Audit, CountsOnlyThePixelsTheLightsMaskKeeps) {
+    const Views& v = views();
+    const RenderResult hard = v.technique(v.centreRays());
+    std::vector<std::vector<uint8_t>> left(1);
+    for (size_t i = 0; i < size_t{kWidth} * kHeight; ++i)
+        left[0].push_back(i % kWidth < kWidth / 2);
+    // The left half of the view: wrong everywhere, which the audit counts; the right half read
+    // exactly, which it may not count.
+    std::vector<float> visibility = v.truth.visibility[0];
+    for (size_t i = 0; i < visibility.size(); ++i)
+        if (i % kWidth < kWidth / 2)
+            visibility[i] = 1.0f - visibility[i];
+    const VisibilityAudit audit = auditVisibility(v.scene, v.technique(visibility), hard, left);
+    EXPECT_EQ(audit.pixels, uint64_t{64} * 72);
+    EXPECT_GT(audit.rmse, 0.3);
+}
+
+TEST(Audit, RefusesPastTheLimitAndTheSlack) {
+    // allowed^2 = (1.5 x 0.02)^2 + 1 / 10000 = 0.001: 0.031623 RMSE.
+    VisibilityAudit a{.stride = 3, .pixels = 10000, .rmse = 0.0316, .hardRmse = 0.02};
+    EXPECT_EQ(auditRefusal(a, 1.5), "");
+    a.rmse = 0.0317;
+    EXPECT_NE(auditRefusal(a, 1.5), "");
+    EXPECT_EQ(auditRefusal(a, 1.6), ""); // sqrt(0.001024 + 0.0001) = 0.0335
+    // Nothing measured: nothing to refuse.
+    EXPECT_EQ(auditRefusal(VisibilityAudit{.rmse = 1.0}, 1.5), "");
+    // A view whose hard shadow is exact on the grid (a light without size): one wrong pixel of
+    // 4000 is within the slack, two are not.
+    VisibilityAudit point{
+        .stride = 3, .pixels = 4000, .rmse = std::sqrt(0.99 / 4000), .hardRmse = 0};
+    EXPECT_EQ(auditRefusal(point, 1.5), "");
+    point.rmse = std::sqrt(2.0 / 4000);
+    EXPECT_NE(auditRefusal(point, 1.5), "");
+}
+
+TEST(Audit, RefusesALeakOrAcneAsTheGateCountsThem) {
+    // A grid every 2 pixels: 250 grid pixels stand for the gate's 1000. 0.3% of 1000 is 3, one
+    // pixel allowed besides.
+    VisibilityAudit a{.stride = 2, .pixels = 10000, .umbra = 1000, .leaked = 4};
+    EXPECT_EQ(auditRefusal(a, 1.2), "");
+    a.leaked = 5;
+    const std::string leak = auditRefusal(a, 1.2);
+    EXPECT_NE(leak.find("it lights 0.50% of the umbra (5 of 1000 pixels)"), std::string::npos)
+        << leak;
+    EXPECT_EQ(auditRefusal(a, 0.0), "") << "sdf.refuse=0 never refuses";
+    a.umbra = 249, a.leaked = 100; // too few to judge, as the gate's 1000
+    EXPECT_EQ(auditRefusal(a, 1.2), "");
+    a.umbra = 250;
+    EXPECT_NE(auditRefusal(a, 1.2), "");
+    a.stride = 3; // 1000 / 9 = 111 grid pixels suffice
+    a.umbra = 112, a.leaked = 2;
+    EXPECT_NE(auditRefusal(a, 1.2), "");
+    VisibilityAudit acne{.stride = 2, .pixels = 10000, .fullyLit = 2000, .acne = 7};
+    EXPECT_EQ(auditRefusal(acne, 1.2), "");
+    acne.acne = 8;
+    const std::string dark = auditRefusal(acne, 1.2);
+    EXPECT_NE(dark.find("it darkens 0.40% of the fully lit pixels (8 of 2000)"), std::string::npos)
+        << dark;
+}
