@@ -213,6 +213,43 @@ TEST(Cascades, StabilizedCascadesKeepTheirTexelGridAsTheCameraMovesAndTurns) {
     EXPECT_LT(a[0].texelWorldSize, before[0].texelWorldSize);
 }
 
+// A band that follows the light's size holds the light's cone over the scene's depth once it has
+// widened the window, with no texel to spare; never more than its cap, and the fixed texels
+// beyond it.
+TEST(Cascades, ALightsGuardBandHoldsItsConeWithNoTexelToSpare) {
+    const float n = 1024.0f;
+    for (float half : {0.5f, 7.0f, 120.0f})
+        for (float depth : {1.0f, 40.0f, 900.0f})
+            for (float size : {0.0f, 0.002f, 0.0175f, 0.2f}) {
+                const GuardBand band(400u, size, 4u);
+                const float g = band.cascadeTexels(half, depth, n);
+                const float reach = depth * size;
+                const auto holds = [&](float texels) {
+                    // The widened window's texel, and the cone's reach in those texels.
+                    return reach / (2.0f * half / (n - 2.0f * (texels + 4.0f))) <= texels + 1e-3f;
+                };
+                if (g >= 256.0f) { // a quarter of the map: the cap
+                    EXPECT_EQ(g, 256.0f);
+                    continue;
+                }
+                EXPECT_TRUE(holds(g - 4.0f)) << half << " " << depth << " " << size;
+                if (g > 4.0f)
+                    EXPECT_FALSE(holds(g - 5.0f)) << half << " " << depth << " " << size;
+                else
+                    EXPECT_EQ(reach, 0.0f);
+            }
+    EXPECT_EQ(GuardBand(20u, 0.1f, 4u).cascadeTexels(1.0f, 1000.0f, n), 20.0f); // capped
+    EXPECT_EQ(GuardBand(20u).cascadeTexels(1.0f, 0.0f, n), 20.0f); // not following: the cap
+    // Cascades fitted with it: finer texels under a small sun than with the widest band.
+    const Camera c = camera({3, 1.7f, -2}, 20.0f);
+    const CascadeSettings settings{.count = 4, .lambda = 0.9f, .blend = 0.1f};
+    const auto widest = fitCascades(kSun, kField, c, 1.5f, 1024, settings, 260u);
+    const auto small = fitCascades(kSun, kField, c, 1.5f, 1024, settings, GuardBand(260u, 0.0f, 4u));
+    for (size_t i = 0; i < widest.size(); ++i) // the far ones may hold the whole scene
+        EXPECT_LE(small[i].texelWorldSize, widest[i].texelWorldSize * 1.0001f) << i;
+    EXPECT_LT(small[0].texelWorldSize, 0.6f * widest[0].texelWorldSize);
+}
+
 TEST(Cascades, NoCascadeIsCoarserThanOneMapOverTheScene) {
     // A small scene seen from close by: the far slices are wider than the whole scene.
     const Bounds small{.min = {-2, 0, -2}, .max = {2, 1, 2}};

@@ -184,7 +184,10 @@ TEST(Checkerboard, LongListsTakeRowsOfGroups) {
 // The ranges by light kind.
 TEST(Checkerboard, PointLightsTakeTheCubeRange) {
     const shadows::Checkerboard c{.runs = true, .range = 0.1f, .cubeRange = 0.3f};
-    EXPECT_EQ(c.rangeFor(LIGHT_POINT), 0.3f);
-    EXPECT_EQ(c.rangeFor(LIGHT_SPOT), 0.1f);
-    EXPECT_EQ(c.rangeFor(LIGHT_DIRECTIONAL), 0.1f);
+    EXPECT_EQ(c.rangeFor(LIGHT_POINT, true), 0.3f);
+    EXPECT_EQ(c.rangeFor(LIGHT_SPOT, true), 0.1f);
+    EXPECT_EQ(c.rangeFor(LIGHT_DIRECTIONAL, true), 0.1f);
+    // Under a light without size no pixel is filled, whatever agrees.
+    for (uint32_t type : {LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL})
+        EXPECT_LT(c.rangeFor(type, false), 0.0f);
 }

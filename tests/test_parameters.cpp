@@ -454,6 +454,35 @@ TEST(TechniqueModules, CubeGuardBandsHoldEveryKernel) {
     EXPECT_EQ(shadows::blurRadii(shadows::hardModule(), defaults), std::make_pair(0.5, -1.0));
 }
 
+TEST(TechniqueModules, GuardBandsFollowTheLightOnlyWhereTheFootprintDoes) {
+    const ParameterValues defaults; // bias.normal 0.3: one texel
+    const Light sun{.type = LightType::Directional, .angularDiameter = 2.0f},
+        noSun{.type = LightType::Directional}, bulb{.type = LightType::Point, .radius = 0.3f},
+        noBulb{.type = LightType::Point};
+    // smrt's rays stay in the light's cone: its band is the cone's, capped by its march, one
+    // bilinear tap's (hard's) beyond it.
+    const GuardBand smrtSun = shadows::viewGuardBand(shadows::smrtModule(), defaults, sun);
+    EXPECT_EQ(smrtSun.texels, 257u + 2u + 1u);
+    EXPECT_FLOAT_EQ(smrtSun.lightSize, std::tan(glm::radians(1.0f)));
+    EXPECT_EQ(smrtSun.fixedTexels, shadows::viewGuardTexels(shadows::hardModule(), defaults));
+    EXPECT_EQ(shadows::viewGuardBand(shadows::smrtModule(), defaults, noSun).lightSize, 0.0f);
+    EXPECT_FLOAT_EQ(shadows::viewGuardBand(shadows::smrtModule(), defaults, bulb).lightSize, 0.3f);
+    // A cube face: the widest under a bulb with size, one tap under a point.
+    EXPECT_EQ(shadows::viewGuardBand(shadows::smrtModule(), defaults, bulb).cubeFaceTexels(1024),
+              256.0f); // a quarter of the face at most
+    EXPECT_EQ(shadows::viewGuardBand(shadows::smrtModule(), defaults, noBulb).cubeFaceTexels(1024),
+              4.0f);
+    // pcss filters at least half a texel and searches its cap: its band stays the widest.
+    for (const Light& light : {sun, noSun, bulb, noBulb}) {
+        const GuardBand pcss = shadows::viewGuardBand(shadows::pcssModule(), defaults, light);
+        EXPECT_LT(pcss.lightSize, 0.0f);
+        EXPECT_EQ(pcss.texels, shadows::viewGuardTexels(shadows::pcssModule(), defaults,
+                                                        light.type == LightType::Point));
+        EXPECT_EQ(pcss.cubeFaceTexels(1024), static_cast<float>(pcss.texels));
+        EXPECT_EQ(pcss.cascadeTexels(10.0f, 50.0f, 1024), static_cast<float>(pcss.texels));
+    }
+}
+
 TEST(TechniqueModules, ChoiceListsAreTheShadersOwnTables) {
     const std::pair<const char*, std::span<const char* const>> lists[] = {
         {"pcf.filter", gpu::kFilterChoices},

@@ -203,7 +203,7 @@ TEST(LightSpace, CubeFacesHoldEveryDirectionInsideTheirGuardBand) {
     const uint32_t size = 256, guard = 20;
     const float nearest = 0.5f;
     const std::vector<LightProjection> faces =
-        fitLightViews(bulb, scene, size, {.guardTexels = guard, .nearestSurface = nearest});
+        fitLightViews(bulb, scene, size, {.guard = guard, .nearestSurface = nearest});
     ASSERT_EQ(faces.size(), kCubeFaces);
     const char* names[] = {"+x", "-x", "+y", "-y", "+z", "-z"};
     const float tanHalf = 256.0f / (256.0f - 40.0f);
@@ -253,7 +253,7 @@ TEST(LightSpace, CubeFacesHonourRangeAndCapTheGuardBand) {
     const Light bulb{.type = LightType::Point, .position = {0, 0, 0}, .range = 4.0f};
     const Bounds scene{.min = {-50, -50, -50}, .max = {50, 50, 50}};
     const std::vector<LightProjection> faces =
-        fitLightViews(bulb, scene, 64, {.guardTexels = 1000, .nearestSurface = 1.0f});
+        fitLightViews(bulb, scene, 64, {.guard = 1000u, .nearestSurface = 1.0f});
     for (const LightProjection& face : faces) {
         EXPECT_NEAR(face.farPlane, 4.0f * 1.001f, 1e-4f) << face.name;
         // A guard band past a quarter of the map is capped there: tangent 2.

@@ -287,29 +287,49 @@ TEST_F(FilterTest, SmrtIsTheHardTestUnderALightWithoutSize) {
 }
 
 // The same in whole renders at smrt's defaults, against the exact truth of a light without size
-// (one ray a pixel): a spot, a sun (cascades) and a bulb (cube faces). Where its views are
-// hard's (the spot) the images are equal; the sun's cascades and the bulb's faces are fitted
-// for smrt's reach (a wider guard band, a coarser texel), which moves a few pixels. Measured
-// (lavapipe, 320x180): spot 0.0413% = 0.0413%, sun 0.0482% against 0.0314%, bulb 0.0183% =
-// 0.0183%; before, the march's own slack read 0.3% against hard's 0.1% on generated scenes.
+// (one ray a pixel): a spot, a sun (cascades) and bulbs (cube faces), built-in and generated.
+// Its views are fitted as hard's there (a band of one tap, not its march's: GuardBand), and no
+// pixel is filled from its neighbours (Checkerboard::rangeFor), so every pixel reads as hard's:
+// the same bits but where its filter evens out a sun's cascade blend (values between 0 and 1 on
+// either side of 0.5 stay there). Before (lavapipe, 320x180): the sun 0.0482% misclassified
+// against hard's 0.0314%, gen/plates 1 0.361% against 0.254%, gen/clutter 2 0.224% against 0.078%.
 TEST_F(QualityTest, SmrtEqualsHardUnderLightsWithoutSize) {
     const TruthSetup setups[] = {
         {.scene = "builtin:spot", .radius = 0.0f, .width = 320, .height = 180, .samples = 1},
         {.scene = "builtin:showcase", .angle = 0.0f, .width = 320, .height = 180, .samples = 1},
-        {.scene = "builtin:room", .radius = 0.0f, .width = 320, .height = 180, .samples = 1}};
+        {.scene = "builtin:room", .radius = 0.0f, .width = 320, .height = 180, .samples = 1},
+        {.scene = "builtin:gen/plates?seed=1", .radius = 0.0f, .angle = 0.0f, .width = 320,
+         .height = 180, .samples = 1},
+        {.scene = "builtin:gen/clutter?seed=2", .radius = 0.0f, .angle = 0.0f, .width = 320,
+         .height = 180, .samples = 1}};
     for (const TruthSetup& setup : setups) {
         const Truth t = groundTruth(setup);
         const RenderResult hardRender = renderRow(t, Technique::Hard, {});
         const RenderResult smrtRender = renderRow(t, Technique::Smrt, {});
         const ErrorMetrics hard = errorOf(t, hardRender), smrt = errorOf(t, smrtRender);
-        std::printf("%-18s misclassified hard %.4f%% smrt %.4f%%\n", setup.scene.c_str(),
-                    100 * hard.misclassified, 100 * smrt.misclassified);
+        const std::vector<float>&a = smrtRender.visibility.at(0), &b = hardRender.visibility.at(0);
+        ASSERT_EQ(a.size(), b.size());
+        size_t flipped = 0, moved = 0;
+        for (size_t i = 0; i < a.size(); ++i) {
+            if (std::isnan(a[i]) || std::isnan(b[i])) {
+                EXPECT_EQ(std::isnan(a[i]), std::isnan(b[i])) << setup.scene;
+                continue;
+            }
+            flipped += (a[i] < 0.5f) != (b[i] < 0.5f);
+            moved += a[i] != b[i];
+            const bool between = (a[i] > 0.0f && a[i] < 1.0f) || (b[i] > 0.0f && b[i] < 1.0f);
+            if (a[i] != b[i]) { // only where hard blends cascades
+                EXPECT_TRUE(between) << setup.scene << " pixel " << i << ": " << a[i]
+                                     << " against " << b[i];
+            }
+        }
+        std::printf("%-26s misclassified hard %.4f%% smrt %.4f%%, %zu pixels moved\n",
+                    setup.scene.c_str(), 100 * hard.misclassified, 100 * smrt.misclassified,
+                    moved);
         EXPECT_GT(hard.misclassified, 0.0) << setup.scene << ": edges to get wrong";
-        EXPECT_LE(std::abs(smrt.misclassified - hard.misclassified), 0.0005) << setup.scene;
-        if (setup.scene == "builtin:spot") {
-            const std::vector<float>&a = smrtRender.visibility.at(0),
-                  &b = hardRender.visibility.at(0);
-            ASSERT_EQ(a.size(), b.size());
+        EXPECT_EQ(flipped, 0u) << setup.scene;
+        EXPECT_LE(moved, a.size() / 1000) << setup.scene; // a blend band's few
+        if (t.scene.lights.front().type != LightType::Directional) {
             // memcmp: the background's NaNs are equal bits, never equal floats.
             EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(float))) << setup.scene;
         }

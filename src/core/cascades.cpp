@@ -68,7 +68,7 @@ glm::vec2 stableDepthRange(glm::vec2 range, const Camera& camera) {
 
 std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
                                          const Camera& camera, float aspect, uint32_t mapSize,
-                                         const CascadeSettings& s, uint32_t guardTexels,
+                                         const CascadeSettings& s, const GuardBand& guardBand,
                                          glm::vec2 visibleDepths) {
     const ViewFrustum frame = viewFrustum(camera, aspect);
     glm::vec2 range =
@@ -94,17 +94,18 @@ std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
     const glm::vec2 sceneHalf = 0.5f * (glm::vec2(sceneHi) - glm::vec2(sceneLo)) + 1e-4f;
     const float pad = 1e-4f * std::max(zHi - zLo, 1e-3f);
     const float n = static_cast<float>(mapSize);
-    const float guard = std::min(static_cast<float>(guardTexels), 0.25f * n);
-    const float widen = n / (n - 2.0f * guard); // the guard band around the slice's window
+    const float sceneDepth = zHi - zLo + 2.0f * pad; // along the light
 
     std::vector<LightProjection> cascades;
     for (uint32_t i = 0; i < s.count; ++i) {
         const float a = i == 0 ? d[0] : d[i] - s.blend * (d[i] - d[i - 1]);
         const float b = d[i + 1];
         glm::vec2 centre, half;
+        float guard = 0.0f; // texels
         if (s.stabilize) {
             const auto [sphereCentre, radius] = sliceSphere(frame, a, b);
-            half = glm::vec2(radius * widen);
+            guard = guardBand.cascadeTexels(radius, sceneDepth, n);
+            half = glm::vec2(radius * n / (n - 2.0f * guard)); // the band around the slice
             const float texel = 2.0f * half.x / n;
             centre = glm::vec2(rotation * glm::vec4(sphereCentre, 1.0f));
             centre = glm::floor(centre / texel) * texel; // whole texels: the grid does not slide
@@ -115,7 +116,9 @@ std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
                 lo = glm::min(lo, p), hi = glm::max(hi, p);
             }
             centre = 0.5f * (lo + hi);
-            half = glm::vec2(0.5f * std::max(hi.x - lo.x, hi.y - lo.y) * widen);
+            const float inner = 0.5f * std::max(hi.x - lo.x, hi.y - lo.y);
+            guard = guardBand.cascadeTexels(inner, sceneDepth, n);
+            half = glm::vec2(inner * n / (n - 2.0f * guard));
         }
         // Never coarser than one map over the whole scene: past the scene's box there is
         // nothing to shadow, so along an axis where a cascade is wider than the scene it takes

@@ -26,11 +26,11 @@ glm::vec2 stableDepthRange(glm::vec2 range, const Camera& camera);
 // Every cascade of `sun` for `camera` (image aspect `aspect`), nearest first, splitting
 // `visibleDepths` (visibleDepthRange(); when empty, cameraDepthRange()). Each view carries
 // its slice (splitNear, splitFar, blendStart: camera view distances) and kernelScale = the
-// first cascade's texel size over its own; `guardTexels` are kept free around each slice. No
-// cascade is wider than the scene's box seen from the sun.
+// first cascade's texel size over its own; `guard` is kept free around each slice
+// (GuardBand::cascadeTexels). No cascade is wider than the scene's box seen from the sun.
 std::vector<LightProjection> fitCascades(const Light& sun, const Bounds& scene,
                                          const Camera& camera, float aspect, uint32_t mapSize,
-                                         const CascadeSettings& settings, uint32_t guardTexels,
+                                         const CascadeSettings& settings, const GuardBand& guard,
                                          glm::vec2 visibleDepths = {1.0f, 0.0f});
 
 } // namespace penumbra

@@ -49,6 +49,26 @@ LightProjection fitDirectional(const Light& light, const Bounds& scene, uint32_t
     return p;
 }
 
+float GuardBand::cascadeTexels(float halfWindow, float depth, float n) const {
+    const float widest = std::min(static_cast<float>(texels), 0.25f * n);
+    if (lightSize < 0.0f)
+        return widest;
+    // The light's cone from a receiver reaches `reach` world units across before the near plane.
+    // c texels hold it once the band (c + f texels, f the fixed ones) widens the window to
+    // n / (n - 2 (c + f)) of itself: c >= reach (n - 2 c - 2 f) / (2 halfWindow), least at
+    // c = reach (n - 2 f) / (2 halfWindow + 2 reach).
+    const auto f = static_cast<float>(fixedTexels);
+    const float reach = depth * lightSize;
+    const float cone = std::ceil(reach * (n - 2.0f * f) / (2.0f * halfWindow + 2.0f * reach));
+    return std::min(widest, cone + f);
+}
+
+float GuardBand::cubeFaceTexels(float n) const {
+    // With size, the cone from a receiver near the light spans most of a face: the widest band.
+    const float widest = std::min(static_cast<float>(texels), 0.25f * n);
+    return lightSize == 0.0f ? std::min(widest, static_cast<float>(fixedTexels)) : widest;
+}
+
 LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSize,
                         float nearestSurface) {
     const glm::vec3 dir = glm::normalize(light.direction);
@@ -94,7 +114,7 @@ LightProjection fitCubeFace(const Light& light, const Bounds& scene, uint32_t ma
     // The inner mapSize - 2 guard texels span the 90-degree face (tangent -1..1); the guard band
     // widens it to tangent +-t.
     const float n = static_cast<float>(mapSize);
-    const float guard = std::min(static_cast<float>(fitting.guardTexels), 0.25f * n);
+    const float guard = fitting.guard.cubeFaceTexels(n);
     const float tanHalf = n / (n - 2.0f * guard);
     p.yfov = 2.0f * std::atan(tanHalf);
     float farthest = 0.0f;
@@ -122,7 +142,7 @@ std::vector<LightProjection> fitLightViews(const Light& light, const Bounds& sce
     if (light.type == LightType::Directional)
         return fitting.camera && fitting.cascades.count > 1
                    ? fitCascades(light, scene, *fitting.camera, fitting.aspect, mapSize,
-                                 fitting.cascades, fitting.guardTexels, fitting.visibleDepths)
+                                 fitting.cascades, fitting.guard, fitting.visibleDepths)
                    : std::vector<LightProjection>{fitDirectional(light, scene, mapSize)};
     if (light.type == LightType::Spot)
         return {fitSpot(light, scene, mapSize, fitting.nearestSurface)};

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -51,12 +52,32 @@ struct CascadeSettings {
 };
 inline constexpr uint32_t kMaxCascades = 8; // MAX_CASCADES in shaders/include/light_geometry.h
 
+// Texels of each view kept free at its border for filter kernels: a cube face's beyond its 90
+// degrees (a kernel centred in the face reads the geometry across the edge from the same map), a
+// cascade's around its slice (at most mapSize / 4 either way).
+struct GuardBand {
+    uint32_t texels = 0; // the most a technique's kernels reach (its widest footprint)
+    // When >= 0, its kernels reach no further than the light seen from the receiver (the cone of
+    // rays towards it, cut at the near plane), plus fixedTexels: lightSize is the light's size as
+    // the views record it (tan of a sun's half angle, a radius). A cascade then keeps the texels
+    // that cone spans over the scene's depth, a cube face fixedTexels under a light without
+    // size; never more than `texels`. Finer texels where the light is small.
+    float lightSize = -1.0f;
+    uint32_t fixedTexels = 0;
+    GuardBand() = default;
+    GuardBand(uint32_t widest) : texels(widest) {} // NOLINT: a plain guard converts
+    GuardBand(uint32_t widest, float size, uint32_t fixed)
+        : texels(widest), lightSize(size), fixedTexels(fixed) {}
+    // A cascade's band, in texels of n: its window 2 halfWindow world units across before the
+    // band widens it, the scene `depth` world units deep along the light.
+    float cascadeTexels(float halfWindow, float depth, float n) const;
+    // A cube face's band, in texels of n.
+    float cubeFaceTexels(float n) const;
+};
+
 // What a light's views need beyond the scene bounds.
 struct ViewFitting {
-    // Texels of each view kept free at its border for filter kernels: a cube face's beyond its 90
-    // degrees (a kernel centred in the face reads the geometry across the edge from the same
-    // map), a cascade's around its slice (at most mapSize / 4).
-    uint32_t guardTexels = 0;
+    GuardBand guard;
     // The distance from the light to the nearest surface: the near plane is placed just inside
     // it (infinity when unknown: the near plane then follows the scene bounds).
     float nearestSurface = 0.0f;

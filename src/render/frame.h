@@ -28,6 +28,7 @@ struct LightDispatch {
     gpu::VisibilityPush push;
     uint32_t type;  // LIGHT_*
     uint32_t views; // how many, from push.light.w
+    bool sized;     // the light has a size (Light::hasSize)
 };
 
 // Virtual maps: a page to render this frame, its projection (pageViewProj) and its texels'

@@ -126,7 +126,8 @@ ShadowViews shadowViewsOf(const std::vector<Light>& lights, const RenderOptions&
                           const ViewInputs& in) {
     ShadowViews out;
     const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
-    // Cascades' and cube faces' guard bands: the soft members cap a cube face's kernels apart.
+    // Cascades' and cube faces' guard bands (virtual maps: the widest; fitted views: the
+    // light's size may narrow them): the soft members cap a cube face's kernels apart.
     const uint32_t cascadeGuard = viewGuardTexels(module, o.parameters),
                    cubeGuard = viewGuardTexels(module, o.parameters, true);
     const CascadeSettings cascades{.count =
@@ -148,7 +149,7 @@ ShadowViews shadowViewsOf(const std::vector<Light>& lights, const RenderOptions&
             // coarsest (one page): a kernel at a face's edge reads that face at every level.
             const std::vector<VirtualLevel> levels =
                 virtualLevels(light, i, in.bounds, in.camera.position, virtualMaps,
-                              {.guardTexels = guard * virtualMaps.pagesPerSide(),
+                              {.guard = guard * virtualMaps.pagesPerSide(),
                                .nearestSurface = in.nearestSurface[i]},
                               out.tableEntries);
             for (const VirtualLevel& level : levels) {
@@ -170,12 +171,14 @@ ShadowViews shadowViewsOf(const std::vector<Light>& lights, const RenderOptions&
                 {.push = {.light = {i, static_cast<uint32_t>(info.visibilityIndex),
                                     virtualMaps.size, firstView}},
                  .type = lightTypeOf(light),
-                 .views = static_cast<uint32_t>(levels.size())});
+                 .views = static_cast<uint32_t>(levels.size()),
+                 .sized = light.hasSize()});
             info.projection = "virtual";
         } else if (castsShadowMap(light)) {
             info.visibilityIndex = static_cast<int>(out.dispatches.size());
             const bool cascaded = light.type == LightType::Directional && cascades.count > 1;
-            const ViewFitting fitting{.guardTexels = guard,
+            const GuardBand band = viewGuardBand(module, o.parameters, light);
+            const ViewFitting fitting{.guard = band,
                                       .nearestSurface = in.nearestSurface[i],
                                       .camera = &in.camera,
                                       .aspect = in.aspect,
@@ -196,10 +199,14 @@ ShadowViews shadowViewsOf(const std::vector<Light>& lights, const RenderOptions&
                 {.push = {.light = {i, static_cast<uint32_t>(info.visibilityIndex), o.shadowMapSize,
                                     firstView}},
                  .type = lightTypeOf(light),
-                 .views = static_cast<uint32_t>(out.views.size()) - firstView});
+                 .views = static_cast<uint32_t>(out.views.size()) - firstView,
+                 .sized = light.hasSize()});
             info.projection =
                 light.type == LightType::Point ? "cube" : info.views.front().projection;
-            info.guardTexels = light.type == LightType::Point ? guard : 0;
+            info.guardTexels = light.type == LightType::Point
+                                   ? static_cast<uint32_t>(band.cubeFaceTexels(
+                                         static_cast<float>(o.shadowMapSize)))
+                                   : 0;
         }
         out.lights.push_back(lightData(light, info.visibilityIndex, firstView,
                                        static_cast<uint32_t>(out.views.size()) - firstView,

@@ -12,7 +12,9 @@
 
 namespace penumbra::shadows {
 
-float Checkerboard::rangeFor(uint32_t lightType) const {
+float Checkerboard::rangeFor(uint32_t lightType, bool sized) const {
+    if (!sized)
+        return -1.0f;
     return lightType == LIGHT_POINT ? cubeRange : range;
 }
 

@@ -530,6 +530,8 @@ const TechniqueModule& smrtModule() {
         .modelsLightSize = true,
         .blurRadiusTexels =
             [](const ParameterValues& p) { return p.number("smrt.maxRadius") + 1.0; },
+        // Its rays stay in the light's cone; a light without size is the hard test.
+        .footprintFollowsLight = true,
         .readsVirtualMaps = true,
         .visibilityFilter =
             [](const ParameterValues& p) {

@@ -261,15 +261,32 @@ double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& 
     return std::max(views, cubeFaces);
 }
 
+namespace {
+// A footprint's guard: a bilinear tap reads 1.5 texels past its centre; the normal offset moves
+// the receiver up to bias.normal texels after its face was chosen.
+uint32_t guardTexelsOf(double footprint, const ParameterValues& params) {
+    return static_cast<uint32_t>(std::ceil(footprint) + 2.0 +
+                                 std::ceil(params.number("bias.normal")));
+}
+} // namespace
+
 uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params,
                          bool cubeFace) {
     const double footprint = cubeFace && module.cubeRadiusTexels ? module.cubeRadiusTexels(params)
                              : module.blurRadiusTexels           ? module.blurRadiusTexels(params)
                                                                  : 0.0;
-    // A bilinear tap reads 1.5 texels past its centre; the normal offset moves the receiver up to
-    // bias.normal texels after its face was chosen.
-    return static_cast<uint32_t>(std::ceil(footprint) + 2.0 +
-                                 std::ceil(params.number("bias.normal")));
+    return guardTexelsOf(footprint, params);
+}
+
+GuardBand viewGuardBand(const TechniqueModule& module, const ParameterValues& params,
+                        const Light& light) {
+    const uint32_t widest = viewGuardTexels(module, params, light.type == LightType::Point);
+    if (!module.footprintFollowsLight)
+        return widest;
+    const float size = light.type == LightType::Directional
+                           ? std::tan(0.5f * glm::radians(light.angularDiameter))
+                           : light.radius;
+    return {widest, size, guardTexelsOf(0.5, params)}; // one tap, as hard's
 }
 
 std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,

@@ -7,6 +7,7 @@
 // shaders/include/technique_list.h and its shader include (docs/architecture.md, "Adding a
 // technique").
 #include "bindings.h"
+#include "core/light_space.h"
 #include "frame_block.h"
 #include "light_geometry.h"
 #include "params_tables.h"
@@ -156,7 +157,9 @@ struct VisibilityFilter {
 struct Checkerboard {
     bool runs = false;
     float range = 0.0f, cubeRange = 0.0f;
-    float rangeFor(uint32_t lightType) const;
+    // Under a light without size none (a negative range: every pixel traced), since a filled
+    // pixel can only lose what its neighbours miss where the exact answer is as cheap.
+    float rangeFor(uint32_t lightType, bool sized) const;
 };
 
 struct TechniqueModule {
@@ -184,6 +187,11 @@ struct TechniqueModule {
     // widestRadiusTexels is the larger of the two.
     double (*blurRadiusTexels)(const ParameterValues&) = nullptr;
     double (*cubeRadiusTexels)(const ParameterValues&) = nullptr;
+    // Whether its kernels reach no further than the light seen from the receiver (the cone
+    // towards the light, cut at the near plane) and, under a light without size, than one
+    // bilinear tap: a sun's cascades and a point light's cube faces then keep guard bands that
+    // wide (viewGuardBand), capped by the footprint above, and their texels are finer.
+    bool footprintFollowsLight = false;
 
     // Capabilities: what the frame and the visibility pass do differently for it, as
     // specialization constants (visibilityConstants), never by its name.
@@ -275,6 +283,10 @@ uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
 // geometry across it from the same map.
 uint32_t viewGuardTexels(const TechniqueModule& module, const ParameterValues& params,
                          bool cubeFace = false);
+// viewGuardTexels, or, for a technique whose footprint follows the light, the band that follows
+// `light`'s size (GuardBand): what shadowViewsOf fits a light's views with.
+GuardBand viewGuardBand(const TechniqueModule& module, const ParameterValues& params,
+                        const Light& light);
 // The footprint on any view: the larger of blurRadiusTexels and cubeRadiusTexels (what the
 // metrics' blur band and the virtual pages' marking allow for); 0 without one.
 double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& params);
