@@ -244,7 +244,8 @@ TEST(Cascades, ALightsGuardBandHoldsItsConeWithNoTexelToSpare) {
     const Camera c = camera({3, 1.7f, -2}, 20.0f);
     const CascadeSettings settings{.count = 4, .lambda = 0.9f, .blend = 0.1f};
     const auto widest = fitCascades(kSun, kField, c, 1.5f, 1024, settings, 260u);
-    const auto small = fitCascades(kSun, kField, c, 1.5f, 1024, settings, GuardBand(260u, 0.0f, 4u));
+    const auto small =
+        fitCascades(kSun, kField, c, 1.5f, 1024, settings, GuardBand(260u, 0.0f, 4u));
     for (size_t i = 0; i < widest.size(); ++i) // the far ones may hold the whole scene
         EXPECT_LE(small[i].texelWorldSize, widest[i].texelWorldSize * 1.0001f) << i;
     EXPECT_LT(small[0].texelWorldSize, 0.6f * widest[0].texelWorldSize);

@@ -6,6 +6,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/first_picture.h"
 #include "scene/framing.h"
+#include "scene/gen_families.h"
 #include "scene/generated.h"
 #include "scene/mesh_closure.h"
 
@@ -98,6 +99,13 @@ TEST(Generated, TheSpecIsReadOrRefusedWithItsReason) {
     refused("plates?scale=2x", "scale '2x'");
     refused("plates?colour=red", "unknown key 'colour' (keys: seed, scale)");
     refused("plates?seed", "seed ''");
+    // Every key once, every pair whole: no silent last-one-wins, no stray '&'.
+    refused("plates?seed=1&seed=2", "'seed' given twice");
+    refused("plates?scale=2&seed=3&scale=3", "'scale' given twice");
+    refused("plates?seed=1&", "an empty key=value pair");
+    refused("plates?&seed=1", "an empty key=value pair");
+    refused("plates?seed=1&&scale=2", "an empty key=value pair");
+    refused("plates?", "nothing after '?'");
 }
 
 TEST(Generated, ASpecGivesTheSameSceneEveryTimeAndSeedsDiffer) {
@@ -426,4 +434,90 @@ TEST(Generated, FacesStandAsTheirFamiliesSay) {
         }
     }
     EXPECT_GT(turned, 0) << "slab sides between 40 and 85 degrees round";
+}
+
+// The lights the docs promise (docs/scenes.md, "Generated scenes"), drawn over a content box: one
+// in five without a size, suns 0.25 to 8 degrees wide, spot and bulb radii 0.005 to 0.1 of the
+// content's size, each as bright on the content's centre as the default sun (irradiance 2), a
+// spot aimed at the centre with a cone that holds the content; the ranges used end to end.
+TEST(Generated, LightsAreAsTheDocsSay) {
+    const Bounds content{.min = {-3, 0, -3}, .max = {3, 2.5f, 3}};
+    const float size = glm::length(content.extent());
+    int sizeless = 0, lights = 0;
+    float narrowest = 1e9f, widest = 0.0f, smallest = 1e9f, largest = 0.0f;
+    float tightest = 10.0f, loosest = 0.0f;
+    for (uint64_t seed = 1; seed <= 600; ++seed) {
+        GenRandom random(seed * 7919);
+        const Light l = gen::drawLight(random, content, {});
+        ++lights;
+        if (!l.hasSize()) {
+            ++sizeless;
+            continue;
+        }
+        if (l.type == LightType::Directional) {
+            EXPECT_GE(l.angularDiameter, 0.25f - 1e-5f);
+            EXPECT_LE(l.angularDiameter, 8.0f + 1e-4f);
+            narrowest = std::min(narrowest, l.angularDiameter);
+            widest = std::max(widest, l.angularDiameter);
+            continue;
+        }
+        const float ratio = l.radius / size;
+        EXPECT_GE(ratio, 0.005f - 1e-6f);
+        EXPECT_LE(ratio, 0.1f + 1e-6f);
+        smallest = std::min(smallest, ratio), largest = std::max(largest, ratio);
+        const glm::vec3 toCentre = content.center() - l.position;
+        EXPECT_NEAR(l.intensity / glm::dot(toCentre, toCentre), 2.0f, 2e-4f) << seed;
+        if (l.type != LightType::Spot)
+            continue;
+        EXPECT_GT(glm::dot(glm::normalize(toCentre), l.direction), 0.9999f) << seed;
+        EXPECT_LT(l.outerConeAngle, glm::radians(80.0f)) << seed << ": past one map's cone";
+        EXPECT_LT(l.innerConeAngle, l.outerConeAngle);
+        for (int k = 0; k < 8; ++k) { // every corner of the content inside the cone
+            const glm::vec3 c{k & 1 ? content.max.x : content.min.x,
+                              k & 2 ? content.max.y : content.min.y,
+                              k & 4 ? content.max.z : content.min.z};
+            const float angle = std::acos(glm::dot(glm::normalize(c - l.position), l.direction));
+            EXPECT_LE(angle, l.outerConeAngle) << seed << " corner " << k;
+            tightest = std::min(tightest, l.outerConeAngle - angle);
+        }
+        loosest = std::max(loosest, l.outerConeAngle);
+    }
+    EXPECT_NEAR(double(sizeless) / lights, 0.2, 0.05);
+    EXPECT_LT(narrowest, 0.35f);
+    EXPECT_GT(widest, 6.0f);
+    EXPECT_LT(smallest, 0.007f);
+    EXPECT_GT(largest, 0.08f);
+    EXPECT_LT(loosest, 1.2f) << "cones wider than the content needs";
+}
+
+// Spheres rest on the ground or float above it, never sink into it; a stack's slabs and shelves
+// rise one above the other (0.15 to 1.2 apart), so that some stack stands well over the highest
+// first layer (1.0).
+TEST(Generated, SpheresStandOnTheGroundAndPlatesStack) {
+    int resting = 0;
+    float highestLayer = 0.0f;
+    for (int seed = 1; seed <= kSeeds; ++seed) {
+        const Scene s = loadScene(specOf("spheres", seed));
+        for (const std::vector<uint32_t>& surface : surfaces(s)) {
+            float lowest = 1e9f;
+            for (uint32_t t : surface)
+                for (int k = 0; k < 3; ++k)
+                    lowest = std::min(lowest, s.vertices[s.indices[3 * t + k]].position.y);
+            EXPECT_GE(lowest, -1e-4f) << s.name;
+            resting += lowest < 0.02f;
+        }
+        const Scene p = loadScene(specOf("plates", seed));
+        for (const std::vector<uint32_t>& surface : surfaces(p)) {
+            float lowest = 1e9f, highest = -1e9f;
+            for (uint32_t t : surface)
+                for (int k = 0; k < 3; ++k) {
+                    const float y = p.vertices[p.indices[3 * t + k]].position.y;
+                    lowest = std::min(lowest, y), highest = std::max(highest, y);
+                }
+            if (highest - lowest < 0.2f) // a slab or a shelf, not a post
+                highestLayer = std::max(highestLayer, lowest);
+        }
+    }
+    EXPECT_GE(resting, 3) << "some spheres rest on the ground";
+    EXPECT_GT(highestLayer, 2.0f) << "layers stacked on the ones below";
 }

@@ -384,3 +384,33 @@ TEST(Reference, GrazingRaysFromPositionsJustUnderTheSurfaceDoNotHitIt) {
         EXPECT_EQ(dark, 0u) << "sun " << elevation << " degrees up";
     }
 }
+
+// The same scene at a thousandth and a thousand times its size reads the same truth: the rays'
+// start past their own surface scales with the scene, not with a fixed floor (an absolute 1e-4,
+// 64 times that on a grazing ray, skipped a sphere of radius 0.001 where it rests on its plane).
+TEST(Reference, ASceneReadsTheSameTruthAtEveryScale) {
+    const auto truthAt = [](float s) {
+        Scene scene;
+        MeshBuilder mb(scene);
+        const uint32_t m = mb.material("grey", glm::vec3(0.5f));
+        mb.quad({-20 * s, 0, 20 * s}, {20 * s, 0, 20 * s}, {20 * s, 0, -20 * s},
+                {-20 * s, 0, -20 * s}, m);
+        mb.sphere({0, s, 0}, s, m, 256, 128); // resting on the plane
+        scene.lights = {Light{.type = LightType::Directional,
+                              .direction = glm::normalize(glm::vec3(0.5f, -0.6f, 0.2f))}};
+        RenderResult g = planeGrid(0.0f, 0.0f, 3.0f * s);
+        return computeReference(scene, g, {.samples = 1}).visibility[0];
+    };
+    const std::vector<float> unit = truthAt(1.0f);
+    size_t dark = 0;
+    for (float v : unit)
+        dark += v < 0.5f;
+    EXPECT_GT(dark, size_t{kGrid} * kGrid / 20) << "a shadow to compare";
+    for (float s : {1e-3f, 1e3f}) {
+        const std::vector<float> scaled = truthAt(s);
+        size_t differ = 0;
+        for (size_t i = 0; i < unit.size(); ++i)
+            differ += (unit[i] < 0.5f) != (scaled[i] < 0.5f);
+        EXPECT_LE(differ, 2u) << "scale " << s; // a grid pixel on an edge, by float rounding
+    }
+}

@@ -7,6 +7,10 @@
 #include "gpu_fixture.h"
 #include "penumbra/error.h"
 #include "reference/field_refusal.h"
+#include "reference/visibility_audit.h"
+#include "report/light_mask.h"
+
+#include <fmt/format.h>
 
 #include <string>
 #include <vector>
@@ -87,4 +91,24 @@ TEST_F(FieldTest, SdfRefusesTheViewsItsFieldCannotHoldUnderEveryLightType) {
                                           [&](const std::string&) { audited = true; }));
         EXPECT_FALSE(audited);
     }
+}
+
+// The audit counts what compare counts under a spot: the pixels its cone reaches (lightMask), not
+// the rest of the view, where sdf and hard agree with the truth and would thin both errors out.
+TEST_F(FieldTest, SdfAuditCountsOnlyWhatTheSpotReaches) {
+    const Scene scene = loadScene("builtin:gen/spheres?seed=9"); // a spot of radius 0.34
+    SceneRenderer renderer(sharedRenderer(), scene);
+    const RenderOptions options = sdfOptions();
+    const RenderResult result = renderer.render(options);
+    std::string figures;
+    refuseUnheldField(renderer, options, result, [&](const std::string& l) { figures = l; });
+    RenderOptions plain = options;
+    plain.technique = Technique::Hard;
+    const RenderResult hard = renderer.render(plain);
+    const std::vector<std::vector<uint8_t>> masks = {lightMask(scene.lights.front(), result)};
+    const VisibilityAudit masked = auditVisibility(scene, result, hard, masks),
+                          whole = auditVisibility(scene, result, hard);
+    EXPECT_LT(masked.pixels, whole.pixels) << "the cone leaves pixels out";
+    EXPECT_NE(figures.find(fmt::format("over {} pixels", masked.pixels)), std::string::npos)
+        << figures << " (masked " << masked.pixels << ", whole " << whole.pixels << ")";
 }

@@ -298,10 +298,18 @@ TEST_F(QualityTest, SmrtEqualsHardUnderLightsWithoutSize) {
         {.scene = "builtin:spot", .radius = 0.0f, .width = 320, .height = 180, .samples = 1},
         {.scene = "builtin:showcase", .angle = 0.0f, .width = 320, .height = 180, .samples = 1},
         {.scene = "builtin:room", .radius = 0.0f, .width = 320, .height = 180, .samples = 1},
-        {.scene = "builtin:gen/plates?seed=1", .radius = 0.0f, .angle = 0.0f, .width = 320,
-         .height = 180, .samples = 1},
-        {.scene = "builtin:gen/clutter?seed=2", .radius = 0.0f, .angle = 0.0f, .width = 320,
-         .height = 180, .samples = 1}};
+        {.scene = "builtin:gen/plates?seed=1",
+         .radius = 0.0f,
+         .angle = 0.0f,
+         .width = 320,
+         .height = 180,
+         .samples = 1},
+        {.scene = "builtin:gen/clutter?seed=2",
+         .radius = 0.0f,
+         .angle = 0.0f,
+         .width = 320,
+         .height = 180,
+         .samples = 1}};
     for (const TruthSetup& setup : setups) {
         const Truth t = groundTruth(setup);
         const RenderResult hardRender = renderRow(t, Technique::Hard, {});
@@ -319,13 +327,12 @@ TEST_F(QualityTest, SmrtEqualsHardUnderLightsWithoutSize) {
             moved += a[i] != b[i];
             const bool between = (a[i] > 0.0f && a[i] < 1.0f) || (b[i] > 0.0f && b[i] < 1.0f);
             if (a[i] != b[i]) { // only where hard blends cascades
-                EXPECT_TRUE(between) << setup.scene << " pixel " << i << ": " << a[i]
-                                     << " against " << b[i];
+                EXPECT_TRUE(between)
+                    << setup.scene << " pixel " << i << ": " << a[i] << " against " << b[i];
             }
         }
         std::printf("%-26s misclassified hard %.4f%% smrt %.4f%%, %zu pixels moved\n",
-                    setup.scene.c_str(), 100 * hard.misclassified, 100 * smrt.misclassified,
-                    moved);
+                    setup.scene.c_str(), 100 * hard.misclassified, 100 * smrt.misclassified, moved);
         EXPECT_GT(hard.misclassified, 0.0) << setup.scene << ": edges to get wrong";
         EXPECT_EQ(flipped, 0u) << setup.scene;
         EXPECT_LE(moved, a.size() / 1000) << setup.scene; // a blend band's few

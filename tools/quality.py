@@ -40,6 +40,49 @@ def percentile(values, q):
     return ordered[low] + (ordered[high] - ordered[low]) * (at - low)
 
 
+# The statistics each figure has (summarize), which a plan's bounds may name.
+STATS = {**{f: ("p95", "worst") for f in FIGURES + ["misclassified"]},
+         "vs_hard": ("median", "worst"), "vs_pcss": ("median", "worst"), "refused": ("share",)}
+
+
+def validate_plan(plan):
+    """The plan's keys and types, checked before any compare runs: a ValueError naming the first
+    problem."""
+    for key in ("width", "height", "samples", "shadow_map_size"):
+        if not isinstance(plan.get(key), int) or isinstance(plan[key], bool) or plan[key] < 1:
+            raise ValueError(f"`{key}` must be a whole number of at least 1")
+    for key, kind in (("techniques", str), ("families", str), ("seeds", int)):
+        values = plan.get(key)
+        if not isinstance(values, list) or not values or \
+                not all(isinstance(v, kind) and not isinstance(v, bool) for v in values):
+            raise ValueError(f"`{key}` must be a list of {'names' if kind is str else 'seeds'}")
+    least = plan.get("least_pixels", 1000)
+    if not isinstance(least, (int, float)) or isinstance(least, bool) or \
+            not math.isfinite(least) or least < 0:
+        raise ValueError("`least_pixels` must be a number of at least 0")
+    bounds = plan.get("bounds", {})
+    if not isinstance(bounds, dict):
+        raise ValueError("`bounds` must be a table of techniques")
+    for technique, limits in bounds.items():
+        if not isinstance(limits, dict):
+            raise ValueError(f"bounds of `{technique}` must be a table of FIGURE.STAT = number")
+        for name, bound in limits.items():
+            figure, _, stat = name.rpartition(".")
+            if stat not in STATS.get(figure, ()):
+                raise ValueError(f"bound `{technique}` `{name}`: no such figure (FIGURE.STAT: "
+                                 + ", ".join(f"{f}.{t}" for f, ts in STATS.items() for t in ts)
+                                 + ")")
+            if not isinstance(bound, (int, float)) or isinstance(bound, bool) or \
+                    not math.isfinite(bound) or bound < 0:
+                raise ValueError(f"bound `{technique}` `{name}` must be a finite number of at "
+                                 "least 0")
+
+
+def unique(values):
+    """values without repeats, in their order: a seed or family given twice runs once."""
+    return list(dict.fromkeys(values))
+
+
 def run_scene(penumbra, spec, out, plan, validation):
     """One compare; its metrics.json, or an error line naming the scene (a message of the
     validation layer is one)."""
@@ -50,7 +93,8 @@ def run_scene(penumbra, spec, out, plan, validation):
     done = subprocess.run(args, capture_output=True, text=True)
     if done.returncode != 0:
         lines = done.stderr.strip().splitlines() or ["(no output)"]
-        raise RuntimeError(f"{spec}: {lines[-1]}")
+        last = lines[-1].removeprefix("error: ")  # penumbra's own line names the scene already
+        raise RuntimeError(last if last.startswith(spec) else f"{spec}: {last}")
     if "vulkan validation" in done.stderr:
         raise RuntimeError(f"{spec}: the validation layer spoke: {done.stderr.strip()[:400]}")
     return json.loads((out / "metrics.json").read_text())
@@ -188,12 +232,24 @@ def main():
     args = parser.parse_args()
     try:
         plan = tomllib.loads(args.plan.read_text())
-        seeds = [int(s) for s in args.seeds.split(",")] if args.seeds else plan["seeds"]
-        families = args.families.split(",") if args.families else plan["families"]
+        validate_plan(plan)
+        seeds = unique(int(s) for s in args.seeds.split(",")) if args.seeds else unique(
+            plan["seeds"])
+        families = unique(args.families.split(",")) if args.families else unique(
+            plan["families"])
     except (OSError, ValueError, KeyError, tomllib.TOMLDecodeError) as e:
         print(f"error: {args.plan}: {e}", file=sys.stderr)
         return 2
-    args.out.mkdir(parents=True, exist_ok=True)
+    if not (os.path.isfile(args.penumbra) and os.access(args.penumbra, os.X_OK)):
+        print(f"error: {args.penumbra}: no penumbra binary there (--penumbra; `make build`)",
+              file=sys.stderr)
+        return 2
+    try:
+        args.out.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        print(f"error: {args.out}: cannot write the results there ({e.strerror})",
+              file=sys.stderr)
+        return 2
     jobs = [(f, s) for s in seeds for f in families]
     results, started = {}, time.monotonic()
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(args.jobs, 1)) as pool:
@@ -206,6 +262,8 @@ def main():
                 results[(family, seed)] = future.result()
             except RuntimeError as e:
                 print(f"error: {e}", file=sys.stderr)
+                # The compares still queued do not run; those running finish.
+                pool.shutdown(wait=True, cancel_futures=True)
                 return 2
             spent = time.monotonic() - started
             eta = spent / done * (len(jobs) - done)

@@ -26,7 +26,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // How far along a shadow ray hits are ignored: the ray leaves the G-buffer position itself,
-// whose float error grows with its magnitude (1e-4 relative, 1e-4 absolute floor), and skips its
+// whose float error grows with its magnitude (1e-4 relative; its floor, `least`, 1e-4 of the
+// scene's size up to one unit: an absolute 1e-4 was the size of a scene made 1000 times smaller,
+// whose spheres' truth then lost its contact shadows), and skips its
 // own surface. Offsetting the origin off the surface instead would let rays that graze a closed
 // mesh's terminator slip past a facet's edge into the light: near the edge the offset origin
 // sits above the facet's plane, and a ray dipping under that plane leaves the facet first.
@@ -34,8 +36,8 @@ using Clock = std::chrono::steady_clock;
 // through from its back). A ray rising at a shallow angle must travel further to clear an origin
 // that lies that far under its surface (the rasterizer's depth error has either sign, and
 // differs between devices): rayStart divides by the sine of the ray's angle above the face.
-double selfHitDistance(const glm::dvec3& p) {
-    return 1e-4 * std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), 1.0});
+double selfHitDistance(const glm::dvec3& p, double least) {
+    return 1e-4 * std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z), least});
 }
 
 // Where a ray leaving at `sine` (dir . face > 0) above its surface starts: clear of the surface by
@@ -128,6 +130,11 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                              std::vector<float>(pixels, std::numeric_limits<float>::quiet_NaN()));
     result.occluderDistance = result.visibility;
     const uint32_t samples = std::max(options.samples, 1u);
+    // selfHitDistance's floor: the scene's size (its bounds' largest extent), at most one unit.
+    const Bounds bounds = scene.bounds();
+    const glm::dvec3 extent = glm::dvec3(bounds.max) - glm::dvec3(bounds.min);
+    const double size = std::max({extent.x, extent.y, extent.z});
+    const double least = std::isfinite(size) && size > 0.0 ? std::min(size, 1.0) : 1.0;
     const auto traceStart = Clock::now();
     std::atomic<uint64_t> rays{0};
     ProgressBar progress(options.progress, h);
@@ -147,7 +154,7 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                     if (!std::isfinite(p.x) || !std::isfinite(n.x))
                         continue;
                     const glm::dvec3 origin = p;
-                    const auto tnear = static_cast<float>(selfHitDistance(p));
+                    const auto tnear = static_cast<float>(selfHitDistance(p, least));
                     const glm::dvec3 face = embree.surfaceNormal(
                         glm::vec3(p), glm::vec3(glm::normalize(n)), 10.0f * tnear);
                     for (uint32_t l = 0; l < lights.size(); ++l) {

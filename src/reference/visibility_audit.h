@@ -53,10 +53,16 @@ inline constexpr double kAuditSlackPixels = 1.0;
 // (the gate's rule: stride^2 full pixels a grid pixel).
 inline constexpr double kAuditSpotShare = 0.003;
 inline constexpr double kAuditLeastPixels = 1000.0;
+// Leak and acne together refuse past this share (the gate's target) of the pixels away from
+// shadow edges (fully lit or fully shadowed, on the grid), one grid pixel allowed besides, with
+// no least count, as the gate's misclassified-away-from-edges figure: a small shadow lost by a
+// field whose RMSE hard's large error hides (a wide sun) is refused.
+inline constexpr double kAuditSettledShare = 0.003;
 
 // Why the sdf technique refuses the view (the problem, the figures, what to change), or empty
-// when its RMSE^2 <= (limit x hard's)^2 + kAuditSlackPixels / pixels and neither its leak nor its
-// acne passes kAuditSpotShare. limit 0: never refuses.
+// when its RMSE^2 <= (limit x hard's)^2 + kAuditSlackPixels / pixels, neither its leak nor its
+// acne passes kAuditSpotShare and both together do not pass kAuditSettledShare. limit 0: never
+// refuses.
 std::string auditRefusal(const VisibilityAudit& audit, double limit);
 
 } // namespace penumbra

@@ -204,8 +204,8 @@ ShadowViews shadowViewsOf(const std::vector<Light>& lights, const RenderOptions&
             info.projection =
                 light.type == LightType::Point ? "cube" : info.views.front().projection;
             info.guardTexels = light.type == LightType::Point
-                                   ? static_cast<uint32_t>(band.cubeFaceTexels(
-                                         static_cast<float>(o.shadowMapSize)))
+                                   ? static_cast<uint32_t>(
+                                         band.cubeFaceTexels(static_cast<float>(o.shadowMapSize)))
                                    : 0;
         }
         out.lights.push_back(lightData(light, info.visibilityIndex, firstView,

@@ -179,7 +179,7 @@ void addFillAndList(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                    .uses = fill,
                    .record = [&p, &s, &in, r, checkerboard, light](PassContext& c) {
                        const float range = checkerboard.rangeFor(s.shadowLights[light].type,
-                                                                  s.shadowLights[light].sized);
+                                                                 s.shadowLights[light].sized);
                        const std::vector<shadows::SpecConstant> constants{
                            {SPEC_FILL_RANGE, std::bit_cast<uint32_t>(range)}};
                        dispatchOnLayerLayout(c, p, s, in, r,

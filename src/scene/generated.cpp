@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <optional>
+#include <utility>
 
 namespace penumbra {
 namespace {
@@ -76,13 +77,22 @@ GeneratedSpec parseGeneratedSpec(std::string_view spec) {
         throw InputError(where, fmt::format("no such generated family '{}' (families: {})",
                                             out.family, familyList()));
     std::string_view rest = query == std::string_view::npos ? "" : spec.substr(query + 1);
-    while (!rest.empty()) {
+    if (query != std::string_view::npos && rest.empty())
+        throw InputError(where, "nothing after '?' (keys: seed, scale)");
+    bool seedGiven = false, scaleGiven = false;
+    for (bool more = !rest.empty(); more;) {
         const size_t amp = rest.find('&');
         const std::string_view pair = rest.substr(0, amp);
-        rest = amp == std::string_view::npos ? "" : rest.substr(amp + 1);
+        more = amp != std::string_view::npos;
+        rest = more ? rest.substr(amp + 1) : "";
+        if (pair.empty()) // a stray '&': a pair left out or cut off
+            throw InputError(where, "an empty key=value pair (keys: seed, scale)");
         const size_t eq = pair.find('=');
         const std::string_view key = pair.substr(0, eq);
         const std::string_view value = eq == std::string_view::npos ? "" : pair.substr(eq + 1);
+        bool& given = key == "seed" ? seedGiven : scaleGiven;
+        if ((key == "seed" || key == "scale") && std::exchange(given, true))
+            throw InputError(where, fmt::format("'{}' given twice", key));
         if (key == "seed") {
             const auto [end, ec] =
                 std::from_chars(value.data(), value.data() + value.size(), out.seed);

@@ -88,17 +88,20 @@ if args[0] == "--validation":
     if "leaves" in args[1]:
         print("vulkan validation: an error", file=sys.stderr)
 spec, out = args[1], Path(args[args.index("-o") + 1])
+with open(out.parent / "calls.log", "a") as calls:
+    calls.write(spec + "\\n")
 if "bad" in spec:
     print("error: " + spec + ": no such generated family", file=sys.stderr)
     sys.exit(2)
 seed = int(spec.split("seed=")[1])
 out.mkdir(parents=True, exist_ok=True)
-row = lambda rmse, acne: {"rmse": rmse, "acne_beyond_blur": acne, "leak_beyond_blur": 0.0,
+leak = 0.001 * seed + (0.01 if "open" in spec and seed == 2 else 0.0)
+row = lambda rmse, acne, leak=0.0: {"rmse": rmse, "acne_beyond_blur": acne, "leak_beyond_blur": leak,
                           "misclassified_outside_edges": 0.0,
                           "counts": {"acne_beyond_blur": {"of": 4000},
                                      "leak_beyond_blur": {"of": 4000}}}
 (out / "metrics.json").write_text(json.dumps({"techniques": {
-    "hard": row(0.02, 0.0), "pcss": row(0.01, 0.0), "pcf": row(0.03, 0.001 * seed)}}))
+    "hard": row(0.02, 0.0), "pcss": row(0.01, 0.0), "pcf": row(0.03, 0.001 * seed, leak)}}))
 """
 
 
@@ -121,6 +124,8 @@ def test_a_run_writes_its_table_and_fails_past_a_bound(tmp_path):
     assert "quality: [4/4]" in done.stdout and "left" in done.stdout
     table = (tmp_path / "out/quality.md").read_text()
     assert "| pcf | 0.20 | 0.20 (4) |" in table
+    # Leak over plates 1, open 1, plates 2, open 2: 0.1, 0.1, 0.2, 1.2 (%): p95 1.05, worst 1.20.
+    assert "| pcf | 0.20 | 0.20 (4) | 1.05 | 1.20 (4) |" in table, table
     figures = json.loads((tmp_path / "out/quality.json").read_text())
     assert figures["seeds"] == [1, 2] and "pcf @ open" in figures["summary"]
     past = run(tmp_path, "--seeds", "3")
@@ -131,7 +136,8 @@ def test_a_run_writes_its_table_and_fails_past_a_bound(tmp_path):
 def test_a_failing_scene_or_a_validation_message_stops_the_run(tmp_path):
     failed = run(tmp_path, "--families", "plates,bad")
     assert failed.returncode == 2
-    assert "error: builtin:gen/bad?seed=1: error: builtin:gen/bad?seed=1" in failed.stderr
+    assert "error: builtin:gen/bad?seed=1: no such generated family" in failed.stderr
+    assert "error: builtin:gen/bad?seed=1: error:" not in failed.stderr
     spoke = run(tmp_path, "--families", "leaves", "--validation")
     assert spoke.returncode == 2 and "the validation layer spoke" in spoke.stderr
     assert run(tmp_path, "--families", "leaves").returncode == 0
@@ -178,3 +184,58 @@ def test_the_plans_bounds_name_every_technique_and_only_bounded_figures():
     for technique, limits in plan["bounds"].items():
         assert set(limits) <= set(quality.BOUNDED + quality.HAND_BOUNDED), technique
         assert all(v >= 0 for v in limits.values()), technique
+
+
+def test_a_failing_scene_stops_the_compares_still_queued(tmp_path):
+    failed = run(tmp_path, "--families", "bad,plates,open,spheres", "--seeds", "1,2",
+                 "--jobs", "1")
+    assert failed.returncode == 2
+    calls = (tmp_path / "out/calls.log").read_text().split()
+    assert calls[0] == "builtin:gen/bad?seed=1" and len(calls) <= 2, calls
+
+
+def test_a_bad_plan_is_one_error_line_before_any_compare(tmp_path):
+    good = ('width = 8\nheight = 8\nsamples = 4\nshadow_map_size = 64\nseeds = [1]\n'
+            'families = ["plates"]\ntechniques = ["hard"]\n')
+    fake = tmp_path / "penumbra"
+    fake.write_text(FAKE)
+    fake.chmod(fake.stat().st_mode | stat.S_IXUSR)
+    cases = {
+        "no dot": good + '[bounds]\nhard = { "worst" = 1 }\n',
+        "unknown figure": good + '[bounds]\nhard = { "foo.worst" = 1 }\n',
+        "unknown stat": good + '[bounds]\nhard = { "acne_beyond_blur.median" = 1 }\n',
+        "string bound": good + '[bounds]\nhard = { "vs_hard.worst" = "1" }\n',
+        "nan bound": good + '[bounds]\nhard = { "vs_hard.worst" = nan }\n',
+        "negative bound": good + '[bounds]\nhard = { "vs_hard.worst" = -1 }\n',
+        "bounds not a table": good + 'bounds = 3\n',
+        "technique not a table": good + '[bounds]\nhard = 3\n',
+        "least pixels text": good + 'least_pixels = "x"\n',
+        "techniques a string": good.replace('techniques = ["hard"]', 'techniques = "hard"'),
+        "no width": good.replace("width = 8\n", ""),
+        "zero samples": good.replace("samples = 4", "samples = 0"),
+        "seeds of text": good.replace("seeds = [1]", 'seeds = ["1"]'),
+    }
+    for name, text in cases.items():
+        plan = tmp_path / f"{name.replace(' ', '_')}.toml"
+        plan.write_text(text)
+        done = subprocess.run([sys.executable, str(TOOL), "--plan", str(plan), "--penumbra",
+                               str(fake), "--out", str(tmp_path / "out")],
+                              capture_output=True, text=True)
+        assert done.returncode == 2, (name, done.stderr)
+        lines = done.stderr.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith(f"error: {plan}: "), (name, done.stderr)
+        assert not (tmp_path / "out/calls.log").exists(), name
+    # Repeats run once; a missing binary and an unwritable output are error lines too.
+    plan = tmp_path / "good.toml"
+    plan.write_text(good)
+    once = subprocess.run([sys.executable, str(TOOL), "--plan", str(plan), "--penumbra", str(fake),
+                           "--out", str(tmp_path / "out"), "--seeds", "1,1", "--families",
+                           "plates,plates"], capture_output=True, text=True)
+    assert once.returncode == 0, once.stderr
+    assert (tmp_path / "out/calls.log").read_text().split() == ["builtin:gen/plates?seed=1"]
+    for extra, says in ((["--penumbra", str(tmp_path / "none")], "no penumbra binary"),
+                        (["--penumbra", str(fake), "--out", str(plan / "sub")], "cannot write")):
+        done = subprocess.run([sys.executable, str(TOOL), "--plan", str(plan), *extra],
+                              capture_output=True, text=True)
+        assert done.returncode == 2 and says in done.stderr, done.stderr
+        assert done.stderr.startswith("error: ") and len(done.stderr.strip().splitlines()) == 1
