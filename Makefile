@@ -26,7 +26,7 @@ FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
 FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
                 -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
 
-.PHONY: baselines quality deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python slurm-test
+.PHONY: baselines coupling quality deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python slurm-test
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -159,6 +159,10 @@ RANDOM ?=
 SINCE ?=
 SEED ?=
 MIN_RATE ?=
+# Every line outside src/shadows that names a technique (issue 58 takes them to none).
+coupling:
+	python3 tools/technique_coupling.py
+
 mutation-test: deps
 	python3 tools/mutation_test.py --jobs $(JOBS) $(if $(MUTATIONS),--only $(MUTATIONS)) \
 	    $(if $(MUTATION_LABEL),--label $(MUTATION_LABEL)) $(if $(RANDOM),--random $(RANDOM)) \

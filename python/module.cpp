@@ -318,8 +318,7 @@ py::object metrics(const PyResult& r, const PyTruth& t) {
                   .technique = std::string(techniqueName(r.options.technique)),
                   .metrics = metricsAgainstTruth(*r.lit, result, truth.visibility, masks, blur,
                                                  truth.occluderDistance)};
-    for (const PassTime& p : result.passes)
-        row.gpuMs.emplace_back(p.pass, p.medianMs);
+    row.gpuMs = result.passes;
     return fromJson(metricsRowJson(row));
 }
 
@@ -405,6 +404,11 @@ PYBIND11_MODULE(penumbra, m) {
         .def_property_readonly("gpu_ms", &PyResult::gpuMs,
                                "GPU milliseconds per pass, the median of the timed frames, and "
                                "'total', their sum (metrics.json's total).")
+        .def_property_readonly(
+            "gpu_ms_by_cost",
+            [](const PyResult& r) { return fromJson(gpuMsByCost(r.result->passes)); },
+            "The medians summed by the cost group each pass declares: 'shadow_maps', "
+            "'per_pixel', 'frame' (metrics.json's gpu_ms_by_cost).")
         .def_property_readonly("gpu_ms_per_frame", &PyResult::gpuMsPerFrame,
                                "Every timed frame's GPU milliseconds per pass, and 'total', "
                                "each frame's sum.")

@@ -168,7 +168,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"virtual_moments",
                  {"render", "builtin:showcase", "-o", "{out}", "--technique", "vsm", "--set",
                   "virtual.enabled=1"},
-                 "virtual maps serve hard, pcf and pcss"},
+                 "virtual maps serve hard, pcf, pcss and smrt"},
         BadInput{"virtual_size_not_a_power_of_two",
                  {"render", "builtin:spot", "-o", "{out}", "--set", "virtual.enabled=1", "--set",
                   "virtual.size=3000"},
@@ -231,6 +231,14 @@ TEST(Cli, RenderWritesTheContractFiles) {
         if (pass != "total")
             sum += ms.get<double>();
     EXPECT_NEAR(stats["gpu_ms"]["total"].get<double>(), sum, 1e-9 * sum);
+    // By the group each pass declares: hard's depth pass, the frame's G-buffer, the rest per pixel.
+    const nlohmann::json& byCost = stats["gpu_ms_by_cost"];
+    EXPECT_EQ(byCost["shadow_maps"], stats["gpu_ms"]["shadow"]);
+    EXPECT_EQ(byCost["frame"], stats["gpu_ms"]["gbuffer"]);
+    EXPECT_NEAR(byCost["per_pixel"].get<double>(),
+                stats["gpu_ms"]["visibility"].get<double>() +
+                    stats["gpu_ms"]["composite"].get<double>(),
+                1e-9 * sum);
     EXPECT_NE(r.out.find("GPU ms per pass"), std::string::npos);
 }
 

@@ -8,7 +8,9 @@
 #include "vk/resources.h"
 #include "vk/sync.h"
 
+#include <algorithm>
 #include <cstring>
+#include <optional>
 
 using namespace penumbra;
 using namespace penumbra::render;
@@ -30,7 +32,9 @@ ImageDecl screenImage(std::string name, Lifetime lifetime = Lifetime::PerFrame) 
 }
 
 PassDecl pass(std::string name, Phase phase, std::vector<Use> uses) {
+    const bool timed = !name.empty();
     return {.name = std::move(name),
+            .cost = timed ? std::optional(CostGroup::PerPixel) : std::nullopt,
             .phase = phase,
             .uses = std::move(uses),
             .record = [](PassContext&) {}};
@@ -160,6 +164,86 @@ TEST_F(FrameTest, ReadingWhatNothingWroteIsAProgrammerError) {
         "reads never written, which no earlier pass writes");
 }
 
+// A pass's cost group is part of its declaration: a timed pass without one, or an untimed one
+// with one, is a programmer error the plan reports every frame.
+TEST_F(FrameTest, ATimedPassDeclaresItsCostGroupAndAnUntimedOneNone) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const auto planned = [](std::string name, std::optional<CostGroup> cost) {
+        ResourcePool pool(context());
+        FrameGraph graph(pool, kSizes);
+        const ResourceId image = graph.declare(screenImage("image"));
+        graph.addPass({.name = std::move(name),
+                       .cost = cost,
+                       .phase = Phase::PerLight,
+                       .uses = {{image, Access::ComputeWrite}},
+                       .record = [](PassContext&) {}});
+        graph.plan();
+    };
+    EXPECT_DEATH(planned("visibility", std::nullopt), "visibility\" is timed but declares no");
+    EXPECT_DEATH(planned("", CostGroup::ShadowMaps), "is untimed but declares a cost group");
+    planned("visibility", CostGroup::PerPixel); // and these plan
+    planned("", std::nullopt);
+}
+
+// Scopes of one name add up (every light's depth pass, the virtual pages' marking and rendering
+// are one "shadow"), in the order each name was first recorded.
+TEST_F(FrameTest, ScopesOfOneNameAddUp) {
+    const std::vector<PassTime> times = vk::addUpByName({{"shadow", CostGroup::ShadowMaps},
+                                                         {"gbuffer", CostGroup::Frame},
+                                                         {"shadow", CostGroup::ShadowMaps},
+                                                         {"visibility", CostGroup::PerPixel},
+                                                         {"shadow", CostGroup::ShadowMaps}},
+                                                        {1.0, 2.0, 4.0, 8.0, 16.0});
+    ASSERT_EQ(times.size(), 3u);
+    EXPECT_EQ(times[0].pass, "shadow");
+    EXPECT_EQ(times[0].medianMs, 21.0);
+    EXPECT_EQ(times[1].pass, "gbuffer");
+    EXPECT_EQ(times[1].cost, CostGroup::Frame);
+    EXPECT_EQ(times[2].medianMs, 8.0);
+    EXPECT_EQ(times[2].cost, CostGroup::PerPixel);
+}
+
+// Every pass of a real frame counts where its work is, as its declaration says: the frame's
+// G-buffer, the shadow maps (the depth passes, post passes such as vsm's blur and smrt's bounds,
+// virtual pages), the per-pixel work (visibility, smrt's filter, the contact layer, the
+// composite). What each report's and the sweep's cost columns add up (CostGroup).
+TEST_F(FrameTest, EveryPassOfAFrameCountsWhereItsWorkIs) {
+    const Scene scene = loadScene("builtin:spot");
+    const auto expected = [](std::string_view pass) {
+        if (pass == "gbuffer")
+            return CostGroup::Frame;
+        if (pass == "visibility" || pass == "filter" || pass == "composite" || pass == "contact")
+            return CostGroup::PerPixel;
+        return CostGroup::ShadowMaps;
+    };
+    struct Case {
+        Technique technique;
+        std::vector<std::pair<std::string, std::string>> sets;
+        std::vector<std::string> passes; // that must be there
+    };
+    const std::vector<Case> cases = {
+        {Technique::Hard, {{"composite.fused", "false"}}, {"shadow", "gbuffer", "visibility"}},
+        {Technique::Vsm, {}, {"shadow", "vsm_blur_rows", "composite"}},
+        {Technique::Smrt, {{"smrt.filter", "2"}}, {"filter", "visibility"}},
+        {Technique::Pcf, {{"contact.length", "0.2"}}, {"contact"}},
+        {Technique::Hard, {{"virtual.enabled", "true"}}, {"shadow"}}};
+    for (const Case& c : cases) {
+        RenderOptions o{
+            .width = 32, .height = 32, .shadowMapSize = 256, .frames = 1, .technique = c.technique};
+        for (const auto& [key, value] : c.sets)
+            o.parameters.set(key, value);
+        const RenderResult r = sharedRenderer().render(scene, o);
+        const std::string label = std::string(techniqueName(c.technique)) +
+                                  (c.sets.empty() ? "" : " " + c.sets.front().first);
+        for (const std::string& name : c.passes)
+            EXPECT_TRUE(std::any_of(r.passes.begin(), r.passes.end(),
+                                    [&](const PassTime& p) { return p.pass == name; }))
+                << label << ": no " << name;
+        for (const PassTime& p : r.passes)
+            EXPECT_EQ(p.cost, expected(p.pass)) << label << ": " << p.pass;
+    }
+}
+
 // A graph of transfers on the device: an image cleared, copied into a buffer, that buffer
 // copied into a second one and read by the host. The values arrive only if each barrier the
 // graph placed is there; synchronization validation reports any it missed.
@@ -185,6 +269,7 @@ TEST_F(FrameTest, AGraphOfImagesAndBuffersRunsWithoutAHazard) {
                        .uses = {{host, Access::HostRead}},
                        .record = [](PassContext&) {}});
         graph.addPass({.name = "copy buffer",
+                       .cost = CostGroup::Frame,
                        .phase = Phase::Composite,
                        .uses = {{staging, Access::TransferRead}, {host, Access::TransferWrite}},
                        .record = [&](PassContext& c) {
@@ -192,6 +277,7 @@ TEST_F(FrameTest, AGraphOfImagesAndBuffersRunsWithoutAHazard) {
                            vkCmdCopyBuffer(c.cmd, c.buffer(staging), c.buffer(host), 1, &region);
                        }});
         graph.addPass({.name = "copy image",
+                       .cost = CostGroup::Frame,
                        .phase = Phase::PerLight,
                        .uses = {{image, Access::TransferRead}, {staging, Access::TransferWrite}},
                        .record = [&](PassContext& c) {
@@ -199,6 +285,7 @@ TEST_F(FrameTest, AGraphOfImagesAndBuffersRunsWithoutAHazard) {
                        }});
         graph.addPass(
             {.name = "clear",
+             .cost = CostGroup::Frame,
              .phase = Phase::GBuffer,
              .uses = {{image, Access::TransferWrite}},
              .record = [&](PassContext& c) {

@@ -227,6 +227,15 @@ TEST(RenderOptions, ValidateAcceptsTheLastValidValueAndRefusesTheFirstInvalid) {
 TEST(TechniqueModules, DeclarationsAreConsistent) {
     for (const shadows::TechniqueModule* m : shadows::allModules()) {
         const std::string name(m->info.name);
+        // The blocker search's cap is one of its own parameters (the viewer reads it by this key)
+        // and only a member that models the light's size searches.
+        if (!m->blockerSearchKey.empty()) {
+            EXPECT_TRUE(
+                std::any_of(m->parameters.begin(), m->parameters.end(),
+                            [&](const ParameterInfo& p) { return p.key == m->blockerSearchKey; }))
+                << name << ": " << m->blockerSearchKey;
+            EXPECT_TRUE(m->modelsLightSize) << name;
+        }
         EXPECT_EQ(&shadows::moduleOf(m->info.id), m) << name;
         EXPECT_EQ(findTechnique(m->info.name).id, m->info.id) << name;
         // Every map a pass names is declared, and the visibility pass filters a declared one.
@@ -417,6 +426,33 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
             << widest << ": as many steps as fit";
         EXPECT_LE(scale, 16777216.0);
     }
+}
+
+// Lists in messages come from the modules: in registry order, commas and a last "and".
+TEST(TechniqueModules, MessagesListTheTechniquesTheRegistryHolds) {
+    using shadows::TechniqueModule;
+    EXPECT_EQ(shadows::techniquesWhere([](const TechniqueModule&) { return false; }), "none");
+    EXPECT_EQ(
+        shadows::techniquesWhere([](const TechniqueModule& m) { return m.info.name == "pcf"; }),
+        "pcf");
+    EXPECT_EQ(shadows::techniquesWhere([](const TechniqueModule& m) {
+                  return m.info.name == "pcf" || m.info.name == "hard";
+              }),
+              "hard and pcf");
+    std::string all;
+    const auto modules = shadows::allModules();
+    for (size_t i = 0; i < modules.size(); ++i)
+        all += std::string(i == 0                    ? ""
+                           : i + 1 == modules.size() ? " and "
+                                                     : ", ") +
+               std::string(modules[i]->info.name);
+    EXPECT_EQ(shadows::techniquesWhere([](const TechniqueModule&) { return true; }), all);
+    // What the virtual maps' refusal names: every module that reads them, smrt too.
+    const std::string virtualReaders =
+        shadows::techniquesWhere([](const TechniqueModule& m) { return m.readsVirtualMaps; });
+    for (const TechniqueModule* m : modules)
+        EXPECT_EQ(virtualReaders.find(m->info.name) != std::string::npos, m->readsVirtualMaps)
+            << m->info.name;
 }
 
 TEST(TechniqueModules, CubeGuardBandsHoldEveryKernel) {

@@ -163,7 +163,8 @@ ReportRow makeRow(std::string name, double rmse, std::vector<std::pair<std::stri
     row.metrics.truthLit = 40213, row.metrics.truthShadowed = 300; // few shadowed: a note
     row.metrics.acnePixels = 12, row.metrics.leakPixels = 150;
     row.metrics.acneBeyondBlurPixels = 7, row.metrics.leakBeyondBlurPixels = 5;
-    row.gpuMs = std::move(gpu);
+    for (auto& [pass, ms] : gpu)
+        row.gpuMs.push_back({.pass = pass, .cost = CostGroup::ShadowMaps, .medianMs = ms});
     row.imagePng = encodePng(visibilityImage(2, 2, std::vector<float>{0, 1, 0.5f, kNaN}));
     row.visibilityPng = {1, 2, 3, 4}; // not a PNG: exercises base64 with one byte left over
     row.heatmapPng = encodePng(threeErrors());
@@ -212,11 +213,15 @@ TEST(MetricsJson, HasExactlyTheContractKeys) {
     EXPECT_EQ(ref["device"], d.device);
     EXPECT_EQ(keysOf(j["techniques"]), (std::set<std::string>{"hard", "a<b&\"c\""}));
     nlohmann::json& t = j["techniques"]["a<b&\"c\""];
-    EXPECT_EQ(keysOf(t),
-              (std::set<std::string>{"rmse", "mae", "max", "misclassified",
-                                     "misclassified_outside_edges", "acne", "leak",
-                                     "acne_beyond_blur", "leak_beyond_blur", "leak_near_contact",
-                                     "near_contact_pixels", "pixels", "counts", "gpu_ms"}));
+    EXPECT_EQ(keysOf(t), (std::set<std::string>{"rmse", "mae", "max", "misclassified",
+                                                "misclassified_outside_edges", "acne", "leak",
+                                                "acne_beyond_blur", "leak_beyond_blur",
+                                                "leak_near_contact", "near_contact_pixels",
+                                                "pixels", "counts", "gpu_ms", "gpu_ms_by_cost"}));
+    // Every pass of this row is declared a shadow-map cost: all its time, none elsewhere.
+    EXPECT_EQ(t["gpu_ms_by_cost"],
+              (nlohmann::json{
+                  {"shadow_maps", t["gpu_ms"]["total"]}, {"per_pixel", 0.0}, {"frame", 0.0}}));
     EXPECT_EQ(t["counts"]["acne"], (nlohmann::json{{"pixels", 12}, {"of", 40213}}));
     EXPECT_EQ(t["counts"]["leak"], (nlohmann::json{{"pixels", 150}, {"of", 300}}));
     EXPECT_EQ(t["counts"]["acne_beyond_blur"], (nlohmann::json{{"pixels", 7}, {"of", 40213}}))
@@ -336,23 +341,38 @@ TEST(TruthNotes, SoftRowsAgainstAHardTruthGetANote) {
     EXPECT_NE(tuneHtml(t).find("1 exact ray per pixel"), std::string::npos);
 }
 
-// The cost columns group the passes: the shadow maps' (the depth pass and the technique's own),
-// the per-pixel ones (visibility, composite, the contact layer), and the total of every pass,
-// the G-buffer's too, worked out by hand.
+// The cost columns group the passes by the group each declares, never by its name: the shadow
+// maps' (the depth pass and the technique's own), the per-pixel ones (visibility, smrt's filter,
+// composite, the contact layer), and the total of every pass, the frame's too, worked out by hand;
+// metrics.json sums the same groups.
 TEST(HtmlReport, CostColumnsGroupThePasses) {
     ReportData d = makeReport();
     d.rows.resize(1);
-    d.rows[0].gpuMs = {{"shadow", 0.5},     {"blur", 0.25},       {"gbuffer", 2.0},
-                       {"visibility", 1.0}, {"composite", 0.125}, {"contact_march", 0.0625}};
+    const auto pass = [](std::string name, CostGroup cost, double ms) {
+        return PassTime{.pass = std::move(name), .cost = cost, .medianMs = ms};
+    };
+    d.rows[0].gpuMs = {pass("shadow", CostGroup::ShadowMaps, 0.5),
+                       pass("blur", CostGroup::ShadowMaps, 0.25),
+                       pass("gbuffer", CostGroup::Frame, 2.0),
+                       pass("visibility", CostGroup::PerPixel, 1.0),
+                       pass("filter", CostGroup::PerPixel, 4.0),
+                       pass("composite", CostGroup::PerPixel, 0.125),
+                       pass("contact_march", CostGroup::PerPixel, 0.0625)};
     const std::string html = renderHtmlReport(d);
     EXPECT_NE(html.find("<td data-value=\"0.75\" class=\"first\">0.750</td>"), std::string::npos)
         << "shadow + blur";
-    EXPECT_NE(html.find("<td data-value=\"1.1875\">"), std::string::npos)
-        << "visibility + composite + contact_march";
-    EXPECT_NE(html.find("<td data-value=\"3.9375\" title=\"shadow 0.500, blur 0.250, gbuffer "
-                        "2.000, visibility 1.000, composite 0.125, contact_march 0.062\">"),
+    EXPECT_NE(html.find("<td data-value=\"5.1875\">"), std::string::npos)
+        << "visibility + filter + composite + contact_march";
+    EXPECT_NE(html.find("<td data-value=\"7.9375\" title=\"shadow 0.500, blur 0.250, gbuffer "
+                        "2.000, visibility 1.000, filter 4.000, composite 0.125, contact_march "
+                        "0.062\">"),
               std::string::npos)
         << "every pass";
+    const nlohmann::json byCost = metricsRowJson(d.rows[0])["gpu_ms_by_cost"];
+    EXPECT_EQ(byCost,
+              (nlohmann::json{{"shadow_maps", 0.75}, {"per_pixel", 5.1875}, {"frame", 2.0}}));
+    EXPECT_EQ(gpuMsByCost({}),
+              (nlohmann::json{{"shadow_maps", 0.0}, {"per_pixel", 0.0}, {"frame", 0.0}}));
 }
 
 // The best value of a column is marked only where the rows differ: the lower RMSE of two, not

@@ -374,16 +374,22 @@ TEST(SweepMerge, MeansRanksFrontsAndFailures) {
     EXPECT_EQ(mergeJson(mergeRecords(records)).dump(), mergeJson(m).dump());
 }
 
-TEST(SweepMerge, CostsAreThePerPixelPassesAndEveryPassButTheGBuffer) {
+// By the group each pass declares, never by its name: smrt's "filter" is per-pixel work, a pass
+// of any name in the frame's group is left out.
+TEST(SweepMerge, CostsAreThePerPixelPassesAndEveryPassButTheFrames) {
     TaskRecord r;
-    setCosts(r, {{"shadow", 1.0},
-                 {"gbuffer", 2.0},
-                 {"vsm_blur", 0.25},
-                 {"visibility", 0.5},
-                 {"composite", 4.0}});
-    EXPECT_EQ(r.visibilityMs, 4.5); // the composite evaluates the technique where fused
-    EXPECT_EQ(r.shadowMs, 5.75);    // everything but the G-buffer
-    EXPECT_EQ(r.passes.size(), 5u);
+    const auto pass = [](std::string name, CostGroup cost, double ms) {
+        return PassTime{.pass = std::move(name), .cost = cost, .medianMs = ms};
+    };
+    setCosts(r, {pass("shadow", CostGroup::ShadowMaps, 1.0), pass("gbuffer", CostGroup::Frame, 2.0),
+                 pass("vsm_blur", CostGroup::ShadowMaps, 0.25),
+                 pass("visibility", CostGroup::PerPixel, 0.5),
+                 pass("filter", CostGroup::PerPixel, 16.0), pass("tonemap", CostGroup::Frame, 32.0),
+                 pass("composite", CostGroup::PerPixel, 4.0)});
+    EXPECT_EQ(r.visibilityMs, 20.5); // visibility, filter, composite
+    EXPECT_EQ(r.shadowMs, 21.75);    // everything but the frame's
+    ASSERT_EQ(r.passes.size(), 7u);
+    EXPECT_EQ(r.passes[4], (std::pair<std::string, double>{"filter", 16.0})) << "frame order";
 }
 
 TEST(SweepEmit, SlurmArrayAndKubernetesIndexedJob) {

@@ -205,8 +205,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                           shimmer.empty() ? std::vector<uint32_t>{} : shimmer[r].pagesResident};
         for (const auto& [key, value] : rows[r].sets)
             row.parameters.emplace_back(key, value);
-        for (const PassTime& p : result.passes)
-            row.gpuMs.emplace_back(p.pass, p.medianMs);
+        row.gpuMs = result.passes;
         // Full-size files beside the report, the page's images reduced (page_image.h).
         const std::string prefix = filePrefix(rows[r].name);
         const uint32_t scale = report.pageScale;
@@ -261,8 +260,8 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
             continue;
         }
         double total = 0;
-        for (const auto& [pass, ms] : row.gpuMs)
-            total += ms;
+        for (const PassTime& p : row.gpuMs)
+            total += p.medianMs;
         std::printf("%-22s %9.5f %9.5f %11.3f %8.3f %8.3f %8.3f %8.3f %8.2f %10.3f",
                     row.name.c_str(), row.metrics.rmse, row.metrics.mae,
                     100 * row.metrics.misclassified, 100 * row.metrics.acne, 100 * row.metrics.leak,

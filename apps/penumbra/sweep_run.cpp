@@ -120,10 +120,7 @@ void measure(sweep::TaskRecord& record, const sweep::SweepTask& task, const Load
     for (const ErrorMetrics& r : replicates)
         for (const sweep::MetricField& f : sweep::kMetricFields)
             record.replicates[std::string(f.name)].push_back(r.*f.member);
-    std::vector<std::pair<std::string, double>> passes;
-    for (const PassTime& p : result.passes)
-        passes.emplace_back(p.pass, p.medianMs);
-    sweep::setCosts(record, passes);
+    sweep::setCosts(record, result.passes);
 }
 
 std::string clockText(double seconds) {

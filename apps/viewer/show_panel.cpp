@@ -19,8 +19,10 @@ const char* const kModes[] = {
 void pagesPanel(ViewerState& s) {
     const std::optional<VirtualMapInfo>& v = s.lastFrame.virtualMaps;
     if (!v) {
-        ImGui::TextWrapped("the technique reads no virtual maps: set virtual.enabled (hard, pcf, "
-                           "pcss)");
+        ImGui::TextWrapped("the technique reads no virtual maps: set virtual.enabled (%s)",
+                           shadows::techniquesWhere([](const shadows::TechniqueModule& m) {
+                               return m.readsVirtualMaps;
+                           }).c_str());
         return;
     }
     if (s.display == DisplayMode::Pages && !s.levelNames.empty()) {
@@ -93,10 +95,7 @@ void metricsTable(const ErrorMetrics& m) {
 } // namespace
 
 bool hasBlockerSearch(Technique technique) {
-    // The members that model the light's size with a shadow map search it for blockers (the
-    // distance field traces instead).
-    const shadows::TechniqueModule& module = shadows::moduleOf(technique);
-    return module.modelsLightSize && !module.tracesField;
+    return !shadows::moduleOf(technique).blockerSearchKey.empty();
 }
 
 void showPanel(ViewerState& s) {
@@ -109,14 +108,19 @@ void showPanel(ViewerState& s) {
     const bool search =
         s.display == DisplayMode::BlockerDepth || s.display == DisplayMode::Penumbra;
     if (search && !hasBlockerSearch(s.options.technique))
-        ImGui::TextWrapped("%s has no blocker search: pcss, vssm and msm-soft do",
-                           std::string(techniqueName(s.options.technique)).c_str());
+        ImGui::TextWrapped("%s has no blocker search: %s do",
+                           std::string(techniqueName(s.options.technique)).c_str(),
+                           shadows::techniquesWhere([](const shadows::TechniqueModule& m) {
+                               return !m.blockerSearchKey.empty();
+                           }).c_str());
     else if (s.display == DisplayMode::BlockerDepth)
         ImGui::TextWrapped("the average blocker's depth in the light's view (grey; dark blue: "
                            "no blocker found)");
     else if (s.display == DisplayMode::Penumbra)
-        ImGui::TextWrapped("the filter's radius in texels: blue 0 to yellow at the largest "
-                           "(pcss.maxRadius); dark blue: no blocker found");
+        ImGui::TextWrapped(
+            "the filter's radius in texels: blue 0 to yellow at the largest "
+            "(%s); dark blue: no blocker found",
+            std::string(shadows::moduleOf(s.options.technique).blockerSearchKey).c_str());
     const bool contact = s.display == DisplayMode::Contact;
     if (contact && s.options.parameters.number("contact.length") <= 0.0)
         ImGui::TextWrapped("the contact layer is off: set contact.length (world units) under "

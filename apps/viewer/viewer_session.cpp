@@ -268,7 +268,7 @@ gpu::DisplayPush ViewerSession::displayPush(uint32_t width) const {
                 s.display == DisplayMode::BlockerDepth ? DISPLAY_BLOCKER_DEPTH : DISPLAY_PENUMBRA;
             push.mode.y = std::min(static_cast<uint32_t>(s.displayLight), shadowLights - 1);
             push.depthRange.w = static_cast<float>(s.options.parameters.number(
-                fmt::format("{}.maxRadius", techniqueName(s.options.technique))));
+                shadows::moduleOf(s.options.technique).blockerSearchKey));
         }
         break;
     }
@@ -367,12 +367,12 @@ void ViewerSession::printTimes() const {
 void ViewerSession::recordTimes(FrameSlot& slot) {
     const auto times = slot.timerA->read();
     bool same = times.size() == mState.gpuHistory.size();
-    for (const auto& [pass, ms] : times)
-        same = same && mState.gpuHistory.count(pass);
+    for (const PassTime& t : times)
+        same = same && mState.gpuHistory.count(t.pass);
     if (!same) // another technique: other passes
         mState.gpuHistory.clear();
-    for (const auto& [pass, ms] : times)
-        pushHistory(mState.gpuHistory[pass], static_cast<float>(ms));
+    for (const PassTime& t : times)
+        pushHistory(mState.gpuHistory[t.pass], static_cast<float>(t.medianMs));
 }
 
 } // namespace penumbra::viewer

@@ -11,6 +11,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 // Vulkan's own handle types, for a window system's presentation test and a caller that records
@@ -60,8 +61,21 @@ struct DeviceMemoryUse {
     uint64_t bytes = 0;
 };
 
+// What a pass's time counts towards, as its pass declares it (docs/cli.md, "GPU time"): the
+// shadow maps (the depth passes, what is filtered from them, virtual pages), the technique's
+// per-pixel work (its visibility dispatch, its visibility filter, the layers, the composite it
+// may be fused into), or the frame around the technique (the G-buffer: the same for every one).
+enum class CostGroup { ShadowMaps, PerPixel, Frame };
+// Its key in metrics.json's and stats.json's "gpu_ms_by_cost".
+constexpr std::string_view costGroupName(CostGroup group) {
+    return group == CostGroup::ShadowMaps ? "shadow_maps"
+           : group == CostGroup::PerPixel ? "per_pixel"
+                                          : "frame";
+}
+
 struct PassTime {
     std::string pass; // "shadow", "gbuffer", "visibility", "composite"
+    CostGroup cost = CostGroup::ShadowMaps;
     double medianMs = 0.0;
     std::vector<double> frameMs; // every timed frame
 };

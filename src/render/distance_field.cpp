@@ -278,7 +278,7 @@ DistanceField buildDistanceField(const vk::Context& ctx, FramePipelines& pipelin
                     .image(field.image, kComputeReadWrite, kComputeReadWrite)
                     .record(cmd);
             }
-            timer.begin(cmd, std::string(slab.pass));
+            timer.begin(cmd, std::string(slab.pass), CostGroup::ShadowMaps); // the field: its map
             // sdf_seed writes ids[0], sdf_flood reads it and writes ids[1], sdf_resolve reads that.
             if (slab.pass == kSeed)
                 dispatch(cmd, p.seed.get(), ids[1], ids[0], slab);
@@ -292,9 +292,9 @@ DistanceField buildDistanceField(const vk::Context& ctx, FramePipelines& pipelin
         });
         report.done(i);
     }
-    for (const auto& [pass, ms] : timer.read()) {
-        field.buildMs += ms;
-        field.passMs.push_back({pass, ms});
+    for (const PassTime& pass : timer.read()) {
+        field.buildMs += pass.medianMs;
+        field.passMs.push_back(pass);
     }
     return field;
 }

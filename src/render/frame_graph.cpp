@@ -158,6 +158,10 @@ const std::vector<PlannedPass>& FrameGraph::plan() {
     };
     for (size_t index : order) {
         const PassDecl& pass = mPasses[index];
+        PENUMBRA_CHECK(pass.name.empty() != pass.cost.has_value(),
+                       "FrameGraph: pass \"" + pass.name + "\" " +
+                           (pass.name.empty() ? "is untimed but declares a cost group"
+                                              : "is timed but declares no cost group"));
         PlannedPass planned{.pass = index};
         for (size_t u = 0; u < pass.uses.size(); ++u) {
             const Use& use = pass.uses[u];
@@ -221,7 +225,7 @@ void FrameGraph::record(VkCommandBuffer cmd, vk::GpuTimer* timer) {
         barriers.record(cmd);
         const bool timed = timer && !pass.name.empty();
         if (timed)
-            timer->begin(cmd, pass.name);
+            timer->begin(cmd, pass.name, *pass.cost);
         PassContext context{.cmd = cmd, .graph = *this};
         pass.record(context);
         if (timed)

@@ -24,6 +24,7 @@
 #include "vk/timestamps.h"
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,6 +51,9 @@ struct PassContext {
 
 struct PassDecl {
     std::string name; // its GPU timestamp scope (passes with one name add up); "" untimed
+    // What its time counts towards: declared by every timed pass and by no untimed one (the
+    // plan checks), the same for every pass of one name (the timer checks).
+    std::optional<CostGroup> cost;
     Phase phase;
     std::vector<Use> uses;
     std::function<void(PassContext&)> record;

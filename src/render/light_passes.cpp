@@ -175,6 +175,7 @@ void addFillAndList(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
         layerLayoutUses(r, Access::ComputeReadWrite, r.layerResults, Access::ComputeWrite);
     fill.push_back({r.traceList, Access::ComputeReadWrite});
     graph.addPass({.name = "visibility",
+                   .cost = CostGroup::PerPixel,
                    .phase = Phase::PerLight,
                    .uses = fill,
                    .record = [&p, &s, &in, r, checkerboard, light](PassContext& c) {
@@ -190,6 +191,7 @@ void addFillAndList(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     std::vector<Use> trace = visibilityUses(r, Access::ComputeWrite);
     trace.push_back({r.traceList, Access::IndirectRead});
     graph.addPass({.name = "visibility",
+                   .cost = CostGroup::PerPixel,
                    .phase = Phase::PerLight,
                    .uses = trace,
                    .record = [&p, &s, &in, r, light](PassContext& c) {
@@ -216,6 +218,7 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     if (checkerboard)
         uses.push_back({r.traceList, Access::ComputeRead});
     graph.addPass({.name = "visibility",
+                   .cost = CostGroup::PerPixel,
                    .phase = Phase::PerLight,
                    .uses = uses,
                    .record = [&p, &s, &in, r, separate, checkerboard](PassContext& c) {
@@ -232,6 +235,7 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     for (uint32_t axis = 0; filter.runs() && axis < 2; ++axis) {
         const Access read = Access::ComputeReadWrite, write = Access::ComputeWrite;
         graph.addPass({.name = "filter",
+                       .cost = CostGroup::PerPixel,
                        .phase = Phase::PerLight,
                        .uses = layerLayoutUses(r, axis == 0 ? read : write, r.visibilityScratch,
                                                axis == 0 ? write : read),
@@ -243,6 +247,7 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     }
     for (const shadows::LayerModule* layer : s.layers)
         graph.addPass({.name = std::string(layer->name),
+                       .cost = CostGroup::PerPixel,
                        .phase = Phase::PerLight,
                        .uses = layerLayoutUses(r, Access::ComputeReadWrite, r.layerResults,
                                                Access::ComputeWrite),
@@ -253,6 +258,7 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     if (fused) {
         // The last light reads the earlier lights' layers as it writes its own.
         graph.addPass({.name = "composite",
+                       .cost = CostGroup::PerPixel,
                        .phase = Phase::Composite,
                        .uses = visibilityUses(r, Access::ComputeReadWrite),
                        .record = [&p, &s, &in, r](PassContext& c) {
@@ -262,6 +268,7 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     }
     graph.addPass(
         {.name = "composite",
+         .cost = CostGroup::PerPixel,
          .phase = Phase::Composite,
          .uses = {{r.frame, Access::UniformRead},
                   {r.lights, Access::UniformRead},

@@ -49,10 +49,13 @@ void checkVirtualMaps(const vk::Context& ctx, const Scene& scene, const RenderOp
         return;
     const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
     if (!module.readsVirtualMaps)
-        throw InputError("virtual.enabled",
-                         fmt::format("technique {} filters whole maps in passes that do not "
-                                     "cross pages; virtual maps serve hard, pcf and pcss",
-                                     techniqueName(o.technique)));
+        throw InputError(
+            "virtual.enabled",
+            fmt::format("technique {} filters whole maps in passes that do not "
+                        "cross pages; virtual maps serve {}",
+                        techniqueName(o.technique),
+                        shadows::techniquesWhere(
+                            [](const shadows::TechniqueModule& m) { return m.readsVirtualMaps; })));
     auto powerOfTwo = [](const char* key, uint32_t value) {
         if (!std::has_single_bit(value))
             throw InputError(key, fmt::format("{} is not a power of two", value));

@@ -460,12 +460,13 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         ctx.submitAndWait([&](VkCommandBuffer cmd) { m.record(cmd, prepared, timer); });
         if (warmUp)
             continue; // the warm-up frames pay for first-use costs
-        for (const auto& [pass, ms] : timer.read()) {
+        for (const PassTime& frameTime : timer.read()) {
             auto it = std::find_if(result.passes.begin(), result.passes.end(),
-                                   [&, name = pass](const PassTime& p) { return p.pass == name; });
+                                   [&](const PassTime& p) { return p.pass == frameTime.pass; });
             if (it == result.passes.end())
-                it = result.passes.insert(result.passes.end(), {.pass = pass});
-            it->frameMs.push_back(ms);
+                it = result.passes.insert(result.passes.end(),
+                                          {.pass = frameTime.pass, .cost = frameTime.cost});
+            it->frameMs.push_back(frameTime.medianMs);
         }
     }
     for (PassTime& p : result.passes)

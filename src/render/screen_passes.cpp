@@ -13,6 +13,7 @@ void addGBufferPass(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                     const FrameSettings& s, const FrameInputs& in, const FrameResources& r) {
     graph.addPass(
         {.name = "gbuffer",
+         .cost = CostGroup::Frame,
          .phase = Phase::GBuffer,
          .uses = {{r.gbufferDepth, Access::DepthAttachment},
                   {r.gbufferNormal, Access::ColorAttachment},

@@ -187,6 +187,7 @@ void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene
     const shadows::TechniqueModule& technique = *s.technique;
     // The light's own depth pass, every view; the technique's depth passes count as "shadow" too.
     graph.addPass({.name = "shadow",
+                   .cost = CostGroup::ShadowMaps,
                    .phase = Phase::LightSpace,
                    .uses = {{r.depthMap, Access::DepthAttachment}},
                    .record = [&p, &scene, &s, &in, map = r.depthMap](PassContext& c) {
@@ -199,6 +200,7 @@ void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene
         const ResourceId read = r.named(technique, pass.reads);
         const ResourceId target = r.named(technique, pass.target);
         graph.addPass({.name = "shadow",
+                       .cost = CostGroup::ShadowMaps,
                        .phase = Phase::LightSpace,
                        .uses = {{read, Access::FragmentSampled}, {target, Access::DepthAttachment}},
                        .record = [&p, &scene, &s, &in, pass, read, target](PassContext& c) {
@@ -231,6 +233,7 @@ void addPostPasses(FrameGraph& graph, FramePipelines& p, const shadows::Techniqu
             if (!chain || graph.sizes().shadowMapSize < 2)
                 continue;
             graph.addPass({.name = timestampOf(pass.shader),
+                           .cost = CostGroup::ShadowMaps,
                            .phase = Phase::LightSpace,
                            .uses = {{map, Access::ComputeSampled},
                                     {block, Access::UniformRead},
@@ -247,6 +250,7 @@ void addPostPasses(FrameGraph& graph, FramePipelines& p, const shadows::Techniqu
         for (std::string_view name : pass.outputs)
             uses.push_back({outputs.emplace_back(r.named(module, name)), Access::ComputeWrite});
         graph.addPass({.name = timestampOf(pass.shader),
+                       .cost = CostGroup::ShadowMaps,
                        .phase = Phase::LightSpace,
                        .uses = std::move(uses),
                        .record = [&p, &in, pass, inputs, outputs, views](PassContext& c) {

@@ -13,6 +13,7 @@ namespace penumbra::render {
 void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                           const FrameSettings& s, const FrameInputs& in, const FrameResources& r) {
     graph.addPass({.name = "shadow",
+                   .cost = CostGroup::ShadowMaps,
                    .phase = Phase::LightSpace,
                    .uses = {{r.depthMap, Access::DepthAttachment}},
                    .record = [&p, &scene, &s, &in, pool = r.depthMap](PassContext& c) {
@@ -30,6 +31,7 @@ void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
                    }});
     graph.addPass(
         {.name = "shadow",
+         .cost = CostGroup::ShadowMaps,
          .phase = Phase::ScreenSpace,
          .uses = {{r.frame, Access::UniformRead},
                   {r.lights, Access::UniformRead},

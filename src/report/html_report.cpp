@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <span>
@@ -122,17 +123,6 @@ void writeHeader(std::string& s, const ReportData& d) {
     s += "</ul></dd>\n</dl></section>\n";
 }
 
-// A pass's share of the cost columns: the shadow maps' passes (the depth pass and the
-// technique's post passes), the per-pixel ones, or the G-buffer (in the total only).
-enum class CostGroup { ShadowMaps, PerPixel, GBuffer };
-CostGroup costGroupOf(std::string_view pass) {
-    if (pass == "gbuffer")
-        return CostGroup::GBuffer;
-    if (pass == "visibility" || pass == "composite" || pass.starts_with("contact"))
-        return CostGroup::PerPixel;
-    return CostGroup::ShadowMaps;
-}
-
 // "size=7, filter=box": the parameters without their family, cut to `limit` characters.
 std::string shortParameters(const std::vector<std::pair<std::string, std::string>>& parameters,
                             size_t limit) {
@@ -243,13 +233,12 @@ void writeTable(std::string& s, const ReportData& d) {
             number(row.shimmer, fmt::format("{:.5f}", row.shimmer));
         double maps = 0, perPixel = 0;
         std::string passes;
-        for (const auto& [pass, ms] : row.gpuMs) {
-            const CostGroup g = costGroupOf(pass);
-            if (g == CostGroup::ShadowMaps)
-                maps += ms;
-            else if (g == CostGroup::PerPixel)
-                perPixel += ms;
-            passes += fmt::format("{}{} {:.3f}", passes.empty() ? "" : ", ", pass, ms);
+        for (const PassTime& p : row.gpuMs) { // the G-buffer's in the total only
+            if (p.cost == CostGroup::ShadowMaps)
+                maps += p.medianMs;
+            else if (p.cost == CostGroup::PerPixel)
+                perPixel += p.medianMs;
+            passes += fmt::format("{}{} {:.3f}", passes.empty() ? "" : ", ", p.pass, p.medianMs);
         }
         number(maps, fmt::format("{:.3f}", maps), "first");
         number(perPixel, fmt::format("{:.3f}", perPixel));
@@ -409,11 +398,21 @@ nlohmann::json metricsJson(const ReportData& data) {
     return j;
 }
 
+nlohmann::json gpuMsByCost(const std::vector<PassTime>& passes) {
+    std::array<double, 3> sums{}; // CostGroup's order
+    for (const PassTime& p : passes)
+        sums[static_cast<size_t>(p.cost)] += p.medianMs;
+    nlohmann::json j = nlohmann::json::object();
+    for (CostGroup g : {CostGroup::ShadowMaps, CostGroup::PerPixel, CostGroup::Frame})
+        j[std::string(costGroupName(g))] = sums[static_cast<size_t>(g)];
+    return j;
+}
+
 nlohmann::json metricsRowJson(const ReportRow& row) {
     nlohmann::json gpu = nlohmann::json::object();
-    for (const auto& [pass, ms] : row.gpuMs) {
-        PENUMBRA_CHECK(pass != "total", "a GPU pass may not be named total");
-        gpu[pass] = ms;
+    for (const PassTime& p : row.gpuMs) {
+        PENUMBRA_CHECK(p.pass != "total", "a GPU pass may not be named total");
+        gpu[p.pass] = p.medianMs;
     }
     gpu["total"] = totalGpuMs(row);
     const ErrorMetrics& m = row.metrics;
@@ -430,7 +429,8 @@ nlohmann::json metricsRowJson(const ReportRow& row) {
             {"near_contact_pixels", m.nearContact},
             {"pixels", m.pixels},
             {"counts", metricCountsJson(m)},
-            {"gpu_ms", gpu}};
+            {"gpu_ms", gpu},
+            {"gpu_ms_by_cost", gpuMsByCost(row.gpuMs)}};
 }
 
 nlohmann::json metricCountsJson(const ErrorMetrics& m) {

@@ -1,6 +1,7 @@
 #pragma once
 // report.html and metrics.json of `penumbra compare` (docs/cli.md): every technique's error
 // against the ray-traced reference, its GPU cost, and its images, in one offline file.
+#include "penumbra/renderer.h"
 #include "report/metrics.h"
 
 #include <nlohmann/json.hpp>
@@ -23,7 +24,7 @@ struct ReportRow {
     std::string technique;                                       // CLI technique name
     std::vector<std::pair<std::string, std::string>> parameters; // non-default, for display
     ErrorMetrics metrics;
-    std::vector<std::pair<std::string, double>> gpuMs;        // pass -> median ms, frame order
+    std::vector<PassTime> gpuMs; // per pass its median ms and cost group, in frame order
     std::vector<uint8_t> imagePng, visibilityPng, heatmapPng; // at page size (page_image.h)
     std::string imageFile, heatmapFile; // the full-size files beside report.html; may be empty
     std::string skipped;          // why it did not run (the device cannot hold it); empty: it ran
@@ -60,6 +61,9 @@ std::string renderHtmlReport(const ReportData& data);
 nlohmann::json metricsJson(const ReportData& data);
 // One row's entry of metrics.json (without the camera path's keys): the Python module's metrics().
 nlohmann::json metricsRowJson(const ReportRow& row);
+// {"shadow_maps", "per_pixel", "frame"}: the passes' medians summed by the cost group each was
+// declared with (every group present, 0 without a pass).
+nlohmann::json gpuMsByCost(const std::vector<PassTime>& passes);
 // Each fraction's pixels: {"acne": {"pixels": numerator, "of": denominator}, ...}.
 nlohmann::json metricCountsJson(const ErrorMetrics& m);
 // The note a view with fewer than kFewJudgedPixels fully lit or fully shadowed pixels away from

@@ -61,8 +61,8 @@ Axis niceAxis(double maxValue) {
 
 double totalGpuMs(const ReportRow& row) {
     double total = 0;
-    for (const auto& [pass, ms] : row.gpuMs)
-        total += ms;
+    for (const PassTime& p : row.gpuMs)
+        total += p.medianMs;
     return total;
 }
 

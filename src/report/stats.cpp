@@ -1,5 +1,6 @@
 #include "report/stats.h"
 
+#include "report/html_report.h"
 #include "scene/first_picture.h"
 
 #include <fmt/format.h>
@@ -193,6 +194,7 @@ nlohmann::json renderStats(const RenderRun& run) {
     }
     gpu["total"] = total;
     j["gpu_ms"] = gpu;
+    j["gpu_ms_by_cost"] = gpuMsByCost(run.result.passes);
     j["gpu_ms_per_frame"] = perFrame;
     return j;
 }

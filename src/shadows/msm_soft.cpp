@@ -64,7 +64,8 @@ const TechniqueModule& msmSoftModule() {
             },
         .modelsLightSize = true,
         .blurRadiusTexels = [](const ParameterValues& p) { return kSearch.radiusTexels(p); },
-        .cubeRadiusTexels = [](const ParameterValues& p) { return kSearch.cubeRadiusTexels(p); }};
+        .cubeRadiusTexels = [](const ParameterValues& p) { return kSearch.cubeRadiusTexels(p); },
+        .blockerSearchKey = kSearch.maxRadiusKey};
     return module;
 }
 

@@ -123,6 +123,7 @@ const TechniqueModule& pcssModule() {
             [](const ParameterValues& p) { return p.number("pcss.maxRadius") + 1.0; },
         .cubeRadiusTexels =
             [](const ParameterValues& p) { return p.number("pcss.cubeRadius") + 1.0; },
+        .blockerSearchKey = "pcss.maxRadius",
         .searchCap = [](const ParameterValues& p) { return p.number("pcss.maxRadius"); },
         .readsVirtualMaps = true};
     return module;

@@ -234,6 +234,20 @@ bool mipmappedOf(const MapDecl& map, const ParameterValues& params) {
     return map.mipmappedFor && map.mipmappedFor(params);
 }
 
+std::string techniquesWhere(bool (*property)(const TechniqueModule&)) {
+    std::vector<std::string_view> names;
+    for (const TechniqueModule* module : allModules())
+        if (property(*module))
+            names.push_back(module->info.name);
+    std::string list;
+    for (size_t i = 0; i < names.size(); ++i) {
+        const bool last = i + 1 == names.size();
+        list += i == 0 ? "" : last ? " and " : ", ";
+        list += names[i];
+    }
+    return list.empty() ? "none" : list;
+}
+
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
                         const ParameterValues& params) {
     if (module.tracesField)

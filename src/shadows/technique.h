@@ -187,6 +187,10 @@ struct TechniqueModule {
     // widestRadiusTexels is the larger of the two.
     double (*blurRadiusTexels)(const ParameterValues&) = nullptr;
     double (*cubeRadiusTexels)(const ParameterValues&) = nullptr;
+    // When set, it searches the map for blockers and its visibility pass's intermediates hold the
+    // average blocker's depth (z) and the filter's radius in texels (w), capped by this parameter
+    // (the viewer's blocker-depth and penumbra views; pcss, vssm, msm-soft).
+    std::string_view blockerSearchKey;
     // Whether its kernels reach no further than the light seen from the receiver (the cone
     // towards the light, cut at the near plane) and, under a light without size, than one
     // bilinear tap: a sun's cascades and a point light's cube faces then keep guard bands that
@@ -273,6 +277,10 @@ float fixedPointScale(double widestBox);
 // The registered modules, in `penumbra techniques` order.
 std::span<const TechniqueModule* const> allModules();
 const TechniqueModule& moduleOf(Technique technique);
+
+// The techniques whose module has `property`, in registry order, as a list in a sentence:
+// "hard, pcf, pcss and smrt" (what a message names, never a list written by hand).
+std::string techniquesWhere(bool (*property)(const TechniqueModule&));
 
 // Device memory the technique's maps take per shadow view of size x size texels.
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,

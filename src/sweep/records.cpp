@@ -131,18 +131,17 @@ std::vector<TaskRecord> readTaskRecords(const std::filesystem::path& dir) {
     return out;
 }
 
-void setCosts(TaskRecord& record, const std::vector<std::pair<std::string, double>>& passes) {
-    record.passes = passes;
+void setCosts(TaskRecord& record, const std::vector<PassTime>& passes) {
+    record.passes.clear();
     record.visibilityMs = 0;
     record.shadowMs = 0;
-    for (const auto& [pass, ms] : passes) {
-        if (pass == "gbuffer")
+    for (const PassTime& p : passes) {
+        record.passes.emplace_back(p.pass, p.medianMs);
+        if (p.cost == CostGroup::Frame)
             continue; // the same for every technique
-        record.shadowMs += ms;
-        // The per-pixel passes as compare's report groups them: the composite evaluates the
-        // technique per pixel where the frame fuses it with the visibility pass.
-        if (pass == "visibility" || pass == "composite" || pass.starts_with("contact"))
-            record.visibilityMs += ms;
+        record.shadowMs += p.medianMs;
+        if (p.cost == CostGroup::PerPixel)
+            record.visibilityMs += p.medianMs;
     }
 }
 

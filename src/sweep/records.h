@@ -1,6 +1,8 @@
 #pragma once
 // One task's result as a file, DIR/tasks/<id>.json, written all-or-nothing: what merge reads,
 // and what tells a resumed run that the task is done. A task that failed has a record too.
+#include "penumbra/renderer.h"
+
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -23,8 +25,8 @@ struct TaskRecord {
     uint32_t width = 0, height = 0, samples = 0;
     std::map<std::string, double> metrics;                 // kMetricFields' names
     std::map<std::string, std::vector<double>> replicates; // the bootstrap's, per metric
-    double visibilityMs = NAN; // per-pixel passes (visibility, composite, contact), median frame
-    double shadowMs = NAN;     // every pass but the G-buffer: the technique's whole cost
+    double visibilityMs = NAN; // the per-pixel passes (CostGroup::PerPixel), median frame
+    double shadowMs = NAN;     // every pass but the frame's (the G-buffer): the technique's cost
     std::vector<std::pair<std::string, double>> passes;
 };
 
@@ -38,7 +40,8 @@ void writeTaskRecord(const std::filesystem::path& dir, const TaskRecord& record)
 // Every DIR/tasks/*.json, sorted by id; InputError(file, ...) for one that does not parse.
 std::vector<TaskRecord> readTaskRecords(const std::filesystem::path& dir);
 
-// The per-pixel cost and the whole shadow cost from a render's passes.
-void setCosts(TaskRecord& record, const std::vector<std::pair<std::string, double>>& passes);
+// The per-pixel cost and the whole shadow cost from a render's passes, by the cost group each
+// pass declares.
+void setCosts(TaskRecord& record, const std::vector<PassTime>& passes);
 
 } // namespace penumbra::sweep

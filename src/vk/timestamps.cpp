@@ -28,11 +28,14 @@ void GpuTimer::reset(VkCommandBuffer cmd) {
     mScopes.clear();
 }
 
-void GpuTimer::begin(VkCommandBuffer cmd, std::string pass) {
+void GpuTimer::begin(VkCommandBuffer cmd, std::string pass, CostGroup group) {
     PENUMBRA_CHECK(!mOpen && mScopes.size() < mMaxScopes, "GpuTimer scopes misnested or full");
+    for (const auto& [name, declared] : mScopes)
+        PENUMBRA_CHECK(name != pass || declared == group,
+                       "GpuTimer: pass " + pass + " timed under two cost groups");
     vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, mPool.get(),
                          static_cast<uint32_t>(2 * mScopes.size()));
-    mScopes.push_back(std::move(pass));
+    mScopes.emplace_back(std::move(pass), group);
     mOpen = true;
 }
 
@@ -43,24 +46,33 @@ void GpuTimer::end(VkCommandBuffer cmd) {
     mOpen = false;
 }
 
-std::vector<std::pair<std::string, double>> GpuTimer::read() const {
-    std::vector<std::pair<std::string, double>> result;
+std::vector<PassTime> GpuTimer::read() const {
     if (mScopes.empty())
-        return result;
+        return {};
     std::vector<uint64_t> ticks(2 * mScopes.size());
     VK_CHECK(vkGetQueryPoolResults(mDevice, mPool.get(), 0, static_cast<uint32_t>(ticks.size()),
                                    ticks.size() * sizeof(uint64_t), ticks.data(), sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    std::vector<double> ms(mScopes.size());
     for (size_t i = 0; i < mScopes.size(); ++i) {
         const uint64_t elapsed =
             ((ticks[2 * i + 1] & mValidMask) - (ticks[2 * i] & mValidMask)) & mValidMask;
-        const double ms = static_cast<double>(elapsed) * mPeriodNs * 1e-6;
+        ms[i] = static_cast<double>(elapsed) * mPeriodNs * 1e-6;
+    }
+    return addUpByName(mScopes, ms);
+}
+
+std::vector<PassTime> addUpByName(const std::vector<std::pair<std::string, CostGroup>>& scopes,
+                                  const std::vector<double>& ms) {
+    std::vector<PassTime> result;
+    for (size_t i = 0; i < scopes.size(); ++i) {
+        const auto& [name, group] = scopes[i];
         auto it = std::find_if(result.begin(), result.end(),
-                               [&](const auto& entry) { return entry.first == mScopes[i]; });
+                               [&](const PassTime& entry) { return entry.pass == name; });
         if (it == result.end())
-            result.emplace_back(mScopes[i], ms);
+            result.push_back({.pass = name, .cost = group, .medianMs = ms.at(i)});
         else
-            it->second += ms;
+            it->medianMs += ms.at(i);
     }
     return result;
 }

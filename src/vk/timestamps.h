@@ -15,10 +15,10 @@ class GpuTimer {
 public:
     GpuTimer(const Context& ctx, uint32_t maxScopes);
     void reset(VkCommandBuffer cmd);
-    void begin(VkCommandBuffer cmd, std::string pass);
+    void begin(VkCommandBuffer cmd, std::string pass, CostGroup group);
     void end(VkCommandBuffer cmd);
-    // Milliseconds per pass, in first-recorded order.
-    std::vector<std::pair<std::string, double>> read() const;
+    // Milliseconds per pass (PassTime::medianMs: this frame's), in first-recorded order.
+    std::vector<PassTime> read() const;
 
 private:
     VkDevice mDevice;
@@ -26,8 +26,12 @@ private:
     double mPeriodNs;
     uint64_t mValidMask;
     uint32_t mMaxScopes;
-    std::vector<std::string> mScopes;
+    std::vector<std::pair<std::string, CostGroup>> mScopes;
     bool mOpen = false;
 };
+
+// Each scope's milliseconds added up by name, in first-recorded order (what read() returns).
+std::vector<PassTime> addUpByName(const std::vector<std::pair<std::string, CostGroup>>& scopes,
+                                  const std::vector<double>& ms);
 
 } // namespace penumbra::vk

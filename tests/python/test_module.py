@@ -45,6 +45,11 @@ def test_arrays_have_the_contract_shapes_dtypes_and_nan_background():
     passes = {k: v for k, v in result.gpu_ms.items() if k != "total"}
     assert result.gpu_ms["total"] == pytest.approx(sum(passes.values()), rel=1e-12)
     assert result.gpu_ms["total"] > max(passes.values()), "every pass takes some time"
+    by_cost = result.gpu_ms_by_cost
+    assert set(by_cost) == {"shadow_maps", "per_pixel", "frame"}
+    assert by_cost["frame"] == result.gpu_ms["gbuffer"]
+    assert by_cost["shadow_maps"] == pytest.approx(result.gpu_ms["shadow"], rel=1e-12)
+    assert sum(by_cost.values()) == pytest.approx(result.gpu_ms["total"], rel=1e-12)
     frames = result.gpu_ms_per_frame
     assert set(frames) == set(result.gpu_ms)
     assert frames["total"] == pytest.approx(
@@ -82,10 +87,12 @@ def test_metrics_equal_compares_metrics_json(renderer, asset, tmp_path):
         ours = penumbra.metrics(renderer.render(row, frames=1), truth)
         theirs = written[row]
         assert set(ours) == set(theirs)
+        times = ("gpu_ms", "gpu_ms_by_cost")  # differ from run to run; everything else is exact
         for key in ours:
-            if key != "gpu_ms":  # times differ from run to run; everything else is exact
+            if key not in times:
                 assert ours[key] == theirs[key], f"{row}: {key}"
-        assert set(ours["gpu_ms"]) == set(theirs["gpu_ms"])
+        for key in times:
+            assert set(ours[key]) == set(theirs[key]), f"{row}: {key}"
         result = renderer.render(row, frames=1)
         assert penumbra.metrics(result, truth)["gpu_ms"] == result.gpu_ms, "one total, one sum"
 
@@ -231,7 +238,7 @@ def test_the_example_reproduces_a_compare_row(asset, tmp_path):
     assert done.returncode == 0, done.stderr
     ours = json.loads(done.stdout)
     for key, value in written.items():
-        if key != "gpu_ms":
+        if key not in ("gpu_ms", "gpu_ms_by_cost"):  # times differ from run to run
             assert ours[key] == value, key
 
 
