@@ -251,6 +251,36 @@ TEST(Cascades, ALightsGuardBandHoldsItsConeWithNoTexelToSpare) {
     EXPECT_LT(small[0].texelWorldSize, 0.6f * widest[0].texelWorldSize);
 }
 
+// The band a light's cone needs spans the scene's depth along the light, not where the scene
+// lies: moving the scene and the camera together leaves every cascade's texel as it was, and a
+// scene ten times as high (a third deeper along this sun) needs a wider band: coarser texels.
+TEST(Cascades, ALightsGuardBandFollowsTheScenesDepthWhereverItLies) {
+    const GuardBand band(260u, 0.005f, 4u); // a sun 0.6 degrees across
+    const Bounds yard{.min = {-20, 0, -20}, .max = {20, 3, 20}};
+    const glm::vec2 seen(0.5f, 60.0f); // what the camera sees: the same slices throughout
+    for (bool stabilize : {true, false}) {
+        const CascadeSettings settings{
+            .count = 4, .lambda = 0.9f, .blend = 0.1f, .stabilize = stabilize};
+        const Camera c = camera({3, 1.7f, -2}, 20.0f);
+        const auto here = fitCascades(kSun, yard, c, 1.5f, 1024, settings, band, seen);
+        for (const glm::vec3 by : {400.0f * kSun.direction, glm::vec3(-300, 120, 250)}) {
+            Camera moved = c;
+            moved.position += by, moved.target += by;
+            const auto there = fitCascades(kSun, {.min = yard.min + by, .max = yard.max + by},
+                                           moved, 1.5f, 1024, settings, band, seen);
+            ASSERT_EQ(there.size(), here.size());
+            for (size_t i = 0; i < here.size(); ++i)
+                EXPECT_NEAR(there[i].texelWorldSize, here[i].texelWorldSize,
+                            1e-3f * here[i].texelWorldSize)
+                    << i << (stabilize ? " stabilized" : "");
+        }
+        const Bounds deeper{.min = yard.min, .max = {yard.max.x, 30.0f, yard.max.z}};
+        const auto deep = fitCascades(kSun, deeper, c, 1.5f, 1024, settings, band, seen);
+        EXPECT_GT(deep[0].texelWorldSize, 1.01f * here[0].texelWorldSize)
+            << (stabilize ? "stabilized" : "");
+    }
+}
+
 TEST(Cascades, NoCascadeIsCoarserThanOneMapOverTheScene) {
     // A small scene seen from close by: the far slices are wider than the whole scene.
     const Bounds small{.min = {-2, 0, -2}, .max = {2, 1, 2}};

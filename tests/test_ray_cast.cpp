@@ -207,3 +207,31 @@ TEST(RayCast, ATinyWorldIsHitAsTheSameWorld) {
     }
     EXPECT_GE(agree, static_cast<int>(rays.size()) - 2) << "all but rays at a shared edge";
 }
+
+// hitTriangle's parallel test: |det| / (|e1| |e2|), here the cosine of the ray to the floor's
+// normal, at most 1e-9 is parallel (no hit); twice that hits where the plane says, and worlds
+// a million times smaller and larger answer the same (the test is relative to the edges).
+TEST(RayCast, ARayWithinABillionthOfTheSurfaceIsParallel) {
+    for (const float scale : {1.0f, 1e-6f, 1e6f}) {
+        Scene floor;
+        for (const glm::vec3 p : {glm::vec3(0, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 0, 1)}) {
+            floor.indices.push_back(static_cast<uint32_t>(floor.vertices.size()));
+            floor.vertices.push_back({.position = scale * p, .normal = {0, 1, 0}, .material = 0});
+        }
+        const auto cast = [&](float cosine) {
+            // From 0.75 before (0.25, 0, 0.25) on the floor, rising at `cosine`.
+            return hitTriangle(floor, 0,
+                               {.origin = scale * glm::vec3(-0.5f, -0.75f * cosine, 0.25f),
+                                .direction = glm::normalize(glm::vec3(1.0f, cosine, 0.0f))});
+        };
+        EXPECT_FALSE(cast(0.0f).has_value()) << scale;
+        EXPECT_FALSE(cast(0.7e-9f).has_value()) << scale;
+        EXPECT_FALSE(cast(-0.7e-9f).has_value()) << scale;
+        for (const float cosine : {1.4e-9f, -1.4e-9f, 1e-3f}) {
+            const auto hit = cast(cosine);
+            ASSERT_TRUE(hit.has_value()) << scale << " " << cosine;
+            EXPECT_NEAR(hit->distance, 0.75f * scale, 1e-5f * scale) << cosine;
+            EXPECT_EQ(hit->front, cosine > 0.0f) << "rising meets the side facing down";
+        }
+    }
+}

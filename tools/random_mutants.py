@@ -536,14 +536,16 @@ def file_candidates(path, text, wanted, lang=None):
 
 
 def collect(root, since, untracked=True):
-    """Every candidate in the lines changed since `since`, sorted; and the changed lines."""
+    """Every candidate in the lines changed since `since`, sorted; the changed lines; and the
+    texts the candidates were found in (a mutant is made from these, not from the file as it is
+    later: the tree may be edited while mutants run)."""
     root = Path(root)
     changed = changed_lines(root, since, untracked)
-    out = []
+    out, texts = [], {}
     for path in sorted(changed):
-        out += file_candidates(path, (root / path).read_text(errors="surrogateescape"),
-                               changed[path])
-    return out, changed
+        texts[str(path)] = (root / path).read_text(errors="surrogateescape")
+        out += file_candidates(path, texts[str(path)], changed[path])
+    return out, changed, texts
 
 
 def draw(candidates, seed):
@@ -687,18 +689,15 @@ class Mutants:
     def __init__(self, root, since, seed, coverage_path, untracked=True):
         self.root, self.since, self.seed = Path(root), since, seed
         commit = verified_revision(root, since)
-        self.candidates, self.changed = collect(root, commit, untracked)
+        self.candidates, self.changed, self._texts = collect(root, commit, untracked)
         self.base = commit[:7]
         self.ids = assign_ids(self.candidates)
         self.order = draw(self.candidates, seed)
         self.all_labels, self.rules = load_coverage(coverage_path)
-        self._texts = {}
 
     def mutant(self, c):
-        text = self._texts.get(c.file)
-        if text is None:
-            text = self._texts[c.file] = (self.root / c.file).read_text(errors="surrogateescape")
-        return mutant(c, text, self.ids[c], labels_for(c.file, self.rules, self.all_labels))
+        return mutant(c, self._texts[c.file], self.ids[c],
+                      labels_for(c.file, self.rules, self.all_labels))
 
     def __iter__(self):
         """Every mutant in the draw order: the first N are the sample, the rest replacements."""

@@ -488,6 +488,17 @@ def test_mutants_know_their_labels_and_the_base(repo):
     assert "seed 1: 20 candidates on 5 changed lines in 2 files" in mutants.summary()
 
 
+def test_mutants_are_made_from_the_text_they_were_drawn_from(repo):
+    # The tree is edited while mutants run for hours: a line moved by a later edit must not
+    # turn a drawn mutant into another line's (or a comment's) edit.
+    path = repo / "tests" / "mutations" / "coverage.toml"
+    before = [m["diff"] for m in rm.Mutants(repo, "HEAD", 1, path)]
+    mutants = iter(rm.Mutants(repo, "HEAD", 1, path))
+    first = next(mutants)
+    (repo / "src" / "a.cpp").write_text("// a comment that moves every line\n" + NEW_CPP)
+    assert [first["diff"]] + [m["diff"] for m in mutants] == before
+
+
 def test_select_by_id_and_label(repo):
     mutants = rm.Mutants(repo, "HEAD", 1, repo / "tests" / "mutations" / "coverage.toml")
     ids = [m["id"] for m in mutants]
