@@ -107,8 +107,9 @@ TEST_F(FrameTest, TwoWritesInTheSameStateStillWaitForEachOther) {
     graph.addPass(pass("write", Phase::PerLight, {{image, Access::ComputeWrite}}));
     graph.addPass(pass("layer", Phase::PerLight, {{image, Access::ComputeReadWrite}}));
     graph.addPass(pass("layer again", Phase::PerLight, {{image, Access::ComputeReadWrite}}));
+    graph.addPass(pass("composite", Phase::Composite, {{image, Access::ComputeSampled}}));
     const std::vector<PlannedPass>& plan = graph.plan();
-    ASSERT_EQ(plan.size(), 3u);
+    ASSERT_EQ(plan.size(), 4u);
     // Write after write, the layout unchanged: two layers multiplying the visibility in place.
     ASSERT_EQ(plan[2].barriers.size(), 1u);
     EXPECT_EQ(plan[2].barriers[0].from, Access::ComputeReadWrite);
@@ -164,6 +165,102 @@ TEST_F(FrameTest, ReadingWhatNothingWroteIsAProgrammerError) {
         "reads never written, which no earlier pass writes");
 }
 
+// Passes whose work reaches nothing that outlives the frame are culled, chains of them too; a
+// pass that writes a persistent, imported or host-visible resource (the copy: no pass reads the
+// buffer after it) and one that declares no write (an effect the graph cannot see) are kept.
+TEST_F(FrameTest, PassesWhoseWorkNobodyReadsAreCulled) {
+    ResourcePool pool(context());
+    FrameGraph graph(pool, kSizes);
+    const ResourceId a = graph.declare(screenImage("a")), b = graph.declare(screenImage("b"));
+    const ResourceId unread = graph.declare(screenImage("unread"));
+    const ResourceId early = graph.declare(screenImage("early"));
+    const ResourceId out = graph.declare(screenImage("out", Lifetime::Persistent));
+    const ResourceId host = graph.declare(BufferDecl{.name = "host",
+                                                     .size = SizeClass::Fixed,
+                                                     .bytes = 64,
+                                                     .usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                                     .memory = vk::MemoryUse::Readback});
+    const ResourceId imported = graph.importBuffer("imported", VK_NULL_HANDLE);
+    graph.addPass(pass("gbuffer", Phase::GBuffer, {{a, Access::ComputeWrite}}));
+    graph.addPass(pass("early", Phase::LightSpace, {{early, Access::ComputeWrite}}));
+    graph.addPass(pass("unused", Phase::ScreenSpace,
+                       {{early, Access::ComputeSampled}, {unread, Access::ComputeWrite}}));
+    graph.addPass(
+        pass("light", Phase::PerLight, {{a, Access::ComputeSampled}, {b, Access::ComputeWrite}}));
+    graph.addPass(pass("composite", Phase::Composite,
+                       {{b, Access::ComputeSampled}, {out, Access::ComputeWrite}}));
+    graph.addPass(pass("copy", Phase::Readback,
+                       {{out, Access::TransferRead}, {host, Access::TransferWrite}}));
+    graph.addPass(pass("upload", Phase::LightSpace, {{imported, Access::ComputeWrite}}));
+    graph.addPass(pass("effect", Phase::PerLight, {{a, Access::ComputeSampled}}));
+    EXPECT_EQ(order(graph), (std::vector<std::string>{"upload", "gbuffer", "light", "effect",
+                                                      "composite", "copy"}));
+    std::vector<std::string> culled;
+    for (size_t p : graph.culled())
+        culled.push_back(graph.passes()[p].name);
+    EXPECT_EQ(culled, (std::vector<std::string>{"early", "unused"}));
+}
+
+// The reads and writes are checked every frame, not only a resource's first: last frame's
+// contents of a per-frame image are not there to read, a persistent one's only while its key
+// holds; a read of what only a later pass writes (a cycle through the phases) and a write
+// nothing kept reads are errors too.
+TEST_F(FrameTest, ReadsAndWritesAreCheckedEveryFrame) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    const auto frames = [](Lifetime lifetime, bool secondWrites, uint64_t secondKey) {
+        ResourcePool pool(context());
+        for (int frame = 0; frame < 2; ++frame) {
+            FrameGraph graph(pool, kSizes);
+            ImageDecl decl = screenImage("image", lifetime);
+            decl.key = frame == 0 ? 1 : secondKey;
+            const ResourceId image = graph.declare(decl);
+            const ResourceId out = graph.declare(screenImage("out", Lifetime::Persistent));
+            if (frame == 0 || secondWrites)
+                graph.addPass(pass("write", Phase::ScreenSpace, {{image, Access::ComputeWrite}}));
+            graph.addPass(pass("read", Phase::PerLight,
+                               {{image, Access::ComputeSampled}, {out, Access::ComputeWrite}}));
+            context().submitAndWait([&](VkCommandBuffer cmd) { graph.record(cmd, nullptr); });
+        }
+    };
+    frames(Lifetime::PerFrame, true, 1);
+    frames(Lifetime::Persistent, false, 1); // its key kept its contents
+    EXPECT_DEATH(frames(Lifetime::PerFrame, false, 1), "reads image, which no earlier pass writes");
+    EXPECT_DEATH(frames(Lifetime::Persistent, false, 2), "reads image, which no earlier pass");
+    const auto oneFrame = [](Phase writer, bool read) {
+        ResourcePool pool(context());
+        FrameGraph graph(pool, kSizes);
+        const ResourceId image = graph.declare(screenImage("image"));
+        const ResourceId out = graph.declare(screenImage("out", Lifetime::Persistent));
+        graph.addPass(
+            pass("write", writer, {{image, Access::ComputeWrite}, {out, Access::ComputeWrite}}));
+        if (read)
+            graph.addPass(pass("read", Phase::ScreenSpace,
+                               {{image, Access::ComputeSampled}, {out, Access::ComputeReadWrite}}));
+        graph.plan();
+    };
+    oneFrame(Phase::LightSpace, true);
+    EXPECT_DEATH(oneFrame(Phase::PerLight, true), "reads image, which only a later pass writes");
+    EXPECT_DEATH(oneFrame(Phase::LightSpace, false), "writes image, which no later pass reads");
+    // A read-write is a read: of nothing, when it comes first; and its write needs a reader.
+    const auto readWrite = [](bool written, bool readAfter) {
+        ResourcePool pool(context());
+        FrameGraph graph(pool, kSizes);
+        const ResourceId image = graph.declare(screenImage("image"));
+        const ResourceId out = graph.declare(screenImage("out", Lifetime::Persistent));
+        if (written)
+            graph.addPass(pass("write", Phase::ScreenSpace, {{image, Access::ComputeWrite}}));
+        graph.addPass(pass("layer", Phase::PerLight,
+                           {{image, Access::ComputeReadWrite}, {out, Access::ComputeWrite}}));
+        if (readAfter)
+            graph.addPass(pass("read", Phase::Composite,
+                               {{image, Access::ComputeSampled}, {out, Access::ComputeReadWrite}}));
+        graph.plan();
+    };
+    readWrite(true, true);
+    EXPECT_DEATH(readWrite(false, true), "\"layer\" reads image, which no earlier pass writes");
+    EXPECT_DEATH(readWrite(true, false), "\"layer\" writes image, which no later pass reads");
+}
+
 // A pass's cost group is part of its declaration: a timed pass without one, or an untimed one
 // with one, is a programmer error the plan reports every frame.
 TEST_F(FrameTest, ATimedPassDeclaresItsCostGroupAndAnUntimedOneNone) {
@@ -171,7 +268,7 @@ TEST_F(FrameTest, ATimedPassDeclaresItsCostGroupAndAnUntimedOneNone) {
     const auto planned = [](std::string name, std::optional<CostGroup> cost) {
         ResourcePool pool(context());
         FrameGraph graph(pool, kSizes);
-        const ResourceId image = graph.declare(screenImage("image"));
+        const ResourceId image = graph.declare(screenImage("image", Lifetime::Persistent));
         graph.addPass({.name = std::move(name),
                        .cost = cost,
                        .phase = Phase::PerLight,

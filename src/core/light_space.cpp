@@ -49,10 +49,13 @@ LightProjection fitDirectional(const Light& light, const Bounds& scene, uint32_t
     return p;
 }
 
+float GuardBand::widest(float n) const {
+    return std::min(static_cast<float>(texels), 0.25f * n);
+}
+
 float GuardBand::cascadeTexels(float halfWindow, float depth, float n) const {
-    const float widest = std::min(static_cast<float>(texels), 0.25f * n);
     if (lightSize < 0.0f)
-        return widest;
+        return widest(n);
     // The light's cone from a receiver reaches `reach` world units across before the near plane.
     // c texels hold it once the band (c + f texels, f the fixed ones) widens the window to
     // n / (n - 2 (c + f)) of itself: c >= reach (n - 2 c - 2 f) / (2 halfWindow), least at
@@ -60,13 +63,12 @@ float GuardBand::cascadeTexels(float halfWindow, float depth, float n) const {
     const auto f = static_cast<float>(fixedTexels);
     const float reach = depth * lightSize;
     const float cone = std::ceil(reach * (n - 2.0f * f) / (2.0f * halfWindow + 2.0f * reach));
-    return std::min(widest, cone + f);
+    return std::min(widest(n), cone + f);
 }
 
 float GuardBand::cubeFaceTexels(float n) const {
     // With size, the cone from a receiver near the light spans most of a face: the widest band.
-    const float widest = std::min(static_cast<float>(texels), 0.25f * n);
-    return lightSize == 0.0f ? std::min(widest, static_cast<float>(fixedTexels)) : widest;
+    return lightSize == 0.0f ? std::min(widest(n), static_cast<float>(fixedTexels)) : widest(n);
 }
 
 LightProjection fitSpot(const Light& light, const Bounds& scene, uint32_t mapSize,

@@ -73,6 +73,9 @@ struct GuardBand {
     float cascadeTexels(float halfWindow, float depth, float n) const;
     // A cube face's band, in texels of n.
     float cubeFaceTexels(float n) const;
+
+private:
+    float widest(float n) const; // `texels`, at most a quarter of the map
 };
 
 // What a light's views need beyond the scene bounds.

@@ -91,12 +91,8 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     r.depthMap = graph.declare(maps.front());
     for (size_t m = 1; m < maps.size() && derived; ++m)
         r.maps.push_back(graph.declare(maps[m]));
-    r.integerPlaceholder =
-        graph.declare(render::ImageDecl{.name = std::string(render::target::kIntegerPlaceholder),
-                                        .size = render::SizeClass::Fixed,
-                                        .format = VK_FORMAT_R32G32B32A32_UINT,
-                                        .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
-                                        .lifetime = render::Lifetime::Persistent});
+    r.integerPlaceholder = graph.declare(render::integerPlaceholderDecl());
+    graph.markBoundOnly(r.integerPlaceholder);
     r.field = graph.importImage("probe.field", fieldPlaceholder, render::Access::ComputeSampled);
     r.params = graph.importBuffer("probe.params", paramsBuffer.get());
     r.views = graph.importBuffer("probe.views", viewBuffer.get());

@@ -18,9 +18,12 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     FrameResources r;
     // The technique's maps of every shadow view (a technique that draws none binds 1x1 ones).
     std::vector<ImageDecl> maps = shadowMapDecls(*s.technique, *s.params);
-    if (s.technique->tracesField) // only bound, never drawn: nothing is lost between frames
+    const bool drawsNoMap = s.technique->tracesField; // only bound: nothing lost between frames
+    if (drawsNoMap)
         maps.front().lifetime = Lifetime::Persistent;
     r.depthMap = graph.declare(maps.front());
+    if (drawsNoMap)
+        graph.markBoundOnly(r.depthMap);
     for (size_t m = 1; m < maps.size(); ++m)
         r.maps.push_back(graph.declare(maps[m]));
     const shadows::TechniqueModule& module = *s.technique;
@@ -45,10 +48,16 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     if (visibilityFilterOf(s).runs())
         r.visibilityScratch = screen(target::kVisibilityScratch);
     r.color = screen(target::kColor);
+    graph.markOutput(r.color);
+    graph.markOutput(r.visibility);
     r.position = screen(target::kPosition);
     r.normal = screen(target::kNormal);
     r.faceNormal = screen(target::kFaceNormal);
     r.integerPlaceholder = screen(target::kIntegerPlaceholder);
+    // Stand-ins: the placeholder, and the viewer's intermediates, 1x1 unless asked for and
+    // handed over unwritten when no layer ran.
+    for (const ResourceId id : {r.integerPlaceholder, r.intermediates, r.layerResults})
+        graph.markBoundOnly(id);
     const ResourceId filtered = ownMaps ? r.named(module, module.visibilityMap) : r.depthMap;
     r.filtered = integerMap
                      ? FilteredBindings{.floats = r.depthMap, .integers = filtered}

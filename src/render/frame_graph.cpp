@@ -23,6 +23,9 @@ vk::ImageState imageState(Access access) {
         return vk::kComputeWrite;
     case Access::ComputeReadWrite:
         return vk::kComputeReadWrite;
+    case Access::ComputeRead: // a storage image only read
+        return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
+                VK_IMAGE_LAYOUT_GENERAL};
     // Transfers at every transfer stage: copies, blits and clears alike.
     case Access::TransferRead:
         return {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
@@ -123,6 +126,14 @@ void FrameGraph::addPass(PassDecl pass) {
     mPasses.push_back(std::move(pass));
 }
 
+void FrameGraph::markOutput(ResourceId id) {
+    mOutputs.push_back(id);
+}
+
+void FrameGraph::markBoundOnly(ResourceId id) {
+    mBoundOnly.push_back(id);
+}
+
 const PooledImage& FrameGraph::image(ResourceId id) const {
     return mPool.image(id);
 }
@@ -131,17 +142,105 @@ VkBuffer FrameGraph::buffer(ResourceId id) const {
     return mPool.buffer(id);
 }
 
+std::vector<size_t> FrameGraph::phaseOrder() const {
+    std::vector<size_t> order(mPasses.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    // By phase, keeping the declaration order within each (which checkReads holds to the order
+    // the passes' reads and writes imply).
+    std::stable_sort(order.begin(), order.end(),
+                     [&](size_t a, size_t b) { return mPasses[a].phase < mPasses[b].phase; });
+    return order;
+}
+
+bool FrameGraph::outlivesFrame(ResourceId id) const {
+    return mPool.persistent(id) || mPool.hostVisible(id) || // persistent: imported ones too
+           std::find(mOutputs.begin(), mOutputs.end(), id) != mOutputs.end();
+}
+
+std::vector<size_t> FrameGraph::cull(const std::vector<size_t>& order) {
+    // Backwards: a pass is kept when its work leaves the frame (it writes a resource that
+    // outlives it, or it declares no write: an effect the graph cannot see, such as the host's
+    // read) or a kept pass after it reads what it writes. A write never ends a resource's
+    // liveness: passes may write parts of one (a light's layer of the maps).
+    std::vector<bool> read(resourceCount(), false);
+    std::vector<size_t> kept;
+    for (auto it = order.rbegin(); it != order.rend(); ++it) {
+        const PassDecl& pass = mPasses[*it];
+        bool keep = std::none_of(pass.uses.begin(), pass.uses.end(),
+                                 [](const Use& u) { return writes(u.access); });
+        for (const Use& use : pass.uses)
+            keep =
+                keep || (writes(use.access) && (outlivesFrame(use.resource) || read[use.resource]));
+        if (!keep) {
+            mCulled.push_back(*it);
+            continue;
+        }
+        kept.push_back(*it);
+        for (const Use& use : pass.uses)
+            if (reads(use.access))
+                read[use.resource] = true;
+    }
+    std::reverse(kept.begin(), kept.end());
+    std::reverse(mCulled.begin(), mCulled.end());
+    return kept;
+}
+
+void FrameGraph::checkReadsAndWrites(const std::vector<size_t>& order) const {
+    // Every frame, not only a resource's first: a per-frame resource holds nothing from the last
+    // frame, a persistent one only what its key kept. Indices into `order`, -1 for none.
+    const size_t count = resourceCount();
+    std::vector<int> firstWrite(count, -1), lastWrite(count, -1), lastRead(count, -1);
+    for (size_t k = 0; k < order.size(); ++k)
+        for (const Use& use : mPasses[order[k]].uses) {
+            const auto at = static_cast<int>(k);
+            if (writes(use.access)) {
+                if (firstWrite[use.resource] < 0)
+                    firstWrite[use.resource] = at;
+                lastWrite[use.resource] = at;
+            }
+            if (reads(use.access))
+                lastRead[use.resource] = at;
+        }
+    for (size_t k = 0; k < order.size(); ++k) {
+        const PassDecl& pass = mPasses[order[k]];
+        const auto at = static_cast<int>(k);
+        for (const Use& use : pass.uses) {
+            const ResourceId id = use.resource;
+            // Built only for a message (the checks run every frame).
+            const auto said = [&](const char* verb, const char* why) {
+                return "FrameGraph: pass \"" + pass.name + "\" " + verb + " " +
+                       std::string(mPool.name(id)) + ", which " + why;
+            };
+            const bool holds =
+                mPool.isImported(id) || mPool.holdsContents(id) ||
+                std::find(mBoundOnly.begin(), mBoundOnly.end(), id) != mBoundOnly.end();
+            if (reads(use.access) && !holds && !(firstWrite[id] >= 0 && firstWrite[id] < at)) {
+                PENUMBRA_CHECK(lastWrite[id] <= at,
+                               said("reads", "only a later pass writes (a cycle, or a pass in "
+                                             "too early a phase)"));
+                fatal(__FILE__, __LINE__, said("reads", "no earlier pass writes"));
+            }
+            PENUMBRA_CHECK(!writes(use.access) || outlivesFrame(id) || lastRead[id] > at,
+                           said("writes", "no later pass reads"));
+        }
+    }
+}
+
+size_t FrameGraph::resourceCount() const {
+    size_t count = 0;
+    for (const PassDecl& pass : mPasses)
+        for (const Use& use : pass.uses)
+            count = std::max<size_t>(count, use.resource + 1);
+    return count;
+}
+
 const std::vector<PlannedPass>& FrameGraph::plan() {
     if (mPlanned)
         return mPlan;
     mPlanned = true;
     mPool.realize();
-    std::vector<size_t> order(mPasses.size());
-    std::iota(order.begin(), order.end(), size_t{0});
-    // By phase, keeping the declaration order within each (which the checks below hold to the
-    // order the passes' reads and writes imply).
-    std::stable_sort(order.begin(), order.end(),
-                     [&](size_t a, size_t b) { return mPasses[a].phase < mPasses[b].phase; });
+    const std::vector<size_t> order = cull(phaseOrder());
+    checkReadsAndWrites(order);
     // Each resource's access as the plan leaves it, starting from the pool's (the last frame's).
     struct Track {
         std::optional<Access> last;
@@ -179,12 +278,6 @@ const std::vector<PlannedPass>& FrameGraph::plan() {
                 duplicate = duplicate || pass.uses[v].resource == use.resource;
             if (duplicate)
                 continue;
-            // A per-frame resource nothing ever wrote cannot be read.
-            PENUMBRA_CHECK(!reads(use.access) || t.last.has_value() ||
-                               mPool.persistent(use.resource) || mPool.isImported(use.resource),
-                           "FrameGraph: pass " + pass.name + " reads " +
-                               std::string(mPool.name(use.resource)) +
-                               ", which no earlier pass writes");
             const bool discard =
                 firstThisFrame && !reads(use.access) && !mPool.persistent(use.resource);
             if (!t.last) {

@@ -16,6 +16,10 @@
 //   PerLight     each light's evaluation: its base technique, then its layers
 //   Composite    shading from every light's visibility
 //   Readback     copies for the host (not timed)
+// Culling: a pass is recorded only when its work reaches something that outlives the frame (a
+// persistent, imported or host-visible resource, a host read) through reads of what it writes;
+// the rest are culled (a screen pass whose only reader the options turned off). Its reads and
+// writes are checked every frame (plan()).
 // Barriers: before each pass, every resource it uses goes from the state its last use left it in
 // (kept in the pool across frames and submissions) to the one this use needs; two reads in the
 // same state need none. A per-frame resource's first use in a frame that only writes it starts
@@ -86,10 +90,23 @@ public:
     bool holdsContents(ResourceId id) const;
 
     void addPass(PassDecl pass);
+    // A frame's result (its colour, its visibility): read after the frame whether or not a pass
+    // reads it (a benchmark's frame has no readback), so what writes it is never culled.
+    void markOutput(ResourceId id);
+    // A stand-in: bound because a descriptor must hold something, and read by passes whose
+    // shader may not touch it (a placeholder, the viewer's intermediates when no layer ran), so
+    // a read of it needs no writer.
+    void markBoundOnly(ResourceId id);
 
-    // The order and barriers the frame will have (the tests read it); fatal on a pass that reads
-    // a per-frame resource nothing wrote before it in this frame.
+    // The order and barriers the frame will have (the tests read it), without the culled passes.
+    // Fatal, every frame: a pass that reads what no earlier pass of this frame wrote (a
+    // persistent resource whose key kept its contents, and an imported one, excepted), or what
+    // only a later one writes (a cycle); a write of a per-frame resource no later pass reads.
     const std::vector<PlannedPass>& plan();
+    // Passes plan() left out: nothing kept reads what they write, and their work does not
+    // leave the frame (no write to a persistent, imported, host-visible or output resource).
+    // In plan order.
+    const std::vector<size_t>& culled() const { return mCulled; }
     // Records every pass in plan order, each timed under its name by `timer` (if any). The pool
     // then knows the state each resource was left in, and that persistent ones hold contents.
     void record(VkCommandBuffer cmd, vk::GpuTimer* timer);
@@ -100,10 +117,18 @@ public:
     const FrameSizes& sizes() const { return mSizes; }
 
 private:
+    std::vector<size_t> phaseOrder() const;
+    std::vector<size_t> cull(const std::vector<size_t>& order);
+    void checkReadsAndWrites(const std::vector<size_t>& order) const;
+    bool outlivesFrame(ResourceId id) const;
+    size_t resourceCount() const;
+
     ResourcePool& mPool;
     FrameSizes mSizes;
     std::vector<PassDecl> mPasses;
     std::vector<PlannedPass> mPlan;
+    std::vector<size_t> mCulled;
+    std::vector<ResourceId> mOutputs, mBoundOnly;
     bool mPlanned = false;
 };
 

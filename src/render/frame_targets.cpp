@@ -115,13 +115,16 @@ std::vector<ImageDecl> screenDecls(bool intermediates) {
     for (ImageDecl& decl : decls)
         if (decl.name == target::kIntermediates || decl.name == target::kLayerResults)
             decl.lifetime = Lifetime::Persistent;
-    // Bound where the technique's filtered map holds floats (TECH_TABLE); never written.
-    decls.push_back({.name = std::string(target::kIntegerPlaceholder),
-                     .size = SizeClass::Fixed,
-                     .format = VK_FORMAT_R32G32B32A32_UINT,
-                     .usage = kSampled,
-                     .lifetime = Lifetime::Persistent});
+    decls.push_back(integerPlaceholderDecl());
     return decls;
+}
+
+ImageDecl integerPlaceholderDecl() {
+    return {.name = std::string(target::kIntegerPlaceholder),
+            .size = SizeClass::Fixed,
+            .format = VK_FORMAT_R32G32B32A32_UINT,
+            .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
+            .lifetime = Lifetime::Persistent};
 }
 
 ReadbackLayout::ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers) {

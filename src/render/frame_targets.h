@@ -61,6 +61,8 @@ VkFormat formatOf(shadows::MapFormat format);
 std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
                                       const ParameterValues& params);
 std::vector<ImageDecl> screenDecls(bool intermediates);
+// Bound where the technique's filtered map holds floats (TECH_TABLE): never written, never read.
+ImageDecl integerPlaceholderDecl();
 
 // The readback buffer: colour, every visibility layer, position, normal and face normal, tightly
 // packed in that order.

@@ -233,12 +233,12 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     }
     // The filter's two passes (both timed as "filter"): rows into the scratch, columns back.
     for (uint32_t axis = 0; filter.runs() && axis < 2; ++axis) {
-        const Access read = Access::ComputeReadWrite, write = Access::ComputeWrite;
+        const Access visibility = axis == 0 ? Access::ComputeReadWrite : Access::ComputeWrite;
+        const Access scratch = axis == 0 ? Access::ComputeWrite : Access::ComputeRead;
         graph.addPass({.name = "filter",
                        .cost = CostGroup::PerPixel,
                        .phase = Phase::PerLight,
-                       .uses = layerLayoutUses(r, axis == 0 ? read : write, r.visibilityScratch,
-                                               axis == 0 ? write : read),
+                       .uses = layerLayoutUses(r, visibility, r.visibilityScratch, scratch),
                        .record = [&p, &s, &in, r, filter, axis](PassContext& c) {
                            for (const LightDispatch& light : s.shadowLights)
                                if (filter.radiusFor(light.type) > 0)

@@ -280,6 +280,11 @@ bool ResourcePool::persistent(ResourceId id) const {
     return true; // imported: the caller's contents
 }
 
+bool ResourcePool::hostVisible(ResourceId id) const {
+    const auto* b = std::get_if<BufferDecl>(&entry(id).decl);
+    return b != nullptr && b->memory != vk::MemoryUse::DeviceLocal;
+}
+
 std::optional<Access> ResourcePool::lastAccess(ResourceId id) const {
     return entry(id).last;
 }

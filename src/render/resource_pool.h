@@ -87,7 +87,7 @@ enum class Access {
     TransferRead,     // copied from
     TransferWrite,    // copied to
     UniformRead,      // a uniform buffer read by any shader stage
-    ComputeRead,      // a storage buffer read by a compute shader
+    ComputeRead,      // a storage buffer or image read by a compute shader
     IndirectRead,     // indirect dispatch or draw arguments (and the rest of their buffer, read
                       // by the compute shaders they dispatch)
     HostRead,         // read by the host after the submission (a readback buffer)
@@ -120,6 +120,8 @@ public:
     bool isImage(ResourceId id) const;
     bool isImported(ResourceId id) const;
     bool persistent(ResourceId id) const;
+    // A buffer the host maps (uploads, readbacks): what it holds outlives the submission.
+    bool hostVisible(ResourceId id) const;
     // The last use's access (nullopt: not used since it was made, or its contents dropped).
     std::optional<Access> lastAccess(ResourceId id) const;
     void setLastAccess(ResourceId id, std::optional<Access> access);
