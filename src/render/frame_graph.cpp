@@ -1,5 +1,7 @@
 #include "render/frame_graph.h"
 
+#include "render/access_states.h"
+
 #include "penumbra/error.h"
 #include "vk/sync.h"
 
@@ -7,70 +9,6 @@
 #include <numeric>
 
 namespace penumbra::render {
-namespace {
-
-vk::ImageState imageState(Access access) {
-    switch (access) {
-    case Access::DepthAttachment:
-        return vk::kDepthWrite;
-    case Access::ColorAttachment:
-        return vk::kColorWrite;
-    case Access::FragmentSampled:
-        return vk::kFragmentSampled;
-    case Access::ComputeSampled:
-        return vk::kComputeSampled;
-    case Access::ComputeWrite:
-        return vk::kComputeWrite;
-    case Access::ComputeReadWrite:
-        return vk::kComputeReadWrite;
-    case Access::ComputeRead: // a storage image only read
-        return {VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT,
-                VK_IMAGE_LAYOUT_GENERAL};
-    // Transfers at every transfer stage: copies, blits and clears alike.
-    case Access::TransferRead:
-        return {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
-                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL};
-    case Access::TransferWrite:
-        return {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL};
-    default:
-        break;
-    }
-    fatal(__FILE__, __LINE__, "FrameGraph: a buffer access on an image");
-}
-
-vk::BufferState bufferState(Access access) {
-    constexpr VkPipelineStageFlags2 shaders = VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
-                                              VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT |
-                                              VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    constexpr VkPipelineStageFlags2 compute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    switch (access) {
-    case Access::UniformRead:
-        return {shaders, VK_ACCESS_2_UNIFORM_READ_BIT};
-    case Access::ComputeRead:
-        return {compute, VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
-    case Access::ComputeWrite:
-        return {compute, VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
-    case Access::ComputeReadWrite:
-        return {compute,
-                VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT};
-    case Access::IndirectRead:
-        return {VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT | compute,
-                VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
-    case Access::TransferRead:
-        return {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT};
-    case Access::TransferWrite:
-        return {VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
-    case Access::HostRead:
-        return {VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT};
-    default:
-        break;
-    }
-    fatal(__FILE__, __LINE__, "FrameGraph: an image access on a buffer");
-}
-
-} // namespace
-
 std::string_view phaseName(Phase phase) {
     switch (phase) {
     case Phase::LightSpace:
@@ -123,6 +61,10 @@ bool FrameGraph::holdsContents(ResourceId id) const {
 
 void FrameGraph::addPass(PassDecl pass) {
     PENUMBRA_CHECK(!mPlanned, "FrameGraph: a pass added after the frame was planned");
+    for (const Use& use : pass.uses)
+        PENUMBRA_CHECK(!writes(use.access) || !mPool.isPrevious(use.resource),
+                       "FrameGraph: pass \"" + pass.name + "\" writes " +
+                           std::string(mPool.name(use.resource)) + ", last frame's version");
     mPasses.push_back(std::move(pass));
 }
 
@@ -154,6 +96,7 @@ std::vector<size_t> FrameGraph::phaseOrder() const {
 
 bool FrameGraph::outlivesFrame(ResourceId id) const {
     return mPool.persistent(id) || mPool.hostVisible(id) || // persistent: imported ones too
+           mPool.history(id) ||                             // the next frame reads it
            std::find(mOutputs.begin(), mOutputs.end(), id) != mOutputs.end();
 }
 
@@ -239,6 +182,7 @@ const std::vector<PlannedPass>& FrameGraph::plan() {
         return mPlan;
     mPlanned = true;
     mPool.realize();
+    clearStaleHistory();
     const std::vector<size_t> order = cull(phaseOrder());
     checkReadsAndWrites(order);
     // Each resource's access as the plan leaves it, starting from the pool's (the last frame's).
@@ -325,7 +269,10 @@ void FrameGraph::record(VkCommandBuffer cmd, vk::GpuTimer* timer) {
             timer->end(cmd);
         for (const Use& use : pass.uses) {
             mPool.setLastAccess(use.resource, use.access);
-            if (writes(use.access) && mPool.persistent(use.resource))
+            // History: this frame's version, which the next frame's previous one will hold.
+            if (writes(use.access) &&
+                (mPool.persistent(use.resource) ||
+                 (mPool.history(use.resource) && !mPool.isPrevious(use.resource))))
                 mPool.setHoldsContents(use.resource);
         }
     }

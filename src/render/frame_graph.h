@@ -16,6 +16,9 @@
 //   PerLight     each light's evaluation: its base technique, then its layers
 //   Composite    shading from every light's visibility
 //   Readback     copies for the host (not timed)
+// History: a resource declared with Lifetime::History has last frame's version beside this
+// frame's (previous()); this frame's outlives the frame (the next one reads it), and last
+// frame's is cleared before it is read when it holds nothing.
 // Culling: a pass is recorded only when its work reaches something that outlives the frame (a
 // persistent, imported or host-visible resource, a host read) through reads of what it writes;
 // the rest are culled (a screen pass whose only reader the options turned off). Its reads and
@@ -88,6 +91,13 @@ public:
     // Whether a persistent resource holds what its producer wrote under the same key (a producer
     // may skip its pass then).
     bool holdsContents(ResourceId id) const;
+    // A resource declared with Lifetime::History: last frame's version, which passes read (never
+    // write), and whether it holds what last frame wrote. When it does not (the first frame, a
+    // new size or key, a cut: ResourcePool::invalidateHistory, or a frame that did not write
+    // it), the graph clears it to zeros before its first reader, so a pass may read it either
+    // way; one that blends with it should weigh it by historyValid.
+    ResourceId previous(ResourceId id) const;
+    bool historyValid(ResourceId id) const;
 
     void addPass(PassDecl pass);
     // A frame's result (its colour, its visibility): read after the frame whether or not a pass
@@ -118,6 +128,7 @@ public:
 
 private:
     std::vector<size_t> phaseOrder() const;
+    void clearStaleHistory();
     std::vector<size_t> cull(const std::vector<size_t>& order);
     void checkReadsAndWrites(const std::vector<size_t>& order) const;
     bool outlivesFrame(ResourceId id) const;

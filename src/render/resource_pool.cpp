@@ -8,25 +8,6 @@
 
 namespace penumbra::render {
 
-bool writes(Access access) {
-    switch (access) {
-    case Access::DepthAttachment:
-    case Access::ColorAttachment:
-    case Access::ComputeWrite:
-    case Access::ComputeReadWrite:
-    case Access::TransferWrite:
-        return true;
-    default:
-        return false;
-    }
-}
-
-// Whether the use reads what it finds (the frame's attachments are cleared on load).
-bool reads(Access access) {
-    return access != Access::DepthAttachment && access != Access::ColorAttachment &&
-           access != Access::ComputeWrite && access != Access::TransferWrite;
-}
-
 struct ResourcePool::Entry {
     std::string name;
     bool pending = false;                                     // declared, not made yet (realize)
@@ -37,8 +18,13 @@ struct ResourcePool::Entry {
     PooledImage image; // points at ownedImage, or at the imported image
     VkBuffer buffer = VK_NULL_HANDLE;
     std::optional<Access> last;
-    bool holds = false;    // persistent: written under the current key
+    bool holds = false;    // persistent: written under the current key; history: see swap
     bool declared = false; // in this frame
+    // History: this frame's version knows last frame's (ids hold for a frame) and the frame in
+    // which the two last swapped.
+    ResourceId previous = 0;
+    bool isPrevious = false;
+    uint64_t swappedIn = 0;
 };
 
 namespace {
@@ -135,6 +121,7 @@ void ResourcePool::beginFrame() {
     });
     for (auto& e : mEntries)
         e->declared = false;
+    ++mFrame;
 }
 
 // The entry a declaration names, kept when it declares the same resource at the same size,
@@ -165,12 +152,44 @@ ResourceId ResourcePool::acquireAs(const Decl& decl, const FrameSizes& sizes) {
     return static_cast<ResourceId>(mEntries.size() - 1);
 }
 
+// A history resource's two versions, both kept or both new. Kept, they swap: last frame's
+// version becomes this frame's previous one, and it holds what last frame wrote when that frame
+// wrote it under the same key (keep() clears `holds` for a new key) and no cut came between.
+template <class Decl>
+ResourceId ResourcePool::acquireHistory(const Decl& decl, const FrameSizes& sizes) {
+    Decl last = decl;
+    last.name += kPreviousSuffix;
+    const ResourceId id = acquireAs(decl, sizes);
+    const ResourceId previousId = acquireAs(last, sizes);
+    Entry& current = *mEntries[id];
+    Entry& previous = *mEntries[previousId];
+    current.previous = previousId;
+    previous.isPrevious = true;
+    if (current.swappedIn == mFrame) // declared twice this frame: swapped once
+        return id;
+    current.swappedIn = mFrame;
+    const bool kept = !current.pending && !previous.pending;
+    if (kept) {
+        std::swap(current.ownedImage, previous.ownedImage);
+        std::swap(current.image.layers, previous.image.layers);
+        std::swap(current.image.levels, previous.image.levels);
+        std::swap(current.ownedBuffer, previous.ownedBuffer);
+        std::swap(current.buffer, previous.buffer);
+        std::swap(current.last, previous.last);
+    }
+    previous.holds = kept && current.holds && !mHistoryCut;
+    current.holds = false; // until this frame writes it
+    return id;
+}
+
 ResourceId ResourcePool::acquire(const ImageDecl& decl, const FrameSizes& sizes) {
-    return acquireAs(decl, sizes);
+    return decl.lifetime == Lifetime::History ? acquireHistory(decl, sizes)
+                                              : acquireAs(decl, sizes);
 }
 
 ResourceId ResourcePool::acquire(const BufferDecl& decl, const FrameSizes& sizes) {
-    return acquireAs(decl, sizes);
+    return decl.lifetime == Lifetime::History ? acquireHistory(decl, sizes)
+                                              : acquireAs(decl, sizes);
 }
 
 void ResourcePool::make(Entry& e) {
@@ -182,7 +201,10 @@ void ResourcePool::make(Entry& e) {
                .width = r.width,
                .height = r.height,
                .layers = r.layers,
-               .usage = decl.usage,
+               // Last frame's version is cleared when it holds nothing (FrameGraph::plan).
+               .usage = decl.usage | (decl.lifetime == Lifetime::History
+                                          ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_DST_BIT}
+                                          : VkImageUsageFlags{0}),
                .arrayView = decl.arrayView && r.depth == 1,
                .mipLevels = decl.mipmapped ? mipLevels(std::max(r.width, r.height)) : 1u,
                .depth = r.depth});
@@ -234,14 +256,19 @@ void ResourcePool::realize() {
             make(*e);
         } else {
             const BufferDecl& decl = std::get<BufferDecl>(e->decl);
+            const VkBufferUsageFlags clearable =
+                decl.lifetime == Lifetime::History
+                    ? VkBufferUsageFlags{VK_BUFFER_USAGE_TRANSFER_DST_BIT}
+                    : VkBufferUsageFlags{0};
             e->ownedBuffer =
                 vk::createBuffer(mCtx, std::max<VkDeviceSize>(bufferBytes(decl, e->sizes), 16),
-                                 decl.usage, decl.memory, decl.name);
+                                 decl.usage | clearable, decl.memory, decl.name);
             e->buffer = e->ownedBuffer.get();
         }
         e->pending = false;
         ++mCreations;
     }
+    mHistoryCut = false; // the frame's declarations saw it
 }
 
 const PooledImage& ResourcePool::image(ResourceId id) const {
@@ -278,6 +305,26 @@ bool ResourcePool::persistent(ResourceId id) const {
     if (const auto* b = std::get_if<BufferDecl>(&e.decl))
         return b->lifetime == Lifetime::Persistent;
     return true; // imported: the caller's contents
+}
+
+bool ResourcePool::history(ResourceId id) const {
+    const Entry& e = entry(id);
+    if (const auto* i = std::get_if<ImageDecl>(&e.decl))
+        return i->lifetime == Lifetime::History;
+    if (const auto* b = std::get_if<BufferDecl>(&e.decl))
+        return b->lifetime == Lifetime::History;
+    return false;
+}
+
+bool ResourcePool::isPrevious(ResourceId id) const {
+    return entry(id).isPrevious;
+}
+
+ResourceId ResourcePool::previousOf(ResourceId id) const {
+    const Entry& e = entry(id);
+    PENUMBRA_CHECK(history(id) && !e.isPrevious,
+                   "ResourcePool: " + e.name + " is not declared with history");
+    return e.previous;
 }
 
 bool ResourcePool::hostVisible(ResourceId id) const {

@@ -29,8 +29,11 @@ struct FrameSizes {
 // layer per shadow-casting light; Scene and Fixed: a size of their own (the scene's, or none).
 enum class SizeClass { ShadowView, Screen, Scene, Fixed };
 // PerFrame: its contents are rewritten every frame; Persistent: they survive across frames
-// while the declaration's invalidation key stays the same.
-enum class Lifetime { PerFrame, Persistent };
+// while the declaration's invalidation key stays the same; History: rewritten every frame, and
+// last frame's version stays readable beside it (ResourcePool::previousOf) while the key, the
+// size and the camera (invalidateHistory) stay the same. A history resource takes twice the
+// memory: this frame's version and last frame's swap places when a frame declares it.
+enum class Lifetime { PerFrame, Persistent, History };
 
 struct ImageDecl {
     std::string name;
@@ -46,7 +49,7 @@ struct ImageDecl {
     bool layerViews = false;        // a 2D view per layer (and per level when mipmapped)
     bool arrayView = true;          // the whole image as a 2D array (image2DArray, ...)
     Lifetime lifetime = Lifetime::PerFrame;
-    uint64_t key = 0; // Persistent: what the contents depend on
+    uint64_t key = 0; // Persistent and History: what the contents depend on
     bool operator==(const ImageDecl&) const = default;
 };
 
@@ -120,12 +123,21 @@ public:
     bool isImage(ResourceId id) const;
     bool isImported(ResourceId id) const;
     bool persistent(ResourceId id) const;
+    // A history resource's versions: this frame's, and last frame's (previousOf; its name ends
+    // in kPreviousSuffix), valid for the frame. previousOf is fatal for any other resource.
+    bool history(ResourceId id) const;
+    bool isPrevious(ResourceId id) const;
+    ResourceId previousOf(ResourceId id) const;
+    // The next frame's history holds nothing (a camera cut): every last frame's version is
+    // cleared before it is read. A new size or key does the same for one resource.
+    void invalidateHistory() { mHistoryCut = true; }
     // A buffer the host maps (uploads, readbacks): what it holds outlives the submission.
     bool hostVisible(ResourceId id) const;
     // The last use's access (nullopt: not used since it was made, or its contents dropped).
     std::optional<Access> lastAccess(ResourceId id) const;
     void setLastAccess(ResourceId id, std::optional<Access> access);
-    // Persistent resources: whether they hold what a producer wrote under their current key.
+    // Persistent resources: whether they hold what a producer wrote under their current key;
+    // last frame's version of a history resource: whether it holds what last frame wrote.
     bool holdsContents(ResourceId id) const;
     void setHoldsContents(ResourceId id);
     // By name, after a frame (readback, the viewer): null when this frame did not declare it.
@@ -148,11 +160,18 @@ private:
     void keep(Entry& e, const Decl& decl, uint64_t oldKey);
     template <class Decl>
     ResourceId acquireAs(const Decl& decl, const FrameSizes& sizes);
+    template <class Decl>
+    ResourceId acquireHistory(const Decl& decl, const FrameSizes& sizes);
     void make(Entry& e);
     void waitIdle();
     const vk::Context& mCtx;
     std::vector<std::unique_ptr<Entry>> mEntries;
     uint64_t mCreations = 0;
+    uint64_t mFrame = 0;      // frames begun: a history swaps once in each
+    bool mHistoryCut = false; // invalidateHistory, until the next frame's declarations end
 };
+
+// What last frame's version of a history resource is called: its name and this.
+inline constexpr std::string_view kPreviousSuffix = " (previous)";
 
 } // namespace penumbra::render
