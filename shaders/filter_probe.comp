@@ -11,6 +11,7 @@ layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData fra
 layout(constant_id = SPEC_TECHNIQUE) const uint TECHNIQUE = 0u;
 // The probed view's light kind, as the visibility pass has it (filter_probe.cpp).
 layout(constant_id = SPEC_LIGHT_TYPE) const uint LIGHT_TYPE = LIGHT_DIRECTIONAL;
+layout(constant_id = SPEC_PROBE_SLOTS) const uint PROBE_SLOTS = 0u;
 #include "techniques.glsl"
 
 layout(local_size_x = 64) in;
@@ -22,10 +23,31 @@ layout(set = 0, binding = PROBE_RESULTS, std430) writeonly buffer Results { vec4
 layout(set = 0, binding = PROBE_VIEW, std430) readonly buffer Views { ShadowViewData view; };
 layout(push_constant) uniform Push { ProbePush push; };
 
+#if TECH_MAX_MAPS != 4
+#error "the slot reads below name four slots of each kind"
+#endif
+// The texel under `uv` of level 0 of a map slot, whatever its size (smrt's bounds are half).
+#define SLOT_TEXEL(map, uv) ivec3(min(ivec2((uv) * vec2(textureSize(map, 0).xy)), \
+                                      textureSize(map, 0).xy - 1), 0)
+#define FLOAT_SLOT(k, uv) texelFetch(shadowMaps[k], SLOT_TEXEL(shadowMaps[k], uv), 0).r
+#define INTEGER_SLOT(k, uv) \
+    uintBitsToFloat(texelFetch(shadowTables[k], SLOT_TEXEL(shadowTables[k], uv), 0).r)
+
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= push.counts.x) return;
     ProbeReceiver probe = probes[i];
+    vec2 uv = probe.uvDepth.xy;
+    if (PROBE_SLOTS == 1u) { // constant indices: no dynamic indexing of the arrays
+        results[i] = vec4(FLOAT_SLOT(0, uv), FLOAT_SLOT(1, uv), FLOAT_SLOT(2, uv),
+                          FLOAT_SLOT(3, uv));
+        return;
+    }
+    if (PROBE_SLOTS == 2u) {
+        results[i] = vec4(INTEGER_SLOT(0, uv), INTEGER_SLOT(1, uv), INTEGER_SLOT(2, uv),
+                          INTEGER_SLOT(3, uv));
+        return;
+    }
     TechniqueInput at;
     at.r.uv = probe.uvDepth.xy;
     at.r.depth = probe.uvDepth.z;

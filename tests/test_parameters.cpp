@@ -247,7 +247,9 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
                     return true;
             return false;
         };
-        EXPECT_TRUE(declared(m->visibilityMap)) << name;
+        EXPECT_FALSE(m->visibilityMaps.empty()) << name;
+        for (std::string_view map : m->visibilityMaps)
+            EXPECT_TRUE(declared(map)) << name << ": " << map;
         for (const shadows::DepthPassDecl& pass : m->depthPasses) {
             EXPECT_TRUE(declared(pass.target) && declared(pass.reads)) << name;
             EXPECT_NE(pass.target, pass.reads) << name;

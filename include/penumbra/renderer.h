@@ -206,6 +206,10 @@ struct ProbeLight {
     glm::vec2 worldPerUv{1.0f}; // world size of one uv unit (at unit distance if perspective)
     bool cubeFace = false;      // a point light's cube face (perspective): the soft members'
                                 // kernels take their cubeRadius cap
+    // Tests of what the visibility pass binds: 1 returns, instead of the technique, the texel
+    // under each receiver of the four float map slots (TECH_MAP), 2 of the four integer ones
+    // (TECH_TABLE, their bits as floats).
+    uint32_t readSlots = 0;
 };
 
 class SceneRenderer;

@@ -40,6 +40,8 @@
 #define SPEC_FILTER_WIDE 23     // visibility_filter.comp: its radius inside wide penumbrae
 #define SPEC_CHECKERBOARD 24    // visibility.comp: which pixels it traces (CHECKERBOARD_*,
                                 // checkerboard.h)
+#define SPEC_PROBE_SLOTS 26      // filter_probe.comp: 1 returns shadowMaps[0..3] at the receiver's
+                                 // texel, 2 shadowTables[0..3] (as float bits), not the technique
 #define SPEC_FILL_RANGE 25      // visibility_fill.comp: the range of the neighbours it fills from
                                 // (a float's bits)
 
@@ -48,10 +50,13 @@
 // What a technique reads, at the same bindings in every pass that evaluates one (visibility.comp,
 // filter_probe.comp; shaders/include/technique_input.glsl declares them) and, for its parameter
 // block, in its post passes.
-#define TECH_MAP 4               // the technique's filtered map, every view (nearest)
+#define TECH_MAX_MAPS 4          // maps of each kind (float, integer) its visibility pass reads
+#define TECH_MAP 4               // the technique's float maps, every view (nearest): an array of
+                                 // TECH_MAX_MAPS in the order its module lists them
+                                 // (visibilityMaps); slots it leaves hold the depth map
 #define TECH_COMPARE 5           // the depth map, every view (comparison sampler)
-#define TECH_TABLE 8             // the technique's filtered map when it holds integers (a
-                                 // placeholder otherwise), every view (nearest)
+#define TECH_TABLE 8             // its integer maps likewise (usampler2DArray[TECH_MAX_MAPS]);
+                                 // slots it leaves hold a placeholder
 #define TECH_FIELD 9             // the scene's distance field (a 1x1x2 placeholder when the
                                  // technique traces none), trilinear
 #define TECH_PARAMS 18           // the technique's parameter block (technique_block.h)

@@ -10,9 +10,13 @@
 #include "light_geometry.h"
 #include "receiver.glsl"
 
-layout(set = 0, binding = TECH_MAP) uniform sampler2DArray shadowMap;
+// The maps its module lists (visibilityMaps): float ones in shadowMaps, integer ones in
+// shadowTables, each kind in the order listed; shadowMap and shadowTable are the first of each.
+layout(set = 0, binding = TECH_MAP) uniform sampler2DArray shadowMaps[TECH_MAX_MAPS];
 layout(set = 0, binding = TECH_COMPARE) uniform sampler2DArrayShadow shadowMapCmp;
-layout(set = 0, binding = TECH_TABLE) uniform usampler2DArray shadowTable;
+layout(set = 0, binding = TECH_TABLE) uniform usampler2DArray shadowTables[TECH_MAX_MAPS];
+#define shadowMap shadowMaps[0]
+#define shadowTable shadowTables[0]
 layout(set = 0, binding = TECH_FIELD) uniform sampler3D distanceField;
 
 // What a technique with a blocker search (SPEC_BLOCKER_SEARCH) is asked for: the whole filter, the

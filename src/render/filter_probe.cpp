@@ -25,6 +25,8 @@ std::vector<shadows::SpecConstant> probeConstants(const shadows::TechniqueModule
     constants.push_back({SPEC_LIGHT_TYPE, light.cubeFace      ? uint32_t{LIGHT_POINT}
                                           : light.perspective ? uint32_t{LIGHT_SPOT}
                                                               : uint32_t{LIGHT_DIRECTIONAL}});
+    if (light.readSlots != 0)
+        constants.push_back({SPEC_PROBE_SLOTS, light.readSlots});
     return constants;
 }
 
@@ -89,24 +91,23 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     std::vector<render::ImageDecl> maps = render::shadowMapDecls(module, params);
     maps.front().usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT; // the given depths go in by a copy
     r.depthMap = graph.declare(maps.front());
-    for (size_t m = 1; m < maps.size() && derived; ++m)
-        r.maps.push_back(graph.declare(maps[m]));
+    if (derived)
+        r.declareOwnMaps(graph, module, std::span(maps).subspan(1));
     r.integerPlaceholder = graph.declare(render::integerPlaceholderDecl());
     graph.markBoundOnly(r.integerPlaceholder);
     r.field = graph.importImage("probe.field", fieldPlaceholder, render::Access::ComputeSampled);
     r.params = graph.importBuffer("probe.params", paramsBuffer.get());
     r.views = graph.importBuffer("probe.views", viewBuffer.get());
-    using ResourceIdPair = std::pair<render::ResourceId, render::ResourceId>;
-    const ResourceIdPair filtered = [&] {
-        if (!derived) // the depth map itself is filtered
-            return ResourceIdPair{r.depthMap, r.integerPlaceholder};
-        for (size_t m = 0; m < module.maps.size(); ++m)
-            if (module.maps[m].name == module.visibilityMap)
-                return shadows::holdsIntegers(shadows::formatOf(module.maps[m], params))
-                           ? ResourceIdPair{r.depthMap, r.maps[m]}
-                           : ResourceIdPair{r.maps[m], r.integerPlaceholder};
-        return ResourceIdPair{r.depthMap, r.integerPlaceholder};
-    }();
+    // The depth map itself is filtered unless the post passes derive the technique's maps.
+    const render::FilteredBindings filtered = render::FilteredBindings::of(
+        module, params, r.depthMap, r.integerPlaceholder,
+        derived ? std::function([&](std::string_view name) { return r.named(module, name); })
+                : nullptr);
+    std::vector<render::Use> probeUses{{r.depthMap, render::Access::ComputeSampled},
+                                       {r.field, render::Access::ComputeSampled},
+                                       {r.params, render::Access::UniformRead},
+                                       {r.views, render::Access::ComputeRead}};
+    filtered.addUses(probeUses);
     const render::FrameInputs inputs{
         .views = viewBuffer.get(), .params = paramsBuffer.get(), .nearest = nearest.get()};
     render::FramePipelines& p = mImpl->pipelines;
@@ -125,20 +126,14 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
         render::addPostPasses(graph, p, module, params, 1, inputs, r);
     graph.addPass({.name = "",
                    .phase = render::Phase::PerLight,
-                   .uses = {{filtered.first, render::Access::ComputeSampled},
-                            {filtered.second, render::Access::ComputeSampled},
-                            {r.depthMap, render::Access::ComputeSampled},
-                            {r.field, render::Access::ComputeSampled},
-                            {r.params, render::Access::UniformRead},
-                            {r.views, render::Access::ComputeRead}},
+                   .uses = probeUses,
                    .record = [&](render::PassContext& c) {
                        vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                                          p.probe(probeConstants(module, params, probeLight)));
-                       vk::PushDescriptors()
-                           .uniformBuffer(BIND_FRAME, frameBuffer.get())
+                       vk::PushDescriptors descriptors;
+                       filtered.write(descriptors, c, nearest.get());
+                       descriptors.uniformBuffer(BIND_FRAME, frameBuffer.get())
                            .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
-                           .sampled(TECH_MAP, c.image(filtered.first).view(), nearest.get())
-                           .sampled(TECH_TABLE, c.image(filtered.second).view(), nearest.get())
                            .sampled(TECH_COMPARE, c.image(r.depthMap).view(), compare.get())
                            .sampled(TECH_FIELD, fieldPlaceholder.view.get(), nearest.get())
                            .uniformBuffer(TECH_PARAMS, paramsBuffer.get())

@@ -4,10 +4,30 @@
 
 namespace penumbra::render {
 
+static_assert(kPreviousSuffix == shadows::kPreviousMapSuffix,
+              "a module names last frame's maps as the pool does");
+
+void FrameResources::declareOwnMaps(FrameGraph& graph, const shadows::TechniqueModule& module,
+                                    std::span<const ImageDecl> decls) {
+    for (size_t m = 0; m < decls.size(); ++m) {
+        maps.push_back(graph.declare(decls[m]));
+        previousMaps.push_back(module.maps[m].history ? std::optional(graph.previous(maps.back()))
+                                                      : std::nullopt);
+    }
+}
+
 ResourceId FrameResources::named(const shadows::TechniqueModule& module,
                                  std::string_view name) const {
     if (name == shadows::kDepthMap)
         return depthMap;
+    if (name.ends_with(shadows::kPreviousMapSuffix)) {
+        const std::string_view own = name.substr(0, name.size() - kPreviousSuffix.size());
+        for (size_t m = 0; m < previousMaps.size(); ++m)
+            if (module.maps[m].name == own && previousMaps[m])
+                return *previousMaps[m];
+        fatal(__FILE__, __LINE__,
+              "FrameResources::named: the technique keeps no history of " + std::string(own));
+    }
     for (size_t m = 0; m < module.maps.size(); ++m)
         if (module.maps[m].name == name)
             return maps[m];
@@ -24,15 +44,10 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.depthMap = graph.declare(maps.front());
     if (drawsNoMap)
         graph.markBoundOnly(r.depthMap);
-    for (size_t m = 1; m < maps.size(); ++m)
-        r.maps.push_back(graph.declare(maps[m]));
+    r.declareOwnMaps(graph, *s.technique, std::span(maps).subspan(1));
     const shadows::TechniqueModule& module = *s.technique;
     // On virtual maps a technique has the page pool alone: it reads it as its depth map.
     const bool ownMaps = r.maps.size() == module.maps.size();
-    bool integerMap = false; // the summed-area members' tables, smrt's bounds: through usamplers
-    for (const shadows::MapDecl& map : module.maps)
-        integerMap = integerMap || (ownMaps && map.name == module.visibilityMap &&
-                                    shadows::holdsIntegers(shadows::formatOf(map, *s.params)));
     auto screen = [&](std::string_view name) {
         for (const ImageDecl& decl : screenDecls(s.intermediates))
             if (decl.name == name)
@@ -58,10 +73,10 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     // handed over unwritten when no layer ran.
     for (const ResourceId id : {r.integerPlaceholder, r.intermediates, r.layerResults})
         graph.markBoundOnly(id);
-    const ResourceId filtered = ownMaps ? r.named(module, module.visibilityMap) : r.depthMap;
-    r.filtered = integerMap
-                     ? FilteredBindings{.floats = r.depthMap, .integers = filtered}
-                     : FilteredBindings{.floats = filtered, .integers = r.integerPlaceholder};
+    r.filtered = FilteredBindings::of(
+        module, *s.params, r.depthMap, r.integerPlaceholder,
+        ownMaps ? std::function([&](std::string_view name) { return r.named(module, name); })
+                : nullptr);
     r.readback =
         graph.declare(ReadbackLayout(s.sizes.width, s.sizes.height, s.sizes.shadowLights).decl());
     // Built (or made) sampled, and only ever sampled.
@@ -105,6 +120,41 @@ FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const Gp
     if (s.present)
         addPresentPass(graph, r);
     return r;
+}
+
+FilteredBindings FilteredBindings::of(const shadows::TechniqueModule& module,
+                                      const ParameterValues& params, ResourceId depthMap,
+                                      ResourceId placeholder,
+                                      const std::function<ResourceId(std::string_view)>& named) {
+    FilteredBindings b;
+    b.floats.fill(depthMap);
+    b.integers.fill(placeholder);
+    if (!named)
+        return b;
+    const shadows::VisibilitySlots slots = shadows::visibilitySlots(module, params);
+    for (size_t k = 0; k < TECH_MAX_MAPS; ++k) {
+        b.floats[k] = named(slots.floats[k]);
+        if (!slots.integers[k].empty())
+            b.integers[k] = named(slots.integers[k]);
+    }
+    return b;
+}
+
+void FilteredBindings::write(vk::PushDescriptors& descriptors, const PassContext& c,
+                             VkSampler nearest) const {
+    std::array<VkImageView, TECH_MAX_MAPS> floatViews{}, integerViews{};
+    for (size_t k = 0; k < TECH_MAX_MAPS; ++k) {
+        floatViews[k] = c.image(floats[k]).view();
+        integerViews[k] = c.image(integers[k]).view();
+    }
+    descriptors.sampled(TECH_MAP, floatViews, nearest).sampled(TECH_TABLE, integerViews, nearest);
+}
+
+void FilteredBindings::addUses(std::vector<Use>& uses) const {
+    for (size_t k = 0; k < TECH_MAX_MAPS; ++k) {
+        uses.push_back({floats[k], Access::ComputeSampled});
+        uses.push_back({integers[k], Access::ComputeSampled});
+    }
 }
 
 void addPresentPass(FrameGraph& graph, const FrameResources& r) {

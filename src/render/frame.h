@@ -71,10 +71,20 @@ struct FrameInputs {
     VkSampler nearest, compare, fieldSampler;
 };
 
-// What a pass that filters the technique's map binds: the float map (the depth map when the
-// filtered map holds integers) and the integer one (the placeholder when it holds floats).
+// The maps a pass that evaluates the technique binds (shadows::visibilitySlots): TECH_MAP's
+// slots and TECH_TABLE's.
 struct FilteredBindings {
-    ResourceId floats, integers;
+    std::array<ResourceId, TECH_MAX_MAPS> floats{}, integers{};
+    // `named`: the resource of a map by its name (kDepthMap too); null: the depth map alone,
+    // in every float slot (virtual maps' page pool, the probe of a map given whole).
+    static FilteredBindings of(const shadows::TechniqueModule& module,
+                               const ParameterValues& params, ResourceId depthMap,
+                               ResourceId placeholder,
+                               const std::function<ResourceId(std::string_view)>& named);
+    // Every slot written, at TECH_MAP and TECH_TABLE.
+    void write(vk::PushDescriptors& descriptors, const PassContext& c, VkSampler nearest) const;
+    // Every slot, sampled by compute.
+    void addUses(std::vector<Use>& uses) const;
 };
 
 // What a frame that presents leaves for the caller's own passes (the viewer's display pass):
@@ -88,6 +98,8 @@ struct FrameOutputs {
 struct FrameResources {
     ResourceId depthMap = 0;
     std::vector<ResourceId> maps; // the technique's own, in its module's order
+    // Last frame's version of each of its own maps declared with history (MapDecl::history).
+    std::vector<std::optional<ResourceId>> previousMaps;
     ResourceId gbufferDepth = 0, gbufferNormal = 0, gbufferAlbedo = 0;
     ResourceId visibility = 0, intermediates = 0, layerResults = 0, color = 0;
     ResourceId visibilityScratch = 0; // the visibility filter's rows (0: no filter runs)
@@ -98,7 +110,12 @@ struct FrameResources {
     ResourceId pageTable = 0, pageRequests = 0;
     ResourceId traceList = 0; // checkerboard tracing's (a head alone when it does not run)
     // The map a module calls `name` (shadows::kDepthMap or one of its own).
+    // `<name> (previous)`: last frame's version of a map declared with history.
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;
+    // Declares the technique's own maps (shadowMapDecls past the depth map's), with last
+    // frame's versions of those with history.
+    void declareOwnMaps(FrameGraph& graph, const shadows::TechniqueModule& module,
+                        std::span<const ImageDecl> decls);
 };
 
 // The technique's visibility filter under these settings (none runs where its radius for the

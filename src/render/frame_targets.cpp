@@ -42,7 +42,7 @@ constexpr VkImageUsageFlags kStorageOut =
 // A map of every shadow view: a layer each, a 2D view of each layer (and level) to render into
 // or write in a post pass.
 ImageDecl viewMap(std::string_view name, shadows::MapFormat format, bool mipmapped,
-                  uint32_t shrink = 0) {
+                  uint32_t shrink = 0, bool history = false) {
     return {.name = target::shadowMap(name),
             .size = SizeClass::ShadowView,
             .shrink = shrink,
@@ -50,7 +50,8 @@ ImageDecl viewMap(std::string_view name, shadows::MapFormat format, bool mipmapp
             .usage = format == shadows::MapFormat::Depth32 ? kDepthTarget
                                                            : VK_IMAGE_USAGE_STORAGE_BIT | kSampled,
             .mipmapped = mipmapped,
-            .layerViews = true};
+            .layerViews = true,
+            .lifetime = history ? Lifetime::History : Lifetime::PerFrame};
 }
 
 ImageDecl screen(std::string_view name, VkFormat format, VkImageUsageFlags usage,
@@ -83,7 +84,7 @@ std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
     std::vector<ImageDecl> decls{viewMap(shadows::kDepthMap, shadows::MapFormat::Depth32, false)};
     for (const shadows::MapDecl& map : module.maps)
         decls.push_back(viewMap(map.name, shadows::formatOf(map, params),
-                                shadows::mipmappedOf(map, params), map.shrink));
+                                shadows::mipmappedOf(map, params), map.shrink, map.history));
     return decls;
 }
 

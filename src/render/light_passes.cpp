@@ -38,14 +38,12 @@ void dispatchVisibility(PassContext& c, FramePipelines& p, const FrameSettings& 
         constants.push_back({SPEC_FUSED_COMPOSITE, 1u});
     }
     vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(constants));
-    const FilteredBindings filtered = r.filtered;
-    vk::PushDescriptors()
-        .uniformBuffer(BIND_FRAME, in.frame)
+    vk::PushDescriptors descriptors;
+    r.filtered.write(descriptors, c, in.nearest);
+    descriptors.uniformBuffer(BIND_FRAME, in.frame)
         .uniformBuffer(VIS_LIGHTS, in.lights)
         .sampled(VIS_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
         .sampled(VIS_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
-        .sampled(TECH_MAP, c.image(filtered.floats).view(), in.nearest)
-        .sampled(TECH_TABLE, c.image(filtered.integers).view(), in.nearest)
         .sampled(TECH_COMPARE, c.image(r.depthMap).view(), in.compare)
         .uniformBuffer(TECH_PARAMS, in.params)
         .storageImage(VIS_OUT, c.image(r.visibility).view())
@@ -132,22 +130,21 @@ std::vector<Use> layerLayoutUses(const FrameResources& r, Access visibility, Res
 
 // What every visibility dispatch binds; `visibility` as the pass uses it.
 std::vector<Use> visibilityUses(const FrameResources& r, Access visibility) {
-    const FilteredBindings filtered = r.filtered;
-    return {{r.frame, Access::UniformRead},
-            {r.lights, Access::UniformRead},
-            {r.views, Access::UniformRead},
-            {r.params, Access::UniformRead},
-            {r.pageTable, Access::ComputeRead},
-            {r.gbufferDepth, Access::ComputeSampled},
-            {r.gbufferNormal, Access::ComputeSampled},
-            {r.gbufferAlbedo, Access::ComputeSampled},
-            {filtered.floats, Access::ComputeSampled},
-            {filtered.integers, Access::ComputeSampled},
-            {r.depthMap, Access::ComputeSampled},
-            {r.field, Access::ComputeSampled},
-            {r.visibility, visibility},
-            {r.intermediates, Access::ComputeWrite},
-            {r.color, Access::ComputeWrite}}; // bound by every dispatch
+    std::vector<Use> uses{{r.frame, Access::UniformRead},
+                          {r.lights, Access::UniformRead},
+                          {r.views, Access::UniformRead},
+                          {r.params, Access::UniformRead},
+                          {r.pageTable, Access::ComputeRead},
+                          {r.gbufferDepth, Access::ComputeSampled},
+                          {r.gbufferNormal, Access::ComputeSampled},
+                          {r.gbufferAlbedo, Access::ComputeSampled},
+                          {r.depthMap, Access::ComputeSampled},
+                          {r.field, Access::ComputeSampled},
+                          {r.visibility, visibility},
+                          {r.intermediates, Access::ComputeWrite},
+                          {r.color, Access::ComputeWrite}}; // bound by every dispatch
+    r.filtered.addUses(uses);
+    return uses;
 }
 
 // Checkerboard tracing's trace list emptied (checkerboard.h): its head's group count, and the

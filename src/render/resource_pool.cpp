@@ -375,11 +375,12 @@ uint64_t ResourcePool::bytesOf(const ImageDecl& decl, const FrameSizes& sizes) {
     const uint32_t levels = decl.mipmapped ? mipLevels(std::max(r.width, r.height)) : 1u;
     for (uint32_t m = 0; m < levels; ++m)
         texels += uint64_t{std::max(r.width >> m, 1u)} * std::max(r.height >> m, 1u) * r.depth;
-    return texels * r.layers * vk::formatBytes(decl.format);
+    const uint64_t versions = decl.lifetime == Lifetime::History ? 2 : 1;
+    return texels * r.layers * vk::formatBytes(decl.format) * versions;
 }
 
 uint64_t ResourcePool::bytesOf(const BufferDecl& decl, const FrameSizes& sizes) {
-    return bufferBytes(decl, sizes);
+    return bufferBytes(decl, sizes) * (decl.lifetime == Lifetime::History ? 2 : 1);
 }
 
 } // namespace penumbra::render

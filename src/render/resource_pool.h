@@ -146,8 +146,8 @@ public:
     // A host-visible buffer's mapped memory, by name (null unless declared and mapped).
     void* mapped(std::string_view name) const;
 
-    // What an image or buffer of this declaration takes in device memory (texel and mip sums;
-    // the device's own padding aside): what Renderer::check counts.
+    // What an image or buffer of this declaration takes in device memory (texel and mip sums,
+    // both versions of a history; the device's own padding aside): what Renderer::check counts.
     static uint64_t bytesOf(const ImageDecl& decl, const FrameSizes& sizes);
     static uint64_t bytesOf(const BufferDecl& decl, const FrameSizes& sizes);
     // Resources made (not kept) since the pool was created: what tests of the cache read.

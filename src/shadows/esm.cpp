@@ -49,7 +49,7 @@ const TechniqueModule& esmModule() {
                        kBlur.sizeParameter()},
         .maps = kBlur.maps(),
         .postPasses = kBlur.passes(),
-        .visibilityMap = "exponentials",
+        .visibilityMaps = {"exponentials"},
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 block.set(gpu::EsmParams{.c = static_cast<float>(p.number("esm.c")),

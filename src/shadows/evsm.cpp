@@ -81,7 +81,7 @@ const TechniqueModule& evsmModule() {
              kBlur.sizeParameter()},
         .maps = kBlur.maps(),
         .postPasses = kBlur.passes(),
-        .visibilityMap = "moments",
+        .visibilityMaps = {"moments"},
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 block.set(gpu::EvsmParams{

@@ -81,7 +81,7 @@ const TechniqueModule& msmModule() {
                             "msm.bias to 6e-5 or more)"}},
         .maps = kBlur.maps(),
         .postPasses = kBlur.passes(),
-        .visibilityMap = "moments",
+        .visibilityMaps = {"moments"},
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 block.set(

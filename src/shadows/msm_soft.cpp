@@ -51,7 +51,7 @@ const TechniqueModule& msmSoftModule() {
         .parameters = msmSoftParameters(),
         .maps = kTable.maps(),
         .postPasses = kTable.passes(),
-        .visibilityMap = kMomentTable,
+        .visibilityMaps = {kMomentTable},
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 gpu::SoftParams s = kSearch.pack(p);

@@ -71,7 +71,7 @@ const TechniqueModule& savsmModule() {
                         .description = "as vsm.bleedReduction"}},
         .maps = kTable.maps(),
         .postPasses = kTable.passes(),
-        .visibilityMap = kMomentTable,
+        .visibilityMaps = {kMomentTable},
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 block.set(gpu::SavsmParams{

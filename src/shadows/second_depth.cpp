@@ -32,7 +32,7 @@ const TechniqueModule& secondDepthModule() {
         .postPasses = {{.shader = "second_depth_mid.comp",
                         .inputs = {kDepthMap, "second"},
                         .outputs = {"midpoint"}}},
-        .visibilityMap = "midpoint",
+        .visibilityMaps = {"midpoint"},
         // The probe's map holds the midpoints; no receiver-plane correction.
         .reference =
             [](const FilterInput& in) {

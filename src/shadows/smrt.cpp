@@ -498,7 +498,7 @@ const TechniqueModule& smrtModule() {
                        {.shader = "smrt_bounds_mip.comp",
                         .outputs = {"bounds"},
                         .dispatch = PostDispatch::MipChain}},
-        .visibilityMap = "bounds",
+        .visibilityMaps = {"bounds"},
         .constants =
             [](const ParameterValues& p) {
                 // Bit 0 spots and suns, bit 1 point lights (the shader picks by LIGHT_TYPE).

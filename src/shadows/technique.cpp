@@ -234,6 +234,35 @@ bool mipmappedOf(const MapDecl& map, const ParameterValues& params) {
     return map.mipmappedFor && map.mipmappedFor(params);
 }
 
+VisibilitySlots visibilitySlots(const TechniqueModule& module, const ParameterValues& params) {
+    VisibilitySlots slots;
+    slots.floats.fill(kDepthMap);
+    size_t floats = 0, integers = 0;
+    for (std::string_view name : module.visibilityMaps) {
+        bool integer = false; // the depth map's format is Depth32
+        if (name != kDepthMap) {
+            // Last frame's version has its map's format.
+            const bool previous = name.ends_with(kPreviousMapSuffix);
+            const std::string_view own =
+                previous ? name.substr(0, name.size() - kPreviousMapSuffix.size()) : name;
+            const auto map = std::find_if(module.maps.begin(), module.maps.end(),
+                                          [&](const MapDecl& m) { return m.name == own; });
+            PENUMBRA_CHECK(map != module.maps.end(),
+                           std::string(module.info.name) +
+                               " reads a map it does not declare: " + std::string(name));
+            PENUMBRA_CHECK(!previous || map->history,
+                           std::string(module.info.name) + " reads last frame's " +
+                               std::string(own) + ", declared without history");
+            integer = holdsIntegers(formatOf(*map, params));
+        }
+        size_t& used = integer ? integers : floats;
+        PENUMBRA_CHECK(used < TECH_MAX_MAPS, std::string(module.info.name) +
+                                                 " reads more maps of a kind than TECH_MAX_MAPS");
+        (integer ? slots.integers : slots.floats)[used++] = name;
+    }
+    return slots;
+}
+
 std::string techniquesWhere(bool (*property)(const TechniqueModule&)) {
     std::vector<std::string_view> names;
     for (const TechniqueModule* module : allModules())

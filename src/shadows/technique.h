@@ -54,9 +54,25 @@ struct MapDecl {
     bool (*mipmappedFor)(const ParameterValues&) = nullptr;
     // Its level 0 is the depth map's size >> shrink a side (smrt's bounds: 1, half).
     uint32_t shrink = 0;
+    // Whether last frame's version stays readable beside this frame's, by the name
+    // `<name> (previous)` (kPreviousMapSuffix) in a post pass's inputs or in visibilityMaps:
+    // twice the memory; zeros where it holds nothing (the first frame, a new size, a cut, a
+    // frame that did not write it; docs/architecture.md, "History").
+    bool history = false;
 };
+inline constexpr std::string_view kPreviousMapSuffix = " (previous)";
 MapFormat formatOf(const MapDecl& map, const ParameterValues& params);
 bool mipmappedOf(const MapDecl& map, const ParameterValues& params);
+
+struct TechniqueModule;
+// The visibility pass's map slots for a module under `params`: shadowMaps' (float formats) and
+// shadowTables' (integer formats), by map name in the order the module lists them; float slots
+// it leaves hold kDepthMap, integer ones "" (a placeholder). Fatal past TECH_MAX_MAPS of a kind
+// or for a map the module does not declare.
+struct VisibilitySlots {
+    std::array<std::string_view, TECH_MAX_MAPS> floats, integers;
+};
+VisibilitySlots visibilitySlots(const TechniqueModule& module, const ParameterValues& params);
 
 // Another depth pass over the casters, into `target` (a Depth32 map), whose fragment shader
 // reads the map `reads` at the fragment's texel (a depth peel, say).
@@ -168,9 +184,11 @@ struct TechniqueModule {
     std::vector<MapDecl> maps;              // beyond kDepthMap
     std::vector<DepthPassDecl> depthPasses; // beyond the light's depth pass
     std::vector<PostPassDecl> postPasses;   // in order
-    // What the visibility pass filters: at TECH_MAP, or at TECH_TABLE when it holds integers (the
-    // depth map then at TECH_MAP; smrt's bounds beside the map it marches).
-    std::string_view visibilityMap = kDepthMap;
+    // The maps its visibility pass reads (visibilitySlots): those of float formats at TECH_MAP's
+    // slots (shadowMaps[0], [1], ...), those of integer formats at TECH_TABLE's (shadowTables),
+    // each kind in this order, at most TECH_MAX_MAPS of each. A float slot it leaves holds the
+    // depth map (smrt lists its bounds alone and marches the depth map at shadowMaps[0]).
+    std::vector<std::string_view> visibilityMaps{kDepthMap};
     // Its own specialization constants of the visibility pass (SPEC_FILTER: pcf.filter).
     std::vector<SpecConstant> (*constants)(const ParameterValues&) = nullptr;
     // Writes the module's parameters into its block (its struct, params_<family>.h).

@@ -104,7 +104,7 @@ const TechniqueModule& vsmModule() {
                              "axis (1: isotropic trilinear, blurrier at grazing angles)"}},
         .maps = vsmMaps(),
         .postPasses = vsmPasses(),
-        .visibilityMap = "moments",
+        .visibilityMaps = {"moments"},
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 block.set(gpu::VsmParams{

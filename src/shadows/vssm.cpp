@@ -61,7 +61,7 @@ const TechniqueModule& vssmModule() {
         .parameters = vssmParameters(),
         .maps = kTable.maps(),
         .postPasses = kTable.passes(),
-        .visibilityMap = kMomentTable,
+        .visibilityMaps = {kMomentTable},
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 gpu::SoftParams s = kSearch.pack(p);

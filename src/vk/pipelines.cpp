@@ -56,7 +56,7 @@ PipelineLayout createPipelineLayout(const Context& ctx, std::span<const Binding>
     for (const Binding& b : bindings)
         vkBindings.push_back({.binding = b.binding,
                               .descriptorType = b.type,
-                              .descriptorCount = 1,
+                              .descriptorCount = b.count,
                               .stageFlags = stages});
     const VkDescriptorSetLayoutCreateInfo setInfo{
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
@@ -193,15 +193,22 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
 }
 
 PushDescriptors& PushDescriptors::sampled(uint32_t binding, VkImageView view, VkSampler sampler) {
-    PENUMBRA_CHECK(mImageCount < kMax, "too many descriptors");
-    mImages[mImageCount] = {.sampler = sampler,
-                            .imageView = view,
-                            .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    return sampled(binding, std::span(&view, 1), sampler);
+}
+
+PushDescriptors& PushDescriptors::sampled(uint32_t binding, std::span<const VkImageView> views,
+                                          VkSampler sampler) {
+    PENUMBRA_CHECK(mImageCount + views.size() <= kMax, "too many descriptors");
+    VkDescriptorImageInfo* first = &mImages[mImageCount];
+    for (VkImageView view : views)
+        mImages[mImageCount++] = {.sampler = sampler,
+                                  .imageView = view,
+                                  .imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     mWrites.push_back({.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
                        .dstBinding = binding,
-                       .descriptorCount = 1,
+                       .descriptorCount = static_cast<uint32_t>(views.size()),
                        .descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                       .pImageInfo = &mImages[mImageCount++]});
+                       .pImageInfo = first});
     return *this;
 }
 

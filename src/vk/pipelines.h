@@ -16,6 +16,7 @@ namespace penumbra::vk {
 struct Binding {
     uint32_t binding;
     VkDescriptorType type;
+    uint32_t count = 1; // an array of this many (a shader's `sampler2DArray maps[N]`)
 };
 
 struct PipelineLayout {
@@ -59,6 +60,10 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
 class PushDescriptors {
 public:
     PushDescriptors& sampled(uint32_t binding, VkImageView view, VkSampler sampler);
+    // An array binding whole, element by element, in one write (lavapipe 22.3 drops a push
+    // descriptor write's dstArrayElement: writes of single elements all land on the first).
+    PushDescriptors& sampled(uint32_t binding, std::span<const VkImageView> views,
+                             VkSampler sampler);
     PushDescriptors& storageImage(uint32_t binding, VkImageView view);
     // The whole buffer, or `range` bytes from `offset` (a multiple of the device's
     // minUniformBufferOffsetAlignment, at most 256 by the specification).
@@ -69,7 +74,7 @@ public:
               const PipelineLayout& layout);
 
 private:
-    static constexpr size_t kMax = 16;
+    static constexpr size_t kMax = 32; // the least maxPushDescriptors a device may report
     std::array<VkDescriptorImageInfo, kMax> mImages{};
     std::array<VkDescriptorBufferInfo, kMax> mBuffers{};
     std::vector<VkWriteDescriptorSet> mWrites;

@@ -1,0 +1,70 @@
+// The maps a technique's visibility pass reads (shadows::visibilitySlots): the module lists them,
+// float ones fill shadowMaps' slots and integer ones shadowTables', each kind in the order
+// listed; what is left holds the depth map or a placeholder. The frame and the probe bind exactly
+// these (render::FilteredBindings::of).
+#include "penumbra/settings.h"
+#include "shadows/technique.h"
+
+#include <gtest/gtest.h>
+
+using namespace penumbra;
+using namespace penumbra::shadows;
+
+namespace {
+
+// A module of maps only: what visibilitySlots reads.
+TechniqueModule mapsOnly(std::vector<std::string_view> listed) {
+    return {.info = {.name = "scratch"},
+            .maps = {{.name = "a", .format = MapFormat::R32F},
+                     {.name = "table", .format = MapFormat::RG32UI},
+                     {.name = "b", .format = MapFormat::RGBA16},
+                     {.name = "c", .format = MapFormat::RG32F},
+                     {.name = "d", .format = MapFormat::RGBA32F},
+                     // its format follows a parameter: integers under the default
+                     {.name = "follows",
+                      .format = MapFormat::R32F,
+                      .formatFor = [](const ParameterValues&) { return MapFormat::R32UI; }}},
+            .visibilityMaps = std::move(listed)};
+}
+
+} // namespace
+
+TEST(VisibilitySlots, FloatAndIntegerMapsFillTheirOwnSlotsInTheOrderListed) {
+    const ParameterValues defaults;
+    const VisibilitySlots slots =
+        visibilitySlots(mapsOnly({"table", "b", kDepthMap, "a", "follows"}), defaults);
+    EXPECT_EQ(slots.floats[0], "b");
+    EXPECT_EQ(slots.floats[1], kDepthMap);
+    EXPECT_EQ(slots.floats[2], "a");
+    EXPECT_EQ(slots.floats[3], kDepthMap) << "a float slot left holds the depth map";
+    EXPECT_EQ(slots.integers[0], "table");
+    EXPECT_EQ(slots.integers[1], "follows") << "the format its parameters give, not the default";
+    EXPECT_EQ(slots.integers[2], "");
+    EXPECT_EQ(slots.integers[3], "") << "an integer slot left holds the placeholder";
+}
+
+TEST(VisibilitySlots, OneIntegerMapLeavesTheDepthMapFirst) {
+    // smrt's bounds, the summed-area tables: the depth map stays at shadowMaps[0].
+    const VisibilitySlots slots = visibilitySlots(mapsOnly({"table"}), ParameterValues{});
+    for (std::string_view f : slots.floats)
+        EXPECT_EQ(f, kDepthMap);
+    EXPECT_EQ(slots.integers[0], "table");
+}
+
+TEST(VisibilitySlots, EveryModuleFitsItsSlots) {
+    const ParameterValues defaults;
+    for (const TechniqueModule* m : allModules()) {
+        const VisibilitySlots slots = visibilitySlots(*m, defaults);
+        // What the module lists is where the shaders look first.
+        const std::string_view first = m->visibilityMaps.front();
+        EXPECT_TRUE(slots.floats[0] == first || slots.integers[0] == first) << m->info.name;
+    }
+}
+
+TEST(VisibilitySlots, TooManyMapsOrAnUndeclaredOneIsAProgrammerError) {
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(visibilitySlots(mapsOnly({"a", "b", "c", "d", kDepthMap}), ParameterValues{}),
+                 "reads more maps of a kind than TECH_MAX_MAPS");
+    EXPECT_DEATH(visibilitySlots(mapsOnly({"a", "e"}), ParameterValues{}),
+                 "reads a map it does not declare: e");
+}
