@@ -6,7 +6,6 @@
 #include "vk/sync.h"
 
 #include <algorithm>
-#include <numeric>
 
 namespace penumbra::render {
 std::string_view phaseName(Phase phase) {
@@ -69,11 +68,11 @@ void FrameGraph::addPass(PassDecl pass) {
 }
 
 void FrameGraph::markOutput(ResourceId id) {
-    mOutputs.push_back(id);
+    mark(id).output = true;
 }
 
 void FrameGraph::markBoundOnly(ResourceId id) {
-    mBoundOnly.push_back(id);
+    mark(id).boundOnly = true;
 }
 
 const PooledImage& FrameGraph::image(ResourceId id) const {
@@ -84,20 +83,10 @@ VkBuffer FrameGraph::buffer(ResourceId id) const {
     return mPool.buffer(id);
 }
 
-std::vector<size_t> FrameGraph::phaseOrder() const {
-    std::vector<size_t> order(mPasses.size());
-    std::iota(order.begin(), order.end(), size_t{0});
-    // By phase, keeping the declaration order within each (which checkReads holds to the order
-    // the passes' reads and writes imply).
-    std::stable_sort(order.begin(), order.end(),
-                     [&](size_t a, size_t b) { return mPasses[a].phase < mPasses[b].phase; });
-    return order;
-}
-
 bool FrameGraph::outlivesFrame(ResourceId id) const {
     return mPool.persistent(id) || mPool.hostVisible(id) || // persistent: imported ones too
            mPool.history(id) ||                             // the next frame reads it
-           std::find(mOutputs.begin(), mOutputs.end(), id) != mOutputs.end();
+           (id < mMarks.size() && mMarks[id].output);
 }
 
 std::vector<size_t> FrameGraph::cull(const std::vector<size_t>& order) {
@@ -154,9 +143,8 @@ void FrameGraph::checkReadsAndWrites(const std::vector<size_t>& order) const {
                 return "FrameGraph: pass \"" + pass.name + "\" " + verb + " " +
                        std::string(mPool.name(id)) + ", which " + why;
             };
-            const bool holds =
-                mPool.isImported(id) || mPool.holdsContents(id) ||
-                std::find(mBoundOnly.begin(), mBoundOnly.end(), id) != mBoundOnly.end();
+            const bool holds = mPool.isImported(id) || mPool.holdsContents(id) ||
+                               (id < mMarks.size() && mMarks[id].boundOnly);
             if (reads(use.access) && !holds && !(firstWrite[id] >= 0 && firstWrite[id] < at)) {
                 PENUMBRA_CHECK(lastWrite[id] <= at,
                                said("reads", "only a later pass writes (a cycle, or a pass in "
@@ -169,12 +157,14 @@ void FrameGraph::checkReadsAndWrites(const std::vector<size_t>& order) const {
     }
 }
 
+FrameGraph::Marks& FrameGraph::mark(ResourceId id) {
+    if (id >= mMarks.size())
+        mMarks.resize(id + 1);
+    return mMarks[id];
+}
+
 size_t FrameGraph::resourceCount() const {
-    size_t count = 0;
-    for (const PassDecl& pass : mPasses)
-        for (const Use& use : pass.uses)
-            count = std::max<size_t>(count, use.resource + 1);
-    return count;
+    return mPool.idBound();
 }
 
 const std::vector<PlannedPass>& FrameGraph::plan() {
@@ -183,7 +173,7 @@ const std::vector<PlannedPass>& FrameGraph::plan() {
     mPlanned = true;
     mPool.realize();
     clearStaleHistory();
-    const std::vector<size_t> order = cull(phaseOrder());
+    const std::vector<size_t> order = cull(dependencyOrder());
     checkReadsAndWrites(order);
     // Each resource's access as the plan leaves it, starting from the pool's (the last frame's).
     struct Track {

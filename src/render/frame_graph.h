@@ -6,9 +6,13 @@
 // per-frame resource is kept while its declaration stays the same (its contents are not), a
 // persistent one keeps its contents too while its invalidation key does (what a cache needs).
 //
-// Order: by phase; within a phase, a pass that reads or writes what an earlier-declared pass
-// writes comes after it (declaration order, which must respect that: a pass reading what only a
-// later pass of its phase writes is a programmer error), and phases run in this order:
+// Order: by phase; within a phase, by what the passes read and write, whatever order they were
+// added in (ties keep the declaration order). Per resource, in declaration order: a write comes
+// after the write declared before it and after the reads of what that one wrote; a read comes
+// after the write declared before it, or, declared before any write of its phase, after the
+// first write (it reads what this frame writes). Passes of one phase that read what each other
+// write are a cycle (fatal); a read of what only a later phase writes is fatal too (plan()).
+// Phases run in this order:
 //   LightSpace   shadow maps and what is filtered from them (before the G-buffer)
 //   GBuffer      the camera's G-buffer
 //   ScreenSpace  passes after the G-buffer that per-light evaluation reads (and, for a cache
@@ -127,19 +131,24 @@ public:
     const FrameSizes& sizes() const { return mSizes; }
 
 private:
-    std::vector<size_t> phaseOrder() const;
+    std::vector<size_t> dependencyOrder() const; // frame_order.cpp
     void clearStaleHistory();
     std::vector<size_t> cull(const std::vector<size_t>& order);
     void checkReadsAndWrites(const std::vector<size_t>& order) const;
     bool outlivesFrame(ResourceId id) const;
-    size_t resourceCount() const;
+    size_t resourceCount() const; // every id of this frame is below it
+    // What markOutput and markBoundOnly said of a resource, by id.
+    struct Marks {
+        bool output = false, boundOnly = false;
+    };
+    Marks& mark(ResourceId id);
 
     ResourcePool& mPool;
     FrameSizes mSizes;
     std::vector<PassDecl> mPasses;
     std::vector<PlannedPass> mPlan;
     std::vector<size_t> mCulled;
-    std::vector<ResourceId> mOutputs, mBoundOnly;
+    std::vector<Marks> mMarks;
     bool mPlanned = false;
 };
 

@@ -150,6 +150,8 @@ public:
     // both versions of a history; the device's own padding aside): what Renderer::check counts.
     static uint64_t bytesOf(const ImageDecl& decl, const FrameSizes& sizes);
     static uint64_t bytesOf(const BufferDecl& decl, const FrameSizes& sizes);
+    // One past the largest id of this frame.
+    size_t idBound() const { return mEntries.size(); }
     // Resources made (not kept) since the pool was created: what tests of the cache read.
     uint64_t creations() const { return mCreations; }
 
