@@ -451,7 +451,8 @@ PYBIND11_MODULE(penumbra, m) {
              "copy of the scene (later edits to the Scene do not reach it). light_radius and "
              "light_angle override every spot/point light's radius and every sun's angular "
              "diameter (degrees), as --light-radius and --light-angle.")
-        .def("render", &PyRenderer::render, py::arg("technique") = "hard",
+        .def("render", &PyRenderer::render,
+             py::arg("technique") = std::string(techniqueName(kDefaultTechnique)),
              py::arg("params") = py::dict(), py::arg("frames") = 5,
              "Renders with a technique or a compare row ('pcf[box7]', 'pcf[box3]+contact'). "
              "Parameters as params={'pcf.size': 7} or keywords pcf_size=7; checked before the "

@@ -19,7 +19,7 @@ namespace {
 
 struct RenderArgs {
     SceneOptions sceneOptions;
-    std::string scene, output, technique = "hard";
+    std::string scene, output, technique = std::string(techniqueName(kDefaultTechnique));
     std::string fieldSlice = "y";
     std::vector<std::string> sets;
     RenderOptions options;

@@ -11,7 +11,7 @@ namespace {
 
 struct ViewArgs {
     SceneOptions sceneOptions;
-    std::string scene, technique = "hard";
+    std::string scene, technique = std::string(techniqueName(kDefaultTechnique));
     std::vector<std::string> sets;
     bool noVsync = false;
     std::string show = "scene", compareWith;

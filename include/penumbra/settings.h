@@ -57,6 +57,9 @@ void applyRow(const TechniqueRow& row, ParameterValues& params, double sceneRadi
 
 std::span<const TechniqueInfo> allTechniques();
 std::string_view techniqueName(Technique technique);
+// What every command, the Python module and a benchmark run use when no technique is named:
+// the plain depth test, the reference point every other technique is measured against.
+inline constexpr Technique kDefaultTechnique = Technique::Hard;
 // Throws InputError("--technique", ...) listing the valid names when `name` is unknown.
 const TechniqueInfo& findTechnique(std::string_view name);
 
@@ -100,7 +103,7 @@ struct RenderOptions {
     uint32_t shadowMapSize = 2048;
     uint32_t frames = 5; // timed frames after one warm-up frame
     std::string camera;  // glTF camera name; empty = first camera or automatic framing
-    Technique technique = Technique::Hard;
+    Technique technique = kDefaultTechnique;
     ParameterValues parameters;
     float lightRadiusOverride = -1.0f; // world units; < 0 = from the scene
     float lightAngleOverride = -1.0f;  // degrees;     < 0 = from the scene

@@ -23,7 +23,7 @@ struct PassStats {
 PassStats passStats(std::string pass, std::vector<double> frameMs);
 
 struct BenchRun {
-    Technique technique = Technique::Hard;
+    Technique technique = kDefaultTechnique;
     std::vector<std::pair<std::string, std::string>> swept; // key, value as given
     ParameterValues parameters;                             // every value in effect
     std::vector<PassStats> passes;                          // in frame order
