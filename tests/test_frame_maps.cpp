@@ -45,6 +45,36 @@ TEST_F(FrameTest, EachListedMapIsBoundInItsSlotAndTheRestHoldStandIns) {
             << "resource " << id;
 }
 
+// The views a pass is given: each slot's own resource, in its slot of TECH_MAP or TECH_TABLE.
+TEST_F(FrameTest, EverySlotIsWrittenWithItsOwnResourcesView) {
+    render::ResourcePool pool(sharedRenderer().context());
+    render::FrameGraph graph(pool, render::FrameSizes{.width = 1, .height = 1});
+    render::FilteredBindings bound;
+    for (size_t k = 0; k < TECH_MAX_MAPS; ++k)
+        for (const bool integer : {false, true}) {
+            const render::ResourceId id = graph.declare(
+                render::ImageDecl{.name = (integer ? "table " : "map ") + std::to_string(k),
+                                  .size = render::SizeClass::Fixed,
+                                  .format = integer ? VK_FORMAT_R32_UINT : VK_FORMAT_R32_SFLOAT,
+                                  .usage = VK_IMAGE_USAGE_SAMPLED_BIT});
+            (integer ? bound.integers : bound.floats)[k] = id;
+        }
+    graph.plan(); // the images exist from here
+    const render::PassContext c{.cmd = VK_NULL_HANDLE, .graph = graph};
+    vk::PushDescriptors descriptors;
+    bound.write(descriptors, c, VK_NULL_HANDLE);
+    const std::span<const VkWriteDescriptorSet> writes = descriptors.writes();
+    ASSERT_EQ(writes.size(), 2u);
+    for (const VkWriteDescriptorSet& w : writes) {
+        ASSERT_TRUE(w.dstBinding == TECH_MAP || w.dstBinding == TECH_TABLE);
+        ASSERT_EQ(w.descriptorCount, TECH_MAX_MAPS) << "the array whole";
+        const auto& ids = w.dstBinding == TECH_MAP ? bound.floats : bound.integers;
+        for (size_t k = 0; k < TECH_MAX_MAPS; ++k)
+            EXPECT_EQ(w.pImageInfo[k].imageView, graph.image(ids[k]).view())
+                << "binding " << w.dstBinding << " slot " << k;
+    }
+}
+
 TEST_F(FilterTest, TheDeviceSeesEachMapInTheSlotItsModuleGaveIt) {
     constexpr uint32_t kSize = 16;
     std::vector<float> depth(kSize * kSize);

@@ -1,7 +1,9 @@
 // The RAII Vulkan layer's images and samplers beyond what the frame uses today: 3D images (a
 // distance field), cube and cube-array images (point lights' views), mip chains, anisotropic
 // and comparison samplers. Made on their own device with validation on; any message fails.
+#include "penumbra/error.h"
 #include "vk/context.h"
+#include "vk/pipelines.h"
 #include "vk/resources.h"
 #include "vk/sync.h"
 
@@ -110,4 +112,60 @@ TEST(VkResources, ThreeDimensionalCubeAndMipmappedImagesAndEverySamplerKind) {
     const vk::SamplerHandle compare = vk::createSampler(ctx, {.compare = true});
     EXPECT_TRUE(trilinear && volumeSampler && compare);
     EXPECT_EQ(ctx.validationErrors() + ctx.validationWarnings(), 0u);
+}
+
+// A layout past a device's limits is refused by the limit's name, at the limit and not before;
+// each descriptor kind counts against the limits the specification says it does.
+TEST(VkResources, ALayoutPastTheDevicesDescriptorLimitsIsNamed) {
+    VkPhysicalDeviceLimits limits{};
+    limits.maxPerStageResources = 100;
+    limits.maxPerStageDescriptorSamplers = 5;
+    limits.maxPerStageDescriptorSampledImages = 6;
+    limits.maxPerStageDescriptorStorageImages = 2;
+    limits.maxPerStageDescriptorUniformBuffers = 1;
+    limits.maxPerStageDescriptorStorageBuffers = 3;
+    using B = vk::Binding;
+    const auto problem = [&](std::vector<B> bindings, uint32_t push = 32) {
+        return vk::bindingLimitProblem(bindings, limits, push);
+    };
+    const B combined4{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4};
+    EXPECT_EQ(problem({combined4, {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER}}), "");
+    EXPECT_EQ(problem({combined4, {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2}}),
+              "6 descriptors past the device's maxPerStageDescriptorSamplers (5)");
+    EXPECT_EQ(problem({combined4, {1, VK_DESCRIPTOR_TYPE_SAMPLER, 2}}),
+              "6 descriptors past the device's maxPerStageDescriptorSamplers (5)");
+    EXPECT_EQ(problem({combined4, {1, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 2}}), "");
+    EXPECT_EQ(problem({combined4, {1, VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 3}}),
+              "7 descriptors past the device's maxPerStageDescriptorSampledImages (6)");
+    EXPECT_EQ(problem({{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}}), "");
+    EXPECT_EQ(
+        problem({{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}, {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2}}),
+        "3 descriptors past the device's maxPerStageDescriptorStorageImages (2)");
+    EXPECT_EQ(problem({{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}}), "");
+    EXPECT_EQ(
+        problem({{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}, {1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER}}),
+        "2 descriptors past the device's maxPerStageDescriptorUniformBuffers (1)");
+    EXPECT_EQ(problem({{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}}), "");
+    EXPECT_EQ(problem({{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4}}),
+              "4 descriptors past the device's maxPerStageDescriptorStorageBuffers (3)");
+    // Every kind together counts against the push set's size and the stage's resources.
+    const std::vector<B> mixed{{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 5},
+                               {1, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
+                               {2, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER},
+                               {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3}};
+    EXPECT_EQ(problem(mixed, 11), "");
+    EXPECT_EQ(problem(mixed, 10), "11 descriptors past the device's maxPushDescriptors (10)");
+    limits.maxPerStageResources = 10;
+    EXPECT_EQ(problem(mixed), "11 descriptors past the device's maxPerStageResources (10)");
+    // A device's own limits hold every layout Penumbra makes (the frame's are made with it).
+    const vk::Context ctx({.deviceIndex = -1, .validation = true});
+    EXPECT_GE(ctx.maxPushDescriptors(), 32u) << "the specification's least";
+    const vk::Binding tooMany{0, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, ctx.maxPushDescriptors() + 1};
+    try {
+        vk::createPipelineLayout(ctx, std::span(&tooMany, 1), VK_SHADER_STAGE_COMPUTE_BIT, 0);
+        ADD_FAILURE() << "a layout past maxPushDescriptors was made";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.subject(), "--device");
+        EXPECT_NE(std::string(e.what()).find("maxPushDescriptors"), std::string::npos) << e.what();
+    }
 }

@@ -85,7 +85,7 @@ VkBuffer FrameGraph::buffer(ResourceId id) const {
 
 bool FrameGraph::outlivesFrame(ResourceId id) const {
     return mPool.persistent(id) || mPool.hostVisible(id) || // persistent: imported ones too
-           mPool.history(id) ||                             // the next frame reads it
+           (mPool.history(id) && !mPool.isPrevious(id)) ||  // the next frame reads it
            (id < mMarks.size() && mMarks[id].output);
 }
 

@@ -4,6 +4,7 @@
 #include "vk/check.h"
 
 #include <algorithm>
+#include <utility>
 #include <variant>
 
 namespace penumbra::render {
@@ -122,6 +123,8 @@ void ResourcePool::beginFrame() {
     for (auto& e : mEntries)
         e->declared = false;
     ++mFrame;
+    // A cut asked for during the last frame applies to this one, whole.
+    mCutThisFrame = std::exchange(mCutPending, false);
 }
 
 // The entry a declaration names, kept when it declares the same resource at the same size,
@@ -177,7 +180,7 @@ ResourceId ResourcePool::acquireHistory(const Decl& decl, const FrameSizes& size
         std::swap(current.buffer, previous.buffer);
         std::swap(current.last, previous.last);
     }
-    previous.holds = kept && current.holds && !mHistoryCut;
+    previous.holds = kept && current.holds && !mCutThisFrame;
     current.holds = false; // until this frame writes it
     return id;
 }
@@ -268,7 +271,6 @@ void ResourcePool::realize() {
         e->pending = false;
         ++mCreations;
     }
-    mHistoryCut = false; // the frame's declarations saw it
 }
 
 const PooledImage& ResourcePool::image(ResourceId id) const {
@@ -298,22 +300,23 @@ bool ResourcePool::isImported(ResourceId id) const {
     return std::holds_alternative<std::monostate>(entry(id).decl);
 }
 
-bool ResourcePool::persistent(ResourceId id) const {
+// A declared resource's lifetime; none for an imported one.
+std::optional<Lifetime> ResourcePool::lifetimeOf(ResourceId id) const {
     const Entry& e = entry(id);
     if (const auto* i = std::get_if<ImageDecl>(&e.decl))
-        return i->lifetime == Lifetime::Persistent;
+        return i->lifetime;
     if (const auto* b = std::get_if<BufferDecl>(&e.decl))
-        return b->lifetime == Lifetime::Persistent;
-    return true; // imported: the caller's contents
+        return b->lifetime;
+    return std::nullopt;
+}
+
+bool ResourcePool::persistent(ResourceId id) const {
+    const std::optional<Lifetime> lifetime = lifetimeOf(id);
+    return !lifetime || *lifetime == Lifetime::Persistent; // imported: the caller's contents
 }
 
 bool ResourcePool::history(ResourceId id) const {
-    const Entry& e = entry(id);
-    if (const auto* i = std::get_if<ImageDecl>(&e.decl))
-        return i->lifetime == Lifetime::History;
-    if (const auto* b = std::get_if<BufferDecl>(&e.decl))
-        return b->lifetime == Lifetime::History;
-    return false;
+    return lifetimeOf(id) == Lifetime::History;
 }
 
 bool ResourcePool::isPrevious(ResourceId id) const {

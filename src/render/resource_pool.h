@@ -129,8 +129,9 @@ public:
     bool isPrevious(ResourceId id) const;
     ResourceId previousOf(ResourceId id) const;
     // The next frame's history holds nothing (a camera cut): every last frame's version is
-    // cleared before it is read. A new size or key does the same for one resource.
-    void invalidateHistory() { mHistoryCut = true; }
+    // cleared before it is read. A new size or key does the same for one resource. Called
+    // during a frame, it applies to the next one, never to half of this one's declarations.
+    void invalidateHistory() { mCutPending = true; }
     // A buffer the host maps (uploads, readbacks): what it holds outlives the submission.
     bool hostVisible(ResourceId id) const;
     // The last use's access (nullopt: not used since it was made, or its contents dropped).
@@ -164,13 +165,15 @@ private:
     ResourceId acquireAs(const Decl& decl, const FrameSizes& sizes);
     template <class Decl>
     ResourceId acquireHistory(const Decl& decl, const FrameSizes& sizes);
+    std::optional<Lifetime> lifetimeOf(ResourceId id) const;
     void make(Entry& e);
     void waitIdle();
     const vk::Context& mCtx;
     std::vector<std::unique_ptr<Entry>> mEntries;
     uint64_t mCreations = 0;
-    uint64_t mFrame = 0;      // frames begun: a history swaps once in each
-    bool mHistoryCut = false; // invalidateHistory, until the next frame's declarations end
+    uint64_t mFrame = 0;        // frames begun: a history swaps once in each
+    bool mCutPending = false;   // invalidateHistory since the last beginFrame
+    bool mCutThisFrame = false; // latched by beginFrame: this frame's history holds nothing
 };
 
 // What last frame's version of a history resource is called: its name and this.

@@ -286,7 +286,13 @@ Context::Context(const DeviceOptions& options)
     }
     mPhysical = devices[chosen];
     mInfo = mInstance.describe(mPhysical, static_cast<uint32_t>(chosen), options);
-    vkGetPhysicalDeviceProperties(mPhysical, &mProperties);
+    VkPhysicalDevicePushDescriptorPropertiesKHR push{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR};
+    VkPhysicalDeviceProperties2 properties{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
+                                           .pNext = &push};
+    vkGetPhysicalDeviceProperties2(mPhysical, &properties);
+    mProperties = properties.properties;
+    mMaxPushDescriptors = push.maxPushDescriptors;
     vkGetPhysicalDeviceMemoryProperties(mPhysical, &mMemory);
     if (mProperties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
         keepFreedMemory();

@@ -57,6 +57,8 @@ public:
     VkQueue queue() const { return mQueue; }
     uint32_t queueFamily() const { return mQueueFamily; }
     const VkPhysicalDeviceLimits& limits() const { return mProperties.limits; }
+    // Descriptors one push descriptor set may hold (VK_KHR_push_descriptor; at least 32).
+    uint32_t maxPushDescriptors() const { return mMaxPushDescriptors; }
     const DeviceInfo& info() const { return mInfo; }
     uint32_t validationErrors() const { return mInstance.counters().errors.load(); }
     uint32_t validationWarnings() const { return mInstance.counters().warnings.load(); }
@@ -81,6 +83,7 @@ private:
     Instance mInstance;
     VkPhysicalDevice mPhysical = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties mProperties{};
+    uint32_t mMaxPushDescriptors = 0;
     VkPhysicalDeviceMemoryProperties mMemory{};
     DeviceInfo mInfo;
     VkDevice mDevice = VK_NULL_HANDLE;

@@ -44,6 +44,58 @@ struct Specialization {
 
 } // namespace
 
+std::string bindingLimitProblem(std::span<const Binding> bindings,
+                                const VkPhysicalDeviceLimits& limits, uint32_t maxPushDescriptors) {
+    // Per kind, what the specification counts against each limit (Vulkan 1.3, "Limits").
+    uint32_t samplers = 0, sampledImages = 0, storageImages = 0, uniforms = 0, storage = 0;
+    uint32_t all = 0;
+    for (const Binding& b : bindings) {
+        all += b.count;
+        switch (b.type) {
+        case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+            samplers += b.count;
+            sampledImages += b.count;
+            break;
+        case VK_DESCRIPTOR_TYPE_SAMPLER:
+            samplers += b.count;
+            break;
+        case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+            sampledImages += b.count;
+            break;
+        case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+            storageImages += b.count;
+            break;
+        case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+            uniforms += b.count;
+            break;
+        case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+            storage += b.count;
+            break;
+        default:
+            break;
+        }
+    }
+    const struct {
+        uint32_t used, limit;
+        const char* name;
+    } checks[] = {{all, maxPushDescriptors, "maxPushDescriptors"},
+                  {all, limits.maxPerStageResources, "maxPerStageResources"},
+                  {samplers, limits.maxPerStageDescriptorSamplers, "maxPerStageDescriptorSamplers"},
+                  {sampledImages, limits.maxPerStageDescriptorSampledImages,
+                   "maxPerStageDescriptorSampledImages"},
+                  {storageImages, limits.maxPerStageDescriptorStorageImages,
+                   "maxPerStageDescriptorStorageImages"},
+                  {uniforms, limits.maxPerStageDescriptorUniformBuffers,
+                   "maxPerStageDescriptorUniformBuffers"},
+                  {storage, limits.maxPerStageDescriptorStorageBuffers,
+                   "maxPerStageDescriptorStorageBuffers"}};
+    for (const auto& c : checks)
+        if (c.used > c.limit)
+            return std::to_string(c.used) + " descriptors past the device's " + c.name + " (" +
+                   std::to_string(c.limit) + ")";
+    return {};
+}
+
 PipelineLayout createPipelineLayout(const Context& ctx, std::initializer_list<Binding> bindings,
                                     VkShaderStageFlags stages, uint32_t pushConstantBytes) {
     return createPipelineLayout(ctx, std::span(bindings.begin(), bindings.size()), stages,
@@ -52,6 +104,13 @@ PipelineLayout createPipelineLayout(const Context& ctx, std::initializer_list<Bi
 
 PipelineLayout createPipelineLayout(const Context& ctx, std::span<const Binding> bindings,
                                     VkShaderStageFlags stages, uint32_t pushConstantBytes) {
+    // Conformant devices may report limits as low as the specification's minimums; a pass past
+    // this device's is refused by name rather than left to undefined behaviour.
+    const std::string problem =
+        bindingLimitProblem(bindings, ctx.limits(), ctx.maxPushDescriptors());
+    if (!problem.empty())
+        throw InputError("--device",
+                         ctx.info().name + " cannot bind a pass of Penumbra's: " + problem);
     std::vector<VkDescriptorSetLayoutBinding> vkBindings;
     for (const Binding& b : bindings)
         vkBindings.push_back({.binding = b.binding,

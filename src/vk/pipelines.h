@@ -19,6 +19,12 @@ struct Binding {
     uint32_t count = 1; // an array of this many (a shader's `sampler2DArray maps[N]`)
 };
 
+// Why `bindings`, seen by one shader stage through one push descriptor set, exceed the device's
+// limits (its maxPushDescriptors and per-stage limits of each descriptor kind); empty when they
+// do not. createPipelineLayout refuses such a layout, naming the limit.
+std::string bindingLimitProblem(std::span<const Binding> bindings,
+                                const VkPhysicalDeviceLimits& limits, uint32_t maxPushDescriptors);
+
 struct PipelineLayout {
     DescriptorSetLayoutHandle set;
     PipelineLayoutHandle layout;
@@ -72,9 +78,13 @@ public:
     PushDescriptors& storageBuffer(uint32_t binding, VkBuffer buffer);
     void push(const Context& ctx, VkCommandBuffer cmd, VkPipelineBindPoint point,
               const PipelineLayout& layout);
+    // The writes gathered so far (what tests of a pass's bindings read).
+    std::span<const VkWriteDescriptorSet> writes() const { return mWrites; }
 
 private:
-    static constexpr size_t kMax = 32; // the least maxPushDescriptors a device may report
+    // Descriptors of each kind one push holds: the least maxPushDescriptors a device may report
+    // (createPipelineLayout checks each layout against the device's own limit).
+    static constexpr size_t kMax = 32;
     std::array<VkDescriptorImageInfo, kMax> mImages{};
     std::array<VkDescriptorBufferInfo, kMax> mBuffers{};
     std::vector<VkWriteDescriptorSet> mWrites;
