@@ -232,6 +232,10 @@ TEST(Cli, RenderWritesTheContractFiles) {
             sum += ms.get<double>();
     EXPECT_NEAR(stats["gpu_ms"]["total"].get<double>(), sum, 1e-9 * sum);
     // By the group each pass declares: hard's depth pass, the frame's G-buffer, the rest per pixel.
+    const nlohmann::json& transient = stats["transient_memory"];
+    EXPECT_GT(transient["separate_bytes"].get<uint64_t>(), 0u) << "the frame's own targets";
+    EXPECT_LE(transient["shared_bytes"].get<uint64_t>(),
+              transient["separate_bytes"].get<uint64_t>());
     const nlohmann::json& byCost = stats["gpu_ms_by_cost"];
     EXPECT_EQ(byCost["shadow_maps"], stats["gpu_ms"]["shadow"]);
     EXPECT_EQ(byCost["frame"], stats["gpu_ms"]["gbuffer"]);

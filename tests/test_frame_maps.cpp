@@ -20,23 +20,39 @@ TEST_F(FrameTest, EachListedMapIsBoundInItsSlotAndTheRestHoldStandIns) {
                  {.name = "counts", .format = shadows::MapFormat::R32UI},
                  {.name = "far", .format = shadows::MapFormat::RG32F}},
         .visibilityMaps = {"far", "counts", "near"}};
-    const render::ResourceId depth = 1, placeholder = 9;
+    const render::ResourceId depth = 1, placeholder = 9, depthPlaceholder = 8;
     const auto named = [](std::string_view name) -> render::ResourceId {
         return name == shadows::kDepthMap ? 1 : name == "near" ? 2 : name == "counts" ? 3 : 4;
     };
-    const render::FilteredBindings bound =
-        render::FilteredBindings::of(module, ParameterValues{}, depth, placeholder, named);
-    EXPECT_EQ(bound.floats, (std::array<render::ResourceId, TECH_MAX_MAPS>{4, 2, 1, 1}));
+    const render::FilteredBindings bound = render::FilteredBindings::of(
+        module, ParameterValues{}, depth, {placeholder, depthPlaceholder}, named);
+    // It reads no depth map: its first float map in the float slots it leaves, and the depth
+    // placeholder for the comparison sampler.
+    EXPECT_EQ(bound.floats, (std::array<render::ResourceId, TECH_MAX_MAPS>{4, 2, 4, 4}));
     EXPECT_EQ(bound.integers, (std::array<render::ResourceId, TECH_MAX_MAPS>{3, 9, 9, 9}));
+    EXPECT_EQ(bound.compare, depthPlaceholder);
+    // Listing the depth map (or no float map) keeps it in the slots left and for comparison.
+    shadows::TechniqueModule withDepth = module;
+    withDepth.visibilityMaps = {"near", std::string_view(shadows::kDepthMap)};
+    const render::FilteredBindings both = render::FilteredBindings::of(
+        withDepth, ParameterValues{}, depth, {placeholder, depthPlaceholder}, named);
+    EXPECT_EQ(both.floats, (std::array<render::ResourceId, TECH_MAX_MAPS>{2, 1, 1, 1}));
+    EXPECT_EQ(both.compare, depth);
+    withDepth.visibilityMaps = {"counts"};
+    const render::FilteredBindings integersOnly = render::FilteredBindings::of(
+        withDepth, ParameterValues{}, depth, {placeholder, depthPlaceholder}, named);
+    EXPECT_EQ(integersOnly.floats, (std::array<render::ResourceId, TECH_MAX_MAPS>{1, 1, 1, 1}));
+    EXPECT_EQ(integersOnly.compare, depth);
     // Without its own maps (virtual maps' pool): the depth map in every float slot.
-    const render::FilteredBindings alone =
-        render::FilteredBindings::of(module, ParameterValues{}, depth, placeholder, nullptr);
+    const render::FilteredBindings alone = render::FilteredBindings::of(
+        module, ParameterValues{}, depth, {placeholder, depthPlaceholder}, nullptr);
     EXPECT_EQ(alone.floats, (std::array<render::ResourceId, TECH_MAX_MAPS>{1, 1, 1, 1}));
     EXPECT_EQ(alone.integers, (std::array<render::ResourceId, TECH_MAX_MAPS>{9, 9, 9, 9}));
+    EXPECT_EQ(alone.compare, depth);
     // The pass uses each slot's resource, sampled.
     std::vector<render::Use> uses;
     bound.addUses(uses);
-    for (render::ResourceId id : {1u, 2u, 3u, 4u, 9u})
+    for (render::ResourceId id : {2u, 3u, 4u, 8u, 9u})
         EXPECT_TRUE(std::any_of(uses.begin(), uses.end(),
                                 [&](const render::Use& u) {
                                     return u.resource == id &&
@@ -59,12 +75,16 @@ TEST_F(FrameTest, EverySlotIsWrittenWithItsOwnResourcesView) {
                                   .usage = VK_IMAGE_USAGE_SAMPLED_BIT});
             (integer ? bound.integers : bound.floats)[k] = id;
         }
+    bound.compare = graph.declare(render::depthPlaceholderDecl());
     graph.plan(); // the images exist from here
     const render::PassContext c{.cmd = VK_NULL_HANDLE, .graph = graph};
     vk::PushDescriptors descriptors;
-    bound.write(descriptors, c, VK_NULL_HANDLE);
-    const std::span<const VkWriteDescriptorSet> writes = descriptors.writes();
-    ASSERT_EQ(writes.size(), 2u);
+    bound.write(descriptors, c, VK_NULL_HANDLE, VK_NULL_HANDLE);
+    std::span<const VkWriteDescriptorSet> writes = descriptors.writes();
+    ASSERT_EQ(writes.size(), 3u);
+    EXPECT_EQ(writes.back().dstBinding, TECH_COMPARE);
+    EXPECT_EQ(writes.back().pImageInfo[0].imageView, graph.image(bound.compare).view());
+    writes = writes.first(2);
     for (const VkWriteDescriptorSet& w : writes) {
         ASSERT_TRUE(w.dstBinding == TECH_MAP || w.dstBinding == TECH_TABLE);
         ASSERT_EQ(w.descriptorCount, TECH_MAX_MAPS) << "the array whole";
@@ -88,7 +108,7 @@ TEST_F(FilterTest, TheDeviceSeesEachMapInTheSlotItsModuleGaveIt) {
             under.push_back(depth[y * kSize + x]);
         }
     Renderer& renderer = sharedRenderer();
-    // esm lists its exponentials: slot 0 holds them, the three left the depth map.
+    // esm lists its exponentials and reads no depth map: every float slot holds them.
     const std::vector<glm::vec4> esm = renderer.probeTechnique(
         Technique::Esm, ParameterValues{}, depth, kSize, probes, ProbeLight{.readSlots = 1});
     // smrt lists its bounds, integers: the depth map in every float slot, the bounds (each the
@@ -100,9 +120,9 @@ TEST_F(FilterTest, TheDeviceSeesEachMapInTheSlotItsModuleGaveIt) {
     for (size_t i = 0; i < probes.size(); ++i) {
         const float d = under[i];
         EXPECT_TRUE(std::isfinite(esm[i].x) && esm[i].x != d) << "probe " << i;
-        EXPECT_EQ(esm[i].y, d) << "probe " << i;
-        EXPECT_EQ(esm[i].z, d) << "probe " << i;
-        EXPECT_EQ(esm[i].w, d) << "probe " << i;
+        EXPECT_EQ(esm[i].y, esm[i].x) << "probe " << i;
+        EXPECT_EQ(esm[i].z, esm[i].x) << "probe " << i;
+        EXPECT_EQ(esm[i].w, esm[i].x) << "probe " << i;
         EXPECT_EQ(smrtFloats[i], glm::vec4(d)) << "probe " << i;
         const glm::uvec2 block = glm::uvec2(probes[i].uv * float(kSize)) / 2u * 2u;
         float least = 1.0f, most = 0.0f;
@@ -151,7 +171,7 @@ TEST_F(FrameTest, ATechniquesMapWithHistoryIsReadByItsPreviousName) {
     const shadows::VisibilitySlots slots = shadows::visibilitySlots(module, defaults);
     EXPECT_EQ(slots.floats[0], "kept");
     EXPECT_EQ(slots.floats[1], "kept (previous)");
-    EXPECT_EQ(slots.floats[2], shadows::kDepthMap);
+    EXPECT_EQ(slots.floats[2], "kept") << "no depth map read: the first map in the slots left";
 
     GTEST_FLAG_SET(death_test_style, "threadsafe");
     EXPECT_DEATH(r.named(module, "plain (previous)"), "keeps no history of plain");

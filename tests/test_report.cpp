@@ -669,3 +669,16 @@ TEST(BenchStats, PercentilesInterpolateBetweenTheSortedFrames) {
 }
 
 } // namespace penumbra
+
+// bench's memory entry carries the transient images' measured bytes, each under its own name.
+TEST(BenchStats, TheMemoryEntryCarriesTheTransientImagesBothWays) {
+    penumbra::BenchData data{.scene = "s", .frames = 1};
+    penumbra::BenchRun run;
+    penumbra::RenderResult result;
+    result.transientMemory = {.separateBytes = 300, .sharedBytes = 200};
+    penumbra::estimateMemory(run, penumbra::RenderOptions{}, result);
+    data.runs.push_back(run);
+    const nlohmann::json memory = penumbra::benchJson(data)["runs"][0]["memory"];
+    EXPECT_EQ(memory["transient_separate"], 300u);
+    EXPECT_EQ(memory["transient_shared"], 200u);
+}

@@ -43,6 +43,27 @@ TEST(VisibilitySlots, FloatAndIntegerMapsFillTheirOwnSlotsInTheOrderListed) {
     EXPECT_EQ(slots.integers[3], "") << "an integer slot left holds the placeholder";
 }
 
+TEST(VisibilitySlots, AModuleThatReadsNoDepthMapRepeatsItsFirstMap) {
+    // Its depth map is then free once its own passes have read it (transient memory).
+    const VisibilitySlots slots = visibilitySlots(mapsOnly({"b", "table", "a"}), ParameterValues{});
+    EXPECT_FALSE(slots.readsDepthMap);
+    EXPECT_EQ(slots.floats, (std::array<std::string_view, TECH_MAX_MAPS>{"b", "a", "b", "b"}));
+    EXPECT_TRUE(visibilitySlots(mapsOnly({"a", kDepthMap}), ParameterValues{}).readsDepthMap);
+    EXPECT_TRUE(visibilitySlots(mapsOnly({kDepthMap, "a"}), ParameterValues{}).readsDepthMap);
+    EXPECT_TRUE(visibilitySlots(mapsOnly({"table"}), ParameterValues{}).readsDepthMap)
+        << "no float map: shadowMap is the depth map";
+    for (const TechniqueModule* m : allModules()) { // pcf's comparison sampler reads it
+        const std::string_view name = m->info.name;
+        const bool reads = visibilitySlots(*m, ParameterValues{}).readsDepthMap;
+        if (name == "hard" || name == "pcf" || name == "pcss" || name == "smrt") {
+            EXPECT_TRUE(reads) << name;
+        }
+        if (name == "vsm" || name == "second-depth") {
+            EXPECT_FALSE(reads) << name;
+        }
+    }
+}
+
 TEST(VisibilitySlots, OneIntegerMapLeavesTheDepthMapFirst) {
     // smrt's bounds, the summed-area tables: the depth map stays at shadowMaps[0].
     const VisibilitySlots slots = visibilitySlots(mapsOnly({"table"}), ParameterValues{});

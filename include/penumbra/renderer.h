@@ -166,6 +166,13 @@ struct VirtualPages {
     VirtualMapInfo info;
 };
 
+// The frame's transient images (per-frame, never handed out of the frame): what they would take
+// each in memory of its own, and what they take placed to share memory where the passes that
+// use them do not overlap (docs/architecture.md, "Transient memory").
+struct TransientMemory {
+    uint64_t separateBytes = 0, sharedBytes = 0;
+};
+
 struct RenderResult {
     uint32_t width = 0, height = 0;
     std::vector<uint8_t> image;                 // RGBA8, sRGB-encoded, rows top to bottom
@@ -178,6 +185,7 @@ struct RenderResult {
     std::optional<DistanceFieldInfo> field;    // sdf only
     std::optional<VirtualMapInfo> virtualMaps; // virtual.enabled only
     float exposure = 0.0f; // EV the image was shaded with: composite.exposure, else automatic
+    TransientMemory transientMemory;
 };
 
 using ProgressFn = std::function<void(const std::string& stage)>;

@@ -94,13 +94,15 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     if (derived)
         r.declareOwnMaps(graph, module, std::span(maps).subspan(1));
     r.integerPlaceholder = graph.declare(render::integerPlaceholderDecl());
+    r.depthPlaceholder = graph.declare(render::depthPlaceholderDecl());
     graph.markBoundOnly(r.integerPlaceholder);
+    graph.markBoundOnly(r.depthPlaceholder);
     r.field = graph.importImage("probe.field", fieldPlaceholder, render::Access::ComputeSampled);
     r.params = graph.importBuffer("probe.params", paramsBuffer.get());
     r.views = graph.importBuffer("probe.views", viewBuffer.get());
     // The depth map itself is filtered unless the post passes derive the technique's maps.
     const render::FilteredBindings filtered = render::FilteredBindings::of(
-        module, params, r.depthMap, r.integerPlaceholder,
+        module, params, r.depthMap, {r.integerPlaceholder, r.depthPlaceholder},
         derived ? std::function([&](std::string_view name) { return r.named(module, name); })
                 : nullptr);
     std::vector<render::Use> probeUses{{r.depthMap, render::Access::ComputeSampled},
@@ -131,10 +133,9 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
                        vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                                          p.probe(probeConstants(module, params, probeLight)));
                        vk::PushDescriptors descriptors;
-                       filtered.write(descriptors, c, nearest.get());
+                       filtered.write(descriptors, c, nearest.get(), compare.get());
                        descriptors.uniformBuffer(BIND_FRAME, frameBuffer.get())
                            .storageBuffer(PROBE_RECEIVERS, probeBuffer.get())
-                           .sampled(TECH_COMPARE, c.image(r.depthMap).view(), compare.get())
                            .sampled(TECH_FIELD, fieldPlaceholder.view.get(), nearest.get())
                            .uniformBuffer(TECH_PARAMS, paramsBuffer.get())
                            .storageBuffer(PROBE_RESULTS, results.get())

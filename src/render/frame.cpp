@@ -69,12 +69,14 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.normal = screen(target::kNormal);
     r.faceNormal = screen(target::kFaceNormal);
     r.integerPlaceholder = screen(target::kIntegerPlaceholder);
+    r.depthPlaceholder = screen(target::kDepthPlaceholder);
     // Stand-ins: the placeholder, and the viewer's intermediates, 1x1 unless asked for and
     // handed over unwritten when no layer ran.
-    for (const ResourceId id : {r.integerPlaceholder, r.intermediates, r.layerResults})
+    for (const ResourceId id :
+         {r.integerPlaceholder, r.depthPlaceholder, r.intermediates, r.layerResults})
         graph.markBoundOnly(id);
     r.filtered = FilteredBindings::of(
-        module, *s.params, r.depthMap, r.integerPlaceholder,
+        module, *s.params, r.depthMap, {r.integerPlaceholder, r.depthPlaceholder},
         ownMaps ? std::function([&](std::string_view name) { return r.named(module, name); })
                 : nullptr);
     r.readback =
@@ -124,11 +126,12 @@ FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const Gp
 
 FilteredBindings FilteredBindings::of(const shadows::TechniqueModule& module,
                                       const ParameterValues& params, ResourceId depthMap,
-                                      ResourceId placeholder,
+                                      Placeholders placeholders,
                                       const std::function<ResourceId(std::string_view)>& named) {
     FilteredBindings b;
     b.floats.fill(depthMap);
-    b.integers.fill(placeholder);
+    b.integers.fill(placeholders.integers);
+    b.compare = depthMap;
     if (!named)
         return b;
     const shadows::VisibilitySlots slots = shadows::visibilitySlots(module, params);
@@ -137,17 +140,23 @@ FilteredBindings FilteredBindings::of(const shadows::TechniqueModule& module,
         if (!slots.integers[k].empty())
             b.integers[k] = named(slots.integers[k]);
     }
+    // A technique that reads no depth map leaves it to its own passes: its memory may be
+    // another transient's once they are done.
+    if (!slots.readsDepthMap)
+        b.compare = placeholders.depth;
     return b;
 }
 
 void FilteredBindings::write(vk::PushDescriptors& descriptors, const PassContext& c,
-                             VkSampler nearest) const {
+                             VkSampler nearest, VkSampler compareSampler) const {
     std::array<VkImageView, TECH_MAX_MAPS> floatViews{}, integerViews{};
     for (size_t k = 0; k < TECH_MAX_MAPS; ++k) {
         floatViews[k] = c.image(floats[k]).view();
         integerViews[k] = c.image(integers[k]).view();
     }
-    descriptors.sampled(TECH_MAP, floatViews, nearest).sampled(TECH_TABLE, integerViews, nearest);
+    descriptors.sampled(TECH_MAP, floatViews, nearest)
+        .sampled(TECH_TABLE, integerViews, nearest)
+        .sampled(TECH_COMPARE, c.image(compare).view(), compareSampler);
 }
 
 void FilteredBindings::addUses(std::vector<Use>& uses) const {
@@ -155,6 +164,7 @@ void FilteredBindings::addUses(std::vector<Use>& uses) const {
         uses.push_back({floats[k], Access::ComputeSampled});
         uses.push_back({integers[k], Access::ComputeSampled});
     }
+    uses.push_back({compare, Access::ComputeSampled});
 }
 
 void addPresentPass(FrameGraph& graph, const FrameResources& r) {

@@ -75,14 +75,22 @@ struct FrameInputs {
 // slots and TECH_TABLE's.
 struct FilteredBindings {
     std::array<ResourceId, TECH_MAX_MAPS> floats{}, integers{};
+    ResourceId compare = 0; // TECH_COMPARE: the depth map, or its placeholder where none is read
+    // What unused slots hold: integer slots, and TECH_COMPARE for a technique that reads no
+    // depth map (shadows::VisibilitySlots::readsDepthMap).
+    struct Placeholders {
+        ResourceId integers, depth;
+    };
     // `named`: the resource of a map by its name (kDepthMap too); null: the depth map alone,
-    // in every float slot (virtual maps' page pool, the probe of a map given whole).
+    // in every float slot and at TECH_COMPARE (virtual maps' page pool, the probe of a map
+    // given whole).
     static FilteredBindings of(const shadows::TechniqueModule& module,
                                const ParameterValues& params, ResourceId depthMap,
-                               ResourceId placeholder,
+                               Placeholders placeholders,
                                const std::function<ResourceId(std::string_view)>& named);
-    // Every slot written, at TECH_MAP and TECH_TABLE.
-    void write(vk::PushDescriptors& descriptors, const PassContext& c, VkSampler nearest) const;
+    // Every slot written, at TECH_MAP, TECH_TABLE and TECH_COMPARE (`compareSampler`).
+    void write(vk::PushDescriptors& descriptors, const PassContext& c, VkSampler nearest,
+               VkSampler compareSampler) const;
     // Every slot, sampled by compute.
     void addUses(std::vector<Use>& uses) const;
 };
@@ -104,7 +112,7 @@ struct FrameResources {
     ResourceId visibility = 0, intermediates = 0, layerResults = 0, color = 0;
     ResourceId visibilityScratch = 0; // the visibility filter's rows (0: no filter runs)
     ResourceId position = 0, normal = 0, faceNormal = 0, readback = 0;
-    ResourceId integerPlaceholder = 0, field = 0;
+    ResourceId integerPlaceholder = 0, depthPlaceholder = 0, field = 0;
     FilteredBindings filtered{};
     ResourceId frame = 0, lights = 0, views = 0, params = 0, layerParams = 0;
     ResourceId pageTable = 0, pageRequests = 0;

@@ -157,6 +157,31 @@ void FrameGraph::checkReadsAndWrites(const std::vector<size_t>& order) const {
     }
 }
 
+std::vector<ResourcePool::UseSpan> FrameGraph::useSpans(const std::vector<size_t>& order) const {
+    // Shareable: per-frame (the pool checks), used by a kept pass, and never handed out of the
+    // frame (a readback's copy, the caller's own passes after the present pass, an output) or
+    // only bound. What leaves the frame must not be overwritten by a later occupant.
+    std::vector<ResourcePool::UseSpan> spans(resourceCount());
+    std::vector<bool> used(resourceCount(), false), handedOut(resourceCount(), false);
+    for (size_t k = 0; k < order.size(); ++k) {
+        const PassDecl& pass = mPasses[order[k]];
+        for (const Use& use : pass.uses) {
+            ResourcePool::UseSpan& span = spans[use.resource];
+            if (!used[use.resource])
+                span.first = k;
+            used[use.resource] = true;
+            span.last = k;
+            if (pass.phase == Phase::Readback)
+                handedOut[use.resource] = true;
+        }
+    }
+    for (ResourceId id = 0; id < spans.size(); ++id) {
+        const bool marked = id < mMarks.size() && (mMarks[id].output || mMarks[id].boundOnly);
+        spans[id].shareable = used[id] && !handedOut[id] && !marked;
+    }
+    return spans;
+}
+
 FrameGraph::Marks& FrameGraph::mark(ResourceId id) {
     if (id >= mMarks.size())
         mMarks.resize(id + 1);
@@ -171,16 +196,16 @@ const std::vector<PlannedPass>& FrameGraph::plan() {
     if (mPlanned)
         return mPlan;
     mPlanned = true;
-    mPool.realize();
     clearStaleHistory();
     const std::vector<size_t> order = cull(dependencyOrder());
+    mPool.realize(useSpans(order));
     checkReadsAndWrites(order);
     // Each resource's access as the plan leaves it, starting from the pool's (the last frame's).
     struct Track {
         std::optional<Access> last;
         bool touched = false; // used in this frame
     };
-    std::vector<Track> track;
+    std::vector<Track> track(resourceCount()); // sized once: references into it stay valid
     auto trackOf = [&](ResourceId id) -> Track& {
         if (id >= track.size())
             track.resize(id + 1);
@@ -214,6 +239,13 @@ const std::vector<PlannedPass>& FrameGraph::plan() {
                 continue;
             const bool discard =
                 firstThisFrame && !reads(use.access) && !mPool.persistent(use.resource);
+            // Memory shared with other transients: the first use waits for their last ones
+            // (this frame's earlier passes, or last frame's for those used later).
+            std::vector<Access> after;
+            if (firstThisFrame)
+                for (const ResourceId other : mPool.sharesMemoryWith(use.resource))
+                    if (const std::optional<Access> last = trackOf(other).last)
+                        after.push_back(*last);
             if (!t.last) {
                 // Never used: an image's layout must be set; a buffer (host-written, or about to
                 // be written) needs nothing.
@@ -221,18 +253,31 @@ const std::vector<PlannedPass>& FrameGraph::plan() {
                     planned.barriers.push_back({.resource = use.resource,
                                                 .from = use.access,
                                                 .to = use.access,
-                                                .fromUndefined = true});
-            } else if (*t.last != use.access || writes(use.access) || writes(*t.last)) {
+                                                .fromUndefined = true,
+                                                .after = std::move(after)});
+            } else if (*t.last != use.access || writes(use.access) || writes(*t.last) ||
+                       !after.empty()) {
                 planned.barriers.push_back({.resource = use.resource,
                                             .from = *t.last,
                                             .to = use.access,
-                                            .fromUndefined = image && discard});
+                                            .fromUndefined = image && discard,
+                                            .after = std::move(after)});
             }
             t.last = use.access;
         }
         mPlan.push_back(std::move(planned));
     }
     return mPlan;
+}
+
+vk::ImageState imageSource(const PlannedBarrier& b) {
+    vk::ImageState from = b.fromUndefined ? vk::kUndefined : imageState(b.from);
+    for (const Access other : b.after) {
+        const vk::ImageState was = imageState(other);
+        from.stage |= was.stage;
+        from.access |= was.access;
+    }
+    return from;
 }
 
 void FrameGraph::record(VkCommandBuffer cmd, vk::GpuTimer* timer) {
@@ -243,8 +288,7 @@ void FrameGraph::record(VkCommandBuffer cmd, vk::GpuTimer* timer) {
         for (const PlannedBarrier& b : planned.barriers) {
             if (mPool.isImage(b.resource)) {
                 const vk::Image& image = mPool.image(b.resource).get();
-                barriers.image(image, b.fromUndefined ? vk::kUndefined : imageState(b.from),
-                               imageState(b.to));
+                barriers.image(image, imageSource(b), imageState(b.to));
             } else {
                 barriers.buffer(mPool.buffer(b.resource), bufferState(b.from), bufferState(b.to));
             }

@@ -32,6 +32,7 @@
 // same state need none. A per-frame resource's first use in a frame that only writes it starts
 // from "undefined" (its old contents are not kept).
 #include "render/resource_pool.h"
+#include "vk/sync.h"
 #include "vk/timestamps.h"
 
 #include <functional>
@@ -76,7 +77,14 @@ struct PlannedBarrier {
     Access from; // meaningful when !fromUndefined and the resource was used before
     Access to;
     bool fromUndefined;
+    // A transient's first use in a frame: the last uses of the resources whose memory it
+    // shares, which it waits for as well.
+    std::vector<Access> after = {};
 };
+// What an image barrier waits for: the resource's own last use (none when its contents are
+// dropped: the layout is then undefined) and the last uses of those whose memory it shares.
+vk::ImageState imageSource(const PlannedBarrier& b);
+
 struct PlannedPass {
     size_t pass; // index into the declared passes
     std::vector<PlannedBarrier> barriers;
@@ -136,6 +144,7 @@ private:
     std::vector<size_t> cull(const std::vector<size_t>& order);
     void checkReadsAndWrites(const std::vector<size_t>& order) const;
     bool outlivesFrame(ResourceId id) const;
+    std::vector<ResourcePool::UseSpan> useSpans(const std::vector<size_t>& order) const;
     size_t resourceCount() const; // every id of this frame is below it
     // What markOutput and markBoundOnly said of a resource, by id.
     struct Marks {

@@ -117,7 +117,17 @@ std::vector<ImageDecl> screenDecls(bool intermediates) {
         if (decl.name == target::kIntermediates || decl.name == target::kLayerResults)
             decl.lifetime = Lifetime::Persistent;
     decls.push_back(integerPlaceholderDecl());
+    decls.push_back(depthPlaceholderDecl());
     return decls;
+}
+
+// 1x1, one layer, viewed as an array: what a comparison sampler of the depth map reads.
+ImageDecl depthPlaceholderDecl() {
+    return {.name = std::string(target::kDepthPlaceholder),
+            .size = SizeClass::Fixed,
+            .format = VK_FORMAT_D32_SFLOAT,
+            .usage = VK_IMAGE_USAGE_SAMPLED_BIT,
+            .lifetime = Lifetime::Persistent};
 }
 
 ImageDecl integerPlaceholderDecl() {

@@ -29,6 +29,8 @@ inline constexpr std::string_view kFaceNormal = "export.faceNormal"; // RGBA32F,
 inline constexpr std::string_view kReadback = "readback";            // host-visible buffer
 inline constexpr std::string_view kTraceList = "traceList"; // checkerboard.h's, for one light
 inline constexpr std::string_view kIntegerPlaceholder = "placeholder.integer";
+// What TECH_COMPARE holds for a technique that reads no depth map in its visibility pass.
+inline constexpr std::string_view kDepthPlaceholder = "placeholder.depth";
 inline constexpr std::string_view kField = "field"; // the distance field, or its placeholder
 // The ring slot's uniform buffers (written by the host before the frame).
 inline constexpr std::string_view kFrameBlock = "slot.frame";
@@ -63,6 +65,9 @@ std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
 std::vector<ImageDecl> screenDecls(bool intermediates);
 // Bound where the technique's filtered map holds floats (TECH_TABLE): never written, never read.
 ImageDecl integerPlaceholderDecl();
+// Bound at TECH_COMPARE for a technique that reads no depth map: never written, never read.
+ImageDecl depthPlaceholderDecl();
+ImageDecl depthPlaceholderDecl();
 
 // The readback buffer: colour, every visibility layer, position, normal and face normal, tightly
 // packed in that order.

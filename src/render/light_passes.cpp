@@ -39,12 +39,11 @@ void dispatchVisibility(PassContext& c, FramePipelines& p, const FrameSettings& 
     }
     vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.visibility(constants));
     vk::PushDescriptors descriptors;
-    r.filtered.write(descriptors, c, in.nearest);
+    r.filtered.write(descriptors, c, in.nearest, in.compare);
     descriptors.uniformBuffer(BIND_FRAME, in.frame)
         .uniformBuffer(VIS_LIGHTS, in.lights)
         .sampled(VIS_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
         .sampled(VIS_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
-        .sampled(TECH_COMPARE, c.image(r.depthMap).view(), in.compare)
         .uniformBuffer(TECH_PARAMS, in.params)
         .storageImage(VIS_OUT, c.image(r.visibility).view())
         .uniformBuffer(VIS_VIEWS, in.views)
@@ -138,7 +137,6 @@ std::vector<Use> visibilityUses(const FrameResources& r, Access visibility) {
                           {r.gbufferDepth, Access::ComputeSampled},
                           {r.gbufferNormal, Access::ComputeSampled},
                           {r.gbufferAlbedo, Access::ComputeSampled},
-                          {r.depthMap, Access::ComputeSampled},
                           {r.field, Access::ComputeSampled},
                           {r.visibility, visibility},
                           {r.intermediates, Access::ComputeWrite},

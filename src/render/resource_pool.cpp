@@ -1,5 +1,7 @@
 #include "render/resource_pool.h"
 
+#include "render/pool_entry.h"
+
 #include "penumbra/error.h"
 #include "vk/check.h"
 
@@ -8,25 +10,6 @@
 #include <variant>
 
 namespace penumbra::render {
-
-struct ResourcePool::Entry {
-    std::string name;
-    bool pending = false;                                     // declared, not made yet (realize)
-    std::variant<std::monostate, ImageDecl, BufferDecl> decl; // monostate: imported
-    FrameSizes sizes;     // what the declaration resolved against
-    vk::Image ownedImage; // the pool's
-    vk::Buffer ownedBuffer;
-    PooledImage image; // points at ownedImage, or at the imported image
-    VkBuffer buffer = VK_NULL_HANDLE;
-    std::optional<Access> last;
-    bool holds = false;    // persistent: written under the current key; history: see swap
-    bool declared = false; // in this frame
-    // History: this frame's version knows last frame's (ids hold for a frame) and the frame in
-    // which the two last swapped.
-    ResourceId previous = 0;
-    bool isPrevious = false;
-    uint64_t swappedIn = 0;
-};
 
 namespace {
 
@@ -195,23 +178,33 @@ ResourceId ResourcePool::acquire(const BufferDecl& decl, const FrameSizes& sizes
                                               : acquireAs(decl, sizes);
 }
 
-void ResourcePool::make(Entry& e) {
+vk::ImageDesc ResourcePool::imageDesc(const Entry& e) {
     const ImageDecl& decl = std::get<ImageDecl>(e.decl);
     const Resolved r = resolve(decl, e.sizes);
-    e.ownedImage = vk::createImage(
-        mCtx, {.name = decl.size == SizeClass::ShadowView ? "--shadow-map-size" : decl.name,
-               .format = decl.format,
-               .width = r.width,
-               .height = r.height,
-               .layers = r.layers,
-               // Last frame's version is cleared when it holds nothing (FrameGraph::plan).
-               .usage = decl.usage | (decl.lifetime == Lifetime::History
-                                          ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_DST_BIT}
-                                          : VkImageUsageFlags{0}),
-               .arrayView = decl.arrayView && r.depth == 1,
-               .mipLevels = decl.mipmapped ? mipLevels(std::max(r.width, r.height)) : 1u,
-               .depth = r.depth});
+    return {.name = decl.size == SizeClass::ShadowView ? "--shadow-map-size" : decl.name,
+            .format = decl.format,
+            .width = r.width,
+            .height = r.height,
+            .layers = r.layers,
+            // Last frame's version is cleared when it holds nothing (FrameGraph::plan).
+            .usage = decl.usage | (decl.lifetime == Lifetime::History
+                                       ? VkImageUsageFlags{VK_IMAGE_USAGE_TRANSFER_DST_BIT}
+                                       : VkImageUsageFlags{0}),
+            .arrayView = decl.arrayView && r.depth == 1,
+            .mipLevels = decl.mipmapped ? mipLevels(std::max(r.width, r.height)) : 1u,
+            .depth = r.depth};
+}
+
+void ResourcePool::make(Entry& e) {
+    e.ownedImage = vk::createImage(mCtx, imageDesc(e));
+    makeViews(e);
+}
+
+void ResourcePool::makeViews(Entry& e) {
+    const ImageDecl& decl = std::get<ImageDecl>(e.decl);
     e.image.image = &e.ownedImage;
+    e.image.layers.clear();
+    e.image.levels.clear();
     if (decl.layerViews) {
         const vk::Image& image = e.ownedImage;
         for (uint32_t l = 0; l < image.layers; ++l)
@@ -242,7 +235,7 @@ ResourceId ResourcePool::importBuffer(std::string name, VkBuffer buffer) {
     return static_cast<ResourceId>(mEntries.size() - 1);
 }
 
-void ResourcePool::realize() {
+void ResourcePool::realize(std::span<const UseSpan> spans) {
     auto unused = [](const std::unique_ptr<Entry>& e) {
         return e && !e->declared && !std::holds_alternative<std::monostate>(e->decl);
     };
@@ -252,6 +245,7 @@ void ResourcePool::realize() {
             if (unused(e))
                 e.reset();
     }
+    placeTransients(spans);
     for (auto& e : mEntries) {
         if (!e || !e->pending)
             continue;

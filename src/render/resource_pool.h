@@ -11,8 +11,10 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <vector>
 
 namespace penumbra::render {
@@ -115,7 +117,23 @@ public:
     ResourceId importBuffer(std::string name, VkBuffer buffer);
     // Frees the pool's resources this frame did not declare (after the device is idle), then
     // makes the ones it declared anew. Before it, the frame's images and buffers do not exist.
-    void realize();
+    // `spans[id]`: the passes of the frame's order that use resource `id`, first to last, and
+    // whether the graph lets it share memory; per-frame images it lets share are placed so that
+    // those whose passes do not overlap take the same bytes (render/frame_memory.h).
+    struct UseSpan {
+        size_t first = 0, last = 0;
+        bool shareable = false; // used by a kept pass, and by no pass that hands it out
+    };
+    void realize(std::span<const UseSpan> spans = {});
+    // The resources placed over some of the bytes of `id` this frame (transient images only):
+    // their last uses come before its first in every frame.
+    std::vector<ResourceId> sharesMemoryWith(ResourceId id) const;
+    // What the transient images that share memory would take each in memory of its own, and
+    // take together: the saving the frame's memory plan makes.
+    struct TransientBytes {
+        uint64_t separate = 0, shared = 0;
+    };
+    TransientBytes transientBytes() const { return mTransient; }
 
     const PooledImage& image(ResourceId id) const;
     VkBuffer buffer(ResourceId id) const;
@@ -166,10 +184,18 @@ private:
     template <class Decl>
     ResourceId acquireHistory(const Decl& decl, const FrameSizes& sizes);
     std::optional<Lifetime> lifetimeOf(ResourceId id) const;
+    static vk::ImageDesc imageDesc(const Entry& e);
     void make(Entry& e);
+    void makeViews(Entry& e);
+    void placeTransients(std::span<const UseSpan> spans);
     void waitIdle();
     const vk::Context& mCtx;
+    // The memory transient images share: freed after the images placed in it.
+    std::vector<vk::MemoryHandle> mShared;
     std::vector<std::unique_ptr<Entry>> mEntries;
+    // What the transients were placed for: each entry with its span; placed again on a change.
+    std::vector<std::tuple<const Entry*, size_t, size_t>> mPlacedFor;
+    TransientBytes mTransient;
     uint64_t mCreations = 0;
     uint64_t mFrame = 0;        // frames begun: a history swaps once in each
     bool mCutPending = false;   // invalidateHistory since the last beginFrame

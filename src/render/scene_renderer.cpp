@@ -471,6 +471,8 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     }
     for (PassTime& p : result.passes)
         p.medianMs = median(p.frameMs);
+    const render::ResourcePool::TransientBytes transient = m.pool->transientBytes();
+    result.transientMemory = {.separateBytes = transient.separate, .sharedBytes = transient.shared};
     if (prepared.settings.virtualMaps) {
         result.virtualMaps = m.pageInfo;
         if (m.pageInfo.dropped > 0 && progress)

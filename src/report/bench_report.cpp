@@ -181,6 +181,7 @@ void estimateMemory(BenchRun& run, const RenderOptions& o, const RenderResult& r
         views += l.views.size();
         lights += l.visibilityIndex >= 0;
     }
+    run.transient = result.transientMemory;
     run.shadowMapBytes =
         module.tracesField ? 0
                            : shadows::shadowMapBytes(module, o.shadowMapSize, o.parameters) * views;
@@ -234,7 +235,9 @@ nlohmann::json benchJson(const BenchData& data) {
                               {"memory",
                                {{"shadow_maps", r.shadowMapBytes},
                                 {"screen_targets", r.screenBytes},
-                                {"distance_field", r.fieldBytes}}}};
+                                {"distance_field", r.fieldBytes},
+                                {"transient_separate", r.transient.separateBytes},
+                                {"transient_shared", r.transient.sharedBytes}}}};
         if (r.fieldBytes > 0)
             run["distance_field_build_gpu_ms"] = r.fieldBuildMs;
         if (const auto& v = r.virtualMaps)

@@ -29,7 +29,8 @@ struct BenchRun {
     std::vector<PassStats> passes;                          // in frame order
     PassStats total;                                        // of each frame's sum
     uint64_t shadowMapBytes = 0, screenBytes = 0, fieldBytes = 0;
-    double fieldBuildMs = 0;                   // sdf: the field's one-off build (GPU)
+    TransientMemory transient; // measured: the transient images, alone and sharing memory
+    double fieldBuildMs = 0;   // sdf: the field's one-off build (GPU)
     std::optional<VirtualMapInfo> virtualMaps; // virtual.enabled: its pages and pool
     std::string skipped; // why it did not run (the device cannot hold it); empty: it ran
     uint64_t memoryBytes() const { return shadowMapBytes + screenBytes + fieldBytes; }

@@ -196,6 +196,8 @@ nlohmann::json renderStats(const RenderRun& run) {
     j["gpu_ms"] = gpu;
     j["gpu_ms_by_cost"] = gpuMsByCost(run.result.passes);
     j["gpu_ms_per_frame"] = perFrame;
+    j["transient_memory"] = {{"separate_bytes", run.result.transientMemory.separateBytes},
+                             {"shared_bytes", run.result.transientMemory.sharedBytes}};
     return j;
 }
 

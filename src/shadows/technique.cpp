@@ -260,6 +260,12 @@ VisibilitySlots visibilitySlots(const TechniqueModule& module, const ParameterVa
                                                  " reads more maps of a kind than TECH_MAX_MAPS");
         (integer ? slots.integers : slots.floats)[used++] = name;
     }
+    slots.readsDepthMap =
+        floats == 0 || std::find(slots.floats.begin(), slots.floats.end(), kDepthMap) !=
+                           slots.floats.begin() + static_cast<std::ptrdiff_t>(floats);
+    if (!slots.readsDepthMap)
+        std::fill(slots.floats.begin() + static_cast<std::ptrdiff_t>(floats), slots.floats.end(),
+                  slots.floats[0]);
     return slots;
 }
 

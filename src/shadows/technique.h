@@ -66,11 +66,14 @@ bool mipmappedOf(const MapDecl& map, const ParameterValues& params);
 
 struct TechniqueModule;
 // The visibility pass's map slots for a module under `params`: shadowMaps' (float formats) and
-// shadowTables' (integer formats), by map name in the order the module lists them; float slots
-// it leaves hold kDepthMap, integer ones "" (a placeholder). Fatal past TECH_MAX_MAPS of a kind
-// or for a map the module does not declare.
+// shadowTables' (integer formats), by map name in the order the module lists them. Float slots
+// it leaves hold kDepthMap when it reads the depth map (it lists it, or lists no float map:
+// shadowMap is then the depth map), else its first float map; integer ones "" (a placeholder).
+// Fatal past TECH_MAX_MAPS of a kind or for a map the module does not declare.
 struct VisibilitySlots {
     std::array<std::string_view, TECH_MAX_MAPS> floats, integers;
+    // Whether the visibility pass reads the depth map (TECH_COMPARE holds it only then).
+    bool readsDepthMap = true;
 };
 VisibilitySlots visibilitySlots(const TechniqueModule& module, const ParameterValues& params);
 

@@ -138,7 +138,7 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
     return buffer;
 }
 
-Image createImage(const Context& ctx, const ImageDesc& desc) {
+Image createUnboundImage(const Context& ctx, const ImageDesc& desc, VkMemoryRequirements& needs) {
     // lavapipe creates images past maxImageDimension2D without complaint: check here.
     const uint32_t limit =
         desc.depth > 1 ? ctx.limits().maxImageDimension3D : ctx.limits().maxImageDimension2D;
@@ -178,10 +178,13 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
     VkImage raw = VK_NULL_HANDLE;
     VK_CREATE(vkCreateImage(ctx.device(), &info, nullptr, &raw));
     image.image = ImageHandle(ctx.device(), raw);
-    VkMemoryRequirements req{};
-    vkGetImageMemoryRequirements(ctx.device(), raw, &req);
-    image.memory = allocate(ctx, req, MemoryUse::DeviceLocal, desc.name);
-    VK_CHECK(vkBindImageMemory(ctx.device(), raw, image.memory.get(), 0));
+    vkGetImageMemoryRequirements(ctx.device(), raw, &needs);
+    return image;
+}
+
+void bindImage(const Context& ctx, Image& image, const ImageDesc& desc, VkDeviceMemory memory,
+               VkDeviceSize offset) {
+    VK_CHECK(vkBindImageMemory(ctx.device(), image.get(), memory, offset));
     const VkImageViewType viewType =
         desc.depth > 1 ? VK_IMAGE_VIEW_TYPE_3D
         : desc.cube    ? (desc.layers == 6 && !desc.arrayView ? VK_IMAGE_VIEW_TYPE_CUBE
@@ -189,7 +192,19 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
         : desc.layers > 1 || desc.arrayView ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                                             : VK_IMAGE_VIEW_TYPE_2D;
     image.view = createView(ctx, image, viewType, 0, desc.layers, 0, image.mipLevels);
+}
+
+Image createImage(const Context& ctx, const ImageDesc& desc) {
+    VkMemoryRequirements needs{};
+    Image image = createUnboundImage(ctx, desc, needs);
+    image.memory = allocate(ctx, needs, MemoryUse::DeviceLocal, desc.name);
+    bindImage(ctx, image, desc, image.memory.get(), 0);
     return image;
+}
+
+MemoryHandle allocateDeviceLocal(const Context& ctx, const VkMemoryRequirements& needs,
+                                 const std::string& name) {
+    return allocate(ctx, needs, MemoryUse::DeviceLocal, name);
 }
 
 ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer,

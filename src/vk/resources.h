@@ -54,6 +54,13 @@ LiveDeviceMemory liveDeviceMemory();
 Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use,
                     const std::string& name);
 Image createImage(const Context& ctx, const ImageDesc& desc);
+// An image in memory the caller holds (images that share memory, render/frame_memory.h): made
+// without memory (`needs`: what it asks of it), then bound at `offset` in `memory` with its view.
+Image createUnboundImage(const Context& ctx, const ImageDesc& desc, VkMemoryRequirements& needs);
+void bindImage(const Context& ctx, Image& image, const ImageDesc& desc, VkDeviceMemory memory,
+               VkDeviceSize offset);
+MemoryHandle allocateDeviceLocal(const Context& ctx, const VkMemoryRequirements& needs,
+                                 const std::string& name);
 // A view of one mip level of one layer of an array image (for rendering into it, writing it as
 // a storage image or sampling it as 2D).
 ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer,

@@ -1,0 +1,85 @@
+// Transient images that share memory (render/resource_pool.h, realize; render/frame_memory.h):
+// per-frame images the graph lets share are placed anew whenever what they are, or the passes
+// that use them, change; otherwise they stay where they are.
+#include "render/frame_memory.h"
+#include "render/pool_entry.h"
+#include "render/resource_pool.h"
+
+#include <algorithm>
+
+namespace penumbra::render {
+
+void ResourcePool::placeTransients(std::span<const UseSpan> spans) {
+    std::vector<ResourceId> chosen;
+    std::vector<std::tuple<const Entry*, size_t, size_t>> placedFor;
+    for (ResourceId id = 0; id < mEntries.size() && id < spans.size(); ++id) {
+        const Entry* e = mEntries[id].get();
+        const auto* decl = e ? std::get_if<ImageDecl>(&e->decl) : nullptr;
+        if (!decl || decl->lifetime != Lifetime::PerFrame || !spans[id].shareable)
+            continue;
+        chosen.push_back(id);
+        placedFor.emplace_back(e, spans[id].first, spans[id].last);
+    }
+    const bool unchanged = placedFor == mPlacedFor &&
+                           std::none_of(chosen.begin(), chosen.end(),
+                                        [&](ResourceId id) { return mEntries[id]->pending; });
+    if (unchanged)
+        return;
+    // Every image placed before goes (those no longer chosen are made alone by realize), then
+    // the memory they were placed in.
+    waitIdle();
+    for (auto& e : mEntries)
+        if (e && e->aliased) {
+            e->ownedImage = {};
+            e->image = {};
+            e->aliased = false;
+            e->sharesWith.clear();
+            e->pending = true;
+            e->last.reset();
+        }
+    mShared.clear();
+    mPlacedFor = std::move(placedFor);
+    std::vector<TransientNeed> needs;
+    std::vector<vk::ImageDesc> descs;
+    for (const ResourceId id : chosen) {
+        Entry& e = *mEntries[id];
+        descs.push_back(imageDesc(e));
+        VkMemoryRequirements asks{};
+        e.ownedImage = vk::createUnboundImage(mCtx, descs.back(), asks);
+        needs.push_back({.first = spans[id].first,
+                         .last = spans[id].last,
+                         .size = asks.size,
+                         .alignment = asks.alignment,
+                         .memoryTypeBits = asks.memoryTypeBits});
+    }
+    const AliasPlan plan = planAliasing(needs);
+    for (const AliasPlan::Block& block : plan.blocks)
+        mShared.push_back(vk::allocateDeviceLocal(
+            mCtx, {.size = block.size, .alignment = 1, .memoryTypeBits = block.memoryTypeBits},
+            "transient images"));
+    for (size_t i = 0; i < chosen.size(); ++i) {
+        Entry& e = *mEntries[chosen[i]];
+        const AliasPlan::Placement& at = plan.placements[i];
+        vk::bindImage(mCtx, e.ownedImage, descs[i], mShared[at.block].get(), at.offset);
+        makeViews(e);
+        e.aliased = true;
+        e.pending = false;
+        e.last.reset();
+        ++mCreations;
+        for (size_t j = 0; j < chosen.size(); ++j)
+            if (sharesBytes(plan, needs, i, j))
+                e.sharesWith.push_back(mEntries[chosen[j]].get());
+    }
+    mTransient = {.separate = plan.separateBytes, .shared = plan.sharedBytes()};
+}
+
+std::vector<ResourceId> ResourcePool::sharesMemoryWith(ResourceId id) const {
+    std::vector<ResourceId> ids;
+    for (const Entry* other : entry(id).sharesWith)
+        for (ResourceId o = 0; o < mEntries.size(); ++o)
+            if (mEntries[o].get() == other)
+                ids.push_back(o);
+    return ids;
+}
+
+} // namespace penumbra::render
