@@ -121,3 +121,17 @@ TEST(FrameMemory, RandomFramesKeepEveryRule) {
             return;
     }
 }
+
+TEST(FrameMemory, AnImageGoesToTheBlockItGrowsLeast) {
+    // A and B in blocks of their own (no memory type in common); C accepts both. In A's block it
+    // would go above A (their passes overlap), in B's it takes B's bytes.
+    const std::vector<TransientNeed> needs{
+        {.first = 0, .last = 1, .size = 100, .memoryTypeBits = 0b01},
+        {.first = 0, .last = 0, .size = 80, .memoryTypeBits = 0b10},
+        {.first = 1, .last = 1, .size = 30, .memoryTypeBits = 0b11}};
+    const AliasPlan plan = planAliasing(needs);
+    expectSound(plan, needs);
+    EXPECT_EQ(plan.placements[2].block, plan.placements[1].block);
+    EXPECT_EQ(plan.placements[2].offset, 0u);
+    EXPECT_EQ(plan.sharedBytes(), 180u);
+}

@@ -481,6 +481,13 @@ TEST(TechniqueModules, CubeGuardBandsHoldEveryKernel) {
     wide.set("pcss.cubeRadius", "50");
     EXPECT_EQ(shadows::viewGuardTexels(shadows::pcssModule(), wide, true), 51u + 2u + 1u);
     EXPECT_EQ(shadows::widestRadiusTexels(shadows::pcssModule(), wide), 101.0);
+    EXPECT_EQ(shadows::readReachTexels(shadows::pcssModule(), wide), 101.0);
+    // What the visibility pass reads around a receiver: one texel at least, a search's cap where
+    // it reaches past the footprint.
+    EXPECT_EQ(shadows::readReachTexels(shadows::hardModule(), ParameterValues{}), 1.0);
+    shadows::TechniqueModule searching = shadows::pcssModule();
+    searching.searchCap = [](const ParameterValues&) { return 300.0; };
+    EXPECT_EQ(shadows::readReachTexels(searching, wide), 300.0);
     const ParameterValues defaults;
     for (const shadows::TechniqueModule* m : {&shadows::vssmModule(), &shadows::msmSoftModule()}) {
         EXPECT_EQ(shadows::viewGuardTexels(*m, defaults), 65u + 2u + 1u) << m->info.name;

@@ -37,8 +37,7 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
         f.virtualPages = {v.pageSize, v.poolPagesPerSide(), v.localLevels(), 1u};
         // The pages a filter reads around its receiver; a comparison sampler reads the pool's
         // neighbouring pages instead: the bilinear comparison is done by hand.
-        const double reach = std::max({shadows::widestRadiusTexels(module, params), 1.0,
-                                       module.searchCap ? module.searchCap(params) : 0.0});
+        const double reach = shadows::readReachTexels(module, params);
         f.virtualLod = {v.levelBias(o.width, o.height), static_cast<float>(std::ceil(reach)), 0.0f,
                         0.0f};
         f.biasMode.y = 0u;

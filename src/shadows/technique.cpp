@@ -310,6 +310,11 @@ double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& 
     return std::max(views, cubeFaces);
 }
 
+double readReachTexels(const TechniqueModule& module, const ParameterValues& params) {
+    return std::max({widestRadiusTexels(module, params), 1.0,
+                     module.searchCap ? module.searchCap(params) : 0.0});
+}
+
 namespace {
 // A footprint's guard: a bilinear tap reads 1.5 texels past its centre; the normal offset moves
 // the receiver up to bias.normal texels after its face was chosen.

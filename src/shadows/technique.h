@@ -319,6 +319,10 @@ GuardBand viewGuardBand(const TechniqueModule& module, const ParameterValues& pa
 // The footprint on any view: the larger of blurRadiusTexels and cubeRadiusTexels (what the
 // metrics' blur band and the virtual pages' marking allow for); 0 without one.
 double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& params);
+// How far from its receiver's texel the visibility pass reads the map, in texels: the widest
+// footprint, a blocker search's cap, and one texel at least (a bilinear tap). What virtual maps
+// fetch pages for around each receiver.
+double readReachTexels(const TechniqueModule& module, const ParameterValues& params);
 // blurRadiusTexels (0 without one) and cubeRadiusTexels (negative without one): the blur band a
 // metric allows per light type (report/blur_band.h, BlurReach).
 std::pair<double, double> blurRadii(const TechniqueModule& module, const ParameterValues& params);
