@@ -207,8 +207,7 @@ const std::vector<PlannedPass>& FrameGraph::plan() {
     };
     std::vector<Track> track(resourceCount()); // sized once: references into it stay valid
     auto trackOf = [&](ResourceId id) -> Track& {
-        if (id >= track.size())
-            track.resize(id + 1);
+        PENUMBRA_CHECK(id < track.size(), "FrameGraph: a resource of another frame");
         Track& t = track[id];
         if (!t.touched)
             t.last = mPool.lastAccess(id);

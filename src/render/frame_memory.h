@@ -35,7 +35,8 @@ struct AliasPlan {
 };
 
 // Larger images first, each at the lowest offset of the block it grows least (a new block when
-// no block's memory types suit it); never worse than one allocation per image.
+// no block's memory types suit it); a block grows at most by an image and its alignment, so the
+// total is at most the separate one plus alignment padding.
 AliasPlan planAliasing(std::span<const TransientNeed> needs);
 
 // Whether needs a and b of `plan` take some of the same bytes (then their passes are disjoint).

@@ -30,8 +30,8 @@ void ResourcePool::placeTransients(std::span<const UseSpan> spans) {
     waitIdle();
     for (auto& e : mEntries)
         if (e && e->aliased) {
+            e->image = {}; // its views before the image they view
             e->ownedImage = {};
-            e->image = {};
             e->aliased = false;
             e->sharesWith.clear();
             e->pending = true;
@@ -46,11 +46,15 @@ void ResourcePool::placeTransients(std::span<const UseSpan> spans) {
         descs.push_back(imageDesc(e));
         VkMemoryRequirements asks{};
         e.ownedImage = vk::createUnboundImage(mCtx, descs.back(), asks);
-        needs.push_back({.first = spans[id].first,
-                         .last = spans[id].last,
-                         .size = asks.size,
-                         .alignment = asks.alignment,
-                         .memoryTypeBits = asks.memoryTypeBits});
+        needs.push_back(
+            {.first = spans[id].first,
+             .last = spans[id].last,
+             .size = asks.size,
+             .alignment = asks.alignment,
+             // Device-local types only: whatever types a block's images
+             // have in common is then one its memory can be allocated from.
+             .memoryTypeBits =
+                 asks.memoryTypeBits & mCtx.memoryTypesWith(VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)});
     }
     const AliasPlan plan = planAliasing(needs);
     for (const AliasPlan::Block& block : plan.blocks)

@@ -368,6 +368,14 @@ uint32_t Context::memoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
     fatal(__FILE__, __LINE__, "no suitable Vulkan memory type");
 }
 
+uint32_t Context::memoryTypesWith(VkMemoryPropertyFlags required) const {
+    uint32_t bits = 0;
+    for (uint32_t i = 0; i < mMemory.memoryTypeCount; ++i)
+        if ((mMemory.memoryTypes[i].propertyFlags & required) == required)
+            bits |= 1u << i;
+    return bits;
+}
+
 uint64_t Context::deviceLocalHeapBytes() const {
     return mInfo.deviceLocalBytes;
 }

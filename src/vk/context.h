@@ -67,6 +67,8 @@ public:
     uint32_t memoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
                         VkMemoryPropertyFlags preferred = 0) const;
     uint64_t deviceLocalHeapBytes() const;
+    // The memory types (a bit each) that have every `required` flag.
+    uint32_t memoryTypesWith(VkMemoryPropertyFlags required) const;
 
     // Records into a fresh primary command buffer, submits it and waits for completion.
     void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
