@@ -2,6 +2,7 @@
 // the device: two images whose passes do not overlap take the same bytes and each is read back
 // as its own passes wrote it; one handed out of the frame, marked as an output or used beside
 // another keeps bytes of its own; the first use of shared bytes waits for the last use before.
+#include "frame_clears.h"
 #include "gpu_fixture.h"
 #include "render/access_states.h"
 #include "render/frame_graph.h"
@@ -23,22 +24,6 @@ ImageDecl transient(std::string name) {
             .size = SizeClass::Screen,
             .format = VK_FORMAT_R32_SFLOAT,
             .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT};
-}
-
-void fill(VkCommandBuffer cmd, VkImageView view, float value) {
-    const VkRenderingAttachmentInfo color{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-                                          .imageView = view,
-                                          .imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                                          .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
-                                          .storeOp = VK_ATTACHMENT_STORE_OP_STORE,
-                                          .clearValue = {.color = {.float32 = {value, 0, 0, 0}}}};
-    const VkRenderingInfo rendering{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-                                    .renderArea = {{0, 0}, {kSizes.width, kSizes.height}},
-                                    .layerCount = 1,
-                                    .colorAttachmentCount = 1,
-                                    .pColorAttachments = &color};
-    vkCmdBeginRendering(cmd, &rendering);
-    vkCmdEndRendering(cmd);
 }
 
 struct Frame {
@@ -70,7 +55,8 @@ Seen runFrame(ResourcePool& pool, const Frame& f) {
                        .phase = phase,
                        .uses = {{id, Access::ColorAttachment}},
                        .record = [id, value](PassContext& ctx) {
-                           fill(ctx.cmd, ctx.image(id).view(), value);
+                           clearThrough(ctx.cmd, ctx.image(id).view(),
+                                        {kSizes.width, kSizes.height}, false, value);
                        }});
         static_cast<void>(name);
     };

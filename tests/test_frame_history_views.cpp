@@ -2,6 +2,7 @@
 // swap): an image written through its layer and level views, a depth image, a buffer the host
 // maps, and a history whose only reader is culled. Each frame writes values that name the frame,
 // the layer and the level; what last frame's version holds says whether every handle swapped.
+#include "frame_clears.h"
 #include "gpu_fixture.h"
 #include "render/frame_graph.h"
 #include "vk/context.h"
@@ -22,28 +23,6 @@ constexpr uint32_t kLayers = 2;
 // What frame `frame` writes into layer `layer` at mip level `level`.
 float written(int frame, uint32_t layer, uint32_t level) {
     return static_cast<float>(100 * frame + 10 * static_cast<int>(level) + static_cast<int>(layer));
-}
-
-void clearThrough(VkCommandBuffer cmd, VkImageView view, uint32_t side, bool depth, float value) {
-    VkRenderingAttachmentInfo target{.sType = VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO,
-                                     .imageView = view,
-                                     .imageLayout = depth
-                                                        ? VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL
-                                                        : VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                                     .loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR,
-                                     .storeOp = VK_ATTACHMENT_STORE_OP_STORE};
-    if (depth)
-        target.clearValue.depthStencil = {.depth = value};
-    else
-        target.clearValue.color = {.float32 = {value, 0, 0, 0}};
-    const VkRenderingInfo rendering{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
-                                    .renderArea = {{0, 0}, {side, side}},
-                                    .layerCount = 1,
-                                    .colorAttachmentCount = depth ? 0u : 1u,
-                                    .pColorAttachments = depth ? nullptr : &target,
-                                    .pDepthAttachment = depth ? &target : nullptr};
-    vkCmdBeginRendering(cmd, &rendering);
-    vkCmdEndRendering(cmd);
 }
 
 ResourceId readbackOf(FrameGraph& graph, VkDeviceSize bytes) {
@@ -94,17 +73,18 @@ TEST_F(FrameTest, AHistoryWrittenThroughItsLayerAndLevelViewsSwapsThemToo) {
                                                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                                   c.buffer(host), 2, levels);
                        }});
-        graph.addPass(
-            {.name = "write",
-             .cost = CostGroup::PerPixel,
-             .phase = Phase::PerLight,
-             .uses = {{now, Access::ColorAttachment}},
-             .record = [&](PassContext& c) {
-                 for (uint32_t l = 0; l < kLayers; ++l) {
-                     clearThrough(c.cmd, c.image(now).layer(l), 2, false, written(frame, l, 0));
-                     clearThrough(c.cmd, c.image(now).level(l, 1), 1, false, written(frame, l, 1));
-                 }
-             }});
+        graph.addPass({.name = "write",
+                       .cost = CostGroup::PerPixel,
+                       .phase = Phase::PerLight,
+                       .uses = {{now, Access::ColorAttachment}},
+                       .record = [&](PassContext& c) {
+                           for (uint32_t l = 0; l < kLayers; ++l) {
+                               clearThrough(c.cmd, c.image(now).layer(l), {2, 2}, false,
+                                            written(frame, l, 0));
+                               clearThrough(c.cmd, c.image(now).level(l, 1), {1, 1}, false,
+                                            written(frame, l, 1));
+                           }
+                       }});
         graph.plan();
         sharedRenderer().context().submitAndWait(
             [&](VkCommandBuffer cmd) { graph.record(cmd, nullptr); });
@@ -144,7 +124,8 @@ TEST_F(FrameTest, ADepthHistoryIsClearedAsDepthAndHandedOver) {
                        .phase = Phase::PerLight,
                        .uses = {{now, Access::DepthAttachment}},
                        .record = [&](PassContext& c) {
-                           clearThrough(c.cmd, c.image(now).view(), 2, true, 0.25f * static_cast<float>(frame));
+                           clearThrough(c.cmd, c.image(now).view(), {2, 2}, true,
+                                        0.25f * static_cast<float>(frame));
                        }});
         graph.plan();
         sharedRenderer().context().submitAndWait(
