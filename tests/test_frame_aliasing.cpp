@@ -27,8 +27,9 @@ ImageDecl transient(std::string name) {
 }
 
 struct Frame {
-    bool overlap = false; // b is written while a is still to be read
-    bool handOut = false; // c is copied out in the readback phase (else in the light phase)
+    bool overlap = false;   // b is written while a is still to be read
+    bool handOut = false;   // c is copied out in the readback phase (else in the light phase)
+    bool passFirst = false; // an unrelated pass comes first: every later pass's index moves
 };
 
 struct Seen {
@@ -74,6 +75,13 @@ Seen runFrame(ResourcePool& pool, const Frame& f) {
                                                   ctx.buffer(host), 1, &region);
                        }});
     };
+    if (f.passFirst)
+        graph.addPass({.name = "",
+                       .phase = Phase::LightSpace,
+                       .uses = {{host, Access::TransferWrite}},
+                       .record = [host](PassContext& ctx) {
+                           vkCmdFillBuffer(ctx.cmd, ctx.buffer(host), 0, VK_WHOLE_SIZE, 0);
+                       }});
     write("a", a, Phase::LightSpace, 1.0f);
     if (f.overlap)
         write("b", b, Phase::LightSpace, 2.0f);
@@ -121,6 +129,10 @@ TEST_F(FrameTest, TransientsOfDisjointPassesShareMemoryAndEachReadsItsOwn) {
     EXPECT_EQ(pool.creations(), made);
     EXPECT_TRUE(again.aSharesWithB);
     ASSERT_EQ(again.bWaitsFor.size(), 1u);
+    // A pass elsewhere moves every index but no overlap: still nothing placed anew.
+    const Seen moved = runFrame(pool, {.handOut = true, .passFirst = true});
+    EXPECT_EQ(pool.creations(), made);
+    EXPECT_TRUE(moved.aSharesWithB);
     // c copied out beside the others: it may share too (with a, whose passes end before it).
     const Seen inside = runFrame(pool, {.handOut = false});
     EXPECT_TRUE(inside.cShares);
@@ -150,6 +162,26 @@ TEST_F(FrameTest, TransientsWhosePassesOverlapOrThatLeaveTheFrameKeepTheirOwnByt
     graph.plan();
     EXPECT_TRUE(pool.sharesMemoryWith(a).empty());
     EXPECT_TRUE(pool.sharesMemoryWith(b).empty());
+    // Nor does an image only bound (a stand-in no pass writes, which a caller may read after
+    // the frame), though its one pass ends before another image's begin.
+    FrameGraph bound(pool, kSizes);
+    const ResourceId standIn = bound.declare(transient("stand-in"));
+    const ResourceId kept = bound.declare(transient("kept"));
+    const ResourceId later = bound.declare(transient("later"));
+    bound.markBoundOnly(standIn);
+    bound.markOutput(kept);
+    bound.addPass({.name = "",
+                   .phase = Phase::LightSpace,
+                   .uses = {{standIn, Access::TransferRead}, {kept, Access::ColorAttachment}},
+                   .record = [](PassContext&) {}});
+    for (const Access access : {Access::ColorAttachment, Access::TransferRead})
+        bound.addPass({.name = "",
+                       .phase = Phase::PerLight,
+                       .uses = {{later, access}},
+                       .record = [](PassContext&) {}});
+    bound.plan();
+    EXPECT_TRUE(pool.sharesMemoryWith(standIn).empty());
+    EXPECT_TRUE(pool.sharesMemoryWith(later).empty());
 }
 
 // What a barrier before shared bytes waits for: its own last use, and those of the images whose

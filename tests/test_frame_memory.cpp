@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 using namespace penumbra::render;
@@ -109,8 +110,19 @@ TEST(FrameMemory, RandomFramesKeepEveryRule) {
             n.size = 1 + random() % 5000;
             n.memoryTypeBits = static_cast<uint32_t>(1 + random() % 15);
         }
-        const AliasPlan plan = planAliasing(needs);
+        // Half the frames on a device whose largest allocation is small.
+        const VkDeviceSize maxBlock = frame % 2 ? 4000 + random() % 8000 : ~VkDeviceSize{0};
+        const AliasPlan plan = planAliasing(needs, maxBlock);
         expectSound(plan, needs);
+        // A block past the limit is one image's alone (others may take its bytes, never more).
+        for (size_t b = 0; b < plan.blocks.size(); ++b) {
+            VkDeviceSize largest = 0;
+            for (size_t i = 0; i < needs.size(); ++i)
+                if (plan.placements[i].block == b)
+                    largest = std::max(largest, needs[i].size);
+            EXPECT_LE(plan.blocks[b].size, std::max(maxBlock, largest))
+                << "frame " << frame << ": block " << b << " past the device's largest allocation";
+        }
         // A block grows at most by an image and its alignment: never worse than one block per
         // image by more than the padding.
         VkDeviceSize bound = 0;
@@ -134,4 +146,28 @@ TEST(FrameMemory, AnImageGoesToTheBlockItGrowsLeast) {
     EXPECT_EQ(plan.placements[2].block, plan.placements[1].block);
     EXPECT_EQ(plan.placements[2].offset, 0u);
     EXPECT_EQ(plan.sharedBytes(), 180u);
+}
+
+TEST(FrameMemory, BlocksStayUnderTheDevicesLargestAllocation) {
+    // Three images used together (no sharing) of 400 bytes under an 800-byte allocation limit:
+    // two in one block (filling it exactly), the third in another; one of 2000 bytes gets a
+    // block of its own.
+    const std::vector<TransientNeed> needs{{.first = 0, .last = 1, .size = 400},
+                                           {.first = 0, .last = 1, .size = 400},
+                                           {.first = 0, .last = 1, .size = 400},
+                                           {.first = 1, .last = 2, .size = 2000}};
+    const AliasPlan plan = planAliasing(needs, 800);
+    expectSound(plan, needs);
+    ASSERT_EQ(plan.blocks.size(), 3u);
+    EXPECT_EQ(plan.placements[3].block, 0u) << "the largest first, alone";
+    EXPECT_EQ(plan.blocks[0].size, 2000u);
+    EXPECT_EQ(plan.placements[0].block, plan.placements[1].block);
+    EXPECT_NE(plan.placements[2].block, plan.placements[0].block);
+    EXPECT_EQ(plan.blocks[1].size, 800u);
+    EXPECT_EQ(plan.blocks[2].size, 400u);
+    // Without the limit, one block: the large one's passes overlap every other's, so the small
+    // ones go above it.
+    const AliasPlan unlimited = planAliasing(needs);
+    ASSERT_EQ(unlimited.blocks.size(), 1u);
+    EXPECT_EQ(unlimited.blocks[0].size, 3200u);
 }

@@ -247,7 +247,8 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
                     return true;
             return false;
         };
-        EXPECT_FALSE(m->visibilityMaps.empty()) << name;
+        // A module reads maps unless it traces a field instead (then it reads none).
+        EXPECT_EQ(m->visibilityMaps.empty(), m->tracedField.has_value()) << name;
         for (std::string_view map : m->visibilityMaps)
             EXPECT_TRUE(declared(map)) << name << ": " << map;
         for (const shadows::DepthPassDecl& pass : m->depthPasses) {
@@ -299,7 +300,8 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
         ParameterValues unblended;
         unblended.assign("csm.blend=0");
         EXPECT_EQ(shadows::visibilityConstants(*m, unblended)[3].value, 0u) << name;
-        if (m->tracesField) { // no shadow map: no texels to blur over, none to store
+        if (!shadows::drawsLightMaps(*m)) { // no shadow map: no texels to blur over, none to store
+            EXPECT_TRUE(m->tracedField.has_value()) << name; // what it reads instead
             EXPECT_EQ(m->blurRadiusTexels(ParameterValues()), 0.0) << name;
             EXPECT_EQ(shadows::shadowMapBytes(*m, 1024, ParameterValues()), 0u) << name;
             EXPECT_TRUE(m->maps.empty() && m->postPasses.empty() && m->depthPasses.empty()) << name;
@@ -352,7 +354,7 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
         EXPECT_EQ(capability(*m, defaults, SPEC_BLOCKER_SEARCH),
                   m == &shadows::pcssModule() ? 1u : 0u)
             << m->info.name;
-        EXPECT_EQ(capability(*m, defaults, SPEC_TRACES_FIELD), m->tracesField ? 1u : 0u)
+        EXPECT_EQ(capability(*m, defaults, SPEC_TRACES_FIELD), m->tracedField ? 1u : 0u)
             << m->info.name;
         // Virtual maps: only where asked for, and only for the modules that read them.
         EXPECT_EQ(capability(*m, defaults, SPEC_VIRTUAL), 0u) << m->info.name;

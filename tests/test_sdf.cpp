@@ -166,8 +166,9 @@ TEST_F(FieldTest, TracerMatchesItsCpuMirrorOverTheSameField) {
         for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
             if (!onGround(r, i))
                 continue;
-            const float cpu = traceFieldVisibility(grid, light, pixelVec(r.position, i), {0, 1, 0},
-                                                   traceSettingsOf(o.parameters));
+            const float cpu = traceFieldVisibility(
+                grid, light, pixelVec(r.position, i), {0, 1, 0},
+                traceSettingsOf(shadows::moduleOf(Technique::Sdf), o.parameters));
             const double d = std::abs(cpu - r.visibility[0][i]);
             ++n;
             sum += d;
@@ -298,6 +299,27 @@ TEST_F(FieldTest, FieldPastItsCapIsRefused) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("sdf.resolution"), std::string::npos) << e.what();
     }
+}
+
+// A field past the device's memory (PENUMBRA_DEVICE_MEMORY: what the checks assume) is refused
+// by the render's check, before anything is built, naming the parameter the module declares for
+// the field's resolution and what it needs; a device with room passes the same check.
+TEST_F(FieldTest, FieldPastTheDevicesMemoryIsRefusedNamingItsResolution) {
+    const Scene scene = sphereOverPlane(Light{.type = LightType::Directional});
+    RenderOptions o{.width = 16, .height = 16, .frames = 1, .technique = Technique::Sdf};
+    o.parameters.set("sdf.resolution", "256");
+    EXPECT_NO_THROW(sharedRenderer().check(scene, o));
+    setenv("PENUMBRA_DEVICE_MEMORY", std::to_string(1u << 20).c_str(), 1);
+    std::string message;
+    try {
+        sharedRenderer().check(scene, o);
+    } catch (const InputError& e) {
+        message = e.what();
+    }
+    unsetenv("PENUMBRA_DEVICE_MEMORY");
+    EXPECT_NE(message.find("sdf.resolution"), std::string::npos) << message;
+    EXPECT_NE(message.find("256 needs"), std::string::npos) << message;
+    EXPECT_NE(message.find("to build its field"), std::string::npos) << message;
 }
 
 // Alpha-tested casters enter the field cut down to their covered parts: a card of 8x8 squares,

@@ -8,7 +8,10 @@ include/) that do:
 - name a technique: `Technique::Sdf`, a string literal that is a technique's name ("pcss") or
   one of its own parameter keys ("pcss.maxRadius"), a module function (`smrtModule()`);
 - read a one-technique capability: a TechniqueModule field that exactly one module of
-  src/shadows sets (`.tracesField`, `.checkerboard`, ...).
+  src/shadows sets (`.checkerboard`, `.distanceField`, ...). A list of declarations (a field
+  of type `std::vector<...Decl>`: `maps`, `depthPasses`, `postPasses`) is not a capability:
+  the frame runs the passes any module lists there, with the module's own shaders, without
+  asking which one did.
 
 Comments are skipped. With --check it exits 1 unless the count is the one tests/
 technique_coupling.txt records (ctest's Tools.TechniqueCoupling: a change that adds a place
@@ -42,8 +45,8 @@ def techniques():
     return rows
 
 
-def module_fields():
-    """The fields of struct TechniqueModule."""
+def module_fields(declarations=True):
+    """The fields of struct TechniqueModule (without those whose type is a declaration)."""
     text = (ROOT / "src/shadows/technique.h").read_text()
     body = text[text.index("struct TechniqueModule {"):]
     body = body[:body.index("\n};")]
@@ -51,17 +54,17 @@ def module_fields():
     for line in body.splitlines():
         line = line.split("//")[0].strip()
         m = re.search(r"\(\*(\w+)\)\(", line) or re.search(r"(\w+)(\s*=.*)?;$", line)
-        if m:
+        if m and (declarations or not re.search(r"std::vector<\w+Decl>", line)):
             fields.append(m.group(1))
     return fields
 
 
 def one_technique_fields():
-    """Module fields that exactly one file of src/shadows sets (`.field =`)."""
+    """Module fields, declarations aside, that exactly one file of src/shadows sets."""
     setters = {}
     for path in sorted((ROOT / "src/shadows").glob("*.cpp")):
         text = path.read_text()
-        for field in module_fields():
+        for field in module_fields(declarations=False):
             if re.search(rf"\.{field}\s*=", text):
                 setters.setdefault(field, set()).add(path.name)
     return sorted(f for f, files in setters.items() if len(files) == 1)

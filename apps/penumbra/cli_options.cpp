@@ -8,6 +8,7 @@
 #include "scene/first_picture.h"
 #include "scene/mesh_closure.h"
 #include "shadows/sdf_field.h"
+#include "shadows/technique.h"
 
 #include <fmt/format.h>
 
@@ -113,9 +114,10 @@ TechniqueRow rowNamed(const std::string& name, std::string_view option) {
 void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques) {
     std::string needing;
     int needed = 0;
-    for (Technique t : {Technique::Sdf, Technique::SecondDepth})
-        if (std::find(techniques.begin(), techniques.end(), t) != techniques.end())
-            needing += fmt::format("{}`{}`", needed++ ? " and " : "", techniqueName(t));
+    for (const shadows::TechniqueModule* module : shadows::allModules())
+        if (module->needsClosedSurfaces &&
+            std::find(techniques.begin(), techniques.end(), module->info.id) != techniques.end())
+            needing += fmt::format("{}`{}`", needed++ ? " and " : "", module->info.name);
     if (needed == 0)
         return;
     needing += needed == 1 ? " takes" : " take";

@@ -48,9 +48,10 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
 
     Renderer renderer({.deviceIndex = global.device, .validation = global.validation});
     renderer.check(scene, options);
-    if (shadows::moduleOf(options.technique).tracesField) { // the slice lies in the field
-        const shadows::FieldLayout layout = shadows::fieldLayout(
-            scene.bounds(), static_cast<uint32_t>(options.parameters.number("sdf.resolution")));
+    if (const auto& declared = shadows::moduleOf(options.technique).tracedField) {
+        const shadows::FieldLayout layout = shadows::fieldLayout( // the slice lies in the field
+            scene.bounds(),
+            static_cast<uint32_t>(options.parameters.number(declared->resolutionKey)));
         (void)slicePosition(slice, layout.origin, layout.voxel, layout.size);
     }
     const DeviceInfo& device = renderer.device();

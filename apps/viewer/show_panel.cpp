@@ -146,7 +146,7 @@ void showPanel(ViewerState& s) {
     }
     if (s.display == DisplayMode::ShadowMap) {
         const std::vector<std::string> names = layerNames(s.lastFrame);
-        if (names.empty() || shadows::moduleOf(s.options.technique).tracesField) {
+        if (names.empty() || !shadows::drawsLightMaps(shadows::moduleOf(s.options.technique))) {
             ImGui::TextUnformatted("this technique draws no shadow map");
         } else {
             s.displayLayer = std::min(s.displayLayer, static_cast<int>(names.size()) - 1);

@@ -234,8 +234,8 @@ gpu::DisplayPush ViewerSession::displayPush(uint32_t width) const {
             push.mode.y =
                 std::min<uint32_t>(static_cast<uint32_t>(s.displayLight), shadowLights - 1);
         break;
-    case DisplayMode::ShadowMap: // sdf fits its lights' views but draws no map
-        if (!layers.empty() && !shadows::moduleOf(s.options.technique).tracesField) {
+    case DisplayMode::ShadowMap: // a field's tracer fits its lights' views but draws no map
+        if (!layers.empty() && shadows::drawsLightMaps(shadows::moduleOf(s.options.technique))) {
             const uint32_t layer = std::min<uint32_t>(static_cast<uint32_t>(s.displayLayer),
                                                       static_cast<uint32_t>(layers.size() - 1));
             const ShadowViewInfo& v = *layers[layer];

@@ -30,7 +30,7 @@
 #define SPEC_BLOCKER_SEARCH 16   // 1: the technique searches blockers, in a sun's cascades as its
                                  // kernel follows the light's size (TechniqueModule::searchCap)
 #define SPEC_TRACES_FIELD 17     // 1: the technique traces the scene's distance field, not a map
-                                 // (TechniqueModule::tracesField)
+                                 // (TechniqueModule::tracedField)
 #define SPEC_VIRTUAL 18          // 1: the maps are virtual (virtual.enabled): TECH_MAP is the
                                  // page pool, read through the page table (virtual_pages.h)
 #define SPEC_FILTER_RADIUS 19    // visibility_filter.comp: its radius in pixels,

@@ -2,6 +2,7 @@
 
 #include "bias.h"
 #include "params_sdf.h"
+#include "penumbra/error.h"
 #include "sdf_math.h"
 #include "shadows/technique.h"
 
@@ -89,8 +90,10 @@ bool FieldGrid::contains(const glm::vec3& p) const {
            glm::all(glm::lessThanEqual(p, origin + extent));
 }
 
-TraceSettings traceSettingsOf(const ParameterValues& parameters) {
-    const shadows::TechniqueModule& module = shadows::moduleOf(Technique::Sdf);
+TraceSettings traceSettingsOf(const shadows::TechniqueModule& module,
+                              const ParameterValues& parameters) {
+    PENUMBRA_CHECK(module.tracedField.has_value(),
+                   std::string(module.info.name) + " traces no distance field");
     shadows::ParamBlock block;
     module.pack(parameters, block);
     const gpu::SdfParams sdf = block.get<gpu::SdfParams>();

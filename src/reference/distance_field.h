@@ -11,6 +11,10 @@
 #include <cstdint>
 #include <vector>
 
+namespace penumbra::shadows {
+struct TechniqueModule;
+}
+
 namespace penumbra {
 
 // The point of triangle (a, b, c) closest to p [Ericson, Real-Time Collision Detection, 5.1.5]:
@@ -53,9 +57,10 @@ struct TraceSettings {
     float thickness = 0.0f;   // voxels: open geometry's half-thickness (gpu::ownSurface)
     bool horizon = true;
 };
-// What the visibility pass gets for `parameters`: the sdf module's own packing into FrameData
-// and its horizon constant, so the mirror cannot drift from the shader's settings.
-TraceSettings traceSettingsOf(const ParameterValues& parameters);
+// What the visibility pass gets for `parameters`: the tracing module's own packing (sdf's,
+// gpu::SdfParams) and its horizon constant, so the mirror cannot drift from the shader's settings.
+TraceSettings traceSettingsOf(const shadows::TechniqueModule& tracer,
+                              const ParameterValues& parameters);
 
 // The CPU mirror of the sdf tracer (shaders/include/shadow_sdf.glsl, the same sdf_math.h
 // steps): the visible fraction of `light` at receiver `world` with triangle normal `face`.

@@ -11,13 +11,14 @@ namespace penumbra {
 
 void refuseUnheldField(SceneRenderer& renderer, const RenderOptions& options,
                        const RenderResult& result, const ProgressFn& note) {
-    if (!shadows::moduleOf(options.technique).tracesField)
+    const auto& declared = shadows::moduleOf(options.technique).tracedField;
+    if (!declared)
         return;
-    const double limit = options.parameters.number("sdf.refuse");
+    const double limit = options.parameters.number(declared->refuseKey);
     if (limit <= 0.0)
         return;
-    RenderOptions plain = options; // the same view, lights and map size
-    plain.technique = Technique::Hard;
+    RenderOptions plain = options;       // the same view, lights and map size
+    plain.technique = kDefaultTechnique; // the plain depth test
     plain.frames = 1;
     const RenderResult hard = renderer.render(plain);
     Scene lit = renderer.scene();
@@ -28,11 +29,12 @@ void refuseUnheldField(SceneRenderer& renderer, const RenderOptions& options,
             masks.push_back(lightMask(lit.lights[s.sceneLight], result));
     const VisibilityAudit audit = auditVisibility(lit, result, hard, masks);
     if (note)
-        note(fmt::format("sdf audit: RMSE {:.4f} against hard's {:.4f} over {} pixels (every "
+        note(fmt::format("{} audit: RMSE {:.4f} against {}'s {:.4f} over {} pixels (every "
                          "{}); lost {:.2f}%, added {:.2f}%; leak {} of {}, acne {} of {}",
-                         audit.rmse, audit.hardRmse, audit.pixels, audit.stride, 100.0 * audit.lost,
-                         100.0 * audit.added, audit.leaked, audit.umbra, audit.acne,
-                         audit.fullyLit));
+                         techniqueName(options.technique), audit.rmse,
+                         techniqueName(kDefaultTechnique), audit.hardRmse, audit.pixels,
+                         audit.stride, 100.0 * audit.lost, 100.0 * audit.added, audit.leaked,
+                         audit.umbra, audit.acne, audit.fullyLit));
     const std::string reason = auditRefusal(audit, limit);
     if (!reason.empty())
         throw InputError(lit.name, reason);

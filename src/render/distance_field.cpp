@@ -150,7 +150,10 @@ uint64_t fieldBuildBytes(const shadows::FieldLayout& layout) {
 
 namespace {
 
-shadows::FieldLayout fieldFits(const vk::Context& ctx, const Bounds& bounds, uint32_t resolution) {
+shadows::FieldLayout fieldFits(const vk::Context& ctx, const Bounds& bounds,
+                               const FieldSetting& setting) {
+    const uint32_t resolution = setting.resolution;
+    const std::string key(setting.resolutionKey);
     const shadows::FieldLayout layout = shadows::fieldLayout(bounds, resolution);
     // What the messages name: the resolution asked for, or the automatic one it stood for.
     const std::string asked =
@@ -158,25 +161,31 @@ shadows::FieldLayout fieldFits(const vk::Context& ctx, const Bounds& bounds, uin
                        : fmt::format("0 (automatic: {})", shadows::fieldResolution(bounds, 0));
     const uint32_t limit = ctx.limits().maxImageDimension3D;
     if (std::max({layout.size.x, layout.size.y, layout.size.z}) > limit)
-        throw InputError("sdf.resolution",
+        throw InputError(key,
                          fmt::format("{} makes a field of {}x{}x{} voxels, past this device's "
                                      "3D image size limit of {}",
                                      asked, layout.size.x, layout.size.y, layout.size.z, limit));
     const double have = static_cast<double>(deviceMemoryForChecks(ctx.deviceLocalHeapBytes()));
     if (static_cast<double>(fieldBuildBytes(layout)) > 0.5 * have)
-        throw InputError("sdf.resolution",
-                         fmt::format("{} needs {:.2f} GiB of device memory to build its field; "
-                                     "the device has {:.2f} GiB",
-                                     asked,
-                                     static_cast<double>(fieldBuildBytes(layout)) / (1 << 30),
-                                     have / (1 << 30)));
+        throw InputError(
+            key, fmt::format("{} needs {:.2f} GiB of device memory to build its field; "
+                             "the device has {:.2f} GiB",
+                             asked, static_cast<double>(fieldBuildBytes(layout)) / (1 << 30),
+                             have / (1 << 30)));
     return layout;
 }
 
 } // namespace
 
+FieldSetting FieldSetting::of(const shadows::DistanceFieldDecl& decl,
+                              const ParameterValues& params) {
+    return {.resolution = static_cast<uint32_t>(params.number(decl.resolutionKey)),
+            .thicknessVoxels = static_cast<float>(params.number(decl.thicknessKey)),
+            .resolutionKey = decl.resolutionKey};
+}
+
 shadows::FieldLayout checkDistanceField(const vk::Context& ctx, const Scene& scene,
-                                        const ParameterValues& parameters) {
+                                        const FieldSetting& setting) {
     // The bounds of the triangles the field is built from (dropInvalidTriangles' coordinate
     // rule), without copying the scene.
     Bounds bounds;
@@ -195,20 +204,21 @@ shadows::FieldLayout checkDistanceField(const vk::Context& ctx, const Scene& sce
     }
     if (bounds.empty())
         throw InputError(scene.name, "the scene has no valid triangles");
-    return fieldFits(ctx, bounds, static_cast<uint32_t>(parameters.number("sdf.resolution")));
+    return fieldFits(ctx, bounds, setting);
 }
 
 DistanceField buildDistanceField(const vk::Context& ctx, FramePipelines& pipelines,
-                                 const Scene& scene, uint32_t resolution, float thicknessVoxels,
+                                 const Scene& scene, const FieldSetting& setting,
                                  const ProgressFn& progress) {
     const auto cpuStart = std::chrono::steady_clock::now();
-    DistanceField field{.layout = fieldFits(ctx, scene.bounds(), resolution)};
+    DistanceField field{.layout = fieldFits(ctx, scene.bounds(), setting)};
     const shadows::FieldLayout& layout = field.layout;
-    if (progress) // the size chosen, not sdf.resolution's 0 for "automatic"
-        progress(fmt::format("building the distance field: {}x{}x{} voxels of {:.3g} units{}",
-                             layout.size.x, layout.size.y, layout.size.z, layout.voxel,
-                             resolution == 0 ? " (sdf.resolution automatic)" : ""));
-    field.thickness = thicknessVoxels * layout.voxel;
+    if (progress) // the size chosen, not the resolution's 0 for "automatic"
+        progress(fmt::format(
+            "building the distance field: {}x{}x{} voxels of {:.3g} units{}", layout.size.x,
+            layout.size.y, layout.size.z, layout.voxel,
+            setting.resolution == 0 ? fmt::format(" ({} automatic)", setting.resolutionKey) : ""));
+    field.thickness = setting.thicknessVoxels * layout.voxel;
     const shadows::FieldGeometry geometry = shadows::fieldGeometry(scene, layout, field.thickness);
     field.sceneTriangles = geometry.sceneTriangles;
     field.triangles = static_cast<uint32_t>(geometry.triangles.size());

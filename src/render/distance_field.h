@@ -7,7 +7,8 @@
 //   3. sdf_resolve: the exact distance to the chosen triangle, negative inside closed surfaces
 //      (the winding of the closed triangles a column crosses below the voxel).
 // Each pass is submitted in slabs, so that a long build reports its progress.
-// A SceneRenderer builds it once per scene and field setting (sdf.resolution, sdf.thickness).
+// A SceneRenderer builds it once per scene and field setting (FieldSetting) for a technique that
+// declares one (shadows::TechniqueModule::distanceField).
 #include "penumbra/renderer.h"
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
@@ -39,15 +40,24 @@ struct DistanceField {
 // Device memory the build needs at its peak: the field and two id images.
 uint64_t fieldBuildBytes(const shadows::FieldLayout& layout);
 
-// Throws InputError naming sdf.resolution when the field of `scene` (invalid triangles dropped)
-// does not fit this device: the voxel cap, its 3D image size limit, memory.
-shadows::FieldLayout checkDistanceField(const vk::Context& ctx, const Scene& scene,
-                                        const ParameterValues& parameters);
+// The field a module declares (shadows::DistanceFieldDecl) at the parameters' values.
+struct FieldSetting {
+    uint32_t resolution = 0;        // voxels on the longest axis; 0: automatic
+    float thicknessVoxels = 0.0f;   // open geometry's half-thickness
+    std::string_view resolutionKey; // the parameter a refusal names
+    static FieldSetting of(const shadows::DistanceFieldDecl& decl, const ParameterValues& params);
+    auto operator<=>(const FieldSetting&) const = default;
+};
 
-// Checks as checkDistanceField, then builds. `thicknessVoxels`: sdf.thickness. A build that runs
-// past a second reports its progress and the time left through `progress`.
+// Throws InputError naming the resolution's key when the field of `scene` (invalid triangles
+// dropped) does not fit this device: the voxel cap, its 3D image size limit, memory.
+shadows::FieldLayout checkDistanceField(const vk::Context& ctx, const Scene& scene,
+                                        const FieldSetting& setting);
+
+// Checks as checkDistanceField, then builds. A build that runs past a second reports its
+// progress and the time left through `progress`.
 DistanceField buildDistanceField(const vk::Context& ctx, FramePipelines& pipelines,
-                                 const Scene& scene, uint32_t resolution, float thicknessVoxels,
+                                 const Scene& scene, const FieldSetting& setting,
                                  const ProgressFn& progress = {});
 
 // One submission of the build: a pass over a slab of the field, voxels [first, first + count)

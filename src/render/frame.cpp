@@ -38,7 +38,8 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     FrameResources r;
     // The technique's maps of every shadow view (a technique that draws none binds 1x1 ones).
     std::vector<ImageDecl> maps = shadowMapDecls(*s.technique, *s.params);
-    const bool drawsNoMap = s.technique->tracesField; // only bound: nothing lost between frames
+    // only bound: nothing lost between frames
+    const bool drawsNoMap = !shadows::drawsLightMaps(*s.technique);
     if (drawsNoMap)
         maps.front().lifetime = Lifetime::Persistent;
     r.depthMap = graph.declare(maps.front());
@@ -60,8 +61,11 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.visibility = screen(target::kVisibility);
     r.intermediates = screen(target::kIntermediates);
     r.layerResults = screen(target::kLayerResults);
-    if (visibilityFilterOf(s).runs())
-        r.visibilityScratch = screen(target::kVisibilityScratch);
+    const std::vector<shadows::ScreenPassDecl> screenPasses = screenPassesOf(s);
+    if (std::any_of(screenPasses.begin(), screenPasses.end(), [](const shadows::ScreenPassDecl& p) {
+            return p.results == shadows::kScreenScratch;
+        }))
+        r.screenScratch = screen(target::kScreenScratch);
     r.color = screen(target::kColor);
     graph.markOutput(r.color);
     graph.markOutput(r.visibility);
@@ -91,29 +95,26 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.pageTable = graph.importBuffer(std::string(target::kPageTable), in.pageTable);
     if (s.virtualMaps)
         r.pageRequests = graph.importBuffer(std::string(target::kPageRequests), in.pageRequests);
-    r.traceList =
-        graph.declare(traceListDecl(s.sizes.width, s.sizes.height, checkerboardOf(s).runs));
+    r.traceList = graph.declare(traceListDecl(s.sizes.width, s.sizes.height,
+                                              shadows::checkerboardFill(screenPasses) != nullptr));
     return r;
 }
 
-shadows::VisibilityFilter visibilityFilterOf(const FrameSettings& s) {
-    return s.technique->visibilityFilter ? s.technique->visibilityFilter(*s.params)
-                                         : shadows::VisibilityFilter{};
-}
-
-shadows::Checkerboard checkerboardOf(const FrameSettings& s) {
-    return s.technique->checkerboard && !s.intermediates ? s.technique->checkerboard(*s.params)
-                                                         : shadows::Checkerboard{};
+std::vector<shadows::ScreenPassDecl> screenPassesOf(const FrameSettings& s) {
+    std::vector<shadows::ScreenPassDecl> passes = shadows::screenPassesOf(*s.technique, *s.params);
+    if (s.intermediates && shadows::checkerboardFill(passes))
+        passes.erase(passes.begin());
+    return passes;
 }
 
 FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const GpuScene& scene,
                           const FrameSettings& s, const FrameInputs& in) {
     const FrameResources r = declareFrame(graph, s, in);
-    // A technique that traces the distance field draws no shadow map: its 1x1 depth map is only
-    // bound (the graph gives it a layout on first use).
+    // A technique that reads no map (a distance field's tracer) gets none drawn: its 1x1 depth
+    // map is only bound (the graph gives it a layout on first use).
     if (s.virtualMaps)
         addVirtualPagePasses(graph, pipelines, scene, s, in, r);
-    else if (!s.technique->tracesField)
+    else if (shadows::drawsLightMaps(*s.technique))
         addShadowPasses(graph, pipelines, scene, s, in, r);
     addGBufferPass(graph, pipelines, scene, s, in, r);
     addLightPasses(graph, pipelines, s, in, r);

@@ -110,7 +110,7 @@ struct FrameResources {
     std::vector<std::optional<ResourceId>> previousMaps;
     ResourceId gbufferDepth = 0, gbufferNormal = 0, gbufferAlbedo = 0;
     ResourceId visibility = 0, intermediates = 0, layerResults = 0, color = 0;
-    ResourceId visibilityScratch = 0; // the visibility filter's rows (0: no filter runs)
+    ResourceId screenScratch = 0; // shadows::kScreenScratch (0: no screen pass binds it)
     ResourceId position = 0, normal = 0, faceNormal = 0, readback = 0;
     ResourceId integerPlaceholder = 0, depthPlaceholder = 0, field = 0;
     FilteredBindings filtered{};
@@ -126,12 +126,9 @@ struct FrameResources {
                         std::span<const ImageDecl> decls);
 };
 
-// The technique's visibility filter under these settings (none runs where its radius for the
-// light's kind is 0).
-shadows::VisibilityFilter visibilityFilterOf(const FrameSettings& s);
-// The technique's checkerboard tracing under these settings (none with the viewer's
-// intermediates, which want every pixel's own).
-shadows::Checkerboard checkerboardOf(const FrameSettings& s);
+// The screen passes the technique adds under these settings (shadows::ScreenPassDecl): a
+// checkerboard's fill left out with the viewer's intermediates, which want every pixel traced.
+std::vector<shadows::ScreenPassDecl> screenPassesOf(const FrameSettings& s);
 
 // Declares every target and input of a frame with these settings.
 FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const FrameInputs& in);

@@ -33,7 +33,7 @@ bool sharesBytes(const AliasPlan& plan, std::span<const TransientNeed> needs, si
            pb.offset < pa.offset + needs[a].size;
 }
 
-AliasPlan planAliasing(std::span<const TransientNeed> needs) {
+AliasPlan planAliasing(std::span<const TransientNeed> needs, VkDeviceSize maxBlockBytes) {
     AliasPlan plan;
     plan.placements.resize(needs.size());
     std::vector<size_t> order(needs.size());
@@ -70,6 +70,8 @@ AliasPlan planAliasing(std::span<const TransientNeed> needs) {
                     break;
             }
             const VkDeviceSize end = offset + need.size;
+            if (end > maxBlockBytes)
+                continue;
             const VkDeviceSize growth = end > plan.blocks[b].size ? end - plan.blocks[b].size : 0;
             if (best == placedIn.size() || growth < bestGrowth) {
                 best = b;

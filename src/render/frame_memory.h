@@ -35,9 +35,11 @@ struct AliasPlan {
 };
 
 // Larger images first, each at the lowest offset of the block it grows least (a new block when
-// no block's memory types suit it); a block grows at most by an image and its alignment, so the
-// total is at most the separate one plus alignment padding.
-AliasPlan planAliasing(std::span<const TransientNeed> needs);
+// no block's memory types suit it, or none has room under `maxBlockBytes`, the device's largest
+// allocation: an image larger than that gets a block of its own); a block grows at most by an
+// image and its alignment, so the total is at most the separate one plus alignment padding.
+AliasPlan planAliasing(std::span<const TransientNeed> needs,
+                       VkDeviceSize maxBlockBytes = ~VkDeviceSize{0});
 
 // Whether needs a and b of `plan` take some of the same bytes (then their passes are disjoint).
 bool sharesBytes(const AliasPlan& plan, std::span<const TransientNeed> needs, size_t a, size_t b);

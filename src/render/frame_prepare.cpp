@@ -253,7 +253,7 @@ FrameSettings frameSettings(const RenderOptions& o, const std::vector<Light>& li
             // A technique that draws no shadow map binds a 1x1 one.
             .sizes = {.width = o.width,
                       .height = o.height,
-                      .shadowMapSize = module.tracesField ? 1u : o.shadowMapSize,
+                      .shadowMapSize = shadows::drawsLightMaps(module) ? o.shadowMapSize : 1u,
                       .shadowViews = static_cast<uint32_t>(views.views.size()),
                       .shadowLights = static_cast<uint32_t>(views.dispatches.size())},
             .views = views.views,

@@ -96,8 +96,8 @@ std::vector<ImageDecl> screenDecls(bool intermediates) {
         screen(target::kGBufferAlbedo, kAlbedoFormat,
                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled),
         screen(target::kVisibility, VK_FORMAT_R32_SFLOAT, kStorageOut | kSampled, true),
-        // The visibility filter's rows (TechniqueModule::visibilityFilter; declared when it runs).
-        screen(target::kVisibilityScratch, VK_FORMAT_R32_SFLOAT, kStorageOut, true),
+        // The screen passes' scratch (shadows::kScreenScratch; declared when one binds it).
+        screen(target::kScreenScratch, VK_FORMAT_R32_SFLOAT, kStorageOut, true),
         screen(target::kColor, VK_FORMAT_R8G8B8A8_UNORM, kStorageOut),
         screen(target::kPosition, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut),
         screen(target::kNormal, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut),
@@ -173,7 +173,8 @@ TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterV
     for (const ImageDecl& decl : screenDecls(false))
         bytes.screen += ResourcePool::bytesOf(decl, sizes);
     bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights).bytes;
-    const bool checkerboard = module.checkerboard && module.checkerboard(params).runs;
+    const bool checkerboard =
+        shadows::checkerboardFill(shadows::screenPassesOf(module, params)) != nullptr;
     bytes.screen += traceListDecl(sizes.width, sizes.height, checkerboard).bytes;
     return bytes;
 }

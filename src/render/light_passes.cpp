@@ -1,18 +1,18 @@
 // The PerLight and Composite phases (render/frame.h). Each shadow-casting light is evaluated by
-// the base technique (one visibility dispatch, "visibility"), its visibility filter if it has one
-// ("filter", two dispatches), and then by each enabled layer (one
-// dispatch of the layer's shader, timed under the layer's name), which multiplies into the
-// light's visibility layer. The composite shades every pixel from the lights' layers: fused into
-// the last light's visibility dispatch ("composite", composite.fused) when no layer runs after
-// it, else composite.comp on its own.
+// the base technique (one visibility dispatch, "visibility"), the screen passes its module adds
+// (shadows::ScreenPassDecl, timed under their names: smrt's checkerboard fill as "visibility",
+// its filter as "filter"), and then by each enabled layer (one dispatch of the layer's shader,
+// timed under the layer's name), which multiplies into the light's visibility layer. The composite
+// shades every pixel from the lights' layers: fused into the last light's visibility dispatch
+// ("composite", composite.fused) when no layer runs after it, else composite.comp on its own.
 #include "checkerboard.h"
+#include "penumbra/error.h"
 #include "render/frame.h"
 #include "render/pass_utils.h"
 #include "vk/pipelines.h"
 #include "vk/sync.h"
 
 #include <algorithm>
-#include <bit>
 
 namespace penumbra::render {
 namespace {
@@ -99,19 +99,37 @@ void dispatchLayer(PassContext& c, FramePipelines& p, const FrameSettings& s, co
                           TECHNIQUE_BLOCK_BYTES * layerIndex(layer), r.layerResults, light);
 }
 
-// One pass of the technique's visibility filter for one light (visibility_filter.comp): along
-// rows (axis 0) from its visibility layer into the scratch (at LAYER_RESULTS), or along columns
-// back.
-void dispatchFilter(PassContext& c, FramePipelines& p, const FrameSettings& s,
-                    const FrameInputs& in, const FrameResources& r,
-                    shadows::VisibilityFilter filter, uint32_t axis, const LightDispatch& light) {
-    const std::vector<shadows::SpecConstant> constants{
-        {SPEC_FILTER_RADIUS, filter.radiusFor(light.type)},
-        {SPEC_FILTER_TOLERANCE, std::bit_cast<uint32_t>(filter.toleranceFor(light.type))},
-        {SPEC_FILTER_AXIS, axis},
-        {SPEC_FILTER_WIDE, filter.wideFor(light.type)}};
-    dispatchOnLayerLayout(c, p, s, in, r, p.layer("visibility_filter.comp", constants), 0,
-                          r.visibilityScratch, light);
+Access accessOf(shadows::ScreenAccess access) {
+    switch (access) {
+    case shadows::ScreenAccess::Read:
+        return Access::ComputeRead;
+    case shadows::ScreenAccess::Write:
+        return Access::ComputeWrite;
+    case shadows::ScreenAccess::ReadWrite:
+        break;
+    }
+    return Access::ComputeReadWrite;
+}
+
+// What a screen pass binds at LAYER_RESULTS.
+ResourceId resultsOf(const FrameResources& r, const shadows::ScreenPassDecl& pass) {
+    PENUMBRA_CHECK(pass.results.empty() || pass.results == shadows::kScreenScratch,
+                   "a screen pass binds an image the frame does not make: " +
+                       std::string(pass.results));
+    return pass.results == shadows::kScreenScratch ? r.screenScratch : r.layerResults;
+}
+
+// One dispatch of a technique's screen pass for one light, `rows` high (the image's unless
+// given).
+void dispatchScreenPass(PassContext& c, FramePipelines& p, const FrameSettings& s,
+                        const FrameInputs& in, const FrameResources& r,
+                        const shadows::ScreenPassDecl& pass, const LightDispatch& light,
+                        uint32_t rows = 0) {
+    const std::vector<shadows::SpecConstant> constants =
+        pass.constants ? pass.constants(*s.params, light.type, light.sized)
+                       : std::vector<shadows::SpecConstant>{};
+    dispatchOnLayerLayout(c, p, s, in, r, p.layer(pass.shader, constants), 0, resultsOf(r, pass),
+                          light, rows);
 }
 
 // What a pass on the layers' pipeline layout binds: `visibility` and `results` (at
@@ -161,27 +179,21 @@ void addListEmptying(FrameGraph& graph, const FrameSettings& s, const FrameResou
 }
 
 // Checkerboard tracing's passes for one light after its even pixels and its list's emptying: the
-// odd pixels filled or listed, the list traced. Both are timed as "visibility" with the even
-// pixels' dispatch: the technique's whole cost.
+// module's fill (over the even pixels' rows: the odd pixels filled or listed), then the list
+// traced, timed as "visibility" with the even pixels' dispatch: the technique's whole cost.
 void addFillAndList(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
                     const FrameInputs& in, const FrameResources& r,
-                    shadows::Checkerboard checkerboard, size_t light) {
-    std::vector<Use> fill =
-        layerLayoutUses(r, Access::ComputeReadWrite, r.layerResults, Access::ComputeWrite);
-    fill.push_back({r.traceList, Access::ComputeReadWrite});
-    graph.addPass({.name = "visibility",
+                    const shadows::ScreenPassDecl& fill, size_t light) {
+    std::vector<Use> fillUses = layerLayoutUses(r, accessOf(fill.visibility), resultsOf(r, fill),
+                                                accessOf(fill.resultsAccess));
+    fillUses.push_back({r.traceList, Access::ComputeReadWrite});
+    graph.addPass({.name = std::string(fill.name),
                    .cost = CostGroup::PerPixel,
                    .phase = Phase::PerLight,
-                   .uses = fill,
-                   .record = [&p, &s, &in, r, checkerboard, light](PassContext& c) {
-                       const float range = checkerboard.rangeFor(s.shadowLights[light].type,
-                                                                 s.shadowLights[light].sized);
-                       const std::vector<shadows::SpecConstant> constants{
-                           {SPEC_FILL_RANGE, std::bit_cast<uint32_t>(range)}};
-                       dispatchOnLayerLayout(c, p, s, in, r,
-                                             p.layer("visibility_fill.comp", constants), 0,
-                                             r.layerResults, s.shadowLights[light],
-                                             gpu::checkerboardRows(s.sizes.height));
+                   .uses = fillUses,
+                   .record = [&p, &s, &in, r, fill, light](PassContext& c) {
+                       dispatchScreenPass(c, p, s, in, r, fill, s.shadowLights[light],
+                                          gpu::checkerboardRows(s.sizes.height));
                    }});
     std::vector<Use> trace = visibilityUses(r, Access::ComputeWrite);
     trace.push_back({r.traceList, Access::IndirectRead});
@@ -201,11 +213,11 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                     const FrameInputs& in, const FrameResources& r) {
     // With no layer after it, the last light's visibility dispatch shades too: one pass fewer
     // over the G-buffer, and its position and normal reconstructed once.
-    const shadows::VisibilityFilter filter = visibilityFilterOf(s);
-    const shadows::Checkerboard halves = checkerboardOf(s);
-    const bool checkerboard = halves.runs && !s.shadowLights.empty();
-    const bool fused = s.fuseComposite && !s.shadowLights.empty() && s.layers.empty() &&
-                       !filter.runs() && !checkerboard;
+    const std::vector<shadows::ScreenPassDecl> screenPasses = screenPassesOf(s);
+    const shadows::ScreenPassDecl* fill = shadows::checkerboardFill(screenPasses);
+    const bool checkerboard = fill && !s.shadowLights.empty();
+    const bool fused =
+        s.fuseComposite && !s.shadowLights.empty() && s.layers.empty() && screenPasses.empty();
     const size_t separate = fused ? s.shadowLights.size() - 1 : s.shadowLights.size();
     if (checkerboard) // the first light's list, emptied before the pass that binds it
         addListEmptying(graph, s, r);
@@ -224,20 +236,21 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
     for (size_t i = 0; checkerboard && i < s.shadowLights.size(); ++i) {
         if (i > 0) // the lights take turns at one list
             addListEmptying(graph, s, r);
-        addFillAndList(graph, p, s, in, r, halves, i);
+        addFillAndList(graph, p, s, in, r, *fill, i);
     }
-    // The filter's two passes (both timed as "filter"): rows into the scratch, columns back.
-    for (uint32_t axis = 0; filter.runs() && axis < 2; ++axis) {
-        const Access visibility = axis == 0 ? Access::ComputeReadWrite : Access::ComputeWrite;
-        const Access scratch = axis == 0 ? Access::ComputeWrite : Access::ComputeRead;
-        graph.addPass({.name = "filter",
+    // The module's other screen passes, each one pass over the lights it runs for.
+    for (const shadows::ScreenPassDecl& pass : screenPasses) {
+        if (pass.fillsCheckerboard)
+            continue;
+        graph.addPass({.name = std::string(pass.name),
                        .cost = CostGroup::PerPixel,
                        .phase = Phase::PerLight,
-                       .uses = layerLayoutUses(r, visibility, r.visibilityScratch, scratch),
-                       .record = [&p, &s, &in, r, filter, axis](PassContext& c) {
+                       .uses = layerLayoutUses(r, accessOf(pass.visibility), resultsOf(r, pass),
+                                               accessOf(pass.resultsAccess)),
+                       .record = [&p, &s, &in, r, pass](PassContext& c) {
                            for (const LightDispatch& light : s.shadowLights)
-                               if (filter.radiusFor(light.type) > 0)
-                                   dispatchFilter(c, p, s, in, r, filter, axis, light);
+                               if (!pass.runsFor || pass.runsFor(*s.params, light.type))
+                                   dispatchScreenPass(c, p, s, in, r, pass, light);
                        }});
     }
     for (const shadows::LayerModule* layer : s.layers)

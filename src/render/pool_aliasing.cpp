@@ -1,6 +1,6 @@
 // Transient images that share memory (render/resource_pool.h, realize; render/frame_memory.h):
-// per-frame images the graph lets share are placed anew whenever what they are, or the passes
-// that use them, change; otherwise they stay where they are.
+// per-frame images the graph lets share are placed anew whenever what they are, or which of them
+// are used beside which, change; otherwise they stay where they are.
 #include "render/frame_memory.h"
 #include "render/pool_entry.h"
 #include "render/resource_pool.h"
@@ -11,15 +11,25 @@ namespace penumbra::render {
 
 void ResourcePool::placeTransients(std::span<const UseSpan> spans) {
     std::vector<ResourceId> chosen;
-    std::vector<std::tuple<const Entry*, size_t, size_t>> placedFor;
+    std::vector<size_t> ends; // the chosen spans' first and last passes, in order
     for (ResourceId id = 0; id < mEntries.size() && id < spans.size(); ++id) {
         const Entry* e = mEntries[id].get();
         const auto* decl = e ? std::get_if<ImageDecl>(&e->decl) : nullptr;
         if (!decl || decl->lifetime != Lifetime::PerFrame || !spans[id].shareable)
             continue;
         chosen.push_back(id);
-        placedFor.emplace_back(e, spans[id].first, spans[id].last);
+        ends.insert(ends.end(), {spans[id].first, spans[id].last});
     }
+    // Placed for the order of the spans' ends, not their passes' indices: which spans overlap
+    // (all a placement depends on) stays the same when passes elsewhere come or go.
+    std::sort(ends.begin(), ends.end());
+    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+    const auto rank = [&](size_t pass) {
+        return static_cast<size_t>(std::lower_bound(ends.begin(), ends.end(), pass) - ends.begin());
+    };
+    std::vector<std::tuple<const Entry*, size_t, size_t>> placedFor;
+    for (const ResourceId id : chosen)
+        placedFor.emplace_back(mEntries[id].get(), rank(spans[id].first), rank(spans[id].last));
     const bool unchanged = placedFor == mPlacedFor &&
                            std::none_of(chosen.begin(), chosen.end(),
                                         [&](ResourceId id) { return mEntries[id]->pending; });
@@ -56,7 +66,7 @@ void ResourcePool::placeTransients(std::span<const UseSpan> spans) {
              .memoryTypeBits =
                  asks.memoryTypeBits & mCtx.memoryTypesWith(VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)});
     }
-    const AliasPlan plan = planAliasing(needs);
+    const AliasPlan plan = planAliasing(needs, mCtx.maxMemoryAllocationSize());
     for (const AliasPlan::Block& block : plan.blocks)
         mShared.push_back(vk::allocateDeviceLocal(
             mCtx, {.size = block.size, .alignment = 1, .memoryTypeBits = block.memoryTypeBits},

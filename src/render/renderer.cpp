@@ -116,25 +116,27 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
     const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
     // Checkerboard tracing's list is one storage buffer. (Its pixels are packed 16 bits a
     // coordinate: no device has maxImageDimension2D past 65536.)
-    if (module.checkerboard && module.checkerboard(o.parameters).runs) {
+    const std::vector<shadows::ScreenPassDecl> screenPasses =
+        shadows::screenPassesOf(module, o.parameters);
+    if (const shadows::ScreenPassDecl* fill = shadows::checkerboardFill(screenPasses)) {
         const VkDeviceSize list = render::traceListDecl(o.width, o.height, true).bytes;
         if (list > ctx.limits().maxStorageBufferRange)
             throw InputError("--width",
                              fmt::format("{}x{} needs a trace list of {} bytes for checkerboard "
                                          "tracing; this device's storage buffers hold {} "
                                          "(maxStorageBufferRange): render smaller or set "
-                                         "smrt.checkerboard=false",
+                                         "{}=false",
                                          o.width, o.height, list,
-                                         ctx.limits().maxStorageBufferRange));
+                                         ctx.limits().maxStorageBufferRange, fill->parameter));
     }
     // The frame's targets as it declares them (render/frame_targets.h), the readback included.
-    const render::TargetBytes bytes =
-        render::targetBytes(module, o.parameters,
-                            {.width = o.width,
-                             .height = o.height,
-                             .shadowMapSize = module.tracesField ? 1u : o.shadowMapSize,
-                             .shadowViews = static_cast<uint32_t>(shadows.views),
-                             .shadowLights = static_cast<uint32_t>(shadowLights)});
+    const render::TargetBytes bytes = render::targetBytes(
+        module, o.parameters,
+        {.width = o.width,
+         .height = o.height,
+         .shadowMapSize = shadows::drawsLightMaps(module) ? o.shadowMapSize : 1u,
+         .shadowViews = static_cast<uint32_t>(shadows.views),
+         .shadowLights = static_cast<uint32_t>(shadowLights)});
     const double pixels = double(o.width) * double(o.height);
     const auto shadowBytes = static_cast<double>(bytes.shadowMaps);
     const double need = static_cast<double>(bytes.screen) + shadowBytes;
@@ -179,8 +181,9 @@ void Renderer::check(const Scene& scene, const RenderOptions& o) const {
     (void)scene.camera(o.camera); // throws for an unknown camera name
     checkDeviceLimits(mImpl->ctx, o, shadowCount(scene, o));
     checkVirtualMaps(mImpl->ctx, scene, o);
-    if (shadows::moduleOf(o.technique).tracesField)
-        render::checkDistanceField(mImpl->ctx, scene, o.parameters);
+    if (const auto& declared = shadows::moduleOf(o.technique).tracedField)
+        render::checkDistanceField(mImpl->ctx, scene,
+                                   render::FieldSetting::of(*declared, o.parameters));
 }
 
 RenderResult Renderer::render(const Scene& scene, const RenderOptions& o,

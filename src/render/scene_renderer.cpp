@@ -89,13 +89,13 @@ struct SceneRenderer::Impl {
     std::array<Slot, kFramesInFlight> slots;
     size_t nextSlot = 0;
     vk::SamplerHandle nearest, compare, linear;
-    // The distance field (sdf) and the settings it was built for; a 1x1x2 placeholder bound in
-    // its place otherwise (every binding a shader uses must be written).
+    // The distance field a technique declares and the setting it was built for; a 1x1x2
+    // placeholder bound in its place otherwise (every binding a shader uses must be written).
     std::optional<render::DistanceField> field;
-    std::pair<uint32_t, double> fieldKey{0, 0.0};
+    render::FieldSetting fieldKey;
     vk::Image fieldPlaceholder;
-    const render::DistanceField& fieldFor(const ParameterValues& p, const ProgressFn& progress,
-                                          bool& built);
+    const render::DistanceField& fieldFor(const render::FieldSetting& wanted,
+                                          const ProgressFn& progress, bool& built);
     render::FrameOutputs outputs;
     // Virtual maps: which page the pool holds where, across renders while the pool keeps its
     // contents; the pages this frame renders; what the last frame did.
@@ -148,16 +148,14 @@ glm::vec2 SceneRenderer::Impl::visibleDepthsFor(const Camera& c, float aspect) {
     return visibleDepths->range;
 }
 
-const render::DistanceField&
-SceneRenderer::Impl::fieldFor(const ParameterValues& p, const ProgressFn& progress, bool& built) {
-    const std::pair<uint32_t, double> wanted{static_cast<uint32_t>(p.number("sdf.resolution")),
-                                             p.number("sdf.thickness")};
+const render::DistanceField& SceneRenderer::Impl::fieldFor(const render::FieldSetting& wanted,
+                                                           const ProgressFn& progress,
+                                                           bool& built) {
     built = !field || fieldKey != wanted;
     if (built) {
         VK_CHECK(vkDeviceWaitIdle(ctx().device())); // a frame in flight may still trace it
         field.reset();                              // its memory first
-        field = render::buildDistanceField(ctx(), pipelines(), scene, wanted.first,
-                                           static_cast<float>(wanted.second), progress);
+        field = render::buildDistanceField(ctx(), pipelines(), scene, wanted, progress);
         if (progress)
             for (const std::string& warning : field->warnings)
                 progress("warning: " + warning);
@@ -290,9 +288,10 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
         render::frameBlocks(camera, shaded, static_cast<uint32_t>(lights.size()), ctx());
     result.exposure = static_cast<float>(shaded.parameters.number("composite.exposure"));
     const vk::Image* fieldImage = &fieldPlaceholder;
-    if (shadows::moduleOf(o.technique).tracesField) {
+    if (const auto& declared = shadows::moduleOf(o.technique).tracedField) {
         bool built = false;
-        const render::DistanceField& grid = fieldFor(o.parameters, progress, built);
+        const render::DistanceField& grid =
+            fieldFor(render::FieldSetting::of(*declared, o.parameters), progress, built);
         blocks.frame.fieldOrigin = glm::vec4(grid.layout.origin, grid.layout.voxel);
         blocks.frame.fieldSize = glm::uvec4(grid.layout.size, 0u);
         fieldImage = &grid.image;

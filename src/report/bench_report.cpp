@@ -182,9 +182,7 @@ void estimateMemory(BenchRun& run, const RenderOptions& o, const RenderResult& r
         lights += l.visibilityIndex >= 0;
     }
     run.transient = result.transientMemory;
-    run.shadowMapBytes =
-        module.tracesField ? 0
-                           : shadows::shadowMapBytes(module, o.shadowMapSize, o.parameters) * views;
+    run.shadowMapBytes = shadows::shadowMapBytes(module, o.shadowMapSize, o.parameters) * views;
     if (result.virtualMaps) { // the pool, and a page table and its requests per frame in flight
         run.virtualMaps = result.virtualMaps;
         run.shadowMapBytes = result.virtualMaps->poolBytes + 4 * result.virtualMaps->tableBytes;

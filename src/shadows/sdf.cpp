@@ -85,6 +85,7 @@ const TechniqueModule& sdfModule() {
               .description = "penumbra sharpness: the light's edge at k x distance / travelled "
                              "(Quilez's k); 0 derives it from the light's size, the cone the "
                              "ground truth integrates over"}},
+        .visibilityMaps = {}, // none: it traces the field
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 block.set(
@@ -96,7 +97,10 @@ const TechniqueModule& sdfModule() {
             },
         .modelsLightSize = true,
         .blurRadiusTexels = [](const ParameterValues&) { return 0.0; },
-        .tracesField = true};
+        .tracedField = DistanceFieldDecl{.resolutionKey = "sdf.resolution",
+                                         .thicknessKey = "sdf.thickness",
+                                         .refuseKey = "sdf.refuse"},
+        .needsClosedSurfaces = true};
     return module;
 }
 

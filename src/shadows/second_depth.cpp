@@ -39,7 +39,8 @@ const TechniqueModule& secondDepthModule() {
                 return glm::vec4(hardTest(in.map, in.probe, in.margins, glm::vec2(0.0f)), 0.0f,
                                  0.0f, 0.0f);
             },
-        .blurRadiusTexels = [](const ParameterValues&) { return 0.5; }};
+        .blurRadiusTexels = [](const ParameterValues&) { return 0.5; },
+        .needsClosedSurfaces = true};
     return module;
 }
 

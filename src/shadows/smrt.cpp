@@ -7,6 +7,7 @@
 // docs/techniques.md ("Shadow-map ray tracing").
 #include "kernels.h"
 #include "penumbra/renderer.h"
+#include "shadows/smrt_screen.h"
 #include "shadows/technique.h"
 #include "smrt_march.h"
 
@@ -533,23 +534,7 @@ const TechniqueModule& smrtModule() {
         // Its rays stay in the light's cone; a light without size is the hard test.
         .footprintFollowsLight = true,
         .readsVirtualMaps = true,
-        .visibilityFilter =
-            [](const ParameterValues& p) {
-                return VisibilityFilter{
-                    .radius = static_cast<uint32_t>(p.number("smrt.filter")),
-                    .tolerance = static_cast<float>(p.number("smrt.filterTolerance")),
-                    .cubeRadius = static_cast<uint32_t>(p.number("smrt.cubeFilter")),
-                    .cubeTolerance = static_cast<float>(p.number("smrt.cubeFilterTolerance")),
-                    .wide = static_cast<uint32_t>(p.number("smrt.filterWide")),
-                    .cubeWide = static_cast<uint32_t>(p.number("smrt.cubeFilterWide"))};
-            },
-        .checkerboard =
-            [](const ParameterValues& p) {
-                return Checkerboard{.runs = p.number("smrt.checkerboard") != 0.0,
-                                    .range = static_cast<float>(p.number("smrt.fillRange")),
-                                    .cubeRange =
-                                        static_cast<float>(p.number("smrt.cubeFillRange"))};
-            }};
+        .screenPasses = smrtScreenPasses};
     return module;
 }
 

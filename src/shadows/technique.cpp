@@ -283,10 +283,29 @@ std::string techniquesWhere(bool (*property)(const TechniqueModule&)) {
     return list.empty() ? "none" : list;
 }
 
+std::vector<ScreenPassDecl> screenPassesOf(const TechniqueModule& module,
+                                           const ParameterValues& params) {
+    if (!module.screenPasses)
+        return {};
+    std::vector<ScreenPassDecl> passes = module.screenPasses(params);
+    for (size_t i = 0; i < passes.size(); ++i)
+        PENUMBRA_CHECK(!passes[i].fillsCheckerboard || i == 0,
+                       std::string(module.info.name) + ": a checkerboard's fill comes first");
+    return passes;
+}
+
+const ScreenPassDecl* checkerboardFill(std::span<const ScreenPassDecl> passes) {
+    return !passes.empty() && passes.front().fillsCheckerboard ? &passes.front() : nullptr;
+}
+
+bool drawsLightMaps(const TechniqueModule& module) {
+    return !module.visibilityMaps.empty();
+}
+
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
                         const ParameterValues& params) {
-    if (module.tracesField)
-        return 0; // no shadow map: the field's memory is the scene's (src/render/distance_field.h)
+    if (!drawsLightMaps(module))
+        return 0; // a field's memory is the scene's (src/render/distance_field.h)
     const uint64_t texels = uint64_t{size} * size;
     uint64_t bytes = bytesPerTexel(MapFormat::Depth32) * texels;
     for (const MapDecl& map : module.maps) {
@@ -358,7 +377,7 @@ std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
     constants.push_back(
         {SPEC_FOOTPRINT, module.readsFootprint && module.readsFootprint(params) ? 1u : 0u});
     constants.push_back({SPEC_BLOCKER_SEARCH, module.searchCap ? 1u : 0u});
-    constants.push_back({SPEC_TRACES_FIELD, module.tracesField ? 1u : 0u});
+    constants.push_back({SPEC_TRACES_FIELD, module.tracedField ? 1u : 0u});
     constants.push_back(
         {SPEC_VIRTUAL,
          module.readsVirtualMaps && params.number("virtual.enabled") != 0.0 ? 1u : 0u});

@@ -20,6 +20,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <type_traits>
@@ -181,6 +182,47 @@ struct Checkerboard {
     float rangeFor(uint32_t lightType, bool sized) const;
 };
 
+// How a screen pass uses an image it binds.
+enum class ScreenAccess { Read, Write, ReadWrite };
+// The frame's screen scratch (R32F, one layer per light with shadow views), made when a screen
+// pass binds it.
+inline constexpr std::string_view kScreenScratch = "scratch";
+
+// A screen pass a technique adds after its visibility dispatch: its own compute shader on the
+// layers' pipeline layout (LAYER_*: the G-buffer, the lights' visibility layers, an image at
+// LAYER_RESULTS), dispatched over the image for each light with shadow views. The frame runs
+// the passes a module lists, in order, and asks nothing else about them.
+struct ScreenPassDecl {
+    std::string_view name;   // its row in the pass costs ("visibility": the technique's own)
+    std::string_view shader; // shaders/<shader>
+    ScreenAccess visibility = ScreenAccess::ReadWrite;
+    // At LAYER_RESULTS: kScreenScratch, or (empty) the layers' results (the viewer's
+    // intermediates, a 1x1 stand-in otherwise).
+    std::string_view results;
+    ScreenAccess resultsAccess = ScreenAccess::Write;
+    // Its specialization constants for a light of this type (LIGHT_*) and size.
+    std::vector<SpecConstant> (*constants)(const ParameterValues&, uint32_t lightType,
+                                           bool sized) = nullptr;
+    // Whether it runs for a light of this type (nullptr: for every light).
+    bool (*runsFor)(const ParameterValues&, uint32_t lightType) = nullptr;
+    // Checkerboard tracing (shaders/include/checkerboard.h): the visibility dispatch traces the
+    // even pixels alone; this pass, over their rows, fills the odd ones and lists those it cannot
+    // (at VIS_TRACE_LIST / LAYER_TRACE_LIST), which the visibility pass then traces. The lights
+    // take turns at the one list. At most one such pass, the first; left out when the viewer
+    // asks for intermediates (they need every pixel traced). `parameter`: what turns it off.
+    bool fillsCheckerboard = false;
+    std::string_view parameter;
+};
+
+// The distance field a technique traces (TechniqueModule::tracedField): the keys of the
+// parameters that set it, so that its builder, the device checks and the refusal audit read them
+// through the module (reference/field_refusal.h), never by a technique's name.
+struct DistanceFieldDecl {
+    std::string_view resolutionKey; // voxels on the scene's longest axis (0: automatic)
+    std::string_view thicknessKey;  // open geometry's half-thickness, voxels
+    std::string_view refuseKey;     // the audit's limit against the plain depth test (0: off)
+};
+
 struct TechniqueModule {
     TechniqueInfo info;                     // name, summary, paper, parameter families, rows
     std::vector<ParameterInfo> parameters;  // the technique's own family (`pcf.*`, ...)
@@ -220,11 +262,14 @@ struct TechniqueModule {
 
     // Capabilities: what the frame and the visibility pass do differently for it, as
     // specialization constants (visibilityConstants), never by its name.
-    // It traces the scene's distance field instead of filtering shadow maps (SPEC_TRACES_FIELD;
-    // sdf): the frame draws no shadow map, the scene renderer builds the field (src/render/
-    // distance_field.h) once per scene and field setting, and the technique clips the light at
-    // the receiver's horizon itself.
-    bool tracesField = false;
+    // When set, it traces a signed distance field of the scene instead of filtering shadow maps
+    // (SPEC_TRACES_FIELD; sdf): the scene renderer builds the field (src/render/distance_field.h)
+    // once per scene and setting, and the technique clips the light at the receiver's horizon
+    // itself. Such a module reads no map (visibilityMaps empty), so the frame draws none.
+    std::optional<DistanceFieldDecl> tracedField;
+    // It takes a model's inside from closed, consistently wound surfaces (sdf's field, second-
+    // depth's back faces): the commands warn about scenes with open or mis-wound ones.
+    bool needsClosedSurfaces = false;
     // When set and true, it reads the pixel's footprint in the map (SPEC_FOOTPRINT: the receiver's
     // uvDx, uvDy; vsm.filter=mip).
     bool (*readsFootprint)(const ParameterValues&) = nullptr;
@@ -238,13 +283,9 @@ struct TechniqueModule {
     // that filters whole maps in post passes (blurs, tables) cannot: its passes do not cross
     // pages.
     bool readsVirtualMaps = false;
-    // When set, an edge-aware spatial filter of its visibility runs after its dispatch, before
-    // the layers (visibility_filter.comp; smrt's noise): its radius in pixels (0: none) and its
-    // range tolerance, from the parameters.
-    VisibilityFilter (*visibilityFilter)(const ParameterValues&) = nullptr;
-    // When set and it runs, its visibility is traced on a checkerboard (shaders/include/
-    // checkerboard.h; smrt).
-    Checkerboard (*checkerboard)(const ParameterValues&) = nullptr;
+    // The screen passes it adds after its visibility dispatch, for these parameters, in order
+    // (ScreenPassDecl; smrt's checkerboard fill and its visibility filter).
+    std::vector<ScreenPassDecl> (*screenPasses)(const ParameterValues&) = nullptr;
 };
 
 // The separable Gaussian blur of the blurred-moment techniques (vsm, esm, evsm, msm;
@@ -303,7 +344,18 @@ const TechniqueModule& moduleOf(Technique technique);
 // "hard, pcf, pcss and smrt" (what a message names, never a list written by hand).
 std::string techniquesWhere(bool (*property)(const TechniqueModule&));
 
-// Device memory the technique's maps take per shadow view of size x size texels.
+// The screen passes the module adds for these parameters (none when it declares none).
+std::vector<ScreenPassDecl> screenPassesOf(const TechniqueModule& module,
+                                           const ParameterValues& params);
+// The pass among them that fills a checkerboard (ScreenPassDecl::fillsCheckerboard), if any.
+const ScreenPassDecl* checkerboardFill(std::span<const ScreenPassDecl> passes);
+
+// Whether the frame draws the light's maps for it: a module whose visibility pass reads no map
+// (a distance field's tracer) gets 1x1 stand-ins, only bound.
+bool drawsLightMaps(const TechniqueModule& module);
+
+// Device memory the technique's maps take per shadow view of size x size texels (0 when it draws
+// none).
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
                         const ParameterValues& params);
 // The guard band of a point light's cube faces (cubeFace) or a sun's cascades

@@ -286,13 +286,17 @@ Context::Context(const DeviceOptions& options)
     }
     mPhysical = devices[chosen];
     mInfo = mInstance.describe(mPhysical, static_cast<uint32_t>(chosen), options);
+    VkPhysicalDeviceMaintenance3Properties maintenance3{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
     VkPhysicalDevicePushDescriptorPropertiesKHR push{
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR};
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PUSH_DESCRIPTOR_PROPERTIES_KHR,
+        .pNext = &maintenance3};
     VkPhysicalDeviceProperties2 properties{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
                                            .pNext = &push};
     vkGetPhysicalDeviceProperties2(mPhysical, &properties);
     mProperties = properties.properties;
     mMaxPushDescriptors = push.maxPushDescriptors;
+    mMaxMemoryAllocationSize = maintenance3.maxMemoryAllocationSize;
     vkGetPhysicalDeviceMemoryProperties(mPhysical, &mMemory);
     if (mProperties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
         keepFreedMemory();

@@ -59,6 +59,8 @@ public:
     const VkPhysicalDeviceLimits& limits() const { return mProperties.limits; }
     // Descriptors one push descriptor set may hold (VK_KHR_push_descriptor; at least 32).
     uint32_t maxPushDescriptors() const { return mMaxPushDescriptors; }
+    // The largest single allocation the device promises (Vulkan 1.1; at least 2^30 bytes).
+    VkDeviceSize maxMemoryAllocationSize() const { return mMaxMemoryAllocationSize; }
     const DeviceInfo& info() const { return mInfo; }
     uint32_t validationErrors() const { return mInstance.counters().errors.load(); }
     uint32_t validationWarnings() const { return mInstance.counters().warnings.load(); }
@@ -86,6 +88,7 @@ private:
     VkPhysicalDevice mPhysical = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties mProperties{};
     uint32_t mMaxPushDescriptors = 0;
+    VkDeviceSize mMaxMemoryAllocationSize = 0;
     VkPhysicalDeviceMemoryProperties mMemory{};
     DeviceInfo mInfo;
     VkDevice mDevice = VK_NULL_HANDLE;

@@ -1,6 +1,6 @@
 """Where the shared code names one technique (tools/technique_coupling.py), on a scratch tree:
-what counts as a place, what does not (comments, src/shadows, a field several modules set), and
-the check against the recorded figure."""
+what counts as a place, what does not (comments, src/shadows, a field several modules set, a
+declaration), and the check against the recorded figure."""
 import sys
 from pathlib import Path
 
@@ -12,6 +12,7 @@ MODULE_H = """struct TechniqueModule {
     bool tracesField = false;
     bool modelsLightSize = false;
     double (*searchCap)(const ParameterValues&) = nullptr;
+    std::vector<PassDecl> passes; // declarations: run whoever lists them
 };
 """
 
@@ -23,7 +24,8 @@ def tree(root, files, record=None):
         "src/shadows/technique.h": MODULE_H,
         "src/shadows/hard.cpp": 'const TechniqueModule& hardModule() {\n'
                                 '    static const TechniqueModule m{.info = {.name = "hard"},\n'
-                                '        .tracesField = true, .modelsLightSize = true};\n}\n',
+                                '        .tracesField = true, .modelsLightSize = true,\n'
+                                '        .passes = {PassDecl{}}};\n}\n',
         "src/shadows/msm_soft.cpp": 'const TechniqueModule& msmSoftModule() {\n'
                                     '    static const TechniqueModule m{.info = {.name = '
                                     '"msm-soft"}, .modelsLightSize = true};\n}\n',
@@ -50,6 +52,7 @@ def test_names_and_one_technique_fields_count_comments_and_shared_fields_do_not(
             "   still a comment */ int x = 0;",
             'auto m = "hardly";',                           # not a name: a longer literal
             "const auto& h = hardModule();",                # 4: its module function
+            "for (auto& pass : module.passes) {}",         # declarations one module lists
         ]),
         "src/shadows/b.cpp": "Technique::Hard; module.tracesField;",  # the modules' own folder
         "apps/c.h": 'std::string d = "hard";',              # 5: a name in apps/
