@@ -1,5 +1,5 @@
 #version 460
-// The edge-aware spatial filter of a technique's visibility (TechniqueModule::visibilityFilter;
+// The edge-aware spatial filter of a technique's visibility (smrt's screen passes, src/shadows/smrt_screen.cpp;
 // shaders/include/visibility_filter_weights.h has the weights, src/shadows/visibility_filter.cpp mirrors
 // it), one light's layer a dispatch. SPEC_FILTER_AXIS 0 reads the visibility (LAYER_VISIBILITY)
 // and writes the rows' result to the scratch layer (LAYER_RESULTS); 1 reads the scratch and

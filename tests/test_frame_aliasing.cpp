@@ -133,6 +133,11 @@ TEST_F(FrameTest, TransientsOfDisjointPassesShareMemoryAndEachReadsItsOwn) {
     const Seen moved = runFrame(pool, {.handOut = true, .passFirst = true});
     EXPECT_EQ(pool.creations(), made);
     EXPECT_TRUE(moved.aSharesWithB);
+    // The same images now used beside each other: placed anew, each with its own bytes (each
+    // reads back its own values).
+    const Seen overlapping = runFrame(pool, {.overlap = true, .handOut = true});
+    EXPECT_FALSE(overlapping.aSharesWithB);
+    EXPECT_GT(pool.creations(), made);
     // c copied out beside the others: it may share too (with a, whose passes end before it).
     const Seen inside = runFrame(pool, {.handOut = false});
     EXPECT_TRUE(inside.cShares);

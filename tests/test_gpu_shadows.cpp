@@ -177,6 +177,8 @@ TEST_F(ShadowTest, RefusesSizesPastTheDeviceLimit) {
         } catch (const InputError& e) {
             EXPECT_NE(std::string(e.what()).find("maxStorageBufferRange"), std::string::npos)
                 << e.what();
+            EXPECT_NE(std::string(e.what()).find("set smrt.checkerboard=false"), std::string::npos)
+                << e.what(); // the parameter the fill declares
         }
         o.parameters.set("smrt.checkerboard", "false");
         try {

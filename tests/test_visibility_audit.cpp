@@ -15,6 +15,12 @@ using namespace penumbra::test;
 
 namespace {
 
+// What sdf's refusals name (its module's DistanceFieldDecl, the plain depth test).
+const AuditNames kSdfNames{.technique = "sdf",
+                           .plain = "hard",
+                           .refuseKey = "sdf.refuse",
+                           .resolutionKey = "sdf.resolution"};
+
 constexpr uint32_t kWidth = 256, kHeight = 144; // a grid every 2 pixels: 128 x 72
 
 // Pixels on the plane y = 0 over the sphere's shadow under acceptanceSun, 3.2 x 1.8 units.
@@ -84,13 +90,13 @@ TEST(Audit, ReadsEachCellsCentreAgainstTheRays) {
     EXPECT_NEAR(audit.hardRmse, expectedHard, 0.1 * expectedHard);
     // Two draws of 256 rays differ by about 0.03 RMS in the penumbra only.
     EXPECT_LT(audit.rmse, 0.2 * expectedHard);
-    EXPECT_EQ(auditRefusal(audit, 1.5), "");
+    EXPECT_EQ(auditRefusal(audit, 1.5, kSdfNames), "");
     // The same pictures swapped: the audited one now errs as hard does, against a perfect hard.
     const VisibilityAudit swapped = auditVisibility(v.scene, hard, soft);
     EXPECT_NEAR(swapped.rmse, audit.hardRmse, 1e-9);
     EXPECT_NEAR(swapped.hardRmse, audit.rmse, 1e-9);
-    EXPECT_NE(auditRefusal(swapped, 1.5), "");
-    EXPECT_EQ(auditRefusal(swapped, 0.0), "") << "sdf.refuse=0 never refuses";
+    EXPECT_NE(auditRefusal(swapped, 1.5, kSdfNames), "");
+    EXPECT_EQ(auditRefusal(swapped, 0.0, kSdfNames), "") << "sdf.refuse=0 never refuses";
 }
 
 TEST(Audit, CountsTheShadowLostAndAdded) {
@@ -118,7 +124,7 @@ TEST(Audit, CountsTheShadowLostAndAdded) {
     EXPECT_EQ(right.leaked, 0u);
     EXPECT_EQ(right.acne, 0u);
 
-    const std::string reason = auditRefusal(lit, 1.5);
+    const std::string reason = auditRefusal(lit, 1.5, kSdfNames);
     EXPECT_NE(reason.find("loses 100.0% of the shadowed pixels"), std::string::npos) << reason;
     EXPECT_NE(reason.find("sdf.refuse=0"), std::string::npos) << reason;
     EXPECT_NE(reason.find("sdf.resolution"), std::string::npos) << reason;
@@ -172,19 +178,19 @@ TEST(Audit, CountsOnlyThePixelsTheLightsMaskKeeps) {
 TEST(Audit, RefusesPastTheLimitAndTheSlack) {
     // allowed^2 = (1.5 x 0.02)^2 + 1 / 10000 = 0.001: 0.031623 RMSE.
     VisibilityAudit a{.stride = 3, .pixels = 10000, .rmse = 0.0316, .hardRmse = 0.02};
-    EXPECT_EQ(auditRefusal(a, 1.5), "");
+    EXPECT_EQ(auditRefusal(a, 1.5, kSdfNames), "");
     a.rmse = 0.0317;
-    EXPECT_NE(auditRefusal(a, 1.5), "");
-    EXPECT_EQ(auditRefusal(a, 1.6), ""); // sqrt(0.001024 + 0.0001) = 0.0335
+    EXPECT_NE(auditRefusal(a, 1.5, kSdfNames), "");
+    EXPECT_EQ(auditRefusal(a, 1.6, kSdfNames), ""); // sqrt(0.001024 + 0.0001) = 0.0335
     // Nothing measured: nothing to refuse.
-    EXPECT_EQ(auditRefusal(VisibilityAudit{.rmse = 1.0}, 1.5), "");
+    EXPECT_EQ(auditRefusal(VisibilityAudit{.rmse = 1.0}, 1.5, kSdfNames), "");
     // A view whose hard shadow is exact on the grid (a light without size): one wrong pixel of
     // 4000 is within the slack, two are not.
     VisibilityAudit point{
         .stride = 3, .pixels = 4000, .rmse = std::sqrt(0.99 / 4000), .hardRmse = 0};
-    EXPECT_EQ(auditRefusal(point, 1.5), "");
+    EXPECT_EQ(auditRefusal(point, 1.5, kSdfNames), "");
     point.rmse = std::sqrt(2.0 / 4000);
-    const std::string exact = auditRefusal(point, 1.5);
+    const std::string exact = auditRefusal(point, 1.5, kSdfNames);
     EXPECT_NE(exact.find("its shadow errs where the hard technique's is exact (RMSE 0.0224"),
               std::string::npos)
         << exact;
@@ -194,14 +200,14 @@ TEST(Audit, RefusesALeakOrAcneAsTheGateCountsThem) {
     // A grid every 2 pixels: 250 grid pixels stand for the gate's 1000. 0.3% of 1000 is 3, one
     // pixel allowed besides.
     VisibilityAudit a{.stride = 2, .pixels = 10000, .umbra = 1000, .leaked = 4};
-    EXPECT_EQ(auditRefusal(a, 1.2), "");
+    EXPECT_EQ(auditRefusal(a, 1.2, kSdfNames), "");
     a.leaked = 5;
-    const std::string leak = auditRefusal(a, 1.2);
+    const std::string leak = auditRefusal(a, 1.2, kSdfNames);
     EXPECT_NE(leak.find("it lights 0.50% of the umbra (5 of 1000 pixels)"), std::string::npos)
         << leak;
-    EXPECT_EQ(auditRefusal(a, 0.0), "") << "sdf.refuse=0 never refuses";
+    EXPECT_EQ(auditRefusal(a, 0.0, kSdfNames), "") << "sdf.refuse=0 never refuses";
     a.umbra = 249, a.leaked = 100; // too few for the leak's rule, as the gate's 1000, ...
-    const std::string settled = auditRefusal(a, 1.2);
+    const std::string settled = auditRefusal(a, 1.2, kSdfNames);
     EXPECT_EQ(settled.find("it lights"), std::string::npos) << settled;
     // ... but 40% of what lies away from edges: the pixels there count however few they are.
     EXPECT_NE(settled.find("it reads 40.16% of the pixels away from shadow edges on the wrong side "
@@ -209,19 +215,19 @@ TEST(Audit, RefusesALeakOrAcneAsTheGateCountsThem) {
               std::string::npos)
         << settled;
     a.fullyLit = 33000; // 0.3% of 33249 is 99.7, one pixel besides: within
-    EXPECT_EQ(auditRefusal(a, 1.2), "");
+    EXPECT_EQ(auditRefusal(a, 1.2, kSdfNames), "");
     a.leaked = 101;
-    EXPECT_NE(auditRefusal(a, 1.2), "");
+    EXPECT_NE(auditRefusal(a, 1.2, kSdfNames), "");
     a.leaked = 100;
     a.umbra = 250;
-    EXPECT_NE(auditRefusal(a, 1.2), "");
+    EXPECT_NE(auditRefusal(a, 1.2, kSdfNames), "");
     a.stride = 3; // 1000 / 9 = 111 grid pixels suffice
     a.umbra = 112, a.leaked = 2;
-    EXPECT_NE(auditRefusal(a, 1.2), "");
+    EXPECT_NE(auditRefusal(a, 1.2, kSdfNames), "");
     VisibilityAudit acne{.stride = 2, .pixels = 10000, .fullyLit = 2000, .acne = 7};
-    EXPECT_EQ(auditRefusal(acne, 1.2), "");
+    EXPECT_EQ(auditRefusal(acne, 1.2, kSdfNames), "");
     acne.acne = 8;
-    const std::string dark = auditRefusal(acne, 1.2);
+    const std::string dark = auditRefusal(acne, 1.2, kSdfNames);
     EXPECT_NE(dark.find("it darkens 0.40% of the fully lit pixels (8 of 2000)"), std::string::npos)
         << dark;
 }

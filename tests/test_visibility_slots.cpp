@@ -94,3 +94,71 @@ TEST(VisibilitySlots, TooManyMapsOrAnUndeclaredOneIsAProgrammerError) {
     EXPECT_DEATH(visibilitySlots(mapsOnly({"a", "e"}), ParameterValues{}),
                  "reads a map it does not declare: e");
 }
+
+// Screen passes (ScreenPassDecl): every registered module's run as declared; one the frame
+// cannot run is refused where the module is read, not when a frame is built.
+namespace {
+
+ScreenPassDecl screenPass(bool fills, std::string_view parameter = "x",
+                          std::string_view results = {}) {
+    ScreenPassDecl pass;
+    pass.name = "pass";
+    pass.shader = "pass.comp";
+    pass.results = results;
+    pass.fillsCheckerboard = fills;
+    pass.parameter = parameter;
+    return pass;
+}
+
+std::vector<ScreenPassDecl> fillSecond(const ParameterValues&) {
+    std::vector<ScreenPassDecl> passes;
+    passes.push_back(screenPass(false));
+    passes.push_back(screenPass(true));
+    return passes;
+}
+std::vector<ScreenPassDecl> fillUnnamed(const ParameterValues&) {
+    return std::vector<ScreenPassDecl>(1, screenPass(true, ""));
+}
+std::vector<ScreenPassDecl> fillChoosy(const ParameterValues&) {
+    ScreenPassDecl pass = screenPass(true);
+    pass.runsFor = [](const ParameterValues&, uint32_t) { return false; };
+    return std::vector<ScreenPassDecl>(1, pass);
+}
+std::vector<ScreenPassDecl> resultsElsewhere(const ParameterValues&) {
+    return std::vector<ScreenPassDecl>(1, screenPass(false, "x", "rows"));
+}
+std::vector<ScreenPassDecl> fillThenScratch(const ParameterValues&) {
+    std::vector<ScreenPassDecl> passes;
+    passes.push_back(screenPass(true));
+    passes.push_back(screenPass(false, "x", kScreenScratch));
+    return passes;
+}
+
+TechniqueModule withScreenPasses(std::vector<ScreenPassDecl> (*passes)(const ParameterValues&)) {
+    return {.info = {.name = "scratch"}, .screenPasses = passes};
+}
+
+} // namespace
+
+TEST(ScreenPasses, EveryModulesAreSoundAndBadDeclarationsAreProgrammerErrors) {
+    for (const TechniqueModule* m : allModules()) {
+        const std::vector<ScreenPassDecl> passes = screenPassesOf(*m, ParameterValues{});
+        const ScreenPassDecl* fill = checkerboardFill(passes);
+        EXPECT_TRUE(fill == nullptr || fill == &passes.front()) << m->info.name;
+    }
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(screenPassesOf(withScreenPasses(fillSecond), ParameterValues{}),
+                 "a checkerboard's fill comes first");
+    EXPECT_DEATH(screenPassesOf(withScreenPasses(fillUnnamed), ParameterValues{}),
+                 "names its parameter");
+    EXPECT_DEATH(screenPassesOf(withScreenPasses(fillChoosy), ParameterValues{}),
+                 "runs for every light");
+    EXPECT_DEATH(screenPassesOf(withScreenPasses(resultsElsewhere), ParameterValues{}),
+                 "does not make: rows");
+    // A fill first, then a pass on the scratch: sound, and the fill is found.
+    const std::vector<ScreenPassDecl> passes =
+        screenPassesOf(withScreenPasses(fillThenScratch), ParameterValues{});
+    ASSERT_EQ(passes.size(), 2u);
+    EXPECT_EQ(checkerboardFill(passes), &passes[0]);
+    EXPECT_EQ(checkerboardFill(std::span(passes).subspan(1)), nullptr);
+}

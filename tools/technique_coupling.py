@@ -8,7 +8,7 @@ include/) that do:
 - name a technique: `Technique::Sdf`, a string literal that is a technique's name ("pcss") or
   one of its own parameter keys ("pcss.maxRadius"), a module function (`smrtModule()`);
 - read a one-technique capability: a TechniqueModule field that exactly one module of
-  src/shadows sets (`.checkerboard`, `.distanceField`, ...). A list of declarations (a field
+  src/shadows sets (`.tracedField`, `.searchCap`, ...). A list of declarations (a field
   of type `std::vector<...Decl>`: `maps`, `depthPasses`, `postPasses`) is not a capability:
   the frame runs the passes any module lists there, with the module's own shaders, without
   asking which one did.

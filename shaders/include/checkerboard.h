@@ -1,4 +1,4 @@
-// Checkerboard tracing of a technique's visibility (TechniqueModule::checkerboard; smrt),
+// Checkerboard tracing of a technique's visibility (ScreenPassDecl::fillsCheckerboard; smrt),
 // compiled as GLSL and as C++ (the CPU mirror, src/shadows/checkerboard_fill.cpp). The visibility
 // pass traces the pixels whose x + y is even (CHECKERBOARD_EVEN: a dispatch half the image high,
 // every lane a pixel); visibility_fill.comp gives each other pixel the mean of its four traced

@@ -35,7 +35,11 @@ void refuseUnheldField(SceneRenderer& renderer, const RenderOptions& options,
                          techniqueName(kDefaultTechnique), audit.hardRmse, audit.pixels,
                          audit.stride, 100.0 * audit.lost, 100.0 * audit.added, audit.leaked,
                          audit.umbra, audit.acne, audit.fullyLit));
-    const std::string reason = auditRefusal(audit, limit);
+    const std::string reason = auditRefusal(audit, limit,
+                                            {.technique = techniqueName(options.technique),
+                                             .plain = techniqueName(kDefaultTechnique),
+                                             .refuseKey = declared->refuseKey,
+                                             .resolutionKey = declared->resolutionKey});
     if (!reason.empty())
         throw InputError(lit.name, reason);
 }

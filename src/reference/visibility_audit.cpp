@@ -88,7 +88,7 @@ VisibilityAudit auditVisibility(const Scene& lit, const RenderResult& result,
     return audit;
 }
 
-std::string auditRefusal(const VisibilityAudit& audit, double limit) {
+std::string auditRefusal(const VisibilityAudit& audit, double limit, const AuditNames& names) {
     if (limit <= 0.0 || audit.pixels == 0)
         return {};
     const double allowed = std::sqrt(limit * audit.hardRmse * limit * audit.hardRmse +
@@ -99,13 +99,14 @@ std::string auditRefusal(const VisibilityAudit& audit, double limit) {
     };
     std::string why;
     if (audit.rmse > allowed && audit.hardRmse > 0.0)
-        why = fmt::format("its shadow errs {:.2f}x as much as the hard technique's (RMSE {:.4f} "
-                          "against {:.4f}; sdf.refuse={} allows {:.4f})",
-                          audit.rmse / audit.hardRmse, audit.rmse, audit.hardRmse, limit, allowed);
+        why = fmt::format("its shadow errs {:.2f}x as much as the {} technique's (RMSE {:.4f} "
+                          "against {:.4f}; {}={} allows {:.4f})",
+                          audit.rmse / audit.hardRmse, names.plain, audit.rmse, audit.hardRmse,
+                          names.refuseKey, limit, allowed);
     else if (audit.rmse > allowed)
-        why = fmt::format("its shadow errs where the hard technique's is exact (RMSE {:.4f}; "
-                          "sdf.refuse={} allows {:.4f})",
-                          audit.rmse, limit, allowed);
+        why = fmt::format("its shadow errs where the {} technique's is exact (RMSE {:.4f}; "
+                          "{}={} allows {:.4f})",
+                          names.plain, audit.rmse, names.refuseKey, limit, allowed);
     // Away from edges, every pixel counts however few rest on the umbra (a wide sun's field that
     // lost a third of a small shadow, kept by its RMSE since hard's was as large).
     const uint64_t settled = audit.umbra + audit.fullyLit, wrong = audit.leaked + audit.acne;
@@ -125,11 +126,11 @@ std::string auditRefusal(const VisibilityAudit& audit, double limit) {
     if (why.empty())
         return {};
     return fmt::format(
-        "sdf refuses this view: {}, over {} pixels of a grid every {} pixels, checked with rays; "
+        "{} refuses this view: {}, over {} pixels of a grid every {} pixels, checked with rays; "
         "its field loses {:.1f}% of the shadowed pixels and darkens {:.1f}% of the lit ones, its "
-        "voxels too coarse for these casters: raise sdf.resolution, or set sdf.refuse=0 to "
-        "render it anyway",
-        why, audit.pixels, audit.stride, 100.0 * audit.lost, 100.0 * audit.added);
+        "voxels too coarse for these casters: raise {}, or set {}=0 to render it anyway",
+        names.technique, why, audit.pixels, audit.stride, 100.0 * audit.lost, 100.0 * audit.added,
+        names.resolutionKey, names.refuseKey);
 }
 
 } // namespace penumbra

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace penumbra {
@@ -59,10 +60,16 @@ inline constexpr double kAuditLeastPixels = 1000.0;
 // field whose RMSE hard's large error hides (a wide sun) is refused.
 inline constexpr double kAuditSettledShare = 0.003;
 
-// Why the sdf technique refuses the view (the problem, the figures, what to change), or empty
-// when its RMSE^2 <= (limit x hard's)^2 + kAuditSlackPixels / pixels, neither its leak nor its
-// acne passes kAuditSpotShare and both together do not pass kAuditSettledShare. limit 0: never
-// refuses.
-std::string auditRefusal(const VisibilityAudit& audit, double limit);
+// What a refusal names: the tracing technique, the plain one it is measured against, and the
+// keys of its limit and its field's resolution (shadows::DistanceFieldDecl).
+struct AuditNames {
+    std::string_view technique, plain, refuseKey, resolutionKey;
+};
+
+// Why the tracing technique refuses the view (the problem, the figures, what to change), or
+// empty when its RMSE^2 <= (limit x the plain one's)^2 + kAuditSlackPixels / pixels, neither its
+// leak nor its acne passes kAuditSpotShare and both together do not pass kAuditSettledShare.
+// limit 0: never refuses.
+std::string auditRefusal(const VisibilityAudit& audit, double limit, const AuditNames& names);
 
 } // namespace penumbra

@@ -18,9 +18,9 @@ namespace target {
 inline constexpr std::string_view kGBufferDepth = "gbuffer.depth"; // reverse-Z, D32
 inline constexpr std::string_view kGBufferNormal = "gbuffer.normal";
 inline constexpr std::string_view kGBufferAlbedo = "gbuffer.albedo";
-inline constexpr std::string_view kVisibility = "visibility";        // R32F, a layer per light
-inline constexpr std::string_view kIntermediates = "intermediates";  // RGBA32F (1x1 unless asked)
-inline constexpr std::string_view kScreenScratch = "screen.scratch"; // R32F, as visibility
+inline constexpr std::string_view kVisibility = "visibility";       // R32F, a layer per light
+inline constexpr std::string_view kIntermediates = "intermediates"; // RGBA32F (1x1 unless asked)
+inline constexpr std::string_view kScreenScratch = shadows::kScreenScratch; // R32F, as visibility
 inline constexpr std::string_view kLayerResults = "layer.results";   // R32F (1x1 unless asked)
 inline constexpr std::string_view kColor = "color";                  // RGBA8, sRGB-encoded values
 inline constexpr std::string_view kPosition = "export.position";     // RGBA32F, for the host

@@ -4,9 +4,9 @@
 // its filter as "filter"), and then by each enabled layer (one dispatch of the layer's shader,
 // timed under the layer's name), which multiplies into the light's visibility layer. The composite
 // shades every pixel from the lights' layers: fused into the last light's visibility dispatch
-// ("composite", composite.fused) when no layer runs after it, else composite.comp on its own.
+// ("composite", composite.fused) when no screen pass or layer runs after it, else composite.comp
+// on its own.
 #include "checkerboard.h"
-#include "penumbra/error.h"
 #include "render/frame.h"
 #include "render/pass_utils.h"
 #include "vk/pipelines.h"
@@ -111,11 +111,8 @@ Access accessOf(shadows::ScreenAccess access) {
     return Access::ComputeReadWrite;
 }
 
-// What a screen pass binds at LAYER_RESULTS.
+// What a screen pass binds at LAYER_RESULTS (shadows::screenPassesOf checked it is one of these).
 ResourceId resultsOf(const FrameResources& r, const shadows::ScreenPassDecl& pass) {
-    PENUMBRA_CHECK(pass.results.empty() || pass.results == shadows::kScreenScratch,
-                   "a screen pass binds an image the frame does not make: " +
-                       std::string(pass.results));
     return pass.results == shadows::kScreenScratch ? r.screenScratch : r.layerResults;
 }
 

@@ -288,9 +288,19 @@ std::vector<ScreenPassDecl> screenPassesOf(const TechniqueModule& module,
     if (!module.screenPasses)
         return {};
     std::vector<ScreenPassDecl> passes = module.screenPasses(params);
-    for (size_t i = 0; i < passes.size(); ++i)
-        PENUMBRA_CHECK(!passes[i].fillsCheckerboard || i == 0,
-                       std::string(module.info.name) + ": a checkerboard's fill comes first");
+    const std::string name(module.info.name);
+    for (size_t i = 0; i < passes.size(); ++i) {
+        const ScreenPassDecl& pass = passes[i];
+        PENUMBRA_CHECK(pass.results.empty() || pass.results == kScreenScratch,
+                       name + ": a screen pass binds an image the frame does not make: " +
+                           std::string(pass.results));
+        if (!pass.fillsCheckerboard)
+            continue;
+        PENUMBRA_CHECK(i == 0, name + ": a checkerboard's fill comes first");
+        PENUMBRA_CHECK(!pass.parameter.empty() && !pass.runsFor,
+                       name +
+                           ": a checkerboard's fill names its parameter and runs for every light");
+    }
     return passes;
 }
 

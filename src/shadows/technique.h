@@ -186,7 +186,7 @@ struct Checkerboard {
 enum class ScreenAccess { Read, Write, ReadWrite };
 // The frame's screen scratch (R32F, one layer per light with shadow views), made when a screen
 // pass binds it.
-inline constexpr std::string_view kScreenScratch = "scratch";
+inline constexpr std::string_view kScreenScratch = "screen.scratch";
 
 // A screen pass a technique adds after its visibility dispatch: its own compute shader on the
 // layers' pipeline layout (LAYER_*: the G-buffer, the lights' visibility layers, an image at
@@ -209,7 +209,8 @@ struct ScreenPassDecl {
     // even pixels alone; this pass, over their rows, fills the odd ones and lists those it cannot
     // (at VIS_TRACE_LIST / LAYER_TRACE_LIST), which the visibility pass then traces. The lights
     // take turns at the one list. At most one such pass, the first; left out when the viewer
-    // asks for intermediates (they need every pixel traced). `parameter`: what turns it off.
+    // asks for intermediates (they need every pixel traced); it runs for every light (no
+    // `runsFor`). `parameter`: what turns it off (the messages name it).
     bool fillsCheckerboard = false;
     std::string_view parameter;
 };
@@ -344,7 +345,9 @@ const TechniqueModule& moduleOf(Technique technique);
 // "hard, pcf, pcss and smrt" (what a message names, never a list written by hand).
 std::string techniquesWhere(bool (*property)(const TechniqueModule&));
 
-// The screen passes the module adds for these parameters (none when it declares none).
+// The screen passes the module adds for these parameters (none when it declares none); a
+// declaration the frame cannot run (a fill not first, without its parameter or choosing its
+// lights, an image at LAYER_RESULTS the frame does not make) is a programmer error.
 std::vector<ScreenPassDecl> screenPassesOf(const TechniqueModule& module,
                                            const ParameterValues& params);
 // The pass among them that fills a checkerboard (ScreenPassDecl::fillsCheckerboard), if any.
