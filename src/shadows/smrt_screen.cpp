@@ -21,6 +21,19 @@ bool filters(const ParameterValues& p, uint32_t lightType) {
     return smrtVisibilityFilter(p).radiusFor(lightType) > 0;
 }
 
+// The filter's pass along one axis: rows read the visibility layer into the scratch, columns
+// read the scratch back into the layer.
+template <uint32_t axis>
+ScreenPassDecl filterPass() {
+    return {.name = "filter",
+            .shader = "visibility_filter.comp",
+            .visibility = axis == 0 ? ScreenAccess::ReadWrite : ScreenAccess::Write,
+            .results = kScreenScratch,
+            .resultsAccess = axis == 0 ? ScreenAccess::Write : ScreenAccess::Read,
+            .constants = filterConstants<axis>,
+            .runsFor = filters};
+}
+
 std::vector<SpecConstant> fillConstants(const ParameterValues& p, uint32_t lightType, bool sized) {
     return {
         {SPEC_FILL_RANGE, std::bit_cast<uint32_t>(smrtCheckerboard(p).rangeFor(lightType, sized))}};
@@ -57,20 +70,8 @@ std::vector<ScreenPassDecl> smrtScreenPasses(const ParameterValues& p) {
                           .parameter = "smrt.checkerboard"});
     // The filter: rows from the visibility layer into the scratch, columns back.
     if (smrtVisibilityFilter(p).runs()) {
-        passes.push_back({.name = "filter",
-                          .shader = "visibility_filter.comp",
-                          .visibility = ScreenAccess::ReadWrite,
-                          .results = kScreenScratch,
-                          .resultsAccess = ScreenAccess::Write,
-                          .constants = filterConstants<0>,
-                          .runsFor = filters});
-        passes.push_back({.name = "filter",
-                          .shader = "visibility_filter.comp",
-                          .visibility = ScreenAccess::Write,
-                          .results = kScreenScratch,
-                          .resultsAccess = ScreenAccess::Read,
-                          .constants = filterConstants<1>,
-                          .runsFor = filters});
+        passes.push_back(filterPass<0>());
+        passes.push_back(filterPass<1>());
     }
     return passes;
 }
