@@ -144,6 +144,18 @@ TEST_F(FrameTest, TransientsOfDisjointPassesShareMemoryAndEachReadsItsOwn) {
     EXPECT_EQ(3 * inside.bytes.shared, inside.bytes.separate);
 }
 
+// An image the driver requires memory of its own for (VkMemoryDedicatedRequirements; stood in
+// for here, since lavapipe asks it of none) is never placed in shared memory: it is made alone
+// and reads back its own values, and the others still share.
+TEST_F(FrameTest, AnImageThatNeedsItsOwnMemoryIsNeverShared) {
+    ResourcePool pool(sharedRenderer().context());
+    pool.needsOwnMemory = [](const vk::ImageDesc& desc) { return desc.name == "b"; };
+    const Seen seen = runFrame(pool, {.handOut = false});
+    EXPECT_FALSE(seen.aSharesWithB);
+    EXPECT_TRUE(seen.cShares) << "a and c still share";
+    EXPECT_EQ(2 * seen.bytes.shared, seen.bytes.separate) << "b counted with neither";
+}
+
 TEST_F(FrameTest, TransientsWhosePassesOverlapOrThatLeaveTheFrameKeepTheirOwnBytes) {
     ResourcePool pool(sharedRenderer().context());
     const Seen overlapping = runFrame(pool, {.overlap = true, .handOut = true});

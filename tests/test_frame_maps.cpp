@@ -146,7 +146,7 @@ TEST_F(FrameTest, ATechniquesMapWithHistoryIsReadByItsPreviousName) {
                  {.name = "kept", .format = shadows::MapFormat::R32F, .history = true}},
         .visibilityMaps = {"kept", "kept (previous)"}};
     const ParameterValues defaults;
-    const std::vector<render::ImageDecl> decls = render::shadowMapDecls(module, defaults);
+    const std::vector<render::ImageDecl> decls = render::shadowMapDecls(module, defaults, {});
     ASSERT_EQ(decls.size(), 3u);
     EXPECT_EQ(decls[1].lifetime, render::Lifetime::PerFrame);
     EXPECT_EQ(decls[2].lifetime, render::Lifetime::History);

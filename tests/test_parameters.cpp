@@ -324,24 +324,26 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     poisson.assign("pcf.filter=poisson");
     poisson.assign("pcf.radius=6");
     const auto pcf = shadows::visibilityConstants(shadows::pcfModule(), poisson);
-    ASSERT_EQ(pcf.size(), 10u);
+    ASSERT_EQ(pcf.size(), 7u);
     EXPECT_EQ(pcf[4].id, uint32_t{SPEC_ADAPTIVE_BIAS}); // every technique's: bias.mode
     EXPECT_EQ(pcf[4].value, ParameterValues().number("bias.mode") == BIAS_ADAPTIVE ? 1u : 0u);
-    // Then the capabilities, then the module's own.
-    EXPECT_EQ(pcf[5].id, uint32_t{SPEC_FOOTPRINT});
-    EXPECT_EQ(pcf[6].id, uint32_t{SPEC_BLOCKER_SEARCH});
-    EXPECT_EQ(pcf[7].id, uint32_t{SPEC_TRACES_FIELD});
-    EXPECT_EQ(pcf[8].id, uint32_t{SPEC_VIRTUAL});
-    EXPECT_EQ(pcf[8].value, 0u);
-    EXPECT_EQ(pcf[9].id, uint32_t{SPEC_FILTER});
-    EXPECT_EQ(pcf[9].value, uint32_t{FILTER_POISSON});
-    // Each capability is the module's own declaration, and only the modules that need one have
-    // it: the footprint (vsm.filter=mip), the blocker search across cascades (pcss), the field.
+    // Then virtual maps, then the module's own.
+    EXPECT_EQ(pcf[5].id, uint32_t{SPEC_VIRTUAL});
+    EXPECT_EQ(pcf[5].value, 0u);
+    EXPECT_EQ(pcf[6].id, uint32_t{SPEC_FILTER});
+    EXPECT_EQ(pcf[6].value, uint32_t{FILTER_POISSON});
+    // Each capability is the module's own constant, and only the modules that need one set it:
+    // the footprint (vsm.filter=mip), the blocker search across cascades (pcss), the field. A
+    // constant left out is the shader's default, false; none is set twice.
     auto capability = [](const shadows::TechniqueModule& m, const ParameterValues& p, int id) {
+        uint32_t value = 0, seen = 0;
         for (const shadows::SpecConstant& c : shadows::visibilityConstants(m, p))
-            if (c.id == uint32_t(id))
-                return c.value;
-        return ~0u;
+            if (c.id == uint32_t(id)) {
+                value = c.value;
+                ++seen;
+            }
+        EXPECT_LE(seen, 1u) << m.info.name << " sets constant " << id << " twice";
+        return value;
     };
     ParameterValues mipmapped;
     mipmapped.assign("vsm.filter=mip");
@@ -364,12 +366,13 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
                                            m == &shadows::pcssModule() ||
                                            m == &shadows::smrtModule())
             << m->info.name;
-        // The shared settings carry the blocker search's cap where there is one, else 0.
+        // The shared settings carry the blocker search's cap where there is one (the searching
+        // members), else 0.
         const shadows::FilterSettings s = shadows::filterSettings(*m, defaults, false, 8);
+        const bool searches = m == &shadows::pcssModule() || m == &shadows::vssmModule() ||
+                              m == &shadows::msmSoftModule();
         EXPECT_EQ(s.frame.filterLimits.x,
-                  m == &shadows::pcssModule()
-                      ? static_cast<float>(defaults.number("pcss.maxRadius"))
-                      : 0.0f)
+                  searches ? static_cast<float>(defaults.number(m->blockerSearchKey)) : 0.0f)
             << m->info.name;
     }
     poisson.assign("bias.mode=adaptive");
@@ -386,7 +389,15 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
     EXPECT_EQ(shadows::pcfModule().blurRadiusTexels(box), 1.0);
     EXPECT_EQ(shadows::pcssModule().blurRadiusTexels(box), 41.0); // pcss.maxRadius 40
     EXPECT_EQ(shadows::hardModule().blurRadiusTexels(box), 0.5);
-    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 9u);
+    EXPECT_EQ(shadows::visibilityConstants(shadows::hardModule(), poisson).size(), 6u);
+    // A module's constant may not set what the shared ones set (the pipeline would see it twice).
+    shadows::TechniqueModule clashing = shadows::hardModule();
+    clashing.constants = [](const ParameterValues&) {
+        return std::vector<shadows::SpecConstant>{{SPEC_FOOTPRINT, 1u}, {SPEC_VIRTUAL, 1u}};
+    };
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(shadows::visibilityConstants(clashing, poisson),
+                 "hard sets a shared specialization constant, id " + std::to_string(SPEC_VIRTUAL));
     // The summed-area members' memory: two RG32UI maps (savsm, vssm) or two RGBA32UI maps
     // (msm-soft) beside the depth; their fixed-point scales keep the widest box exact.
     EXPECT_EQ(shadows::shadowMapBytes(shadows::vssmModule(), 16, defaults), (4u + 16u) * 16 * 16);
@@ -487,9 +498,11 @@ TEST(TechniqueModules, CubeGuardBandsHoldEveryKernel) {
     // What the visibility pass reads around a receiver: one texel at least, a search's cap where
     // it reaches past the footprint.
     EXPECT_EQ(shadows::readReachTexels(shadows::hardModule(), ParameterValues{}), 1.0);
-    shadows::TechniqueModule searching = shadows::pcssModule();
-    searching.searchCap = [](const ParameterValues&) { return 300.0; };
-    EXPECT_EQ(shadows::readReachTexels(searching, wide), 300.0);
+    shadows::TechniqueModule searching = shadows::pcssModule(); // a search past its footprint
+    searching.blurRadiusTexels = [](const ParameterValues&) { return 20.0; };
+    EXPECT_EQ(shadows::readReachTexels(searching, wide), 100.0);
+    EXPECT_EQ(shadows::searchCapTexels(searching, wide), 100.0);
+    EXPECT_EQ(shadows::searchCapTexels(shadows::pcfModule(), wide), 0.0) << "no search";
     const ParameterValues defaults;
     for (const shadows::TechniqueModule* m : {&shadows::vssmModule(), &shadows::msmSoftModule()}) {
         EXPECT_EQ(shadows::viewGuardTexels(*m, defaults), 65u + 2u + 1u) << m->info.name;

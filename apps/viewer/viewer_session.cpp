@@ -91,7 +91,7 @@ void ViewerSession::drawInterface() {
 }
 
 SceneRenderer::FrameState ViewerSession::frameState() const {
-    return {.camera = mCamera.camera(), .lights = mState.lights};
+    return {.camera = mCamera.camera(), .lights = mState.lights, .cut = mCut};
 }
 
 // The interface's options when this device can render them; else the last that could, with the
@@ -122,6 +122,7 @@ void ViewerSession::update(const CameraInput& input, float seconds, DisplayPass&
         mCamera.reset(index < 0 ? mScene.camera("") : mScene.cameras[index]);
         mState.sceneCamera = index;
         mState.takeSceneCamera.reset();
+        mCut = true; // a jump, not a move: temporal history would blend two views
     }
     mCamera.update(input, mState.cameraMode);
     if (mState.truthRequested) {
@@ -299,6 +300,7 @@ void ViewerSession::record(FrameSlot& slot, uint64_t frame, DisplayPass& display
                 .outputs;
         slot.timedB = true;
     }
+    mCut = false; // both techniques' frames saw it
     display.record(slot.cmd, *liveA.outputs, outputsB, displayPush(a.width));
 }
 

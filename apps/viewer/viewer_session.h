@@ -55,6 +55,7 @@ private:
     bool mErrorShown = false;
     bool mPagesShown = false;
     bool mScripted = false; // --frames: no one is watching, frames wait for slow work
+    bool mCut = false;      // a scene camera taken: the next frame's history starts again
 };
 
 } // namespace penumbra::viewer

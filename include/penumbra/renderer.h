@@ -291,6 +291,9 @@ public:
         std::optional<Camera> camera;
         std::optional<std::vector<Light>> lights;
         std::optional<Camera> shadowCamera;
+        // The view jumped (a camera cut): last frame's versions of every history resource hold
+        // nothing from this frame on (a temporal pass starts again rather than blend across it).
+        bool cut = false;
     };
     RenderResult render(const RenderOptions& options, const FrameState& state,
                         const ProgressFn& progress = {});

@@ -43,7 +43,10 @@ struct FieldPush {       // push constants of the distance field's build passes
 };
 
 struct PostPassPush {    // push constants of every shadow-map post pass
-    uvec4 size;          // xy: the shadow map's size in texels, z: the view (ShadowViewData)
+    uvec4 size;          // xy: the shadow map's size in texels, z: the view (ShadowViewData),
+                         // w: a mip chain's level; else bit i set where input i is last
+                         // frame's version of a map and holds last frame's contents (clear:
+                         // zeros; docs/architecture.md, "History")
 };
 
 struct CasterPush {      // push constants of shadow_mask.frag and shadow_peel.frag

@@ -88,7 +88,8 @@ std::vector<glm::vec4> Renderer::probeTechnique(Technique technique, const Param
     render::ResourcePool pool(ctx);
     render::FrameGraph graph(pool, {.shadowMapSize = size, .shadowViews = 1});
     render::FrameResources r;
-    std::vector<render::ImageDecl> maps = render::shadowMapDecls(module, params);
+    std::vector<render::ImageDecl> maps =
+        render::shadowMapDecls(module, params, {});        // one frame: no history
     maps.front().usage |= VK_IMAGE_USAGE_TRANSFER_DST_BIT; // the given depths go in by a copy
     r.depthMap = graph.declare(maps.front());
     if (derived)

@@ -37,7 +37,7 @@ ResourceId FrameResources::named(const shadows::TechniqueModule& module,
 FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const FrameInputs& in) {
     FrameResources r;
     // The technique's maps of every shadow view (a technique that draws none binds 1x1 ones).
-    std::vector<ImageDecl> maps = shadowMapDecls(*s.technique, *s.params);
+    std::vector<ImageDecl> maps = shadowMapDecls(*s.technique, *s.params, s.views);
     // only bound: nothing lost between frames
     const bool drawsNoMap = !shadows::drawsLightMaps(*s.technique);
     if (drawsNoMap)

@@ -67,7 +67,8 @@ ImageDecl screen(std::string_view name, VkFormat format, VkImageUsageFlags usage
 } // namespace
 
 std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
-                                      const ParameterValues& params) {
+                                      const ParameterValues& params,
+                                      std::span<const ShadowView> views) {
     if (module.readsVirtualMaps && params.number("virtual.enabled") != 0.0) {
         const auto pool = static_cast<uint32_t>(params.number("virtual.poolSize"));
         const auto page = static_cast<uint32_t>(params.number("virtual.pageSize"));
@@ -82,10 +83,29 @@ std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
                  .key = (uint64_t{pool} << 32) | page}};
     }
     std::vector<ImageDecl> decls{viewMap(shadows::kDepthMap, shadows::MapFormat::Depth32, false)};
-    for (const shadows::MapDecl& map : module.maps)
+    for (const shadows::MapDecl& map : module.maps) {
         decls.push_back(viewMap(map.name, shadows::formatOf(map, params),
                                 shadows::mipmappedOf(map, params), map.shrink, map.history));
+        if (map.history)
+            decls.back().key = historyKeyOf(views);
+    }
     return decls;
+}
+
+uint64_t historyKeyOf(std::span<const ShadowView> views) {
+    uint64_t hash = 14695981039346656037ull; // 64-bit FNV-1a over each view's bytes that place it
+    auto add = [&hash](const void* data, size_t bytes) {
+        for (size_t i = 0; i < bytes; ++i) {
+            hash ^= static_cast<const unsigned char*>(data)[i];
+            hash *= 1099511628211ull;
+        }
+    };
+    for (const ShadowView& view : views) {
+        add(&view.light, sizeof view.light);
+        add(&view.projection.perspective, sizeof view.projection.perspective);
+        add(&view.projection.viewProj, sizeof view.projection.viewProj);
+    }
+    return hash;
 }
 
 std::vector<ImageDecl> screenDecls(bool intermediates) {
@@ -168,7 +188,7 @@ BufferDecl ReadbackLayout::decl() const {
 TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterValues& params,
                         const FrameSizes& sizes) {
     TargetBytes bytes{0, 0};
-    for (const ImageDecl& decl : shadowMapDecls(module, params))
+    for (const ImageDecl& decl : shadowMapDecls(module, params, {})) // bytes: keys aside
         bytes.shadowMaps += ResourcePool::bytesOf(decl, sizes);
     for (const ImageDecl& decl : screenDecls(false))
         bytes.screen += ResourcePool::bytesOf(decl, sizes);

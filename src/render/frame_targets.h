@@ -7,6 +7,8 @@
 #include "render/resource_pool.h"
 #include "shadows/technique.h"
 
+#include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -59,15 +61,20 @@ VkFormat formatOf(shadows::MapFormat format);
 // depth map and the module's maps (a layer per view; with virtual.enabled, the physical pool in
 // the depth map's place, one layer, its contents kept across frames), the G-buffer, visibility, the
 // intermediates (full size for the viewer's `intermediates`, else 1x1), colour and the export
-// images. The map declarations alone: shadowMapDecls.
+// images. The map declarations alone: shadowMapDecls; the maps kept with history are keyed by
+// `views` (historyKeyOf).
 std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
-                                      const ParameterValues& params);
+                                      const ParameterValues& params,
+                                      std::span<const ShadowView> views);
 std::vector<ImageDecl> screenDecls(bool intermediates);
 // Bound where the technique's filtered map holds floats (TECH_TABLE): never written, never read.
 ImageDecl integerPlaceholderDecl();
 // Bound at TECH_COMPARE for a technique that reads no depth map: never written, never read.
 ImageDecl depthPlaceholderDecl();
-ImageDecl depthPlaceholderDecl();
+// The invalidation key of the maps a technique keeps with history (MapDecl::history): the views'
+// projections, so that last frame's version holds its contents only while every view projects
+// as it did (a moved light or a re-fitted cascade drops it: its texels would lie elsewhere).
+uint64_t historyKeyOf(std::span<const ShadowView> views);
 
 // The readback buffer: colour, every visibility layer, position, normal and face normal, tightly
 // packed in that order.

@@ -63,12 +63,12 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
     shadowLayout =
         vk::createPipelineLayout(ctx, {}, VK_SHADER_STAGE_VERTEX_BIT, sizeof(gpu::ShadowPush));
     // Binding numbers: bindings.h, shared with the shaders.
+    // Passes whose shaders alone say what they bind: their layouts read from the SPIR-V.
     shadowMaskLayout =
-        vk::createPipelineLayout(ctx, {{MASK_TEXTURE, kSampled}}, kGraphicsStages,
-                                 sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
-    gbufferLayout =
-        vk::createPipelineLayout(ctx, {{BIND_FRAME, kUniform}, {GBUFFER_TEXTURE, kSampled}},
-                                 kGraphicsStages, sizeof(gpu::MaterialPush));
+        vk::createLayoutOf(ctx, {"shadow_depth.vert", "shadow_mask.frag"}, kGraphicsStages,
+                           sizeof(gpu::ShadowPush) + sizeof(gpu::MaterialPush));
+    gbufferLayout = vk::createLayoutOf(ctx, {"gbuffer.vert", "gbuffer.frag"}, kGraphicsStages,
+                                       sizeof(gpu::MaterialPush));
     visibilityLayout =
         vk::createPipelineLayout(ctx,
                                  {{BIND_FRAME, kUniform},
@@ -88,32 +88,10 @@ FramePipelines::FramePipelines(const vk::Context& context) : ctx(context) {
                                   {TECH_PAGE_TABLE, kStorage},
                                   {VIS_TRACE_LIST, kStorage}},
                                  VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
-    markingLayout =
-        vk::createPipelineLayout(ctx,
-                                 {{BIND_FRAME, kUniform},
-                                  {MARK_LIGHTS, kUniform},
-                                  {MARK_GBUFFER_DEPTH, kSampled},
-                                  {MARK_VIEWS, kUniform},
-                                  {MARK_REQUESTS, kStorage},
-                                  {MARK_GBUFFER_NORMAL, kSampled}},
-                                 VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
-    compositeLayout = vk::createPipelineLayout(ctx,
-                                               {{BIND_FRAME, kUniform},
-                                                {COMPOSITE_LIGHTS, kUniform},
-                                                {COMPOSITE_GBUFFER_DEPTH, kSampled},
-                                                {COMPOSITE_GBUFFER_NORMAL, kSampled},
-                                                {COMPOSITE_GBUFFER_ALBEDO, kSampled},
-                                                {COMPOSITE_VISIBILITY, kSampled},
-                                                {COMPOSITE_OUT, kImage}},
-                                               VK_SHADER_STAGE_COMPUTE_BIT, 0);
-    exportLayout = vk::createPipelineLayout(ctx,
-                                            {{BIND_FRAME, kUniform},
-                                             {EXPORT_GBUFFER_DEPTH, kSampled},
-                                             {EXPORT_GBUFFER_NORMAL, kSampled},
-                                             {EXPORT_POSITION, kImage},
-                                             {EXPORT_NORMAL, kImage},
-                                             {EXPORT_FACE_NORMAL, kImage}},
-                                            VK_SHADER_STAGE_COMPUTE_BIT, 0);
+    markingLayout = vk::createLayoutOf(ctx, {"page_marking.comp"}, VK_SHADER_STAGE_COMPUTE_BIT,
+                                       sizeof(gpu::VisibilityPush));
+    compositeLayout = vk::createLayoutOf(ctx, {"composite.comp"}, VK_SHADER_STAGE_COMPUTE_BIT, 0);
+    exportLayout = vk::createLayoutOf(ctx, {"export.comp"}, VK_SHADER_STAGE_COMPUTE_BIT, 0);
     probeLayout = vk::createPipelineLayout(ctx,
                                            {{BIND_FRAME, kUniform},
                                             {PROBE_RECEIVERS, kStorage},
@@ -260,15 +238,8 @@ VkPipeline FramePipelines::postPass(std::string_view shader, uint32_t inputs, ui
 const FieldPipelines& FramePipelines::field() {
     if (!mField) {
         auto f = std::make_unique<FieldPipelines>();
-        f->layout = vk::createPipelineLayout(ctx,
-                                             {{FIELD_TRIANGLES, kStorage},
-                                              {FIELD_BRICK_STARTS, kStorage},
-                                              {FIELD_BRICK_LIST, kStorage},
-                                              {FIELD_IDS_IN, kImage},
-                                              {FIELD_IDS_OUT, kImage},
-                                              {FIELD_OUT, kImage},
-                                              {FIELD_FAR_CANDIDATES, kStorage}},
-                                             VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::FieldPush));
+        f->layout = vk::createLayoutOf(ctx, {"sdf_seed.comp", "sdf_flood.comp", "sdf_resolve.comp"},
+                                       VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::FieldPush));
         f->seed = vk::createComputePipeline(ctx, f->layout, "sdf_seed.comp");
         f->flood = vk::createComputePipeline(ctx, f->layout, "sdf_flood.comp");
         f->resolve = vk::createComputePipeline(ctx, f->layout, "sdf_resolve.comp");

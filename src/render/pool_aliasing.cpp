@@ -15,7 +15,8 @@ void ResourcePool::placeTransients(std::span<const UseSpan> spans) {
     for (ResourceId id = 0; id < mEntries.size() && id < spans.size(); ++id) {
         const Entry* e = mEntries[id].get();
         const auto* decl = e ? std::get_if<ImageDecl>(&e->decl) : nullptr;
-        if (!decl || decl->lifetime != Lifetime::PerFrame || !spans[id].shareable)
+        if (!decl || decl->lifetime != Lifetime::PerFrame || !spans[id].shareable ||
+            needsOwnMemory(imageDesc(*e)))
             continue;
         chosen.push_back(id);
         ends.insert(ends.end(), {spans[id].first, spans[id].last});

@@ -73,7 +73,10 @@ bool sameExtent(const BufferDecl& old, const BufferDecl& d, const FrameSizes& a,
 
 } // namespace
 
-ResourcePool::ResourcePool(const vk::Context& ctx) : mCtx(ctx) {}
+ResourcePool::ResourcePool(const vk::Context& ctx)
+    : needsOwnMemory(
+          [&ctx](const vk::ImageDesc& desc) { return vk::requiresDedicatedMemory(ctx, desc); }),
+      mCtx(ctx) {}
 
 // Keeps entry `e` for this frame's `decl`: a persistent resource whose key changed no longer
 // holds what was written under the old one.

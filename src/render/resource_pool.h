@@ -9,6 +9,7 @@
 #include "vk/resources.h"
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -134,6 +135,10 @@ public:
         uint64_t separate = 0, shared = 0;
     };
     TransientBytes transientBytes() const { return mTransient; }
+    // Whether an image must have memory of its own: by default what the driver says
+    // (vk::requiresDedicatedMemory); a test stands in for a driver that asks it. Such a transient
+    // is never placed in shared memory.
+    std::function<bool(const vk::ImageDesc&)> needsOwnMemory;
 
     const PooledImage& image(ResourceId id) const;
     VkBuffer buffer(ResourceId id) const;

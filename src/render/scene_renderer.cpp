@@ -258,6 +258,8 @@ SceneRenderer::Impl::Prepared
 SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, size_t slotIndex,
                              const ProgressFn& progress, bool intermediates) {
     renderer.check(scene, o);
+    if (state.cut) // latched: the next frame that begins, this one, starts its history again
+        pool->invalidateHistory();
     const std::vector<Light> lights =
         render::lightsOf(scene, state.lights ? &*state.lights : nullptr, o);
     for (size_t i = 0; i < lights.size(); ++i) { // a light the viewer moved

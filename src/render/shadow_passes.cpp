@@ -146,8 +146,8 @@ void recordMipChain(VkCommandBuffer cmd, FramePipelines& p, const PooledImage& m
 // A Texels or Lines post pass over every view: inputs sampled, outputs written.
 void recordPostPass(VkCommandBuffer cmd, FramePipelines& p, const shadows::PostPassDecl& pass,
                     const std::vector<const PooledImage*>& inputs,
-                    const std::vector<const PooledImage*>& outputs, uint32_t views,
-                    const FrameInputs& in) {
+                    const std::vector<const PooledImage*>& outputs, uint32_t heldHistory,
+                    uint32_t views, const FrameInputs& in) {
     const auto inputCount = static_cast<uint32_t>(inputs.size());
     const auto outputCount = static_cast<uint32_t>(outputs.size());
     const vk::PipelineLayout& layout = p.postPassLayout(inputCount, outputCount);
@@ -162,7 +162,7 @@ void recordPostPass(VkCommandBuffer cmd, FramePipelines& p, const shadows::PostP
             writes.storageImage(POST_OUTPUT_BINDING + i, outputs[i]->layer(v));
         writes.uniformBuffer(TECH_PARAMS, in.params).uniformBuffer(POST_VIEWS_BINDING, in.views);
         writes.push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
-        const gpu::PostPassPush push{.size = {size.width, size.height, v, 0}};
+        const gpu::PostPassPush push{.size = {size.width, size.height, v, heldHistory}};
         vkCmdPushConstants(cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
         if (pass.dispatch == shadows::PostDispatch::Lines)
             vkCmdDispatch(cmd, (size.height + LINE_GROUP_SIZE - 1) / LINE_GROUP_SIZE, 1, 1);
@@ -245,22 +245,34 @@ void addPostPasses(FrameGraph& graph, FramePipelines& p, const shadows::Techniqu
         }
         std::vector<Use> uses{{block, Access::UniformRead}, {viewRecords, Access::UniformRead}};
         std::vector<ResourceId> inputs, outputs;
-        for (std::string_view name : pass.inputs)
+        std::vector<std::pair<uint32_t, ResourceId>> histories; // input i: last frame's of id
+        for (std::string_view name : pass.inputs) {
+            if (name.ends_with(shadows::kPreviousMapSuffix))
+                histories.emplace_back(
+                    static_cast<uint32_t>(inputs.size()),
+                    r.named(module,
+                            name.substr(0, name.size() - shadows::kPreviousMapSuffix.size())));
             uses.push_back({inputs.emplace_back(r.named(module, name)), Access::ComputeSampled});
+        }
         for (std::string_view name : pass.outputs)
             uses.push_back({outputs.emplace_back(r.named(module, name)), Access::ComputeWrite});
-        graph.addPass({.name = timestampOf(pass.shader),
-                       .cost = CostGroup::ShadowMaps,
-                       .phase = Phase::LightSpace,
-                       .uses = std::move(uses),
-                       .record = [&p, &in, pass, inputs, outputs, views](PassContext& c) {
-                           std::vector<const PooledImage*> in_, out;
-                           for (ResourceId id : inputs)
-                               in_.push_back(&c.image(id));
-                           for (ResourceId id : outputs)
-                               out.push_back(&c.image(id));
-                           recordPostPass(c.cmd, p, pass, in_, out, views, in);
-                       }});
+        graph.addPass(
+            {.name = timestampOf(pass.shader),
+             .cost = CostGroup::ShadowMaps,
+             .phase = Phase::LightSpace,
+             .uses = std::move(uses),
+             .record = [&p, &in, pass, inputs, outputs, histories, views](PassContext& c) {
+                 uint32_t held = 0; // PostPassPush::size.w
+                 for (const auto& [input, current] : histories)
+                     if (c.graph.historyValid(current))
+                         held |= 1u << input;
+                 std::vector<const PooledImage*> in_, out;
+                 for (ResourceId id : inputs)
+                     in_.push_back(&c.image(id));
+                 for (ResourceId id : outputs)
+                     out.push_back(&c.image(id));
+                 recordPostPass(c.cmd, p, pass, in_, out, held, views, in);
+             }});
     }
 }
 

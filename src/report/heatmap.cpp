@@ -198,7 +198,7 @@ void drawLegend(RgbaImage& image, uint32_t top, float range) {
         canvas.fill(x, barY0, x + 1, barY1, coolWarm(t));
     }
     const int64_t mid = (barX0 + barX1) / 2, tickY = barY1 + kPad * s;
-    const std::string low = "-" + fmt::format("{:g}", range), high = fmt::format("+{:g}", range);
+    const std::string low = fmt::format("-{:g}", range), high = fmt::format("+{:g}", range);
     canvas.fill(barX0, barY1, barX0 + s, barY1 + 2 * s, kInk);
     canvas.fill(mid - s / 2, barY1, mid - s / 2 + s, barY1 + 2 * s, kInk);
     canvas.fill(barX1 - s, barY1, barX1, barY1 + 2 * s, kInk);

@@ -99,9 +99,9 @@ std::vector<uint32_t> readIndices(const tinygltf::Model& m, int index) {
     const tinygltf::Accessor& a = m.accessors[index];
     std::vector<uint32_t> out(a.count, 0);
     forEachElement(m, index, [&](size_t i, const uint8_t* p) {
-        uint32_t v = 0;
-        std::memcpy(&v, p,
-                    tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType)));
+        uint32_t v = 0; // 1, 2 or 4 bytes (gltf_validate.cpp refused other index types)
+        const int bytes = tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(a.componentType));
+        std::memcpy(&v, p, static_cast<size_t>(std::clamp(bytes, 0, 4)));
         out[i] = v;
     });
     return out;

@@ -107,6 +107,12 @@ const TechniqueModule& pcssModule() {
               .defaultValue = 2,
               .choices = {std::begin(gpu::kRotationChoices), std::end(gpu::kRotationChoices)},
               .description = "per-pixel rotation of both Poisson disks"}},
+        // Its search and filter may fall in different cascades of a sun (STAGE_SEARCH,
+        // STAGE_FILTER), capped at pcss.maxRadius texels (blockerSearchKey).
+        .constants =
+            [](const ParameterValues&) {
+                return std::vector<SpecConstant>{{SPEC_BLOCKER_SEARCH, 1u}};
+            },
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 auto choice = [&](const char* key) { return static_cast<uint32_t>(p.number(key)); };
@@ -124,7 +130,6 @@ const TechniqueModule& pcssModule() {
         .cubeRadiusTexels =
             [](const ParameterValues& p) { return p.number("pcss.cubeRadius") + 1.0; },
         .blockerSearchKey = "pcss.maxRadius",
-        .searchCap = [](const ParameterValues& p) { return p.number("pcss.maxRadius"); },
         .readsVirtualMaps = true};
     return module;
 }

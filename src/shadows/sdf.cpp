@@ -86,6 +86,11 @@ const TechniqueModule& sdfModule() {
                              "(Quilez's k); 0 derives it from the light's size, the cone the "
                              "ground truth integrates over"}},
         .visibilityMaps = {}, // none: it traces the field
+        // It is handed the receiver itself, and clips the light at its horizon.
+        .constants =
+            [](const ParameterValues&) {
+                return std::vector<SpecConstant>{{SPEC_TRACES_FIELD, 1u}};
+            },
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 block.set(

@@ -166,7 +166,7 @@ void setSharedSettings(gpu::FrameData& f, const TechniqueModule& module, const P
     f.biasParams = {-limit, index("bias.receiverSides") == 0 ? limit : 0.0f,
                     static_cast<float>(p.number("bias.adaptive")),
                     static_cast<float>(p.number("bias.curvature"))};
-    f.filterLimits = {module.searchCap ? static_cast<float>(module.searchCap(p)) : 0.0f,
+    f.filterLimits = {static_cast<float>(searchCapTexels(module, p)),
                       static_cast<float>(p.number("bias.crease")), 0.0f, 0.0f};
     const auto& disk = poissonDisk();
     for (size_t i = 0; i < kPoissonPoints / 2; ++i)
@@ -339,9 +339,12 @@ double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& 
     return std::max(views, cubeFaces);
 }
 
+double searchCapTexels(const TechniqueModule& module, const ParameterValues& params) {
+    return module.blockerSearchKey.empty() ? 0.0 : params.number(module.blockerSearchKey);
+}
+
 double readReachTexels(const TechniqueModule& module, const ParameterValues& params) {
-    return std::max({widestRadiusTexels(module, params), 1.0,
-                     module.searchCap ? module.searchCap(params) : 0.0});
+    return std::max({widestRadiusTexels(module, params), 1.0, searchCapTexels(module, params)});
 }
 
 namespace {
@@ -385,15 +388,18 @@ std::vector<SpecConstant> visibilityConstants(const TechniqueModule& module,
     constants.push_back(
         {SPEC_ADAPTIVE_BIAS, params.number("bias.mode") == BIAS_ADAPTIVE ? 1u : 0u});
     constants.push_back(
-        {SPEC_FOOTPRINT, module.readsFootprint && module.readsFootprint(params) ? 1u : 0u});
-    constants.push_back({SPEC_BLOCKER_SEARCH, module.searchCap ? 1u : 0u});
-    constants.push_back({SPEC_TRACES_FIELD, module.tracedField ? 1u : 0u});
-    constants.push_back(
         {SPEC_VIRTUAL,
          module.readsVirtualMaps && params.number("virtual.enabled") != 0.0 ? 1u : 0u});
+    const size_t shared = constants.size();
     if (module.constants)
-        for (const SpecConstant& c : module.constants(params))
+        for (const SpecConstant& c : module.constants(params)) {
+            for (size_t i = 0; i < shared; ++i)
+                PENUMBRA_CHECK(constants[i].id != c.id, std::string(module.info.name) +
+                                                            " sets a shared specialization "
+                                                            "constant, id " +
+                                                            std::to_string(c.id));
             constants.push_back(c);
+        }
     return constants;
 }
 

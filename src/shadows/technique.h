@@ -235,7 +235,13 @@ struct TechniqueModule {
     // each kind in this order, at most TECH_MAX_MAPS of each. A float slot it leaves holds the
     // depth map (smrt lists its bounds alone and marches the depth map at shadowMaps[0]).
     std::vector<std::string_view> visibilityMaps{kDepthMap};
-    // Its own specialization constants of the visibility pass (SPEC_FILTER: pcf.filter).
+    // Its own specialization constants of the visibility pass (SPEC_FILTER: pcf.filter), among
+    // them what the pass does around it, each false unless listed: SPEC_FOOTPRINT (the pass
+    // computes the pixel's footprint in the map: vsm.filter=mip), SPEC_BLOCKER_SEARCH (in a sun's
+    // cascades the pass runs its search, STAGE_SEARCH, and its filter, STAGE_FILTER, in the
+    // finest cascades that hold them, capped at its blockerSearchKey's texels: pcss),
+    // SPEC_TRACES_FIELD (it is handed the receiver itself and clips the light at its horizon:
+    // sdf). An id the shared constants set (visibilityConstants) is refused.
     std::vector<SpecConstant> (*constants)(const ParameterValues&) = nullptr;
     // Writes the module's parameters into its block (its struct, params_<family>.h).
     void (*pack)(const ParameterValues&, ParamBlock&) = nullptr;
@@ -253,7 +259,8 @@ struct TechniqueModule {
     double (*cubeRadiusTexels)(const ParameterValues&) = nullptr;
     // When set, it searches the map for blockers and its visibility pass's intermediates hold the
     // average blocker's depth (z) and the filter's radius in texels (w), capped by this parameter
-    // (the viewer's blocker-depth and penumbra views; pcss, vssm, msm-soft).
+    // (the viewer's blocker-depth and penumbra views; pcss, vssm, msm-soft): the cap
+    // FrameData::filterLimits.x carries, and a reach virtual maps fetch pages for.
     std::string_view blockerSearchKey;
     // Whether its kernels reach no further than the light seen from the receiver (the cone
     // towards the light, cut at the near plane) and, under a light without size, than one
@@ -261,24 +268,14 @@ struct TechniqueModule {
     // wide (viewGuardBand), capped by the footprint above, and their texels are finer.
     bool footprintFollowsLight = false;
 
-    // Capabilities: what the frame and the visibility pass do differently for it, as
-    // specialization constants (visibilityConstants), never by its name.
     // When set, it traces a signed distance field of the scene instead of filtering shadow maps
-    // (SPEC_TRACES_FIELD; sdf): the scene renderer builds the field (src/render/distance_field.h)
-    // once per scene and setting, and the technique clips the light at the receiver's horizon
-    // itself. Such a module reads no map (visibilityMaps empty), so the frame draws none.
+    // (with SPEC_TRACES_FIELD among its constants; sdf): the scene renderer builds the field
+    // (src/render/distance_field.h) once per scene and setting. Such a module reads no map
+    // (visibilityMaps empty), so the frame draws none.
     std::optional<DistanceFieldDecl> tracedField;
     // It takes a model's inside from closed, consistently wound surfaces (sdf's field, second-
     // depth's back faces): the commands warn about scenes with open or mis-wound ones.
     bool needsClosedSurfaces = false;
-    // When set and true, it reads the pixel's footprint in the map (SPEC_FOOTPRINT: the receiver's
-    // uvDx, uvDy; vsm.filter=mip).
-    bool (*readsFootprint)(const ParameterValues&) = nullptr;
-    // When set, it searches blockers (SPEC_BLOCKER_SEARCH): its kernels follow the light's size,
-    // this many texels wide at most in the view sampled (FrameData::search), and in a sun's
-    // cascades the visibility pass runs its search (STAGE_SEARCH) and its filter (STAGE_FILTER)
-    // in the finest cascades that hold them (pcss).
-    double (*searchCap)(const ParameterValues&) = nullptr;
     // It reads its depth map texel by texel, through map_reads.glsl (hard, pcf, pcss): its taps
     // can go through a virtual map's page table (virtual.enabled, SPEC_VIRTUAL). A technique
     // that filters whole maps in post passes (blurs, tables) cannot: its passes do not cross
@@ -374,6 +371,9 @@ GuardBand viewGuardBand(const TechniqueModule& module, const ParameterValues& pa
 // The footprint on any view: the larger of blurRadiusTexels and cubeRadiusTexels (what the
 // metrics' blur band and the virtual pages' marking allow for); 0 without one.
 double widestRadiusTexels(const TechniqueModule& module, const ParameterValues& params);
+// The blocker search's cap in texels (its blockerSearchKey), 0 without one: FrameData's
+// filterLimits.x, which SPEC_BLOCKER_SEARCH's cascade choice reads.
+double searchCapTexels(const TechniqueModule& module, const ParameterValues& params);
 // How far from its receiver's texel the visibility pass reads the map, in texels: the widest
 // footprint, a blocker search's cap, and one texel at least (a bilinear tap). What virtual maps
 // fetch pages for around each receiver.

@@ -105,6 +105,11 @@ const TechniqueModule& vsmModule() {
         .maps = vsmMaps(),
         .postPasses = vsmPasses(),
         .visibilityMaps = {"moments"},
+        // vsm.filter=mip reads the pixel's footprint in the map (its uvDx, uvDy).
+        .constants =
+            [](const ParameterValues& p) {
+                return std::vector<SpecConstant>{{SPEC_FOOTPRINT, filtersThroughMips(p) ? 1u : 0u}};
+            },
         .pack =
             [](const ParameterValues& p, ParamBlock& block) {
                 block.set(gpu::VsmParams{
@@ -118,8 +123,7 @@ const TechniqueModule& vsmModule() {
         .reference = vsmReference,
         // A footprint the mip chain widens is clipped by the map's edge as any minified texture
         // is; the guard band keeps the blur's reach.
-        .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); },
-        .readsFootprint = filtersThroughMips};
+        .blurRadiusTexels = [](const ParameterValues& p) { return kBlur.radiusTexels(p); }};
     return module;
 }
 

@@ -28,6 +28,9 @@ std::string bindingLimitProblem(std::span<const Binding> bindings,
 struct PipelineLayout {
     DescriptorSetLayoutHandle set;
     PipelineLayoutHandle layout;
+    // What it was made with: a pipeline's shaders are checked against them
+    // (vk/spirv_bindings.h).
+    std::vector<Binding> bindings;
     VkPipelineLayout get() const { return layout.get(); }
 };
 
@@ -35,6 +38,13 @@ PipelineLayout createPipelineLayout(const Context& ctx, std::initializer_list<Bi
                                     VkShaderStageFlags stages, uint32_t pushConstantBytes);
 PipelineLayout createPipelineLayout(const Context& ctx, std::span<const Binding> bindings,
                                     VkShaderStageFlags stages, uint32_t pushConstantBytes);
+
+// The layout of a pass whose shaders alone say what it binds: the bindings its shaders use
+// (vk/spirv_bindings.h), one kind per binding across them. Passes whose layout is a contract
+// several shaders meet (the visibility pass's TECH_*, the layers' LAYER_*, the post passes')
+// list theirs by hand.
+PipelineLayout createLayoutOf(const Context& ctx, std::initializer_list<std::string_view> shaders,
+                              VkShaderStageFlags stages, uint32_t pushConstantBytes);
 
 struct SpecConstant {
     uint32_t id;

@@ -23,8 +23,9 @@ LiveAllocations& liveAllocations() {
     return live;
 }
 
+// `dedicatedTo`: the image the memory is for alone (VkMemoryDedicatedAllocateInfo), or none.
 MemoryHandle allocate(const Context& ctx, const VkMemoryRequirements& req, MemoryUse use,
-                      const std::string& name) {
+                      const std::string& name, VkImage dedicatedTo = VK_NULL_HANDLE) {
     VkMemoryPropertyFlags required = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, preferred = 0;
     if (use == MemoryUse::Upload)
         required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
@@ -32,7 +33,10 @@ MemoryHandle allocate(const Context& ctx, const VkMemoryRequirements& req, Memor
         required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
         preferred = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
     }
+    const VkMemoryDedicatedAllocateInfo dedicated{
+        .sType = VK_STRUCTURE_TYPE_MEMORY_DEDICATED_ALLOCATE_INFO, .image = dedicatedTo};
     const VkMemoryAllocateInfo info{.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+                                    .pNext = dedicatedTo != VK_NULL_HANDLE ? &dedicated : nullptr,
                                     .allocationSize = req.size,
                                     .memoryTypeIndex =
                                         ctx.memoryType(req.memoryTypeBits, required, preferred)};
@@ -138,7 +142,38 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
     return buffer;
 }
 
-Image createUnboundImage(const Context& ctx, const ImageDesc& desc, VkMemoryRequirements& needs) {
+namespace {
+VkImageCreateInfo imageCreateInfo(const ImageDesc& desc) {
+    return {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
+            .flags = desc.cube ? VkImageCreateFlags{VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT}
+                               : VkImageCreateFlags{0},
+            .imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D,
+            .format = desc.format,
+            .extent = {desc.width, desc.height, desc.depth},
+            .mipLevels = desc.mipLevels,
+            .arrayLayers = desc.layers,
+            .samples = VK_SAMPLE_COUNT_1_BIT,
+            .tiling = VK_IMAGE_TILING_OPTIMAL,
+            .usage = desc.usage,
+            .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
+            .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+}
+} // namespace
+
+bool requiresDedicatedMemory(const Context& ctx, const ImageDesc& desc) {
+    const VkImageCreateInfo info = imageCreateInfo(desc);
+    const VkDeviceImageMemoryRequirements query{
+        .sType = VK_STRUCTURE_TYPE_DEVICE_IMAGE_MEMORY_REQUIREMENTS, .pCreateInfo = &info};
+    VkMemoryDedicatedRequirements dedicated{.sType =
+                                                VK_STRUCTURE_TYPE_MEMORY_DEDICATED_REQUIREMENTS};
+    VkMemoryRequirements2 needs{.sType = VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2,
+                                .pNext = &dedicated};
+    vkGetDeviceImageMemoryRequirements(ctx.device(), &query, &needs);
+    return dedicated.requiresDedicatedAllocation == VK_TRUE;
+}
+
+Image createUnboundImage(const Context& ctx, const ImageDesc& desc, VkMemoryRequirements& needs,
+                         bool* wantsDedicated) {
     // lavapipe creates images past maxImageDimension2D without complaint: check here.
     const uint32_t limit =
         desc.depth > 1 ? ctx.limits().maxImageDimension3D : ctx.limits().maxImageDimension2D;
@@ -161,24 +196,21 @@ Image createUnboundImage(const Context& ctx, const ImageDesc& desc, VkMemoryRequ
                 .layers = desc.layers,
                 .mipLevels = desc.mipLevels,
                 .aspect = aspectOf(desc.format)};
-    const VkImageCreateInfo info{
-        .sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
-        .flags = desc.cube ? VkImageCreateFlags{VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT}
-                           : VkImageCreateFlags{0},
-        .imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D,
-        .format = desc.format,
-        .extent = {desc.width, desc.height, desc.depth},
-        .mipLevels = desc.mipLevels,
-        .arrayLayers = desc.layers,
-        .samples = VK_SAMPLE_COUNT_1_BIT,
-        .tiling = VK_IMAGE_TILING_OPTIMAL,
-        .usage = desc.usage,
-        .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
-        .initialLayout = VK_IMAGE_LAYOUT_UNDEFINED};
+    const VkImageCreateInfo info = imageCreateInfo(desc);
     VkImage raw = VK_NULL_HANDLE;
     VK_CREATE(vkCreateImage(ctx.device(), &info, nullptr, &raw));
     image.image = ImageHandle(ctx.device(), raw);
-    vkGetImageMemoryRequirements(ctx.device(), raw, &needs);
+    const VkImageMemoryRequirementsInfo2 query{
+        .sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_REQUIREMENTS_INFO_2, .image = raw};
+    VkMemoryDedicatedRequirements dedicated{.sType =
+                                                VK_STRUCTURE_TYPE_MEMORY_DEDICATED_REQUIREMENTS};
+    VkMemoryRequirements2 asks{.sType = VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2,
+                               .pNext = &dedicated};
+    vkGetImageMemoryRequirements2(ctx.device(), &query, &asks);
+    needs = asks.memoryRequirements;
+    if (wantsDedicated)
+        *wantsDedicated = dedicated.requiresDedicatedAllocation == VK_TRUE ||
+                          dedicated.prefersDedicatedAllocation == VK_TRUE;
     return image;
 }
 
@@ -196,8 +228,10 @@ void bindImage(const Context& ctx, Image& image, const ImageDesc& desc, VkDevice
 
 Image createImage(const Context& ctx, const ImageDesc& desc) {
     VkMemoryRequirements needs{};
-    Image image = createUnboundImage(ctx, desc, needs);
-    image.memory = allocate(ctx, needs, MemoryUse::DeviceLocal, desc.name);
+    bool dedicated = false; // the driver requires or prefers memory for this image alone
+    Image image = createUnboundImage(ctx, desc, needs, &dedicated);
+    image.memory = allocate(ctx, needs, MemoryUse::DeviceLocal, desc.name,
+                            dedicated ? image.get() : VK_NULL_HANDLE);
     bindImage(ctx, image, desc, image.memory.get(), 0);
     return image;
 }

@@ -56,7 +56,14 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
 Image createImage(const Context& ctx, const ImageDesc& desc);
 // An image in memory the caller holds (images that share memory, render/frame_memory.h): made
 // without memory (`needs`: what it asks of it), then bound at `offset` in `memory` with its view.
-Image createUnboundImage(const Context& ctx, const ImageDesc& desc, VkMemoryRequirements& needs);
+// `wantsDedicated` (optional): whether the driver requires or prefers memory for it alone
+// (VkMemoryDedicatedRequirements); createImage then allocates it so.
+Image createUnboundImage(const Context& ctx, const ImageDesc& desc, VkMemoryRequirements& needs,
+                         bool* wantsDedicated = nullptr);
+// Whether the driver requires memory of its own for an image of this description
+// (requiresDedicatedAllocation), asked without making it (vkGetDeviceImageMemoryRequirements):
+// such an image never shares memory with others.
+bool requiresDedicatedMemory(const Context& ctx, const ImageDesc& desc);
 void bindImage(const Context& ctx, Image& image, const ImageDesc& desc, VkDeviceMemory memory,
                VkDeviceSize offset);
 MemoryHandle allocateDeviceLocal(const Context& ctx, const VkMemoryRequirements& needs,

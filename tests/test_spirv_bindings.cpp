@@ -1,0 +1,129 @@
+// The bindings a shader uses, read from its SPIR-V (src/vk/spirv_bindings.cpp), and the check
+// every pipeline's shaders pass against their layout when the pipeline is made: the expected
+// sets below are written from the GLSL (layout(binding = ...)) of each shader.
+#include "bindings.h"
+#include "gpu_fixture.h"
+#include "vk/context.h"
+#include "vk/pipelines.h"
+#include "vk/spirv_bindings.h"
+
+#include <algorithm>
+
+namespace penumbra::shaders {
+std::span<const uint32_t> spirv(std::string_view name); // cmake/Shaders.cmake's table
+}
+
+using namespace penumbra;
+using namespace penumbra::test;
+using penumbra::vk::Binding;
+
+namespace {
+
+constexpr VkDescriptorType kSampled = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+constexpr VkDescriptorType kStorageImage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+constexpr VkDescriptorType kUniform = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+constexpr VkDescriptorType kStorageBuffer = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+
+std::vector<Binding> usedBy(std::string_view shader) {
+    return vk::reflectBindings(shaders::spirv(shader));
+}
+
+const Binding* at(const std::vector<Binding>& bindings, uint32_t binding) {
+    const auto it = std::find_if(bindings.begin(), bindings.end(),
+                                 [&](const Binding& b) { return b.binding == binding; });
+    return it == bindings.end() ? nullptr : &*it;
+}
+
+bool same(const Binding& a, const Binding& b) {
+    return a.binding == b.binding && a.type == b.type && a.count == b.count;
+}
+
+} // namespace
+
+TEST(SpirvBindings, ReadsTheBindingsEachShaderUses) {
+    // A post pass: two inputs sampled, one output written; its push block is no binding.
+    const std::vector<Binding> mid = usedBy("second_depth_mid.comp");
+    ASSERT_EQ(mid.size(), 3u);
+    EXPECT_TRUE(same(mid[0], {POST_INPUT_BINDING, kSampled, 1}));
+    EXPECT_TRUE(same(mid[1], {POST_INPUT_BINDING + 1, kSampled, 1}));
+    EXPECT_TRUE(same(mid[2], {POST_OUTPUT_BINDING, kStorageImage, 1}));
+    // The checkerboard fill: a uniform block, images, and a storage buffer (std430 `buffer`).
+    const std::vector<Binding> fill = usedBy("visibility_fill.comp");
+    ASSERT_NE(at(fill, LAYER_TRACE_LIST), nullptr);
+    EXPECT_EQ(at(fill, LAYER_TRACE_LIST)->type, kStorageBuffer);
+    ASSERT_NE(at(fill, LAYER_VISIBILITY), nullptr);
+    EXPECT_EQ(at(fill, LAYER_VISIBILITY)->type, kStorageImage);
+    ASSERT_NE(at(fill, LAYER_GBUFFER_DEPTH), nullptr);
+    EXPECT_EQ(at(fill, LAYER_GBUFFER_DEPTH)->type, kSampled);
+    ASSERT_NE(at(fill, BIND_FRAME), nullptr);
+    EXPECT_EQ(at(fill, BIND_FRAME)->type, kUniform);
+    // pcf's visibility pass: the technique's arrays of maps, counted whole.
+    const std::vector<Binding> vis = usedBy("visibility.comp#1");
+    ASSERT_NE(at(vis, TECH_MAP), nullptr);
+    EXPECT_TRUE(same(*at(vis, TECH_MAP), {TECH_MAP, kSampled, TECH_MAX_MAPS}));
+    ASSERT_NE(at(vis, TECH_PARAMS), nullptr);
+    EXPECT_EQ(at(vis, TECH_PARAMS)->type, kUniform);
+    EXPECT_TRUE(std::is_sorted(vis.begin(), vis.end(), [](const Binding& a, const Binding& b) {
+        return a.binding < b.binding;
+    }));
+    // Every embedded shader reads (none malformed, none outside set 0).
+    for (const char* shader : {"composite.comp", "contact.comp", "export.comp", "page_marking.comp",
+                               "shadow_mask.frag", "gbuffer.frag"})
+        EXPECT_FALSE(usedBy(shader).empty()) << shader;
+}
+
+TEST(SpirvBindings, AMismatchNamesTheBindingAndBothKinds) {
+    const std::vector<Binding> used{{0, kSampled, 1}, {8, kStorageImage, 4}};
+    EXPECT_EQ(vk::bindingMismatch(used, used), "");
+    const std::vector<Binding> wider{{0, kSampled, 1}, {3, kUniform, 1}, {8, kStorageImage, 5}};
+    EXPECT_EQ(vk::bindingMismatch(used, wider), "") << "a layout may hold more";
+    EXPECT_EQ(vk::bindingMismatch(used, std::vector<Binding>{{8, kStorageImage, 4}}),
+              "binding 0 (combined image sampler) is not in the layout");
+    EXPECT_EQ(vk::bindingMismatch(used, std::vector<Binding>{{0, kSampled, 1}, {8, kSampled, 4}}),
+              "binding 8 is a storage image in the shader, a combined image sampler in the layout");
+    EXPECT_EQ(
+        vk::bindingMismatch(used, std::vector<Binding>{{0, kSampled, 1}, {8, kStorageImage, 3}}),
+        "binding 8 is an array of 4 in the shader, of 3 in the layout");
+}
+
+// Made with a layout that lacks what the shader uses: refused by name before any device sees it.
+TEST_F(FrameTest, APipelineWhoseShaderUsesABindingItsLayoutLacksIsRefused) {
+    const vk::Context& ctx = sharedRenderer().context();
+    const vk::PipelineLayout right =
+        vk::createPipelineLayout(ctx,
+                                 {{POST_INPUT_BINDING, kSampled},
+                                  {POST_INPUT_BINDING + 1, kSampled},
+                                  {POST_OUTPUT_BINDING, kStorageImage}},
+                                 VK_SHADER_STAGE_COMPUTE_BIT, 16);
+    EXPECT_NE(vk::createComputePipeline(ctx, right, "second_depth_mid.comp").get(), VK_NULL_HANDLE);
+    const vk::PipelineLayout lacking = vk::createPipelineLayout(
+        ctx, {{POST_INPUT_BINDING, kSampled}, {POST_INPUT_BINDING + 1, kSampled}},
+        VK_SHADER_STAGE_COMPUTE_BIT, 16);
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(vk::createComputePipeline(ctx, lacking, "second_depth_mid.comp"),
+                 "shader second_depth_mid.comp: binding 8 \\(storage image\\) is not in the "
+                 "layout");
+}
+
+// A pass's descriptor writes against its layout, checked before they reach the device: a write
+// the layout does not hold as that kind, and a binding left unwritten, are refused by name.
+TEST_F(FrameTest, DescriptorWritesTheLayoutDoesNotHoldAreRefused) {
+    const vk::Context& ctx = sharedRenderer().context();
+    const vk::PipelineLayout layout =
+        vk::createLayoutOf(ctx, {"second_depth_mid.comp"}, VK_SHADER_STAGE_COMPUTE_BIT, 16);
+    ASSERT_EQ(layout.bindings.size(), 3u) << "what the shader uses, read from it";
+    EXPECT_TRUE(same(layout.bindings[2], {POST_OUTPUT_BINDING, kStorageImage, 1}));
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    vk::PushDescriptors wrongKind; // never recorded: refused before any command
+    wrongKind.sampled(POST_INPUT_BINDING, VK_NULL_HANDLE, VK_NULL_HANDLE)
+        .sampled(POST_INPUT_BINDING + 1, VK_NULL_HANDLE, VK_NULL_HANDLE)
+        .sampled(POST_OUTPUT_BINDING, VK_NULL_HANDLE, VK_NULL_HANDLE);
+    EXPECT_DEATH(wrongKind.push(ctx, VK_NULL_HANDLE, VK_PIPELINE_BIND_POINT_COMPUTE, layout),
+                 "a descriptor write of 1 combined image sampler at binding 8 that its layout "
+                 "does not hold so");
+    vk::PushDescriptors missing;
+    missing.sampled(POST_INPUT_BINDING, VK_NULL_HANDLE, VK_NULL_HANDLE)
+        .storageImage(POST_OUTPUT_BINDING, VK_NULL_HANDLE);
+    EXPECT_DEATH(missing.push(ctx, VK_NULL_HANDLE, VK_PIPELINE_BIND_POINT_COMPUTE, layout),
+                 "binding 1 \\(combined image sampler\\) left unwritten");
+}
