@@ -20,7 +20,7 @@ layout(set = 0, binding = MARK_LIGHTS, std140) uniform Lights { LightData lights
 layout(set = 0, binding = MARK_GBUFFER_DEPTH) uniform sampler2D gDepth;
 layout(set = 0, binding = MARK_GBUFFER_NORMAL) uniform sampler2D gNormal;
 layout(set = 0, binding = MARK_VIEWS, std140) uniform Views { ShadowViewData views[MAX_UNIFORM_VIEWS]; };
-layout(set = 0, binding = MARK_REQUESTS, std430) buffer Requests { uint requests[]; };
+layout(set = 0, binding = MARK_REQUESTS, std430) writeonly buffer Requests { uint requests[]; };
 layout(push_constant) uniform Push { VisibilityPush push; };
 #include "virtual_levels.glsl"
 

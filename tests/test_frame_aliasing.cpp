@@ -149,11 +149,21 @@ TEST_F(FrameTest, TransientsOfDisjointPassesShareMemoryAndEachReadsItsOwn) {
 // and reads back its own values, and the others still share.
 TEST_F(FrameTest, AnImageThatNeedsItsOwnMemoryIsNeverShared) {
     ResourcePool pool(sharedRenderer().context());
-    pool.needsOwnMemory = [](const vk::ImageDesc& desc) { return desc.name == "b"; };
+    std::vector<std::string> asked;
+    pool.needsOwnMemory = [&asked](const vk::ImageDesc& desc) {
+        asked.push_back(desc.name);
+        return desc.name == "b";
+    };
     const Seen seen = runFrame(pool, {.handOut = false});
     EXPECT_FALSE(seen.aSharesWithB);
     EXPECT_TRUE(seen.cShares) << "a and c still share";
     EXPECT_EQ(2 * seen.bytes.shared, seen.bytes.separate) << "b counted with neither";
+    EXPECT_EQ(asked, (std::vector<std::string>{"a", "b", "c"})) << "each transient asked once";
+    // The next frame keeps every image: the driver is not asked again, and b stays alone.
+    const Seen again = runFrame(pool, {.handOut = false});
+    EXPECT_EQ(asked.size(), 3u);
+    EXPECT_FALSE(again.aSharesWithB);
+    EXPECT_TRUE(again.cShares);
 }
 
 TEST_F(FrameTest, TransientsWhosePassesOverlapOrThatLeaveTheFrameKeepTheirOwnBytes) {

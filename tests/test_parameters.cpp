@@ -106,6 +106,18 @@ TEST(Techniques, ARowRunsExactlyTheLayersItNames) {
     EXPECT_EQ(v.number("contact.length"), 0.0);
 }
 
+// The technique list's two roles (PENUMBRA_DEFAULT_TECHNIQUE, PENUMBRA_COMPARED_TECHNIQUE): the
+// plain depth test where none is named, and beside it in the viewer's split a technique whose
+// penumbra follows the light's size.
+TEST(Techniques, TheDefaultIsThePlainDepthTestAndTheComparedOneIsSoft) {
+    EXPECT_EQ(techniqueName(kDefaultTechnique), "hard");
+    EXPECT_EQ(RenderOptions{}.technique, kDefaultTechnique);
+    const shadows::TechniqueModule& compared = shadows::moduleOf(kComparedTechnique);
+    EXPECT_TRUE(compared.modelsLightSize) << compared.info.name;
+    EXPECT_FALSE(compared.blockerSearchKey.empty()) << compared.info.name << ": no blocker views";
+    EXPECT_NE(kComparedTechnique, kDefaultTechnique);
+}
+
 TEST(RenderOptions, ValidateRefusesZeroSizes) {
     RenderOptions o;
     EXPECT_NO_THROW(validate(o));

@@ -103,6 +103,26 @@ std::vector<Variant> everyVariant() {
     return v;
 }
 
+// Whether the CPU's own answer at `probe` moves when the probe moves by the device's sub-texel
+// precision (2^-subTexelPrecisionBits of a texel) along u or v: a tap that close to a texel's edge
+// may land on either side, since a gather picks its texels from a fixed-point coordinate and the
+// GPU's tap positions round differently from the CPU's (an H200 put one tap of a randomly rotated
+// Poisson disk 1e-4 texel across an edge, and read one probe of 3000 lit where the CPU read 6/7).
+template <class Reference>
+bool onTexelEdge(const FilterProbe& probe, float cpu, const Reference& reference,
+                 const DeviceInfo& device, float tolerance) {
+    const float step =
+        std::ldexp(1.0f, -static_cast<int>(device.subTexelPrecisionBits)) / float(kMapSize);
+    for (const glm::vec2 direction :
+         {glm::vec2(1, 0), glm::vec2(-1, 0), glm::vec2(0, 1), glm::vec2(0, -1)}) {
+        FilterProbe moved = probe;
+        moved.uv += step * direction;
+        if (std::abs(reference(moved) - cpu) > tolerance)
+            return true;
+    }
+    return false;
+}
+
 } // namespace
 
 TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
@@ -128,19 +148,31 @@ TEST_F(FilterTest, EveryFilterMatchesItsCpuReference) {
             // The CPU rounds the device's steps; the device may truncate them.
             const float tolerance =
                 1e-3f + (hardwareTap ? static_cast<float>(hardwareFilterTolerance()) : 0.0f);
+            const auto reference = [&](const FilterProbe& probe) {
+                return shadows::techniqueReference(variant.technique, map, probe, frame, light).x;
+            };
             float worst = 0.0f;
-            size_t compared = 0;
+            size_t compared = 0, onEdges = 0;
             for (size_t i = 0; i < probes.size(); ++i) {
                 // A tie within float rounding may flip one comparison on either side.
                 if (shadows::smallestComparisonMargin(variant.technique, map, probes[i], frame,
                                                       light) < 1e-5f)
                     continue;
                 ++compared;
-                const float cpu =
-                    shadows::techniqueReference(variant.technique, map, probes[i], frame, light).x;
+                const float cpu = reference(probes[i]);
+                if (std::abs(cpu - gpu[i].x) > tolerance &&
+                    onTexelEdge(probes[i], cpu, reference, device, tolerance)) {
+                    ++onEdges;
+                    continue;
+                }
+                if (std::abs(cpu - gpu[i].x) > tolerance) // what a failure shows
+                    std::printf("%s kind %d: probe %zu (pixel %u,%u) gpu %.6f cpu %.6f\n",
+                                variant.name.c_str(), kind, i, probes[i].pixel.x, probes[i].pixel.y,
+                                gpu[i].x, cpu);
                 worst = std::max(worst, std::abs(cpu - gpu[i].x));
             }
             EXPECT_GT(compared, probes.size() * 9 / 10) << variant.name;
+            EXPECT_LE(onEdges, probes.size() / 200) << variant.name << ": taps on texel edges";
             EXPECT_LE(worst, tolerance)
                 << variant.name << (gradient ? " with" : " without") << " receiver-plane gradient"
                 << (adaptive ? " and adaptive terms" : "");

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <random>
 #include <string>
@@ -290,9 +291,14 @@ TEST_F(FilterTest, SmrtIsTheHardTestUnderALightWithoutSize) {
 // (one ray a pixel): a spot, a sun (cascades) and bulbs (cube faces), built-in and generated.
 // Its views are fitted as hard's there (a band of one tap, not its march's: GuardBand), and no
 // pixel is filled from its neighbours (Checkerboard::rangeFor), so every pixel reads as hard's:
-// the same bits but where its filter evens out a sun's cascade blend (values between 0 and 1 on
-// either side of 0.5 stay there). Before (lavapipe, 320x180): the sun 0.0482% misclassified
-// against hard's 0.0314%, gen/plates 1 0.361% against 0.254%, gen/clutter 2 0.224% against 0.078%.
+// the same value but where its filter evens out a sun's cascade blend (values between 0 and 1 on
+// either side of 0.5 stay there). The same value within rounding, not the same bits: the two
+// techniques are two pipelines, and a compiler may fuse a multiply and an add in one and not in
+// the other (SPIR-V lets it where NoContraction is absent). An H200 moved 419-553 of 57600
+// pixels of every scene below by under 5e-7; lavapipe moves none. So a pixel moves when it
+// differs by more than kRounding, a few units in the last place of a visibility near 1. Before
+// (lavapipe, 320x180): the sun 0.0482% misclassified against hard's 0.0314%, gen/plates 1 0.361%
+// against 0.254%, gen/clutter 2 0.224% against 0.078%.
 TEST_F(QualityTest, SmrtEqualsHardUnderLightsWithoutSize) {
     const TruthSetup setups[] = {
         {.scene = "builtin:spot", .radius = 0.0f, .width = 320, .height = 180, .samples = 1},
@@ -317,28 +323,33 @@ TEST_F(QualityTest, SmrtEqualsHardUnderLightsWithoutSize) {
         const ErrorMetrics hard = errorOf(t, hardRender), smrt = errorOf(t, smrtRender);
         const std::vector<float>&a = smrtRender.visibility.at(0), &b = hardRender.visibility.at(0);
         ASSERT_EQ(a.size(), b.size());
+        constexpr float kRounding = 8.0f * std::numeric_limits<float>::epsilon();
         size_t flipped = 0, moved = 0;
+        float largest = 0.0f; // the largest difference where both are numbers
         for (size_t i = 0; i < a.size(); ++i) {
             if (std::isnan(a[i]) || std::isnan(b[i])) {
                 EXPECT_EQ(std::isnan(a[i]), std::isnan(b[i])) << setup.scene;
                 continue;
             }
+            const float difference = std::abs(a[i] - b[i]);
+            largest = std::max(largest, difference);
             flipped += (a[i] < 0.5f) != (b[i] < 0.5f);
-            moved += a[i] != b[i];
+            moved += difference > kRounding;
             const bool between = (a[i] > 0.0f && a[i] < 1.0f) || (b[i] > 0.0f && b[i] < 1.0f);
-            if (a[i] != b[i]) { // only where hard blends cascades
+            if (difference > kRounding) { // only where hard blends cascades
                 EXPECT_TRUE(between)
                     << setup.scene << " pixel " << i << ": " << a[i] << " against " << b[i];
             }
         }
-        std::printf("%-26s misclassified hard %.4f%% smrt %.4f%%, %zu pixels moved\n",
-                    setup.scene.c_str(), 100 * hard.misclassified, 100 * smrt.misclassified, moved);
+        std::printf("%-26s misclassified hard %.4f%% smrt %.4f%%, %zu pixels moved (at most "
+                    "%.6f)\n",
+                    setup.scene.c_str(), 100 * hard.misclassified, 100 * smrt.misclassified, moved,
+                    largest);
         EXPECT_GT(hard.misclassified, 0.0) << setup.scene << ": edges to get wrong";
         EXPECT_EQ(flipped, 0u) << setup.scene;
         EXPECT_LE(moved, a.size() / 1000) << setup.scene; // a blend band's few
         if (t.scene.lights.front().type != LightType::Directional) {
-            // memcmp: the background's NaNs are equal bits, never equal floats.
-            EXPECT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(float))) << setup.scene;
+            EXPECT_EQ(moved, 0u) << setup.scene << ": no cascades to blend";
         }
     }
 }

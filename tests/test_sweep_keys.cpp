@@ -121,6 +121,14 @@ std::vector<Edit> truthEdits() {
 
 } // namespace
 
+// The names of results and truth files are 64-bit FNV-1a (core/fnv1a.h): the published vectors,
+// so that a machine of another build names the same task the same way.
+TEST(SweepTasks, NamesAreFnv1aOfWhatTheyName) {
+    EXPECT_EQ(hashHex(""), "cbf29ce484222325");
+    EXPECT_EQ(hashHex("a"), "af63dc4c8601ec8c");
+    EXPECT_EQ(hashHex("foobar"), "85944171f73967e8");
+}
+
 TEST(TruthCache, EveryInputOfATruthChangesItsKeyUnderEveryLightType) {
     for (LightType type : {LightType::Directional, LightType::Spot, LightType::Point}) {
         const Scene base = sceneWith(type);

@@ -8,10 +8,11 @@ include/) that do:
 - name a technique: `Technique::Sdf`, a string literal that is a technique's name ("pcss") or
   one of its own parameter keys ("pcss.maxRadius"), a module function (`smrtModule()`);
 - read a one-technique capability: a TechniqueModule field that exactly one module of
-  src/shadows sets (`.tracedField`, `.searchCap`, ...). A list of declarations (a field
-  of type `std::vector<...Decl>`: `maps`, `depthPasses`, `postPasses`) is not a capability:
-  the frame runs the passes any module lists there, with the module's own shaders, without
-  asking which one did.
+  src/shadows sets (`.footprintFollowsLight`, ...). Declarations are not capabilities: a list
+  (`std::vector<...Decl>`: `maps`, `depthPasses`, `postPasses`) or an optional one
+  (`std::optional<...Decl>`: `tracedField`, the field built once per scene). The frame runs the
+  passes and builds any module declares there, with the module's own shaders and parameter keys,
+  without asking which one did.
 
 Comments are skipped. With --check it exits 1 unless the count is the one tests/
 technique_coupling.txt records (ctest's Tools.TechniqueCoupling: a change that adds a place
@@ -54,7 +55,7 @@ def module_fields(declarations=True):
     for line in body.splitlines():
         line = line.split("//")[0].strip()
         m = re.search(r"\(\*(\w+)\)\(", line) or re.search(r"(\w+)(\s*=.*)?;$", line)
-        if m and (declarations or not re.search(r"std::vector<\w+Decl>", line)):
+        if m and (declarations or not re.search(r"std::(vector|optional)<\w+Decl>", line)):
             fields.append(m.group(1))
     return fields
 

@@ -49,7 +49,7 @@ struct ViewerState {
     glm::uvec3 pageWindow{0u}; // the pages shown: first x, first y, side
     std::vector<std::string> levelNames; // the last frame's virtual-map levels, for the interface
     bool compare = false;                // A/B: technique B right of the split
-    Technique techniqueB = Technique::Pcss;
+    Technique techniqueB = kComparedTechnique;
     float split = 0.5f; // of the width
     bool vsync = true;
     bool hideUi = false;

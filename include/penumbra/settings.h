@@ -11,8 +11,8 @@
 
 namespace penumbra {
 
-// Every technique, from the technique list (shaders/include/technique_list.h, which the shaders
-// read too): Hard, Pcf, Pcss, SecondDepth, Vsm, Esm, Evsm, Savsm, Msm, Vssm, MsmSoft, Sdf.
+// Every technique, one per line of the technique list (shaders/include/technique_list.h, which
+// the shaders read too).
 enum class Technique : uint32_t {
 #define PENUMBRA_TECHNIQUE(id, Name, module) Name = id,
 #include "technique_list.h"
@@ -57,9 +57,10 @@ void applyRow(const TechniqueRow& row, ParameterValues& params, double sceneRadi
 
 std::span<const TechniqueInfo> allTechniques();
 std::string_view techniqueName(Technique technique);
-// What every command, the Python module and a benchmark run use when no technique is named:
-// the plain depth test, the reference point every other technique is measured against.
-inline constexpr Technique kDefaultTechnique = Technique::Hard;
+// What every command, the Python module and a benchmark run use when no technique is named, and
+// the viewer's second technique in its A/B split: the technique list names both.
+inline constexpr Technique kDefaultTechnique = Technique::PENUMBRA_DEFAULT_TECHNIQUE;
+inline constexpr Technique kComparedTechnique = Technique::PENUMBRA_COMPARED_TECHNIQUE;
 // Throws InputError("--technique", ...) listing the valid names when `name` is unknown.
 const TechniqueInfo& findTechnique(std::string_view name);
 

@@ -10,6 +10,16 @@
 //           and CPU reference
 // The order is `penumbra techniques`' order. Adding a technique: docs/architecture.md.
 // (No include guard: each reader expands it its own way.)
+//
+// Two roles, named here so that no shared file names a technique (include/penumbra/settings.h):
+//   PENUMBRA_DEFAULT_TECHNIQUE   what every command, the Python module and a benchmark run use
+//                                when none is named: the plain depth test, the reference point
+//                                every other technique is measured against
+//   PENUMBRA_COMPARED_TECHNIQUE  the viewer's technique B in its A/B split when none is named
+#ifndef PENUMBRA_DEFAULT_TECHNIQUE
+#define PENUMBRA_DEFAULT_TECHNIQUE Hard
+#define PENUMBRA_COMPARED_TECHNIQUE Pcss
+#endif
 PENUMBRA_TECHNIQUE(0, Hard, hard)
 PENUMBRA_TECHNIQUE(1, Pcf, pcf)
 PENUMBRA_TECHNIQUE(2, Pcss, pcss)

@@ -1,5 +1,6 @@
 #include "core/virtual_maps.h"
 
+#include "core/fnv1a.h"
 #include "core/projection.h"
 #include "penumbra/error.h"
 #include "virtual_pages.h" // shaders/include: the shared lookup
@@ -13,12 +14,8 @@
 namespace penumbra {
 namespace {
 
-uint64_t mix(uint64_t h, uint64_t v) { // FNV-1a over the value's bytes
-    for (int i = 0; i < 8; ++i) {
-        h ^= (v >> (8 * i)) & 0xffu;
-        h *= 1099511628211ull;
-    }
-    return h;
+uint64_t mix(uint64_t h, uint64_t v) {
+    return fnv1a(&v, sizeof v, h);
 }
 uint64_t mixFloats(uint64_t h, const float* v, size_t n) {
     for (size_t i = 0; i < n; ++i)
@@ -168,7 +165,7 @@ glm::mat4 pageViewProj(const VirtualLevel& level, glm::ivec2 page) {
 
 uint64_t pageContentsKey(const Light& light, const std::vector<VirtualLevel>& levels,
                          const VirtualSettings& s, glm::vec2 casterBias) {
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = kFnv1aOffset;
     h = mix(h, static_cast<uint64_t>(light.type));
     h = mix(h, (uint64_t{s.size} << 32) | s.pageSize);
     h = mix(h, s.levels);
@@ -198,7 +195,7 @@ PageKey pageKeyOf(const VirtualLevel& level, uint32_t entry) {
 }
 
 size_t PageKeyHash::operator()(const PageKey& k) const {
-    uint64_t h = 1469598103934665603ull;
+    uint64_t h = kFnv1aOffset;
     h = mix(h, (uint64_t{k.light} << 32) | (k.face << 8) | k.level);
     h = mix(h, (uint64_t{std::bit_cast<uint32_t>(k.page.x)} << 32) |
                    std::bit_cast<uint32_t>(k.page.y));

@@ -34,6 +34,13 @@ ResourceId FrameResources::named(const shadows::TechniqueModule& module,
     fatal(__FILE__, __LINE__, "FrameResources::named: the technique declares no such map");
 }
 
+std::optional<ResourceId> FrameResources::currentOf(ResourceId id) const {
+    for (size_t m = 0; m < previousMaps.size(); ++m)
+        if (previousMaps[m] == id)
+            return maps[m];
+    return std::nullopt;
+}
+
 FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const FrameInputs& in) {
     FrameResources r;
     // The technique's maps of every shadow view (a technique that draws none binds 1x1 ones).

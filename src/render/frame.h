@@ -120,6 +120,8 @@ struct FrameResources {
     // The map a module calls `name` (shadows::kDepthMap or one of its own).
     // `<name> (previous)`: last frame's version of a map declared with history.
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;
+    // The map whose last frame's version `id` is (one of previousMaps); nullopt for any other.
+    std::optional<ResourceId> currentOf(ResourceId id) const;
     // Declares the technique's own maps (shadowMapDecls past the depth map's), with last
     // frame's versions of those with history.
     void declareOwnMaps(FrameGraph& graph, const shadows::TechniqueModule& module,

@@ -60,6 +60,8 @@ bool FrameGraph::holdsContents(ResourceId id) const {
 
 void FrameGraph::addPass(PassDecl pass) {
     PENUMBRA_CHECK(!mPlanned, "FrameGraph: a pass added after the frame was planned");
+    for (const Use& use : usesOf(pass.bindings, pass.name))
+        pass.uses.push_back(use);
     for (const Use& use : pass.uses)
         PENUMBRA_CHECK(!writes(use.access) || !mPool.isPrevious(use.resource),
                        "FrameGraph: pass \"" + pass.name + "\" writes " +
@@ -297,6 +299,7 @@ void FrameGraph::record(VkCommandBuffer cmd, vk::GpuTimer* timer) {
         if (timed)
             timer->begin(cmd, pass.name, *pass.cost);
         PassContext context{.cmd = cmd, .graph = *this};
+        pushBindings(pass.bindings, context, mPool.context());
         pass.record(context);
         if (timed)
             timer->end(cmd);

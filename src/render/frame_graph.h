@@ -31,6 +31,7 @@
 // (kept in the pool across frames and submissions) to the one this use needs; two reads in the
 // same state need none. A per-frame resource's first use in a frame that only writes it starts
 // from "undefined" (its old contents are not kept).
+#include "render/pass_bindings.h"
 #include "render/resource_pool.h"
 #include "vk/sync.h"
 #include "vk/timestamps.h"
@@ -67,7 +68,10 @@ struct PassDecl {
     // plan checks), the same for every pass of one name (the timer checks).
     std::optional<CostGroup> cost;
     Phase phase;
-    std::vector<Use> uses;
+    std::vector<Use> uses; // besides those its bindings make
+    // Its descriptors, declared once (render/pass_bindings.h): the graph adds the uses they make
+    // and pushes them before `record` runs, which then binds its pipeline and dispatches or draws.
+    PassBindings bindings = {};
     std::function<void(PassContext&)> record;
 };
 

@@ -90,6 +90,26 @@ AliasPlan planAliasing(std::span<const TransientNeed> needs, VkDeviceSize maxBlo
         placedIn[best].push_back(i);
         plan.separateBytes += need.size;
     }
+    // A block that saves nothing (its images take no common bytes, or the alignment's padding
+    // costs what they share; a real GPU aligns small images to more than their size) is split:
+    // each of its images in a block of its own, as if it had never been shared.
+    std::vector<AliasPlan::Block> kept;
+    for (size_t b = 0; b < placedIn.size(); ++b) {
+        VkDeviceSize own = 0;
+        for (const size_t j : placedIn[b])
+            own += needs[j].size;
+        if (plan.blocks[b].size < own) {
+            for (const size_t j : placedIn[b])
+                plan.placements[j].block = kept.size();
+            kept.push_back(plan.blocks[b]);
+            continue;
+        }
+        for (const size_t j : placedIn[b]) {
+            plan.placements[j] = {.block = kept.size(), .offset = 0};
+            kept.push_back({.size = needs[j].size, .memoryTypeBits = needs[j].memoryTypeBits});
+        }
+    }
+    plan.blocks = std::move(kept);
     return plan;
 }
 

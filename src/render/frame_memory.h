@@ -37,7 +37,8 @@ struct AliasPlan {
 // Larger images first, each at the lowest offset of the block it grows least (a new block when
 // no block's memory types suit it, or none has room under `maxBlockBytes`, the device's largest
 // allocation: an image larger than that gets a block of its own); a block grows at most by an
-// image and its alignment, so the total is at most the separate one plus alignment padding.
+// image and its alignment. A block that would save nothing is split into one block per image, so
+// the total is never more than the separate one.
 AliasPlan planAliasing(std::span<const TransientNeed> needs,
                        VkDeviceSize maxBlockBytes = ~VkDeviceSize{0});
 

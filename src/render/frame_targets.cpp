@@ -1,6 +1,7 @@
 #include "render/frame_targets.h"
 
 #include "checkerboard.h"
+#include "core/fnv1a.h"
 #include "render/pipelines.h"
 
 namespace penumbra::render {
@@ -93,17 +94,11 @@ std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
 }
 
 uint64_t historyKeyOf(std::span<const ShadowView> views) {
-    uint64_t hash = 14695981039346656037ull; // 64-bit FNV-1a over each view's bytes that place it
-    auto add = [&hash](const void* data, size_t bytes) {
-        for (size_t i = 0; i < bytes; ++i) {
-            hash ^= static_cast<const unsigned char*>(data)[i];
-            hash *= 1099511628211ull;
-        }
-    };
+    uint64_t hash = kFnv1aOffset; // over each view's bytes that place it
     for (const ShadowView& view : views) {
-        add(&view.light, sizeof view.light);
-        add(&view.projection.perspective, sizeof view.projection.perspective);
-        add(&view.projection.viewProj, sizeof view.projection.viewProj);
+        hash = fnv1a(&view.light, sizeof view.light, hash);
+        hash = fnv1a(&view.projection.perspective, sizeof view.projection.perspective, hash);
+        hash = fnv1a(&view.projection.viewProj, sizeof view.projection.viewProj, hash);
     }
     return hash;
 }

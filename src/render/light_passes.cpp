@@ -271,30 +271,22 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                        }});
         return;
     }
-    graph.addPass(
-        {.name = "composite",
-         .cost = CostGroup::PerPixel,
-         .phase = Phase::Composite,
-         .uses = {{r.frame, Access::UniformRead},
-                  {r.lights, Access::UniformRead},
-                  {r.gbufferDepth, Access::ComputeSampled},
-                  {r.gbufferNormal, Access::ComputeSampled},
-                  {r.gbufferAlbedo, Access::ComputeSampled},
-                  {r.visibility, Access::ComputeSampled},
-                  {r.color, Access::ComputeWrite}},
-         .record = [&p, &s, &in, r](PassContext& c) {
-             vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.composite(s.sceneLights));
-             vk::PushDescriptors()
-                 .uniformBuffer(BIND_FRAME, in.frame)
-                 .uniformBuffer(COMPOSITE_LIGHTS, in.lights)
-                 .sampled(COMPOSITE_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
-                 .sampled(COMPOSITE_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
-                 .sampled(COMPOSITE_GBUFFER_ALBEDO, c.image(r.gbufferAlbedo).view(), in.nearest)
-                 .sampled(COMPOSITE_VISIBILITY, c.image(r.visibility).view(), in.nearest)
-                 .storageImage(COMPOSITE_OUT, c.image(r.color).view())
-                 .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.compositeLayout);
-             vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
-         }});
+    graph.addPass({.name = "composite",
+                   .cost = CostGroup::PerPixel,
+                   .phase = Phase::Composite,
+                   .bindings = {.layout = &p.compositeLayout,
+                                .bound = {{BIND_FRAME, r.frame},
+                                          {COMPOSITE_LIGHTS, r.lights},
+                                          {COMPOSITE_GBUFFER_DEPTH, r.gbufferDepth, in.nearest},
+                                          {COMPOSITE_GBUFFER_NORMAL, r.gbufferNormal, in.nearest},
+                                          {COMPOSITE_GBUFFER_ALBEDO, r.gbufferAlbedo, in.nearest},
+                                          {COMPOSITE_VISIBILITY, r.visibility, in.nearest},
+                                          {COMPOSITE_OUT, r.color}}},
+                   .record = [&p, &s](PassContext& c) {
+                       vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                                         p.composite(s.sceneLights));
+                       vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+                   }});
 }
 
 } // namespace penumbra::render

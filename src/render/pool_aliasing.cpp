@@ -13,10 +13,13 @@ void ResourcePool::placeTransients(std::span<const UseSpan> spans) {
     std::vector<ResourceId> chosen;
     std::vector<size_t> ends; // the chosen spans' first and last passes, in order
     for (ResourceId id = 0; id < mEntries.size() && id < spans.size(); ++id) {
-        const Entry* e = mEntries[id].get();
+        Entry* e = mEntries[id].get();
         const auto* decl = e ? std::get_if<ImageDecl>(&e->decl) : nullptr;
-        if (!decl || decl->lifetime != Lifetime::PerFrame || !spans[id].shareable ||
-            needsOwnMemory(imageDesc(*e)))
+        if (!decl || decl->lifetime != Lifetime::PerFrame || !spans[id].shareable)
+            continue;
+        if (!e->ownMemory) // asked once: an entry keeps its shape and extent while it lives
+            e->ownMemory = needsOwnMemory(imageDesc(*e));
+        if (*e->ownMemory)
             continue;
         chosen.push_back(id);
         ends.insert(ends.end(), {spans[id].first, spans[id].last});

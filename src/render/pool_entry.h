@@ -3,6 +3,7 @@
 // own files (resource_pool.cpp, pool_aliasing.cpp).
 #include "render/resource_pool.h"
 
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -29,6 +30,8 @@ struct ResourcePool::Entry {
     // placed over some of the same bytes.
     bool aliased = false;
     std::vector<const Entry*> sharesWith;
+    // Whether the driver wants the image in memory of its own (needsOwnMemory), once asked.
+    std::optional<bool> ownMemory;
 };
 
 } // namespace penumbra::render

@@ -104,6 +104,7 @@ bool reads(Access access); // what it finds (attachments are cleared on load: th
 class ResourcePool {
 public:
     explicit ResourcePool(const vk::Context& ctx);
+    const vk::Context& context() const { return mCtx; }
     ~ResourcePool();
     ResourcePool(const ResourcePool&) = delete;
     ResourcePool& operator=(const ResourcePool&) = delete;

@@ -68,27 +68,20 @@ void addGBufferPass(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
 
 void addReadbackPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
                        const FrameInputs& in, const FrameResources& r) {
-    graph.addPass(
-        {.name = "",
-         .phase = Phase::Readback,
-         .uses = {{r.gbufferDepth, Access::ComputeSampled},
-                  {r.gbufferNormal, Access::ComputeSampled},
-                  {r.position, Access::ComputeWrite},
-                  {r.normal, Access::ComputeWrite},
-                  {r.faceNormal, Access::ComputeWrite},
-                  {r.frame, Access::UniformRead}},
-         .record = [&p, &s, &in, r](PassContext& c) {
-             vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.exportGBuffer.get());
-             vk::PushDescriptors()
-                 .uniformBuffer(BIND_FRAME, in.frame)
-                 .sampled(EXPORT_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
-                 .sampled(EXPORT_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
-                 .storageImage(EXPORT_POSITION, c.image(r.position).view())
-                 .storageImage(EXPORT_NORMAL, c.image(r.normal).view())
-                 .storageImage(EXPORT_FACE_NORMAL, c.image(r.faceNormal).view())
-                 .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.exportLayout);
-             vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
-         }});
+    graph.addPass({.name = "",
+                   .phase = Phase::Readback,
+                   .bindings = {.layout = &p.exportLayout,
+                                .bound = {{BIND_FRAME, r.frame},
+                                          {EXPORT_GBUFFER_DEPTH, r.gbufferDepth, in.nearest},
+                                          {EXPORT_GBUFFER_NORMAL, r.gbufferNormal, in.nearest},
+                                          {EXPORT_POSITION, r.position},
+                                          {EXPORT_NORMAL, r.normal},
+                                          {EXPORT_FACE_NORMAL, r.faceNormal}}},
+                   .record = [&p, &s](PassContext& c) {
+                       vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                                         p.exportGBuffer.get());
+                       vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+                   }});
     const ReadbackLayout layout(s.sizes.width, s.sizes.height, s.sizes.shadowLights);
     graph.addPass(
         {.name = "",

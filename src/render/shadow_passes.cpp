@@ -247,12 +247,10 @@ void addPostPasses(FrameGraph& graph, FramePipelines& p, const shadows::Techniqu
         std::vector<ResourceId> inputs, outputs;
         std::vector<std::pair<uint32_t, ResourceId>> histories; // input i: last frame's of id
         for (std::string_view name : pass.inputs) {
-            if (name.ends_with(shadows::kPreviousMapSuffix))
-                histories.emplace_back(
-                    static_cast<uint32_t>(inputs.size()),
-                    r.named(module,
-                            name.substr(0, name.size() - shadows::kPreviousMapSuffix.size())));
-            uses.push_back({inputs.emplace_back(r.named(module, name)), Access::ComputeSampled});
+            const ResourceId id = r.named(module, name);
+            if (const std::optional<ResourceId> current = r.currentOf(id))
+                histories.emplace_back(static_cast<uint32_t>(inputs.size()), *current);
+            uses.push_back({inputs.emplace_back(id), Access::ComputeSampled});
         }
         for (std::string_view name : pass.outputs)
             uses.push_back({outputs.emplace_back(r.named(module, name)), Access::ComputeWrite});

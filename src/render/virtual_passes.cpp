@@ -33,24 +33,17 @@ void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
         {.name = "shadow",
          .cost = CostGroup::ShadowMaps,
          .phase = Phase::ScreenSpace,
-         .uses = {{r.frame, Access::UniformRead},
-                  {r.lights, Access::UniformRead},
-                  {r.views, Access::UniformRead},
-                  {r.gbufferDepth, Access::ComputeSampled},
-                  {r.gbufferNormal, Access::ComputeSampled},
-                  {r.pageRequests, Access::ComputeWrite}},
-         .record = [&p, &s, &in, r](PassContext& c) {
+         .bindings = {.layout = &p.markingLayout,
+                      .bound = {{BIND_FRAME, r.frame},
+                                {MARK_LIGHTS, r.lights},
+                                {MARK_GBUFFER_DEPTH, r.gbufferDepth, in.nearest},
+                                {MARK_GBUFFER_NORMAL, r.gbufferNormal, in.nearest},
+                                {MARK_VIEWS, r.views},
+                                {MARK_REQUESTS, r.pageRequests}}},
+         .record = [&p, &s](PassContext& c) {
              for (const LightDispatch& light : s.shadowLights) {
                  vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
                                    p.marking({{SPEC_LIGHT_TYPE, light.type}}));
-                 vk::PushDescriptors()
-                     .uniformBuffer(BIND_FRAME, in.frame)
-                     .uniformBuffer(MARK_LIGHTS, in.lights)
-                     .sampled(MARK_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
-                     .sampled(MARK_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
-                     .uniformBuffer(MARK_VIEWS, in.views)
-                     .storageBuffer(MARK_REQUESTS, c.buffer(r.pageRequests))
-                     .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.markingLayout);
                  vkCmdPushConstants(c.cmd, p.markingLayout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
                                     sizeof light.push, &light.push);
                  vkCmdDispatch(c.cmd, groups((s.sizes.width + MARK_BLOCK - 1) / MARK_BLOCK),

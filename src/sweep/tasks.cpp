@@ -1,6 +1,8 @@
 // Task expansion and sharding (tasks.h).
 #include "sweep/tasks.h"
 
+#include "core/fnv1a.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -24,12 +26,7 @@ std::string describe(const PlanLight& l) {
 } // namespace
 
 std::string hashHex(std::string_view bytes) {
-    uint64_t h = 14695981039346656037ull;
-    for (unsigned char c : bytes) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    return fmt::format("{:016x}", h);
+    return fmt::format("{:016x}", fnv1a(bytes.data(), bytes.size()));
 }
 
 SweepTasks expandTasks(const Plan& plan) {

@@ -134,7 +134,8 @@ PipelineLayout createPipelineLayout(const Context& ctx, std::span<const Binding>
     VkDescriptorSetLayout set = VK_NULL_HANDLE;
     VK_CREATE(vkCreateDescriptorSetLayout(ctx.device(), &setInfo, nullptr, &set));
     PipelineLayout result{.set = DescriptorSetLayoutHandle(ctx.device(), set),
-                          .bindings = {bindings.begin(), bindings.end()}};
+                          .bindings = {bindings.begin(), bindings.end()},
+                          .stages = stages};
 
     const VkPushConstantRange range{.stageFlags = stages, .offset = 0, .size = pushConstantBytes};
     const VkPipelineLayoutCreateInfo info{.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
@@ -158,12 +159,15 @@ PipelineLayout createLayoutOf(const Context& ctx, std::initializer_list<std::str
             const auto held = std::find_if(bindings.begin(), bindings.end(), [&](const Binding& b) {
                 return b.binding == used.binding;
             });
-            if (held == bindings.end())
+            if (held == bindings.end()) {
                 bindings.push_back(used);
-            else
-                PENUMBRA_CHECK(held->type == used.type && held->count == used.count,
-                               "shader " + std::string(shader) + ": binding " +
-                                   std::to_string(used.binding) + " differs from another stage's");
+                continue;
+            }
+            PENUMBRA_CHECK(held->type == used.type && held->count == used.count,
+                           "shader " + std::string(shader) + ": binding " +
+                               std::to_string(used.binding) + " differs from another stage's");
+            held->read = held->read || used.read; // what any of its shaders does
+            held->written = held->written || used.written;
         }
     }
     std::sort(bindings.begin(), bindings.end(),

@@ -17,6 +17,10 @@ struct Binding {
     uint32_t binding;
     VkDescriptorType type;
     uint32_t count = 1; // an array of this many (a shader's `sampler2DArray maps[N]`)
+    // What its shaders do with what is bound there, read from their SPIR-V (vk/spirv_bindings.h;
+    // a storage image or buffer's `readonly` and `writeonly`): set by reflection and the layouts
+    // made from it, left false in a layout listed by hand.
+    bool read = false, written = false;
 };
 
 // Why `bindings`, seen by one shader stage through one push descriptor set, exceed the device's
@@ -31,6 +35,7 @@ struct PipelineLayout {
     // What it was made with: a pipeline's shaders are checked against them
     // (vk/spirv_bindings.h).
     std::vector<Binding> bindings;
+    VkShaderStageFlags stages = 0;
     VkPipelineLayout get() const { return layout.get(); }
 };
 

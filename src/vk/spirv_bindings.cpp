@@ -24,10 +24,11 @@ enum Op : uint32_t {
     OpSpecConstant = 50,
     OpVariable = 59,
     OpDecorate = 71,
+    OpMemberDecorate = 72,
 };
 constexpr uint32_t kMagic = 0x07230203u;
-constexpr uint32_t DecorationBlock = 2, DecorationBufferBlock = 3, DecorationBinding = 33,
-                   DecorationDescriptorSet = 34;
+constexpr uint32_t DecorationBlock = 2, DecorationBufferBlock = 3, DecorationNonWritable = 24,
+                   DecorationNonReadable = 25, DecorationBinding = 33, DecorationDescriptorSet = 34;
 constexpr uint32_t StorageUniformConstant = 0, StorageUniform = 2, StorageStorageBuffer = 12;
 constexpr uint32_t DimBuffer = 5;
 
@@ -35,6 +36,11 @@ struct Module {
     std::unordered_set<uint32_t> interface; // the entry points' global variables
     std::unordered_map<uint32_t, uint32_t> binding, set;
     std::unordered_set<uint32_t> block, bufferBlock;
+    // `readonly` and `writeonly`: on a variable (images), or on each member of a block (buffers:
+    // the members so decorated, by struct).
+    std::unordered_set<uint32_t> nonWritable, nonReadable;
+    std::unordered_map<uint32_t, std::unordered_set<uint32_t>> nonWritableMembers,
+        nonReadableMembers;
     struct Variable {
         uint32_t pointer, storage;
     };
@@ -81,6 +87,16 @@ Module parse(std::span<const uint32_t> words) {
                 m.block.insert(w[1]);
             else if (w.size() >= 3 && w[2] == DecorationBufferBlock)
                 m.bufferBlock.insert(w[1]);
+            else if (w.size() >= 3 && w[2] == DecorationNonWritable)
+                m.nonWritable.insert(w[1]);
+            else if (w.size() >= 3 && w[2] == DecorationNonReadable)
+                m.nonReadable.insert(w[1]);
+            break;
+        case OpMemberDecorate: // struct, member, decoration
+            if (w.size() >= 4 && w[3] == DecorationNonWritable)
+                m.nonWritableMembers[w[1]].insert(w[2]);
+            else if (w.size() >= 4 && w[3] == DecorationNonReadable)
+                m.nonReadableMembers[w[1]].insert(w[2]);
             break;
         case OpVariable:
             if (w.size() >= 4)
@@ -150,6 +166,28 @@ VkDescriptorType kindOf(const Module& m, uint32_t type, uint32_t storage) {
     }
 }
 
+// Whether the shader may read and write what variable `id` of descriptor type `type` (its
+// element type `element`) binds: sampled images and uniforms are read only; a storage image or
+// buffer is read unless `writeonly` and written unless `readonly`, on the variable or on every
+// member of its block.
+std::pair<bool, bool> accessOf(const Module& m, uint32_t id, uint32_t element,
+                               VkDescriptorType type) {
+    const bool storage = type == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE ||
+                         type == VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER ||
+                         type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    if (!storage)
+        return {type != VK_DESCRIPTOR_TYPE_SAMPLER, false};
+    const auto everyMember = [&](const auto& decorated) {
+        const Module::Type& t = typeOf(m, element);
+        const auto it = decorated.find(element);
+        return t.op == OpTypeStruct && it != decorated.end() &&
+               it->second.size() == t.operands.size();
+    };
+    const bool readable = !m.nonReadable.contains(id) && !everyMember(m.nonReadableMembers);
+    const bool writable = !m.nonWritable.contains(id) && !everyMember(m.nonWritableMembers);
+    return {readable, writable};
+}
+
 } // namespace
 
 std::vector<Binding> reflectBindings(std::span<const uint32_t> words) {
@@ -179,9 +217,13 @@ std::vector<Binding> reflectBindings(std::span<const uint32_t> words) {
             }
             type = t.operands[0];
         }
+        const VkDescriptorType kind = kindOf(m, type, variable.storage);
+        const auto [read, written] = accessOf(m, id, type, kind);
         used.push_back({.binding = m.binding.at(id),
-                        .type = kindOf(m, type, variable.storage),
-                        .count = count});
+                        .type = kind,
+                        .count = count,
+                        .read = read,
+                        .written = written});
     }
     std::sort(used.begin(), used.end(),
               [](const Binding& a, const Binding& b) { return a.binding < b.binding; });

@@ -14,8 +14,9 @@ namespace penumbra::vk {
 
 // The bindings of descriptor set 0 that the entry point uses (its interface: SPIR-V 1.4 and
 // later list every global variable a shader uses there), sorted by binding, with their
-// descriptor types and array sizes. A malformed module, a set other than 0 or a kind the
-// renderer does not bind is a programmer's error (fatal).
+// descriptor types, array sizes and whether it reads and writes them (Binding::read, written). A
+// malformed module, a set other than 0 or a kind the renderer does not bind is a programmer's error
+// (fatal).
 std::vector<Binding> reflectBindings(std::span<const uint32_t> words);
 
 // Why a shader that uses `used` cannot run on a layout of `layout`: the first binding it uses

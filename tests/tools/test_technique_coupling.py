@@ -13,6 +13,7 @@ MODULE_H = """struct TechniqueModule {
     bool modelsLightSize = false;
     double (*searchCap)(const ParameterValues&) = nullptr;
     std::vector<PassDecl> passes; // declarations: run whoever lists them
+    std::optional<FieldDecl> field; // a declaration too: built for whoever declares it
 };
 """
 
@@ -25,7 +26,7 @@ def tree(root, files, record=None):
         "src/shadows/hard.cpp": 'const TechniqueModule& hardModule() {\n'
                                 '    static const TechniqueModule m{.info = {.name = "hard"},\n'
                                 '        .tracesField = true, .modelsLightSize = true,\n'
-                                '        .passes = {PassDecl{}}};\n}\n',
+                                '        .passes = {PassDecl{}}, .field = FieldDecl{}};\n}\n',
         "src/shadows/msm_soft.cpp": 'const TechniqueModule& msmSoftModule() {\n'
                                     '    static const TechniqueModule m{.info = {.name = '
                                     '"msm-soft"}, .modelsLightSize = true};\n}\n',
@@ -53,6 +54,7 @@ def test_names_and_one_technique_fields_count_comments_and_shared_fields_do_not(
             'auto m = "hardly";',                           # not a name: a longer literal
             "const auto& h = hardModule();",                # 4: its module function
             "for (auto& pass : module.passes) {}",         # declarations one module lists
+            "if (const auto& f = module.field) {}",         # an optional declaration
         ]),
         "src/shadows/b.cpp": "Technique::Hard; module.tracesField;",  # the modules' own folder
         "apps/c.h": 'std::string d = "hard";',              # 5: a name in apps/

@@ -1,0 +1,131 @@
+// A pass's bindings declared once (src/render/pass_bindings.cpp): whether a shader reads or
+// writes each binding, read from its SPIR-V (`readonly`, `writeonly`; the expectations below are
+// written from each shader's GLSL), the graph's uses that follow from a layout made from the
+// shaders, and the declarations refused before anything is recorded.
+#include "bindings.h"
+#include "gpu_fixture.h"
+#include "render/frame_graph.h"
+#include "render/pass_bindings.h"
+#include "vk/context.h"
+#include "vk/spirv_bindings.h"
+
+#include <algorithm>
+
+namespace penumbra::shaders {
+std::span<const uint32_t> spirv(std::string_view name); // cmake/Shaders.cmake's table
+}
+
+using namespace penumbra;
+using namespace penumbra::render;
+using namespace penumbra::test;
+
+namespace {
+
+// {read, written} of `binding` in `shader`; {false, false} where the shader does not use it.
+std::pair<bool, bool> accessIn(std::string_view shader, uint32_t binding) {
+    for (const vk::Binding& b : vk::reflectBindings(shaders::spirv(shader)))
+        if (b.binding == binding)
+            return {b.read, b.written};
+    return {false, false};
+}
+
+VkSampler fakeSampler() { // never dereferenced: usesOf only asks whether one is given
+    return reinterpret_cast<VkSampler>(uintptr_t{1});
+}
+
+} // namespace
+
+TEST(SpirvBindings, ReadsWhetherTheShaderReadsOrWritesEachBinding) {
+    using RW = std::pair<bool, bool>;
+    // Sampled images and uniform blocks are read.
+    EXPECT_EQ(accessIn("second_depth_mid.comp", POST_INPUT_BINDING), RW(true, false));
+    EXPECT_EQ(accessIn("visibility_fill.comp", BIND_FRAME), RW(true, false));
+    // A storage image: `writeonly`, or neither qualifier (both).
+    EXPECT_EQ(accessIn("second_depth_mid.comp", POST_OUTPUT_BINDING), RW(false, true));
+    EXPECT_EQ(accessIn("visibility_fill.comp", LAYER_VISIBILITY), RW(true, true));
+    // A storage buffer's block: `readonly`, `writeonly` (decorated member by member), neither.
+    EXPECT_EQ(accessIn("filter_probe.comp#1", PROBE_RECEIVERS), RW(true, false));
+    EXPECT_EQ(accessIn("filter_probe.comp#1", PROBE_RESULTS), RW(false, true));
+    EXPECT_EQ(accessIn("page_marking.comp", MARK_REQUESTS), RW(false, true));
+    EXPECT_EQ(accessIn("visibility_fill.comp", LAYER_TRACE_LIST), RW(true, true));
+}
+
+// A layout made from its shaders gives each binding's use: the composite pass's.
+TEST_F(FrameTest, APassBindingsUsesFollowFromItsShaders) {
+    const vk::Context& ctx = sharedRenderer().context();
+    const vk::PipelineLayout layout =
+        vk::createLayoutOf(ctx, {"composite.comp"}, VK_SHADER_STAGE_COMPUTE_BIT, 0);
+    const PassBindings bindings{.layout = &layout,
+                                .bound = {{BIND_FRAME, 10},
+                                          {COMPOSITE_LIGHTS, 11},
+                                          {COMPOSITE_GBUFFER_DEPTH, 12, fakeSampler()},
+                                          {COMPOSITE_GBUFFER_NORMAL, 13, fakeSampler()},
+                                          {COMPOSITE_GBUFFER_ALBEDO, 14, fakeSampler()},
+                                          {COMPOSITE_VISIBILITY, 15, fakeSampler()},
+                                          {COMPOSITE_OUT, 16}}};
+    const std::vector<Use> uses = usesOf(bindings, "composite");
+    ASSERT_EQ(uses.size(), 7u);
+    const std::vector<Access> expected{Access::UniformRead,    Access::UniformRead,
+                                       Access::ComputeSampled, Access::ComputeSampled,
+                                       Access::ComputeSampled, Access::ComputeSampled,
+                                       Access::ComputeWrite};
+    for (size_t i = 0; i < uses.size(); ++i) {
+        EXPECT_EQ(uses[i].resource, 10 + i) << i;
+        EXPECT_EQ(uses[i].access, expected[i]) << i;
+    }
+    // A graphics layout samples in the fragment stage.
+    const vk::PipelineLayout gbuffer =
+        vk::createLayoutOf(ctx, {"gbuffer.vert", "gbuffer.frag"},
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0);
+    const std::vector<Use> drawn = usesOf(
+        {.layout = &gbuffer, .bound = {{BIND_FRAME, 1}, {GBUFFER_TEXTURE, 2, fakeSampler()}}},
+        "gbuffer");
+    ASSERT_EQ(drawn.size(), 2u);
+    EXPECT_EQ(drawn[1].access, Access::FragmentSampled);
+    // Storage read and written, and read only.
+    const vk::PipelineLayout fill =
+        vk::createLayoutOf(ctx, {"visibility_fill.comp"}, VK_SHADER_STAGE_COMPUTE_BIT, 0);
+    const vk::Binding* visibility = nullptr;
+    for (const vk::Binding& b : fill.bindings)
+        if (b.binding == LAYER_VISIBILITY)
+            visibility = &b;
+    ASSERT_NE(visibility, nullptr);
+    EXPECT_EQ(accessOf(*visibility, fill.stages, "fill"), Access::ComputeReadWrite);
+    vk::Binding readOnly = *visibility;
+    readOnly.written = false;
+    EXPECT_EQ(accessOf(readOnly, fill.stages, "fill"), Access::ComputeRead);
+}
+
+// What cannot be bound as declared is refused by name when the pass is added.
+TEST_F(FrameTest, PassBindingsThatDoNotMatchTheLayoutAreRefused) {
+    const vk::Context& ctx = sharedRenderer().context();
+    const vk::PipelineLayout layout =
+        vk::createLayoutOf(ctx, {"second_depth_mid.comp"}, VK_SHADER_STAGE_COMPUTE_BIT, 16);
+    const Bound first{POST_INPUT_BINDING, 1, fakeSampler()};
+    const Bound second{POST_INPUT_BINDING + 1, 2, fakeSampler()};
+    const Bound out{POST_OUTPUT_BINDING, 3};
+    EXPECT_EQ(usesOf({.layout = &layout, .bound = {first, second, out}}, "mid").size(), 3u);
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(usesOf({.layout = &layout, .bound = {first, out}}, "mid"),
+                 "pass \"mid\": leaves binding 1 \\(combined image sampler\\) unbound");
+    EXPECT_DEATH(usesOf({.layout = &layout, .bound = {first, second, out, {5, 4}}}, "mid"),
+                 "pass \"mid\": binds binding 5, which its layout does not hold");
+    EXPECT_DEATH(usesOf({.layout = &layout, .bound = {first, second, out, out}}, "mid"),
+                 "pass \"mid\": binds binding 8 twice");
+    EXPECT_DEATH(
+        usesOf({.layout = &layout, .bound = {{POST_INPUT_BINDING, 1}, second, out}}, "mid"),
+        "pass \"mid\": binding 0 \\(combined image sampler\\) needs a sampler");
+    EXPECT_DEATH(usesOf({.layout = &layout,
+                         .bound = {first, second, {POST_OUTPUT_BINDING, 3, fakeSampler()}}},
+                        "mid"),
+                 "pass \"mid\": binding 8 \\(storage image\\) takes no sampler");
+    // A layout listed by hand says nothing of what its shaders do: its pass declares its uses.
+    const vk::PipelineLayout byHand =
+        vk::createPipelineLayout(ctx,
+                                 {{POST_INPUT_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER},
+                                  {POST_OUTPUT_BINDING, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}},
+                                 VK_SHADER_STAGE_COMPUTE_BIT, 16);
+    EXPECT_DEATH(usesOf({.layout = &byHand, .bound = {first, out}}, "mid"),
+                 "pass \"mid\": binding 0 \\(combined image sampler\\) is neither read nor "
+                 "written by its shaders");
+}
