@@ -6,6 +6,7 @@
 #include "gpu_fixture.h"
 #include "render/frame_graph.h"
 #include "render/pass_bindings.h"
+#include "viewer_types.h"
 #include "vk/context.h"
 #include "vk/spirv_bindings.h"
 
@@ -48,6 +49,30 @@ TEST(SpirvBindings, ReadsWhetherTheShaderReadsOrWritesEachBinding) {
     EXPECT_EQ(accessIn("filter_probe.comp#1", PROBE_RESULTS), RW(false, true));
     EXPECT_EQ(accessIn("page_marking.comp", MARK_REQUESTS), RW(false, true));
     EXPECT_EQ(accessIn("visibility_fill.comp", LAYER_TRACE_LIST), RW(true, true));
+    // A `readonly` image, and a `readonly` block of two members (every member decorated).
+    EXPECT_EQ(accessIn("viewer_display.comp", DISPLAY_COLOR), RW(true, false));
+    EXPECT_EQ(accessIn("visibility.comp#12", VIS_TRACE_LIST), RW(true, false));
+}
+
+// A layout made from several shaders holds what any of them does with a binding: the filter
+// reads and writes the layers' scratch, contact only writes it.
+TEST_F(FrameTest, ALayoutOfSeveralShadersReadsAndWritesWhatAnyOfThemDoes) {
+    const vk::PipelineLayout layout =
+        vk::createLayoutOf(sharedRenderer().context(), {"visibility_filter.comp", "contact.comp"},
+                           VK_SHADER_STAGE_COMPUTE_BIT, 0);
+    const auto results =
+        std::find_if(layout.bindings.begin(), layout.bindings.end(),
+                     [](const vk::Binding& b) { return b.binding == LAYER_RESULTS; });
+    ASSERT_NE(results, layout.bindings.end());
+    EXPECT_TRUE(results->read);
+    EXPECT_TRUE(results->written);
+    const vk::PipelineLayout reversed =
+        vk::createLayoutOf(sharedRenderer().context(), {"contact.comp", "visibility_filter.comp"},
+                           VK_SHADER_STAGE_COMPUTE_BIT, 0);
+    for (const vk::Binding& b : reversed.bindings)
+        if (b.binding == LAYER_RESULTS) {
+            EXPECT_TRUE(b.read && b.written) << "in either order";
+        }
 }
 
 // A layout made from its shaders gives each binding's use: the composite pass's.
@@ -119,6 +144,12 @@ TEST_F(FrameTest, PassBindingsThatDoNotMatchTheLayoutAreRefused) {
                          .bound = {first, second, {POST_OUTPUT_BINDING, 3, fakeSampler()}}},
                         "mid"),
                  "pass \"mid\": binding 8 \\(storage image\\) takes no sampler");
+    // An array binding (a technique's map slots) takes several views: PassBindings binds one.
+    const vk::PipelineLayout arrays = vk::createPipelineLayout(
+        ctx, {{POST_INPUT_BINDING, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4, true, false}},
+        VK_SHADER_STAGE_COMPUTE_BIT, 16);
+    EXPECT_DEATH(usesOf({.layout = &arrays, .bound = {first}}, "mid"),
+                 "pass \"mid\": binding 0 is an array of 4; PassBindings binds one resource");
     // A layout listed by hand says nothing of what its shaders do: its pass declares its uses.
     const vk::PipelineLayout byHand =
         vk::createPipelineLayout(ctx,

@@ -56,6 +56,10 @@ std::vector<Use> usesOf(const PassBindings& bindings, std::string_view pass) {
     std::vector<Use> uses;
     for (const Bound& b : bindings.bound) {
         const vk::Binding& held = heldAt(layout, b.binding, pass);
+        if (held.count != 1)
+            refuse(pass, fmt::format("binding {} is an array of {}; PassBindings binds one "
+                                     "resource",
+                                     b.binding, held.count));
         if (std::count_if(bindings.bound.begin(), bindings.bound.end(),
                           [&](const Bound& o) { return o.binding == b.binding; }) != 1)
             refuse(pass, fmt::format("binds binding {} twice", b.binding));
