@@ -48,6 +48,11 @@ void main() {
                           INTEGER_SLOT(3, uv));
         return;
     }
+    if (PROBE_SLOTS == 3u) { // a summed-area table as the post passes left it, every channel
+        ivec3 texel = SLOT_TEXEL(shadowTables[0], uv);
+        results[i] = uintBitsToFloat(texelFetch(shadowTables[0], texel, 0));
+        return;
+    }
     TechniqueInput at;
     at.r.uv = probe.uvDepth.xy;
     at.r.depth = probe.uvDepth.z;

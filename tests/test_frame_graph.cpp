@@ -152,6 +152,21 @@ TEST_F(FrameTest, ThePoolKeepsWhatIsDeclaredAlikeAndPersistentContentsUnderTheir
     EXPECT_EQ(pool.findImage("cache")->get().width, 16u);
 }
 
+// Imports are the caller's for one frame: a pool that imports every frame holds as many entries
+// in its third frame as in its first (a break-test's mutant kept every frame's imports, a host
+// leak over a long viewer session that no other test saw).
+TEST_F(FrameTest, ImportsLastOneFrame) {
+    ResourcePool pool(context());
+    std::vector<size_t> bounds;
+    for (int frame = 0; frame < 3; ++frame) {
+        FrameGraph graph(pool, kSizes);
+        graph.declare(screenImage("image"));
+        graph.importBuffer("imported", VK_NULL_HANDLE);
+        bounds.push_back(pool.idBound());
+    }
+    EXPECT_EQ(bounds, (std::vector<size_t>{2, 2, 2}));
+}
+
 TEST_F(FrameTest, ReadingWhatNothingWroteIsAProgrammerError) {
     GTEST_FLAG_SET(death_test_style, "threadsafe");
     EXPECT_DEATH(

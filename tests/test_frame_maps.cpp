@@ -174,7 +174,8 @@ TEST_F(FrameTest, ATechniquesMapWithHistoryIsReadByItsPreviousName) {
     EXPECT_EQ(slots.floats[2], "kept") << "no depth map read: the first map in the slots left";
 
     GTEST_FLAG_SET(death_test_style, "threadsafe");
-    EXPECT_DEATH(r.named(module, "plain (previous)"), "keeps no history of plain");
+    EXPECT_DEATH(r.named(module, "plain (previous)"),
+                 "technique temporal keeps no history of 'plain'");
     shadows::TechniqueModule without = module;
     without.visibilityMaps = {"plain (previous)"};
     EXPECT_DEATH(shadows::visibilitySlots(without, defaults),

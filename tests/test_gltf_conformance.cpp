@@ -286,6 +286,14 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         Case{"byte_order_mark", text([](std::string& json) { json.insert(0, "\xEF\xBB\xBF"); }),
              "the JSON starts with a byte-order mark"},
+        // json.dump() recursed once a level and overflowed the stack (a break-test's file).
+        // Brackets in a string, after an escaped quote, do not nest.
+        Case{"nested_too_deep", text([](std::string& json) {
+                 json.insert(json.rfind('}'), ",\"note\":\"\\\"" + std::string(600, '[') +
+                                                  "\",\"extras\":" + std::string(100000, '[') +
+                                                  std::string(100000, ']'));
+             }),
+             "the JSON nests 100001 levels deep (at most 512)"},
         Case{"not_gltf_at_all",
              text([](std::string& json) { json = "solid cube\nfacet normal 0 0 1\n"; }),
              "not a glTF file: neither a JSON object nor a GLB"},

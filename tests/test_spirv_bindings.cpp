@@ -72,6 +72,27 @@ TEST(SpirvBindings, ReadsTheBindingsEachShaderUses) {
         EXPECT_FALSE(usedBy(shader).empty()) << shader;
 }
 
+// A uniform whose struct lost its Block decoration is malformed, not taken for a uniform buffer:
+// the fill's SPIR-V with each `OpDecorate %struct Block` overwritten by OpNops (a random mutant
+// that read every Uniform-class struct as a uniform buffer went unseen).
+TEST(SpirvBindings, AUniformWithoutItsBlockDecorationIsMalformed) {
+    const std::span<const uint32_t> original = shaders::spirv("visibility_fill.comp");
+    std::vector<uint32_t> words(original.begin(), original.end());
+    constexpr uint32_t kOpDecorate = 71, kDecorationBlock = 2, kOpNop = 1u << 16;
+    size_t removed = 0;
+    for (size_t i = 5; i < words.size();) { // after the header, one instruction at a time
+        const uint32_t count = std::max(words[i] >> 16, 1u);
+        if ((words[i] & 0xffffu) == kOpDecorate && count >= 3 && words[i + 2] == kDecorationBlock) {
+            std::fill_n(words.begin() + static_cast<std::ptrdiff_t>(i), count, kOpNop);
+            ++removed;
+        }
+        i += count;
+    }
+    ASSERT_GT(removed, 0u);
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(vk::reflectBindings(words), "neither a Block nor a BufferBlock");
+}
+
 TEST(SpirvBindings, AMismatchNamesTheBindingAndBothKinds) {
     const std::vector<Binding> used{{0, kSampled, 1}, {8, kStorageImage, 4}};
     EXPECT_EQ(vk::bindingMismatch(used, used), "");

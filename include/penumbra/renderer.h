@@ -216,7 +216,8 @@ struct ProbeLight {
                                 // kernels take their cubeRadius cap
     // Tests of what the visibility pass binds: 1 returns, instead of the technique, the texel
     // under each receiver of the four float map slots (TECH_MAP), 2 of the four integer ones
-    // (TECH_TABLE, their bits as floats).
+    // (TECH_TABLE, their bits as floats), 3 the four channels of the first integer one (a
+    // summed-area table's sums, as float bits).
     uint32_t readSlots = 0;
 };
 

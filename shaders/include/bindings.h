@@ -41,7 +41,8 @@
 #define SPEC_CHECKERBOARD 24    // visibility.comp: which pixels it traces (CHECKERBOARD_*,
                                 // checkerboard.h)
 #define SPEC_PROBE_SLOTS 26      // filter_probe.comp: 1 returns shadowMaps[0..3] at the receiver's
-                                 // texel, 2 shadowTables[0..3] (as float bits), not the technique
+                                 // texel, 2 shadowTables[0..3] (as float bits), 3 all four
+                                 // channels of shadowTables[0] (as float bits), not the technique
 #define SPEC_FILL_RANGE 25      // visibility_fill.comp: the range of the neighbours it fills from
                                 // (a float's bits)
 

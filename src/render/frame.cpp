@@ -2,6 +2,8 @@
 
 #include "penumbra/error.h"
 
+#include <fmt/format.h>
+
 namespace penumbra::render {
 
 static_assert(kPreviousSuffix == shadows::kPreviousMapSuffix,
@@ -26,12 +28,15 @@ ResourceId FrameResources::named(const shadows::TechniqueModule& module,
             if (module.maps[m].name == own && previousMaps[m])
                 return *previousMaps[m];
         fatal(__FILE__, __LINE__,
-              "FrameResources::named: the technique keeps no history of " + std::string(own));
+              fmt::format("FrameResources::named: technique {} keeps no history of '{}'",
+                          module.info.name, own));
     }
     for (size_t m = 0; m < module.maps.size(); ++m)
         if (module.maps[m].name == name)
             return maps[m];
-    fatal(__FILE__, __LINE__, "FrameResources::named: the technique declares no such map");
+    fatal(__FILE__, __LINE__,
+          fmt::format("FrameResources::named: technique {} declares no map '{}'", module.info.name,
+                      name));
 }
 
 std::optional<ResourceId> FrameResources::currentOf(ResourceId id) const {

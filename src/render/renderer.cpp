@@ -51,8 +51,8 @@ void checkVirtualMaps(const vk::Context& ctx, const Scene& scene, const RenderOp
     if (!module.readsVirtualMaps)
         throw InputError(
             "virtual.enabled",
-            fmt::format("technique {} filters whole maps in passes that do not "
-                        "cross pages; virtual maps serve {}",
+            fmt::format("technique {} does not read its maps through a page table "
+                        "(its maps are filtered whole, or it draws none); virtual maps serve {}",
                         techniqueName(o.technique),
                         shadows::techniquesWhere(
                             [](const shadows::TechniqueModule& m) { return m.readsVirtualMaps; })));

@@ -7,6 +7,7 @@
 
 #include <optional>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
@@ -472,6 +473,31 @@ Container readContainer(const std::filesystem::path& file, uint64_t maxFileSize)
     return c;
 }
 
+// How deep the JSON's arrays and objects nest (outside strings). Writing the JSON back out
+// (json.dump(), for the parser) recurses once a level: 100000 levels overflowed the stack.
+namespace {
+size_t jsonNesting(const std::string& text) {
+    size_t depth = 0, deepest = 0;
+    bool inString = false;
+    for (size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (inString) {
+            if (c == '\\')
+                ++i; // the escaped character, whatever it is
+            else if (c == '"')
+                inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '[' || c == '{') {
+            deepest = std::max(deepest, ++depth);
+        } else if ((c == ']' || c == '}') && depth > 0) {
+            --depth;
+        }
+    }
+    return deepest;
+}
+} // namespace
+
 nlohmann::json checkJson(const std::filesystem::path& file, const Container& container,
                          std::vector<std::string>* warnings) {
     const std::string& text = container.json;
@@ -481,6 +507,11 @@ nlohmann::json checkJson(const std::filesystem::path& file, const Container& con
     if (first == std::string::npos || text[first] != '{')
         refuse(file, container.binary ? "GLB: the JSON chunk does not hold a JSON object"
                                       : "not a glTF file: neither a JSON object nor a GLB");
+    // A glTF nests a dozen levels; extras may add some. Far past that is an attack on the stack.
+    constexpr size_t kMaxNesting = 512;
+    if (const size_t nesting = jsonNesting(text); nesting > kMaxNesting)
+        refuse(file,
+               fmt::format("the JSON nests {} levels deep (at most {})", nesting, kMaxNesting));
     nlohmann::json j;
     try {
         j = nlohmann::json::parse(text);

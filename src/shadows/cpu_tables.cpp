@@ -100,16 +100,20 @@ float softBlockerDistance(uint32_t kind, glm::vec3 found, const gpu::ShadowViewD
         view.frustum.x);
 }
 
-// shadowSoftDetail.
 } // namespace
 
+// shadowSoftDetail.
 glm::vec4 softReference(uint32_t kind, const gpu::SoftParams& p, const FilterInput& in) {
+    return softReference(kind, p, in, MomentTable(in.map, in.view, kind, p.tableScale));
+}
+
+glm::vec4 softReference(uint32_t kind, const gpu::SoftParams& p, const FilterInput& in,
+                        const MomentTable& table) {
     const ShadowMapView& map = in.map;
     const FilterProbe& probe = in.probe;
     const gpu::FrameData& f = in.frame;
     const gpu::ShadowViewData& view = in.view;
     const SoftSettings s = softSettings(kind, p, view);
-    const MomentTable table(map, view, kind, s.scale);
     const float size = static_cast<float>(map.size);
     const float zReceiver = gpu::viewDistance(view, probe.depth);
     glm::vec2 lo, hi;

@@ -37,6 +37,16 @@ public:
         }
     }
 
+    // A table the device wrote, read back (size x size sums, rows first): the tests evaluate
+    // the reference on the GPU's own sums.
+    MomentTable(int size, std::vector<glm::uvec4> sums) : n_(size), table_(std::move(sums)) {}
+
+    // One texel's fixed-point moments, from its cell's corners.
+    glm::vec4 texelMoments(int i, int j) const {
+        return gpu::boxFromCorners(corner({i, j}), corner({i + 1, j}), corner({i, j + 1}),
+                                   corner({i + 1, j + 1}));
+    }
+
     // tableBoxSum, loop for loop.
     glm::vec4 boxSum(glm::vec2 lo, glm::vec2 hi) const {
         const glm::ivec2 a = glm::min(glm::ivec2(glm::floor(lo)), glm::ivec2(n_ - 1));
@@ -83,5 +93,8 @@ void satBox(glm::vec2 uv, float reach, float size, glm::vec2& lo, glm::vec2& hi)
 // shadowSoftDetail for a table of `kind` (MOMENTS_VSM: vssm; MOMENTS_MSM: msm-soft) with the
 // member's own settings.
 glm::vec4 softReference(uint32_t kind, const gpu::SoftParams& params, const FilterInput& in);
+// The same on a given table (one the device wrote: tests).
+glm::vec4 softReference(uint32_t kind, const gpu::SoftParams& params, const FilterInput& in,
+                        const MomentTable& table);
 
 } // namespace penumbra::shadows

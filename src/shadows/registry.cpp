@@ -106,7 +106,7 @@ const std::vector<ParameterInfo>& parameterTable() {
          .description = "clip a light with a size by the receiver's own tangent plane, the part "
                         "of it below the surface's horizon being hidden by the surface itself, "
                         "which no shadow map holds: in the techniques that model the light's size "
-                        "(soft: pcss, vssm, msm-soft), in every technique (all), or none (off)"},
+                        "(soft), in every technique (all), or none (off)"},
         {.key = "bias.receiver",
          .type = ParameterType::Choice,
          .defaultValue = 2,

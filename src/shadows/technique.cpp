@@ -324,7 +324,9 @@ uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,
         for (uint32_t level = 0; (side >> level) > 0; ++level)
             chain += uint64_t{side >> level} * (side >> level);
         const uint64_t level0 = uint64_t{side} * side;
-        bytes += bytesPerTexel(formatOf(map, params)) * (mipmappedOf(map, params) ? chain : level0);
+        // A map kept with history is held twice: this frame's and last frame's.
+        bytes += (map.history ? 2u : 1u) * bytesPerTexel(formatOf(map, params)) *
+                 (mipmappedOf(map, params) ? chain : level0);
     }
     return bytes;
 }
