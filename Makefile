@@ -26,7 +26,7 @@ FUZZ_ENV     := ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1 \
 FUZZ_FLAGS   := -timeout=30 -rss_limit_mb=2048 -malloc_limit_mb=1024 -max_len=65536 \
                 -dict=fuzz/gltf.dict -print_final_stats=1 -artifact_prefix=$(FUZZ_DIR)/fuzz-crashes/
 
-.PHONY: baselines coupling quality deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python slurm-test
+.PHONY: regenerate baselines coupling quality deps build test demo bench clean format fuzz fuzz-smoke fuzz-build mutation-test soak renderdiff renderdiff-store faults faults-asan fuzz-cli cli-docs python slurm-test
 
 deps:
 	@missing=$$(for p in $(PACKAGES); do dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null \
@@ -120,6 +120,10 @@ python: build
 # build/$(PRESET)/docs; CliDocs.UpToDate fails until it is copied here).
 cli-docs: build
 	cp build/$(PRESET)/docs/cli.md docs/cli.md
+
+# What a new technique or parameter changes that is generated: docs/cli.md and the stored
+# compare rows (docs/architecture.md, "Adding a technique").
+regenerate: cli-docs baselines
 
 # Cross-device image agreement (tests/test_render_diff.cpp): every comparison row against the
 # images stored in tests/renderdiff/, on whichever device the suite picks. renderdiff-store

@@ -98,6 +98,24 @@ INSTANTIATE_TEST_SUITE_P(
                  "exceeds this device's maxImageDimension2D"},
         BadInput{
             "width_zero", {"render", "builtin:showcase", "-o", "{out}", "--width", "0"}, "--width"},
+        BadInput{"width_not_a_number",
+                 {"render", "builtin:showcase", "-o", "{out}", "--width", "abc"},
+                 "error: --width: 'abc' is not a value it takes (--help gives its kind)"},
+        BadInput{"unknown_command",
+                 {"rendr", "builtin:showcase"},
+                 "error: 'rendr' is not a command: render, reference, compare"},
+        BadInput{"bench_empty_output",
+                 {"bench", "builtin:showcase", "-o", ""},
+                 "error: -o: an empty file name; -o takes FILE.json"},
+        BadInput{"max_triangles_zero",
+                 {"--max-triangles", "0", "render", "builtin:showcase", "-o", "{out}"},
+                 "error: --max-triangles: '0' is not a number above zero"},
+        BadInput{"frames_twice",
+                 {"render", "builtin:showcase", "-o", "{out}", "--frames", "2", "--frames", "3"},
+                 "error: --frames: given 2 values; it takes one"},
+        BadInput{"unexpected_argument",
+                 {"render", "builtin:showcase", "-o", "{out}", "--scene"},
+                 "error: --scene: not an argument of this command (--help lists them)"},
         BadInput{"height_zero",
                  {"render", "builtin:showcase", "-o", "{out}", "--height", "0"},
                  "--height"},
@@ -128,7 +146,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"no_output_option", {"render", "builtin:showcase"}, "--output"},
         BadInput{"unknown_float_format",
                  {"render", "builtin:showcase", "-o", "{out}", "--format", "tiff"},
-                 "--format"},
+                 "error: --format: 'tiff' is not one of both, exr, pfm"},
         BadInput{"reference_zero_samples",
                  {"reference", "builtin:showcase", "-o", "{out}", "--samples", "0"},
                  "--samples"},
@@ -760,6 +778,21 @@ TEST(Cli, BenchRefusesBadSweepsAndTechniquesBeforeRunning) {
         EXPECT_NE(r.exitCode, 0) << args[1];
         EXPECT_EQ(r.err.rfind(subject, 0), 0u) << r.err;
         EXPECT_FALSE(fs::exists(out)) << args[1];
+        EXPECT_FALSE(fs::exists(dir / "bench.html"));
+    }
+    // -o names the JSON: a file of another kind, or a directory that exists, before any run.
+    fs::create_directories(dir / "taken.json");
+    fs::create_directories(dir / "html" / "bench.html");
+    for (const auto& [output, why] : std::vector<std::pair<fs::path, std::string>>{
+             {dir / "b.txt", "not a JSON file name; -o takes FILE.json"},
+             {dir / "taken.json", "is a directory"},
+             {dir / "html" / "b.json", "bench.html: is a directory"}}) {
+        const ProcessResult r = runCli({"bench", "builtin:showcase", "-o", output.string(),
+                                        "--width", "32", "--height", "32", "--frames", "1"});
+        EXPECT_NE(r.exitCode, 0) << output;
+        EXPECT_EQ(r.err.rfind("error: " + output.parent_path().string(), 0), 0u) << r.err;
+        EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir / "b.txt"));
         EXPECT_FALSE(fs::exists(dir / "bench.html"));
     }
 }

@@ -1,6 +1,7 @@
 // The CLI's shared options (apps/penumbra/cli_options.cpp): list splitting, sweeps and their
 // products, `--set` assembly onto a row, and the row one `--technique` names.
 #include "cli_options.h"
+#include "parse_errors.h"
 #include "penumbra/error.h"
 
 #include <gtest/gtest.h>
@@ -82,4 +83,39 @@ TEST(CliOptions, OneTechniqueNamesOneRowWithItsLayers) {
     EXPECT_EQ(pcfLayered.layers, std::vector<std::string>{"contact"});
     for (const char* bad : {"nope", "pcf[nope]", "hard+nope", "pcf[box3]+", "hard,pcf"})
         EXPECT_EQ(subjectOf([&] { rowNamed(bad, "--tech"); }), "--tech") << bad;
+}
+
+// CLI11's messages reworded: the option first, then what is wrong; any other message unchanged.
+TEST(CliOptions, ParseErrorsNameTheOptionFirst) {
+    EXPECT_EQ(parseErrorLine("Could not convert: --width = abc"),
+              "--width: 'abc' is not a value it takes (--help gives its kind)");
+    EXPECT_EQ(parseErrorLine("--max-triangles: Value 0 not in range 0.000000 to 1" +
+                             std::string(308, '7') + ".000000"),
+              "--max-triangles: '0' is not a number above zero");
+    EXPECT_EQ(parseErrorLine("--path-frames: Value 1 not in range 2 to 64"),
+              "--path-frames: '1' is outside 2..64");
+    EXPECT_EQ(parseErrorLine("--format: Check xyz value in {both->2,exr->1,pfm->0} OR {2,1,0} "
+                             "FAILED"),
+              "--format: 'xyz' is not one of both, exr, pfm");
+    EXPECT_EQ(parseErrorLine("--emit: pbs not in {slurm,kubernetes}"),
+              "--emit: 'pbs' is not one of slurm, kubernetes");
+    EXPECT_EQ(parseErrorLine("--frames: At Most 1 required but received 2"),
+              "--frames: given 2 values; it takes one");
+    EXPECT_EQ(parseErrorLine("--pair: At Most 2 required but received 3"),
+              "--pair: given 3 values; it takes at most 2");
+    EXPECT_EQ(parseErrorLine("--pair: At least 2 required but received 1"),
+              "--pair: given 1 value; it takes at least 2");
+    EXPECT_EQ(parseErrorLine("The following argument was not expected: --scene"),
+              "--scene: not an argument of this command (--help lists them)");
+    EXPECT_EQ(parseErrorLine("The following arguments were not expected: a b"),
+              "not arguments of this command: a b (--help lists them)");
+    EXPECT_EQ(parseErrorLine("--output is required"), "--output is required");
+}
+
+TEST(CliOptions, AMissingOrUnknownCommandListsTheCommands) {
+    const std::vector<std::string> commands{"render", "compare"};
+    EXPECT_EQ(missingCommandLine("", commands),
+              "a command is required: render, compare (penumbra --help)");
+    EXPECT_EQ(missingCommandLine("rendr", commands),
+              "'rendr' is not a command: render, compare (penumbra --help)");
 }

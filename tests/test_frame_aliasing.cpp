@@ -7,6 +7,7 @@
 #include "render/access_states.h"
 #include "render/frame_graph.h"
 #include "vk/context.h"
+#include "vk/resources.h"
 
 #include <cstring>
 
@@ -135,9 +136,15 @@ TEST_F(FrameTest, TransientsOfDisjointPassesShareMemoryAndEachReadsItsOwn) {
     EXPECT_TRUE(moved.aSharesWithB);
     // The same images now used beside each other: placed anew, each with its own bytes (each
     // reads back its own values).
+    const uint64_t allocations = vk::liveDeviceMemory().allocations;
     const Seen overlapping = runFrame(pool, {.overlap = true, .handOut = true});
     EXPECT_FALSE(overlapping.aSharesWithB);
     EXPECT_GT(pool.creations(), made);
+    // And back: the first placement again, in as many allocations (the last placement's blocks
+    // freed, not kept beside the new ones).
+    const Seen back = runFrame(pool, {.handOut = true});
+    EXPECT_TRUE(back.aSharesWithB);
+    EXPECT_EQ(vk::liveDeviceMemory().allocations, allocations);
     // c copied out beside the others: it may share too (with a, whose passes end before it).
     const Seen inside = runFrame(pool, {.handOut = false});
     EXPECT_TRUE(inside.cShares);

@@ -90,6 +90,19 @@ TEST(FrameMemory, APassThatUsesBothKeepsThemApart) {
     expectSound(plan, needs);
     EXPECT_EQ(plan.sharedBytes(), 128u);
     EXPECT_FALSE(sharesBytes(plan, needs, 0, 1));
+    EXPECT_EQ(plan.blocks.size(), 2u) << "side by side they save nothing: a block each";
+}
+
+// Two blocks that would both take an image without growing: the first gets it.
+TEST(FrameMemory, OfBlocksThatGrowAlikeTheFirstTakesTheImage) {
+    const std::vector<TransientNeed> needs{
+        {.first = 0, .last = 0, .size = 100, .memoryTypeBits = 0b01},
+        {.first = 0, .last = 0, .size = 100, .memoryTypeBits = 0b10},
+        {.first = 1, .last = 1, .size = 100, .memoryTypeBits = 0b11}};
+    const AliasPlan plan = planAliasing(needs);
+    expectSound(plan, needs);
+    EXPECT_TRUE(sharesBytes(plan, needs, 0, 2));
+    EXPECT_FALSE(sharesBytes(plan, needs, 1, 2));
 }
 
 TEST(FrameMemory, MemoryTypesNoImageAcceptsTogetherTakeBlocksOfTheirOwn) {

@@ -322,6 +322,14 @@ std::vector<Malformed> malformedAssets() {
                  b.view(std::vector<float>{-5, 0, -5, nan, 0, -5, 5, 0, 5, -5, 0, 5});
          }),
          "attributes.POSITION: element 1 is NaN or infinite"},
+        {"degenerate_only", // every corner on one line: triangles without area, all dropped
+         edit([](GltfBuilder& b) {
+             b.j["accessors"][0]["bufferView"] =
+                 b.view(std::vector<float>{0, 0, 0, 1, 0, 0, 2, 0, 0, 3, 0, 0});
+             b.j["accessors"][0]["min"] = {0, 0, 0};
+             b.j["accessors"][0]["max"] = {3, 0, 0};
+         }),
+         "its 2 triangles are without area or past the coordinate limit"},
         {"missing_position", // the spec: skip the primitive; it was the only one
          edit([](GltfBuilder& b) {
              b.j["meshes"][0]["primitives"][0]["attributes"] = {{"NORMAL", 0}};

@@ -355,6 +355,20 @@ std::vector<Boundary> contentBoundaries() {
          gltf(floatingQuad,
               lightValue([](J& l) -> J& { return l["extras"]["radius"]; }, 0.0, -kTinyPositive)),
          "KHR_lights_punctual.lights[0]: invalid intensity or size"},
+        {"light_radius_maximum",
+         gltf(floatingQuad, lightValue([](J& l) -> J& { return l["extras"]["radius"]; },
+                                       double(kMaxCoordinate), floatAbove(kMaxCoordinate))),
+         "KHR_lights_punctual.lights[0]: invalid intensity or size"},
+        {"light_angular_diameter_past_32_bits", // the integer 2^32 + 30: 30 in 32 bits
+         gltf(floatingQuad,
+              [](GltfBuilder& b, bool past) {
+                  b.j["extensions"]["KHR_lights_punctual"]["lights"][0]["extras"]
+                     ["angularDiameter"] = past ? J(int64_t{4294967326}) : J(30);
+              }),
+         "KHR_lights_punctual.lights[0]: invalid intensity or size"},
+        {"light_range_positive", // 0: absent, as tinygltf reads it
+         gltf(floatingQuad, lightValue([](J& l) -> J& { return l["range"]; }, 0.0, -kTinyPositive)),
+         "KHR_lights_punctual.lights[0]: range -"},
         {"light_angular_diameter_minimum",
          gltf(floatingQuad, lightValue([](J& l) -> J& { return l["extras"]["angularDiameter"]; },
                                        0.0, -kTinyPositive)),

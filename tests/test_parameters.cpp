@@ -321,8 +321,10 @@ TEST(TechniqueModules, DeclarationsAreConsistent) {
             EXPECT_EQ(m->blurRadiusTexels(ParameterValues()), 0.0) << name;
             EXPECT_EQ(shadows::shadowMapBytes(*m, 1024, ParameterValues()), 0u) << name;
             EXPECT_TRUE(m->maps.empty() && m->postPasses.empty() && m->depthPasses.empty()) << name;
+            EXPECT_EQ(shadows::drawnMapSize(*m, 1024), 1u) << name << ": 1x1 stand-ins";
         } else {
             EXPECT_GE(m->blurRadiusTexels(ParameterValues()), 0.5) << name;
+            EXPECT_EQ(shadows::drawnMapSize(*m, 1024), 1024u) << name;
         }
     }
     // What the techniques keep per texel of a shadow view: depth, plus second-depth's second

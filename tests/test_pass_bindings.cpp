@@ -6,11 +6,13 @@
 #include "gpu_fixture.h"
 #include "render/frame_graph.h"
 #include "render/pass_bindings.h"
+#include "render/pipelines.h"
 #include "viewer_types.h"
 #include "vk/context.h"
 #include "vk/spirv_bindings.h"
 
 #include <algorithm>
+#include <array>
 
 namespace penumbra::shaders {
 std::span<const uint32_t> spirv(std::string_view name); // cmake/Shaders.cmake's table
@@ -119,6 +121,90 @@ TEST_F(FrameTest, APassBindingsUsesFollowFromItsShaders) {
     vk::Binding readOnly = *visibility;
     readOnly.written = false;
     EXPECT_EQ(accessOf(readOnly, fill.stages, "fill"), Access::ComputeRead);
+    // Storage outside compute, and a kind PassBindings does not bind, are refused by name.
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(accessOf(*visibility, VK_SHADER_STAGE_FRAGMENT_BIT, "draw"),
+                 "pass \"draw\": binding [0-9]+: storage outside a compute shader");
+    const vk::Binding sampler{.binding = 3, .type = VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, .read = true};
+    EXPECT_DEATH(accessOf(sampler, fill.stages, "fill"),
+                 "pass \"fill\": binding 3: a sampled image is not bound through PassBindings");
+}
+
+// A storage image's format as its GLSL declares it, read from the SPIR-V; one bound with another
+// format is refused, naming both as GLSL writes them (a device would write it as the wrong format
+// without a word, validation or not).
+TEST_F(FrameTest, AStorageImageOfAnotherFormatThanItsShaderDeclaresIsRefused) {
+    const auto formatIn = [](std::string_view shader, uint32_t binding) {
+        for (const vk::Binding& b : vk::reflectBindings(shaders::spirv(shader)))
+            if (b.binding == binding)
+                return b.format;
+        return VK_FORMAT_MAX_ENUM;
+    };
+    EXPECT_EQ(formatIn("second_depth_mid.comp", POST_OUTPUT_BINDING), VK_FORMAT_R32_SFLOAT);
+    EXPECT_EQ(formatIn("vsm_mip.comp", POST_OUTPUT_BINDING), VK_FORMAT_R32G32_SFLOAT);
+    EXPECT_EQ(formatIn("vsm_mip.comp", POST_INPUT_BINDING), VK_FORMAT_UNDEFINED) << "sampled";
+    const vk::Context& ctx = sharedRenderer().context();
+    const vk::PipelineLayout layout =
+        vk::createLayoutOf(ctx, {"vsm_mip.comp"}, VK_SHADER_STAGE_COMPUTE_BIT, 16);
+    const PassBindings bindings{
+        .layout = &layout,
+        .bound = {{POST_INPUT_BINDING, 1, fakeSampler()}, {POST_OUTPUT_BINDING, 2}}};
+    const auto formats = [](VkFormat input, VkFormat output) {
+        return [=](ResourceId id) { return id == 1 ? input : output; };
+    };
+    // The input is sampled: its format is the sampler's business.
+    checkStorageFormats(bindings, "mip", formats(VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32G32_SFLOAT));
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(
+        checkStorageFormats(bindings, "mip", formats(VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R32_UINT)),
+        "pass \"mip\": binding 8 is declared rg32f in its shaders but holds an image of r32ui");
+    // Through the graph: the pass is refused when it is added.
+    const auto addThroughTheGraph = [&] {
+        ResourcePool pool(ctx);
+        FrameGraph graph(pool, {.width = 4, .height = 4});
+        const auto image = [](std::string name, VkFormat format) {
+            return ImageDecl{.name = std::move(name),
+                             .size = SizeClass::Screen,
+                             .format = format,
+                             .usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT};
+        };
+        const ResourceId in = graph.declare(image("in", VK_FORMAT_R32G32_SFLOAT));
+        const ResourceId out = graph.declare(image("out", VK_FORMAT_R32G32B32A32_SFLOAT));
+        graph.addPass({.phase = Phase::LightSpace,
+                       .bindings = {.layout = &layout,
+                                    .bound = {{POST_INPUT_BINDING, in, fakeSampler()},
+                                              {POST_OUTPUT_BINDING, out}}},
+                       .record = [](PassContext&) {}});
+    };
+    EXPECT_DEATH(addThroughTheGraph(),
+                 "binding 8 is declared rg32f in its shaders but holds an image of rgba32f");
+    // Two shaders that declare one binding's format differently make no layout.
+    EXPECT_DEATH(vk::createLayoutOf(ctx, {"vsm_mip.comp", "second_depth_mid.comp"},
+                                    VK_SHADER_STAGE_COMPUTE_BIT, 16),
+                 "shader second_depth_mid.comp: binding 8 differs from another stage's");
+    // A post pass's outputs, which it writes itself, are checked when its pipeline is bound:
+    // vsm_mip.comp writes rg32f.
+    FramePipelines pipelines(ctx);
+    EXPECT_NE(pipelines.postPass("vsm_mip.comp", 1, std::array{VK_FORMAT_R32G32_SFLOAT}),
+              VK_NULL_HANDLE);
+    EXPECT_DEATH(pipelines.postPass("vsm_mip.comp", 1, std::array{VK_FORMAT_R32_SFLOAT}),
+                 "post pass vsm_mip.comp: output 0 \\(binding 8\\) is declared rg32f in the "
+                 "shader, but its map is r32f");
+    EXPECT_DEATH(pipelines.postPass("vsm_mip.comp", 2, std::array{VK_FORMAT_R32G32_SFLOAT}),
+                 "post pass vsm_mip.comp: declared with 2 inputs and 1 outputs, and before with 1 "
+                 "and 1");
+    // Every map format a technique may declare, as its GLSL qualifier (docs/architecture.md).
+    for (const auto& [format, glsl] :
+         std::vector<std::pair<VkFormat, std::string>>{{VK_FORMAT_R32_SFLOAT, "r32f"},
+                                                       {VK_FORMAT_R32G32_SFLOAT, "rg32f"},
+                                                       {VK_FORMAT_R32G32B32A32_SFLOAT, "rgba32f"},
+                                                       {VK_FORMAT_R16G16B16A16_UNORM, "rgba16"},
+                                                       {VK_FORMAT_R32_UINT, "r32ui"},
+                                                       {VK_FORMAT_R32G32_UINT, "rg32ui"},
+                                                       {VK_FORMAT_R32G32B32A32_UINT, "rgba32ui"}})
+        EXPECT_EQ(vk::storageFormatName(format), glsl);
+    EXPECT_EQ(vk::storageFormatName(VK_FORMAT_R16G16_SFLOAT), "rg16f");
+    EXPECT_EQ(vk::storageFormatName(VK_FORMAT_D32_SFLOAT), "VkFormat 126");
 }
 
 // What cannot be bound as declared is refused by name when the pass is added.

@@ -390,6 +390,11 @@ TEST(SweepMerge, CostsAreThePerPixelPassesAndEveryPassButTheFrames) {
     EXPECT_EQ(r.shadowMs, 21.75);    // everything but the frame's
     ASSERT_EQ(r.passes.size(), 7u);
     EXPECT_EQ(r.passes[4], (std::pair<std::string, double>{"filter", 16.0})) << "frame order";
+    // Costed again (a task run twice): the new passes replace the old.
+    setCosts(r, {pass("visibility", CostGroup::PerPixel, 0.5)});
+    EXPECT_EQ(r.passes.size(), 1u);
+    EXPECT_EQ(r.visibilityMs, 0.5);
+    EXPECT_EQ(r.shadowMs, 0.5);
 }
 
 TEST(SweepEmit, SlurmArrayAndKubernetesIndexedJob) {

@@ -39,10 +39,13 @@ def techniques():
         for m in re.finditer(r'Module\(\)\s*\{.*?\.name\s*=\s*"([a-z-]+)"', path.read_text(),
                              re.S):
             names[path.stem] = m.group(1)
-    for m in re.finditer(r"^PENUMBRA_TECHNIQUE\(\d+,\s*(\w+),\s*(\w+)\)", text, re.M):
+    for m in re.finditer(r"^PENUMBRA_TECHNIQUE\(\d+,\s*(\w+),\s*(\w+),\s*\w+\)", text, re.M):
         enum, module = m.group(1), m.group(2)
         stem = re.sub(r"(?<!^)(?=[A-Z])", "_", module).lower()
         rows.append((enum, module, names.get(stem, stem.replace("_", "-"))))
+    if not rows:  # a list this parser no longer reads would count no coupling at all
+        raise SystemExit("error: shaders/include/technique_list.h: no PENUMBRA_TECHNIQUE line "
+                         "read (id, Name, module, shader)")
     return rows
 
 

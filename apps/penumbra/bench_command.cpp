@@ -80,9 +80,16 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
             std::fprintf(stderr, "penumbra: warning: --sweep %s: no technique benched reads it\n",
                          s.key.c_str());
     const std::filesystem::path path(args.output);
-    if (path.filename().empty() || path.filename() == "bench.html")
-        throw InputError(args.output,
-                         "-o needs a JSON file name (bench.html is written beside it)");
+    if (path.filename().empty() || path.filename() == "bench.html" || path.extension() != ".json")
+        throw InputError(
+            args.output.empty() ? "-o" : args.output,
+            fmt::format("{}; -o takes FILE.json (bench.html is written beside it)",
+                        args.output.empty() ? "an empty file name" : "not a JSON file name"));
+    const std::filesystem::path html = path.parent_path() / "bench.html";
+    for (const std::filesystem::path& file : {path, html}) // found now, not after the runs
+        if (std::filesystem::is_directory(file))
+            throw InputError(file.string(), "is a directory; bench writes FILE.json and "
+                                            "bench.html beside it");
     const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
     StagedOutputDir out(path.has_parent_path() ? path.parent_path() : ".");
 

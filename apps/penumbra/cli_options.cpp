@@ -297,10 +297,11 @@ void addReferenceOptions(CLI::App& cmd, ReferenceOptions& options) {
 void addSceneArgument(CLI::App& cmd, std::string& scene) {
     std::string builtins;
     for (std::string_view name : builtinSceneNames())
-        builtins += (builtins.empty() ? "`" : "`, `") + std::string(name);
+        builtins += (builtins.empty() ? "`builtin:" : "`, `builtin:") + std::string(name);
     cmd.add_option("scene", scene,
                    "a built-in scene (" + builtins +
-                       "`; docs/scenes.md) or a glTF 2.0 file (.gltf, .glb)")
+                       "`; `builtin:gen/FAMILY?seed=N` for a generated one; docs/scenes.md) or a "
+                       "glTF 2.0 file (.gltf, .glb)")
         ->required();
 }
 

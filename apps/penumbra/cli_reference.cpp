@@ -36,8 +36,10 @@ std::string optionNames(const CLI::Option& o) {
     for (const std::string& l : o.get_lnames())
         names += (names.empty() ? "--" : ", --") + l;
     if (o.get_expected_max() != 0) {
+        // CLI11 appends what a transform accepts ("FORMAT:value in {...}"); a placeholder's own
+        // optional part ("AXIS[:POS]") stays.
         const std::string type = o.get_type_name();
-        names += " " + type.substr(0, type.find(':'));
+        names += " " + type.substr(0, type.find(":value"));
     }
     return "`" + names + "`";
 }

@@ -2,6 +2,7 @@
 // `error: <subject>: <what>`, and a non-zero exit code; nothing partial is left behind.
 #include "cli_reference.h"
 #include "commands.h"
+#include "parse_errors.h"
 #include "penumbra/error.h"
 
 #include <cstdio>
@@ -57,8 +58,22 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
+    } catch (const CLI::RequiredError& e) {
+        std::vector<std::string> names;
+        for (const auto& [name, action] : commands)
+            names.emplace_back(name);
+        // What was left unparsed: the first word that is not an option names the command meant.
+        std::string given;
+        for (const std::string& word : app.remaining())
+            if (given.empty() && word.rfind('-', 0) != 0)
+                given = word;
+        const bool noCommand = std::string_view(e.what()) == "A subcommand is required";
+        std::fprintf(stderr, "error: %s\n",
+                     noCommand ? cli::missingCommandLine(given, names).c_str()
+                               : cli::parseErrorLine(e.what()).c_str());
+        return 2;
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        std::fprintf(stderr, "error: %s\n", cli::parseErrorLine(e.what()).c_str());
         return 2;
     }
     try {

@@ -128,10 +128,14 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     addFormatOption(*cmd, args->format);
+    // The techniques that trace a distance field, from the registry.
+    const std::string tracing = shadows::techniquesWhere(
+        [](const shadows::TechniqueModule& m) { return m.tracedField.has_value(); });
     cmd->add_option("--field-slice", args->fieldSlice,
-                    "`sdf` only: the slice of the distance field written to `field_slice.png`, "
-                    "across x, y or z, at world coordinate POS (default: the middle of the "
-                    "field's box; outside it: an error)")
+                    fmt::format("{} only: the slice of the distance field written to "
+                                "`field_slice.png`, across x, y or z, at world coordinate POS "
+                                "(default: the middle of the field's box; outside it: an error)",
+                                tracing))
         ->type_name("AXIS[:POS]")
         ->capture_default_str();
     return [args, &global] { return runRender(*args, global); };

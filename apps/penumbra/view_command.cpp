@@ -2,8 +2,10 @@
 // interactive viewer (apps/viewer).
 #include "commands.h"
 #include "penumbra/error.h"
+#include "shadows/technique.h"
 #include "viewer.h"
 
+#include <fmt/format.h>
 #include <memory>
 
 namespace penumbra::cli {
@@ -98,17 +100,22 @@ Action addViewCommand(CLI::App& app, const GlobalOptions& global) {
                     "with `--frames N`: write the last presented image (the interface included "
                     "unless hidden) to FILE as PNG")
         ->type_name("FILE");
+    // The techniques with a blocker search, from the registry.
+    const std::string searching = shadows::techniquesWhere(
+        [](const shadows::TechniqueModule& m) { return !m.blockerSearchKey.empty(); });
     cmd->add_option("--show", args->show,
-                    "what the window shows at start: `scene`; `visibility[:LIGHT]` (a light's "
-                    "visibility as grey); `shadow-map[:LAYER]` (a layer of the depth map: a view, "
-                    "a cascade or a cube face); `cascades` (the lit image tinted by cascade: red, "
-                    "green, blue, yellow from near to far); `error[:LIGHT]` (the signed-error "
-                    "heat map against the ground truth, traced first; with `--frames` the frames "
-                    "wait for it and the metrics are printed); `blocker-depth[:LIGHT]` and "
-                    "`penumbra[:LIGHT]` (pcss, vssm, msm-soft: the average blocker's depth, the "
-                    "filter radius); `contact[:LIGHT]` (the contact layer's own result); "
-                    "`pages[:LEVEL]` and `pool` (virtual maps: a level's page table, the physical "
-                    "pool; docs/techniques.md has the legend)")
+                    fmt::format("what the window shows at start: `scene`; `visibility[:LIGHT]` "
+                                "(a light's visibility as grey); `shadow-map[:LAYER]` (a layer of "
+                                "the depth map: a view, a cascade or a cube face); `cascades` (the "
+                                "lit image tinted by cascade: red, green, blue, yellow from near "
+                                "to far); `error[:LIGHT]` (the signed-error heat map against the "
+                                "ground truth, traced first; with `--frames` the frames wait for "
+                                "it and the metrics are printed); `blocker-depth[:LIGHT]` and "
+                                "`penumbra[:LIGHT]` ({}: the average blocker's depth, the filter "
+                                "radius); `contact[:LIGHT]` (the contact layer's own result); "
+                                "`pages[:LEVEL]` and `pool` (virtual maps: a level's page table, "
+                                "the physical pool; docs/techniques.md has the legend)",
+                                searching))
         ->type_name("MODE")
         ->capture_default_str();
     cmd->add_option("--compare-with", args->compareWith,

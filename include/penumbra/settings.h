@@ -14,7 +14,7 @@ namespace penumbra {
 // Every technique, one per line of the technique list (shaders/include/technique_list.h, which
 // the shaders read too).
 enum class Technique : uint32_t {
-#define PENUMBRA_TECHNIQUE(id, Name, module) Name = id,
+#define PENUMBRA_TECHNIQUE(id, Name, module, shader) Name = id,
 #include "technique_list.h"
 };
 
@@ -30,7 +30,9 @@ struct TechniqueInfo {
     std::string_view summary;               // one line
     std::string_view reference;             // the paper or text it implements
     std::vector<std::string_view> families; // parameter families it reads, e.g. {"bias"}
-    std::vector<TechniqueVariant> variants; // the rows `compare` shows by default
+    // The rows `compare` shows by default; none declared: the technique's defaults, one row
+    // named as the technique.
+    std::vector<TechniqueVariant> variants;
 };
 
 // One row of a comparison: a technique with its variant's parameters, and the layers it runs on

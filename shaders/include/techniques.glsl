@@ -10,21 +10,15 @@
 #ifndef PENUMBRA_ONLY_TECHNIQUE
 #error "compiled once per technique: cmake/Shaders.cmake, PER_TECHNIQUE"
 #endif
-#include "shadow_hard.glsl"
-#include "shadow_pcf.glsl"
-#include "shadow_pcss.glsl"
-#include "shadow_second_depth.glsl"
-#include "shadow_moments.glsl"
-#include "shadow_sat.glsl"
-#include "shadow_sdf.glsl"
-#include "shadow_smrt.glsl"
+// Each technique's shader named by the list, once (written by cmake/Shaders.cmake).
+#include "technique_shaders.glsl"
 
 // x: visibility; yzw: intermediate results the parity tests and the viewer read (PCSS: average
 // blocker depth, blocking texels found, filter radius in texels; VSM: the two filtered moments
 // and the receiver's moment depth; ESM, EVSM, MSM: see shadow_moments.glsl; SAVSM, VSSM,
 // MSM-soft: see shadow_sat.glsl; zero for the others).
 vec4 evaluateTechnique(uint technique, TechniqueInput at) {
-#define PENUMBRA_TECHNIQUE(id, Name, module) \
+#define PENUMBRA_TECHNIQUE(id, Name, module, shader) \
     if (id == PENUMBRA_ONLY_TECHNIQUE && technique == id) return evaluate##Name(at);
 #include "technique_list.h"
     return vec4(1.0, 0.0, 0.0, 0.0); // not a technique: lit

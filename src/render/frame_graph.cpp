@@ -62,6 +62,8 @@ void FrameGraph::addPass(PassDecl pass) {
     PENUMBRA_CHECK(!mPlanned, "FrameGraph: a pass added after the frame was planned");
     for (const Use& use : usesOf(pass.bindings, pass.name))
         pass.uses.push_back(use);
+    checkStorageFormats(pass.bindings, pass.name,
+                        [this](ResourceId id) { return mPool.formatOf(id); });
     for (const Use& use : pass.uses)
         PENUMBRA_CHECK(!writes(use.access) || !mPool.isPrevious(use.resource),
                        "FrameGraph: pass \"" + pass.name + "\" writes " +

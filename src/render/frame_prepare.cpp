@@ -250,10 +250,9 @@ FrameSettings frameSettings(const RenderOptions& o, const std::vector<Light>& li
             .cameraViewProj = blocks.frame.viewProj,
             .slopeBias = bias.y,
             .constantBias = bias.x,
-            // A technique that draws no shadow map binds a 1x1 one.
             .sizes = {.width = o.width,
                       .height = o.height,
-                      .shadowMapSize = shadows::drawsLightMaps(module) ? o.shadowMapSize : 1u,
+                      .shadowMapSize = shadows::drawnMapSize(module, o.shadowMapSize),
                       .shadowViews = static_cast<uint32_t>(views.views.size()),
                       .shadowLights = static_cast<uint32_t>(views.dispatches.size())},
             .views = views.views,

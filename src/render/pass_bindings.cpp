@@ -77,6 +77,23 @@ std::vector<Use> usesOf(const PassBindings& bindings, std::string_view pass) {
     return uses;
 }
 
+void checkStorageFormats(const PassBindings& bindings, std::string_view pass,
+                         const std::function<VkFormat(ResourceId)>& formatOf) {
+    if (!bindings.layout)
+        return;
+    for (const Bound& b : bindings.bound) {
+        const vk::Binding& held = heldAt(*bindings.layout, b.binding, pass);
+        if (held.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE || held.format == VK_FORMAT_UNDEFINED)
+            continue;
+        const VkFormat bound = formatOf(b.resource);
+        if (bound != held.format)
+            refuse(pass, fmt::format("binding {} is declared {} in its shaders but holds an image "
+                                     "of {}",
+                                     b.binding, vk::storageFormatName(held.format),
+                                     vk::storageFormatName(bound)));
+    }
+}
+
 void pushBindings(const PassBindings& bindings, const PassContext& c, const vk::Context& ctx) {
     if (!bindings.layout)
         return;

@@ -8,6 +8,7 @@
 #include "render/resource_pool.h"
 #include "vk/pipelines.h"
 
+#include <functional>
 #include <string_view>
 #include <vector>
 
@@ -39,6 +40,13 @@ Access accessOf(const vk::Binding& binding, VkShaderStageFlags stages, std::stri
 // The uses `bindings` make, after checking that they bind each binding of the layout once and
 // nothing else (fatal, naming `pass` and the binding).
 std::vector<Use> usesOf(const PassBindings& bindings, std::string_view pass);
+
+// Checks that each storage image bound has the format its shaders declare for the binding
+// (`layout(rg32f)`; none declared: any): fatal, naming `pass`, the binding and both formats, for
+// one that does not, which a device would read or write as the wrong format without a word.
+// `formatOf` gives a resource's format.
+void checkStorageFormats(const PassBindings& bindings, std::string_view pass,
+                         const std::function<VkFormat(ResourceId)>& formatOf);
 
 // Pushes the descriptors of `bindings` for the pass about to record in `c`.
 void pushBindings(const PassBindings& bindings, const PassContext& c, const vk::Context& ctx);

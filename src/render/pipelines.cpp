@@ -4,8 +4,10 @@
 #include "pass_types.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
+#include "vk/spirv_bindings.h"
 
 #include <cstddef>
+#include <fmt/format.h>
 
 namespace penumbra::render {
 namespace {
@@ -225,14 +227,35 @@ const vk::PipelineLayout& FramePipelines::postPassLayout(uint32_t inputs, uint32
     return it->second;
 }
 
-VkPipeline FramePipelines::postPass(std::string_view shader, uint32_t inputs, uint32_t outputs) {
+VkPipeline FramePipelines::postPass(std::string_view shader, uint32_t inputs,
+                                    std::span<const VkFormat> outputs) {
+    const auto count = static_cast<uint32_t>(outputs.size());
     auto it = mPost.find(shader);
-    if (it == mPost.end())
-        it = mPost
-                 .emplace(std::string(shader),
-                          vk::createComputePipeline(ctx, postPassLayout(inputs, outputs), shader))
-                 .first;
-    return it->second.get();
+    if (it == mPost.end()) {
+        PostPipeline made{.pipeline =
+                              vk::createComputePipeline(ctx, postPassLayout(inputs, count), shader),
+                          .inputs = inputs,
+                          .outputs = count};
+        for (const vk::Binding& b : vk::reflectEmbedded(shader))
+            if (b.binding >= POST_OUTPUT_BINDING && b.binding < POST_OUTPUT_BINDING + POST_MAX_MAPS)
+                made.declared[b.binding - POST_OUTPUT_BINDING] = b.format;
+        it = mPost.emplace(std::string(shader), std::move(made)).first;
+    }
+    // Made once per shader: a second declaration with other counts would bind the first's layout.
+    PENUMBRA_CHECK(it->second.inputs == inputs && it->second.outputs == count,
+                   fmt::format("post pass {}: declared with {} inputs and {} outputs, and before "
+                               "with {} and {}",
+                               shader, inputs, count, it->second.inputs, it->second.outputs));
+    for (uint32_t i = 0; i < count; ++i) {
+        const VkFormat declared = it->second.declared[i];
+        PENUMBRA_CHECK(declared == VK_FORMAT_UNDEFINED || declared == outputs[i],
+                       fmt::format("post pass {}: output {} (binding {}) is declared {} in the "
+                                   "shader, but its map is {}",
+                                   shader, i, POST_OUTPUT_BINDING + i,
+                                   vk::storageFormatName(declared),
+                                   vk::storageFormatName(outputs[i])));
+    }
+    return it->second.pipeline.get();
 }
 
 const FieldPipelines& FramePipelines::field() {

@@ -2,6 +2,7 @@
 // Every pipeline of the frame (docs/architecture.md), created once per Renderer. What depends on
 // the technique is made on first use from what its module declares: the visibility pass per list of
 // specialization constants, extra depth passes per fragment shader, post passes per shader.
+#include "bindings.h"
 #include "penumbra/settings.h"
 #include "shadows/technique.h"
 #include "vk/pipelines.h"
@@ -9,6 +10,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -58,8 +60,11 @@ public:
     // A technique's extra depth pass: the shadow pass's vertex stage and state with
     // `fragmentShader`, which reads a map at binding 0 (readingDepthLayout).
     VkPipeline readingDepthPass(std::string_view fragmentShader, bool perspective);
-    // A technique's post pass and its layout: `inputs` sampled maps, `outputs` storage images.
-    VkPipeline postPass(std::string_view shader, uint32_t inputs, uint32_t outputs);
+    // A technique's post pass and its layout: `inputs` sampled maps, a storage image of each
+    // format of `outputs`. Fatal where the shader declares an output's format (`layout(rg32f)`)
+    // other than its map's: a device would write the map as the wrong format without a word.
+    VkPipeline postPass(std::string_view shader, uint32_t inputs,
+                        std::span<const VkFormat> outputs);
     const vk::PipelineLayout& postPassLayout(uint32_t inputs, uint32_t outputs);
     // Made on first use: only the sdf technique builds a field.
     const FieldPipelines& field();
@@ -73,7 +78,12 @@ private:
     std::map<std::pair<std::string, Constants>, vk::PipelineHandle, std::less<>> mLayers;
     std::map<std::pair<std::string, bool>, vk::PipelineHandle> mReadingDepth;
     std::map<std::pair<uint32_t, uint32_t>, vk::PipelineLayout> mPostLayouts;
-    std::map<std::string, vk::PipelineHandle, std::less<>> mPost;
+    struct PostPipeline {
+        vk::PipelineHandle pipeline;
+        uint32_t inputs = 0, outputs = 0;               // its layout's
+        std::array<VkFormat, POST_MAX_MAPS> declared{}; // its outputs' formats, as the shader says
+    };
+    std::map<std::string, PostPipeline, std::less<>> mPost;
     std::unique_ptr<FieldPipelines> mField;
     std::array<vk::PipelineHandle, 8> mGbuffer;
 };

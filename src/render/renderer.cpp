@@ -130,13 +130,13 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
                                          ctx.limits().maxStorageBufferRange, fill->parameter));
     }
     // The frame's targets as it declares them (render/frame_targets.h), the readback included.
-    const render::TargetBytes bytes = render::targetBytes(
-        module, o.parameters,
-        {.width = o.width,
-         .height = o.height,
-         .shadowMapSize = shadows::drawsLightMaps(module) ? o.shadowMapSize : 1u,
-         .shadowViews = static_cast<uint32_t>(shadows.views),
-         .shadowLights = static_cast<uint32_t>(shadowLights)});
+    const render::TargetBytes bytes =
+        render::targetBytes(module, o.parameters,
+                            {.width = o.width,
+                             .height = o.height,
+                             .shadowMapSize = shadows::drawnMapSize(module, o.shadowMapSize),
+                             .shadowViews = static_cast<uint32_t>(shadows.views),
+                             .shadowLights = static_cast<uint32_t>(shadowLights)});
     const double pixels = double(o.width) * double(o.height);
     const auto shadowBytes = static_cast<double>(bytes.shadowMaps);
     const double need = static_cast<double>(bytes.screen) + shadowBytes;

@@ -293,6 +293,14 @@ bool ResourcePool::isImage(ResourceId id) const {
     return e.image.image != nullptr || std::holds_alternative<ImageDecl>(e.decl);
 }
 
+VkFormat ResourcePool::formatOf(ResourceId id) const {
+    const Entry& e = entry(id);
+    if (const auto* decl = std::get_if<ImageDecl>(&e.decl))
+        return decl->format;
+    // Imported, or a buffer (no image).
+    return e.image.image ? e.image.image->format : VK_FORMAT_UNDEFINED;
+}
+
 bool ResourcePool::isImported(ResourceId id) const {
     return std::holds_alternative<std::monostate>(entry(id).decl);
 }

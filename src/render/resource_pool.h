@@ -145,6 +145,8 @@ public:
     VkBuffer buffer(ResourceId id) const;
     std::string_view name(ResourceId id) const;
     bool isImage(ResourceId id) const;
+    // An image's format as declared or imported (VK_FORMAT_UNDEFINED for a buffer).
+    VkFormat formatOf(ResourceId id) const;
     bool isImported(ResourceId id) const;
     bool persistent(ResourceId id) const;
     // A history resource's versions: this frame's, and last frame's (previousOf; its name ends

@@ -123,7 +123,8 @@ void recordMipChain(VkCommandBuffer cmd, FramePipelines& p, const PooledImage& m
                     const shadows::PostPassDecl& pass, uint32_t views, const FrameInputs& in) {
     const vk::Image& image = map.get();
     const vk::PipelineLayout& layout = p.postPassLayout(1, 1);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.postPass(pass.shader, 1, 1));
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                      p.postPass(pass.shader, 1, std::array{image.format}));
     for (uint32_t level = 1; level < image.mipLevels; ++level) {
         const uint32_t size = std::max(image.width >> level, 1u);
         vk::imageBarrier(cmd, image, vk::kComputeSampled, vk::kComputeWrite, level, 1);
@@ -151,8 +152,11 @@ void recordPostPass(VkCommandBuffer cmd, FramePipelines& p, const shadows::PostP
     const auto inputCount = static_cast<uint32_t>(inputs.size());
     const auto outputCount = static_cast<uint32_t>(outputs.size());
     const vk::PipelineLayout& layout = p.postPassLayout(inputCount, outputCount);
+    std::vector<VkFormat> formats;
+    for (const PooledImage* output : outputs)
+        formats.push_back(output->get().format);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                      p.postPass(pass.shader, inputCount, outputCount));
+                      p.postPass(pass.shader, inputCount, formats));
     const vk::Image& size = outputs.front()->get();
     for (uint32_t v = 0; v < views; ++v) {
         vk::PushDescriptors writes;

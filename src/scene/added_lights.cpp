@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -27,11 +26,12 @@ constexpr std::string_view kOption = "--add-light";
 
 double number(std::string_view text, const std::string& part) {
     char* end = nullptr;
-    errno = 0;
     const double value = std::strtod(part.c_str(), &end);
-    if (part.empty() || end != part.c_str() + part.size() || errno == ERANGE ||
-        !std::isfinite(value) || std::abs(value) > kMaxCoordinate)
+    // Past double's range strtod gives infinity; below it, a number near zero (both ERANGE).
+    if (part.empty() || end != part.c_str() + part.size() || !std::isfinite(value))
         refuse(text, fmt::format("'{}' is not a finite number", part));
+    if (std::abs(value) > kMaxCoordinate) // what a scene's coordinates may reach
+        refuse(text, fmt::format("'{}' is past {:g} in magnitude", part, kMaxCoordinate));
     return value;
 }
 

@@ -229,18 +229,29 @@ void checkReferences(const std::filesystem::path& file, const nlohmann::json& j)
 }
 
 // JSON Schema's "integer" admits 1.0; the parser wants an integer. A float that is a whole
-// number inside +-2^53 becomes one (a float field reads an integer just as well).
+// number inside +-2^53 becomes one (a float field reads an integer just as well). Not inside
+// `extras`, free-form data the parser keeps as it is, except that it narrows an integer to 32
+// bits there (tiny_gltf.h, ParseJsonAsValue): a light's `extras.radius` of 4294967297 would read
+// as 1, so an integer past that range in `extras` becomes a float instead.
 // (Iterative, as every walk of the whole document here: a hostile file nests arrays as deep as
 // its length allows.)
 void integralNumbersAsIntegers(nlohmann::json& root) {
-    std::vector<nlohmann::json*> pending{&root};
+    std::vector<std::pair<nlohmann::json*, bool>> pending{{&root, false}}; // in extras
     while (!pending.empty()) {
-        nlohmann::json& j = *pending.back();
+        const auto [node, inExtras] = pending.back();
+        nlohmann::json& j = *node;
         pending.pop_back();
-        if (j.is_structured()) {
+        if (j.is_object()) {
+            for (auto it = j.begin(); it != j.end(); ++it)
+                pending.emplace_back(&it.value(), inExtras || it.key() == "extras");
+        } else if (j.is_array()) {
             for (auto& item : j)
-                pending.push_back(&item);
-        } else if (j.is_number_float()) {
+                pending.emplace_back(&item, inExtras);
+        } else if (inExtras && (j.is_number_integer() || j.is_number_unsigned())) {
+            const double v = j.get<double>();
+            if (v < -2147483648.0 || v > 2147483647.0)
+                j = v;
+        } else if (!inExtras && j.is_number_float()) {
             const double v = j.get<double>();
             if (std::isfinite(v) && v == std::floor(v) && std::abs(v) < 9007199254740992.0)
                 j = v >= 0 ? nlohmann::json(static_cast<uint64_t>(v))

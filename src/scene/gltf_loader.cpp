@@ -403,12 +403,18 @@ struct Flattener {
         out.outerConeAngle = static_cast<float>(l.spot.outerConeAngle);
         out.radius = static_cast<float>(extraNumber(l.extras, "radius", 0.0));
         out.angularDiameter = static_cast<float>(extraNumber(l.extras, "angularDiameter", 0.0));
-        if (!std::isfinite(out.intensity) || out.intensity < 0 || out.radius < 0 ||
-            out.angularDiameter < 0 || out.angularDiameter > 30)
+        if (!std::isfinite(out.intensity) || out.intensity < 0 || !(out.radius >= 0) ||
+            out.radius > kMaxCoordinate || out.angularDiameter < 0 || out.angularDiameter > 30)
             throw InputError(file.string(),
                              fmt::format("KHR_lights_punctual.lights[{}]: invalid intensity "
                                          "or size",
                                          index));
+        // The extension: range > 0 where given; tinygltf reads an absent one as 0 (no range).
+        if (!(out.range >= 0) || !std::isfinite(out.range))
+            throw InputError(file.string(),
+                             fmt::format("KHR_lights_punctual.lights[{}]: range {} is not above "
+                                         "zero",
+                                         index, l.range));
         scene.lights.push_back(out);
     }
 
@@ -502,10 +508,17 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
     if (!model.scenes.empty())
         flat.walk(model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes);
     flat.warnUnusable();
+    const size_t beforeDrop = scene.triangleCount();
     dropInvalidTriangles(scene);
     if (scene.triangleCount() == 0)
         throw InputError(file.string(),
-                         flat.skippedPointsOrLines
+                         beforeDrop > 0
+                             ? fmt::format("the default scene has no triangle with area: its {} "
+                                           "{} without area or past the coordinate limit, so "
+                                           "nothing in it would cast or receive a shadow",
+                                           beforeDrop,
+                                           beforeDrop == 1 ? "triangle is" : "triangles are")
+                         : flat.skippedPointsOrLines
                              ? "the default scene has no triangles, only points or lines: "
                                "nothing in it would cast or receive a shadow"
                              : "the default scene has no triangles");

@@ -36,8 +36,7 @@ const TechniqueModule& esmModule() {
                  .summary = "exponential shadow maps: blurred e^(c z), the lit fraction "
                             "e^(-c t) E[e^(c z)] (one channel; light near contact)",
                  .reference = "Annen et al. 2008, 'Exponential shadow maps'; Salvi 2008",
-                 .families = {"bias", "esm", "csm", "composite"},
-                 .variants = {{.label = ""}}},
+                 .families = {"bias", "esm", "csm", "composite"}},
         .parameters = {{.key = "esm.c",
                         .type = ParameterType::Float,
                         .defaultValue = 80.0,

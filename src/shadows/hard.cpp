@@ -11,8 +11,7 @@ const TechniqueModule& hardModule() {
                  .name = "hard",
                  .summary = "one shadow-map sample per pixel: lit when d(p) <= s(p)",
                  .reference = "Williams 1978, 'Casting curved shadows on curved surfaces'",
-                 .families = {"bias", "csm", "composite"},
-                 .variants = {{.label = ""}}},
+                 .families = {"bias", "csm", "composite"}},
         .reference =
             [](const FilterInput& in) {
                 const glm::vec2 dzRange(in.frame.biasParams.x, in.frame.biasParams.y);

@@ -46,8 +46,7 @@ const TechniqueModule& msmSoftModule() {
                             "from a summed-area table of four moments, at a constant cost",
                  .reference = "Peters et al. 2016, 'Beyond hard shadows: moment shadow maps for "
                               "single scattering, soft shadows and translucent occluders'",
-                 .families = {"bias", "msm-soft", "csm", "composite"},
-                 .variants = {{.label = ""}}},
+                 .families = {"bias", "msm-soft", "csm", "composite"}},
         .parameters = msmSoftParameters(),
         .maps = kTable.maps(),
         .postPasses = kTable.passes(),

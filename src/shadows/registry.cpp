@@ -25,6 +25,8 @@ const std::vector<TechniqueInfo>& techniqueTable() {
         std::vector<TechniqueInfo> t;
         for (const shadows::TechniqueModule* m : shadows::allModules()) {
             t.push_back(m->info);
+            if (t.back().variants.empty()) // no rows of its own: its defaults, as one row
+                t.back().variants.push_back({.label = ""});
             if (m->readsVirtualMaps)
                 t.back().families.push_back("virtual");
             for (const shadows::LayerModule* layer : shadows::allLayers())

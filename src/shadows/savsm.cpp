@@ -43,8 +43,7 @@ const TechniqueModule& savsmModule() {
                  .summary = "summed-area variance shadow maps: box-filtered moments of any width "
                             "at a constant cost, from a summed-area table",
                  .reference = "Lauritzen 2007, 'Summed-area variance shadow maps' (GPU Gems 3)",
-                 .families = {"bias", "savsm", "csm", "composite"},
-                 .variants = {{.label = ""}}},
+                 .families = {"bias", "savsm", "csm", "composite"}},
         .parameters = {{.key = "savsm.size",
                         .type = ParameterType::Float,
                         .defaultValue = 7.0,

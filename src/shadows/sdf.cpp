@@ -25,8 +25,7 @@ const TechniqueModule& sdfModule() {
                             "miss",
                  .reference = "Quilez 2010, 'Penumbra shadows in raymarched SDFs'; Aaltonen 2018, "
                               "closest approach of consecutive steps",
-                 .families = {"bias", "sdf", "composite"},
-                 .variants = {{.label = ""}}},
+                 .families = {"bias", "sdf", "composite"}},
         .parameters =
             {{.key = "sdf.resolution",
               .type = ParameterType::Int,

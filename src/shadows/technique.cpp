@@ -36,7 +36,7 @@ bool holdsIntegers(MapFormat format) {
 
 std::span<const TechniqueModule* const> allModules() {
     static const TechniqueModule* const modules[] = {
-#define PENUMBRA_TECHNIQUE(id, Name, module) &module##Module(),
+#define PENUMBRA_TECHNIQUE(id, Name, module, shader) &module##Module(),
 #include "technique_list.h"
     };
     return modules;
@@ -310,6 +310,10 @@ const ScreenPassDecl* checkerboardFill(std::span<const ScreenPassDecl> passes) {
 
 bool drawsLightMaps(const TechniqueModule& module) {
     return !module.visibilityMaps.empty();
+}
+
+uint32_t drawnMapSize(const TechniqueModule& module, uint32_t shadowMapSize) {
+    return drawsLightMaps(module) ? shadowMapSize : 1u;
 }
 
 uint64_t shadowMapBytes(const TechniqueModule& module, uint32_t size,

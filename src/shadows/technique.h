@@ -353,6 +353,9 @@ const ScreenPassDecl* checkerboardFill(std::span<const ScreenPassDecl> passes);
 // Whether the frame draws the light's maps for it: a module whose visibility pass reads no map
 // (a distance field's tracer) gets 1x1 stand-ins, only bound.
 bool drawsLightMaps(const TechniqueModule& module);
+// The side of the light's maps a frame makes for the module: `shadowMapSize`, or 1 for the
+// stand-ins of one that draws none. The frame and the renderer's memory check both ask it.
+uint32_t drawnMapSize(const TechniqueModule& module, uint32_t shadowMapSize);
 
 // Device memory the technique's maps take per shadow view of size x size texels (0 when it draws
 // none).
@@ -410,7 +413,7 @@ float smallestComparisonMargin(Technique technique, const ShadowMapView& map,
                                const gpu::ShadowViewData& view);
 
 // The modules, one per file of this folder, from the technique list.
-#define PENUMBRA_TECHNIQUE(id, Name, module) const TechniqueModule& module##Module();
+#define PENUMBRA_TECHNIQUE(id, Name, module, shader) const TechniqueModule& module##Module();
 #include "technique_list.h"
 
 } // namespace penumbra::shadows

@@ -56,8 +56,7 @@ const TechniqueModule& vssmModule() {
                  .summary = "variance soft shadow maps: PCSS's blocker search, penumbra and "
                             "filter from a summed-area table of moments, at a constant cost",
                  .reference = "Yang et al. 2010, 'Variance soft shadow mapping'",
-                 .families = {"bias", "vssm", "csm", "composite"},
-                 .variants = {{.label = ""}}},
+                 .families = {"bias", "vssm", "csm", "composite"}},
         .parameters = vssmParameters(),
         .maps = kTable.maps(),
         .postPasses = kTable.passes(),

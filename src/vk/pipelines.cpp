@@ -163,7 +163,8 @@ PipelineLayout createLayoutOf(const Context& ctx, std::initializer_list<std::str
                 bindings.push_back(used);
                 continue;
             }
-            PENUMBRA_CHECK(held->type == used.type && held->count == used.count,
+            PENUMBRA_CHECK(held->type == used.type && held->count == used.count &&
+                               held->format == used.format,
                            "shader " + std::string(shader) + ": binding " +
                                std::to_string(used.binding) + " differs from another stage's");
             held->read = held->read || used.read; // what any of its shaders does

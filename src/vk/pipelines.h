@@ -21,6 +21,9 @@ struct Binding {
     // a storage image or buffer's `readonly` and `writeonly`): set by reflection and the layouts
     // made from it, left false in a layout listed by hand.
     bool read = false, written = false;
+    // A storage image's format as its shaders declare it (`layout(rg32f)`), which the view bound
+    // there must have; VK_FORMAT_UNDEFINED for none declared and for other kinds.
+    VkFormat format = VK_FORMAT_UNDEFINED;
 };
 
 // Why `bindings`, seen by one shader stage through one push descriptor set, exceed the device's

@@ -19,9 +19,16 @@ namespace penumbra::vk {
 // (fatal).
 std::vector<Binding> reflectBindings(std::span<const uint32_t> words);
 
+// The bindings of the shader embedded as `shader` (cmake/Shaders.cmake; fatal when none is).
+std::vector<Binding> reflectEmbedded(std::string_view shader);
+
 // Why a shader that uses `used` cannot run on a layout of `layout`: the first binding it uses
 // that the layout lacks, holds as another kind, or holds fewer of; empty when it can.
 std::string bindingMismatch(std::span<const Binding> used, std::span<const Binding> layout);
+
+// A storage image format as GLSL declares it ("rg32f"; "unknown" for VK_FORMAT_UNDEFINED), or
+// "VkFormat <n>" for one no GLSL qualifier names.
+std::string storageFormatName(VkFormat format);
 
 // The kind of a descriptor in words ("combined image sampler", "storage image", ...).
 std::string_view descriptorKind(VkDescriptorType type);
