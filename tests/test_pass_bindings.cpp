@@ -157,7 +157,7 @@ TEST_F(FrameTest, AStorageImageOfAnotherFormatThanItsShaderDeclaresIsRefused) {
     GTEST_FLAG_SET(death_test_style, "threadsafe");
     EXPECT_DEATH(
         checkStorageFormats(bindings, "mip", formats(VK_FORMAT_R32G32_SFLOAT, VK_FORMAT_R32_UINT)),
-        "pass \"mip\": binding 8 is declared rg32f in its shaders but holds an image of r32ui");
+        "pass \"mip\": binding 8: declared rg32f in its shaders, the image is r32ui");
     // Through the graph: the pass is refused when it is added.
     const auto addThroughTheGraph = [&] {
         ResourcePool pool(ctx);
@@ -177,7 +177,7 @@ TEST_F(FrameTest, AStorageImageOfAnotherFormatThanItsShaderDeclaresIsRefused) {
                        .record = [](PassContext&) {}});
     };
     EXPECT_DEATH(addThroughTheGraph(),
-                 "binding 8 is declared rg32f in its shaders but holds an image of rgba32f");
+                 "binding 8: declared rg32f in its shaders, the image is rgba32f");
     // Two shaders that declare one binding's format differently make no layout.
     EXPECT_DEATH(vk::createLayoutOf(ctx, {"vsm_mip.comp", "second_depth_mid.comp"},
                                     VK_SHADER_STAGE_COMPUTE_BIT, 16),
@@ -188,8 +188,8 @@ TEST_F(FrameTest, AStorageImageOfAnotherFormatThanItsShaderDeclaresIsRefused) {
     EXPECT_NE(pipelines.postPass("vsm_mip.comp", 1, std::array{VK_FORMAT_R32G32_SFLOAT}),
               VK_NULL_HANDLE);
     EXPECT_DEATH(pipelines.postPass("vsm_mip.comp", 1, std::array{VK_FORMAT_R32_SFLOAT}),
-                 "post pass vsm_mip.comp: output 0 \\(binding 8\\) is declared rg32f in the "
-                 "shader, but its map is r32f");
+                 "post pass vsm_mip.comp: output 0 \\(binding 8\\): declared rg32f in its "
+                 "shaders, the image is r32f");
     EXPECT_DEATH(pipelines.postPass("vsm_mip.comp", 2, std::array{VK_FORMAT_R32G32_SFLOAT}),
                  "post pass vsm_mip.comp: declared with 2 inputs and 1 outputs, and before with 1 "
                  "and 1");
@@ -204,6 +204,11 @@ TEST_F(FrameTest, AStorageImageOfAnotherFormatThanItsShaderDeclaresIsRefused) {
                                                        {VK_FORMAT_R32G32B32A32_UINT, "rgba32ui"}})
         EXPECT_EQ(vk::storageFormatName(format), glsl);
     EXPECT_EQ(vk::storageFormatName(VK_FORMAT_R16G16_SFLOAT), "rg16f");
+    // The rule both ask: a declared format must be the image's; none declared takes any.
+    EXPECT_EQ(vk::storageFormatMismatch(VK_FORMAT_UNDEFINED, VK_FORMAT_R32_SFLOAT), "");
+    EXPECT_EQ(vk::storageFormatMismatch(VK_FORMAT_R32_SFLOAT, VK_FORMAT_R32_SFLOAT), "");
+    EXPECT_EQ(vk::storageFormatMismatch(VK_FORMAT_R32_UINT, VK_FORMAT_R32_SFLOAT),
+              "declared r32ui in its shaders, the image is r32f");
     EXPECT_EQ(vk::storageFormatName(VK_FORMAT_D32_SFLOAT), "VkFormat 126");
 }
 

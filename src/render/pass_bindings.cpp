@@ -83,14 +83,11 @@ void checkStorageFormats(const PassBindings& bindings, std::string_view pass,
         return;
     for (const Bound& b : bindings.bound) {
         const vk::Binding& held = heldAt(*bindings.layout, b.binding, pass);
-        if (held.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE || held.format == VK_FORMAT_UNDEFINED)
+        if (held.type != VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
             continue;
-        const VkFormat bound = formatOf(b.resource);
-        if (bound != held.format)
-            refuse(pass, fmt::format("binding {} is declared {} in its shaders but holds an image "
-                                     "of {}",
-                                     b.binding, vk::storageFormatName(held.format),
-                                     vk::storageFormatName(bound)));
+        const std::string why = vk::storageFormatMismatch(held.format, formatOf(b.resource));
+        if (!why.empty())
+            refuse(pass, fmt::format("binding {}: {}", b.binding, why));
     }
 }
 

@@ -247,13 +247,9 @@ VkPipeline FramePipelines::postPass(std::string_view shader, uint32_t inputs,
                                "with {} and {}",
                                shader, inputs, count, it->second.inputs, it->second.outputs));
     for (uint32_t i = 0; i < count; ++i) {
-        const VkFormat declared = it->second.declared[i];
-        PENUMBRA_CHECK(declared == VK_FORMAT_UNDEFINED || declared == outputs[i],
-                       fmt::format("post pass {}: output {} (binding {}) is declared {} in the "
-                                   "shader, but its map is {}",
-                                   shader, i, POST_OUTPUT_BINDING + i,
-                                   vk::storageFormatName(declared),
-                                   vk::storageFormatName(outputs[i])));
+        const std::string why = vk::storageFormatMismatch(it->second.declared[i], outputs[i]);
+        PENUMBRA_CHECK(why.empty(), fmt::format("post pass {}: output {} (binding {}): {}", shader,
+                                                i, POST_OUTPUT_BINDING + i, why));
     }
     return it->second.pipeline.get();
 }

@@ -310,6 +310,13 @@ std::string storageFormatName(VkFormat format) {
     return fmt::format("VkFormat {}", static_cast<int>(format));
 }
 
+std::string storageFormatMismatch(VkFormat declared, VkFormat bound) {
+    if (declared == VK_FORMAT_UNDEFINED || declared == bound)
+        return {};
+    return fmt::format("declared {} in its shaders, the image is {}", storageFormatName(declared),
+                       storageFormatName(bound));
+}
+
 std::string_view descriptorKind(VkDescriptorType type) {
     switch (type) {
     case VK_DESCRIPTOR_TYPE_SAMPLER:

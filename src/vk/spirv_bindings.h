@@ -30,6 +30,11 @@ std::string bindingMismatch(std::span<const Binding> used, std::span<const Bindi
 // "VkFormat <n>" for one no GLSL qualifier names.
 std::string storageFormatName(VkFormat format);
 
+// Why an image of format `bound` cannot be written where shaders declare the storage format
+// `declared` (VK_FORMAT_UNDEFINED: none declared, any will do): "declared rg32f in its shaders,
+// the image is r32f"; empty when it can. PassBindings and the post passes both ask it.
+std::string storageFormatMismatch(VkFormat declared, VkFormat bound);
+
 // The kind of a descriptor in words ("combined image sampler", "storage image", ...).
 std::string_view descriptorKind(VkDescriptorType type);
 
