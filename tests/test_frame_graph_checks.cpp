@@ -3,6 +3,7 @@
 // that contradicts its own uses, a late pass, a name declared twice unlike, a timed pass without
 // its cost group.
 #include "frame_graph_passes.h"
+#include "penumbra/error.h"
 
 using namespace penumbra;
 using namespace penumbra::render;
@@ -144,4 +145,29 @@ TEST_F(FrameTest, ATimedPassDeclaresItsCostGroupAndAnUntimedOneNone) {
     EXPECT_DEATH(planned("", CostGroup::ShadowMaps), "is untimed but declares a cost group");
     planned("visibility", CostGroup::PerPixel); // and these plan
     planned("", std::nullopt);
+}
+
+// An image past the device's largest is refused as the user's error, naming what sets its size:
+// the option for every shadow view's map, the image's own name for the others.
+TEST_F(FrameTest, AnImagePastTheDevicesLargestNamesWhatSizesIt) {
+    const uint32_t limit = context().limits().maxImageDimension2D;
+    for (const bool shadowView : {false, true}) {
+        ResourcePool pool(context());
+        FrameGraph graph(pool, shadowView ? FrameSizes{.shadowMapSize = limit + 1, .shadowViews = 1}
+                                          : FrameSizes{.width = limit + 1, .height = 2});
+        ImageDecl decl = screenImage("wide");
+        if (shadowView)
+            decl.size = SizeClass::ShadowView;
+        const ResourceId image = graph.declare(decl);
+        graph.markOutput(image);
+        graph.addPass(pass("write", Phase::LightSpace, {{image, Access::ComputeWrite}}));
+        try {
+            graph.plan();
+            ADD_FAILURE() << "an image of " << limit + 1 << " texels a side was made";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.subject(), shadowView ? "--shadow-map-size" : "wide");
+            EXPECT_NE(std::string(e.what()).find(std::to_string(limit)), std::string::npos)
+                << e.what();
+        }
+    }
 }

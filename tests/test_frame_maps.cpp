@@ -148,6 +148,7 @@ TEST_F(FrameTest, ATechniquesMapWithHistoryIsReadByItsPreviousName) {
     const ParameterValues defaults;
     const std::vector<render::ImageDecl> decls = render::shadowMapDecls(module, defaults, {});
     ASSERT_EQ(decls.size(), 3u);
+    EXPECT_EQ(decls[0].lifetime, render::Lifetime::PerFrame) << "the depth map keeps no history";
     EXPECT_EQ(decls[1].lifetime, render::Lifetime::PerFrame);
     EXPECT_EQ(decls[2].lifetime, render::Lifetime::History);
     const render::FrameSizes sizes{.shadowMapSize = 64, .shadowViews = 3};

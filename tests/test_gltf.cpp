@@ -164,6 +164,18 @@ TEST(Gltf, DeepHierarchiesAreWalkedWithoutRecursion) {
     EXPECT_NEAR(s.vertices[0].position.y, 10.0f, 1e-2f);
 }
 
+// JSON nested as deep as the loader allows (the root object, then 511 arrays in its extras) loads;
+// one level more is refused (test_gltf_conformance.cpp).
+TEST(Gltf, JsonNestedToTheLimitLoads) {
+    GltfBuilder b;
+    b.ground();
+    nlohmann::json deep = nlohmann::json::array();
+    for (int level = 1; level < 511; ++level)
+        deep = nlohmann::json::array({deep});
+    b.j["extras"] = deep;
+    EXPECT_GT(load(b.writeGltf(dir() / "deepest.gltf")).triangleCount(), 0u);
+}
+
 TEST(Gltf, SpotAndPointLightsCamerasAndDefaults) {
     GltfBuilder b;
     b.ground();

@@ -294,6 +294,12 @@ INSTANTIATE_TEST_SUITE_P(
                                                   std::string(100000, ']'));
              }),
              "the JSON nests 100001 levels deep (at most 512)"},
+        // One level past the limit (the root object, then 512 arrays); 512 load (test_gltf.cpp).
+        Case{"nested_one_past_the_limit", text([](std::string& json) {
+                 json.insert(json.rfind('}'),
+                             ",\"extras\":" + std::string(512, '[') + std::string(512, ']'));
+             }),
+             "the JSON nests 513 levels deep (at most 512)"},
         Case{"not_gltf_at_all",
              text([](std::string& json) { json = "solid cube\nfacet normal 0 0 1\n"; }),
              "not a glTF file: neither a JSON object nor a GLB"},

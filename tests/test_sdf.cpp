@@ -248,6 +248,17 @@ TEST_F(FieldTest, FieldIsBuiltOncePerSceneAndFieldSetting) {
     };
     EXPECT_TRUE(built(o));
     EXPECT_FALSE(built(o));
+    // The build's GPU time is its passes' (seed, flood, resolve; each timed, so above zero).
+    SceneRenderer fresh(sharedRenderer(), scene);
+    const RenderResult first = fresh.render(o);
+    ASSERT_TRUE(first.field.has_value());
+    ASSERT_EQ(first.field->buildPasses.size(), 3u);
+    double passes = 0.0;
+    for (const PassTime& pass : first.field->buildPasses) {
+        EXPECT_GT(pass.medianMs, 0.0) << pass.pass;
+        passes += pass.medianMs;
+    }
+    EXPECT_NEAR(first.field->buildGpuMs, passes, 1e-9 * passes);
     RenderOptions other = o;
     other.technique = Technique::Pcss;
     EXPECT_FALSE(renderer.render(other).field.has_value());
@@ -267,6 +278,22 @@ TEST_F(FieldTest, FieldIsBuiltOncePerSceneAndFieldSetting) {
     thicker.parameters.set("sdf.thickness", "1.5");
     EXPECT_TRUE(built(thicker));
     EXPECT_FALSE(built(thicker));
+}
+
+// Every pass is timed in every frame after the warm-up, and its median is that of its frames.
+TEST_F(FieldTest, EveryPassIsTimedEachFrameAndItsMedianIsTheirs) {
+    const Scene scene = sphereOverPlane(Light{.type = LightType::Spot});
+    SceneRenderer renderer(sharedRenderer(), scene);
+    RenderOptions o{.width = 16, .height = 16, .frames = 3, .technique = Technique::Sdf};
+    o.parameters.set("sdf.resolution", "32");
+    const RenderResult r = renderer.render(o);
+    ASSERT_GE(r.passes.size(), 3u);
+    for (const PassTime& p : r.passes) {
+        ASSERT_EQ(p.frameMs.size(), 3u) << p.pass;
+        std::vector<double> sorted = p.frameMs;
+        std::sort(sorted.begin(), sorted.end());
+        EXPECT_EQ(p.medianMs, sorted[1]) << p.pass;
+    }
 }
 
 // A sun of 0.5 degrees: almost hard shadows, which the field must place: misclassified pixels

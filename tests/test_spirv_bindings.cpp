@@ -93,6 +93,124 @@ TEST(SpirvBindings, AUniformWithoutItsBlockDecorationIsMalformed) {
     EXPECT_DEATH(vk::reflectBindings(words), "neither a Block nor a BufferBlock");
 }
 
+// The same bindings whatever the entry point's name and the order of its interface: the name is
+// a literal string of any length (its last word padded with zeros), so a scan that misjudges where
+// it ends takes an interface id for a character and drops that variable.
+TEST(SpirvBindings, TheEntryPointsNameAndInterfaceOrderChangeNothing) {
+    const std::span<const uint32_t> original = shaders::spirv("visibility_fill.comp");
+    const std::vector<Binding> expected = vk::reflectBindings(original);
+    ASSERT_GE(expected.size(), 4u);
+    constexpr uint32_t kOpEntryPoint = 15;
+    size_t at = 5;
+    while (at < original.size() && (original[at] & 0xffffu) != kOpEntryPoint)
+        at += std::max(original[at] >> 16, 1u);
+    ASSERT_LT(at, original.size());
+    const size_t count = original[at] >> 16;
+    size_t name = at + 3; // model, id, then the name's words up to one with a zero byte
+    const auto ends = [](uint32_t w) {
+        return (w & 0xffu) == 0 || (w & 0xff00u) == 0 || (w & 0xff0000u) == 0 ||
+               (w & 0xff000000u) == 0;
+    };
+    while (!ends(original[name]))
+        ++name;
+    const std::vector<uint32_t> interface(original.begin() + static_cast<std::ptrdiff_t>(name + 1),
+                                          original.begin() +
+                                              static_cast<std::ptrdiff_t>(at + count));
+    ASSERT_GE(interface.size(), expected.size());
+    const auto same = [](const std::vector<Binding>& a, const std::vector<Binding>& b) {
+        return std::equal(
+            a.begin(), a.end(), b.begin(), b.end(), [](const Binding& x, const Binding& y) {
+                return x.binding == y.binding && x.type == y.type && x.count == y.count &&
+                       x.read == y.read && x.written == y.written && x.format == y.format;
+            });
+    };
+    for (size_t length = 1; length <= 9; ++length)
+        for (size_t rotation = 0; rotation < interface.size(); ++rotation) {
+            std::vector<uint32_t> entry{0, original[at + 1], original[at + 2]};
+            std::string text(length, 'e'); // whole words of characters, then one of zeros
+            text.resize((length / 4 + 1) * 4, '\0');
+            for (size_t i = 0; i < text.size(); i += 4)
+                entry.push_back(uint32_t(uint8_t(text[i])) | uint32_t(uint8_t(text[i + 1])) << 8 |
+                                uint32_t(uint8_t(text[i + 2])) << 16 |
+                                uint32_t(uint8_t(text[i + 3])) << 24);
+            for (size_t i = 0; i < interface.size(); ++i)
+                entry.push_back(interface[(i + rotation) % interface.size()]);
+            entry[0] = static_cast<uint32_t>(entry.size()) << 16 | kOpEntryPoint;
+            std::vector<uint32_t> words(original.begin(),
+                                        original.begin() + static_cast<std::ptrdiff_t>(at));
+            words.insert(words.end(), entry.begin(), entry.end());
+            words.insert(words.end(), original.begin() + static_cast<std::ptrdiff_t>(at + count),
+                         original.end());
+            EXPECT_TRUE(same(vk::reflectBindings(words), expected))
+                << "a name of " << length << " characters, interface rotated by " << rotation;
+        }
+}
+
+// An array's length may be a specialization constant (OpSpecConstant, its default value): the
+// count is the same as the plain constant's.
+TEST(SpirvBindings, AnArrayWhoseLengthIsASpecializationConstantCountsItsDefault) {
+    const std::span<const uint32_t> original = shaders::spirv("visibility.comp#1");
+    std::vector<uint32_t> words(original.begin(), original.end());
+    constexpr uint32_t kOpTypeArray = 28, kOpConstant = 43, kOpSpecConstant = 50;
+    std::vector<uint32_t> lengths;
+    for (size_t i = 5; i < words.size(); i += std::max(words[i] >> 16, 1u))
+        if ((words[i] & 0xffffu) == kOpTypeArray)
+            lengths.push_back(words[i + 3]);
+    size_t changed = 0;
+    for (size_t i = 5; i < words.size(); i += std::max(words[i] >> 16, 1u))
+        if ((words[i] & 0xffffu) == kOpConstant &&
+            std::find(lengths.begin(), lengths.end(), words[i + 2]) != lengths.end()) {
+            words[i] = (words[i] & 0xffff0000u) | kOpSpecConstant;
+            ++changed;
+        }
+    ASSERT_GT(changed, 0u);
+    const std::vector<Binding> vis = vk::reflectBindings(words);
+    ASSERT_NE(at(vis, TECH_MAP), nullptr);
+    EXPECT_EQ(at(vis, TECH_MAP)->count, uint32_t{TECH_MAX_MAPS});
+}
+
+// Two variables on one binding (the fill's second binding moved onto its first) are refused by
+// name, not handed on as two descriptors of one binding.
+TEST(SpirvBindings, TwoVariablesOnOneBindingAreRefused) {
+    const std::span<const uint32_t> original = shaders::spirv("visibility_fill.comp");
+    const std::vector<Binding> used = vk::reflectBindings(original);
+    ASSERT_GE(used.size(), 2u);
+    std::vector<uint32_t> words(original.begin(), original.end());
+    constexpr uint32_t kOpDecorate = 71, kDecorationBinding = 33;
+    size_t moved = 0;
+    for (size_t i = 5; i < words.size(); i += std::max(words[i] >> 16, 1u))
+        if ((words[i] & 0xffffu) == kOpDecorate && words[i + 2] == kDecorationBinding &&
+            words[i + 3] == used[1].binding) {
+            words[i + 3] = used[0].binding;
+            ++moved;
+        }
+    ASSERT_GT(moved, 0u);
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    EXPECT_DEATH(vk::reflectBindings(words),
+                 "binding " + std::to_string(used[0].binding) + " is declared by two variables");
+}
+
+// An image of dimension Buffer is a texel buffer, not an image: the mid pass's storage image
+// with its OpTypeImage's Dim set to Buffer (5) reads as a storage texel buffer.
+TEST(SpirvBindings, AnImageOfDimensionBufferIsATexelBuffer) {
+    const std::span<const uint32_t> original = shaders::spirv("second_depth_mid.comp");
+    std::vector<uint32_t> words(original.begin(), original.end());
+    constexpr uint32_t kOpTypeImage = 25, kDimBuffer = 5, kStorage = 2;
+    size_t changed = 0;
+    for (size_t i = 5; i < words.size(); i += std::max(words[i] >> 16, 1u))
+        if ((words[i] & 0xffffu) == kOpTypeImage && (words[i] >> 16) >= 9 &&
+            words[i + 7] == kStorage) { // op, id, sampled type, dim, depth, arrayed, MS, sampled
+            words[i + 3] = kDimBuffer;
+            ++changed;
+        }
+    ASSERT_EQ(changed, 1u);
+    const std::vector<Binding> mid = vk::reflectBindings(words);
+    ASSERT_NE(at(mid, POST_OUTPUT_BINDING), nullptr);
+    EXPECT_EQ(at(mid, POST_OUTPUT_BINDING)->type, VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER);
+    ASSERT_NE(at(mid, POST_INPUT_BINDING), nullptr);
+    EXPECT_EQ(at(mid, POST_INPUT_BINDING)->type, kSampled) << "the sampled inputs unchanged";
+}
+
 TEST(SpirvBindings, AMismatchNamesTheBindingAndBothKinds) {
     const std::vector<Binding> used{{0, kSampled, 1}, {8, kStorageImage, 4}};
     EXPECT_EQ(vk::bindingMismatch(used, used), "");

@@ -294,6 +294,14 @@ std::vector<Binding> reflectBindings(std::span<const uint32_t> words) {
     }
     std::sort(used.begin(), used.end(),
               [](const Binding& a, const Binding& b) { return a.binding < b.binding; });
+    // Two variables on one binding (aliases SPIR-V allows) would need one descriptor of two
+    // kinds or a layout that says which; no shader here has them, so one is refused by name.
+    const auto twice =
+        std::adjacent_find(used.begin(), used.end(), [](const Binding& a, const Binding& b) {
+            return a.binding == b.binding;
+        });
+    if (twice != used.end())
+        malformed(fmt::format("binding {} is declared by two variables", twice->binding));
     return used;
 }
 
