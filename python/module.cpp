@@ -48,11 +48,13 @@ struct PyScene {
 
     // As the CLI loads a scene without scene options: the automatic ground unless noGround.
     static PyScene load(const std::string& path, uint64_t maxFileSize, uint64_t maxTriangles,
-                        bool noGround) {
+                        bool noGround, std::optional<double> time, const std::string& animation) {
         PyScene s;
-        s.scene = std::make_shared<Scene>(loadScene(
-            path,
-            {.maxFileSize = maxFileSize, .maxTriangles = maxTriangles, .warnings = &s.warnings}));
+        s.scene = std::make_shared<Scene>(loadScene(path, {.maxFileSize = maxFileSize,
+                                                           .maxTriangles = maxTriangles,
+                                                           .warnings = &s.warnings,
+                                                           .time = time,
+                                                           .animation = animation}));
         s.noGround = noGround;
         applySceneEdits(*s.scene, {.noGround = noGround});
         if (s.scene->automaticGround)
@@ -61,7 +63,7 @@ struct PyScene {
     }
     static PyScene builtin(const std::string& name, bool noGround) {
         return load(name.starts_with("builtin:") ? name : "builtin:" + name, uint64_t{1} << 30,
-                    100'000'000, noGround);
+                    100'000'000, noGround, std::nullopt, "");
     }
 
     // The CLI's scene options (--sun-dir, --light-pos, --light-dir, --camera-pos, --look-at,
@@ -337,9 +339,12 @@ PYBIND11_MODULE(penumbra, m) {
         .def_static("load", &PyScene::load, py::arg("path"),
                     py::arg("max_file_size") = uint64_t{1} << 30,
                     py::arg("max_triangles") = uint64_t{100'000'000}, py::arg("no_ground") = false,
+                    py::arg("time") = py::none(), py::arg("animation") = "",
                     "Loads a glTF 2.0 file (.gltf, .glb) as the CLI does: a ground is added "
-                    "when it puts a cast shadow in view (warnings says so) unless no_ground. "
-                    "Raises InputError naming the file.")
+                    "when it puts a cast shadow in view (warnings says so) unless no_ground; "
+                    "time (seconds) poses it in the animation named or numbered by animation "
+                    "(the first by default), as --time and --animation do. Raises InputError "
+                    "naming the file or the option.")
         .def_static("builtin", &PyScene::builtin, py::arg("name"), py::arg("no_ground") = false,
                     "A built-in scene: 'demo', 'showcase', ... (or 'builtin:demo').")
         .def("edit", &PyScene::edit, py::kw_only(), py::arg("sun_dir") = py::none(),
@@ -356,6 +361,15 @@ PYBIND11_MODULE(penumbra, m) {
              "double_sided as --view, --ground and --double-sided do. All or nothing; InputError "
              "names the option.")
         .def_property_readonly("name", [](const PyScene& s) { return s.scene->name; })
+        .def_property_readonly(
+            "time", [](const PyScene& s) { return s.scene->time; },
+            "The seconds into its animation the scene is posed at; None at rest.")
+        .def_property_readonly(
+            "animation", [](const PyScene& s) { return s.scene->animation; },
+            "The animation time poses (its name, else its index); '' without animations.")
+        .def_property_readonly(
+            "animation_duration", [](const PyScene& s) { return s.scene->animationDuration; },
+            "That animation's length in seconds (its last keyframe); 0 without animations.")
         .def_property_readonly("triangles",
                                [](const PyScene& s) { return s.scene->triangleCount(); })
         .def_property_readonly("lights", &PyScene::lights,

@@ -23,10 +23,13 @@ class Scene:
         max_file_size: int = 1 << 30,
         max_triangles: int = 100_000_000,
         no_ground: bool = False,
+        time: Optional[float] = None,
+        animation: str = "",
     ) -> Scene:
         """Loads a glTF 2.0 file (.gltf, .glb) or 'builtin:NAME' as the CLI does: a ground is
-        added where nothing in view receives a cast shadow (warnings says so) unless no_ground.
-        Raises InputError naming the file."""
+        added where nothing in view receives a cast shadow (warnings says so) unless no_ground;
+        time (seconds) poses it in the animation named or numbered by animation (default the
+        first), as --time and --animation do. Raises InputError naming the file or option."""
     @staticmethod
     def builtin(name: str, no_ground: bool = False) -> Scene:
         """A built-in scene: 'demo', 'showcase', ... (or 'builtin:demo'), or a generated one:
@@ -48,6 +51,15 @@ class Scene:
         """The CLI's scene options, in place (all or nothing); InputError names the option."""
     @property
     def name(self) -> str: ...
+    @property
+    def time(self) -> Optional[float]:
+        """The seconds into its animation the scene is posed at; None at rest."""
+    @property
+    def animation(self) -> str:
+        """The animation time poses (its name, else its index); '' without animations."""
+    @property
+    def animation_duration(self) -> float:
+        """That animation's length in seconds (its last keyframe); 0 without animations."""
     @property
     def triangles(self) -> int: ...
     @property

@@ -149,6 +149,14 @@ INSTANTIATE_TEST_SUITE_P(
                  }
              }),
              ""},
+        Case{"skin_no_node_uses", gltf([](GltfBuilder& b) {
+                 b.j["skins"] = {{{"joints", {0}}}};
+             }),
+             ""},
+        Case{"morph_target_at_weight_zero", gltf([](GltfBuilder& b) {
+                 b.j["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 0}}};
+             }),
+             ""},
         Case{"primitive_without_position", // the spec: skip the primitive
              gltf([](GltfBuilder& b) {
                  b.j["meshes"][0]["primitives"].push_back({{"attributes", {{"NORMAL", 0}}}});
@@ -310,6 +318,15 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"spot_outer_past_half_pi", gltf([](GltfBuilder& b) { addLight(b, spot(0.1, 1.6)); }),
              "extensions.KHR_lights_punctual.lights[0].spot.outerConeAngle: 1.6 is outside (0, "
              "pi/2]"},
+        Case{"skin_joint_out_of_range", gltf([](GltfBuilder& b) {
+                 b.j["skins"] = {{{"joints", {0, 9}}}};
+             }),
+             "skins[0].joints[1]: index 9 is out of range (1 nodes)"},
+        Case{"morph_target_not_vec3", gltf([](GltfBuilder& b) {
+                 b.j["meshes"][0]["primitives"][0]["targets"] = {{{"NORMAL", 1}}};
+             }),
+             "meshes[0].primitives[0].targets[0].NORMAL: accessors[1] has 6 elements for the "
+             "primitive's 4 vertices"},
         Case{"matrix_and_trs", gltf([](GltfBuilder& b) {
                  b.j["nodes"][0]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
                  b.j["nodes"][0]["scale"] = {2, 2, 2};
@@ -507,32 +524,16 @@ INSTANTIATE_TEST_SUITE_P(
     UnusedParts, GltfIgnoredPart,
     ::testing::Values(
         Case{"animation", gltf([](GltfBuilder& b) {
+                 const int time = b.accessor(b.view(std::vector<float>{0, 1}), 5126, 2, "SCALAR");
+                 const int scale =
+                     b.accessor(b.view(std::vector<float>{1, 1, 1, 2, 2, 2}), 5126, 2, "VEC3");
                  b.j["animations"] = {
                      {{"channels",
                        {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "scale"}}}}}},
-                      {"samplers", {{{"input", 1}, {"output", 0}}}}}};
+                      {"samplers", {{{"input", time}, {"output", scale}}}}}};
              }),
-             "animations: 1 animation(s) ignored; the scene is drawn at rest"},
-        Case{"animation_bad_reference", gltf([](GltfBuilder& b) {
-                 b.j["animations"] = {
-                     {{"channels",
-                       {{{"sampler", 3}, {"target", {{"node", 0}, {"path", "scale"}}}}}},
-                      {"samplers", {{{"input", 1}, {"output", 0}}}}}};
-             }),
-             "animations[0].channels[0].sampler: index 3 is out of range (1 samplers); "
-             "animations are ignored"},
-        Case{"skin", gltf([](GltfBuilder& b) {
-                 b.j["skins"] = {{{"joints", {0}}}};
-             }),
-             "skins: 1 skin(s) ignored; skinned meshes are drawn in their bind pose"},
-        Case{"skin_bad_reference", gltf([](GltfBuilder& b) {
-                 b.j["skins"] = {{{"joints", {0, 9}}}};
-             }),
-             "skins[0].joints[1]: index 9 is out of range (1 nodes); skins are ignored"},
-        Case{"morph_targets", gltf([](GltfBuilder& b) {
-                 b.j["meshes"][0]["primitives"][0]["targets"] = {{{"POSITION", 0}}};
-             }),
-             "meshes[0].primitives[0].targets: morph targets are ignored"},
+             "animations: 1 animation(s); the scene is drawn at rest (--time T poses it in "
+             "animation '0', 1 s long)"},
         Case{"camera_aspect_ratio", gltf([](GltfBuilder& b) {
                  b.j["cameras"] = {
                      {{"type", "perspective"},

@@ -115,3 +115,36 @@ TEST(MetricsShimmer, PathsMoveTheCameraOrTheSunByTheirStep) {
     EXPECT_EQ(path, CameraPath::Orbit);
     EXPECT_FALSE(cameraPathFromName("spiral", path));
 }
+
+TEST(MetricsFlicker, ChangeOfTheErrorWhereTheTruthHeldStill) {
+    // Pixel 0: truth still, the error flips from +0.1 to -0.1 (flicker 0.2). Pixel 1: truth
+    // still, the error constant (0). Pixel 2: the truth moved by 0.5 (left out, however the
+    // technique followed it). Pixel 3: the truth moved by 2e-6, past the threshold (left out);
+    // pixel 4 by 1e-7, within it (counted: an error change of 0.3 - 1e-7).
+    const std::vector<float> truthBefore = {0.5f, 1.0f, 0.0f, 0.25f, 0.75f};
+    const std::vector<float> truthAfter = {0.5f, 1.0f, 0.5f, 0.250002f, 0.7500001f};
+    const std::vector<float> before = {0.6f, 0.9f, 0.0f, 0.25f, 0.75f};
+    const std::vector<float> after = {0.4f, 0.9f, 0.9f, 0.9f, 1.05f};
+    const std::vector<uint8_t> all(5, 1);
+    const ShimmerPair pair{.visibility = after,
+                           .previous = before,
+                           .truth = truthAfter,
+                           .previousTruth = truthBefore,
+                           .mask = all,
+                           .previousMask = all};
+    const ShimmerResult r = measureFlicker(std::span(&pair, 1));
+    EXPECT_EQ(r.pixels, 3u);
+    EXPECT_NEAR(r.shimmer, (0.2 + 0.0 + (0.3 - 1e-7)) / 3.0, 1e-6);
+    // Shimmer with a truth counts every pixel, the moved ones too.
+    EXPECT_EQ(measureShimmer(std::span(&pair, 1)).pixels, 5u);
+    // Masks and background drop pixels as they do for shimmer.
+    const std::vector<uint8_t> firstGone = {0, 1, 1, 1, 1};
+    const ShimmerPair masked{.visibility = after,
+                             .previous = before,
+                             .truth = truthAfter,
+                             .previousTruth = truthBefore,
+                             .mask = all,
+                             .previousMask = firstGone};
+    EXPECT_EQ(measureFlicker(std::span(&masked, 1)).pixels, 2u);
+    EXPECT_NEAR(measureFlicker(std::span(&masked, 1)).shimmer, (0.0 + (0.3 - 1e-7)) / 2.0, 1e-6);
+}

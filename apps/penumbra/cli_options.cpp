@@ -139,7 +139,7 @@ void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques)
 }
 
 Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
-                         const SceneOptions& o, const RenderOptions& options) {
+                         const SceneOptions& o, const RenderOptions& options, bool quiet) {
     SceneEdits edits{.fovDegrees = o.fovDegrees};
     // Parsed before the scene loads: a typing mistake costs no loading time.
     if (!o.sunDirection.empty())
@@ -162,10 +162,14 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
     std::vector<std::string> warnings;
     Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
                                    .maxTriangles = global.maxTriangles,
-                                   .warnings = &warnings});
+                                   .warnings = &warnings,
+                                   .time = o.time,
+                                   .animation = o.animation});
+    applySceneEdits(scene, edits);
+    if (quiet)
+        return scene;
     for (const std::string& w : warnings)
         std::fprintf(stderr, "penumbra: warning: %s\n", w.c_str());
-    applySceneEdits(scene, edits);
     if (scene.automaticGround)
         std::fprintf(stderr, "penumbra: note: %s\n", automaticGroundNote(scene).c_str());
     const auto has = [&](auto kind) {
@@ -219,6 +223,14 @@ void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
                          "(default: the scene's first camera, else auto)"))
         ->type_name("auto|exterior|interior")
         ->excludes(camera);
+    group(cmd.add_option("--time", scene.time,
+                         "poses an animated glTF scene this many seconds into its animation "
+                         "(nodes, cameras and lights move; before the first keyframe and after "
+                         "the last the ends hold; default: the nodes at rest)"))
+        ->type_name("SECONDS");
+    group(cmd.add_option("--animation", scene.animation,
+                         "the animation --time poses: its name or index (default: the first)"))
+        ->type_name("NAME|INDEX");
     group(cmd.add_flag("--double-sided", scene.doubleSided,
                        "draws every material's back faces too (a mis-wound or open mesh shows "
                        "holes where single-sided back faces are culled)"));

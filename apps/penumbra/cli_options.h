@@ -32,7 +32,9 @@ struct SceneOptions {
     std::string sunDirection, cameraPosition, lookAt;
     std::vector<std::string> lightPositions, lightDirections, addedLights;
     std::optional<float> fovDegrees;
-    std::string view; // --view
+    std::string view;           // --view
+    std::optional<double> time; // --time: seconds into the animation (none: at rest)
+    std::string animation;      // --animation: a name or an index ("" the first)
     bool ground = false, noGround = false, doubleSided = false;
 };
 
@@ -69,9 +71,11 @@ void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques)
 
 // loadScene with the global options, then the scene options applied; loader warnings go to
 // stderr as `penumbra: warning:`, and so do light sizes that no light of the scene takes
-// (--light-angle without a sun, --light-radius without a spot or point light).
+// (--light-angle without a sun, --light-radius without a spot or point light). `quiet`: none of
+// them (a timeline's later frames, whose first said them).
 Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
-                         const SceneOptions& sceneOptions, const RenderOptions& options);
+                         const SceneOptions& sceneOptions, const RenderOptions& options,
+                         bool quiet = false);
 
 // The option groups several commands share, under these headings in `--help` and docs/cli.md.
 inline constexpr const char* kSceneGroup = "Scene and view";

@@ -2,6 +2,7 @@
 // report.html (self-contained), metrics.json, and each row's images and analysis buffers.
 #include "commands.h"
 #include "compare_path.h"
+#include "compare_timeline.h"
 #include "core/image_io.h"
 #include "penumbra/error.h"
 #include "penumbra/reference.h"
@@ -35,6 +36,7 @@ struct CompareArgs {
     ReferenceOptions reference{.progress = true};
     std::string cameraPath; // empty: no shimmer
     std::string truthCache; // empty: no cache
+    std::string timeline;   // empty: the one frame
     uint32_t pathFrames = 8;
     // OpenEXR alone: what image tools open, and 50 to 250 times smaller than PFM for these
     // images (docs/cli.md); `--format pfm` or `both` on request.
@@ -72,7 +74,13 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
     if (!args.cameraPath.empty() && !cameraPathFromName(args.cameraPath, path))
         throw InputError("--camera-path",
                          fmt::format("'{}' is not dolly, orbit or sun", args.cameraPath));
-    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
+    std::optional<Timeline> timeline;
+    SceneOptions sceneOptions = args.sceneOptions;
+    if (!args.timeline.empty()) {
+        timeline = parseTimeline(args.timeline);
+        sceneOptions.time = timeline->start; // the usual outputs are the first frame's
+    }
+    Scene scene = loadSceneReporting(args.scene, global, sceneOptions, args.options);
     // A row's layers that the settings leave off take the layer's settings for this scene's size.
     for (size_t i = 0; i < rows.size(); ++i)
         applyRow(rows[i], rowOptions[i].parameters, scene.bounds().radius());
@@ -186,6 +194,35 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                                      args.reference);
         report.cameraPath = args.cameraPath;
         report.pathFrames = args.pathFrames;
+    }
+    if (timeline) {
+        std::vector<std::string> names;
+        std::vector<BlurReach> blur;
+        for (size_t r = 0; r < rows.size(); ++r) {
+            names.push_back(rows[r].name);
+            blur.push_back(blurRadiusTexels(rowOptions[r]));
+        }
+        const std::vector<TimelineRow> measured = runTimeline(renderer,
+                                                              {.sceneSpec = args.scene,
+                                                               .global = global,
+                                                               .sceneOptions = args.sceneOptions,
+                                                               .rowNames = names,
+                                                               .rowOptions = rowOptions,
+                                                               .blur = blur,
+                                                               .reference = args.reference},
+                                                              *timeline);
+        out.write("timeline.json", bytesOf(timelineJson(*timeline, measured).dump(2) + "\n"));
+        out.write("timeline.csv", bytesOf(timelineCsv(*timeline, measured)));
+        std::printf("%-22s %12s %12s %12s %10s   (timeline: %zu frames, %g..%g s)\n", "technique",
+                    "mean RMSE", "max RMSE", "flicker", "GPU ms", timeline->frames, timeline->start,
+                    timeline->at(timeline->frames - 1));
+        for (const TimelineRow& row : measured) {
+            const nlohmann::json j = timelineJson(*timeline, {row})["rows"][row.name];
+            std::printf("%-22s %12.5f %12.5f %12.6f %10.3f\n", row.name.c_str(),
+                        j["rmse_over_time"]["mean"].get<double>(),
+                        j["rmse_over_time"]["max"].get<double>(), row.flicker,
+                        j["gpu_ms_over_time"]["mean"].get<double>());
+        }
     }
 
     // One view for every row: its measure once, not a ray hierarchy per row.
@@ -304,6 +341,14 @@ Action addCompareCommand(CLI::App& app, const GlobalOptions& global) {
                     "shadow-map texel a frame), `orbit` (0.1 degrees a frame about its target), "
                     "`sun` (every directional light turns 0.05 degrees a frame)")
         ->type_name("PATH");
+    cmd->add_option("--timeline", args->timeline,
+                    "an animated scene over time: each frame from START to END seconds, STEP "
+                    "apart, posed, rendered by every row and traced; per-frame metrics and each "
+                    "row's flicker in timeline.json and timeline.csv (the other outputs are "
+                    "START's)")
+        ->type_name("START:END:STEP")
+        ->excludes("--time")
+        ->excludes("--camera-path");
     cmd->add_option("--path-frames", args->pathFrames, "frames along --camera-path, 2..64")
         ->type_name("N")
         ->check(CLI::Range(2, 64))

@@ -26,15 +26,6 @@ float dollyStep(const RenderResult& first, const Scene& scene, const Camera& cam
     return 0.01f * glm::length(camera.target - camera.position);
 }
 
-// The light mask of every visibility layer of `r`, for the lights of `lit`.
-std::vector<std::vector<uint8_t>> masksOf(const Scene& lit, const RenderResult& r) {
-    std::vector<std::vector<uint8_t>> masks(r.visibility.size());
-    for (const LightShadow& s : r.lights)
-        if (s.visibilityIndex >= 0)
-            masks[static_cast<size_t>(s.visibilityIndex)] = lightMask(lit.lights[s.sceneLight], r);
-    return masks;
-}
-
 } // namespace
 
 std::vector<PathRow> measurePathShimmer(SceneRenderer& renderer, const Scene& scene,
@@ -92,7 +83,7 @@ std::vector<PathRow> measurePathShimmer(SceneRenderer& renderer, const Scene& sc
         }
         std::vector<std::vector<std::vector<uint8_t>>> masks; // [frame][layer]
         for (size_t t = 0; t < frames.size(); ++t)
-            masks.push_back(masksOf(lit[t], now[t]));
+            masks.push_back(lightMasks(lit[t], now[t]));
         std::vector<ShimmerPair> pairs;
         for (size_t t = 1; t < frames.size(); ++t)
             for (size_t l = 0; l < now[t].visibility.size(); ++l) {

@@ -145,6 +145,11 @@ struct Scene {
     bool defaultLight = false;    // lights[0] is the loader's stand-in for an asset without lights
     bool automaticGround = false; // applySceneEdits added a ground to catch a shadow
     SceneEdits edits;             // what applySceneEdits changed
+    // Animation (glTF): the one chosen ("" when the scene has none), its length in seconds, and
+    // the time it is posed at (none: the nodes at rest).
+    std::string animation;
+    float animationDuration = 0.0f;
+    std::optional<double> time;
 
     size_t triangleCount() const { return indices.size() / 3; }
     // The coverage (alpha) of `material` at a texture coordinate and vertex alpha, as the
@@ -166,6 +171,10 @@ struct SceneLoadOptions {
     uint64_t maxTriangles = 100'000'000;
     uint64_t maxImageBytes = 0;                   // 0: the default above
     std::vector<std::string>* warnings = nullptr; // content skipped while loading
+    // --time: seconds into the animation (none: at rest; negative or not finite: InputError);
+    // --animation: its name or index ("" the first; one the scene lacks: InputError).
+    std::optional<double> time;
+    std::string animation;
 };
 
 // Loads `spec`: "builtin:NAME", or a glTF 2.0 file (.gltf, .glb), with invalid triangles

@@ -32,4 +32,12 @@ std::vector<uint8_t> lightMask(const Light& light, const RenderResult& g) {
     return mask;
 }
 
+std::vector<std::vector<uint8_t>> lightMasks(const Scene& lit, const RenderResult& r) {
+    std::vector<std::vector<uint8_t>> masks(r.visibility.size());
+    for (const LightShadow& s : r.lights)
+        if (s.visibilityIndex >= 0)
+            masks[static_cast<size_t>(s.visibilityIndex)] = lightMask(lit.lights[s.sceneLight], r);
+    return masks;
+}
+
 } // namespace penumbra

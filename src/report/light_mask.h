@@ -14,5 +14,7 @@ namespace penumbra {
 // One value per pixel of `gbuffer` (its position and normal), 1 = counted; background pixels
 // are 0.
 std::vector<uint8_t> lightMask(const Light& light, const RenderResult& gbuffer);
+// The mask of every visibility layer of `r`, in its order, for the lights of `lit`.
+std::vector<std::vector<uint8_t>> lightMasks(const Scene& lit, const RenderResult& r);
 
 } // namespace penumbra

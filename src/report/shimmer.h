@@ -31,4 +31,12 @@ struct ShimmerResult {
 // Spans of one pair that differ in size are a programmer error.
 ShimmerResult measureShimmer(std::span<const ShimmerPair> pairs);
 
+// Flicker (issue 59, docs/cli.md): the mean frame-to-frame change of the error,
+// |(v_t - truth_t) - (v_{t-1} - truth_{t-1})|, over the pixels whose truth did not change
+// (|truth_t - truth_{t-1}| <= kUnchangedTruth) and which the light reaches in both frames: what
+// a technique adds from frame to frame where nothing it should show moved. Every pair needs its
+// truths.
+inline constexpr double kUnchangedTruth = 1e-6;
+ShimmerResult measureFlicker(std::span<const ShimmerPair> pairs);
+
 } // namespace penumbra

@@ -80,6 +80,10 @@ nlohmann::json renderStats(const RenderRun& run) {
                    {"yfov_degrees", glm::degrees(camera.yfov)}};
     j["scene"]["default_light"] = run.scene.defaultLight;
     j["scene"]["automatic_ground"] = run.scene.automaticGround;
+    // The pose (issue 59): the animation and the time it is posed at (null: at rest).
+    j["scene"]["animation"] = run.scene.animation;
+    j["scene"]["animation_duration"] = run.scene.animationDuration;
+    j["scene"]["time"] = run.scene.time ? nlohmann::json(*run.scene.time) : nlohmann::json();
     j["view"] = run.view ? *run.view : viewJson(run.scene, camera);
     j["scene"]["edits"] = sceneEditsJson(run.scene.edits);
     j["image"] = {{"width", o.width}, {"height", o.height}};

@@ -11,41 +11,35 @@
 namespace penumbra::scene {
 namespace {
 
-uint32_t componentsOf(AnimatedPath path) { // 0: any (weights: one per morph target)
-    switch (path) {
-    case AnimatedPath::Translation:
-    case AnimatedPath::Scale:
-        return 3;
-    case AnimatedPath::Rotation:
-        return 4;
-    case AnimatedPath::Weights:
-        return 0;
-    }
-    return 0;
-}
+// Each path's name in glTF and its components a keyframe (0: any; weights: one per morph target).
+struct PathInfo {
+    AnimatedPath path;
+    const char* name;
+    uint32_t components;
+};
+constexpr PathInfo kPaths[] = {{AnimatedPath::Translation, "translation", 3},
+                               {AnimatedPath::Rotation, "rotation", 4},
+                               {AnimatedPath::Scale, "scale", 3},
+                               {AnimatedPath::Weights, "weights", 0}};
 
-const char* nameOf(AnimatedPath path) {
-    switch (path) {
-    case AnimatedPath::Translation:
-        return "translation";
-    case AnimatedPath::Rotation:
-        return "rotation";
-    case AnimatedPath::Scale:
-        return "scale";
-    case AnimatedPath::Weights:
-        return "weights";
-    }
-    return "?";
+const PathInfo& infoOf(AnimatedPath path) {
+    return kPaths[static_cast<size_t>(path)];
 }
+static_assert(kPaths[static_cast<size_t>(AnimatedPath::Weights)].path == AnimatedPath::Weights);
 
-// A rotation normalized; a quaternion of no length (a spline may pass through one) is none.
-void normalizeRotation(std::vector<double>& q) {
-    const double length = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+// A rotation normalized in place; a quaternion of no length (a spline may pass through one) is
+// none.
+template <typename T>
+void normalizeRotation(std::span<T, 4> q) {
+    double length = 0.0;
+    for (const T c : q)
+        length += double(c) * double(c);
+    length = std::sqrt(length);
     if (length > 0.0)
-        for (double& c : q)
-            c /= length;
+        for (T& c : q)
+            c = static_cast<T>(c / length);
     else
-        q = {0.0, 0.0, 0.0, 1.0};
+        q[0] = q[1] = q[2] = T(0), q[3] = T(1);
 }
 
 } // namespace
@@ -53,11 +47,12 @@ void normalizeRotation(std::vector<double>& q) {
 std::string samplerProblem(const AnimationSampler& s, AnimatedPath path) {
     if (s.times.empty())
         return "no keyframes";
-    const uint32_t wanted = componentsOf(path);
+    const uint32_t wanted = infoOf(path).components;
     if (s.components == 0)
         return "no components";
     if (wanted != 0 && s.components != wanted)
-        return fmt::format("a {} has {} components, not {}", nameOf(path), wanted, s.components);
+        return fmt::format("a {} has {} components, not {}", infoOf(path).name, wanted,
+                           s.components);
     for (size_t k = 0; k < s.times.size(); ++k) {
         if (!std::isfinite(s.times[k]) || s.times[k] < 0.0f)
             return fmt::format("keyframe {}'s time {} is not a finite number of seconds from 0", k,
@@ -96,23 +91,42 @@ void slerp(std::span<const float, 4> a, std::span<const float, 4> b, float t,
         wa = std::sin((1.0 - t) * angle) / std::sin(angle);
         wb = std::sin(t * angle) / std::sin(angle);
     }
-    std::vector<double> q(4);
+    std::array<double, 4> q{};
     for (size_t i = 0; i < 4; ++i)
         q[i] = wa * a[i] + sign * wb * b[i];
-    normalizeRotation(q);
+    normalizeRotation(std::span<double, 4>(q));
     for (size_t i = 0; i < 4; ++i)
         out[i] = static_cast<float>(q[i]);
 }
 
+const char* animatedPathName(AnimatedPath path) {
+    return infoOf(path).name;
+}
+
+bool animatedPathFromName(std::string_view name, AnimatedPath& path) {
+    for (const PathInfo& info : kPaths)
+        if (name == info.name) {
+            path = info.path;
+            return true;
+        }
+    return false;
+}
+
 std::vector<float> sampleAt(const AnimationSampler& s, AnimatedPath path, double time) {
     PENUMBRA_CHECK(samplerProblem(s, path).empty(), "sampleAt: " + samplerProblem(s, path));
+    std::vector<float> out(s.components);
+    sampleInto(s, path, time, out);
+    return out;
+}
+
+void sampleInto(const AnimationSampler& s, AnimatedPath path, double time, std::span<float> out) {
     const size_t n = s.times.size(), c = s.components;
+    PENUMBRA_CHECK(out.size() == c && n > 0, "sampleInto: the output holds one keyframe's values");
     const bool cubic = s.interpolation == Interpolation::CubicSpline;
     const size_t groups = cubic ? 3 : 1;
     const auto value = [&](size_t k) {
         return s.values.data() + (k * groups + (cubic ? 1 : 0)) * c;
     };
-    std::vector<double> out(c);
     const auto held = [&](size_t k) { std::copy(value(k), value(k) + c, out.begin()); };
     // Before the first keyframe and after the last, the nearest one holds (Appendix C).
     if (n == 1 || !(time > s.times.front())) {
@@ -130,13 +144,12 @@ std::vector<float> sampleAt(const AnimationSampler& s, AnimatedPath path, double
             held(k);
         } else if (!cubic) {
             if (path == AnimatedPath::Rotation) {
-                std::array<float, 4> q{};
                 slerp(std::span<const float, 4>(value(k), 4),
-                      std::span<const float, 4>(value(k + 1), 4), static_cast<float>(u), q);
-                std::copy(q.begin(), q.end(), out.begin());
+                      std::span<const float, 4>(value(k + 1), 4), static_cast<float>(u),
+                      out.first<4>());
             } else {
                 for (size_t i = 0; i < c; ++i)
-                    out[i] = (1.0 - u) * value(k)[i] + u * value(k + 1)[i];
+                    out[i] = static_cast<float>((1.0 - u) * value(k)[i] + u * value(k + 1)[i]);
             }
         } else {
             // The Hermite spline of Appendix C: the keyframes' values and their out- and
@@ -147,16 +160,12 @@ std::vector<float> sampleAt(const AnimationSampler& s, AnimatedPath path, double
             const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u;
             const double h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
             for (size_t i = 0; i < c; ++i)
-                out[i] = h00 * value(k)[i] + h10 * span * outTangent[i] + h01 * value(k + 1)[i] +
-                         h11 * span * inTangent[i];
+                out[i] = static_cast<float>(h00 * value(k)[i] + h10 * span * outTangent[i] +
+                                            h01 * value(k + 1)[i] + h11 * span * inTangent[i]);
         }
     }
     if (path == AnimatedPath::Rotation)
-        normalizeRotation(out);
-    std::vector<float> result(c);
-    std::transform(out.begin(), out.end(), result.begin(),
-                   [](double v) { return static_cast<float>(v); });
-    return result;
+        normalizeRotation(out.first<4>());
 }
 
 } // namespace penumbra::scene

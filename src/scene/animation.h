@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace penumbra::scene {
@@ -31,9 +32,18 @@ struct AnimationSampler {
 // CUBICSPLINE, which needs two keyframes), values not finite, a rotation without 4 components.
 std::string samplerProblem(const AnimationSampler& sampler, AnimatedPath path);
 
+// glTF's name of a path ("translation", "rotation", "scale", "weights") and the path of a name
+// (false for any other).
+const char* animatedPathName(AnimatedPath path);
+bool animatedPathFromName(std::string_view name, AnimatedPath& path);
+
 // The sampler's value at `time` (seconds): held at the first keyframe before it and at the last
 // after it. A rotation comes back as a unit quaternion. The sampler must have no problem.
 std::vector<float> sampleAt(const AnimationSampler& sampler, AnimatedPath path, double time);
+// The same into `out` (sampler.components floats) without allocating: the per-frame path. The
+// sampler must have no problem (samplerProblem is not asked again here).
+void sampleInto(const AnimationSampler& sampler, AnimatedPath path, double time,
+                std::span<float> out);
 
 // Spherical linear interpolation of unit quaternions (x, y, z, w) along the shorter arc.
 void slerp(std::span<const float, 4> a, std::span<const float, 4> b, float t,

@@ -52,6 +52,17 @@ inline constexpr glm::vec3 kFieldSunDirection{0.55f, -0.45f, -0.35f};
 // Demo: the sun's angular diameter (degrees) in `make demo`'s scene.
 inline constexpr float kDemoSunDegrees = 4.0f;
 
+// Pendulum (animated, issue 59): a ball on a rod swinging in the x-y plane from a pivot, angle
+// kPendulumAmplitude * cos(2 pi t / kPendulumPeriod) from the vertical; its lowest point 0.2
+// above the floor at y = 0.
+inline constexpr glm::vec3 kPendulumPivot{0.0f, 4.2f, 0.0f};
+inline constexpr float kPendulumLength = 3.5f; // pivot to the ball's centre
+inline constexpr float kPendulumBobRadius = 0.5f;
+inline constexpr double kPendulumAmplitude = 0.8; // radians
+inline constexpr double kPendulumPeriod = 2.0;    // seconds
+inline constexpr float kPendulumFloorHalfSize = 8.0f;
+inline constexpr glm::vec3 kPendulumSunDirection{0.2f, -1.0f, 0.15f};
+
 // Dense: kDenseRows x kDenseColumns cells of a box and a sphere of 2 x slices x (stacks - 1)
 // triangles (about 100k in all), a spot light.
 inline constexpr int kDenseRows = 4, kDenseColumns = 6;
@@ -90,5 +101,8 @@ Scene figure();
 // Objects resting on a plane (the contact layer's scene): without lights, and with its sun.
 Scene restingGeometry();
 Scene resting();
+// Animated: the scene posed `time` seconds in (any time; periodic), and the ball's centre then.
+Scene pendulum(double time);
+glm::vec3 pendulumBob(double time);
 
 } // namespace penumbra::builtin

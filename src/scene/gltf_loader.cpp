@@ -6,9 +6,11 @@
 #include "penumbra/error.h"
 #include "scene/first_picture.h"
 #include "scene/gltf_accessors.h"
+#include "scene/gltf_animation.h"
 #include "scene/gltf_compression.h"
 #include "scene/gltf_container.h"
 #include "scene/gltf_images.h"
+#include "scene/gltf_skin.h"
 #include "scene/gltf_validate.h"
 #include "scene/interior.h"
 #include "scene/sanitize.h"
@@ -22,6 +24,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <span>
 
 namespace penumbra {
 namespace {
@@ -72,25 +75,6 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
 
 bool writeNothing(std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
     return false;
-}
-
-glm::mat4 localTransform(const tinygltf::Node& n) {
-    if (n.matrix.size() == 16) {
-        glm::mat4 m;
-        for (int i = 0; i < 16; ++i)
-            m[i / 4][i % 4] = static_cast<float>(n.matrix[i]);
-        return m;
-    }
-    glm::mat4 m(1.0f);
-    if (n.translation.size() == 3)
-        m = glm::translate(m, glm::vec3(n.translation[0], n.translation[1], n.translation[2]));
-    if (n.rotation.size() == 4)
-        m *= glm::mat4_cast(
-            glm::quat(static_cast<float>(n.rotation[3]), static_cast<float>(n.rotation[0]),
-                      static_cast<float>(n.rotation[1]), static_cast<float>(n.rotation[2])));
-    if (n.scale.size() == 3)
-        m = glm::scale(m, glm::vec3(n.scale[0], n.scale[1], n.scale[2]));
-    return m;
 }
 
 // Triangle-list indices for a primitive's mode; empty for points and lines.
@@ -184,13 +168,19 @@ struct Flattener {
     uint32_t defaultMaterial = 0;         // for primitives without one
     size_t skippedPointsOrLines = 0;
     std::map<size_t, size_t> unusableByMesh; // mesh index -> triangles dropInvalidTriangles drops
+    std::vector<gltf::NodePose> poses;       // per node: at rest, or at --time
+    std::vector<glm::mat4> worlds;           // per node: its world transform in that pose
+    std::vector<gltf::Skin> skins;
 
     void warn(const std::string& w) const {
         if (options.warnings)
             options.warnings->push_back(file.string() + ": " + w);
     }
 
-    void primitive(const tinygltf::Primitive& p, const glm::mat4& world, size_t meshIndex) {
+    // A primitive placed by `world`, or per vertex by `skinned` (its skin's matrices), its
+    // morph targets blended by `weights`.
+    void primitive(const tinygltf::Primitive& p, const glm::mat4& world, size_t meshIndex,
+                   std::span<const float> weights, const std::vector<glm::mat4>* skinned) {
         if (!gltf::hasPositions(p))
             return; // validateModel said so
         if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
@@ -212,7 +202,7 @@ struct Flattener {
                              fmt::format("meshes[{}]: the scene would have more than {} triangles "
                                          "after instancing (--max-triangles raises the cap)",
                                          meshIndex, options.maxTriangles));
-        const std::vector<float> pos = readFloats(m, p.attributes.at("POSITION"));
+        std::vector<float> pos = readFloats(m, p.attributes.at("POSITION"));
         // (validateModel refused non-finite attribute values.)
         std::vector<uint32_t> idx;
         if (p.indices >= 0) {
@@ -239,7 +229,9 @@ struct Flattener {
                 idx[i] = i;
         }
         std::vector<uint32_t> tri = triangles(p.mode, idx);
-        if (glm::determinant(glm::mat3(world)) < 0.0f) // a mirroring transform flips the winding
+        // A mirroring transform flips the winding (a skin: as its first vertex's matrix does).
+        const glm::mat4& placement = skinned ? skinned->front() : world;
+        if (glm::determinant(glm::mat3(placement)) < 0.0f)
             for (size_t t = 0; t + 2 < tri.size(); t += 3)
                 std::swap(tri[t + 1], tri[t + 2]);
         std::vector<float> normals;
@@ -248,6 +240,7 @@ struct Flattener {
             if (normals.size() != pos.size())
                 normals.clear();
         }
+        blendMorphTargets(p, weights, pos, normals);
         const uint32_t material =
             p.material >= 0 ? static_cast<uint32_t>(p.material) : defaultMaterial;
         const UvTransform& transform = uvTransform[material];
@@ -269,12 +262,13 @@ struct Flattener {
         const uint32_t base = static_cast<uint32_t>(scene.vertices.size());
         for (size_t v = 0; v < count; ++v) {
             const glm::vec3 local(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+            const glm::mat4& place = skinned ? (*skinned)[v] : world;
             glm::vec3 n = normals.empty()
                               ? glm::vec3(0.0f)
                               : glm::vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
             if (!normals.empty())
-                n = normalMatrix * n;
-            Vertex out{glm::vec3(world * glm::vec4(local, 1.0f)), n, material};
+                n = (skinned ? glm::transpose(glm::inverse(glm::mat3(place))) : normalMatrix) * n;
+            Vertex out{glm::vec3(place * glm::vec4(local, 1.0f)), n, material};
             if (!uv.empty()) // affine, so transforming the corners transforms every point
                 out.uv = transform.apply(glm::vec2(uv[2 * v], uv[2 * v + 1]));
             if (!color.empty())
@@ -305,6 +299,26 @@ struct Flattener {
                 ++unusableByMesh[meshIndex];
         for (uint32_t i : tri)
             scene.indices.push_back(base + i);
+    }
+
+    // Morph targets (the specification's 3.7.2.2): each target's POSITION and NORMAL
+    // displacements added, times its weight. (validateModel checked their types and counts.)
+    void blendMorphTargets(const tinygltf::Primitive& p, std::span<const float> weights,
+                           std::vector<float>& pos, std::vector<float>& normals) const {
+        for (size_t t = 0; t < p.targets.size() && t < weights.size(); ++t) {
+            if (weights[t] == 0.0f)
+                continue;
+            for (const auto& [name, out] :
+                 {std::pair<const char*, std::vector<float>*>{"POSITION", &pos},
+                  std::pair<const char*, std::vector<float>*>{"NORMAL", &normals}}) {
+                const auto a = p.targets[t].find(name);
+                if (a == p.targets[t].end() || out->empty())
+                    continue;
+                const std::vector<float> delta = readFloats(m, a->second);
+                for (size_t i = 0; i < out->size() && i < delta.size(); ++i)
+                    (*out)[i] += weights[t] * delta[i];
+            }
+        }
     }
 
     // One line for every triangle the scene loses: how many, and the meshes most of them come
@@ -347,10 +361,19 @@ struct Flattener {
         return values.size() == count * size ? values : std::vector<float>{};
     }
 
-    void node(const tinygltf::Node& n, const glm::mat4& world) {
+    void node(size_t index, const glm::mat4& world) {
+        const tinygltf::Node& n = m.nodes[index];
         if (n.mesh >= 0)
-            for (const auto& p : m.meshes[n.mesh].primitives)
-                primitive(p, world, static_cast<size_t>(n.mesh));
+            for (size_t k = 0; k < m.meshes[n.mesh].primitives.size(); ++k) {
+                const tinygltf::Primitive& p = m.meshes[n.mesh].primitives[k];
+                std::vector<glm::mat4> skinned;
+                if (n.skin >= 0 && gltf::hasPositions(p))
+                    skinned = gltf::skinMatrices(
+                        file, m, p, fmt::format("meshes[{}].primitives[{}]", n.mesh, k), index,
+                        skins[static_cast<size_t>(n.skin)], worlds);
+                primitive(p, world, static_cast<size_t>(n.mesh), poses[index].weights,
+                          n.skin >= 0 ? &skinned : nullptr);
+            }
         if (n.camera >= 0)
             camera(m.cameras[n.camera], world);
         if (const auto e = n.extensions.find("KHR_lights_punctual"); e != n.extensions.end())
@@ -418,21 +441,47 @@ struct Flattener {
         scene.lights.push_back(out);
     }
 
+    // The scene's nodes depth first, each placed by its posed world transform.
     void walk(const std::vector<int>& roots) {
-        std::vector<std::pair<int, glm::mat4>> stack; // iterative: no recursion depth limit
-        for (auto it = roots.rbegin(); it != roots.rend(); ++it)
-            stack.emplace_back(*it, glm::mat4(1.0f));
+        std::vector<int> stack(roots.rbegin(), roots.rend()); // iterative: no depth limit
         while (!stack.empty()) {
-            const auto [index, parent] = stack.back();
+            const auto index = static_cast<size_t>(stack.back());
             stack.pop_back();
-            const tinygltf::Node& n = m.nodes[index];
-            const glm::mat4 world = parent * localTransform(n);
-            node(n, world);
-            for (auto c = n.children.rbegin(); c != n.children.rend(); ++c)
-                stack.emplace_back(*c, world);
+            node(index, worlds[index]);
+            const std::vector<int>& children = m.nodes[index].children;
+            stack.insert(stack.end(), children.rbegin(), children.rend());
         }
     }
 };
+
+// The nodes' poses: at rest, or `options.time` into the chosen animation. Every animation is
+// checked either way: a malformed one is refused like any other glTF error.
+void poseScene(const std::filesystem::path& file, const tinygltf::Model& model,
+               const GltfOptions& options, Scene& scene, std::vector<gltf::NodePose>& poses) {
+    const std::vector<gltf::Animation> animations =
+        gltf::readAnimations(file, model, options.warnings);
+    poses = gltf::restPoses(model);
+    if (animations.empty()) {
+        if (!options.animation.empty())
+            gltf::chooseAnimation(file, animations,
+                                  options.animation); // throws: none to choose
+        return; // loadScene says that a --time changes nothing
+    }
+    const size_t chosen = gltf::chooseAnimation(file, animations, options.animation);
+    scene.animation =
+        animations[chosen].name.empty() ? fmt::format("{}", chosen) : animations[chosen].name;
+    scene.animationDuration = animations[chosen].duration;
+    if (!options.time) {
+        if (options.warnings)
+            options.warnings->push_back(fmt::format(
+                "{}: animations: {} animation(s); the scene is drawn at rest "
+                "(--time T poses it in animation '{}', {} s long)",
+                file.string(), animations.size(), scene.animation, scene.animationDuration));
+        return;
+    }
+    scene.time = *options.time;
+    gltf::poseAt(animations[chosen], *options.time, poses);
+}
 
 } // namespace
 
@@ -505,6 +554,9 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
     scene.materials.push_back(
         {.name = "default", .baseColor = glm::vec4(1.0f), .doubleSided = false});
     flat.uvTransform.push_back(UvTransform{});
+    poseScene(file, model, options, scene, flat.poses);
+    flat.worlds = gltf::nodeWorlds(model, flat.poses);
+    flat.skins = gltf::readSkins(file, model);
     if (!model.scenes.empty())
         flat.walk(model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes);
     flat.warnUnusable();

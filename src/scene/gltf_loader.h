@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,10 @@ struct GltfOptions {
     uint64_t maxTriangles = 100'000'000;          // after flattening instanced meshes
     uint64_t maxImageBytes = uint64_t{4} << 30;   // decoded RGBA8 bytes of all images
     std::vector<std::string>* warnings = nullptr; // skipped content (points, lines, ...)
+    // The pose: none (the nodes at rest) or seconds into `animation` ("" the first, a name or an
+    // index).
+    std::optional<double> time;
+    std::string animation;
 };
 
 Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options = {});

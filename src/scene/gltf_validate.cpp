@@ -194,22 +194,40 @@ struct Checker {
             }
     }
 
-    // Morph targets are not applied (the mesh is drawn as its base shape); their references are
-    // still checked, and a bad one is reported, not followed.
+    // Morph targets (applied by the flattener): each attribute a VEC3 accessor of the
+    // primitive's vertex count. The flattener reads POSITION and NORMAL; other attributes are
+    // checked and left.
     void morphTargets(const std::string& path, const tinygltf::Primitive& prim,
                       size_t vertices) const {
         for (size_t t = 0; t < prim.targets.size(); ++t)
             for (const auto& [name, accessor] : prim.targets[t]) {
                 const std::string at = fmt::format("{}.targets[{}].{}", path, t, name);
-                if (accessor < 0 || static_cast<size_t>(accessor) >= m.accessors.size() ||
-                    m.accessors[accessor].count != vertices)
-                    warnOnce("morph target reference", at,
-                             "does not name an accessor of the primitive's vertex count; morph "
-                             "targets are ignored");
+                index(at, accessor, m.accessors.size(), "accessor");
+                const tinygltf::Accessor& a = m.accessors[static_cast<size_t>(accessor)];
+                if (a.count != vertices)
+                    fail(at, fmt::format("accessors[{}] has {} elements for the primitive's {} "
+                                         "vertices",
+                                         accessor, a.count, vertices));
+                if ((name == "POSITION" || name == "NORMAL") && a.type != TINYGLTF_TYPE_VEC3)
+                    fail(at, fmt::format("accessors[{}] is not VEC3", accessor));
             }
-        if (!prim.targets.empty())
-            warnOnce("morph targets", path + ".targets",
-                     "morph targets are ignored (meshes are drawn in their base shape)");
+    }
+
+    // Every primitive of a mesh has as many morph targets, and the mesh's default weights are
+    // one per target.
+    void morphWeights() const {
+        for (size_t i = 0; i < m.meshes.size(); ++i) {
+            const auto& mesh = m.meshes[i];
+            const size_t targets = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+            for (size_t p = 1; p < mesh.primitives.size(); ++p)
+                if (mesh.primitives[p].targets.size() != targets)
+                    fail(fmt::format("meshes[{}].primitives[{}].targets", i, p),
+                         fmt::format("{} morph targets; primitives[0] has {}",
+                                     mesh.primitives[p].targets.size(), targets));
+            if (!mesh.weights.empty() && mesh.weights.size() != targets)
+                fail(fmt::format("meshes[{}].weights", i),
+                     fmt::format("{} weights for {} morph targets", mesh.weights.size(), targets));
+        }
     }
 
     // POSITION and NORMAL: float, or the integer types KHR_mesh_quantization allows.
@@ -296,10 +314,20 @@ struct Checker {
                     fail(path + ".rotation",
                          fmt::format("not a unit quaternion (length {:.6g})", length));
             }
-            if (n.skin >= 0 && static_cast<size_t>(n.skin) >= m.skins.size())
-                warnOnce("skin reference", path + ".skin",
-                         fmt::format("index {} is out of range ({} skins); skins are ignored",
-                                     n.skin, m.skins.size()));
+            if (n.skin >= 0)
+                index(path + ".skin", n.skin, m.skins.size(), "skin");
+            if (n.skin >= 0 && n.mesh < 0)
+                fail(path + ".skin", "a skin without a mesh to deform");
+            if (!n.weights.empty()) {
+                const size_t targets =
+                    n.mesh < 0 || m.meshes[static_cast<size_t>(n.mesh)].primitives.empty()
+                        ? 0
+                        : m.meshes[static_cast<size_t>(n.mesh)].primitives[0].targets.size();
+                if (n.weights.size() != targets)
+                    fail(path + ".weights",
+                         fmt::format("{} weights for {} morph targets", n.weights.size(), targets));
+                finite(path + ".weights", n.weights);
+            }
             for (size_t c = 0; c < n.children.size(); ++c) {
                 const std::string childPath = fmt::format("{}.children[{}]", path, c);
                 index(childPath, n.children[c], m.nodes.size(), "node");
@@ -421,6 +449,7 @@ void validateModel(const std::filesystem::path& file, const tinygltf::Model& mod
     c.bufferViews();
     c.accessors();
     c.meshes();
+    c.morphWeights();
     checkMeshData(file, model);
     c.bounds();
     c.nodes();

@@ -6,7 +6,7 @@
 // bounds against the data, spot cones. Throws
 // InputError(file, "<JSON path>: <what>").
 //
-// Parts Penumbra does not use (animations, skins, morph targets, camera aspect ratios, material
+// Parts Penumbra does not use (camera aspect ratios, material
 // extensions) are checked as far as their references go and reported in `warnings`, one line per
 // class with the first JSON path: "<path>: <what>; <part> ignored".
 #include <tiny_gltf.h>
@@ -43,7 +43,7 @@ void checkSchemaValues(const std::filesystem::path& file, const tinygltf::Model&
 // shapes (gltf_mesh_checks.cpp).
 void checkMeshData(const std::filesystem::path& file, const tinygltf::Model& model);
 
-// Animations, skins, camera aspect ratios, material extensions (gltf_unused.cpp).
+// Camera aspect ratios, material extensions (gltf_unused.cpp).
 void reportUnusedParts(const tinygltf::Model& model, OnceWarnings& once);
 
 // Whether the primitive has positions to draw (the spec: skip it when it has none).

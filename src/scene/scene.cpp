@@ -23,6 +23,13 @@ constexpr BuiltinEntry kBuiltins[] = {
     {"bleeding", builtin::bleeding}, {"dense", builtin::dense},     {"demo", builtin::demo},
     {"figure", builtin::figure},     {"resting", builtin::resting}};
 
+// Built-in scenes that move: made at a time (0 without --time).
+struct AnimatedBuiltinEntry {
+    std::string_view name;
+    Scene (*make)(double time);
+};
+constexpr AnimatedBuiltinEntry kAnimatedBuiltins[] = {{"pendulum", builtin::pendulum}};
+
 } // namespace
 
 namespace {
@@ -78,24 +85,33 @@ std::vector<std::string_view> builtinSceneNames() {
     std::vector<std::string_view> names;
     for (const auto& b : kBuiltins)
         names.push_back(b.name);
+    for (const auto& b : kAnimatedBuiltins)
+        names.push_back(b.name);
     return names;
 }
 
-Scene loadScene(std::string_view spec, const SceneLoadOptions& options) {
-    constexpr std::string_view prefix = "builtin:";
-    if (spec.starts_with(prefix)) {
-        const std::string_view name = spec.substr(prefix.size());
-        if (name.starts_with("gen/"))
-            return generatedScene(name.substr(4));
-        for (const auto& b : kBuiltins)
-            if (b.name == name)
-                return b.make();
-        std::string names;
-        for (const auto& b : kBuiltins)
-            names += (names.empty() ? "" : ", ") + std::string(b.name);
-        throw InputError(std::string(spec),
-                         "no such built-in scene (built-in: " + names + ", or gen/FAMILY?seed=N)");
-    }
+namespace {
+
+Scene loadBuiltin(std::string_view spec, std::string_view name, std::optional<double> time) {
+    if (name.starts_with("gen/"))
+        return generatedScene(name.substr(4));
+    for (const auto& b : kBuiltins)
+        if (b.name == name)
+            return b.make();
+    for (const auto& b : kAnimatedBuiltins)
+        if (b.name == name) {
+            Scene scene = b.make(time.value_or(0.0));
+            scene.time = time;
+            return scene;
+        }
+    std::string names;
+    for (std::string_view n : builtinSceneNames())
+        names += (names.empty() ? "" : ", ") + std::string(n);
+    throw InputError(std::string(spec),
+                     "no such built-in scene (built-in: " + names + ", or gen/FAMILY?seed=N)");
+}
+
+Scene loadSceneFile(std::string_view spec, const SceneLoadOptions& options) {
     const std::filesystem::path path(spec);
     const std::string ext = path.extension().string();
     if (ext == ".gltf" || ext == ".glb" || ext == ".GLTF" || ext == ".GLB") {
@@ -108,10 +124,40 @@ Scene loadScene(std::string_view spec, const SceneLoadOptions& options) {
         return loadGltf(path, {.maxFileSize = options.maxFileSize,
                                .maxTriangles = options.maxTriangles,
                                .maxImageBytes = imageBytes,
-                               .warnings = options.warnings});
+                               .warnings = options.warnings,
+                               .time = options.time,
+                               .animation = options.animation});
     }
     throw InputError(std::string(spec),
                      "not a scene: expected builtin:NAME, a .gltf or a .glb file");
+}
+
+} // namespace
+
+Scene loadScene(std::string_view spec, const SceneLoadOptions& options) {
+    if (options.time && !(std::isfinite(*options.time) && *options.time >= 0.0))
+        throw InputError("--time", fmt::format("{} is not a time in seconds from 0 (a finite "
+                                               "number, not negative)",
+                                               *options.time));
+    constexpr std::string_view prefix = "builtin:";
+    const bool builtin = spec.starts_with(prefix);
+    Scene scene = builtin ? loadBuiltin(spec, spec.substr(prefix.size()), options.time)
+                          : loadSceneFile(spec, options);
+    // A built-in has one animation at most: its name or index 0 chooses it.
+    if (builtin && !options.animation.empty() &&
+        (scene.animation.empty() ||
+         (options.animation != scene.animation && options.animation != "0")))
+        throw InputError("--animation", scene.animation.empty()
+                                            ? fmt::format("'{}' has no animations", spec)
+                                            : fmt::format("'{}' has one animation, 0 '{}'", spec,
+                                                          scene.animation));
+    // A time for a still scene changes nothing: said, not refused, so one command line serves
+    // a set of scenes.
+    if (options.time && scene.animation.empty() && options.warnings)
+        options.warnings->push_back(fmt::format("{}: --time {}: the scene has no animations; it "
+                                                "is drawn at rest",
+                                                spec, *options.time));
+    return scene;
 }
 
 } // namespace penumbra

@@ -146,3 +146,63 @@ def test_the_automatic_ground_is_the_clis_and_no_ground_holds_for_later_edits(tm
     run_cli("render", box, "-o", tmp_path / "cli", "--technique", "hard", "--width", W,
             "--height", H, "--shadow-map-size", MAP, "--frames", 1, "--format", "pfm")
     assert same_bits(result.visibility[0], read_pfm(tmp_path / "cli" / "visibility.pfm"))
+
+
+def animated_asset(asset, path):
+    """The three-light asset with one animation, 'carry': the bulb (node 4) slides from
+    (-2, 3, 1) to (2, 3, 1) over the first second."""
+    gltf = json.loads(Path(asset).read_text())
+    uri = gltf["buffers"][0]["uri"]
+    head, data = uri.split(",", 1)
+    binary = bytearray(base64.b64decode(data))
+    for values, kind in (([0.0, 1.0], "SCALAR"), ([-2, 3, 1, 2, 3, 1], "VEC3")):
+        while len(binary) % 4:
+            binary.append(0)
+        gltf["bufferViews"].append({"buffer": 0, "byteOffset": len(binary),
+                                    "byteLength": 4 * len(values)})
+        binary.extend(struct.pack("<%df" % len(values), *values))
+        gltf["accessors"].append({"bufferView": len(gltf["bufferViews"]) - 1,
+                                  "componentType": 5126, "type": kind,
+                                  "count": 2, "min": values[:1] if kind == "SCALAR" else None})
+        if gltf["accessors"][-1]["min"] is None:
+            del gltf["accessors"][-1]["min"]
+        else:
+            gltf["accessors"][-1]["max"] = values[-1:]
+    n = len(gltf["accessors"])
+    gltf["animations"] = [{"name": "carry",
+                           "channels": [{"sampler": 0,
+                                         "target": {"node": 4, "path": "translation"}}],
+                           "samplers": [{"input": n - 2, "output": n - 1}]}]
+    gltf["buffers"][0] = {"byteLength": len(binary),
+                          "uri": head + "," + base64.b64encode(bytes(binary)).decode()}
+    Path(path).write_text(json.dumps(gltf))
+    return str(path)
+
+
+def test_time_poses_an_animated_scene_as_the_clis_time_does(asset, tmp_path):
+    path = animated_asset(asset, tmp_path / "carry.gltf")
+    rest = penumbra.Scene.load(path)
+    assert rest.time is None and rest.animation == "carry" and rest.animation_duration == 1.0
+    assert any("drawn at rest" in w for w in rest.warnings)
+    bulb = lambda scene: next(l for l in scene.lights if l["name"] == "bulb")
+    assert bulb(rest)["position"] == pytest.approx([-2, 3, 1])
+    for t, x in ((0.25, -1.0), (0.5, 0.0), (3.0, 2.0)):
+        posed = penumbra.Scene.load(path, time=t, animation="carry")
+        assert posed.time == t
+        assert bulb(posed)["position"] == pytest.approx([x, 3, 1], abs=1e-6)
+    # The CLI's --time moves the same light: the same shadow images.
+    posed = penumbra.Scene.load(path, time=0.5)
+    posed.edit(**VIEW)
+    result = penumbra.Renderer(posed, W, H, shadow_map_size=MAP, validation=True).render(
+        "hard", frames=1)
+    run_cli("render", path, "-o", tmp_path, "--technique", "hard", "--width", W, "--height", H,
+            "--shadow-map-size", MAP, "--frames", 1, "--format", "pfm", "--time", "0.5",
+            *VIEW_ARGS)
+    assert_same_images(result, tmp_path, "time")
+    # ... and not the scene at rest's (the bulb moved 2 units).
+    assert not same_bits(result.visibility[2], render_both(asset, tmp_path / "rest", VIEW,
+                                                           VIEW_ARGS)[1].visibility[2])
+    with pytest.raises(penumbra.InputError, match="--animation"):
+        penumbra.Scene.load(path, time=1.0, animation="walk")
+    with pytest.raises(penumbra.InputError, match="--time"):
+        penumbra.Scene.load(path, time=-1.0)

@@ -1,0 +1,175 @@
+#include "compare_timeline.h"
+
+#include "penumbra/error.h"
+#include "report/light_mask.h"
+#include "report/shimmer.h"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace penumbra::cli {
+namespace {
+
+double number(std::string_view text, std::string_view whole) {
+    double value = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value))
+        throw InputError("--timeline",
+                         fmt::format("'{}' is not START:END:STEP in seconds ('{}' is not a "
+                                     "finite number)",
+                                     whole, text));
+    return value;
+}
+
+// An automatic camera, default light or ground follows the scene's bounds, which move with the
+// animation: the first frame's are kept, so that only what the animation moves moves.
+void pinToFirstFrame(Scene& scene, const Scene& first) {
+    const auto automatic = [](const Camera& c) { return c.name.rfind("auto", 0) == 0; };
+    if (!first.cameras.empty() && automatic(first.cameras.front()) && !scene.cameras.empty() &&
+        automatic(scene.cameras.front()))
+        scene.cameras.front() = first.cameras.front();
+    if (first.defaultLight && scene.defaultLight)
+        scene.lights.front() = first.lights.front();
+}
+
+double totalMs(const RenderResult& r) {
+    double total = 0.0;
+    for (const PassTime& p : r.passes)
+        total += p.medianMs;
+    return total;
+}
+
+} // namespace
+
+Timeline parseTimeline(std::string_view text) {
+    const size_t a = text.find(':'), b = a == std::string_view::npos ? a : text.find(':', a + 1);
+    if (b == std::string_view::npos || text.find(':', b + 1) != std::string_view::npos)
+        throw InputError("--timeline", fmt::format("'{}' is not START:END:STEP in seconds", text));
+    Timeline t{.start = number(text.substr(0, a), text),
+               .end = number(text.substr(a + 1, b - a - 1), text),
+               .step = number(text.substr(b + 1), text)};
+    if (t.start < 0.0 || t.end < t.start || !(t.step > 0.0))
+        throw InputError("--timeline",
+                         fmt::format("'{}': START must be 0 or more, END at least START and STEP "
+                                     "above 0",
+                                     text));
+    const double frames = std::floor((t.end - t.start) / t.step + 1e-6) + 1.0;
+    if (!(frames <= static_cast<double>(kMaxTimelineFrames)))
+        throw InputError("--timeline", fmt::format("'{}' is {} frames; at most {}", text, frames,
+                                                   kMaxTimelineFrames));
+    t.frames = static_cast<size_t>(frames);
+    return t;
+}
+
+std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& in,
+                                     const Timeline& timeline) {
+    std::vector<TimelineRow> rows(in.rowNames.size());
+    for (size_t r = 0; r < rows.size(); ++r)
+        rows[r].name = in.rowNames[r];
+    std::vector<RenderResult> previous;
+    ReferenceResult previousTruth;
+    std::vector<std::vector<uint8_t>> previousMasks;
+    std::vector<double> flickerSum(rows.size(), 0.0);
+    Scene first;
+    SceneOptions options = in.sceneOptions;
+    for (size_t k = 0; k < timeline.frames; ++k) {
+        options.time = timeline.at(k);
+        std::fprintf(stderr, "penumbra: timeline frame %zu/%zu at %g s\n", k + 1, timeline.frames,
+                     *options.time);
+        Scene scene = loadSceneReporting(in.sceneSpec, in.global, options, in.rowOptions.front(),
+                                         /*quiet=*/k > 0);
+        if (k == 0) {
+            first = scene;
+            // The first frame's choice of ground holds for all.
+            options.ground = options.ground || scene.automaticGround;
+            options.noGround = !options.ground;
+        } else {
+            pinToFirstFrame(scene, first);
+        }
+        SceneRenderer uploaded(renderer, scene);
+        std::vector<RenderResult> results;
+        for (const RenderOptions& o : in.rowOptions)
+            results.push_back(uploaded.render(o));
+        Scene lit = scene;
+        const RenderOptions& base = in.rowOptions.front();
+        applyLightSizeOverrides(lit, base.lightRadiusOverride, base.lightAngleOverride);
+        ReferenceOptions quiet = in.reference;
+        quiet.progress = false;
+        ReferenceResult truth = computeReference(lit, results.front(), quiet);
+        const std::vector<std::vector<uint8_t>> masks = lightMasks(lit, results.front());
+        for (size_t r = 0; r < rows.size(); ++r) {
+            const ErrorMetrics m = metricsAgainstTruth(lit, results[r], truth.visibility, masks,
+                                                       in.blur[r], truth.occluderDistance);
+            rows[r].rmse.push_back(m.rmse);
+            rows[r].mae.push_back(m.mae);
+            rows[r].acne.push_back(m.acne);
+            rows[r].leak.push_back(m.leak);
+            rows[r].gpuMs.push_back(totalMs(results[r]));
+            if (k == 0)
+                continue;
+            std::vector<ShimmerPair> pairs;
+            for (size_t l = 0; l < truth.visibility.size(); ++l)
+                pairs.push_back({.visibility = results[r].visibility[l],
+                                 .previous = previous[r].visibility[l],
+                                 .truth = truth.visibility[l],
+                                 .previousTruth = previousTruth.visibility[l],
+                                 .mask = masks[l],
+                                 .previousMask = previousMasks[l]});
+            const ShimmerResult f = measureFlicker(pairs);
+            flickerSum[r] += f.shimmer * static_cast<double>(f.pixels);
+            rows[r].flickerPixels += f.pixels;
+        }
+        previous = std::move(results);
+        previousTruth = std::move(truth);
+        previousMasks = masks;
+    }
+    for (size_t r = 0; r < rows.size(); ++r)
+        rows[r].flicker = rows[r].flickerPixels
+                              ? flickerSum[r] / static_cast<double>(rows[r].flickerPixels)
+                              : 0.0;
+    return rows;
+}
+
+nlohmann::json timelineJson(const Timeline& timeline, const std::vector<TimelineRow>& rows) {
+    nlohmann::json times = nlohmann::json::array();
+    for (size_t k = 0; k < timeline.frames; ++k)
+        times.push_back(timeline.at(k));
+    nlohmann::json out = {{"start", timeline.start},
+                          {"end", timeline.end},
+                          {"step", timeline.step},
+                          {"times", times},
+                          {"rows", nlohmann::json::object()}};
+    for (const TimelineRow& row : rows) {
+        const auto stats = [](const std::vector<double>& v) {
+            double sum = 0.0, most = 0.0;
+            for (double x : v)
+                sum += x, most = std::max(most, x);
+            return nlohmann::json{{"mean", v.empty() ? 0.0 : sum / double(v.size())},
+                                  {"max", most}};
+        };
+        out["rows"][row.name] = {{"rmse", row.rmse},
+                                 {"mae", row.mae},
+                                 {"acne", row.acne},
+                                 {"leak", row.leak},
+                                 {"gpu_ms", row.gpuMs},
+                                 {"rmse_over_time", stats(row.rmse)},
+                                 {"gpu_ms_over_time", stats(row.gpuMs)},
+                                 {"flicker", row.flicker},
+                                 {"flicker_pixels", row.flickerPixels}};
+    }
+    return out;
+}
+
+std::string timelineCsv(const Timeline& timeline, const std::vector<TimelineRow>& rows) {
+    std::string csv = "time,row,rmse,mae,acne,leak,gpu_ms\n";
+    for (size_t k = 0; k < timeline.frames; ++k)
+        for (const TimelineRow& row : rows)
+            csv += fmt::format("{},{},{},{},{},{},{}\n", timeline.at(k), row.name, row.rmse[k],
+                               row.mae[k], row.acne[k], row.leak[k], row.gpuMs[k]);
+    return csv;
+}
+
+} // namespace penumbra::cli

@@ -1,0 +1,60 @@
+#pragma once
+// `compare --timeline START:END:STEP` (issue 59): the scene posed at each time, every row
+// rendered and a truth traced for each frame, with per-frame metrics (RMSE, MAE, acne, leak,
+// GPU time) and each row's flicker (src/report/shimmer.h). Written as timeline.json and
+// timeline.csv beside the usual outputs of the first frame.
+#include "cli_options.h"
+#include "penumbra/reference.h"
+#include "penumbra/renderer.h"
+#include "report/blur_band.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace penumbra::cli {
+
+struct Timeline {
+    double start = 0.0, end = 0.0, step = 0.0;
+    size_t frames = 0; // start, start + step, ... up to end (within a millionth of a step)
+    double at(size_t frame) const { return start + step * static_cast<double>(frame); }
+};
+
+inline constexpr size_t kMaxTimelineFrames = 10000;
+
+// "START:END:STEP" in seconds: START >= 0, END >= START, STEP > 0, at most kMaxTimelineFrames
+// frames; InputError("--timeline", ...) otherwise.
+Timeline parseTimeline(std::string_view text);
+
+// One row's measures per frame, and over the timeline.
+struct TimelineRow {
+    std::string name;
+    std::vector<double> rmse, mae, acne, leak, gpuMs;
+    double flicker = 0.0; // mean |change of the error| where the truth held still
+    uint64_t flickerPixels = 0;
+};
+
+struct TimelineInputs {
+    const std::string& sceneSpec;
+    const GlobalOptions& global;
+    SceneOptions sceneOptions; // as given; each frame's time set here
+    const std::vector<std::string>& rowNames;
+    const std::vector<RenderOptions>& rowOptions;
+    const std::vector<BlurReach>& blur;
+    const ReferenceOptions& reference;
+};
+
+// Every frame of `timeline`: the scene loaded at its time (the first frame's automatic camera,
+// default light and ground kept for all, so that only what the animation moves moves), each row
+// rendered, the truth traced, the metrics taken. Progress goes to stderr.
+std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& in,
+                                     const Timeline& timeline);
+
+// timeline.json's content (docs/cli.md) and timeline.csv's.
+nlohmann::json timelineJson(const Timeline& timeline, const std::vector<TimelineRow>& rows);
+std::string timelineCsv(const Timeline& timeline, const std::vector<TimelineRow>& rows);
+
+} // namespace penumbra::cli
