@@ -148,3 +148,70 @@ TEST(AddedLights, TheLightsTheyMakeAndTheirDefaults) {
                   std::string::npos);
     }
 }
+
+TEST(AddedLights, AnOrbitTurnsALightAboutTheVerticalAtTheScenesTime) {
+    const std::pair<const char*, const char*> refused[] = {
+        {"point:pos=3,4,0,orbit=0", "at least 0.001 in magnitude"},
+        {"point:pos=3,4,0,orbit=0.0009", "at least 0.001 in magnitude"},
+        {"point:pos=3,4,0,orbit=soon", "'soon' is not a finite number"},
+        {"point:pos=3,4,0,orbit=1,2", "one value"},
+        {"point:pos=3,4,0,about=0,0,0", "about= is the centre of an orbit=; it needs one"},
+        {"point:pos=3,4,0,orbit=4,about=0,0", "three numbers"},
+        {"sun:dir=1,-1,0,orbit=4,about=0,0,0", "a sun light takes no 'about'"},
+    };
+    for (const auto& [text, why] : refused)
+        EXPECT_NE(refusal(text).find(why), std::string::npos) << text << ": " << refusal(text);
+    EXPECT_EQ(refusal("point:pos=3,4,0,orbit=-0.001"), "") << "the other way, at the limit";
+
+    // The ground's centre is the origin. A quarter turn by the right-hand rule about +y takes
+    // (x, z) to (z, -x).
+    const auto place = [](std::optional<double> time, const std::string& text,
+                          glm::vec3 shift = glm::vec3(0.0f)) {
+        Scene scene = ground();
+        for (Vertex& v : scene.vertices)
+            v.position += shift;
+        scene.time = time;
+        SceneEdits edits;
+        edits.addedLights.push_back(parseAddedLight(text));
+        applySceneEdits(scene, edits);
+        return scene.lights.back();
+    };
+    const auto near = [](glm::vec3 got, glm::vec3 want) { return glm::length(got - want) < 1e-5f; };
+    EXPECT_TRUE(near(place(std::nullopt, "point:pos=3,4,0,orbit=8").position, {3, 4, 0}))
+        << "at rest: time 0";
+    EXPECT_TRUE(near(place(2.0, "point:pos=3,4,0,orbit=8").position, {0, 4, -3}));
+    EXPECT_TRUE(near(place(10.0, "point:pos=3,4,0,orbit=8").position, {0, 4, -3}))
+        << "a turn and a quarter";
+    EXPECT_TRUE(near(place(4.0, "point:pos=3,4,0,orbit=8").position, {-3, 4, 0}));
+    EXPECT_TRUE(near(place(2.0, "point:pos=3,4,0,orbit=-8").position, {0, 4, 3}));
+    // About (1, _, 1): its height is the light's own.
+    EXPECT_TRUE(near(place(1.0, "point:pos=3,4,1,orbit=4,about=1,9,1").position, {1, 4, -1}));
+    EXPECT_NEAR(place(1.0, "point:pos=3,4,1,orbit=4,about=1,9,1").intensity,
+                place(std::nullopt, "point:pos=3,4,1").intensity, 1e-3f)
+        << "as bright as where it started, though nearer the centre now";
+    // By default about the scene's centre, here (10, 0, 0).
+    EXPECT_TRUE(near(place(2.0, "point:pos=13,4,0,orbit=8", {10, 0, 0}).position, {10, 4, -3}));
+    // A spot turns its direction with it: aimed at the centre it stays aimed there.
+    const Light spot = place(1.0, "spot:pos=3,4,0,dir=-3,-4,0,orbit=4");
+    EXPECT_TRUE(near(spot.position, {0, 4, -3}));
+    EXPECT_TRUE(near(spot.direction, glm::vec3(0, -4, 3) / 5.0f));
+    EXPECT_NEAR(spot.intensity, place(std::nullopt, "spot:pos=3,4,0,dir=-3,-4,0").intensity, 1e-3f)
+        << "as bright as where it started";
+    // A sun turns its direction: (1, -1, 0) goes to (0, -1, -1).
+    const Light sun = place(1.0, "sun:dir=1,-1,0,orbit=4");
+    EXPECT_TRUE(near(sun.direction, glm::vec3(0, -1, -1) / std::sqrt(2.0f)));
+    // A long time keeps its fraction of a turn.
+    EXPECT_TRUE(near(place(4e6 + 1.0, "point:pos=3,4,0,orbit=4").position, {0, 4, -3}));
+}
+
+TEST(AddedLights, ATimeMovesAnOrbitOnAStillSceneWithoutAWarning) {
+    std::vector<std::string> warnings;
+    const Scene moving =
+        loadScene("builtin:demo", {.warnings = &warnings, .time = 1.5, .lightsMove = true});
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    EXPECT_EQ(moving.time, 1.5);
+    const Scene still = loadScene("builtin:demo", {.warnings = &warnings, .time = 1.5});
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("the scene has no animations"), std::string::npos);
+    EXPECT_EQ(still.time, 1.5);
+}

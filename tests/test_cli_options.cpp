@@ -1,8 +1,10 @@
 // The CLI's shared options (apps/penumbra/cli_options.cpp): list splitting, sweeps and their
-// products, `--set` assembly onto a row, and the row one `--technique` names.
+// products, `--set` assembly onto a row, the row one `--technique` names and the frames of
+// `--timeline`.
 #include "cli_options.h"
 #include "parse_errors.h"
 #include "penumbra/error.h"
+#include "timeline_range.h"
 
 #include <gtest/gtest.h>
 
@@ -118,4 +120,24 @@ TEST(CliOptions, AMissingOrUnknownCommandListsTheCommands) {
               "a command is required: render, compare (penumbra --help)");
     EXPECT_EQ(missingCommandLine("rendr", commands),
               "'rendr' is not a command: render, compare (penumbra --help)");
+}
+
+TEST(CliOptions, ATimelineHoldsItsEndsAndAtMostItsFrameLimit) {
+    const Timeline t = parseTimeline("0.5:1.5:0.25");
+    EXPECT_EQ(t.start, 0.5);
+    EXPECT_EQ(t.end, 1.5);
+    EXPECT_EQ(t.step, 0.25);
+    EXPECT_EQ(t.frames, 5u); // 0.5, 0.75, 1, 1.25, 1.5
+    EXPECT_EQ(t.at(0), 0.5);
+    EXPECT_EQ(t.at(4), 1.5);
+    // Steps that do not add up exactly in binary still reach END, and are written as typed.
+    const Timeline tenths = parseTimeline("0:0.3:0.1");
+    EXPECT_EQ(tenths.frames, 4u);
+    EXPECT_EQ(tenths.at(3), 0.3);
+    EXPECT_EQ(parseTimeline("2:2:1").frames, 1u);
+    EXPECT_EQ(parseTimeline("0:9999:1").frames, kMaxTimelineFrames);
+    for (const char* bad :
+         {"0:10000:1", "-1:1:0.5", "1:0.5:0.1", "0:1:0", "0:1:-0.5", "0:1x:0.5", "0:1:0.5s",
+          " 0:1:0.5", "0:1", "0:1:0.5:1", "0::0.5", "0:inf:1", "0x1:2:1"})
+        EXPECT_EQ(subjectOf([&] { parseTimeline(bad); }), "--timeline") << bad;
 }

@@ -1,13 +1,16 @@
 // `compare --timeline` (issue 59): each frame of an animated asset posed, rendered and traced.
 // Each frame's metrics are the ones `compare --time T` measures on the same pose; a still scene
 // has no flicker; a moving box takes the pixels its shadow crosses out of flicker's count.
+#include "cli_refusal.h"
 #include "process.h"
 #include "scratch_dir.h"
 #include "three_light_asset.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -18,10 +21,20 @@ using J = nlohmann::json;
 
 namespace {
 
-// The ground and box under the three lights; `animated`: the box (nodes[1], at rest at the
-// origin) slides from x = 0.5 to 2.5 in the first second, then holds.
-fs::path boxAsset(const fs::path& where, bool animated) {
-    const fs::path file = threeLightAsset(where);
+// The ground and box under the three lights (`lit`; else the box alone without lights or
+// camera: the automatic ones frame it); `animated`: the box (nodes[1], at rest at the origin)
+// slides from x = 0.5 to 2.5 in the first second, then holds.
+fs::path boxAsset(const fs::path& where, bool animated, bool lit = true) {
+    fs::path file = where / "unlit.gltf";
+    if (lit) {
+        file = threeLightAsset(where);
+    } else {
+        GltfBuilder b;
+        b.node({{"name", "empty"}}); // nodes[0]: the box alone is nodes[1], as above
+        twoUnitBox(b, true);
+        fs::create_directories(where);
+        b.writeGltf(file);
+    }
     if (!animated)
         return file;
     J j = J::parse(slurp(file));
@@ -102,6 +115,24 @@ TEST(CliTimeline, EachFrameMeasuresAsCompareAtThatTimeAndFlickerAddsUpOverFrameP
         EXPECT_GT(r["gpu_ms"][1].get<double>(), 0.0) << row;
         EXPECT_NE(r["rmse"][0], r["rmse"][1]) << row << ": the box moved";
         EXPECT_EQ(r["rmse"][1], r["rmse"][2]) << row << ": the box held";
+        const std::vector<double> rmse = r["rmse"];
+        EXPECT_DOUBLE_EQ(r["rmse_over_time"]["mean"].get<double>(),
+                         (rmse[0] + rmse[1] + rmse[2]) / 3.0)
+            << row;
+        EXPECT_EQ(r["rmse_over_time"]["max"].get<double>(), std::max({rmse[0], rmse[1], rmse[2]}))
+            << row;
+    }
+    // The report plots each row's RMSE over time and says its flicker.
+    const std::string report = slurp(dir / "out" / "report.html");
+    for (const char* row : {"hard", "pcf[box3]"}) {
+        const J& r = whole["rows"][row];
+        EXPECT_NE(
+            report.find(fmt::format("{} at 1 s: {:.6g}</title>", row, r["rmse"][1].get<double>())),
+            std::string::npos)
+            << row;
+        EXPECT_NE(report.find(fmt::format("flicker {:.6f};", r["flicker"].get<double>())),
+                  std::string::npos)
+            << row;
     }
     // The usual outputs are the first frame's (the box off its rest place): compare --time 0's.
     const J first = J::parse(slurp(dir / "out" / "metrics.json"));
@@ -136,3 +167,205 @@ TEST(CliTimeline, EachFrameMeasuresAsCompareAtThatTimeAndFlickerAddsUpOverFrameP
             << row;
     }
 }
+
+TEST(CliTimeline, TheAutomaticCameraAndLightOfTheFirstFrameHoldForAll) {
+    const fs::path dir = outputScratch("timeline-automatic");
+    const fs::path unlit = boxAsset(dir, true, /*lit=*/false);
+    const auto measure = [&](const std::string& name, std::vector<std::string> extra,
+                             const char* file) {
+        std::vector<std::string> args = {"compare",      unlit.string(),
+                                         "-o",           (dir / name).string(),
+                                         "--width",      "64",
+                                         "--height",     "48",
+                                         "--samples",    "4",
+                                         "--techniques", "pcf[box3]",
+                                         "--format",     "pfm"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const ProcessResult r = runCli(args);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return J::parse(slurp(dir / name / file));
+    };
+    // At 0.5 s the box (at x = 1.5) and its shadow are still in frame 0's view.
+    const J timeline = measure("timeline", {"--timeline", "0:0.5:0.5"}, "timeline.json");
+    const J atZero = measure("at-zero", {"--time", "0"}, "metrics.json");
+    const J atHalf = measure("at-half", {"--time", "0.5"}, "metrics.json");
+    const auto rmse = [](const J& metrics) {
+        return metrics["techniques"]["pcf[box3]"]["rmse"].get<double>();
+    };
+    EXPECT_DOUBLE_EQ(timeline["rows"]["pcf[box3]"]["rmse"][0].get<double>(), rmse(atZero));
+    // At 0.5 s on its own the box's bounds frame another view; in the timeline frame 0's holds.
+    const double held = timeline["rows"]["pcf[box3]"]["rmse"][1].get<double>();
+    EXPECT_GT(held, 0.0);
+    EXPECT_NE(rmse(atZero), rmse(atHalf));
+    EXPECT_NE(held, rmse(atHalf));
+}
+
+TEST(CliTimeline, AnOrbitingAddedLightMovesWithTheTimeOnAStillScene) {
+    const fs::path out = outputScratch("orbit");
+    const ProcessResult r =
+        runCli({"render", "builtin:resting", "-o", out.string(), "--width", "64", "--height", "48",
+                "--frames", "1", "--format", "pfm", "--time", "2", "--add-light",
+                "point:pos=3,4,0,orbit=8,about=0,0,0,name=bulb"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.err.find("no animations"), std::string::npos) << r.err;
+    const J stats = J::parse(slurp(out / "stats.json"));
+    EXPECT_EQ(stats["scene"]["time"], 2.0);
+    bool found = false;
+    for (const J& light : stats["lights"])
+        if (light["name"] == "bulb") {
+            found = true;
+            const std::vector<double> p = light["position"];
+            EXPECT_NEAR(p[0], 0.0, 1e-5);
+            EXPECT_NEAR(p[1], 4.0, 1e-5);
+            EXPECT_NEAR(p[2], -3.0, 1e-5) << "a quarter of the 8-second turn";
+        }
+    EXPECT_TRUE(found) << stats["lights"].dump();
+}
+
+TEST(CliTimeline, TheReferenceRecordsThePose) {
+    const fs::path out = outputScratch("reference-pose");
+    const ProcessResult r =
+        runCli({"reference", "builtin:pendulum", "-o", out.string(), "--width", "32", "--height",
+                "24", "--samples", "1", "--format", "pfm", "--time", "0.5"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const J info = J::parse(slurp(out / "reference.json"));
+    EXPECT_EQ(info["time"], 0.5);
+    EXPECT_EQ(info["animation"], "swing");
+    EXPECT_EQ(info["animation_duration"], 2.0);
+}
+
+TEST(CliTimeline, AStillSceneIsWarnedOnceHasNoFlickerAndItsTimesAreWrittenAsTyped) {
+    const fs::path dir = outputScratch("timeline-still");
+    const fs::path still = boxAsset(dir, false);
+    std::vector<std::string> args = {"compare", still.string(), "-o", (dir / "out").string()};
+    args.insert(args.end(), kView.begin(), kView.end());
+    args.insert(args.end(), {"--timeline", "0:0.3:0.1"});
+    const ProcessResult r = runCli(args);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string warning = "the scene has no animations; it is drawn at rest";
+    const size_t at = r.err.find(warning);
+    EXPECT_NE(at, std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find(warning, at + 1), std::string::npos) << "warned twice:\n" << r.err;
+    const J timeline = J::parse(slurp(dir / "out" / "timeline.json"));
+    EXPECT_EQ(timeline["times"], J({0.0, 0.1, 0.2, 0.3}));
+    // The CSV: its header, then each frame's rows with the JSON's values in the header's order.
+    std::istringstream csv(slurp(dir / "out" / "timeline.csv"));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "time,row,rmse,mae,acne,leak,gpu_ms");
+    std::vector<std::string> lines;
+    while (std::getline(csv, line))
+        lines.push_back(line);
+    ASSERT_EQ(lines.size(), 4u * 2u);
+    for (const char* row : {"hard", "pcf[box3]"}) {
+        const J& measured = timeline["rows"][row];
+        EXPECT_EQ(measured["flicker"].get<double>(), 0.0) << row;
+        EXPECT_GT(measured["flicker_pixels"].get<uint64_t>(), 0u) << row;
+        const std::string want =
+            fmt::format("0.3,{},{},{},{},{},{}", row, measured["rmse"][3].get<double>(),
+                        measured["mae"][3].get<double>(), measured["acne"][3].get<double>(),
+                        measured["leak"][3].get<double>(), measured["gpu_ms"][3].get<double>());
+        EXPECT_NE(std::find(lines.begin(), lines.end(), want), lines.end()) << want;
+    }
+}
+
+TEST(CliTimeline, AFrameRefusedAfterTheFirstNamesItselfAndLeavesNoOutput) {
+    const fs::path dir = outputScratch("timeline-refused");
+    J j = J::parse(slurp(boxAsset(dir, true)));
+    // The spot (nodes[3]) shrinks to nothing over the first second: frame 3 of 0:1:0.5.
+    std::vector<uint8_t> bytes;
+    for (const float f : {1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f}) {
+        uint8_t b[4];
+        std::memcpy(b, &f, 4);
+        bytes.insert(bytes.end(), b, b + 4);
+    }
+    j["buffers"].push_back(
+        {{"byteLength", bytes.size()},
+         {"uri", "data:application/octet-stream;base64," + GltfBuilder::base64(bytes)}});
+    j["bufferViews"].push_back({{"buffer", j["buffers"].size() - 1}, {"byteLength", 24}});
+    j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1},
+                              {"componentType", 5126},
+                              {"count", 2},
+                              {"type", "VEC3"}});
+    J& slide = j["animations"][0];
+    slide["samplers"].push_back(
+        {{"input", slide["samplers"][0]["input"]}, {"output", j["accessors"].size() - 1}});
+    slide["channels"].push_back({{"sampler", 1}, {"target", {{"node", 3}, {"path", "scale"}}}});
+    const fs::path file = dir / "shrinking.gltf";
+    std::ofstream(file) << j.dump();
+    const fs::path out = dir / "out";
+    std::vector<std::string> args = {"compare", file.string(), "-o", out.string()};
+    args.insert(args.end(), kView.begin(), kView.end());
+    args.insert(args.end(), {"--timeline", "0:1:0.5"});
+    const ProcessResult r = runCli(args);
+    EXPECT_GT(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("error: " + file.string() +
+                         ": nodes[3]: KHR_lights_punctual.lights[1] has no direction: its node's "
+                         "transform is scaled to zero at time 1 s (--timeline frame 3 of 3, at "
+                         "1 s)\n"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+namespace {
+
+class CliTimeRefuses : public ::testing::TestWithParam<BadInput> {};
+
+} // namespace
+
+TEST_P(CliTimeRefuses, WithOneErrorLineAndNoOutput) {
+    expectOneErrorLineAndNoOutput(GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    TimeInputs, CliTimeRefuses,
+    ::testing::Values(
+        BadInput{"time_negative",
+                 {"render", "builtin:showcase", "-o", "{out}", "--time", "-2"},
+                 "error: --time: -2 is not a time in seconds from 0 (a finite number, not "
+                 "negative)"},
+        BadInput{"time_not_a_number",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--time", "soon"},
+                 "error: --time: 'soon' is not a time in seconds (a decimal number)"},
+        BadInput{"time_in_hex",
+                 {"render", "builtin:pendulum", "-o", "{out}", "--time", "0x10"},
+                 "error: --time: '0x10' is not a time in seconds (a decimal number)"},
+        BadInput{"time_empty",
+                 {"render", "builtin:pendulum", "-o", "{out}", "--time", ""},
+                 "error: --time: '' is not a time in seconds (a decimal number)"},
+        BadInput{
+            "animation_index_with_a_tail",
+            {"render", "builtin:pendulum", "-o", "{out}", "--time", "1", "--animation", "0abc"},
+            "error: --animation: 'builtin:pendulum' has one animation, 0 'swing'"},
+        BadInput{"animation_index_past_the_last",
+                 {"render", "builtin:pendulum", "-o", "{out}", "--animation", "1"},
+                 "error: --animation: 'builtin:pendulum' has one animation, 0 'swing'"},
+        BadInput{"animation_of_a_still_scene",
+                 {"reference", "builtin:showcase", "-o", "{out}", "--animation", "walk"},
+                 "error: --animation: 'builtin:showcase' has no animations"},
+        BadInput{"timeline_of_two_numbers",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--timeline", "0:1"},
+                 "error: --timeline: '0:1' is not START:END:STEP in seconds"},
+        BadInput{"timeline_backwards",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--timeline", "2:1:0.5"},
+                 "error: --timeline: '2:1:0.5': START must be 0 or more, END at least START and "
+                 "STEP above 0"},
+        BadInput{"timeline_without_a_step",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--timeline", "0:1:0"},
+                 "STEP above 0"},
+        BadInput{"timeline_not_numbers",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--timeline", "0:one:0.5"},
+                 "error: --timeline: '0:one:0.5' is not START:END:STEP in seconds ('one' is not a "
+                 "finite number)"},
+        BadInput{"timeline_starting_before_zero",
+                 {"compare", "builtin:pendulum", "-o", "{out}", "--timeline=-1:1:0.5"},
+                 "error: --timeline: '-1:1:0.5': START must be 0 or more"},
+        BadInput{"timeline_too_long",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--timeline", "0:100:0.001"},
+                 "error: --timeline: '0:100:0.001' is 100001 frames; at most 10000"},
+        BadInput{
+            "timeline_with_time",
+            {"compare", "builtin:showcase", "-o", "{out}", "--timeline", "0:1:0.5", "--time", "1"},
+            "--timeline"}),
+    [](const auto& testInfo) { return std::string(testInfo.param.name); });

@@ -98,6 +98,11 @@ TEST(GltfAnimation, RotationsTurnAtAConstantRateAlongTheShorterArc) {
         v *= 1.01f;
     const std::vector<float> q = sampleAt(loose, AnimatedPath::Rotation, 0.0);
     EXPECT_NEAR(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3], 1.0, 1e-6);
+    // A keyframe of no length (a spline may pass through one) is no turn, not NaN.
+    AnimationSampler none = turn;
+    none.interpolation = Interpolation::Step;
+    std::fill(none.values.begin(), none.values.begin() + 4, 0.0f);
+    expectNear(sampleAt(none, AnimatedPath::Rotation, 0.5), {0, 0, 0, 1}, 0, "zero quaternion");
 }
 
 // The Hermite spline through each span's end values with tangents scaled by the span: given the

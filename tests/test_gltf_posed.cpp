@@ -194,6 +194,20 @@ TEST(GltfPosed, CubicSplineAndNormalizedRotationsThroughTheLoader) {
     }
 }
 
+TEST(GltfPosed, RotationsOfNormalizedSignedBytesTurnBothWays) {
+    Rig r = rig();
+    // A quarter turn about -y as signed bytes (127 is 1, -90 about -0.709): the sampler
+    // normalizes the keyframe, so the turn is exact.
+    const int bytes = r.b.accessor(r.b.view(std::vector<int8_t>{0, 0, 0, 127, 0, -90, 0, 90}), 5120,
+                                   2, "VEC4", true);
+    r.b.j["animations"][1]["samplers"][0]["output"] = bytes;
+    r.b.j["animations"][1]["samplers"][0]["interpolation"] = "STEP";
+    const Scene s = loadAt(write(r.b, "signed-bytes"), 1.0, "spin");
+    // (x, z) -> (-z, x).
+    expectMoverAt(
+        s, [](glm::vec3 p) { return glm::vec3(-p.z, p.y + 3, p.x + 2); }, "spin back at 1");
+}
+
 TEST(GltfPosed, MorphWeightsTakeOneValueAKeyframePerTarget) {
     Rig r = rig();
     GltfBuilder& b = r.b;
@@ -224,9 +238,10 @@ TEST(GltfPosed, ChoosingAnAnimationOrATimeThatIsNotThereIsRefusedOrSaid) {
     Rig r = rig();
     const fs::path f = write(r.b, "choose");
     expectInputError([&] { loadAt(f, 1.0, "walk"); }, "--animation",
-                     "'walk' is neither a name nor an index of '" + f.string() +
-                         "''s animations (0 'slide', 1 'spin')");
+                     "'walk' is neither a name nor an index of the animations in '" + f.string() +
+                         "' (0 'slide', 1 'spin')");
     expectInputError([&] { loadAt(f, 1.0, "2"); }, "--animation", "0 'slide', 1 'spin'");
+    expectInputError([&] { loadAt(f, 1.0, "1abc"); }, "--animation", "'1abc' is neither");
     expectInputError([&] { loadAt(f, -0.5); }, "--time", "-0.5 is not a time in seconds from 0");
     expectInputError([&] { loadAt(f, std::nan("")); }, "--time", "is not a time in seconds");
     expectInputError([&] { loadScene("builtin:demo", {.animation = "0"}); }, "--animation",
@@ -312,6 +327,13 @@ INSTANTIATE_TEST_SUITE_P(
                     r.b.view(std::vector<int16_t>{1, 1, 1, 2, 2, 2}), 5122, 2, "VEC3", true);
             },
             "a scale takes VEC3 floats"},
+        Bad{"translation_of_normalized_shorts",
+            [](Rig& r) {
+                r.b.j["animations"][0]["samplers"][0]["output"] = r.b.accessor(
+                    r.b.view(std::vector<int16_t>{1, 1, 1, 2, 2, 2}), 5122, 2, "VEC3", true);
+            },
+            "animations[0].samplers[0].output: accessors[7] is VEC3 of integers; a translation "
+            "takes VEC3 floats"},
         Bad{"rotation_of_plain_shorts",
             [](Rig& r) {
                 r.b.j["animations"][1]["samplers"][0]["output"] = r.b.accessor(

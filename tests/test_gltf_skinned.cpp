@@ -137,6 +137,17 @@ TEST(GltfSkinned, NormalsTurnWithTheirJointsAndAMirroringMeshNodeFlipsNothing) {
     // The far end follows joint 1 a quarter turn about +z: up becomes -x.
     EXPECT_TRUE(hasNormal(loadAt(f, 1.0), {-1, 0, 0}));
     EXPECT_TRUE(hasNormal(loadAt(f, 0.5), {-std::sqrt(0.5f), std::sqrt(0.5f), 0}));
+    // A joint scaled unevenly: normals take the inverse transpose and stay perpendicular to the
+    // surface, so (1, 1, 0) under a scale of 2 along x leans to +y, as (1/2, 1, 0) does.
+    Bar slanted = bar();
+    const float c = std::sqrt(0.5f);
+    const int leaning =
+        floats(slanted.b, std::vector<float>{c, c, 0, c, c, 0, c, c, 0, c, c, 0, c, c, 0, c, c, 0},
+               "VEC3", 3);
+    slanted.b.j["meshes"][slanted.mesh]["primitives"][0]["attributes"]["NORMAL"] = leaning;
+    slanted.b.j["nodes"][slanted.joint0]["scale"] = {2, 1, 1};
+    const Scene stretched = loadAt(write(slanted.b, "stretched"), std::nullopt);
+    EXPECT_TRUE(hasNormal(stretched, glm::normalize(glm::vec3(0.5f, 1, 0))));
     // Without NORMAL the faces' own (+y, as wound) hold though the ignored mesh node mirrors.
     b.j["meshes"][r.mesh]["primitives"][0]["attributes"].erase("NORMAL");
     b.j["nodes"][r.barNode]["scale"] = {-1, 1, 1};
@@ -279,6 +290,45 @@ INSTANTIATE_TEST_SUITE_P(
                                                 0.5f, 0.5f, 0, 0, 1, 0, 0, 0, 1,    0,    0, 0});
             },
             "meshes[1].primitives[0].attributes.WEIGHTS_0: vertex 1's weights sum to 0"},
+        Bad{"weight_below_zero",
+            [](Bar& r) {
+                r.b.j["accessors"][r.weights]["bufferView"] =
+                    r.b.view(std::vector<float>{1,    0,    0, 0, 1, 0, 0, 0, 1.5f, -0.5f, 0, 0,
+                                                0.5f, 0.5f, 0, 0, 1, 0, 0, 0, 1,    0,     0, 0});
+            },
+            "meshes[1].primitives[0].attributes.WEIGHTS_0: vertex 2's weight 1 is -0.5; weights "
+            "are 0 or more"},
+        Bad{"joints_normalized", [](Bar& r) { r.b.j["accessors"][r.joints]["normalized"] = true; },
+            "meshes[1].primitives[0].attributes.JOINTS_0: accessors[4] is not VEC4 unsigned "
+            "bytes or shorts"},
+        Bad{"second_joints_without_weights",
+            [](Bar& r) {
+                r.b.j["meshes"][r.mesh]["primitives"][0]["attributes"]["JOINTS_1"] = r.joints;
+            },
+            "meshes[1].primitives[0].attributes: JOINTS_1 and WEIGHTS_1 come in pairs; WEIGHTS_1 "
+            "is missing"},
+        Bad{"second_weights_without_joints",
+            [](Bar& r) {
+                r.b.j["meshes"][r.mesh]["primitives"][0]["attributes"]["WEIGHTS_1"] = r.weights;
+            },
+            "meshes[1].primitives[0].attributes: JOINTS_1 and WEIGHTS_1 come in pairs; JOINTS_1 "
+            "is missing"},
+        Bad{"inverse_bind_matrices_of_shorts",
+            [](Bar& r) { r.b.j["accessors"][r.inverseBind]["componentType"] = 5123; },
+            "skins[0].inverseBindMatrices: accessors[6] is not MAT4 floats"},
+        Bad{"inverse_bind_matrix_not_finite",
+            [](Bar& r) {
+                std::vector<float> values(32, 0.0f);
+                for (int i = 0; i < 4; ++i)
+                    values[5 * i] = values[16 + 5 * i] = 1.0f;
+                values[16 + 13] = INFINITY;
+                r.b.j["accessors"][r.inverseBind]["bufferView"] = r.b.view(values);
+            },
+            "skins[0].inverseBindMatrices: matrix 1 is not finite"},
+        Bad{"skeleton_out_of_range", [](Bar& r) { r.b.j["skins"][0]["skeleton"] = 4; },
+            "skins[0].skeleton: index 4 is out of range (4 nodes)"},
+        Bad{"skin_without_joints", [](Bar& r) { r.b.j["skins"][0]["joints"] = J::array(); },
+            "skins[0].joints: no joints"},
         Bad{"skin_without_joints_attribute",
             [](Bar& r) {
                 r.b.j["meshes"][r.mesh]["primitives"][0]["attributes"].erase("JOINTS_0");

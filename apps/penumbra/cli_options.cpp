@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -29,6 +30,22 @@ CLI::Validator finiteBetween(double lo, double hi, const std::string& words) {
             double v = 0.0;
             if (!CLI::detail::lexical_cast(text, v) || !std::isfinite(v) || v < lo || v > hi)
                 return fmt::format("'{}' is not {}", text, words);
+            return {};
+        },
+        "");
+}
+
+// A time in seconds as written in decimal ("1.5", "2e-3"): CLI11 would also read hex ("0x10")
+// and take an empty value as none (from_chars refuses both). The range is loadScene's to check,
+// with the scene's name.
+CLI::Validator decimalSeconds() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            double v = 0.0;
+            const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), v,
+                                                      std::chars_format::general);
+            if (error != std::errc{} || end != text.data() + text.size())
+                return fmt::format("'{}' is not a time in seconds (a decimal number)", text);
             return {};
         },
         "");
@@ -160,11 +177,14 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
     edits.noGround = o.noGround;
     edits.doubleSided = o.doubleSided;
     std::vector<std::string> warnings;
+    const bool lightsMove = std::any_of(edits.addedLights.begin(), edits.addedLights.end(),
+                                        [](const AddedLight& a) { return a.orbitSeconds; });
     Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
                                    .maxTriangles = global.maxTriangles,
                                    .warnings = &warnings,
                                    .time = o.time,
-                                   .animation = o.animation});
+                                   .animation = o.animation,
+                                   .lightsMove = lightsMove});
     applySceneEdits(scene, edits);
     if (quiet)
         return scene;
@@ -226,10 +246,12 @@ void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
     group(cmd.add_option("--time", scene.time,
                          "poses an animated glTF scene this many seconds into its animation "
                          "(nodes, cameras and lights move; before the first keyframe and after "
-                         "the last the ends hold; default: the nodes at rest)"))
-        ->type_name("SECONDS");
+                         "the last the ends hold; default: the nodes at rest); a decimal number"))
+        ->type_name("SECONDS")
+        ->check(decimalSeconds());
     group(cmd.add_option("--animation", scene.animation,
-                         "the animation --time poses: its name or index (default: the first)"))
+                         "the animation --time poses: its name or index, a name matched first "
+                         "(default: the first)"))
         ->type_name("NAME|INDEX");
     group(cmd.add_flag("--double-sided", scene.doubleSided,
                        "draws every material's back faces too (a mis-wound or open mesh shows "
@@ -259,8 +281,10 @@ void addViewOptions(CLI::App& cmd, RenderOptions& o, SceneOptions& scene) {
                          "`spot:pos=X,Y,Z,dir=X,Y,Z[,cone=DEG][,radius=R]` or "
                          "`point:pos=X,Y,Z[,radius=R]`, each with optional `intensity=` and "
                          "`name=` (default: as bright at the scene's centre as the default sun; "
-                         "named `<kind> (--add-light N)`); it replaces a scene's default light; "
-                         "repeatable"))
+                         "named `<kind> (--add-light N)`) and `orbit=SECONDS` (one turn about "
+                         "the vertical every SECONDS, placed at --time; spot and point about "
+                         "`about=X,Y,Z`, default the scene's centre); it replaces a scene's "
+                         "default light; repeatable"))
         ->type_name("LIGHT");
     group(cmd.add_option("--light-radius", o.lightRadiusOverride,
                          "every spot and point light's radius in world units (default: the "

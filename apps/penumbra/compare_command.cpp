@@ -195,6 +195,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         report.cameraPath = args.cameraPath;
         report.pathFrames = args.pathFrames;
     }
+    std::vector<TimelineRow> measured;
     if (timeline) {
         std::vector<std::string> names;
         std::vector<BlurReach> blur;
@@ -202,15 +203,17 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
             names.push_back(rows[r].name);
             blur.push_back(blurRadiusTexels(rowOptions[r]));
         }
-        const std::vector<TimelineRow> measured = runTimeline(renderer,
-                                                              {.sceneSpec = args.scene,
-                                                               .global = global,
-                                                               .sceneOptions = args.sceneOptions,
-                                                               .rowNames = names,
-                                                               .rowOptions = rowOptions,
-                                                               .blur = blur,
-                                                               .reference = args.reference},
-                                                              *timeline);
+        measured = runTimeline(renderer,
+                               {.sceneSpec = args.scene,
+                                .global = global,
+                                .sceneOptions = args.sceneOptions,
+                                .rowNames = names,
+                                .rowOptions = rowOptions,
+                                .blur = blur,
+                                .reference = args.reference},
+                               *timeline);
+        for (size_t k = 0; k < timeline->frames; ++k)
+            report.timelineTimes.push_back(timeline->at(k));
         out.write("timeline.json", bytesOf(timelineJson(*timeline, measured).dump(2) + "\n"));
         out.write("timeline.csv", bytesOf(timelineCsv(*timeline, measured)));
         std::printf("%-22s %12s %12s %12s %10s   (timeline: %zu frames, %g..%g s)\n", "technique",
@@ -242,6 +245,11 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                           shimmer.empty() ? std::vector<uint32_t>{} : shimmer[r].pagesResident};
         for (const auto& [key, value] : rows[r].sets)
             row.parameters.emplace_back(key, value);
+        if (!measured.empty()) {
+            row.rmseOverTime = measured[r].rmse;
+            row.gpuMsOverTime = measured[r].gpuMs;
+            row.flicker = measured[r].flicker;
+        }
         row.gpuMs = result.passes;
         // Full-size files beside the report, the page's images reduced (page_image.h).
         const std::string prefix = filePrefix(rows[r].name);

@@ -6,23 +6,12 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace penumbra::cli {
 namespace {
-
-double number(std::string_view text, std::string_view whole) {
-    double value = 0.0;
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value))
-        throw InputError("--timeline",
-                         fmt::format("'{}' is not START:END:STEP in seconds ('{}' is not a "
-                                     "finite number)",
-                                     whole, text));
-    return value;
-}
 
 // An automatic camera, default light or ground follows the scene's bounds, which move with the
 // animation: the first frame's are kept, so that only what the animation moves moves.
@@ -35,6 +24,23 @@ void pinToFirstFrame(Scene& scene, const Scene& first) {
         scene.lights.front() = first.lights.front();
 }
 
+// Frame k's scene, quietly: the compare command's own load of the first frame said the
+// warnings. A frame refused names itself, since the first frame was accepted.
+Scene loadFrame(const TimelineInputs& in, const SceneOptions& options, size_t k,
+                const Timeline& timeline) {
+    try {
+        return loadSceneReporting(in.sceneSpec, in.global, options, in.rowOptions.front(),
+                                  /*quiet=*/true);
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        const std::string prefix = e.subject() + ": ";
+        throw InputError(e.subject(),
+                         fmt::format("{} (--timeline frame {} of {}, at {:g} s)",
+                                     what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what,
+                                     k + 1, timeline.frames, timeline.at(k)));
+    }
+}
+
 double totalMs(const RenderResult& r) {
     double total = 0.0;
     for (const PassTime& p : r.passes)
@@ -43,26 +49,6 @@ double totalMs(const RenderResult& r) {
 }
 
 } // namespace
-
-Timeline parseTimeline(std::string_view text) {
-    const size_t a = text.find(':'), b = a == std::string_view::npos ? a : text.find(':', a + 1);
-    if (b == std::string_view::npos || text.find(':', b + 1) != std::string_view::npos)
-        throw InputError("--timeline", fmt::format("'{}' is not START:END:STEP in seconds", text));
-    Timeline t{.start = number(text.substr(0, a), text),
-               .end = number(text.substr(a + 1, b - a - 1), text),
-               .step = number(text.substr(b + 1), text)};
-    if (t.start < 0.0 || t.end < t.start || !(t.step > 0.0))
-        throw InputError("--timeline",
-                         fmt::format("'{}': START must be 0 or more, END at least START and STEP "
-                                     "above 0",
-                                     text));
-    const double frames = std::floor((t.end - t.start) / t.step + 1e-6) + 1.0;
-    if (!(frames <= static_cast<double>(kMaxTimelineFrames)))
-        throw InputError("--timeline", fmt::format("'{}' is {} frames; at most {}", text, frames,
-                                                   kMaxTimelineFrames));
-    t.frames = static_cast<size_t>(frames);
-    return t;
-}
 
 std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& in,
                                      const Timeline& timeline) {
@@ -79,8 +65,7 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
         options.time = timeline.at(k);
         std::fprintf(stderr, "penumbra: timeline frame %zu/%zu at %g s\n", k + 1, timeline.frames,
                      *options.time);
-        Scene scene = loadSceneReporting(in.sceneSpec, in.global, options, in.rowOptions.front(),
-                                         /*quiet=*/k > 0);
+        Scene scene = loadFrame(in, options, k, timeline);
         if (k == 0) {
             first = scene;
             // The first frame's choice of ground holds for all.

@@ -7,6 +7,7 @@
 #include "penumbra/reference.h"
 #include "penumbra/renderer.h"
 #include "report/blur_band.h"
+#include "timeline_range.h"
 
 #include <nlohmann/json.hpp>
 
@@ -16,18 +17,6 @@
 #include <vector>
 
 namespace penumbra::cli {
-
-struct Timeline {
-    double start = 0.0, end = 0.0, step = 0.0;
-    size_t frames = 0; // start, start + step, ... up to end (within a millionth of a step)
-    double at(size_t frame) const { return start + step * static_cast<double>(frame); }
-};
-
-inline constexpr size_t kMaxTimelineFrames = 10000;
-
-// "START:END:STEP" in seconds: START >= 0, END >= START, STEP > 0, at most kMaxTimelineFrames
-// frames; InputError("--timeline", ...) otherwise.
-Timeline parseTimeline(std::string_view text);
 
 // One row's measures per frame, and over the timeline.
 struct TimelineRow {

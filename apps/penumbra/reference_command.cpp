@@ -42,20 +42,25 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
     writeViewFiles(out, gbuffer, truth.visibility, args.format);
     const double raysPerSecond =
         truth.traceSeconds > 0 ? static_cast<double>(truth.rays) / truth.traceSeconds : 0;
-    const nlohmann::json info = {{"scene", args.scene},
-                                 {"width", options.width},
-                                 {"height", options.height},
-                                 {"samples", args.reference.samples},
-                                 {"rays_per_pixel", truthRays(args.reference.samples, sized)},
-                                 {"rays", truth.rays},
-                                 {"seconds", truth.seconds},
-                                 {"rays_per_second", raysPerSecond},
-                                 {"triangles", truth.triangles},
-                                 {"embree", embreeVersion()},
-                                 {"camera", scene.camera(options.camera).name},
-                                 {"scene_edits", sceneEditsJson(scene.edits)},
-                                 {"automatic_ground", scene.automaticGround},
-                                 {"view", viewJson(scene, scene.camera(options.camera))}};
+    const nlohmann::json info = {
+        {"scene", args.scene},
+        {"width", options.width},
+        {"height", options.height},
+        {"samples", args.reference.samples},
+        {"rays_per_pixel", truthRays(args.reference.samples, sized)},
+        {"rays", truth.rays},
+        {"seconds", truth.seconds},
+        {"rays_per_second", raysPerSecond},
+        {"triangles", truth.triangles},
+        {"embree", embreeVersion()},
+        {"camera", scene.camera(options.camera).name},
+        {"scene_edits", sceneEditsJson(scene.edits)},
+        {"automatic_ground", scene.automaticGround},
+        // The pose, as stats.json gives it.
+        {"time", scene.time ? nlohmann::json(*scene.time) : nlohmann::json()},
+        {"animation", scene.animation},
+        {"animation_duration", scene.animationDuration},
+        {"view", viewJson(scene, scene.camera(options.camera))}};
     out.write("reference.json", bytesOf(info.dump(2) + "\n"));
     if (renderer.validationErrors() > 0)
         throw std::runtime_error(fmt::format("vulkan validation: {} error(s); no output written",

@@ -113,6 +113,10 @@ struct AddedLight {
     std::optional<float> angleDegrees;            // sun: angular diameter
     std::optional<float> coneDegrees;             // spot: outer half-angle
     std::optional<float> radius, intensity;
+    // orbit=SECONDS: one turn about the vertical axis through about=X,Y,Z (default: the scene's
+    // bounds centre) every SECONDS, negative the other way, posed at the scene's --time.
+    std::optional<float> orbitSeconds;
+    std::optional<glm::vec3> orbitCentre;
     std::string name; // empty: "<kind> (--add-light <n>)"
     std::string text; // as typed
 };
@@ -175,6 +179,8 @@ struct SceneLoadOptions {
     // --animation: its name or index ("" the first; one the scene lacks: InputError).
     std::optional<double> time;
     std::string animation;
+    // An --add-light orbits: --time moves it on a still scene too (no warning that it does not).
+    bool lightsMove = false;
 };
 
 // Loads `spec`: "builtin:NAME", or a glTF 2.0 file (.gltf, .glb), with invalid triangles

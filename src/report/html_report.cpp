@@ -3,6 +3,7 @@
 #include "core/base64.h"
 #include "report/report_plot.h"
 #include "report/report_script.h"
+#include "report/timeline_plot.h"
 #include "report/truth_notes.h"
 
 #include "penumbra/error.h"
@@ -95,7 +96,8 @@ figure.reference img { max-width: 460px; }
 .missing { padding: 40px 0; text-align: center; color: var(--muted); background: #f0f3f7; border-radius: 4px; }
 @media (max-width: 800px) { .triptych { grid-template-columns: 1fr; } }
 .note { color: var(--muted); font-size: 13px; margin: 8px 0 0; }
-svg.error-vs-cost { width: 100%; max-width: 900px; height: auto; display: block; font-size: 12px; }
+svg.error-vs-cost, svg.over-time { width: 100%; max-width: 900px; height: auto; display: block; font-size: 12px; }
+svg.over-time .line { fill: none; stroke-width: 2; } svg.over-time circle { stroke-width: 1; }
 svg .grid { stroke: #e4e7eb; } svg .axis { stroke: #52606d; stroke-width: 1.2; }
 svg .tick { fill: var(--muted); } svg .label { fill: var(--ink); font-size: 13px; }
 svg .point text { fill: var(--ink); font-size: 12px; } svg circle { stroke: #fff; stroke-width: 1.5; }
@@ -334,6 +336,7 @@ std::string renderRanRows(const ReportData& data, const std::vector<const Report
     s += "</div>\n<p class=\"note\">The dashed line is the Pareto front: the rows no other row "
          "beats on both error and cost (ringed, bold in the legend). A label that would overlap "
          "another is left out: the legend and each point's tooltip name it.</p>\n</section>\n";
+    s += overTimeSection(data);
     s += kComparerHtml;
     writeImages(s, data);
     s += "</main>\n<script>";

@@ -32,6 +32,9 @@ struct ReportRow {
     double shimmer = NAN;         // mean frame-to-frame change along the camera path; NaN: no path
     // Virtual maps along the path: pages each frame rendered and those resident (else empty).
     std::vector<uint32_t> pathPagesRendered, pathPagesResident;
+    // compare --timeline: per frame its RMSE and total GPU ms, and its flicker (else empty, NaN).
+    std::vector<double> rmseOverTime, gpuMsOverTime;
+    double flicker = NAN;
 };
 
 // Everything a report shows: the run's context, the reference, and one row per technique.
@@ -47,6 +50,7 @@ struct ReportData {
     std::vector<bool> lightSized;
     std::string cameraPath; // "dolly", "orbit", "sun"; empty: no shimmer measured
     uint32_t pathFrames = 0;
+    std::vector<double> timelineTimes; // compare --timeline's frames, in seconds; else empty
     std::vector<uint8_t> referenceVisibilityPng;
     std::vector<ReportRow> rows;
 };

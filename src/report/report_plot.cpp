@@ -39,14 +39,14 @@ std::string tickText(double v) {
 constexpr std::string_view kPalette[] = {"#2b6cb0", "#c53030", "#2f855a", "#b7791f",
                                          "#6b46c1", "#0987a0", "#d53f8c", "#4a5568"};
 
-std::string_view colourOf(size_t row) {
-    return kPalette[row % std::size(kPalette)];
-}
-
 constexpr double kLabelHeight = 15; // a 12-pixel font's line box, and a pixel of air
 constexpr double kPointRadius = 6;
 
 } // namespace
+
+std::string_view plotColour(size_t row) {
+    return kPalette[row % std::size(kPalette)];
+}
 
 Axis niceAxis(double maxValue) {
     if (!(maxValue > 0) || !std::isfinite(maxValue))
@@ -238,7 +238,7 @@ std::string errorVsCostSvg(const std::vector<ReportRow>& rows, bool logCost) {
                            "cy=\"{:.1f}\" r=\"{}\" fill=\"{}\"><title>{}: {:.3f} ms, RMSE "
                            "{:.4f}{}</title></circle></g>\n",
                            front[i] ? " on-front" : "", name, anchors[k].x, anchors[k].y,
-                           kPointRadius, colourOf(i), name, points[i].cost, points[i].rmse,
+                           kPointRadius, plotColour(i), name, points[i].cost, points[i].rmse,
                            front[i] ? " (on the Pareto front)" : "");
         }
     }
@@ -261,7 +261,7 @@ std::string errorVsCostLegend(const std::vector<ReportRow>& rows) {
     for (size_t i = 0; i < rows.size(); ++i)
         s += fmt::format("<li{}><span class=\"dot\" style=\"background:{}\"></span>{} "
                          "<small>{:.3f} ms, {:.4f}</small></li>\n",
-                         front[i] ? " class=\"on-front\"" : "", colourOf(i),
+                         front[i] ? " class=\"on-front\"" : "", plotColour(i),
                          escapeHtml(rows[i].name), points[i].cost, points[i].rmse);
     return s + "</ul>\n";
 }

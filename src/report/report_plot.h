@@ -6,6 +6,7 @@
 #include "report/html_report.h"
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace penumbra {
@@ -44,6 +45,9 @@ std::string errorVsCostSvg(const std::vector<ReportRow>& rows, bool logCost);
 std::string errorVsCostLegend(const std::vector<ReportRow>& rows);
 
 double totalGpuMs(const ReportRow& row);
+
+// Row i's colour in every plot of the report (a palette of 8, repeating).
+std::string_view plotColour(size_t row);
 
 // A "nice" axis from 0: a 1, 2 or 5 x 10^k step and a maximum, a whole number of steps, that
 // covers maxValue with 5% to spare; degenerate data (none, zero, non-finite) gets 0..1.

@@ -1,26 +1,34 @@
 // --add-light: a light from the command line, for assets without the lights a user wants (a sun
 // over a model, a bulb in a room). "KIND:key=value,..." with vectors as three numbers after their
 // key: sun:dir=0,-1,0.5,angle=2; spot:pos=0,4,0,dir=0,-1,0,cone=30,radius=0.2; point:pos=1,3,0.
+// orbit=SECONDS turns one about the vertical through about=X,Y,Z over time (a light that moves
+// without a glTF animation).
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
 
 #include <fmt/format.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <numbers>
 #include <set>
 
 namespace penumbra {
 namespace {
 
 constexpr std::string_view kOption = "--add-light";
+// A turn in under a millisecond moves a light further between frames than any shadow follows.
+constexpr float kMinOrbitSeconds = 1e-3f;
 
 [[noreturn]] void refuse(std::string_view text, const std::string& why) {
     throw InputError(std::string(kOption),
                      fmt::format("'{}': {} (KIND:key=value,...: sun:dir=X,Y,Z[,angle=DEG], "
                                  "spot:pos=X,Y,Z,dir=X,Y,Z[,cone=DEG][,radius=R], "
-                                 "point:pos=X,Y,Z[,radius=R]; all take intensity= and name=)",
+                                 "point:pos=X,Y,Z[,radius=R]; all take intensity=, name= and "
+                                 "orbit=SECONDS, spot and point about=X,Y,Z)",
                                  text, why));
 }
 
@@ -80,14 +88,15 @@ AddedLight parseAddedLight(std::string_view text) {
     }
     const std::set<std::string> allowed =
         light.type == LightType::Directional
-            ? std::set<std::string>{"dir", "angle", "intensity", "name"}
+            ? std::set<std::string>{"dir", "angle", "intensity", "name", "orbit"}
         : light.type == LightType::Spot
-            ? std::set<std::string>{"pos", "dir", "cone", "radius", "intensity", "name"}
-            : std::set<std::string>{"pos", "radius", "intensity", "name"};
+            ? std::set<std::string>{"pos",       "dir",  "cone",  "radius",
+                                    "intensity", "name", "orbit", "about"}
+            : std::set<std::string>{"pos", "radius", "intensity", "name", "orbit", "about"};
     for (const auto& [k, v] : values) {
         if (!allowed.count(k))
             refuse(text, fmt::format("a {} light takes no '{}'", kind, k));
-        const size_t count = k == "pos" || k == "dir" ? 3 : 1;
+        const size_t count = k == "pos" || k == "dir" || k == "about" ? 3 : 1;
         if (v.size() != count)
             refuse(text, fmt::format("'{}' takes {}", k,
                                      count == 3 ? "three numbers X,Y,Z" : "one value"));
@@ -109,6 +118,8 @@ AddedLight parseAddedLight(std::string_view text) {
     light.coneDegrees = scalar("cone");
     light.radius = scalar("radius");
     light.intensity = scalar("intensity");
+    light.orbitSeconds = scalar("orbit");
+    light.orbitCentre = vector("about");
     if (values.count("name"))
         light.name = values["name"][0];
     if (light.type != LightType::Point && !light.direction)
@@ -127,6 +138,12 @@ AddedLight parseAddedLight(std::string_view text) {
         refuse(text, "intensity must be above 0");
     if (values.count("name") && light.name.empty())
         refuse(text, "name is empty");
+    if (light.orbitSeconds && !(std::abs(*light.orbitSeconds) >= kMinOrbitSeconds))
+        refuse(text, fmt::format("orbit is the seconds one turn takes: at least {:g} in "
+                                 "magnitude (negative turns the other way)",
+                                 kMinOrbitSeconds));
+    if (light.orbitCentre && !light.orbitSeconds)
+        refuse(text, "about= is the centre of an orbit=; it needs one");
     return light;
 }
 
@@ -139,6 +156,17 @@ Light makeAddedLight(const AddedLight& added, const Scene& scene, size_t index) 
         l.direction = glm::normalize(*added.direction);
     if (added.position)
         l.position = *added.position;
+    if (added.orbitSeconds) {
+        // About +y by the right-hand rule (x toward -z), the angle in double: a long time
+        // keeps its fraction of a turn.
+        const double turns = scene.time.value_or(0.0) / double(*added.orbitSeconds);
+        const auto angle = static_cast<float>(2.0 * std::numbers::pi * (turns - std::floor(turns)));
+        const glm::mat3 turn(glm::rotate(glm::mat4(1.0f), angle, glm::vec3(0, 1, 0)));
+        // The axis is vertical: the centre's height is no matter, and the light's holds.
+        const glm::vec3 centre = added.orbitCentre.value_or(scene.bounds().center());
+        l.position = centre + turn * (l.position - centre);
+        l.direction = turn * l.direction;
+    }
     if (added.type == LightType::Directional) {
         l.intensity = added.intensity.value_or(2.0f); // as --sun-dir's
         l.angularDiameter = added.angleDegrees.value_or(0.0f);
@@ -146,7 +174,8 @@ Light makeAddedLight(const AddedLight& added, const Scene& scene, size_t index) 
     }
     // Unless given: as bright at the scene's centre as the default sun is everywhere (the
     // intensity is per steradian at one unit, falling off with the square of the distance).
-    const float distance = std::max(glm::length(scene.bounds().center() - l.position), 1e-3f);
+    // An orbit keeps its distance: the brightness of its place at time 0 holds.
+    const float distance = std::max(glm::length(scene.bounds().center() - *added.position), 1e-3f);
     l.intensity = added.intensity.value_or(2.0f * distance * distance);
     l.radius = added.radius.value_or(0.0f);
     if (added.type == LightType::Spot) {

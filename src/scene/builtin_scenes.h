@@ -63,6 +63,26 @@ inline constexpr double kPendulumPeriod = 2.0;    // seconds
 inline constexpr float kPendulumFloorHalfSize = 8.0f;
 inline constexpr glm::vec3 kPendulumSunDirection{0.2f, -1.0f, 0.15f};
 
+// Town (animated): houses and a tower on a street kTownHalfSize from the centre, under a sun
+// whose arc runs from kTownSunriseAngle above the east horizon (+x) at time 0 to as far above
+// the west at kTownDaySeconds, its plane leaning kTownNoonElevation towards the south (-z).
+inline constexpr float kTownHalfSize = 15.0f;
+inline constexpr float kTownTowerHeight = 9.0f;
+inline constexpr double kTownDaySeconds = 12.0;
+inline constexpr double kTownSunriseAngle = 0.2618;  // 15 degrees along the arc
+inline constexpr double kTownNoonElevation = 0.9599; // 55 degrees
+
+// Fan (animated): three blades kFanBladeLength from the axis (through the origin, vertical),
+// kFanBladeWidth wide and kFanBladeThickness thick at height kFanHeight, one turn in
+// kFanTurnSeconds about +y; a spot above them pointing down.
+inline constexpr float kFanHeight = 2.5f;
+inline constexpr float kFanBladeLength = 1.6f;
+inline constexpr float kFanBladeWidth = 0.3f;
+inline constexpr float kFanBladeThickness = 0.02f;
+inline constexpr double kFanTurnSeconds = 0.25;
+inline constexpr float kFanFloorHalfSize = 6.0f;
+inline constexpr glm::vec3 kFanSpotPosition{0.4f, 4.2f, 0.3f};
+
 // Dense: kDenseRows x kDenseColumns cells of a box and a sphere of 2 x slices x (stacks - 1)
 // triangles (about 100k in all), a spot light.
 inline constexpr int kDenseRows = 4, kDenseColumns = 6;
@@ -104,5 +124,9 @@ Scene resting();
 // Animated: the scene posed `time` seconds in (any time; periodic), and the ball's centre then.
 Scene pendulum(double time);
 glm::vec3 pendulumBob(double time);
+Scene town(double time);
+glm::vec3 townSunDirection(double time); // the direction the sun's light travels at `time`
+Scene fan(double time);
+float fanAngle(double time); // the first blade's angle about +y from +x, in [0, 2 pi)
 
 } // namespace penumbra::builtin

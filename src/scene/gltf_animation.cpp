@@ -186,8 +186,8 @@ size_t chooseAnimation(const std::filesystem::path& file, const std::vector<Anim
     std::string names;
     for (size_t a = 0; a < animations.size(); ++a)
         names += fmt::format("{}{} '{}'", a == 0 ? "" : ", ", a, animations[a].name);
-    throw InputError("--animation", fmt::format("'{}' is neither a name nor an index of '{}''s "
-                                                "animations ({})",
+    throw InputError("--animation", fmt::format("'{}' is neither a name nor an index of the "
+                                                "animations in '{}' ({})",
                                                 choice, file.string(), names));
 }
 

@@ -375,17 +375,46 @@ struct Flattener {
                           n.skin >= 0 ? &skinned : nullptr);
             }
         if (n.camera >= 0)
-            camera(m.cameras[n.camera], world);
+            camera(index, m.cameras[n.camera], world);
         if (const auto e = n.extensions.find("KHR_lights_punctual"); e != n.extensions.end())
             if (e->second.Has("light") && e->second.Get("light").IsInt())
-                light(e->second.Get("light").GetNumberAsInt(), world);
+                light(index, e->second.Get("light").GetNumberAsInt(), world);
     }
 
-    void camera(const tinygltf::Camera& c, const glm::mat4& world) {
+    // Where a light or camera on node `index` sits, and where its local `axis` points. A node
+    // scaled to zero (easy to reach with an animated scale) has no direction, and one placed
+    // past the coordinate limit no place: both are refused, where the renderer and the
+    // ray tracer would otherwise get NaN.
+    glm::vec3 placeOf(size_t index, const glm::mat4& world, std::string_view what) const {
+        const glm::vec3 place(world * glm::vec4(0, 0, 0, 1));
+        for (int i = 0; i < 3; ++i)
+            if (!std::isfinite(place[i]) || std::abs(place[i]) > kMaxCoordinate)
+                throw InputError(file.string(), fmt::format("nodes[{}]: {} is placed past the "
+                                                            "coordinate limit {:g}{}",
+                                                            index, what, kMaxCoordinate, when()));
+        return place;
+    }
+    glm::vec3 axisOf(size_t index, const glm::mat4& world, glm::vec3 axis,
+                     std::string_view what) const {
+        const glm::vec3 v(world * glm::vec4(axis, 0));
+        const float length = glm::length(v);
+        if (!(length > 0.0f) || !std::isfinite(length))
+            throw InputError(file.string(),
+                             fmt::format("nodes[{}]: {} has no direction: its node's transform "
+                                         "is scaled to zero{}",
+                                         index, what, when()));
+        return v / length;
+    }
+    std::string when() const {
+        return scene.time ? fmt::format(" at time {:g} s", *scene.time) : std::string();
+    }
+
+    void camera(size_t node, const tinygltf::Camera& c, const glm::mat4& world) {
         Camera cam{.name = c.name.empty() ? fmt::format("camera{}", scene.cameras.size()) : c.name};
-        cam.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
-        cam.target = cam.position + glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
-        cam.up = glm::normalize(glm::vec3(world * glm::vec4(0, 1, 0, 0)));
+        const std::string what = fmt::format("the camera '{}'", cam.name);
+        cam.position = placeOf(node, world, what);
+        cam.target = cam.position + axisOf(node, world, glm::vec3(0, 0, -1), what);
+        cam.up = axisOf(node, world, glm::vec3(0, 1, 0), what);
         if (c.type == "orthographic") {
             cam.orthographic = true;
             cam.ymag = static_cast<float>(c.orthographic.ymag);
@@ -405,7 +434,7 @@ struct Flattener {
         scene.cameras.push_back(cam);
     }
 
-    void light(int index, const glm::mat4& world) {
+    void light(size_t node, int index, const glm::mat4& world) {
         if (index < 0 || static_cast<size_t>(index) >= m.lights.size())
             throw InputError(file.string(),
                              fmt::format("KHR_lights_punctual: light {} is out of range", index));
@@ -416,8 +445,13 @@ struct Flattener {
                 file.string(),
                 fmt::format("KHR_lights_punctual.lights[{}].type: '{}' is not a light type", index,
                             l.type));
-        out.position = glm::vec3(world * glm::vec4(0, 0, 0, 1));
-        out.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
+        const std::string what = fmt::format("KHR_lights_punctual.lights[{}]", index);
+        out.position = placeOf(node, world, what);
+        // A point light shines every way: its node may be scaled to zero.
+        const glm::vec3 axis(world * glm::vec4(0, 0, -1, 0));
+        out.direction = out.type == LightType::Point && !(glm::length(axis) > 0.0f)
+                            ? glm::vec3(0, 0, -1)
+                            : axisOf(node, world, glm::vec3(0, 0, -1), what);
         if (l.color.size() == 3)
             out.color = glm::vec3(l.color[0], l.color[1], l.color[2]);
         out.intensity = static_cast<float>(l.intensity);

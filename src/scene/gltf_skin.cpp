@@ -112,7 +112,13 @@ std::vector<glm::mat4> skinMatrices(const std::filesystem::path& file, const tin
     for (int set = 0;; ++set) {
         const auto jointsAt = prim.attributes.find(fmt::format("JOINTS_{}", set));
         const auto weightsAt = prim.attributes.find(fmt::format("WEIGHTS_{}", set));
-        if (jointsAt == prim.attributes.end() || weightsAt == prim.attributes.end())
+        const bool hasJoints = jointsAt != prim.attributes.end(),
+                   hasWeights = weightsAt != prim.attributes.end();
+        if (hasJoints != hasWeights)
+            fail(path + ".attributes",
+                 fmt::format("JOINTS_{0} and WEIGHTS_{0} come in pairs; {1}_{0} is missing", set,
+                             hasJoints ? "WEIGHTS" : "JOINTS"));
+        if (!hasJoints)
             break;
         const std::string jointsPath = fmt::format("{}.attributes.JOINTS_{}", path, set);
         const std::string weightsPath = fmt::format("{}.attributes.WEIGHTS_{}", path, set);
@@ -137,6 +143,10 @@ std::vector<glm::mat4> skinMatrices(const std::filesystem::path& file, const tin
                     fail(jointsPath, fmt::format("vertex {}'s joint {} is past skins[{}]'s {} "
                                                  "joints",
                                                  v, j, m.nodes[node].skin, joints.size()));
+                if (!(weight[4 * v + k] >= 0.0f))
+                    fail(weightsPath, fmt::format("vertex {}'s weight {} is {}; weights are 0 or "
+                                                  "more",
+                                                  v, k, weight[4 * v + k]));
                 out[v] += weight[4 * v + k] * joints[j];
                 sums[v] += weight[4 * v + k];
             }

@@ -28,7 +28,8 @@ struct AnimatedBuiltinEntry {
     std::string_view name;
     Scene (*make)(double time);
 };
-constexpr AnimatedBuiltinEntry kAnimatedBuiltins[] = {{"pendulum", builtin::pendulum}};
+constexpr AnimatedBuiltinEntry kAnimatedBuiltins[] = {
+    {"pendulum", builtin::pendulum}, {"town", builtin::town}, {"fan", builtin::fan}};
 
 } // namespace
 
@@ -151,9 +152,10 @@ Scene loadScene(std::string_view spec, const SceneLoadOptions& options) {
                                             ? fmt::format("'{}' has no animations", spec)
                                             : fmt::format("'{}' has one animation, 0 '{}'", spec,
                                                           scene.animation));
+    scene.time = options.time; // an orbiting --add-light is placed by it, even on a still scene
     // A time for a still scene changes nothing: said, not refused, so one command line serves
     // a set of scenes.
-    if (options.time && scene.animation.empty() && options.warnings)
+    if (options.time && scene.animation.empty() && !options.lightsMove && options.warnings)
         options.warnings->push_back(fmt::format("{}: --time {}: the scene has no animations; it "
                                                 "is drawn at rest",
                                                 spec, *options.time));

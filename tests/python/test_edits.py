@@ -206,3 +206,16 @@ def test_time_poses_an_animated_scene_as_the_clis_time_does(asset, tmp_path):
         penumbra.Scene.load(path, time=1.0, animation="walk")
     with pytest.raises(penumbra.InputError, match="--time"):
         penumbra.Scene.load(path, time=-1.0)
+
+
+def test_an_orbiting_added_light_is_placed_at_the_scenes_time():
+    # A still scene loaded at 2 s: a quarter of an 8-second turn takes (3, _, 0) to (0, _, -3).
+    scene = penumbra.Scene.load("builtin:resting", time=2.0)
+    assert scene.time == 2.0
+    scene.edit(add_light=["point:pos=3,4,0,orbit=8,about=0,0,0,name=bulb"])
+    bulb = next(l for l in scene.lights if l["name"] == "bulb")
+    assert bulb["position"] == pytest.approx([0, 4, -3], abs=1e-5)
+    rest = penumbra.Scene.load("builtin:resting")
+    rest.edit(add_light=["point:pos=3,4,0,orbit=8,about=0,0,0,name=bulb"])
+    assert next(l for l in rest.lights if l["name"] == "bulb")["position"] == pytest.approx(
+        [3, 4, 0], abs=1e-6)
