@@ -21,6 +21,23 @@ using J = nlohmann::json;
 
 namespace {
 
+// Float accessor of `type` over `values`, in a buffer of its own (base64 in a data URI) added
+// to the asset `j`; its index.
+int floatAccessor(J& j, const std::vector<float>& values, const char* type) {
+    std::vector<uint8_t> bytes(values.size() * 4);
+    std::memcpy(bytes.data(), values.data(), bytes.size());
+    j["buffers"].push_back(
+        {{"byteLength", bytes.size()},
+         {"uri", "data:application/octet-stream;base64," + GltfBuilder::base64(bytes)}});
+    j["bufferViews"].push_back({{"buffer", j["buffers"].size() - 1}, {"byteLength", bytes.size()}});
+    const size_t per = std::string(type) == "SCALAR" ? 1 : 3;
+    j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1},
+                              {"componentType", 5126},
+                              {"count", values.size() / per},
+                              {"type", type}});
+    return static_cast<int>(j["accessors"].size()) - 1;
+}
+
 // The ground and box under the three lights (`lit`; else the box alone without lights or
 // camera: the automatic ones frame it); `animated`: the box (nodes[1], at rest at the origin)
 // slides from x = 0.5 to 2.5 in the first second, then holds.
@@ -38,35 +55,14 @@ fs::path boxAsset(const fs::path& where, bool animated, bool lit = true) {
     if (!animated)
         return file;
     J j = J::parse(slurp(file));
-    // A second buffer, base64 in a data URI, holding the keyframes.
-    std::vector<uint8_t> bytes;
-    for (const float f : {0.0f, 1.0f, 0.5f, 0.0f, 0.0f, 2.5f, 0.0f, 0.0f}) {
-        uint8_t b[4];
-        std::memcpy(b, &f, 4);
-        bytes.insert(bytes.end(), b, b + 4);
-    }
-    j["buffers"].push_back(
-        {{"byteLength", bytes.size()},
-         {"uri", "data:application/octet-stream;base64," + GltfBuilder::base64(bytes)}});
-    const int buffer = static_cast<int>(j["buffers"].size()) - 1;
-    const auto view = [&](int offset, int length) {
-        j["bufferViews"].push_back(
-            {{"buffer", buffer}, {"byteOffset", offset}, {"byteLength", length}});
-        return static_cast<int>(j["bufferViews"].size()) - 1;
-    };
-    j["accessors"].push_back({{"bufferView", view(0, 8)},
-                              {"componentType", 5126},
-                              {"count", 2},
-                              {"type", "SCALAR"},
-                              {"min", {0.0}},
-                              {"max", {1.0}}});
-    j["accessors"].push_back(
-        {{"bufferView", view(8, 24)}, {"componentType", 5126}, {"count", 2}, {"type", "VEC3"}});
-    const int n = static_cast<int>(j["accessors"].size());
+    const int times = floatAccessor(j, {0.0f, 1.0f}, "SCALAR");
+    j["accessors"][times]["min"] = {0.0};
+    j["accessors"][times]["max"] = {1.0};
+    const int places = floatAccessor(j, {0.5f, 0.0f, 0.0f, 2.5f, 0.0f, 0.0f}, "VEC3");
     j["animations"] = {
         {{"name", "slide"},
          {"channels", {{{"sampler", 0}, {"target", {{"node", 1}, {"path", "translation"}}}}}},
-         {"samplers", {{{"input", n - 2}, {"output", n - 1}}}}}};
+         {"samplers", {{{"input", times}, {"output", places}}}}}};
     std::ofstream(file) << j.dump();
     return file;
 }
@@ -273,23 +269,9 @@ TEST(CliTimeline, AFrameRefusedAfterTheFirstNamesItselfAndLeavesNoOutput) {
     const fs::path dir = outputScratch("timeline-refused");
     J j = J::parse(slurp(boxAsset(dir, true)));
     // The spot (nodes[3]) shrinks to nothing over the first second: frame 3 of 0:1:0.5.
-    std::vector<uint8_t> bytes;
-    for (const float f : {1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f}) {
-        uint8_t b[4];
-        std::memcpy(b, &f, 4);
-        bytes.insert(bytes.end(), b, b + 4);
-    }
-    j["buffers"].push_back(
-        {{"byteLength", bytes.size()},
-         {"uri", "data:application/octet-stream;base64," + GltfBuilder::base64(bytes)}});
-    j["bufferViews"].push_back({{"buffer", j["buffers"].size() - 1}, {"byteLength", 24}});
-    j["accessors"].push_back({{"bufferView", j["bufferViews"].size() - 1},
-                              {"componentType", 5126},
-                              {"count", 2},
-                              {"type", "VEC3"}});
+    const int shrink = floatAccessor(j, {1.0f, 1.0f, 1.0f, 0.0f, 0.0f, 0.0f}, "VEC3");
     J& slide = j["animations"][0];
-    slide["samplers"].push_back(
-        {{"input", slide["samplers"][0]["input"]}, {"output", j["accessors"].size() - 1}});
+    slide["samplers"].push_back({{"input", slide["samplers"][0]["input"]}, {"output", shrink}});
     slide["channels"].push_back({{"sampler", 1}, {"target", {{"node", 3}, {"path", "scale"}}}});
     const fs::path file = dir / "shrinking.gltf";
     std::ofstream(file) << j.dump();
