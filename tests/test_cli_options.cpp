@@ -4,7 +4,7 @@
 #include "cli_options.h"
 #include "parse_errors.h"
 #include "penumbra/error.h"
-#include "timeline_range.h"
+#include "scene/timeline_range.h"
 
 #include <gtest/gtest.h>
 

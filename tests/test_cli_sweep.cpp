@@ -5,6 +5,7 @@
 // a sweep cached.
 #include "process.h"
 #include "scratch_dir.h"
+#include "sliding_box.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -14,7 +15,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
 #include <thread>
 
 using namespace penumbra::test;
@@ -238,6 +241,122 @@ TEST(SweepCli, CompareAndTuneReadTheTruthASweepCached) {
     r = runCli(tune);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.err.find("ground truth from the cache"), std::string::npos) << r.err;
+}
+
+namespace {
+
+// A sweep of the sliding box (sliding_box.h) at `times` with hard and pcf into `out`: its task
+// records by time (-1: a record without one).
+std::map<double, std::vector<nlohmann::json>>
+timedSweep(const std::string& name, const std::string& times, ProcessResult& r, fs::path& out) {
+    boxAsset(scratchDir("sweep-cli") / "sliding", /*animated=*/true, /*lit=*/false);
+    const fs::path plan =
+        writePlan(name + ".toml", kHead + "scenes = [\"sliding/unlit.gltf\"]\n" + times +
+                                      "[[techniques]]\nname = \"hard\"\n"
+                                      "[[techniques]]\nname = \"pcf\"\npcf.size = [3]\n");
+    out = outputScratch("sweep-" + name);
+    r = runCli({"sweep", plan.string(), "-o", out.string()});
+    std::map<double, std::vector<nlohmann::json>> byTime;
+    for (const auto& e : fs::directory_iterator(out / "tasks")) {
+        if (e.path().extension() != ".json" || e.path().filename().string()[0] == '.')
+            continue;
+        const nlohmann::json j = nlohmann::json::parse(slurp(e.path()));
+        byTime[j.value("time", -1.0)].push_back(j);
+    }
+    return byTime;
+}
+
+// The truth keys of records, and a setting's RMSE among them.
+std::set<std::string> truthKeys(const std::vector<nlohmann::json>& records) {
+    std::set<std::string> keys;
+    for (const nlohmann::json& j : records)
+        keys.insert(j["truth"]["key"].get<std::string>());
+    return keys;
+}
+
+double rmseOf(const std::vector<nlohmann::json>& records, const std::string& setting) {
+    for (const nlohmann::json& j : records)
+        if (j["setting"] == setting)
+            return j["metrics"]["rmse"].get<double>();
+    ADD_FAILURE() << "no " << setting;
+    return -1.0;
+}
+
+} // namespace
+
+// A time is a view of its own: posed at it, traced once, recorded with its time and merged as
+// any view. Every time is framed as the plan's first is (its automatic camera, light and
+// ground), so a view at a time measures what compare --timeline measures in its frame at that
+// time, and the first time's view is compare --time's, whose truth compare reads from the
+// sweep's cache. An animation the scene lacks fails its tasks, named with their time.
+TEST(SweepCli, TimesAreViewsPosedAtEachTimeAndFramedAtTheFirst) {
+    ProcessResult r;
+    fs::path out, other;
+    const auto both = timedSweep("times", "times = [0, 0.5]\n", r, out);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(summaryLine(r), "sweep: 4 task(s) run, 0 skipped (done before), 0 failed; truths: "
+                              "2 traced, 0 from the cache");
+    EXPECT_NE(r.err.find("on sliding/unlit.gltf, scene, at 0.5 s (elapsed"), std::string::npos)
+        << r.err;
+    ASSERT_EQ(both.size(), 2u);
+    ASSERT_EQ(both.count(0.0) + both.count(0.5), 2u);
+    EXPECT_EQ(truthKeys(both.at(0.0)).size(), 1u) << "one truth per view";
+    EXPECT_NE(truthKeys(both.at(0.0)), truthKeys(both.at(0.5))) << "the box moved";
+    const nlohmann::json planned = nlohmann::json::parse(slurp(out / "sweep.json"));
+    for (const nlohmann::json& task : planned["tasks"])
+        EXPECT_TRUE(task.contains("time")) << task;
+    const std::string list = runCli({"sweep", (scratchDir("sweep-cli") / "times.toml").string(),
+                                     "-o", out.string(), "--list"})
+                                 .out;
+    EXPECT_NE(list.find(" hard t=0.5s\n"), std::string::npos) << list;
+
+    // Compare's timeline, its frames framed by its first, measures the same.
+    const fs::path asset = scratchDir("sweep-cli") / "sliding" / "unlit.gltf";
+    const std::vector<std::string> view{"--width",      "64",  "--height",          "48",
+                                        "--samples",    "8",   "--shadow-map-size", "256",
+                                        "--techniques", "hard"};
+    const fs::path timelineOut = outputScratch("compare-timeline");
+    std::vector<std::string> timeline{"compare",    asset.string(), "-o", timelineOut.string(),
+                                      "--timeline", "0:0.5:0.5"};
+    timeline.insert(timeline.end(), view.begin(), view.end());
+    r = runCli(timeline);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json frames = nlohmann::json::parse(slurp(timelineOut / "timeline.json"));
+    EXPECT_DOUBLE_EQ(frames["rows"]["hard"]["rmse"][1].get<double>(), rmseOf(both.at(0.5), "hard"));
+    // At 0.5 s alone the box's bounds frame another view.
+    const auto alone = timedSweep("time-alone", "times = [0.5]\n", r, other);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ASSERT_EQ(alone.count(0.5), 1u);
+    EXPECT_NE(truthKeys(alone.at(0.5)), truthKeys(both.at(0.5)));
+
+    const fs::path report = outputScratch("merge-times");
+    ASSERT_EQ(runCli({"merge", out.string(), "-o", report.string()}).exitCode, 0);
+    EXPECT_EQ(errorFigures(report)["groups"][0]["settings"][0]["views"], 2);
+    std::vector<std::string> compare{"compare",
+                                     asset.string(),
+                                     "-o",
+                                     outputScratch("compare-timed").string(),
+                                     "--time",
+                                     "0",
+                                     "--truth-cache",
+                                     (out / "truth").string()};
+    compare.insert(compare.end(), view.begin(), view.end());
+    r = runCli(compare);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("ground truth from the cache"), std::string::npos) << r.err;
+
+    const auto missing = timedSweep("no-walk", "times = [0.25]\nanimation = \"walk\"\n", r, other);
+    EXPECT_EQ(r.exitCode, 1);
+    ASSERT_EQ(missing.count(0.25), 1u);
+    EXPECT_NE(missing.at(0.25)[0]["error"].get<std::string>().find("'walk'"), std::string::npos)
+        << missing.at(0.25)[0];
+    const fs::path failures = outputScratch("merge-no-walk");
+    ASSERT_EQ(runCli({"merge", other.string(), "-o", failures.string()}).exitCode, 0);
+    const nlohmann::json merged = nlohmann::json::parse(slurp(failures / "merge.json"));
+    ASSERT_EQ(merged["failed"].size(), 2u);
+    EXPECT_EQ(merged["failed"][0]["time"], 0.25);
+    EXPECT_NE(slurp(failures / "report.html").find("on sliding/unlit.gltf, scene, at 0.25 s: "),
+              std::string::npos);
 }
 
 TEST(SweepCli, EmitsTheClusterJobsForThePlan) {

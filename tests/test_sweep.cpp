@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <map>
 #include <set>
 #include <thread>
 
@@ -100,6 +101,65 @@ TEST(SweepPlan, RefusesEachMistakeNamingItsKey) {
     EXPECT_EQ(refusal("scenes = [\"builtin:gen/plates?seed=3\", \"builtin:gen/plates?seed=4\"]\n" +
                       kLights + kTechniques),
               "");
+}
+
+// `times` makes each scene, light and camera a view at each time: a list, or START:END:STEP as
+// compare --timeline reads it (its last frame within a millionth of a step of END).
+TEST(SweepPlan, TimesMakeAViewAtEachTime) {
+    const std::string body = "scenes = [\"builtin:pendulum\"]\n" + kLights + kTechniques;
+    const Plan listed =
+        loadPlan(writePlan("times.toml", "times = [0, 0.5, 1.25]\nanimation = \"swing\"\n" + body));
+    ASSERT_EQ(listed.times.size(), 3u);
+    EXPECT_EQ(listed.times[2], 1.25);
+    EXPECT_EQ(listed.animation, "swing");
+    const SweepTasks tasks = expandTasks(listed);
+    ASSERT_EQ(tasks.views.size(), 3u * 3u); // 3 lights x 3 times
+    std::map<double, size_t> perTime;
+    for (const SweepView& v : tasks.views) {
+        ASSERT_TRUE(v.time.has_value());
+        ++perTime[*v.time];
+        EXPECT_EQ(v.animation, "swing");
+    }
+    EXPECT_EQ(perTime, (std::map<double, size_t>{{0.0, 3}, {0.5, 3}, {1.25, 3}}));
+    EXPECT_EQ(tasks.tasks.size(), 9u * 3u);
+
+    const Plan ranged = loadPlan(writePlan("range.toml", "times = \"0.5:1.5:0.25\"\n" + body));
+    EXPECT_EQ(ranged.times, (std::vector<double>{0.5, 0.75, 1.0, 1.25, 1.5}));
+    const Plan tenths = loadPlan(writePlan("tenths.toml", "times = \"0:0.3:0.1\"\n" + body));
+    ASSERT_EQ(tenths.times.size(), 4u);
+    EXPECT_EQ(tenths.times[3], 0.3); // not 0.30000000000000004
+    const Plan one = loadPlan(writePlan("one.toml", "times = [2]\nanimation = 1\n" + body));
+    EXPECT_EQ(one.times, std::vector<double>{2.0});
+    EXPECT_EQ(one.animation, "1");
+    // Without `times` the views are at rest.
+    const Plan still = loadPlan(writePlan("still.toml", body));
+    EXPECT_TRUE(still.times.empty());
+    for (const SweepView& v : expandTasks(still).views)
+        EXPECT_FALSE(v.time.has_value());
+}
+
+TEST(SweepPlan, RefusesTimesThatAreNotTimes) {
+    const std::string body = kScenes + kLights + kTechniques;
+    const std::pair<std::string, std::string> cases[] = {
+        {"times = []\n", "times: an empty list"},
+        {"times = [-1]\n", "times: '-1' is not"},
+        {"times = [0, \"a\"]\n", "times: 'a' is not"},
+        {"times = [0.5, 0.5]\n", "times: 0.5 is listed twice"},
+        {"times = [0, inf]\n", "times: 'inf' is not"},
+        {"times = true\n", "times: expected"},
+        {"times = \"0:1\"\n", "times: '0:1' is not START:END:STEP"},
+        {"times = \"1:0:1\"\n", "times: '1:0:1': START must be"},
+        {"times = \"0:1:0\"\n", "times: '0:1:0': START must be"},
+        {"times = \"0:100000:1\"\n", "times: '0:100000:1' is 100001 frames"},
+        {"animation = \"swing\"\n", "animation: needs times"},
+        {"times = [0]\nanimation = \"\"\n", "animation: expected"},
+        {"times = [0]\nanimation = -1\n", "animation: expected"},
+        {"times = [0]\nanimation = 0.5\n", "animation: expected"}};
+    for (const auto& [head, expected] : cases) {
+        const std::string why = refusal(head + body);
+        EXPECT_EQ(why.rfind(expected, 0), 0u) << "got '" << why << "' for:\n" << head;
+    }
+    EXPECT_EQ(refusal("times = [0]\nanimation = 0\n" + body), "");
 }
 
 TEST(SweepTasks, IdsDependOnWhatATaskComputesNotOnThePlansOrder) {

@@ -210,6 +210,10 @@ TEST(SweepTasks, EveryFieldOfATaskChangesItsIdAndOnlyThose) {
         {"samples", [](Plan& p) { p.samples += 1; }},
         {"shadow map size", [](Plan& p) { p.shadowMapSize = 2048; }},
         {"frames", [](Plan& p) { p.frames += 1; }},
+        {"a time", [](Plan& p) { p.times = {0.5}; }},
+        {"another time", [](Plan& p) { p.times = {0.25}; }},
+        {"the time 0", [](Plan& p) { p.times = {0.0}; }},
+        {"an animation", [](Plan& p) { p.times = {0.5}, p.animation = "1"; }},
         {"technique", [](Plan& p) { p.settings[0].technique = "pcss"; }},
         {"parameter value", [](Plan& p) { p.settings[0].sets[0].second = "7"; }},
         {"parameter name", [](Plan& p) { p.settings[0].sets[0].first = "pcf.samples"; }},
@@ -225,6 +229,11 @@ TEST(SweepTasks, EveryFieldOfATaskChangesItsIdAndOnlyThose) {
         ids.insert(changed);
     }
     EXPECT_EQ(ids.size(), edits.size() + 1) << "two fields, one id";
+    // A plan without times keeps the ids it had before times were read: the view is described
+    // as it always was.
+    EXPECT_EQ(expandTasks(onePlan()).views[0].id,
+              hashHex("scene=builtin:showcase;light=kind=spot;size=0.2;pos=1,4,2;dir=0,-1,0;"
+                      "cone=30;camera=;size=320x180;samples=64"));
     // Labels and paths do not decide what a task computes.
     Plan same = onePlan();
     same.lights[0].name = "renamed";

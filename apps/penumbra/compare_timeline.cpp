@@ -13,17 +13,6 @@
 namespace penumbra::cli {
 namespace {
 
-// An automatic camera, default light or ground follows the scene's bounds, which move with the
-// animation: the first frame's are kept, so that only what the animation moves moves.
-void pinToFirstFrame(Scene& scene, const Scene& first) {
-    const auto automatic = [](const Camera& c) { return c.name.rfind("auto", 0) == 0; };
-    if (!first.cameras.empty() && automatic(first.cameras.front()) && !scene.cameras.empty() &&
-        automatic(scene.cameras.front()))
-        scene.cameras.front() = first.cameras.front();
-    if (first.defaultLight && scene.defaultLight)
-        scene.lights.front() = first.lights.front();
-}
-
 // Frame k's scene, quietly: the compare command's own load of the first frame said the
 // warnings. A frame refused names itself, since the first frame was accepted.
 Scene loadFrame(const TimelineInputs& in, const SceneOptions& options, size_t k,
@@ -49,6 +38,15 @@ double totalMs(const RenderResult& r) {
 }
 
 } // namespace
+
+void pinToFirstFrame(Scene& scene, const Scene& first) {
+    const auto automatic = [](const Camera& c) { return c.name.rfind("auto", 0) == 0; };
+    if (!first.cameras.empty() && automatic(first.cameras.front()) && !scene.cameras.empty() &&
+        automatic(scene.cameras.front()))
+        scene.cameras.front() = first.cameras.front();
+    if (first.defaultLight && scene.defaultLight)
+        scene.lights.front() = first.lights.front();
+}
 
 std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& in,
                                      const Timeline& timeline) {

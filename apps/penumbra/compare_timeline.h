@@ -7,7 +7,7 @@
 #include "penumbra/reference.h"
 #include "penumbra/renderer.h"
 #include "report/blur_band.h"
-#include "timeline_range.h"
+#include "scene/timeline_range.h"
 
 #include <nlohmann/json.hpp>
 
@@ -35,6 +35,11 @@ struct TimelineInputs {
     const std::vector<BlurReach>& blur;
     const ReferenceOptions& reference;
 };
+
+// An automatic camera, default light or ground follows the scene's bounds, which move with the
+// animation: the first frame's are kept (the ground by the caller, through the scene options),
+// so that only what the animation moves moves. A sweep's views at a time do the same.
+void pinToFirstFrame(Scene& scene, const Scene& first);
 
 // Every frame of `timeline`: the scene loaded at its time (the first frame's automatic camera,
 // default light and ground kept for all, so that only what the animation moves moves), each row

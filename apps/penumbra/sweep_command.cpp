@@ -55,6 +55,8 @@ std::string tasksJson(const sweep::Plan& plan, const sweep::SweepTasks& tasks) {
                               {"light", v.light.name},
                               {"camera", v.camera},
                               {"setting", t.setting.name()}});
+        if (v.time)
+            j["tasks"].back()["time"] = *v.time;
     }
     return j.dump(1) + "\n";
 }
@@ -110,9 +112,10 @@ int runSweep(const SweepArgs& args, const GlobalOptions& global) {
         for (size_t t : mine) {
             const sweep::SweepTask& task = tasks.tasks[t];
             const sweep::SweepView& v = tasks.views[task.view];
-            std::printf("%s %s %s %s %s\n", task.id.c_str(), v.scene.label.c_str(),
+            std::printf("%s %s %s %s %s%s\n", task.id.c_str(), v.scene.label.c_str(),
                         v.light.name.c_str(), v.camera.empty() ? "(default)" : v.camera.c_str(),
-                        task.setting.name().c_str());
+                        task.setting.name().c_str(),
+                        v.time ? fmt::format(" t={}s", *v.time).c_str() : "");
         }
         return 0;
     }
@@ -157,8 +160,8 @@ Action addSweepCommand(CLI::App& app, const GlobalOptions& global) {
                     "PENUMBRA_TASK_COUNT; with --emit: one shard per view)")
         ->type_name("N");
     cmd->add_flag("--list", args->list,
-                  "print this shard's tasks (id, scene, light, camera, "
-                  "setting) and exit");
+                  "print this shard's tasks (id, scene, light, camera, setting, and "
+                  "t=SECONDSs for a view at a time) and exit");
     cmd->add_option("--emit", args->emit,
                     "print the cluster job for the plan instead of running it: an sbatch "
                     "job-array script or a Kubernetes Indexed Job manifest")

@@ -1,6 +1,8 @@
 // A shard's tasks (sweep_run.h).
 #include "sweep_run.h"
 
+#include "compare_timeline.h"
+
 #include "penumbra/error.h"
 #include "reference/field_refusal.h"
 #include "report/blur_band.h"
@@ -58,7 +60,24 @@ LoadedView loadView(const sweep::Plan& plan, const sweep::SweepView& view,
                           .frames = plan.frames,
                           .camera = view.camera}};
     lightOptions(view.light, sceneOptions, v.base);
-    v.scene = loadSceneReporting(view.scene.spec, global, sceneOptions, v.base);
+    if (view.time) {
+        // Framed at the plan's first time, as a compare --timeline frames all its frames by its
+        // first: the automatic camera, default light and ground hold, and only what the
+        // animation moves moves. The warnings are said by the first time's views.
+        sceneOptions.animation = view.animation;
+        sceneOptions.time = plan.times.front();
+        const bool first = *view.time == plan.times.front();
+        const Scene framing =
+            loadSceneReporting(view.scene.spec, global, sceneOptions, v.base, !first);
+        sceneOptions.ground = framing.automaticGround;
+        sceneOptions.noGround = !sceneOptions.ground;
+        sceneOptions.time = view.time;
+        v.scene = first ? framing
+                        : loadSceneReporting(view.scene.spec, global, sceneOptions, v.base, true);
+        pinToFirstFrame(v.scene, framing);
+    } else {
+        v.scene = loadSceneReporting(view.scene.spec, global, sceneOptions, v.base);
+    }
     if (view.light.kind != "scene") {
         std::erase_if(v.scene.lights, [](const Light& l) { return l.name != kPlanLightName; });
         v.scene.defaultLight = false;
@@ -78,6 +97,7 @@ sweep::TaskRecord recordOf(const sweep::Plan& plan, const sweep::SweepView& view
             .camera = view.camera.empty() ? "(default)" : view.camera,
             .setting = task.setting.name(),
             .technique = task.setting.technique,
+            .time = view.time,
             .parameters = task.setting.sets,
             .width = plan.width,
             .height = plan.height,
@@ -123,6 +143,11 @@ void measure(sweep::TaskRecord& record, const sweep::SweepTask& task, const Load
     sweep::setCosts(record, result.passes);
 }
 
+// ", at 0.5 s" for a view at a time, else nothing.
+std::string atTime(const sweep::SweepView& view) {
+    return view.time ? fmt::format(", at {} s", *view.time) : std::string();
+}
+
 std::string clockText(double seconds) {
     const long s = long(seconds + 0.5);
     return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, s / 60 % 60, s % 60)
@@ -159,9 +184,10 @@ SweepRunStats runSweepTasks(const sweep::Plan& plan, const sweep::SweepTasks& ta
         const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
         const std::string eta =
             done == 0 ? "?" : clockText(elapsed / double(done) * double(total - done));
-        std::fprintf(stderr, "penumbra: sweep [%zu/%zu] %s on %s, %s (elapsed %s, ETA %s)\n",
+        std::fprintf(stderr, "penumbra: sweep [%zu/%zu] %s on %s, %s%s (elapsed %s, ETA %s)\n",
                      done + 1, total, task.setting.name().c_str(), view.scene.label.c_str(),
-                     view.light.name.c_str(), clockText(elapsed).c_str(), eta.c_str());
+                     view.light.name.c_str(), atTime(view).c_str(), clockText(elapsed).c_str(),
+                     eta.c_str());
     };
     for (const auto& [viewIndex, list] : pending) {
         const sweep::SweepView& view = tasks.views[viewIndex];
@@ -196,8 +222,9 @@ SweepRunStats runSweepTasks(const sweep::Plan& plan, const sweep::SweepTasks& ta
         const ReferenceResult truth = sweep::cachedTruth(
             &cache, key,
             [&] {
-                std::fprintf(stderr, "penumbra: sweep: tracing the truth of view %s (%s, %s)\n",
-                             view.id.c_str(), view.scene.label.c_str(), view.light.name.c_str());
+                std::fprintf(stderr, "penumbra: sweep: tracing the truth of view %s (%s, %s%s)\n",
+                             view.id.c_str(), view.scene.label.c_str(), view.light.name.c_str(),
+                             atTime(view).c_str());
                 return computeReference(loaded->lit, gbuffer, {.samples = plan.samples});
             },
             &computed);

@@ -112,13 +112,16 @@ MergeResult mergeRecords(std::vector<TaskRecord> records) {
 
 nlohmann::json mergeJson(const MergeResult& m) {
     nlohmann::json j{{"tasks", m.tasks}, {"failed", nlohmann::json::array()}};
-    for (const TaskRecord& r : m.failed)
+    for (const TaskRecord& r : m.failed) {
         j["failed"].push_back({{"id", r.id},
                                {"scene", r.scene},
                                {"light", r.light},
                                {"camera", r.camera},
                                {"setting", r.setting},
                                {"error", r.error}});
+        if (r.time)
+            j["failed"].back()["time"] = *r.time;
+    }
     j["groups"] = nlohmann::json::array();
     for (const GroupSummary& g : m.groups) {
         nlohmann::json settings = nlohmann::json::array();

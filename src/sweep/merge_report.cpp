@@ -121,9 +121,9 @@ std::string mergeHtml(const MergeResult& m, const std::string& title) {
     if (!m.failed.empty()) {
         s += "<h2>Failed tasks</h2>\n<section class=\"card\"><ul>\n";
         for (const TaskRecord& r : m.failed)
-            fmt::format_to(out, "<li><strong>{}</strong> on {}, {}: {}</li>\n",
+            fmt::format_to(out, "<li><strong>{}</strong> on {}, {}{}: {}</li>\n",
                            escapeHtml(r.setting), escapeHtml(r.scene), escapeHtml(r.light),
-                           escapeHtml(r.error));
+                           r.time ? fmt::format(", at {} s", *r.time) : "", escapeHtml(r.error));
         s += "</ul></section>\n";
     }
     s += "</main>\n</body>\n</html>\n";

@@ -6,11 +6,13 @@
 #include "penumbra/scene.h"
 #include "penumbra/settings.h"
 #include "scene/generated.h"
+#include "scene/timeline_range.h"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <set>
 
 namespace penumbra::sweep {
@@ -119,6 +121,49 @@ public:
                 if (other.label == scene.label)
                     fail(key, fmt::format("'{}' is listed twice", scene.label));
             plan.scenes.push_back(std::move(scene));
+        }
+    }
+
+    // `times`: a list of seconds, or "START:END:STEP" as compare --timeline reads it.
+    // `animation`: a name or an index, which would change nothing without times.
+    void readTimes(const toml::table& root, Plan& plan) const {
+        if (const toml::node* node = root.get("times")) {
+            if (const std::optional<std::string> range = node->value_exact<std::string>()) {
+                try {
+                    const Timeline timeline = parseTimeline(*range);
+                    for (size_t k = 0; k < timeline.frames; ++k)
+                        plan.times.push_back(timeline.at(k));
+                } catch (const InputError& e) {
+                    fail("times", withoutSubject(e));
+                }
+            } else if (!node->as_array()) {
+                fail("times", "expected a list of seconds or \"START:END:STEP\"");
+            }
+            if (node->as_array())
+                for (const std::string& text : values(*node, "times")) {
+                    double seconds = 0.0;
+                    const auto [end, error] =
+                        std::from_chars(text.data(), text.data() + text.size(), seconds);
+                    if (error != std::errc{} || end != text.data() + text.size() ||
+                        !std::isfinite(seconds) || seconds < 0.0)
+                        fail("times",
+                             fmt::format("'{}' is not a time in seconds, 0 or more", text));
+                    if (std::find(plan.times.begin(), plan.times.end(), seconds) !=
+                        plan.times.end())
+                        fail("times", fmt::format("{} is listed twice", seconds));
+                    plan.times.push_back(seconds);
+                }
+        }
+        if (const toml::node* node = root.get("animation")) {
+            if (plan.times.empty())
+                fail("animation", "needs times (without them the scenes are at rest)");
+            if (const std::optional<std::string> name = node->value_exact<std::string>())
+                plan.animation = *name;
+            else if (const std::optional<int64_t> index = node->value_exact<int64_t>();
+                     index && *index >= 0)
+                plan.animation = std::to_string(*index);
+            if (plan.animation.empty())
+                fail("animation", "expected an animation's name or index");
         }
     }
 
@@ -248,12 +293,16 @@ public:
         try {
             ParameterValues().set(key, value);
         } catch (const InputError& e) {
-            std::string why = e.what();
-            const std::string prefix = e.subject() + ": ";
-            if (why.rfind(prefix, 0) == 0)
-                why.erase(0, prefix.size());
-            fail(where, why);
+            fail(where, withoutSubject(e));
         }
+    }
+
+    static std::string withoutSubject(const InputError& e) {
+        std::string why = e.what();
+        const std::string prefix = e.subject() + ": ";
+        if (why.rfind(prefix, 0) == 0)
+            why.erase(0, prefix.size());
+        return why;
     }
 
 private:
@@ -283,7 +332,7 @@ Plan loadPlan(const std::filesystem::path& path) {
     }
     reader.onlyKeys(root, "",
                     {"scenes", "lights", "cameras", "width", "height", "samples", "shadow_map_size",
-                     "frames", "techniques"});
+                     "frames", "times", "animation", "techniques"});
     Plan plan{.path = path};
     plan.width = reader.count(root, "width", plan.width, 1, 16384);
     plan.height = reader.count(root, "height", plan.height, 1, 16384);
@@ -291,6 +340,7 @@ Plan loadPlan(const std::filesystem::path& path) {
     plan.shadowMapSize = reader.count(root, "shadow_map_size", plan.shadowMapSize, 16, 16384);
     plan.frames = reader.count(root, "frames", plan.frames, 1, 1000);
     reader.readScenes(root, plan);
+    reader.readTimes(root, plan);
     reader.readLights(root, plan);
     if (const toml::node* cameras = root.get("cameras")) {
         const toml::array* a = cameras->as_array();

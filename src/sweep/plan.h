@@ -1,7 +1,7 @@
 #pragma once
-// A benchmark plan (`penumbra sweep PLAN`, docs/sweep.md): scenes x lights x cameras x technique
-// settings, read from TOML and checked in full before any work, so that a typing mistake costs
-// nothing and a run never stops half-way on its own plan.
+// A benchmark plan (`penumbra sweep PLAN`, docs/sweep.md): scenes x lights x cameras x times x
+// technique settings, read from TOML and checked in full before any work, so that a typing mistake
+// costs nothing and a run never stops half-way on its own plan.
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -43,7 +43,11 @@ struct Plan {
     uint32_t width = 320, height = 180;
     uint32_t samples = 64; // truth rays per pixel and light with a size
     uint32_t shadowMapSize = 1024;
-    uint32_t frames = 3;               // timed frames after one warm-up frame
+    uint32_t frames = 3; // timed frames after one warm-up frame
+    // `times`: seconds into each scene's animation, a view at each (empty: the views at rest);
+    // `animation`: the one they pose, by name or index ("" the first).
+    std::vector<double> times;
+    std::string animation;
     std::vector<PlanSetting> settings; // every grid point of every technique entry
 };
 

@@ -35,6 +35,8 @@ nlohmann::json taskRecordJson(const TaskRecord& r) {
                      {"width", r.width},
                      {"height", r.height},
                      {"samples", r.samples}};
+    if (r.time)
+        j["time"] = *r.time;
     j["parameters"] = nlohmann::json::object();
     for (const auto& [key, value] : r.parameters)
         j["parameters"][key] = value;
@@ -71,6 +73,8 @@ TaskRecord taskRecordFrom(const nlohmann::json& j, const std::string& file) {
                      .width = j.at("width"),
                      .height = j.at("height"),
                      .samples = j.at("samples")};
+        if (j.contains("time"))
+            r.time = j.at("time").get<double>();
         for (const auto& [key, value] : j.at("parameters").items())
             r.parameters.emplace_back(key, value.get<std::string>());
         if (r.failed) {

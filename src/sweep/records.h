@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +17,7 @@ namespace penumbra::sweep {
 
 struct TaskRecord {
     std::string id, view, scene, light, camera, setting, technique;
+    std::optional<double> time; // the view's time (none: at rest)
     std::vector<std::pair<std::string, std::string>> parameters;
     bool failed = false;
     std::string error; // why it failed

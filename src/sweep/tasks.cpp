@@ -31,16 +31,26 @@ std::string hashHex(std::string_view bytes) {
 
 SweepTasks expandTasks(const Plan& plan) {
     SweepTasks out;
+    std::vector<std::optional<double>> times(plan.times.begin(), plan.times.end());
+    if (times.empty())
+        times.push_back(std::nullopt); // at rest, described as before times were read
     for (const PlanScene& scene : plan.scenes)
         for (const PlanLight& light : plan.lights)
-            for (const std::string& camera : plan.cameras) {
-                // The light's name is a label; what it is decides the view.
-                const std::string text =
-                    fmt::format("scene={};light={};camera={};size={}x{};samples={}", scene.label,
-                                describe(light), camera, plan.width, plan.height, plan.samples);
-                out.views.push_back(
-                    {.scene = scene, .light = light, .camera = camera, .id = hashHex(text)});
-            }
+            for (const std::string& camera : plan.cameras)
+                for (const std::optional<double>& time : times) {
+                    // The light's name is a label; what it is decides the view.
+                    std::string text = fmt::format(
+                        "scene={};light={};camera={};size={}x{};samples={}", scene.label,
+                        describe(light), camera, plan.width, plan.height, plan.samples);
+                    if (time)
+                        text += fmt::format(";time={};animation={}", *time, plan.animation);
+                    out.views.push_back({.scene = scene,
+                                         .light = light,
+                                         .camera = camera,
+                                         .time = time,
+                                         .animation = time ? plan.animation : "",
+                                         .id = hashHex(text)});
+                }
     std::sort(out.views.begin(), out.views.end(),
               [](const SweepView& a, const SweepView& b) { return a.id < b.id; });
     for (size_t v = 0; v < out.views.size(); ++v)

@@ -4,6 +4,7 @@
 #include "sweep/plan.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -13,12 +14,14 @@ namespace penumbra::sweep {
 // 64-bit FNV-1a as 16 hex digits: names of results and truth files, the same on every machine.
 std::string hashHex(std::string_view bytes);
 
-// What a view is made of: a scene, a light (kind and size), a camera, and the plan's image size
-// and truth samples.
+// What a view is made of: a scene, a light (kind and size), a camera, a time (with the plan's
+// `times`), and the plan's image size and truth samples.
 struct SweepView {
     PlanScene scene;
     PlanLight light;
     std::string camera;
+    std::optional<double> time; // none: at rest
+    std::string animation;      // the plan's, with a time
     std::string id; // hash of the description (the scene as the plan names it, not its path)
 };
 

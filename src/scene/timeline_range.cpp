@@ -1,4 +1,4 @@
-#include "timeline_range.h"
+#include "scene/timeline_range.h"
 
 #include "penumbra/error.h"
 
@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <string>
 
-namespace penumbra::cli {
+namespace penumbra {
 namespace {
 
 double number(std::string_view text, std::string_view whole) {
@@ -50,4 +50,4 @@ Timeline parseTimeline(std::string_view text) {
     return t;
 }
 
-} // namespace penumbra::cli
+} // namespace penumbra

@@ -1,10 +1,10 @@
 #pragma once
-// `compare --timeline START:END:STEP`'s frames: parsed and refused here, apart from the
-// command, so that the unit tests can hold its bounds.
+// START:END:STEP in seconds: `compare --timeline`'s frames and a sweep plan's `times`, parsed
+// and refused in one place, so that both read a range alike and the unit tests hold its bounds.
 #include <cstddef>
 #include <string_view>
 
-namespace penumbra::cli {
+namespace penumbra {
 
 struct Timeline {
     double start = 0.0, end = 0.0, step = 0.0;
@@ -19,4 +19,4 @@ inline constexpr size_t kMaxTimelineFrames = 10000;
 // frames; InputError("--timeline", ...) otherwise.
 Timeline parseTimeline(std::string_view text);
 
-} // namespace penumbra::cli
+} // namespace penumbra
