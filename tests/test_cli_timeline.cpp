@@ -2,6 +2,7 @@
 // Each frame's metrics are the ones `compare --time T` measures on the same pose; a still scene
 // has no flicker; a moving box takes the pixels its shadow crosses out of flicker's count.
 #include "cli_refusal.h"
+#include "core/image_io.h"
 #include "process.h"
 #include "scratch_dir.h"
 #include "sliding_box.h"
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -305,3 +307,111 @@ INSTANTIATE_TEST_SUITE_P(
             {"compare", "builtin:showcase", "-o", "{out}", "--timeline", "0:1:0.5", "--time", "1"},
             "--timeline"}),
     [](const auto& testInfo) { return std::string(testInfo.param.name); });
+
+namespace {
+
+// render builtin:pendulum with hard at a small size, and `extra`; its output folder.
+fs::path renderPendulum(const std::string& name, std::vector<std::string> extra) {
+    const fs::path out = outputScratch(name);
+    std::vector<std::string> args{
+        "render", "builtin:pendulum",  "-o",  out.string(),  "--width", "96",       "--height",
+        "64",     "--shadow-map-size", "256", "--technique", "hard",    "--format", "pfm"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const ProcessResult r = runCli(args);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    return out;
+}
+
+} // namespace
+
+// render --fps plays its timed frames: 16 at 60 a second from 0.25 s end at 0.5 s (the bottom
+// of the swing, where the ball is fastest), on render --time 0.5's picture and not on the pose
+// a frame later; stats.json holds each pass's time in each of the 16 poses and the rate.
+TEST(CliTimeline, RenderFpsPlaysItsTimedFrames) {
+    const fs::path played =
+        renderPendulum("fps-played", {"--time", "0.25", "--fps", "60", "--frames", "16"});
+    const fs::path at = renderPendulum("fps-at", {"--time", "0.5", "--frames", "1"});
+    const fs::path later =
+        renderPendulum("fps-later", {"--time", "0.516666666667", "--frames", "1"});
+    EXPECT_EQ(slurp(played / "visibility.pfm"), slurp(at / "visibility.pfm"));
+    EXPECT_NE(slurp(played / "visibility.pfm"), slurp(later / "visibility.pfm"));
+    const J stats = J::parse(slurp(played / "stats.json"));
+    EXPECT_EQ(stats["scene"]["time"], 0.5);
+    EXPECT_EQ(stats["frames"]["timed"], 16);
+    EXPECT_EQ(stats["frames"]["fps"], 60.0);
+    ASSERT_TRUE(stats["gpu_ms_per_frame"].contains("shadow"));
+    EXPECT_EQ(stats["gpu_ms_per_frame"]["shadow"].size(), 16u);
+    for (const auto& [pass, times] : stats["gpu_ms_per_frame"].items()) { // each the median
+        std::vector<double> sorted = times.get<std::vector<double>>();
+        ASSERT_EQ(sorted.size(), 16u) << pass;
+        std::sort(sorted.begin(), sorted.end());
+        EXPECT_DOUBLE_EQ(stats["gpu_ms"][pass].get<double>(), 0.5 * (sorted[7] + sorted[8]))
+            << pass;
+    }
+    EXPECT_FALSE(J::parse(slurp(at / "stats.json"))["frames"].contains("fps"));
+    // Without --time it plays from 0 s, the animation's start, not the nodes' rest pose: the
+    // sliding box stands at x = 0.5 at 0 s and at 0 at rest.
+    const fs::path box = boxAsset(scratchDir("fps") / "box", /*animated=*/true);
+    const auto renderBox = [&](const std::string& name, std::vector<std::string> extra) {
+        const fs::path out = outputScratch(name);
+        std::vector<std::string> args{"render",   box.string(), "-o",       out.string(),
+                                      "--width",  "64",         "--height", "48",
+                                      "--format", "pfm",        "--frames", "1"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        EXPECT_EQ(runCli(args).exitCode, 0);
+        return slurp(out / "visibility.pfm");
+    };
+    const std::string fromStart = renderBox("fps-box", {"--fps", "30"});
+    EXPECT_EQ(fromStart, renderBox("box-zero", {"--time", "0"}));
+    EXPECT_NE(fromStart, renderBox("box-rest", {}));
+}
+
+// Each played frame is framed as the first: the box alone under its automatic camera, light and
+// ground, played at 2 frames a second, draws its frame at 0.5 s from the camera and under the
+// light of 0 s, with the ground (its pixels the same within the box's own move), not with the
+// camera and light 0.5 s frames alone.
+TEST(CliTimeline, RenderFpsFramesEachPoseAsTheFirst) {
+    const fs::path unlit = boxAsset(scratchDir("fps") / "unlit", /*animated=*/true, /*lit=*/false);
+    struct Frame {
+        J stats;
+        penumbra::FloatImage visibility;
+    };
+    const auto render = [&](const std::string& name, std::vector<std::string> extra) {
+        const fs::path out = outputScratch(name);
+        std::vector<std::string> args{"render", unlit.string(), "-o", out.string(), "--width",
+                                      "64",     "--height",     "48", "--format",   "pfm"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const ProcessResult r = runCli(args);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return Frame{J::parse(slurp(out / "stats.json")),
+                     penumbra::readPfm(out / "visibility.pfm")};
+    };
+    const Frame played = render("fps-framed", {"--fps", "2", "--frames", "2"});
+    const Frame start = render("fps-start", {"--time", "0", "--frames", "1"});
+    const Frame alone = render("fps-alone", {"--time", "0.5", "--frames", "1"});
+    ASSERT_EQ(played.stats["scene"]["time"], 0.5);
+    EXPECT_EQ(played.stats["camera"], start.stats["camera"]);
+    EXPECT_NE(played.stats["camera"], alone.stats["camera"]);
+    EXPECT_EQ(played.stats["lights"][0]["direction"], start.stats["lights"][0]["direction"]);
+    const auto surface = [](const penumbra::FloatImage& image) {
+        return std::count_if(image.pixels.begin(), image.pixels.end(),
+                             [](float v) { return std::isfinite(v); });
+    };
+    EXPECT_NEAR(double(surface(played.visibility)), double(surface(start.visibility)),
+                0.1 * double(surface(start.visibility)))
+        << "the ground of the first frame holds";
+}
+
+TEST(CliTimeline, RenderFpsRefusesAStillSceneAndRatesOutOfRange) {
+    const fs::path out = outputScratch("fps-refused");
+    ProcessResult r = runCli({"render", "builtin:resting", "-o", out.string(), "--fps", "60"});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err, "error: --fps: 'builtin:resting' has no animation and no light that orbits: "
+                     "nothing would move\n");
+    for (const char* rate : {"0", "-30", "20000", "nan"}) {
+        r = runCli({"render", "builtin:pendulum", "-o", out.string(), "--fps", rate});
+        EXPECT_EQ(r.exitCode, 2) << rate;
+        EXPECT_EQ(r.err.rfind("error: --fps: ", 0), 0u) << r.err;
+    }
+    EXPECT_FALSE(fs::exists(out));
+}

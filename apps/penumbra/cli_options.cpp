@@ -155,6 +155,11 @@ void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques)
                  static_cast<unsigned long long>(c.misWound), needing.c_str());
 }
 
+bool lightsOrbit(const SceneOptions& options) {
+    return std::any_of(options.addedLights.begin(), options.addedLights.end(),
+                       [](const std::string& text) { return parseAddedLight(text).orbitSeconds; });
+}
+
 Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
                          const SceneOptions& o, const RenderOptions& options, bool quiet) {
     SceneEdits edits{.fovDegrees = o.fovDegrees};
@@ -177,14 +182,12 @@ Scene loadSceneReporting(const std::string& spec, const GlobalOptions& global,
     edits.noGround = o.noGround;
     edits.doubleSided = o.doubleSided;
     std::vector<std::string> warnings;
-    const bool lightsMove = std::any_of(edits.addedLights.begin(), edits.addedLights.end(),
-                                        [](const AddedLight& a) { return a.orbitSeconds; });
     Scene scene = loadScene(spec, {.maxFileSize = global.maxFileSize,
                                    .maxTriangles = global.maxTriangles,
                                    .warnings = &warnings,
                                    .time = o.time,
                                    .animation = o.animation,
-                                   .lightsMove = lightsMove});
+                                   .lightsMove = lightsOrbit(o)});
     applySceneEdits(scene, edits);
     if (quiet)
         return scene;

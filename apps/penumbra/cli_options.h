@@ -69,6 +69,10 @@ TechniqueRow rowNamed(const std::string& name, std::string_view option);
 // the triangles counted. Called after every check, so that no warning precedes an error line.
 void warnOpenGeometry(const Scene& scene, std::span<const Technique> techniques);
 
+// Whether an --add-light orbits: the scene then moves with the time though nothing in it is
+// animated.
+bool lightsOrbit(const SceneOptions& options);
+
 // loadScene with the global options, then the scene options applied; loader warnings go to
 // stderr as `penumbra: warning:`, and so do light sizes that no light of the scene takes
 // (--light-angle without a sun, --light-radius without a spot or point light). `quiet`: none of

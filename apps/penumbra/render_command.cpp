@@ -4,6 +4,7 @@
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
 #include "reference/field_refusal.h"
+#include "render_playback.h"
 #include "report/field_slice.h"
 #include "report/stats.h"
 #include "shadows/sdf_field.h"
@@ -13,6 +14,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 namespace penumbra::cli {
 namespace {
@@ -24,6 +26,7 @@ struct RenderArgs {
     std::vector<std::string> sets;
     RenderOptions options;
     FloatFormat format = FloatFormat::Both;
+    std::optional<double> fps; // --fps: the timed frames play the animation
 };
 
 void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& run,
@@ -40,7 +43,17 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     const TechniqueRow row = rowNamed(args.technique, "--technique");
     RenderOptions options = optionsFor(args.options, row, args.sets);
     const FieldSlice slice = parseFieldSlice(args.fieldSlice);
-    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, args.options);
+    SceneOptions sceneOptions = args.sceneOptions;
+    if (args.fps) // playing starts at 0 s, not at rest
+        sceneOptions.time = sceneOptions.time.value_or(0.0);
+    const PlaybackInputs playback{.sceneSpec = args.scene,
+                                  .global = global,
+                                  .sceneOptions = sceneOptions,
+                                  .fps = args.fps.value_or(0.0)};
+    if (args.fps) // refused before a warning of the load is said
+        checkPlayback(playback, loadSceneReporting(args.scene, global, sceneOptions, args.options,
+                                                   /*quiet=*/true));
+    const Scene scene = loadSceneReporting(args.scene, global, sceneOptions, args.options);
     if (!row.layers.empty()) // the layers it names, as compare runs them (the others off)
         applyRow(row, options.parameters, scene.bounds().radius());
     // Created before the long work so an unwritable path fails fast; removed again on error.
@@ -61,16 +74,30 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     warnOpenGeometry(scene, std::span(&options.technique, 1)); // after every check: no warning
                                                                // precedes an error line
     std::fprintf(stderr, "penumbra: uploading scene\n");
-    SceneRenderer sceneRenderer(renderer, scene);
-    const RenderResult result = sceneRenderer.render(options, [](const std::string& stage) {
-        std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
-    });
+    PlayedFrames shown; // with --fps, the last frame's pose; else the scene as loaded
+    if (args.fps) {
+        shown = playFrames(renderer, playback, scene, options);
+    } else {
+        shown.uploaded = std::make_unique<SceneRenderer>(renderer, scene);
+        shown.result = shown.uploaded->render(options, [](const std::string& stage) {
+            std::fprintf(stderr, "penumbra: %s\n", stage.c_str());
+        });
+    }
+    const Scene& shownScene = args.fps ? shown.scene : scene;
+    SceneRenderer& sceneRenderer = *shown.uploaded;
+    const RenderResult& result = shown.result;
     // sdf.refuse: an error line and no output where the field cannot hold the view's casters.
     refuseUnheldField(sceneRenderer, options, result, [](const std::string& line) {
         std::fprintf(stderr, "penumbra: %s\n", line.c_str());
     });
     writeOutputs(out, result,
-                 {args.scene, scene, options, device, result, namingExtension(args.format)},
+                 {.sceneSpec = args.scene,
+                  .scene = shownScene,
+                  .options = options,
+                  .device = device,
+                  .result = result,
+                  .floatExtension = namingExtension(args.format),
+                  .fps = args.fps.value_or(0.0)},
                  args.format);
     if (result.field) { // what the tracer saw
         DistanceFieldInfo info;
@@ -88,8 +115,12 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     for (const std::string& f : out.staged())
         files += (files.empty() ? "" : ", ") + f;
     std::printf("wrote %s/{%s}\n", out.path().c_str(), files.c_str());
-    std::printf("GPU ms per pass (median of %u frames after %s):", options.frames,
-                result.virtualMaps ? "2 warm-ups" : "1 warm-up");
+    if (args.fps)
+        std::printf("GPU ms per pass (median of %u frames at %g a second, each pose after %s):",
+                    options.frames, *args.fps, result.virtualMaps ? "2 warm-ups" : "1 warm-up");
+    else
+        std::printf("GPU ms per pass (median of %u frames after %s):", options.frames,
+                    result.virtualMaps ? "2 warm-ups" : "1 warm-up");
     double total = 0;
     for (const PassTime& p : result.passes) {
         std::printf("  %s %.3f", p.pass.c_str(), p.medianMs);
@@ -128,6 +159,13 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     addViewOptions(*cmd, args->options, args->sceneOptions);
     addTechniqueOptions(*cmd, args->options, args->sets);
     addFormatOption(*cmd, args->format);
+    cmd->add_option("--fps", args->fps,
+                    "play: the `--frames` timed frames are successive poses F a second from "
+                    "`--time` (default 0 s) of an animated scene (or one whose added lights "
+                    "orbit), each loaded, framed as the first and uploaded anew; the GPU times are "
+                    "each pass's per frame while things move and their median, the outputs the "
+                    "last frame's")
+        ->type_name("F");
     // The techniques that trace a distance field, from the registry.
     const std::string tracing = shadows::techniquesWhere(
         [](const shadows::TechniqueModule& m) { return m.tracedField.has_value(); });

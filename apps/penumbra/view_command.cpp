@@ -1,6 +1,7 @@
 // `penumbra view SCENE [render's options] [--frames N --screenshot FILE] [--hide-ui]`: the
 // interactive viewer (apps/viewer).
 #include "commands.h"
+#include "compare_timeline.h"
 #include "penumbra/error.h"
 #include "shadows/technique.h"
 #include "viewer.h"
@@ -15,7 +16,7 @@ struct ViewArgs {
     SceneOptions sceneOptions;
     std::string scene, technique = std::string(techniqueName(kDefaultTechnique));
     std::vector<std::string> sets;
-    bool noVsync = false;
+    bool noVsync = false, play = false;
     std::string show = "scene", compareWith;
     viewer::ViewerOptions options;
 };
@@ -67,7 +68,30 @@ int runView(const ViewArgs& args, const GlobalOptions& global) {
     options.vsync = !args.noVsync && options.frames == 0; // scripted runs do not wait for vsync
     options.device = global.device;
     options.validation = global.validation;
-    const Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, options.render);
+    Scene scene = loadSceneReporting(args.scene, global, args.sceneOptions, options.render);
+    if (!scene.animation.empty() || lightsOrbit(args.sceneOptions)) {
+        // Each pose loaded quietly (this load said the warnings), framed as this one is: its
+        // automatic camera, default light and ground hold, as on a compare --timeline.
+        SceneOptions posed = args.sceneOptions;
+        posed.ground = posed.ground || scene.automaticGround;
+        posed.noGround = !posed.ground;
+        options.poseAt = [posed, spec = args.scene, &global, render = options.render,
+                          first = scene](double time) {
+            SceneOptions at = posed;
+            at.time = time;
+            Scene s = loadSceneReporting(spec, global, at, render, /*quiet=*/true);
+            pinToFirstFrame(s, first);
+            return s;
+        };
+        options.time = args.sceneOptions.time.value_or(0.0);
+        options.duration = scene.animationDuration;
+        options.play = args.play;
+        if (!args.sceneOptions.time) // at rest is no time of the animation: start at 0
+            scene = options.poseAt(0.0);
+    } else if (args.play) {
+        throw InputError("--play",
+                         fmt::format("'{}' has no animation and no light that orbits", args.scene));
+    }
     viewer::runViewer(scene, options);
     return 0;
 }
@@ -126,6 +150,10 @@ Action addViewCommand(CLI::App& app, const GlobalOptions& global) {
                     "ground-truth rays per pixel and light for the error view (1..65536)")
         ->type_name("N")
         ->capture_default_str();
+    cmd->add_flag("--play", args->play,
+                  "an animated scene (or one whose added lights orbit) plays from `--time` at "
+                  "start, looping at the animation's end (Space plays and pauses; the time "
+                  "slider scrubs); with `--frames` each frame moves it on 1/60 s");
     cmd->add_flag("--hide-ui", args->options.hideUi,
                   "draw the scene without the interface (Tab toggles it)");
     cmd->add_flag("--no-vsync", args->noVsync,

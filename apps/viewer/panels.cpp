@@ -210,6 +210,8 @@ void drawPanels(ViewerState& s, const Scene& scene, const ViewerLimits& limits) 
         lightPanel(s);
     if (ImGui::CollapsingHeader("camera"))
         cameraPanel(s, scene);
+    if (s.animated && ImGui::CollapsingHeader("time", ImGuiTreeNodeFlags_DefaultOpen))
+        timePanel(s);
     if (ImGui::CollapsingHeader("show", ImGuiTreeNodeFlags_DefaultOpen))
         showPanel(s);
     if (ImGui::CollapsingHeader("timings (ms)", ImGuiTreeNodeFlags_DefaultOpen))

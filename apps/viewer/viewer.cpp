@@ -159,6 +159,7 @@ void runViewer(const Scene& scene, const ViewerOptions& options) {
 
     double lastTime = glfwGetTime();
     bool tabWasDown = false;
+    bool spaceWasDown = false;
     for (uint64_t frame = 0; !window.shouldClose(); ++frame) {
         glfwPollEvents();
         const VkExtent2D size = window.framebufferSize();
@@ -199,6 +200,10 @@ void runViewer(const Scene& scene, const ViewerOptions& options) {
         if (tabDown && !tabWasDown && !ImGui::GetIO().WantTextInput)
             session.state().hideUi = !session.state().hideUi;
         tabWasDown = tabDown;
+        const bool spaceDown = glfwGetKey(window.get(), GLFW_KEY_SPACE) == GLFW_PRESS;
+        if (spaceDown && !spaceWasDown && !ImGui::GetIO().WantTextInput)
+            session.state().playing = !session.state().playing;
+        spaceWasDown = spaceDown;
         if (glfwGetKey(window.get(), GLFW_KEY_ESCAPE) == GLFW_PRESS)
             glfwSetWindowShouldClose(window.get(), GLFW_TRUE);
         if (!session.state().hideUi)

@@ -5,6 +5,7 @@
 #include "penumbra/settings.h"
 #include "viewer_state.h"
 
+#include <functional>
 #include <string>
 
 namespace penumbra::viewer {
@@ -24,7 +25,16 @@ struct ViewerOptions {
     uint32_t truthSamples = 64;
     int device = -1;
     bool validation = false;
+    // An animated scene: the scene posed at a time (empty: nothing moves), the time it starts
+    // at, its animation's length (0: none, the clock runs on) and whether it plays at start.
+    std::function<Scene(double)> poseAt;
+    double time = 0.0, duration = 0.0;
+    bool play = false;
 };
+
+// The time a scripted run (`frames` > 0) advances each frame while it plays: a steady 60
+// frames a second, whatever the device's speed, so that frame k shows the start plus k / 60 s.
+inline constexpr double kScriptedFrameSeconds = 1.0 / 60.0;
 
 // Runs the viewer until the window closes (or `frames` frames). Throws InputError on bad input:
 // no display, no device that can present, options the device cannot honour, an unwritable

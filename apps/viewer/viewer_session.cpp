@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <thread>
@@ -41,7 +42,7 @@ void printProgress(const std::string& stage) {
 
 ViewerSession::ViewerSession(Renderer& renderer, const Scene& scene, const ViewerOptions& options,
                              VkExtent2D extent)
-    : mRenderer(renderer), mScene(scene),
+    : mRenderer(renderer), mScene(scene), mPoseAt(options.poseAt), mPosedAt(options.time),
       mCamera(scene.camera(options.render.camera),
               glm::length(scene.bounds().max - scene.bounds().min)) {
     mState.options = options.render;
@@ -56,6 +57,11 @@ ViewerSession::ViewerSession(Renderer& renderer, const Scene& scene, const Viewe
     mState.truthSamples = static_cast<int>(options.truthSamples);
     mState.truthRequested = options.show == DisplayMode::Error;
     mScripted = options.frames > 0;
+    mState.animated = static_cast<bool>(options.poseAt);
+    mState.playing = mState.animated && options.play;
+    mState.time = options.time;
+    mState.duration = options.duration;
+    mState.animation = scene.animation;
     if (options.compareWith) {
         mState.compare = true;
         mState.techniqueB = *options.compareWith;
@@ -117,6 +123,17 @@ RenderOptions ViewerSession::checkedOptions(Technique technique) {
 
 void ViewerSession::update(const CameraInput& input, float seconds, DisplayPass& display) {
     pushHistory(mState.frameHistory, 1000.0f * seconds);
+    if (mState.animated) {
+        // The first frame shows the start; each later one moves the clock on while it plays.
+        if (mState.playing && mFramesUpdated > 0)
+            mState.time += mScripted ? kScriptedFrameSeconds : double(seconds);
+        if (mState.duration > 0.0 && mState.time >= mState.duration) // it loops
+            mState.time = std::fmod(mState.time, mState.duration);
+        mState.time = std::max(0.0, mState.time);
+        if (mState.time != mPosedAt)
+            pose(mState.time);
+    }
+    ++mFramesUpdated;
     if (mState.takeSceneCamera) {
         const int index = *mState.takeSceneCamera;
         mCamera.reset(index < 0 ? mScene.camera("") : mScene.cameras[index]);
@@ -158,6 +175,37 @@ void ViewerSession::update(const CameraInput& input, float seconds, DisplayPass&
                                      mTruth->truth().seconds);
     if (mState.display == DisplayMode::Error)
         measureError(display);
+}
+
+void ViewerSession::pose(double time) {
+    Scene next;
+    try {
+        next = mPoseAt(time);
+    } catch (const InputError& e) { // a pose the file refuses: the last good one stays
+        mState.status = e.what();
+        mState.playing = false;
+        mState.time = mPosedAt;
+        return;
+    }
+    for (size_t i = 0; i < next.lights.size() && i < mState.lights.size(); ++i) {
+        next.lights[i].radius = mState.lights[i].radius;
+        next.lights[i].angularDiameter = mState.lights[i].angularDiameter;
+        next.lights[i].castsShadow = mState.lights[i].castsShadow;
+    }
+    // The frames in flight read the old pose's buffers.
+    VK_CHECK(vkDeviceWaitIdle(mRenderer.context().device()));
+    mScene = std::move(next);
+    mState.lights = mScene.lights;
+    mA = std::make_unique<SceneRenderer>(mRenderer, mScene);
+    if (mB)
+        mB = std::make_unique<SceneRenderer>(mRenderer, mScene);
+    mPosedAt = time;
+    if (mTruth) {
+        mTruth.reset();
+        mState.errorMetrics.reset();
+        mErrorShown = false;
+        mState.truthStatus = "the scene moved: the ground truth was dropped";
+    }
 }
 
 RenderResult ViewerSession::renderNow() {

@@ -41,8 +41,15 @@ private:
     // The virtual-map views (Pages, Pool): the last recorded frame's pages into the overlay.
     void showPages(const RenderOptions& options, DisplayPass& display);
 
+    // The scene posed at `time` (an animated scene's next frame or the slider's time): uploaded
+    // anew, the interface's light sizes kept, a ground truth of the old pose dropped.
+    void pose(double time);
+
     Renderer& mRenderer;
-    const Scene& mScene;
+    Scene mScene; // as posed now
+    std::function<Scene(double)> mPoseAt;
+    double mPosedAt = 0.0;
+    uint64_t mFramesUpdated = 0;
     ViewerState mState;
     RenderOptions mLastGood;
     CameraControl mCamera;

@@ -53,6 +53,12 @@ struct ViewerState {
     float split = 0.5f; // of the width
     bool vsync = true;
     bool hideUi = false;
+    // Time, for an animated scene: where it stands (the interface's slider scrubs it), whether
+    // it plays (Space toggles it), and the animation's length (0: none; the clock runs on).
+    bool animated = false;
+    bool playing = false;
+    double time = 0.0, duration = 0.0;
+    std::string animation;
     // Ground truth: what the interface asked for and what the loop reports back.
     bool truthRequested = false;
     int truthSamples = 64;
@@ -75,6 +81,9 @@ void pushHistory(std::deque<float>& history, float value);
 
 // The "show" section (show_panel.cpp): what the window shows, and the ground truth.
 void showPanel(ViewerState& state);
+
+// The "time" section (time_panel.cpp): play, pause and the time slider of an animated scene.
+void timePanel(ViewerState& state);
 
 // The interface (panels.cpp). Edits `state`; returns nothing, the loop compares what changed.
 void drawPanels(ViewerState& state, const Scene& scene, const ViewerLimits& limits);

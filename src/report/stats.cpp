@@ -189,6 +189,8 @@ nlohmann::json renderStats(const RenderRun& run) {
     }
     j["lights"] = lights;
     j["frames"] = {{"timed", o.frames}, {"warm_up", 1}};
+    if (run.fps > 0.0) // each timed frame a pose of its own, after a warm-up of its own
+        j["frames"]["fps"] = run.fps;
     nlohmann::json gpu = nlohmann::json::object(), perFrame = nlohmann::json::object();
     double total = 0.0;
     for (const PassTime& p : run.result.passes) {

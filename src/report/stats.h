@@ -20,6 +20,7 @@ struct RenderRun {
     // viewJson(scene, the options' camera), when the caller measured it once for many runs of
     // one view (compare's rows); measured here when empty.
     const nlohmann::json* view = nullptr;
+    double fps = 0.0; // render --fps: the timed frames were successive poses, this many a second
 };
 
 nlohmann::json renderStats(const RenderRun& run);

@@ -83,6 +83,17 @@ inline constexpr double kFanTurnSeconds = 0.25;
 inline constexpr float kFanFloorHalfSize = 6.0f;
 inline constexpr glm::vec3 kFanSpotPosition{0.4f, 4.2f, 0.3f};
 
+// Walker (animated, skinned): a figure walking counter-clockwise (seen from above) around a
+// circle of radius kWalkerCircleRadius about the origin, facing along it, starting at +x: one
+// lap in kWalkerLapSeconds, a stride (two steps) in kWalkerStrideSeconds; a sun and a bulb
+// above the circle's centre.
+inline constexpr double kWalkerStrideSeconds = 1.0;
+inline constexpr double kWalkerLapSeconds = 10.0;
+inline constexpr float kWalkerCircleRadius = 2.5f;
+inline constexpr float kWalkerFloorHalfSize = 7.0f;
+inline constexpr glm::vec3 kWalkerSunDirection{0.35f, -1.0f, 0.25f};
+inline constexpr glm::vec3 kWalkerBulbPosition{0.0f, 3.2f, 0.0f};
+
 // Dense: kDenseRows x kDenseColumns cells of a box and a sphere of 2 x slices x (stacks - 1)
 // triangles (about 100k in all), a spot light.
 inline constexpr int kDenseRows = 4, kDenseColumns = 6;
@@ -128,5 +139,6 @@ Scene town(double time);
 glm::vec3 townSunDirection(double time); // the direction the sun's light travels at `time`
 Scene fan(double time);
 float fanAngle(double time); // the first blade's angle about +y from +x, in [0, 2 pi)
+Scene walker(double time);
 
 } // namespace penumbra::builtin

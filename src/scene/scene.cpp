@@ -28,8 +28,10 @@ struct AnimatedBuiltinEntry {
     std::string_view name;
     Scene (*make)(double time);
 };
-constexpr AnimatedBuiltinEntry kAnimatedBuiltins[] = {
-    {"pendulum", builtin::pendulum}, {"town", builtin::town}, {"fan", builtin::fan}};
+constexpr AnimatedBuiltinEntry kAnimatedBuiltins[] = {{"pendulum", builtin::pendulum},
+                                                      {"town", builtin::town},
+                                                      {"fan", builtin::fan},
+                                                      {"walker", builtin::walker}};
 
 } // namespace
 

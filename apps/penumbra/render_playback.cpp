@@ -1,0 +1,74 @@
+#include "render_playback.h"
+
+#include "compare_timeline.h"
+#include "penumbra/error.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+namespace penumbra::cli {
+namespace {
+
+// The middle of `values` (the mean of the two middle ones for an even count).
+double medianOf(std::vector<double> values) {
+    const size_t half = values.size() / 2;
+    std::nth_element(values.begin(), values.begin() + half, values.end());
+    const double upper = values[half];
+    if (values.size() % 2)
+        return upper;
+    return 0.5 * (*std::max_element(values.begin(), values.begin() + half) + upper);
+}
+
+} // namespace
+
+void checkPlayback(const PlaybackInputs& in, const Scene& first) {
+    if (!(in.fps > 0.0 && in.fps <= 10000.0))
+        throw InputError("--fps",
+                         fmt::format("{} is not a rate in (0, 10000] frames a second", in.fps));
+    if (first.animation.empty() && !lightsOrbit(in.sceneOptions))
+        throw InputError("--fps", fmt::format("'{}' has no animation and no light that orbits: "
+                                              "nothing would move",
+                                              in.sceneSpec));
+}
+
+PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scene& first,
+                        const RenderOptions& options) {
+    const double start = in.sceneOptions.time.value_or(0.0);
+    SceneOptions posed = in.sceneOptions;
+    posed.ground = posed.ground || first.automaticGround; // the first frame's choice holds
+    posed.noGround = !posed.ground;
+    RenderOptions one = options;
+    one.frames = 1;
+    PlayedFrames played;
+    std::vector<PassTime> passes;
+    for (uint32_t k = 0; k < options.frames; ++k) {
+        const double exact = start + static_cast<double>(k) / in.fps;
+        posed.time = std::strtod(fmt::format("{:.12g}", exact).c_str(), nullptr);
+        std::fprintf(stderr, "penumbra: frame %u/%u at %g s\n", k + 1, options.frames, *posed.time);
+        if (k == 0) {
+            played.scene = first;
+        } else {
+            played.scene = loadSceneReporting(in.sceneSpec, in.global, posed, options, true);
+            pinToFirstFrame(played.scene, first);
+        }
+        played.uploaded = std::make_unique<SceneRenderer>(renderer, played.scene);
+        played.result = played.uploaded->render(one);
+        for (const PassTime& p : played.result.passes) {
+            auto it = std::find_if(passes.begin(), passes.end(),
+                                   [&](const PassTime& q) { return q.pass == p.pass; });
+            if (it == passes.end())
+                it = passes.insert(passes.end(), {.pass = p.pass, .cost = p.cost});
+            it->frameMs.push_back(p.medianMs);
+        }
+    }
+    for (PassTime& p : passes)
+        p.medianMs = medianOf(p.frameMs);
+    played.result.passes = std::move(passes);
+    return played;
+}
+
+} // namespace penumbra::cli
