@@ -42,9 +42,7 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
     posed.ground = posed.ground || first.automaticGround; // the first frame's choice holds
     posed.noGround = !posed.ground;
     RenderOptions one = options;
-    // Two timed frames a pose, the first timed: a render's last frame reads the images back,
-    // which its GPU times show (on lavapipe the shadow pass's 30 ms became 560).
-    one.frames = 2;
+    one.frames = 1;
     PlayedFrames played;
     std::vector<PassTime> passes;
     for (uint32_t k = 0; k < options.frames; ++k) {
@@ -64,7 +62,7 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
                                    [&](const PassTime& q) { return q.pass == p.pass; });
             if (it == passes.end())
                 it = passes.insert(passes.end(), {.pass = p.pass, .cost = p.cost});
-            it->frameMs.push_back(p.frameMs.front());
+            it->frameMs.push_back(p.medianMs);
         }
     }
     for (PassTime& p : passes)

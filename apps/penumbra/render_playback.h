@@ -28,8 +28,7 @@ struct PlaybackInputs {
 void checkPlayback(const PlaybackInputs& in, const Scene& first);
 
 // options.frames frames: frame k at the first's time + k / fps (to 12 digits), each rendered
-// after one warm-up, timed by the first of two frames (the second reads the images back).
-// `first` is the scene loaded at the first frame's time.
+// after one warm-up. `first` is the scene loaded at the first frame's time.
 PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scene& first,
                         const RenderOptions& options);
 

@@ -6,8 +6,8 @@
 //      settings), the distance field when the technique traces one, the slot filled.
 //   3. The frame's graph (render/frame.h) is built, planned and recorded; its targets live in the
 //      pool, kept while later frames declare them the same way.
-//   4. render(): a warm-up frame, the timed frames, the last one with the readback passes; the
-//      host unpacks the readback buffer at ReadbackLayout's offsets.
+//   4. render(): a warm-up frame and the timed frames, each with the readback passes; the host
+//      unpacks the last frame's readback buffer at ReadbackLayout's offsets.
 //   A technique that traces the distance field (sdf) draws no shadow map: its field is built
 //   before the first frame that needs it (render/distance_field.h) and kept while the scene
 //   renderer lives and sdf.resolution and sdf.thickness stay the same.
@@ -457,7 +457,10 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         if (progress)
             progress(warmUp ? std::string("warm-up frame")
                             : fmt::format("frame {}/{}", frame + 1 - warmUps, o.frames));
-        prepared.settings.readback = frame + 1 == o.frames + warmUps; // untimed, at the end
+        // Every frame reads back (untimed), so that every frame is the same graph with its
+        // memory placed the same: a last frame that alone read back was placed anew, and its
+        // first touches showed in its GPU times (on lavapipe a 30 ms shadow pass took 560).
+        prepared.settings.readback = true;
         ctx.submitAndWait([&](VkCommandBuffer cmd) { m.record(cmd, prepared, timer); });
         if (warmUp)
             continue; // the warm-up frames pay for first-use costs
