@@ -208,3 +208,16 @@ TEST(BuiltinWalker, PartsThatTouchStayTogether) {
         EXPECT_LT(apart, 0.2f) << t;
     }
 }
+
+// A pose late in a long run is as fine as an early one: ten million seconds is a whole number
+// of laps and strides, so the pose then is the pose at the start, a tenth of a second apart.
+TEST(BuiltinWalker, LatePosesAreAsFineAsEarlyOnes) {
+    for (const double t : {0.1, 0.2, 0.73}) {
+        const std::vector<Vertex> early = figure(t), late = figure(1e7 + t);
+        ASSERT_EQ(early.size(), late.size());
+        float apart = 0.0f;
+        for (size_t i = 0; i < early.size(); ++i)
+            apart = std::max(apart, glm::length(early[i].position - late[i].position));
+        EXPECT_LT(apart, 1e-3f) << t;
+    }
+}

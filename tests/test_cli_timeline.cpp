@@ -408,6 +408,12 @@ TEST(CliTimeline, RenderFpsRefusesAStillSceneAndRatesOutOfRange) {
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_EQ(r.err, "error: --fps: 'builtin:resting' has no animation and no light that orbits: "
                      "nothing would move\n");
+    // A rate so slow that the second frame's time overflows is refused before the first frame.
+    r = runCli(
+        {"render", "builtin:pendulum", "-o", out.string(), "--fps", "1e-320", "--frames", "2"});
+    EXPECT_EQ(r.exitCode, 2);
+    EXPECT_EQ(r.err.rfind("error: --fps: at 1e-320 a second frame 2 would be at inf s", 0), 0u)
+        << r.err;
     for (const char* rate : {"0", "-30", "20000", "nan"}) {
         r = runCli({"render", "builtin:pendulum", "-o", out.string(), "--fps", rate});
         EXPECT_EQ(r.exitCode, 2) << rate;

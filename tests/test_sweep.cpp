@@ -11,9 +11,11 @@
 #include "sweep/truth_bootstrap.h"
 #include "sweep/truth_cache.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <set>
@@ -131,6 +133,12 @@ TEST(SweepPlan, TimesMakeAViewAtEachTime) {
     const Plan one = loadPlan(writePlan("one.toml", "times = [2]\nanimation = 1\n" + body));
     EXPECT_EQ(one.times, std::vector<double>{2.0});
     EXPECT_EQ(one.animation, "1");
+    // -0 is 0: the same time, the same view.
+    const Plan minusZero = loadPlan(writePlan("minus.toml", "times = [-0.0]\n" + body));
+    ASSERT_EQ(minusZero.times.size(), 1u);
+    EXPECT_FALSE(std::signbit(minusZero.times[0]));
+    EXPECT_EQ(expandTasks(minusZero).views[0].id,
+              expandTasks(loadPlan(writePlan("zero.toml", "times = [0]\n" + body))).views[0].id);
     // Without `times` the views are at rest.
     const Plan still = loadPlan(writePlan("still.toml", body));
     EXPECT_TRUE(still.times.empty());
@@ -146,6 +154,10 @@ TEST(SweepPlan, RefusesTimesThatAreNotTimes) {
         {"times = [0, \"a\"]\n", "times: 'a' is not"},
         {"times = [0.5, 0.5]\n", "times: 0.5 is listed twice"},
         {"times = [0, inf]\n", "times: 'inf' is not"},
+        {"times = [\"0.5\"]\n", "times: '0.5' is not"},
+        {"times = [[0.5]]\n", "times: 'a table or list' is not"},
+        {"times = \"1000:1000.000000001:1e-10\"\n", "times: 1000 is listed twice"},
+        {"times = [0, 0.25, 0.5, 0.25]\n", "times: 0.25 is listed twice"},
         {"times = true\n", "times: expected"},
         {"times = \"0:1\"\n", "times: '0:1' is not START:END:STEP"},
         {"times = \"1:0:1\"\n", "times: '1:0:1': START must be"},
@@ -160,6 +172,12 @@ TEST(SweepPlan, RefusesTimesThatAreNotTimes) {
         EXPECT_EQ(why.rfind(expected, 0), 0u) << "got '" << why << "' for:\n" << head;
     }
     EXPECT_EQ(refusal("times = [0]\nanimation = 0\n" + body), "");
+    std::string many = "times = [0";
+    for (int k = 1; k <= 10000; ++k)
+        many += fmt::format(", {}", k);
+    EXPECT_EQ(refusal(many + "]\n" + body).rfind("times: 10001 times; at most 10000", 0), 0u);
+    many.erase(many.rfind(','));
+    EXPECT_EQ(refusal(many + "]\n" + body), "");
 }
 
 TEST(SweepTasks, IdsDependOnWhatATaskComputesNotOnThePlansOrder) {

@@ -82,7 +82,8 @@ TEST(ViewerTime, OrbitingLightsPlayOnAStillScene) {
 }
 
 // The clock loops at the animation's end: builtin:town's day (12 s, the sun held at its end
-// after it) played from 11.9 s for 13 frames is at 0.1 s, the morning, not the evening held.
+// after it) played from 11.9 s for 13 frames is at 0.1 s, the morning, not the evening held;
+// a view put at 12 s without playing shows the evening, as render does.
 // A glTF animation without --time starts at 0 s, not at the nodes' rest pose.
 TEST(ViewerTime, TheClockLoopsAndStartsAtTheAnimationsStart) {
     const std::vector<std::string> town{"builtin:town", "--technique", "hard", "--width",
@@ -97,6 +98,10 @@ TEST(ViewerTime, TheClockLoopsAndStartsAtTheAnimationsStart) {
     const Rgb evening = viewImage(with(town, {"--time", "12"}), "evening", nullptr, "1");
     EXPECT_LE(meanDifference(looped, morning), 0.1);
     EXPECT_GT(meanDifference(looped, evening), 1.0);
+    // A time put at the end holds there (as render's does) until the scene plays.
+    std::vector<std::string> rendered(town.begin(), town.end() - 1); // without --hide-ui
+    rendered.insert(rendered.end(), {"--time", "12"});
+    EXPECT_LE(meanDifference(evening, renderImage(rendered, "evening-rendered")), 0.5);
 
     const std::string box = boxAsset(scratch("sliding"), /*animated=*/true).string();
     const std::vector<std::string> view{box,   "--technique", "hard", "--width",

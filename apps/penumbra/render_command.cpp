@@ -51,8 +51,10 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
                                   .sceneOptions = sceneOptions,
                                   .fps = args.fps.value_or(0.0)};
     if (args.fps) // refused before a warning of the load is said
-        checkPlayback(playback, loadSceneReporting(args.scene, global, sceneOptions, args.options,
-                                                   /*quiet=*/true));
+        checkPlayback(playback,
+                      loadSceneReporting(args.scene, global, sceneOptions, args.options,
+                                         /*quiet=*/true),
+                      options.frames);
     const Scene scene = loadSceneReporting(args.scene, global, sceneOptions, args.options);
     if (!row.layers.empty()) // the layers it names, as compare runs them (the others off)
         applyRow(row, options.parameters, scene.bounds().radius());

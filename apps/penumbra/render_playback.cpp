@@ -25,10 +25,15 @@ double medianOf(std::vector<double> values) {
 
 } // namespace
 
-void checkPlayback(const PlaybackInputs& in, const Scene& first) {
+void checkPlayback(const PlaybackInputs& in, const Scene& first, uint32_t frames) {
     if (!(in.fps > 0.0 && in.fps <= 10000.0))
         throw InputError("--fps",
                          fmt::format("{} is not a rate in (0, 10000] frames a second", in.fps));
+    const double last = in.sceneOptions.time.value_or(0.0) + double(frames - 1) / in.fps;
+    if (!std::isfinite(last))
+        throw InputError("--fps", fmt::format("at {} a second frame {} would be at {} s, not a "
+                                              "time",
+                                              in.fps, frames, last));
     if (first.animation.empty() && !lightsOrbit(in.sceneOptions))
         throw InputError("--fps", fmt::format("'{}' has no animation and no light that orbits: "
                                               "nothing would move",

@@ -23,9 +23,10 @@ struct PlaybackInputs {
     double fps = 60.0;
 };
 
-// InputError("--fps", ...) unless fps is a rate in (0, 10000] and `first` moves with the time
-// (an animation, or an --add-light that orbits).
-void checkPlayback(const PlaybackInputs& in, const Scene& first);
+// InputError("--fps", ...) unless fps is a rate in (0, 10000] that puts the last of `frames`
+// at a finite time, and `first` moves with the time (an animation, or an --add-light that
+// orbits).
+void checkPlayback(const PlaybackInputs& in, const Scene& first, uint32_t frames);
 
 // options.frames frames: frame k at the first's time + k / fps (to 12 digits), each rendered
 // after one warm-up. `first` is the scene loaded at the first frame's time.

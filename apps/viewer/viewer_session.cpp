@@ -125,10 +125,12 @@ void ViewerSession::update(const CameraInput& input, float seconds, DisplayPass&
     pushHistory(mState.frameHistory, 1000.0f * seconds);
     if (mState.animated) {
         // The first frame shows the start; each later one moves the clock on while it plays.
-        if (mState.playing && mFramesUpdated > 0)
+        // Playing past the animation's end loops; a time put there (--time, the slider) holds.
+        if (mState.playing && mFramesUpdated > 0) {
             mState.time += mScripted ? kScriptedFrameSeconds : double(seconds);
-        if (mState.duration > 0.0 && mState.time >= mState.duration) // it loops
-            mState.time = std::fmod(mState.time, mState.duration);
+            if (mState.duration > 0.0 && mState.time >= mState.duration)
+                mState.time = std::fmod(mState.time, mState.duration);
+        }
         mState.time = std::max(0.0, mState.time);
         if (mState.time != mPosedAt)
             pose(mState.time);

@@ -20,8 +20,6 @@
 namespace penumbra::builtin {
 namespace {
 
-constexpr float kPi = std::numbers::pi_v<float>;
-
 // The skeleton in its bind pose (standing, facing +z, feet at y = 0), parents first.
 enum Joint { Pelvis, Chest, HipL, KneeL, HipR, KneeR, ShoulderL, ElbowL, ShoulderR, ElbowR };
 constexpr size_t kJoints = 10;
@@ -43,9 +41,16 @@ constexpr float kAnkleHeight = 0.09f, kFootRadius = 0.09f, kHandHeight = 0.95f;
 constexpr float kFootForward = 0.03f; // the foot's centre, ahead of the ankle
 constexpr float kBlend = 0.07f;       // half the height over which a knee or elbow blends
 
+// The angle of a turn every `period` seconds at `time`, in [0, 2 pi): the time reduced by the
+// period in double first, so that a pose late in a long run is as fine as an early one.
+double turned(double time, double period) {
+    const double turns = time / period;
+    return 2.0 * std::numbers::pi * (turns - std::floor(turns));
+}
+
 // The joints' bends at `time` about their local x axis (positive: the lower end goes back).
 std::array<float, kJoints> jointAngles(double time) {
-    const float phase = static_cast<float>(2.0 * std::numbers::pi * time / kWalkerStrideSeconds);
+    const float phase = static_cast<float>(turned(time, kWalkerStrideSeconds));
     const float swing = 0.45f * std::sin(phase); // the left leg forward, the right back
     std::array<float, kJoints> a{};
     a[HipL] = -swing;
@@ -62,7 +67,7 @@ std::array<float, kJoints> jointAngles(double time) {
 // Each joint's skinning matrix at `time`: posed world transform times inverse bind transform.
 std::array<glm::mat4, kJoints> skinMatrices(double time) {
     const std::array<float, kJoints> angles = jointAngles(time);
-    const float heading = static_cast<float>(2.0 * std::numbers::pi * time / kWalkerLapSeconds);
+    const float heading = static_cast<float>(turned(time, kWalkerLapSeconds));
     // Counter-clockwise seen from above, facing along the circle: +z turns to the tangent.
     const glm::vec3 place(kWalkerCircleRadius * std::cos(heading), 0.0f,
                           kWalkerCircleRadius * std::sin(heading));

@@ -155,6 +155,8 @@ Scene loadScene(std::string_view spec, const SceneLoadOptions& options) {
                                             : fmt::format("'{}' has one animation, 0 '{}'", spec,
                                                           scene.animation));
     scene.time = options.time; // an orbiting --add-light is placed by it, even on a still scene
+    if (scene.time)
+        *scene.time += 0.0; // -0 is 0
     // A time for a still scene changes nothing: said, not refused, so one command line serves
     // a set of scenes.
     if (options.time && scene.animation.empty() && !options.lightsMove && options.warnings)

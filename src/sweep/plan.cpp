@@ -12,7 +12,6 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <charconv>
 #include <set>
 
 namespace penumbra::sweep {
@@ -62,6 +61,17 @@ public:
         if (v == glm::vec3(0.0f))
             fail(key, "a direction of length 0");
         return v;
+    }
+
+    // A scalar as written, for messages.
+    static std::string valueText(const toml::node& n) {
+        if (auto s = n.value_exact<std::string>())
+            return *s;
+        if (auto d = n.value<double>())
+            return fmt::format("{}", *d);
+        if (auto b = n.value_exact<bool>())
+            return *b ? "true" : "false";
+        return "a table or list";
     }
 
     // A scalar or an array of scalars, as the text `--set` takes.
@@ -124,8 +134,8 @@ public:
         }
     }
 
-    // `times`: a list of seconds, or "START:END:STEP" as compare --timeline reads it.
-    // `animation`: a name or an index, which would change nothing without times.
+    // `times`: a list of seconds, or "START:END:STEP" as compare --timeline reads it, at most
+    // kMaxTimelineFrames either way, each time once (-0 is 0).
     void readTimes(const toml::table& root, Plan& plan) const {
         if (const toml::node* node = root.get("times")) {
             if (const std::optional<std::string> range = node->value_exact<std::string>()) {
@@ -136,23 +146,27 @@ public:
                 } catch (const InputError& e) {
                     fail("times", withoutSubject(e));
                 }
-            } else if (!node->as_array()) {
+            } else if (const toml::array* list = node->as_array()) {
+                if (list->empty())
+                    fail("times", "an empty list");
+                if (list->size() > kMaxTimelineFrames)
+                    fail("times",
+                         fmt::format("{} times; at most {}", list->size(), kMaxTimelineFrames));
+                for (const toml::node& n : *list) {
+                    const std::optional<double> seconds = n.value<double>();
+                    if (!n.is_number() || !seconds || !std::isfinite(*seconds) || *seconds < 0.0)
+                        fail("times",
+                             fmt::format("'{}' is not a time in seconds, 0 or more", valueText(n)));
+                    plan.times.push_back(*seconds + 0.0); // -0 is 0
+                }
+            } else {
                 fail("times", "expected a list of seconds or \"START:END:STEP\"");
             }
-            if (node->as_array())
-                for (const std::string& text : values(*node, "times")) {
-                    double seconds = 0.0;
-                    const auto [end, error] =
-                        std::from_chars(text.data(), text.data() + text.size(), seconds);
-                    if (error != std::errc{} || end != text.data() + text.size() ||
-                        !std::isfinite(seconds) || seconds < 0.0)
-                        fail("times",
-                             fmt::format("'{}' is not a time in seconds, 0 or more", text));
-                    if (std::find(plan.times.begin(), plan.times.end(), seconds) !=
-                        plan.times.end())
-                        fail("times", fmt::format("{} is listed twice", seconds));
-                    plan.times.push_back(seconds);
-                }
+            std::vector<double> sorted = plan.times;
+            std::sort(sorted.begin(), sorted.end());
+            if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
+                twice != sorted.end())
+                fail("times", fmt::format("{} is listed twice", *twice));
         }
         if (const toml::node* node = root.get("animation")) {
             if (plan.times.empty())
