@@ -408,9 +408,8 @@ TEST(SweepCli, EmitsTheClusterJobsForThePlan) {
 // The plans the repository ships are valid against today's techniques and parameters, and expand
 // to the task counts docs/sweep.md gives.
 TEST(SweepCli, TheShippedPlansAreValid) {
-    for (const auto& [name, tasks] :
-         {std::pair{"smoke.toml", 12}, std::pair{"standard.toml", 660},
-          std::pair{"motion.toml", 96}}) {
+    for (const auto& [name, tasks] : {std::pair{"smoke.toml", 12}, std::pair{"standard.toml", 660},
+                                      std::pair{"motion.toml", 96}}) {
         const fs::path plan = fs::path(PENUMBRA_SOURCE_DIR) / "bench" / "plans" / name;
         const ProcessResult r =
             runCli({"sweep", plan.string(), "-o", outputScratch("sweep-plans").string(), "--list"});
