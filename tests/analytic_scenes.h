@@ -62,6 +62,29 @@ inline Scene sphereOverPlane(const Light& light) {
 }
 
 // builtin:resting's objects resting on a plane under `light`.
+// Point-like lights of each type over builtin:resting's objects: a sun, a spot from the side and
+// a bulb low above them (the virtual-map and repose tests).
+inline Light sharpSun() {
+    return {.name = "sun",
+            .type = LightType::Directional,
+            .direction = glm::normalize(glm::vec3(0.5f, -0.7f, -0.4f))};
+}
+inline Light sharpSpot() {
+    const glm::vec3 at{-2.5f, 5.0f, 3.0f};
+    return {.name = "spot",
+            .type = LightType::Spot,
+            .position = at,
+            .direction = glm::normalize(glm::vec3(0.0f, 0.0f, -0.5f) - at),
+            .intensity = 40.0f,
+            .outerConeAngle = 0.75f};
+}
+inline Light sharpPoint() {
+    return {.name = "point",
+            .type = LightType::Point,
+            .position = {0.6f, 2.4f, -0.4f},
+            .intensity = 10.0f};
+}
+
 inline Scene restingObjects(const Light& light) {
     Scene scene = builtin::restingGeometry();
     scene.lights.push_back(light);

@@ -73,6 +73,13 @@ TEST(CliTimeline, EachFrameMeasuresAsCompareAtThatTimeAndFlickerAddsUpOverFrameP
             << row;
         EXPECT_EQ(r["rmse_over_time"]["max"].get<double>(), std::max({rmse[0], rmse[1], rmse[2]}))
             << row;
+        // Neither keeps anything between frames: in motion each frame is the one at rest.
+        EXPECT_EQ(r["rmse_moving"], r["rmse"]) << row;
+        EXPECT_EQ(r["pop_in"].get<double>(), 0.0) << row;
+        EXPECT_EQ(r["pop_in_ratio"].get<double>(), 1.0) << row;
+        EXPECT_EQ(r["lag_frames"].get<size_t>(), 0u) << row;
+        ASSERT_EQ(r["gpu_ms_moving"].size(), 3u) << row;
+        EXPECT_GT(r["gpu_ms_moving"][2].get<double>(), 0.0) << row;
     }
     // The report plots each row's RMSE over time and says its flicker.
     const std::string report = slurp(dir / "out" / "report.html");
@@ -204,7 +211,7 @@ TEST(CliTimeline, AStillSceneIsWarnedOnceHasNoFlickerAndItsTimesAreWrittenAsType
     std::istringstream csv(slurp(dir / "out" / "timeline.csv"));
     std::string line;
     std::getline(csv, line);
-    EXPECT_EQ(line, "time,row,rmse,mae,acne,leak,gpu_ms");
+    EXPECT_EQ(line, "time,row,rmse,mae,acne,leak,gpu_ms,rmse_moving,gpu_ms_moving");
     std::vector<std::string> lines;
     while (std::getline(csv, line))
         lines.push_back(line);
@@ -213,10 +220,11 @@ TEST(CliTimeline, AStillSceneIsWarnedOnceHasNoFlickerAndItsTimesAreWrittenAsType
         const J& measured = timeline["rows"][row];
         EXPECT_EQ(measured["flicker"].get<double>(), 0.0) << row;
         EXPECT_GT(measured["flicker_pixels"].get<uint64_t>(), 0u) << row;
-        const std::string want =
-            fmt::format("0.3,{},{},{},{},{},{}", row, measured["rmse"][3].get<double>(),
-                        measured["mae"][3].get<double>(), measured["acne"][3].get<double>(),
-                        measured["leak"][3].get<double>(), measured["gpu_ms"][3].get<double>());
+        const std::string want = fmt::format(
+            "0.3,{},{},{},{},{},{},{},{}", row, measured["rmse"][3].get<double>(),
+            measured["mae"][3].get<double>(), measured["acne"][3].get<double>(),
+            measured["leak"][3].get<double>(), measured["gpu_ms"][3].get<double>(),
+            measured["rmse_moving"][3].get<double>(), measured["gpu_ms_moving"][3].get<double>());
         EXPECT_NE(std::find(lines.begin(), lines.end(), want), lines.end()) << want;
     }
 }
@@ -420,4 +428,61 @@ TEST(CliTimeline, RenderFpsRefusesAStillSceneAndRatesOutOfRange) {
         EXPECT_EQ(r.err.rfind("error: --fps: ", 0), 0u) << r.err;
     }
     EXPECT_FALSE(fs::exists(out));
+}
+
+// In motion each frame continues the last one. Virtual pages are asked for by the frame before,
+// so under a light that orbits a frame reads pages placed for the light's last position (coarser
+// ones where those are missing): the frames in motion lag behind the ones at rest. The same row
+// without virtual maps keeps nothing between frames and draws both alike.
+TEST(CliTimeline, VirtualPagesLagBehindAnOrbitingLightAndPlainMapsDoNot) {
+    const fs::path dir = outputScratch("timeline-lag");
+    const auto timeline = [&](const std::string& name, std::vector<std::string> extra) {
+        std::vector<std::string> args = {
+            "compare",      "builtin:resting",
+            "-o",           (dir / name).string(),
+            "--width",      "128",
+            "--height",     "96",
+            "--samples",    "4",
+            "--format",     "pfm",
+            "--techniques", "pcf[box3]",
+            "--timeline",   "0:1:0.25",
+            "--add-light",  "point:pos=2,3,0,orbit=4,about=0,0,0,name=bulb"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const ProcessResult r = runCli(args);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return J::parse(slurp(dir / name / "timeline.json"))["rows"]["pcf[box3]"];
+    };
+    const J plain = timeline("plain", {});
+    EXPECT_EQ(plain["rmse_moving"], plain["rmse"]);
+    EXPECT_EQ(plain["lag_frames"], 0);
+    EXPECT_EQ(plain["pop_in"], 0.0);
+    const J paged = timeline("paged", {"--set", "virtual.enabled=1"});
+    const std::vector<double> rest = paged["rmse"], moving = paged["rmse_moving"];
+    ASSERT_EQ(moving.size(), 5u);
+    EXPECT_EQ(moving[0], rest[0]) << "the motion starts at rest";
+    double most = 0.0;
+    for (size_t k = 1; k < 5; ++k)
+        most = std::max(most, moving[k] - rest[k]);
+    std::printf("virtual pcf[box3]: pop-in %.5f (ratio %.3f), lag %d frames\n",
+                paged["pop_in"].get<double>(), paged["pop_in_ratio"].get<double>(),
+                paged["lag_frames"].get<int>());
+    EXPECT_GT(most, 0.0);
+    EXPECT_DOUBLE_EQ(paged["pop_in"].get<double>(), most);
+    EXPECT_GE(paged["lag_frames"].get<int>(), 1);
+    EXPECT_GT(paged["pop_in_ratio"].get<double>(), 1.1);
+}
+
+// render --fps draws each later pose as the next frame, with no warm-up: a virtual map's frame
+// renders the pages the frame before asked for (its cost while the light moves), once.
+TEST(CliTimeline, RenderFpsDrawsEachPoseAsOneFrameAfterTheLast) {
+    const fs::path out = outputScratch("fps-virtual");
+    const ProcessResult r =
+        runCli({"render", "builtin:resting", "-o", out.string(), "--width", "96", "--height", "72",
+                "--format", "pfm", "--fps", "30", "--frames", "3", "--set", "virtual.enabled=1",
+                "--add-light", "point:pos=2,3,0,orbit=4,about=0,0,0,name=bulb"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const J pages = J::parse(slurp(out / "stats.json"))["virtual_maps"];
+    ASSERT_EQ(pages["pages_rendered_per_frame"].size(), 1u) << pages.dump();
+    EXPECT_GT(pages["pages_rendered_per_frame"][0].get<int>(), 0) << pages.dump();
+    EXPECT_EQ(pages["pages_cached"].get<int>(), 0) << "every page is drawn again for the pose";
 }

@@ -15,27 +15,19 @@ using namespace penumbra::test;
 namespace {
 
 Light contactSun() {
-    return {.name = "sun",
-            .type = LightType::Directional,
-            .direction = glm::normalize(glm::vec3(0.5f, -0.7f, -0.4f)),
-            .angularDiameter = 0.5f};
+    Light sun = sharpSun();
+    sun.angularDiameter = 0.5f;
+    return sun;
 }
 Light contactSpot() {
-    const glm::vec3 at{-2.5f, 5.0f, 3.0f};
-    return {.name = "spot",
-            .type = LightType::Spot,
-            .position = at,
-            .direction = glm::normalize(glm::vec3(0.0f, 0.0f, -0.5f) - at),
-            .intensity = 40.0f,
-            .outerConeAngle = 0.75f,
-            .radius = 0.03f};
+    Light spot = sharpSpot();
+    spot.radius = 0.03f;
+    return spot;
 }
 Light contactPoint() {
-    return {.name = "point",
-            .type = LightType::Point,
-            .position = {0.6f, 2.4f, -0.4f},
-            .intensity = 10.0f,
-            .radius = 0.03f};
+    Light point = sharpPoint();
+    point.radius = 0.03f;
+    return point;
 }
 
 // A shadow map's bias large enough to detach every shadow from its caster's foot.

@@ -80,7 +80,11 @@ TEST(ReportPlot, TheOverTimeSectionShowsOnlyWithATimeline) {
     ReportRow row{.name = "hard"};
     row.rmseOverTime = {0.1, 0.2, 0.05};
     row.gpuMsOverTime = {1.0, 2.0, 3.0};
+    row.movingRmseOverTime = {0.1, 0.4, 0.05};
+    row.movingGpuMsOverTime = {1.0, 5.0, 3.0};
     row.flicker = 0.001;
+    row.popIn = 0.2;
+    row.lagFrames = 1;
     data.rows = {row};
     EXPECT_EQ(overTimeSection(data), "");
     EXPECT_EQ(renderHtmlReport(data).find("Over time"), std::string::npos);
@@ -90,7 +94,16 @@ TEST(ReportPlot, TheOverTimeSectionShowsOnlyWithATimeline) {
     EXPECT_NE(section.find("3 frames from 0 to 1 s"), std::string::npos);
     EXPECT_NE(section.find("class=\"over-time rmse\""), std::string::npos);
     EXPECT_NE(section.find("class=\"over-time gpu-ms\""), std::string::npos);
-    EXPECT_NE(section.find("RMSE 0.1167 mean, 0.2000 max; flicker 0.001000; 2.000 ms a frame"),
+    EXPECT_NE(section.find("class=\"over-time rmse-moving\""), std::string::npos);
+    // The RMSE plots: at rest, then in motion; the GPU time plotted is the one in motion.
+    EXPECT_NE(section.find("hard at 0.5 s: 0.2</title>"), std::string::npos);
+    EXPECT_NE(section.find("hard at 0.5 s: 0.4</title>"), std::string::npos);
+    EXPECT_LT(section.find("hard at 0.5 s: 0.2</title>"),
+              section.find("hard at 0.5 s: 0.4</title>"));
+    EXPECT_NE(section.find("hard at 0.5 s: 5</title>"), std::string::npos);
+    EXPECT_EQ(section.find("hard at 0.5 s: 2</title>"), std::string::npos);
+    EXPECT_NE(section.find("RMSE 0.1167 mean, 0.2000 max; flicker 0.001000; pop-in 0.2000, lag 1 "
+                           "frames; 2.000 ms a frame at rest, 3.000 in motion"),
               std::string::npos)
         << section;
     EXPECT_NE(renderHtmlReport(data).find(section), std::string::npos);

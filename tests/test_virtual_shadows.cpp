@@ -17,27 +17,6 @@ using namespace penumbra::test;
 
 namespace {
 
-Light sharpSun() {
-    return {.name = "sun",
-            .type = LightType::Directional,
-            .direction = glm::normalize(glm::vec3(0.5f, -0.7f, -0.4f))};
-}
-Light sharpSpot() {
-    const glm::vec3 at{-2.5f, 5.0f, 3.0f};
-    return {.name = "spot",
-            .type = LightType::Spot,
-            .position = at,
-            .direction = glm::normalize(glm::vec3(0.0f, 0.0f, -0.5f) - at),
-            .intensity = 40.0f,
-            .outerConeAngle = 0.75f};
-}
-Light sharpPoint() {
-    return {.name = "point",
-            .type = LightType::Point,
-            .position = {0.6f, 2.4f, -0.4f},
-            .intensity = 10.0f};
-}
-
 using Sets = std::vector<std::pair<std::string, std::string>>;
 
 RenderOptions options(Technique technique, const Sets& sets, uint32_t width = 320,

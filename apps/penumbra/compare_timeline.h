@@ -1,12 +1,14 @@
 #pragma once
 // `compare --timeline START:END:STEP` (issue 59): the scene posed at each time, every row
-// rendered and a truth traced for each frame, with per-frame metrics (RMSE, MAE, acne, leak,
-// GPU time) and each row's flicker (src/report/shimmer.h). Written as timeline.json and
+// rendered at rest and in motion and a truth traced for each frame, with per-frame metrics (RMSE,
+// MAE, acne, leak, GPU time) and each row's flicker (src/report/shimmer.h) and lag
+// (src/report/lag.h). Written as timeline.json and
 // timeline.csv beside the usual outputs of the first frame.
 #include "cli_options.h"
 #include "penumbra/reference.h"
 #include "penumbra/renderer.h"
 #include "report/blur_band.h"
+#include "report/lag.h"
 #include "scene/timeline_range.h"
 
 #include <nlohmann/json.hpp>
@@ -18,12 +20,17 @@
 
 namespace penumbra::cli {
 
-// One row's measures per frame, and over the timeline.
+// One row's measures per frame, and over the timeline. Two renders of each frame: at rest (the
+// pose rendered by a renderer of its own after warm-up: the technique's steady state) and in
+// motion (the pose drawn as the next frame of one renderer that drew every frame before it,
+// with no warm-up: what the technique kept from the last frame shows).
 struct TimelineRow {
     std::string name;
-    std::vector<double> rmse, mae, acne, leak, gpuMs;
+    std::vector<double> rmse, mae, acne, leak, gpuMs; // at rest
+    std::vector<double> movingRmse, movingGpuMs;      // in motion
     double flicker = 0.0; // mean |change of the error| where the truth held still
     uint64_t flickerPixels = 0;
+    Lag lag; // the motion's error against the rest's (report/lag.h)
 };
 
 struct TimelineInputs {

@@ -164,9 +164,9 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
     cmd->add_option("--fps", args->fps,
                     "play: the `--frames` timed frames are successive poses F a second from "
                     "`--time` (default 0 s) of an animated scene (or one whose added lights "
-                    "orbit), each loaded, framed as the first and uploaded anew; the GPU times are "
-                    "each pass's per frame while things move and their median, the outputs the "
-                    "last frame's")
+                    "orbit), each loaded, framed as the first and drawn as the next frame of one "
+                    "renderer (no warm-up between poses); the GPU times are each pass's per frame "
+                    "while things move and their median, the outputs the last frame's")
         ->type_name("F");
     // The techniques that trace a distance field, from the registry.
     const std::string tracing = shadows::techniquesWhere(

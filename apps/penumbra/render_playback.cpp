@@ -54,14 +54,16 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
         const double exact = start + static_cast<double>(k) / in.fps;
         posed.time = std::strtod(fmt::format("{:.12g}", exact).c_str(), nullptr);
         std::fprintf(stderr, "penumbra: frame %u/%u at %g s\n", k + 1, options.frames, *posed.time);
-        if (k == 0) {
+        if (k == 0) { // at rest, after its warm-up
             played.scene = first;
-        } else {
+            played.uploaded = std::make_unique<SceneRenderer>(renderer, played.scene);
+            played.result = played.uploaded->render(one);
+        } else { // the next frame of the same renderer: what the technique kept shows
             played.scene = loadSceneReporting(in.sceneSpec, in.global, posed, options, true);
             pinToFirstFrame(played.scene, first);
+            played.uploaded->repose(played.scene);
+            played.result = played.uploaded->render(one, {.continues = true});
         }
-        played.uploaded = std::make_unique<SceneRenderer>(renderer, played.scene);
-        played.result = played.uploaded->render(one);
         for (const PassTime& p : played.result.passes) {
             auto it = std::find_if(passes.begin(), passes.end(),
                                    [&](const PassTime& q) { return q.pass == p.pass; });

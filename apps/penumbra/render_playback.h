@@ -1,7 +1,9 @@
 #pragma once
 // `render --fps F` (issue 59): the timed frames play the scene's animation (or its orbiting
 // lights) F frames a second from --time, each frame a new pose, loaded, framed as the first and
-// uploaded anew, so that the GPU times are the cost per frame while things move.
+// drawn as the next frame of one renderer (SceneRenderer::repose, no warm-up between poses), so
+// that the GPU times are the cost per frame while things move, what a technique re-renders
+// because something moved included.
 #include "cli_options.h"
 #include "penumbra/renderer.h"
 
@@ -28,8 +30,9 @@ struct PlaybackInputs {
 // orbits).
 void checkPlayback(const PlaybackInputs& in, const Scene& first, uint32_t frames);
 
-// options.frames frames: frame k at the first's time + k / fps (to 12 digits), each rendered
-// after one warm-up. `first` is the scene loaded at the first frame's time.
+// options.frames frames: frame k at the first's time + k / fps (to 12 digits); the first after
+// its warm-up, each later one as the next frame of the same renderer. `first` is the scene
+// loaded at the first frame's time.
 PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scene& first,
                         const RenderOptions& options);
 

@@ -194,13 +194,20 @@ void ViewerSession::pose(double time) {
         next.lights[i].angularDiameter = mState.lights[i].angularDiameter;
         next.lights[i].castsShadow = mState.lights[i].castsShadow;
     }
-    // The frames in flight read the old pose's buffers.
-    VK_CHECK(vkDeviceWaitIdle(mRenderer.context().device()));
+    // The same renderers draw the new pose (its geometry uploaded again), keeping what they
+    // keep between frames (targets, history, page requests), as an engine does while things move.
+    try {
+        mA->repose(next);
+        if (mB)
+            mB->repose(next);
+    } catch (const InputError& e) { // no valid triangle at this time: the last good pose stays
+        mState.status = e.what();
+        mState.playing = false;
+        mState.time = mPosedAt;
+        return;
+    }
     mScene = std::move(next);
     mState.lights = mScene.lights;
-    mA = std::make_unique<SceneRenderer>(mRenderer, mScene);
-    if (mB)
-        mB = std::make_unique<SceneRenderer>(mRenderer, mScene);
     mPosedAt = time;
     if (mTruth) {
         mTruth.reset();

@@ -295,9 +295,20 @@ public:
         // The view jumped (a camera cut): last frame's versions of every history resource hold
         // nothing from this frame on (a temporal pass starts again rather than blend across it).
         bool cut = false;
+        // This frame follows the last one render() drew, in the same ring slot and with no
+        // warm-up frames, so that what the technique kept from it shows (a virtual map's pages
+        // asked for a frame ago): a scene in motion, frame by frame, after repose().
+        bool continues = false;
     };
     RenderResult render(const RenderOptions& options, const FrameState& state,
                         const ProgressFn& progress = {});
+    // The same scene at another time (issue 59): its vertices, lights and cameras moved, its
+    // materials and textures the same. The geometry is uploaded again (textures are kept); the
+    // targets, history and the last frame's page requests are kept, as an engine keeps them
+    // while things move; every cached virtual page is dropped, since nothing yet says which
+    // pages a moved caster touched. Throws InputError when no valid triangle is left, or when
+    // `posed` has other materials, textures or lights than the scene uploaded.
+    void repose(const Scene& posed);
     // The pages of the last frame that read virtual maps (empty levels before one).
     VirtualPages virtualPages() const;
     // The distance field the last sdf render traced, x fastest, then y, then z (empty before

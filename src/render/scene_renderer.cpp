@@ -88,6 +88,7 @@ struct SceneRenderer::Impl {
     };
     std::array<Slot, kFramesInFlight> slots;
     size_t nextSlot = 0;
+    size_t lastSlot = 0; // render()'s last: a frame that continues it uses it again
     vk::SamplerHandle nearest, compare, linear;
     // The distance field a technique declares and the setting it was built for; a 1x1x2
     // placeholder bound in its place otherwise (every binding a shader uses must be written).
@@ -241,6 +242,39 @@ std::vector<float> SceneRenderer::distanceField(DistanceFieldInfo& info) const {
 }
 
 SceneRenderer::~SceneRenderer() = default;
+
+void SceneRenderer::repose(const Scene& posedIn) {
+    Impl& m = *mImpl;
+    Scene posed = posedIn;
+    dropInvalidTriangles(posed); // the same rule the ground truth applies
+    if (posed.triangleCount() == 0)
+        throw InputError(posed.name, "the scene has no valid triangles at this time");
+    if (posed.materials.size() != m.scene.materials.size() ||
+        posed.textures.size() != m.scene.textures.size() ||
+        posed.images.size() != m.scene.images.size() ||
+        posed.lights.size() != m.scene.lights.size())
+        throw InputError(posed.name, fmt::format("posed anew it has {} materials, {} textures and "
+                                                 "{} lights; it was uploaded with {}, {} and {}",
+                                                 posed.materials.size(), posed.textures.size(),
+                                                 posed.lights.size(), m.scene.materials.size(),
+                                                 m.scene.textures.size(), m.scene.lights.size()));
+    VK_CHECK(vkDeviceWaitIdle(m.ctx().device())); // a frame in flight may read the old geometry
+    render::uploadGeometry(m.ctx(), m.gpu, posed);
+    m.scene = std::move(posed);
+    // Everything the constructor measured on the geometry, measured again.
+    m.bounds = m.scene.bounds();
+    m.automaticExposure = automaticExposure(m.scene);
+    for (size_t i = 0; i < m.scene.lights.size(); ++i) {
+        const Light& light = m.scene.lights[i];
+        m.nearestSurface[i] = castsShadowMap(light) && light.type != LightType::Directional
+                                  ? nearestSurfaceDistance(m.scene, light.position)
+                                  : std::numeric_limits<float>::infinity();
+        m.nearestFrom[i] = light.position;
+    }
+    m.visibleDepths.reset();
+    m.field.reset(); // traced from the old geometry: built again when a frame needs it
+    m.pageCache.reset();
+}
 
 const Scene& SceneRenderer::scene() const {
     return mImpl->scene;
@@ -444,14 +478,19 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
                                    const ProgressFn& progress) {
     Impl& m = *mImpl;
     const vk::Context& ctx = m.ctx();
-    Impl::Prepared prepared = m.prepare(o, state, m.nextSlot, progress, false);
-    m.nextSlot = (m.nextSlot + 1) % m.slots.size();
+    // A frame that continues the last one reads the page requests that frame's marking wrote
+    // into its slot: the same slot again.
+    const size_t slot = state.continues ? m.lastSlot : m.nextSlot;
+    Impl::Prepared prepared = m.prepare(o, state, slot, progress, false);
+    m.lastSlot = slot;
+    m.nextSlot = (slot + 1) % m.slots.size();
     RenderResult& result = prepared.result;
     vk::GpuTimer timer(ctx, kTimedPasses);
     m.pageInfo = {};
     // Virtual maps: a frame renders the pages the frame before it asked for, so the first
     // warm-up frame asks (its own pixels read whatever the pool held) and the second renders.
-    const uint32_t warmUps = prepared.settings.virtualMaps ? 2 : 1;
+    // A frame that continues the last one has none: what it kept must show.
+    const uint32_t warmUps = state.continues ? 0 : prepared.settings.virtualMaps ? 2 : 1;
     for (uint32_t frame = 0; frame < o.frames + warmUps; ++frame) {
         const bool warmUp = frame < warmUps;
         if (progress)

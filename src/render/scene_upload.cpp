@@ -7,6 +7,25 @@ namespace penumbra::render {
 
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
     GpuScene out;
+    out.textures = uploadTextures(ctx, scene);
+    const size_t materialCount = std::max<size_t>(scene.materials.size(), 1);
+    for (size_t m = 0; m < materialCount; ++m) {
+        const Material material = m < scene.materials.size() ? scene.materials[m] : Material{};
+        out.materials.push_back(
+            {.constants = {.baseColor = material.baseColor,
+                           .alphaCutoff = material.alphaCutoff,
+                           .alphaTest = material.alphaTested() ? 1u : 0u,
+                           .hasTexture = material.baseColorTexture >= 0 ? 1u : 0u},
+             .texture = out.textures.of(scene, material),
+             .doubleSided = material.doubleSided});
+    }
+    uploadGeometry(ctx, out, scene);
+    return out;
+}
+
+void uploadGeometry(const vk::Context& ctx, GpuScene& out, const Scene& scene) {
+    out.batches.clear();
+    out.opaqueIndexCount = 0;
     const size_t materialCount = std::max<size_t>(scene.materials.size(), 1);
     std::vector<std::vector<uint32_t>> byMaterial(materialCount);
     for (size_t t = 0; t < scene.triangleCount(); ++t) {
@@ -35,17 +54,6 @@ GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
             if (!tested)
                 out.opaqueIndexCount = static_cast<uint32_t>(indices.size());
         }
-    out.textures = uploadTextures(ctx, scene);
-    for (size_t m = 0; m < materialCount; ++m) {
-        const Material material = m < scene.materials.size() ? scene.materials[m] : Material{};
-        out.materials.push_back(
-            {.constants = {.baseColor = material.baseColor,
-                           .alphaCutoff = material.alphaCutoff,
-                           .alphaTest = material.alphaTested() ? 1u : 0u,
-                           .hasTexture = material.baseColorTexture >= 0 ? 1u : 0u},
-             .texture = out.textures.of(scene, material),
-             .doubleSided = material.doubleSided});
-    }
     out.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.vertices)),
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex buffer");
     std::vector<glm::vec3> positions;
@@ -61,7 +69,6 @@ GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
     out.indices = vk::uploadBuffer(ctx, std::as_bytes(std::span(indices)),
                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index buffer");
     out.indexCount = static_cast<uint32_t>(indices.size());
-    return out;
 }
 
 } // namespace penumbra::render

@@ -1,7 +1,8 @@
 #pragma once
-// The scene on the device, uploaded once per SceneRenderer: vertices, their positions alone (the
-// opaque casters' shadow pass), indices grouped by material (opaque first, alpha-tested last) and
-// cut into clusters with bounds for culling, textures, and each material's constants.
+// The scene on the device, uploaded once per SceneRenderer (its geometry again per pose): vertices,
+// their positions alone (the opaque casters' shadow pass), indices grouped by material (opaque
+// first, alpha-tested last) and cut into clusters with bounds for culling, textures, and each
+// material's constants.
 #include "pass_types.h"
 #include "penumbra/scene.h"
 #include "render/culling.h"
@@ -37,5 +38,9 @@ struct GpuScene {
     std::vector<Material> materials; // per Scene::materials
 };
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
+// The geometry alone uploaded again (vertices, positions, indices, batches, clusters), the
+// textures and materials kept: the scene posed at another time (SceneRenderer::repose). No frame
+// may be in flight that reads the old buffers.
+void uploadGeometry(const vk::Context& ctx, GpuScene& scene, const Scene& posed);
 
 } // namespace penumbra::render

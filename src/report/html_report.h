@@ -32,9 +32,13 @@ struct ReportRow {
     double shimmer = NAN;         // mean frame-to-frame change along the camera path; NaN: no path
     // Virtual maps along the path: pages each frame rendered and those resident (else empty).
     std::vector<uint32_t> pathPagesRendered, pathPagesResident;
-    // compare --timeline: per frame its RMSE and total GPU ms, and its flicker (else empty, NaN).
+    // compare --timeline: per frame its RMSE and total GPU ms at rest and in motion, its flicker,
+    // pop-in and longest lag (else empty, NaN, 0).
     std::vector<double> rmseOverTime, gpuMsOverTime;
+    std::vector<double> movingRmseOverTime, movingGpuMsOverTime;
     double flicker = NAN;
+    double popIn = NAN;
+    size_t lagFrames = 0;
 };
 
 // Everything a report shows: the run's context, the reference, and one row per technique.

@@ -90,10 +90,11 @@ std::string overTimeSvg(const std::vector<double>& times, const std::vector<Time
 std::string overTimeSection(const ReportData& data) {
     if (data.timelineTimes.empty())
         return {};
-    std::vector<TimeSeries> rmse, gpuMs;
+    std::vector<TimeSeries> rmse, movingRmse, gpuMs;
     for (const ReportRow& row : data.rows) {
         rmse.push_back({row.name, row.rmseOverTime});
-        gpuMs.push_back({row.name, row.gpuMsOverTime});
+        movingRmse.push_back({row.name, row.movingRmseOverTime});
+        gpuMs.push_back({row.name, row.movingGpuMsOverTime});
     }
     const auto meanAndMost = [](const std::vector<double>& v) {
         double sum = 0, most = 0;
@@ -106,21 +107,28 @@ std::string overTimeSection(const ReportData& data) {
                                 "(timeline.json and timeline.csv hold the numbers).</p>\n",
                                 data.timelineTimes.size(), data.timelineTimes.front(),
                                 data.timelineTimes.back());
-    s += overTimeSvg(data.timelineTimes, rmse, "rmse", "RMSE");
-    s += overTimeSvg(data.timelineTimes, gpuMs, "gpu-ms", "total GPU time (ms)");
+    s += overTimeSvg(data.timelineTimes, rmse, "rmse", "RMSE at rest");
+    s += overTimeSvg(data.timelineTimes, movingRmse, "rmse-moving", "RMSE in motion");
+    s += overTimeSvg(data.timelineTimes, gpuMs, "gpu-ms", "total GPU time in motion (ms)");
     s += "<ul class=\"legend\">\n";
     for (size_t r = 0; r < data.rows.size(); ++r) {
         const ReportRow& row = data.rows[r];
         const auto [meanRmse, mostRmse] = meanAndMost(row.rmseOverTime);
         const double meanMs = meanAndMost(row.gpuMsOverTime).first;
+        const double movingMs = meanAndMost(row.movingGpuMsOverTime).first;
         fmt::format_to(std::back_inserter(s),
                        "<li><span class=\"dot\" style=\"background:{}\"></span>{} <small>RMSE "
-                       "{:.4f} mean, {:.4f} max; flicker {:.6f}; {:.3f} ms a frame</small></li>\n",
+                       "{:.4f} mean, {:.4f} max; flicker {:.6f}; pop-in {:.4f}, lag {} frames; "
+                       "{:.3f} ms a frame at rest, {:.3f} in motion</small></li>\n",
                        plotColour(r), escapeHtml(row.name), meanRmse, mostRmse, row.flicker,
-                       meanMs);
+                       row.popIn, row.lagFrames, meanMs, movingMs);
     }
-    s += "</ul>\n<p class=\"note\">Flicker is the mean change of the error from frame to frame "
-         "where the truth held still (docs/cli.md).</p>\n</section>\n";
+    s += "</ul>\n<p class=\"note\">At rest: each pose rendered from scratch after warm-up (the "
+         "technique's steady state). In motion: each pose drawn as the next frame of one renderer, "
+         "with what it kept from the frame before. Flicker is the mean change of the error from "
+         "frame to frame where the truth held still; pop-in the worst excess of the error in "
+         "motion over the one at rest; lag the longest run of frames more than 10% worse in "
+         "motion (docs/cli.md).</p>\n</section>\n";
     return s;
 }
 

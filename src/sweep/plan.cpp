@@ -153,8 +153,9 @@ public:
                     fail("times",
                          fmt::format("{} times; at most {}", list->size(), kMaxTimelineFrames));
                 for (const toml::node& n : *list) {
+                    // Integers and floats; a string or a boolean has no value<double>.
                     const std::optional<double> seconds = n.value<double>();
-                    if (!n.is_number() || !seconds || !std::isfinite(*seconds) || *seconds < 0.0)
+                    if (!seconds || !std::isfinite(*seconds) || *seconds < 0.0)
                         fail("times",
                              fmt::format("'{}' is not a time in seconds, 0 or more", valueText(n)));
                     plan.times.push_back(*seconds + 0.0); // -0 is 0

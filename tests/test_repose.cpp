@@ -1,0 +1,129 @@
+// SceneRenderer::repose (issue 59): the same scene at another time drawn by the renderer that
+// drew the last pose. What it draws of the new pose equals a fresh renderer's image of it for
+// every light type (geometry, bounds, a light's nearest surface and the distance field measured
+// again), and a frame that continues the last one keeps only what it should: the page requests
+// (one frame late, as they always are), not the old pose's pages.
+#include "analytic_scenes.h"
+#include "gpu_fixture.h"
+#include "penumbra/error.h"
+
+#include <cstring>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+// The pose after: every caster (what stands above the ground) lifted and slid, so the scene's
+// bounds grow, and a positioned light moved.
+Scene moved(Scene scene) {
+    for (Vertex& v : scene.vertices)
+        if (v.position.y > 1e-3f)
+            v.position += glm::vec3(0.25f, 0.4f, -0.1f);
+    for (Light& l : scene.lights)
+        if (l.type != LightType::Directional)
+            l.position += glm::vec3(0.3f, 0.2f, 0.0f);
+    return scene;
+}
+
+// The pose after, with the lights and the scene's bounds as they were: the casters slid a little
+// over the ground (which spans the bounds), so no light's pages change but for what moved.
+Scene slid(Scene scene) {
+    for (Vertex& v : scene.vertices)
+        if (v.position.y > 1e-3f)
+            v.position.x += 0.1f;
+    return scene;
+}
+
+RenderOptions options(Technique technique, bool virtualMaps = false) {
+    RenderOptions o{
+        .width = 160, .height = 120, .shadowMapSize = 512, .frames = 1, .technique = technique};
+    if (technique == Technique::Sdf)
+        o.parameters.set("sdf.resolution", "48");
+    if (virtualMaps)
+        o.parameters.set("virtual.enabled", "1");
+    return o;
+}
+
+bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+} // namespace
+
+// Reposed, a renderer draws what a renderer made for the new pose draws, bit for bit, for every
+// light type and for a technique that traces the scene's distance field; continuing the last
+// frame changes nothing for a technique that keeps nothing between frames.
+TEST_F(FrameTest, ARenderedPoseReposedDrawsAsAFreshRendererOfTheNewPose) {
+    for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
+        const Scene before = restingObjects(light);
+        const Scene after = moved(before);
+        ASSERT_GT(after.bounds().max.y, before.bounds().max.y) << "the bounds must grow";
+        for (const Technique technique : {Technique::Pcf, Technique::Sdf}) {
+            const RenderOptions o = options(technique);
+            SceneRenderer fresh(sharedRenderer(), after);
+            const RenderResult want = fresh.render(o);
+            SceneRenderer reposed(sharedRenderer(), before);
+            const RenderResult old = reposed.render(o);
+            reposed.repose(after);
+            const RenderResult rested = reposed.render(o);
+            const RenderResult continued = reposed.render(o, {.continues = true});
+            const std::string what =
+                light.name + ", technique " + std::to_string(static_cast<uint32_t>(technique));
+            EXPECT_FALSE(sameBits(old.visibility[0], want.visibility[0])) << what;
+            EXPECT_TRUE(sameBits(rested.visibility[0], want.visibility[0])) << what;
+            EXPECT_TRUE(sameBits(continued.visibility[0], want.visibility[0])) << what;
+            EXPECT_TRUE(sameBits(rested.position, want.position)) << what;
+            EXPECT_EQ(rested.lights.front().views.front().nearPlane,
+                      want.lights.front().views.front().nearPlane)
+                << what;
+        }
+    }
+}
+
+// A continuing frame has no warm-up: one frame drawn; its virtual pages are the ones the frame
+// before asked for, every one rendered again (the old pose's are dropped), none cached.
+TEST_F(VirtualTest, AContinuingFrameRendersTheRequestsOfTheLastOneAgainOnTheNewPose) {
+    for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
+        const Scene before = restingObjects(light);
+        SceneRenderer scene(sharedRenderer(), before);
+        const RenderOptions o = options(Technique::Hard, true);
+        const RenderResult rest = scene.render(o);
+        ASSERT_TRUE(rest.virtualMaps);
+        EXPECT_EQ(rest.virtualMaps->renderedPerFrame.size(), 3u) << "two warm-ups and one";
+        EXPECT_EQ(rest.virtualMaps->rendered, 0u) << light.name << ": cached after warm-up";
+        // The same pose again, continuing: its requests are the last frame's, all cached.
+        const RenderResult same = scene.render(o, {.continues = true});
+        EXPECT_EQ(same.virtualMaps->renderedPerFrame.size(), 1u) << light.name;
+        EXPECT_EQ(same.virtualMaps->requested, rest.virtualMaps->requested) << light.name;
+        EXPECT_EQ(same.virtualMaps->cached, same.virtualMaps->requested) << light.name;
+        EXPECT_TRUE(sameBits(same.visibility[0], rest.visibility[0])) << light.name;
+        // Reposed, under the same lights and bounds: every page asked for is drawn again.
+        const Scene after = slid(before);
+        ASSERT_EQ(after.bounds().min, before.bounds().min);
+        ASSERT_EQ(after.bounds().max, before.bounds().max);
+        scene.repose(after);
+        const RenderResult moving = scene.render(o, {.continues = true});
+        EXPECT_EQ(moving.virtualMaps->renderedPerFrame.size(), 1u) << light.name;
+        EXPECT_GT(moving.virtualMaps->requested, 0u) << light.name;
+        EXPECT_EQ(moving.virtualMaps->rendered, moving.virtualMaps->requested) << light.name;
+        EXPECT_EQ(moving.virtualMaps->cached, 0u) << light.name;
+    }
+}
+
+TEST_F(FrameTest, ReposeRefusesAnotherSceneAndOneWithNoTriangleLeft) {
+    const Scene before = restingObjects(sharpSun());
+    SceneRenderer scene(sharedRenderer(), before);
+    Scene lit = before;
+    lit.lights.push_back(sharpPoint());
+    EXPECT_THROW(scene.repose(lit), InputError);
+    Scene flat = before;
+    for (Vertex& v : flat.vertices)
+        v.position = glm::vec3(1.0f);
+    EXPECT_THROW(scene.repose(flat), InputError);
+    // Refused, it draws the scene it had.
+    const RenderResult still = scene.render(options(Technique::Hard));
+    SceneRenderer fresh(sharedRenderer(), before);
+    EXPECT_TRUE(
+        sameBits(still.visibility[0], fresh.render(options(Technique::Hard)).visibility[0]));
+}
