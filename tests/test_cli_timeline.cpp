@@ -191,6 +191,15 @@ TEST(CliTimeline, TheReferenceRecordsThePose) {
     EXPECT_EQ(info["time"], 0.5);
     EXPECT_EQ(info["animation"], "swing");
     EXPECT_EQ(info["animation_duration"], 2.0);
+    // --time -0 is 0 s, written as such.
+    const fs::path zero = outputScratch("reference-minus-zero");
+    const ProcessResult z =
+        runCli({"reference", "builtin:pendulum", "-o", zero.string(), "--width", "16", "--height",
+                "12", "--samples", "1", "--format", "pfm", "--time", "-0"});
+    ASSERT_EQ(z.exitCode, 0) << z.err;
+    const std::string written = slurp(zero / "reference.json");
+    EXPECT_EQ(written.find("-0.0"), std::string::npos) << written;
+    EXPECT_FALSE(std::signbit(J::parse(written)["time"].get<double>()));
 }
 
 TEST(CliTimeline, AStillSceneIsWarnedOnceHasNoFlickerAndItsTimesAreWrittenAsTyped) {
@@ -252,6 +261,13 @@ TEST(CliTimeline, AFrameRefusedAfterTheFirstNamesItselfAndLeavesNoOutput) {
               std::string::npos)
         << r.err;
     EXPECT_FALSE(fs::exists(out));
+    // render --fps names the frame the same way.
+    const fs::path played = dir / "played";
+    const ProcessResult p = runCli({"render", file.string(), "-o", played.string(), "--width", "32",
+                                    "--height", "24", "--fps", "2", "--frames", "3"});
+    EXPECT_GT(p.exitCode, 0) << p.err;
+    EXPECT_NE(p.err.find("at time 1 s (--fps frame 3 of 3, at 1 s)\n"), std::string::npos) << p.err;
+    EXPECT_FALSE(fs::exists(played));
 }
 
 namespace {
@@ -469,7 +485,34 @@ TEST(CliTimeline, VirtualPagesLagBehindAnOrbitingLightAndPlainMapsDoNot) {
     EXPECT_GT(most, 0.0);
     EXPECT_DOUBLE_EQ(paged["pop_in"].get<double>(), most);
     EXPECT_GE(paged["lag_frames"].get<int>(), 1);
+    EXPECT_GE(paged["lagging_frames"].get<int>(), paged["lag_frames"].get<int>());
     EXPECT_GT(paged["pop_in_ratio"].get<double>(), 1.1);
+    EXPECT_EQ(paged["rmse_moving_over_time"]["max"].get<double>(),
+              *std::max_element(moving.begin(), moving.end()));
+    // The CSV's frame at 0.25 s: its rest and motion columns where the header says.
+    std::istringstream csv(slurp(dir / "paged" / "timeline.csv"));
+    std::string line;
+    std::vector<std::string> header, atQuarter;
+    const auto split = [](const std::string& s) {
+        std::vector<std::string> fields;
+        std::istringstream in(s);
+        for (std::string f; std::getline(in, f, ',');)
+            fields.push_back(f);
+        return fields;
+    };
+    std::getline(csv, line);
+    header = split(line);
+    while (std::getline(csv, line))
+        if (line.rfind("0.25,", 0) == 0)
+            atQuarter = split(line);
+    ASSERT_EQ(atQuarter.size(), header.size()) << line;
+    const auto column = [&](const char* name) {
+        return std::stod(
+            atQuarter[size_t(std::find(header.begin(), header.end(), name) - header.begin())]);
+    };
+    EXPECT_EQ(column("rmse"), rest[1]);
+    EXPECT_EQ(column("rmse_moving"), moving[1]);
+    EXPECT_EQ(column("gpu_ms_moving"), paged["gpu_ms_moving"][1].get<double>());
 }
 
 // render --fps draws each later pose as the next frame, with no warm-up: a virtual map's frame
@@ -482,7 +525,48 @@ TEST(CliTimeline, RenderFpsDrawsEachPoseAsOneFrameAfterTheLast) {
                 "--add-light", "point:pos=2,3,0,orbit=4,about=0,0,0,name=bulb"});
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const J pages = J::parse(slurp(out / "stats.json"))["virtual_maps"];
-    ASSERT_EQ(pages["pages_rendered_per_frame"].size(), 1u) << pages.dump();
-    EXPECT_GT(pages["pages_rendered_per_frame"][0].get<int>(), 0) << pages.dump();
+    // Every pose's frames: the first's two warm-ups and its frame, then one frame a pose, each
+    // rendering pages again (the light moved).
+    ASSERT_EQ(pages["pages_rendered_per_frame"].size(), 5u) << pages.dump();
+    EXPECT_GT(pages["pages_rendered_per_frame"][3].get<int>(), 0) << pages.dump();
+    EXPECT_GT(pages["pages_rendered_per_frame"][4].get<int>(), 0) << pages.dump();
     EXPECT_EQ(pages["pages_cached"].get<int>(), 0) << "every page is drawn again for the pose";
+}
+
+// Only a camera Penumbra framed is held at the first frame's: the file's own camera moves with
+// its node in a timeline as at --time, whatever its name ("autocam" is not "auto").
+TEST(CliTimeline, AFilesOwnCameraMovesWithItsNodeWhateverItsName) {
+    const fs::path dir = outputScratch("timeline-autocam");
+    J j = J::parse(slurp(boxAsset(dir / "asset", true)));
+    j["cameras"] = J::array({{{"name", "autocam"},
+                              {"type", "perspective"},
+                              {"perspective", {{"yfov", 0.8}, {"znear", 0.05}}}}});
+    j["nodes"].push_back({{"name", "eye"},
+                          {"camera", 0},
+                          {"translation", {0.0, 6.0, 9.0}},
+                          {"rotation", {-0.2588, 0.0, 0.0, 0.9659}}});
+    const size_t eye = j["nodes"].size() - 1;
+    j["scenes"][0]["nodes"].push_back(eye);
+    J& slide = j["animations"][0];
+    const int path = floatAccessor(j, {0.0f, 6.0f, 9.0f, 2.0f, 6.0f, 9.0f}, "VEC3");
+    slide["samplers"].push_back({{"input", slide["samplers"][0]["input"]}, {"output", path}});
+    slide["channels"].push_back(
+        {{"sampler", 1}, {"target", {{"node", eye}, {"path", "translation"}}}});
+    const fs::path file = dir / "autocam.gltf";
+    std::ofstream(file) << j.dump();
+    const auto measure = [&](const std::string& name, const std::string& option,
+                             const std::string& value, const char* json) {
+        const ProcessResult r =
+            runCli({"compare", file.string(), "-o", (dir / name).string(), "--width", "64",
+                    "--height", "48", "--samples", "4", "--techniques", "pcf[box3]", "--format",
+                    "pfm", option, value});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return J::parse(slurp(dir / name / json));
+    };
+    const J timeline = measure("timeline", "--timeline", "0:1:1", "timeline.json");
+    const J atOne = measure("at-one", "--time", "1", "metrics.json");
+    const J atZero = measure("at-zero", "--time", "0", "metrics.json");
+    const auto rmse = [](const J& m) { return m["techniques"]["pcf[box3]"]["rmse"].get<double>(); };
+    EXPECT_NE(rmse(atZero), rmse(atOne));
+    EXPECT_DOUBLE_EQ(timeline["rows"]["pcf[box3]"]["rmse"][1].get<double>(), rmse(atOne));
 }

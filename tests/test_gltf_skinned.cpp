@@ -172,6 +172,17 @@ TEST(GltfSkinned, WeightsOfNormalizedBytesAreScaledToSumToOne) {
         expectVertexAt(s, p, "byte weights at 1 s");
 }
 
+// Weights near the float's limit sum in double: 3e38 and 3e38 are a half each, not an
+// overflow to infinity.
+TEST(GltfSkinned, WeightsNearTheFloatsLimitAreScaledLikeSmallOnes) {
+    Bar r = bar();
+    r.b.j["accessors"][r.weights]["bufferView"] = r.b.view(std::vector<float>{
+        1, 0, 0, 0, 1, 0, 0, 0, 3e38f, 3e38f, 0, 0, 3e38f, 3e38f, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0});
+    const Scene s = loadAt(write(r.b, "huge-weights"), 1.0);
+    for (const glm::vec3& p : barAt(static_cast<float>(std::numbers::pi / 2)))
+        expectVertexAt(s, p, "huge weights at 1 s");
+}
+
 TEST(GltfSkinned, ASecondSetOfJointsAndWeightsAddsToTheFirst) {
     Bar r = bar();
     GltfBuilder& b = r.b;

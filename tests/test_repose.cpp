@@ -7,6 +7,7 @@
 #include "gpu_fixture.h"
 #include "penumbra/error.h"
 
+#include <algorithm>
 #include <cstring>
 
 using namespace penumbra;
@@ -68,12 +69,26 @@ TEST_F(FrameTest, ARenderedPoseReposedDrawsAsAFreshRendererOfTheNewPose) {
             reposed.repose(after);
             const RenderResult rested = reposed.render(o);
             const RenderResult continued = reposed.render(o, {.continues = true});
+            // Reposed and continued at once: a field built again counts in this frame's cost.
+            reposed.repose(before);
+            const RenderResult back = reposed.render(o, {.continues = true});
+            const auto build =
+                std::find_if(back.passes.begin(), back.passes.end(),
+                             [](const PassTime& p) { return p.pass == "sdf_build"; });
+            if (technique == Technique::Sdf) {
+                ASSERT_NE(build, back.passes.end());
+                EXPECT_EQ(build->medianMs, back.field->buildGpuMs);
+                EXPECT_GT(build->medianMs, 0.0);
+            } else {
+                EXPECT_EQ(build, back.passes.end());
+            }
             const std::string what =
                 light.name + ", technique " + std::to_string(static_cast<uint32_t>(technique));
             EXPECT_FALSE(sameBits(old.visibility[0], want.visibility[0])) << what;
             EXPECT_TRUE(sameBits(rested.visibility[0], want.visibility[0])) << what;
             EXPECT_TRUE(sameBits(continued.visibility[0], want.visibility[0])) << what;
             EXPECT_TRUE(sameBits(rested.position, want.position)) << what;
+            EXPECT_EQ(rested.exposure, want.exposure) << what;
             EXPECT_EQ(rested.lights.front().views.front().nearPlane,
                       want.lights.front().views.front().nearPlane)
                 << what;

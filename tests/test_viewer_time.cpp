@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 namespace penumbra::test {
 
 namespace {
@@ -112,6 +114,38 @@ TEST(ViewerTime, TheClockLoopsAndStartsAtTheAnimationsStart) {
         renderImage({box, "--technique", "hard", "--width", "320", "--height", "200"}, "box-rest");
     EXPECT_LE(meanDifference(first, atZero), 0.1);
     EXPECT_GT(meanDifference(first, atRest), 0.5) << "at rest the box stands 0.5 to the side";
+}
+
+// The file's own camera on an animated node follows it as the scene plays: a camera that slides
+// 2 units in a second, played 31 frames from 0, shows what --time 0.5 shows.
+TEST(ViewerTime, AFilesAnimatedCameraMovesAsTheScenePlays) {
+    const std::filesystem::path dir = scratch("moving-camera");
+    nlohmann::json j = nlohmann::json::parse(slurp(boxAsset(dir, /*animated=*/true)));
+    j["cameras"] = nlohmann::json::array(
+        {{{"type", "perspective"}, {"perspective", {{"yfov", 0.8}, {"znear", 0.05}}}}});
+    j["nodes"].push_back({{"camera", 0},
+                          {"translation", {0.0, 6.0, 9.0}},
+                          {"rotation", {-0.2588, 0.0, 0.0, 0.9659}}});
+    const size_t eye = j["nodes"].size() - 1;
+    j["scenes"][0]["nodes"].push_back(eye);
+    nlohmann::json& slide = j["animations"][0];
+    const int path = floatAccessor(j, {0.0f, 6.0f, 9.0f, 2.0f, 6.0f, 9.0f}, "VEC3");
+    slide["samplers"].push_back({{"input", slide["samplers"][0]["input"]}, {"output", path}});
+    slide["channels"].push_back(
+        {{"sampler", 1}, {"target", {{"node", eye}, {"path", "translation"}}}});
+    const std::string file = (dir / "camera.gltf").string();
+    std::ofstream(file) << j.dump();
+    const std::vector<std::string> view{file,  "--technique", "hard", "--width",
+                                        "320", "--height",    "200",  "--hide-ui"};
+    const auto with = [&](std::vector<std::string> args, std::vector<std::string> extra) {
+        args.insert(args.end(), extra.begin(), extra.end());
+        return args;
+    };
+    const Rgb played = viewImage(with(view, {"--play"}), "camera-played", nullptr, "31");
+    const Rgb atHalf = viewImage(with(view, {"--time", "0.5"}), "camera-half", nullptr, "1");
+    const Rgb atZero = viewImage(with(view, {"--time", "0"}), "camera-zero", nullptr, "1");
+    EXPECT_LE(meanDifference(played, atHalf), 0.1);
+    EXPECT_GT(meanDifference(played, atZero), 1.0);
 }
 
 TEST(ViewerTime, AStillSceneCannotPlay) {

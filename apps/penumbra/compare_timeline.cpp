@@ -18,17 +18,13 @@ namespace {
 // warnings. A frame refused names itself, since the first frame was accepted.
 Scene loadFrame(const TimelineInputs& in, const SceneOptions& options, size_t k,
                 const Timeline& timeline) {
-    try {
-        return loadSceneReporting(in.sceneSpec, in.global, options, in.rowOptions.front(),
-                                  /*quiet=*/true);
-    } catch (const InputError& e) {
-        const std::string what = e.what();
-        const std::string prefix = e.subject() + ": ";
-        throw InputError(e.subject(),
-                         fmt::format("{} (--timeline frame {} of {}, at {:g} s)",
-                                     what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what,
-                                     k + 1, timeline.frames, timeline.at(k)));
-    }
+    return loadPose(
+        [&] {
+            return loadSceneReporting(in.sceneSpec, in.global, options, in.rowOptions.front(),
+                                      /*quiet=*/true);
+        },
+        fmt::format("--timeline frame {} of {}, at {:g} s", k + 1, timeline.frames,
+                    timeline.at(k)));
 }
 
 double totalMs(const RenderResult& r) {
@@ -40,8 +36,22 @@ double totalMs(const RenderResult& r) {
 
 } // namespace
 
+Scene loadPose(const std::function<Scene()>& load, const std::string& which) {
+    try {
+        return load();
+    } catch (const InputError& e) {
+        const std::string what = e.what();
+        const std::string prefix = e.subject() + ": ";
+        throw InputError(e.subject(),
+                         fmt::format("{} ({})",
+                                     what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what,
+                                     which));
+    }
+}
+
 void pinToFirstFrame(Scene& scene, const Scene& first) {
-    const auto automatic = [](const Camera& c) { return c.name.rfind("auto", 0) == 0; };
+    // Framed by Penumbra, whatever its name: a file's camera called "autocam" is its own.
+    const auto automatic = [](const Camera& c) { return c.automatic; };
     if (!first.cameras.empty() && automatic(first.cameras.front()) && !scene.cameras.empty() &&
         automatic(scene.cameras.front()))
         scene.cameras.front() = first.cameras.front();

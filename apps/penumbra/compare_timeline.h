@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -42,6 +43,10 @@ struct TimelineInputs {
     const std::vector<BlurReach>& blur;
     const ReferenceOptions& reference;
 };
+
+// A pose after the first, loaded by `load`: one it refuses names itself by `which` ("--timeline
+// frame 3 of 3, at 1 s"), since the first pose was accepted.
+Scene loadPose(const std::function<Scene()>& load, const std::string& which);
 
 // An automatic camera, default light or ground follows the scene's bounds, which move with the
 // animation: the first frame's are kept (the ground by the caller, through the scene options),

@@ -118,7 +118,8 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
         files += (files.empty() ? "" : ", ") + f;
     std::printf("wrote %s/{%s}\n", out.path().c_str(), files.c_str());
     if (args.fps)
-        std::printf("GPU ms per pass (median of %u frames at %g a second, each pose after %s):",
+        std::printf("GPU ms per pass (median of %u frames at %g a second, the first pose after "
+                    "%s, each later one the next frame):",
                     options.frames, *args.fps, result.virtualMaps ? "2 warm-ups" : "1 warm-up");
     else
         std::printf("GPU ms per pass (median of %u frames after %s):", options.frames,

@@ -50,6 +50,7 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
     one.frames = 1;
     PlayedFrames played;
     std::vector<PassTime> passes;
+    std::vector<uint32_t> pagesPerFrame;
     for (uint32_t k = 0; k < options.frames; ++k) {
         const double exact = start + static_cast<double>(k) / in.fps;
         posed.time = std::strtod(fmt::format("{:.12g}", exact).c_str(), nullptr);
@@ -59,11 +60,17 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
             played.uploaded = std::make_unique<SceneRenderer>(renderer, played.scene);
             played.result = played.uploaded->render(one);
         } else { // the next frame of the same renderer: what the technique kept shows
-            played.scene = loadSceneReporting(in.sceneSpec, in.global, posed, options, true);
+            played.scene = loadPose(
+                [&] { return loadSceneReporting(in.sceneSpec, in.global, posed, options, true); },
+                fmt::format("--fps frame {} of {}, at {:g} s", k + 1, options.frames, *posed.time));
             pinToFirstFrame(played.scene, first);
             played.uploaded->repose(played.scene);
             played.result = played.uploaded->render(one, {.continues = true});
         }
+        if (played.result.virtualMaps) // every pose's frames, from the first warm-up on
+            pagesPerFrame.insert(pagesPerFrame.end(),
+                                 played.result.virtualMaps->renderedPerFrame.begin(),
+                                 played.result.virtualMaps->renderedPerFrame.end());
         for (const PassTime& p : played.result.passes) {
             auto it = std::find_if(passes.begin(), passes.end(),
                                    [&](const PassTime& q) { return q.pass == p.pass; });
@@ -75,6 +82,8 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
     for (PassTime& p : passes)
         p.medianMs = medianOf(p.frameMs);
     played.result.passes = std::move(passes);
+    if (played.result.virtualMaps)
+        played.result.virtualMaps->renderedPerFrame = std::move(pagesPerFrame);
     return played;
 }
 

@@ -45,6 +45,12 @@ ViewerSession::ViewerSession(Renderer& renderer, const Scene& scene, const Viewe
     : mRenderer(renderer), mScene(scene), mPoseAt(options.poseAt), mPosedAt(options.time),
       mCamera(scene.camera(options.render.camera),
               glm::length(scene.bounds().max - scene.bounds().min)) {
+    for (size_t i = 0; i < scene.cameras.size(); ++i)
+        if (!scene.cameras[i].automatic &&
+            (options.render.camera.empty() || scene.cameras[i].name == options.render.camera)) {
+            mFollowedCamera = i;
+            break;
+        }
     mState.options = options.render;
     mState.options.width = extent.width;
     mState.options.height = extent.height;
@@ -139,11 +145,15 @@ void ViewerSession::update(const CameraInput& input, float seconds, DisplayPass&
     if (mState.takeSceneCamera) {
         const int index = *mState.takeSceneCamera;
         mCamera.reset(index < 0 ? mScene.camera("") : mScene.cameras[index]);
+        mFollowedCamera.reset();
+        if (index >= 0 && !mScene.cameras[size_t(index)].automatic)
+            mFollowedCamera = size_t(index);
         mState.sceneCamera = index;
         mState.takeSceneCamera.reset();
         mCut = true; // a jump, not a move: temporal history would blend two views
     }
-    mCamera.update(input, mState.cameraMode);
+    if (mCamera.update(input, mState.cameraMode))
+        mFollowedCamera.reset(); // moved by hand: it no longer follows the file's camera
     if (mState.truthRequested) {
         mState.truthRequested = false;
         startTruth();
@@ -208,6 +218,8 @@ void ViewerSession::pose(double time) {
     }
     mScene = std::move(next);
     mState.lights = mScene.lights;
+    if (mFollowedCamera && *mFollowedCamera < mScene.cameras.size()) // an animated camera moves
+        mCamera.reset(mScene.cameras[*mFollowedCamera]);
     mPosedAt = time;
     if (mTruth) {
         mTruth.reset();

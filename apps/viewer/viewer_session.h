@@ -10,6 +10,7 @@
 #include "viewer_state.h"
 
 #include <memory>
+#include <optional>
 
 namespace penumbra::viewer {
 
@@ -53,6 +54,9 @@ private:
     ViewerState mState;
     RenderOptions mLastGood;
     CameraControl mCamera;
+    // The file's own camera (its index) the view follows as the scene plays, until the view is
+    // moved; none for an automatic one (held, as on compare --timeline).
+    std::optional<size_t> mFollowedCamera;
     std::unique_ptr<SceneRenderer> mA, mB;
     std::unique_ptr<TruthJob> mTruth;
     Camera mTruthCamera; // the view the truth was traced for

@@ -91,6 +91,9 @@ struct Camera {
     float ymag = 1.0f; // orthographic: half the view's height (glTF's ymag); x follows the image
     float znear = 0.05f;
     float zfar = 200.0f;
+    // Made by framing the scene, not the scene's own (whatever its name): a timeline or played
+    // frames keep the first frame's, as its bounds move with the animation.
+    bool automatic = false;
 };
 
 struct Bounds {

@@ -514,6 +514,13 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     }
     for (PassTime& p : result.passes)
         p.medianMs = median(p.frameMs);
+    // A continuing frame that built the distance field again (a pose drops it) pays for the
+    // build in that frame: it counts as a pass of its own, `sdf_build`.
+    if (state.continues && result.field && result.field->built)
+        result.passes.push_back({.pass = "sdf_build",
+                                 .cost = CostGroup::ShadowMaps,
+                                 .medianMs = result.field->buildGpuMs,
+                                 .frameMs = {result.field->buildGpuMs}});
     const render::ResourcePool::TransientBytes transient = m.pool->transientBytes();
     result.transientMemory = {.separateBytes = transient.separate, .sharedBytes = transient.shared};
     if (prepared.settings.virtualMaps) {

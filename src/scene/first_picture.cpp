@@ -460,7 +460,8 @@ std::optional<Camera> cameraFromLights(const Scene& scene, const Camera& standar
             Camera c{.name = "auto (from the lights)",
                      .position = target + distance * dir,
                      .target = target,
-                     .yfov = glm::radians(kInteriorFovDegrees)};
+                     .yfov = glm::radians(kInteriorFovDegrees),
+                     .automatic = true};
             const glm::vec2 depth = depthRangeFrom(scene, c.position);
             c.znear = depth.x, c.zfar = depth.y;
             if (const float s = score(c); s > best) {

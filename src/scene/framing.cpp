@@ -105,7 +105,7 @@ Camera exteriorCamera(const Scene& scene, const Bounds& subject) {
     const float azimuth = glm::radians(kAzimuthDegrees * (1.0f - flatness));
     const glm::vec3 toEye(std::sin(azimuth) * std::cos(elevation), std::sin(elevation),
                           std::cos(azimuth) * std::cos(elevation));
-    Camera c{.name = "auto"};
+    Camera c{.name = "auto", .automatic = true};
     const glm::vec3 forward = -toEye;
     const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0, 1, 0)));
     const glm::vec3 up = glm::cross(right, forward);

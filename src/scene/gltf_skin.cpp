@@ -107,8 +107,9 @@ std::vector<glm::mat4> skinMatrices(const std::filesystem::path& file, const tin
     for (size_t j = 0; j < joints.size(); ++j)
         joints[j] = worlds[skin.joints[j]] * skin.inverseBind[j];
     const size_t count = m.accessors[static_cast<size_t>(prim.attributes.at("POSITION"))].count;
-    std::vector<glm::mat4> out(count, glm::mat4(0.0f));
-    std::vector<float> sums(count, 0.0f);
+    // Summed in double: weights near the float's limit (3e38 twice) would overflow a float sum.
+    std::vector<glm::dmat4> sumsOfMatrices(count, glm::dmat4(0.0));
+    std::vector<double> sums(count, 0.0);
     for (int set = 0;; ++set) {
         const auto jointsAt = prim.attributes.find(fmt::format("JOINTS_{}", set));
         const auto weightsAt = prim.attributes.find(fmt::format("WEIGHTS_{}", set));
@@ -147,16 +148,17 @@ std::vector<glm::mat4> skinMatrices(const std::filesystem::path& file, const tin
                     fail(weightsPath, fmt::format("vertex {}'s weight {} is {}; weights are 0 or "
                                                   "more",
                                                   v, k, weight[4 * v + k]));
-                out[v] += weight[4 * v + k] * joints[j];
-                sums[v] += weight[4 * v + k];
+                sumsOfMatrices[v] += double(weight[4 * v + k]) * glm::dmat4(joints[j]);
+                sums[v] += double(weight[4 * v + k]);
             }
     }
     // Weights should sum to 1; quantized ones miss by a little, and are scaled to.
+    std::vector<glm::mat4> out(count);
     for (size_t v = 0; v < count; ++v) {
-        if (!(sums[v] > 0.0f))
+        if (!(sums[v] > 0.0))
             fail(fmt::format("{}.attributes.WEIGHTS_0", path),
                  fmt::format("vertex {}'s weights sum to {}", v, sums[v]));
-        out[v] /= sums[v];
+        out[v] = glm::mat4(sumsOfMatrices[v] / sums[v]);
     }
     return out;
 }

@@ -139,7 +139,8 @@ Camera interiorCamera(const Scene& scene, const ViewMeasure& measure, const Boun
             .target = position + along * (0.25f * size),
             .yfov = glm::radians(kInteriorFovDegrees),
             .znear = size * 1e-4f,
-            .zfar = size * 1.5f};
+            .zfar = size * 1.5f,
+            .automatic = true};
 }
 
 Camera interiorCamera(const Scene& scene) {
