@@ -44,6 +44,14 @@ double median(std::vector<double> values) {
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+// How near the nearest surface is to a spot or point light that casts a map (its near plane
+// follows it); infinite for the rest.
+float nearestSurfaceFor(const Scene& scene, const Light& light) {
+    return castsShadowMap(light) && light.type != LightType::Directional
+               ? nearestSurfaceDistance(scene, light.position)
+               : std::numeric_limits<float>::infinity();
+}
+
 // Frames in flight: each render takes the next slot for its camera, lights and settings.
 constexpr size_t kFramesInFlight = 2;
 // GPU timestamp scopes a frame may open: its named passes.
@@ -190,9 +198,7 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
     for (const Light& light : m.scene.lights) {
         viewCount += std::max(shadowViewCount(light, kMaxCascades), // room for any csm.cascades
                               virtualViewCount(light, mostLevels));
-        m.nearestSurface.push_back(castsShadowMap(light) && light.type != LightType::Directional
-                                       ? nearestSurfaceDistance(m.scene, light.position)
-                                       : std::numeric_limits<float>::infinity());
+        m.nearestSurface.push_back(nearestSurfaceFor(m.scene, light));
         m.nearestFrom.push_back(light.position);
     }
     // Room for any csm.cascades up to what the device holds: render refuses more views.
@@ -266,9 +272,7 @@ void SceneRenderer::repose(const Scene& posedIn) {
     m.automaticExposure = automaticExposure(m.scene);
     for (size_t i = 0; i < m.scene.lights.size(); ++i) {
         const Light& light = m.scene.lights[i];
-        m.nearestSurface[i] = castsShadowMap(light) && light.type != LightType::Directional
-                                  ? nearestSurfaceDistance(m.scene, light.position)
-                                  : std::numeric_limits<float>::infinity();
+        m.nearestSurface[i] = nearestSurfaceFor(m.scene, light);
         m.nearestFrom[i] = light.position;
     }
     m.visibleDepths.reset();
