@@ -348,6 +348,21 @@ fs::path renderPendulum(const std::string& name, std::vector<std::string> extra)
 
 } // namespace
 
+// A skinned figure played: the skin pass runs in every pose after the first (which is placed in
+// its warm-up), and has a time in each pose all the same, 0 in the first, as every pass has.
+TEST(CliTimeline, RenderFpsListsEveryPassForEveryPose) {
+    const fs::path out = outputScratch("fps-walker");
+    const ProcessResult r = runCli({"render", "builtin:walker", "-o", out.string(), "--width", "96",
+                                    "--height", "64", "--shadow-map-size", "256", "--technique",
+                                    "hard", "--format", "pfm", "--fps", "30", "--frames", "3"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const J stats = J::parse(slurp(out / "stats.json"));
+    ASSERT_TRUE(stats["gpu_ms_per_frame"].contains("skin"));
+    EXPECT_EQ(stats["gpu_ms_per_frame"]["skin"][0].get<double>(), 0.0) << "warmed";
+    for (const auto& [pass, times] : stats["gpu_ms_per_frame"].items())
+        EXPECT_EQ(times.size(), 3u) << pass;
+}
+
 // render --fps plays its timed frames: 16 at 60 a second from 0.25 s end at 0.5 s (the bottom
 // of the swing, where the ball is fastest), on render --time 0.5's picture and not on the pose
 // a frame later; stats.json holds each pass's time in each of the 16 poses and the rate.
@@ -569,4 +584,37 @@ TEST(CliTimeline, AFilesOwnCameraMovesWithItsNodeWhateverItsName) {
     const auto rmse = [](const J& m) { return m["techniques"]["pcf[box3]"]["rmse"].get<double>(); };
     EXPECT_NE(rmse(atZero), rmse(atOne));
     EXPECT_DOUBLE_EQ(timeline["rows"]["pcf[box3]"]["rmse"][1].get<double>(), rmse(atOne));
+}
+
+// Rows whose renderers together pass the device's local memory (moment maps of 2048 for a
+// sun's cascades and a bulb's six faces, the row's and the frame's own renderer): each keeps
+// between frames only what its next frame reads, says so, and measures as before in motion;
+// its time in motion is split by pass.
+TEST(CliTimeline, RowsThatPassTheDevicesMemoryKeepOnlyWhatTheirNextFrameReads) {
+    const fs::path dir = outputScratch("timeline-trimmed");
+    const ProcessResult r =
+        runCli({"compare", "builtin:walker", "-o", dir.string(), "--width", "64", "--height", "48",
+                "--samples", "1", "--format", "pfm", "--techniques", "evsm", "--frames", "1",
+                "--timeline", "0:0.25:0.25"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("each keeps between frames only what its next frame reads"),
+              std::string::npos)
+        << r.err;
+    const J rows = J::parse(slurp(dir / "timeline.json"))["rows"];
+    for (const std::string name : {"evsm"}) {
+        EXPECT_EQ(rows[name]["rmse_moving"], rows[name]["rmse"]) << name;
+        // In motion by pass: the skin pass only after the pose (the first frame placed it in
+        // its warm-up), and the passes sum to each frame's time in motion.
+        const J& byPass = rows[name]["gpu_ms_moving_by_pass"];
+        ASSERT_TRUE(byPass.contains("skin")) << name;
+        EXPECT_EQ(byPass["skin"][0].get<double>(), 0.0) << name;
+        for (size_t k = 0; k < 2; ++k) {
+            double sum = 0.0;
+            for (const auto& [pass, times] : byPass.items()) {
+                ASSERT_EQ(times.size(), 2u) << name << " " << pass;
+                sum += times[k].get<double>();
+            }
+            EXPECT_NEAR(sum, rows[name]["gpu_ms_moving"][k].get<double>(), 1e-9) << name;
+        }
+    }
 }

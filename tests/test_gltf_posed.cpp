@@ -295,6 +295,10 @@ TEST_P(GltfPosedRefused, WithTheFileAndItsJsonPath) {
 INSTANTIATE_TEST_SUITE_P(
     Animations, GltfPosedRefused,
     ::testing::Values(
+        Bad{"no_channels", [](Rig& r) { r.b.j["animations"][1]["channels"] = J::array(); },
+            "animations[1].channels: empty; an animation has at least one"},
+        Bad{"no_samplers", [](Rig& r) { r.b.j["animations"][0]["samplers"] = J::array(); },
+            "animations[0].samplers: empty; an animation has at least one"},
         Bad{"keyframes_not_increasing",
             [](Rig& r) {
                 r.b.j["animations"][1]["samplers"][0]["input"] = keyframeTimes(r.b, {1, 1});

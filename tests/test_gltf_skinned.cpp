@@ -99,6 +99,32 @@ std::vector<glm::vec3> barAt(float a) {
     return out;
 }
 
+// The `vertices` vertices above the ground face up, and its `triangles` triangles are wound
+// counter-clockwise seen from above, as their normals face: the rasterizer culls by the winding.
+void expectRaisedFacesUp(const Scene& s, size_t vertices, size_t triangles) {
+    size_t facing = 0;
+    for (const Vertex& v : s.vertices)
+        facing += v.position.y > 0.5f && glm::length(v.normal - glm::vec3(0, 1, 0)) < kFloat;
+    EXPECT_EQ(facing, vertices) << "vertices above the ground face up";
+    size_t up = 0, raised = 0;
+    for (size_t t = 0; t < s.triangleCount(); ++t) {
+        const glm::vec3 a = s.vertices[s.indices[3 * t]].position,
+                        b = s.vertices[s.indices[3 * t + 1]].position,
+                        c = s.vertices[s.indices[3 * t + 2]].position;
+        if (a.y < 0.5f)
+            continue;
+        ++raised;
+        up += glm::cross(b - a, c - a).y > 0.0f;
+    }
+    EXPECT_EQ(raised, triangles);
+    EXPECT_EQ(up, raised) << "triangles above the ground wound to face up";
+}
+
+// The bar's six vertices and four triangles.
+void expectBarFacesUp(const Scene& s) {
+    expectRaisedFacesUp(s, 6, 4);
+}
+
 using Bad = Refusal<Bar>;
 
 } // namespace
@@ -121,12 +147,83 @@ TEST(GltfSkinned, VerticesFollowTheirJointsAndTheMeshNodeIsIgnored) {
         EXPECT_EQ(w.find("skin(s) ignored"), std::string::npos) << "skins are used: " << w;
 }
 
+// A skin whose joints mirror the bar, without NORMAL: the faces' normals are made in bind space
+// as the mesh winds them, and mirrored with it: the bar still faces up (+y is its own mirror).
+TEST(GltfSkinned, AMirroringSkinWithoutNormalsKeepsTheFacesSide) {
+    Bar r = bar();
+    r.b.j["nodes"][r.joint0]["scale"] = {-1, 1, 1};
+    expectBarFacesUp(loadAt(write(r.b, "mirroring-skin"), std::nullopt));
+}
+
+// One primitive of two quads, the first on a plain joint and the second on a mirroring one
+// (joints as unsigned shorts, no inverse bind matrices: identities): each triangle is wound by
+// its own joints, so both quads face up where they land, the mirrored one at x in [-3, -2].
+TEST(GltfSkinned, EachTriangleOfASkinIsWoundByItsOwnJoints) {
+    GltfBuilder b;
+    b.ground();
+    const int pos =
+        b.positions({0, 1, 0, 1, 1, 0, 1, 1, 1, 0, 1, 1, 2, 1, 0, 3, 1, 0, 3, 1, 1, 2, 1, 1});
+    const int idx = b.accessor(b.view(std::vector<uint16_t>{0, 2, 1, 0, 3, 2, 4, 6, 5, 4, 7, 6}),
+                               5123, 12, "SCALAR");
+    const int joints =
+        b.accessor(b.view(std::vector<uint16_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+                                                1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}),
+                   5123, 8, "VEC4");
+    std::vector<float> one;
+    for (int v = 0; v < 8; ++v)
+        one.insert(one.end(), {1, 0, 0, 0});
+    const int weights = floats(b, one, "VEC4", 4);
+    const int mesh = b.mesh(pos, idx);
+    b.j["meshes"][mesh]["primitives"][0]["attributes"]["JOINTS_0"] = joints;
+    b.j["meshes"][mesh]["primitives"][0]["attributes"]["WEIGHTS_0"] = weights;
+    const int plain = b.node(J::object());
+    const int mirror = b.node({{"scale", {-1, 1, 1}}});
+    b.node({{"mesh", mesh}, {"skin", 0}});
+    b.j["skins"] = {{{"joints", {plain, mirror}}}};
+    const Scene s = loadAt(write(b, "two-quads"), std::nullopt);
+    expectVertexAt(s, {-3, 1, 0}, "the mirrored quad's far corner");
+    expectVertexAt(s, {1, 1, 1}, "the plain quad's corner");
+    expectRaisedFacesUp(s, 8, 4);
+}
+
+// Two skins over the same joints in opposite orders, each with a mesh whose JOINTS_0 names them
+// in its skin's order: both bars bend alike, so each skin reads its own joints.
+TEST(GltfSkinned, EachSkinReadsItsOwnJoints) {
+    Bar r = bar();
+    GltfBuilder& b = r.b;
+    const int swapped = b.accessor(b.view(std::vector<uint8_t>{1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0,
+                                                               1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}),
+                                   5121, 6, "VEC4");
+    const int reversedBind = floats(b, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -1.5f, -1, 0, 1,
+                                        1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0,     -1, 0, 1},
+                                    "MAT4", 16);
+    J mesh = b.j["meshes"][r.mesh];
+    mesh["primitives"][0]["attributes"]["JOINTS_0"] = swapped;
+    b.j["meshes"].push_back(mesh);
+    const int second = static_cast<int>(b.j["meshes"].size()) - 1;
+    b.j["skins"].push_back(
+        {{"joints", {r.joint1, r.joint0}}, {"inverseBindMatrices", reversedBind}});
+    b.node({{"mesh", second}, {"skin", 1}});
+    const Scene s = loadAt(write(b, "two-skins"), 0.5);
+    ASSERT_EQ(s.skinning.joints.size(), 4u) << "two joints a skin";
+    ASSERT_EQ(s.skinning.vertices.size(), 12u);
+    for (const glm::vec3& want : barAt(static_cast<float>(std::numbers::pi / 4))) {
+        size_t near = 0;
+        for (const Vertex& v : s.vertices)
+            near += glm::length(v.position - want) < kFloat;
+        EXPECT_EQ(near, 2u) << "both bars at (" << want.x << ", " << want.y << ", " << want.z
+                            << ")";
+    }
+}
+
 TEST(GltfSkinned, NormalsTurnWithTheirJointsAndAMirroringMeshNodeFlipsNothing) {
     Bar r = bar();
     GltfBuilder& b = r.b;
     const int up = floats(
         b, std::vector<float>{0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0}, "VEC3", 3);
     b.j["meshes"][r.mesh]["primitives"][0]["attributes"]["NORMAL"] = up;
+    const float h = std::sqrt(0.5f); // the ignored mesh node turns a quarter about +z
+    b.j["nodes"][r.barNode]["rotation"] = {0, 0, h, h};
     const fs::path f = write(b, "normals");
     const auto hasNormal = [](const Scene& s, glm::vec3 n) {
         for (const Vertex& v : s.vertices)
@@ -134,6 +231,7 @@ TEST(GltfSkinned, NormalsTurnWithTheirJointsAndAMirroringMeshNodeFlipsNothing) {
                 return true;
         return false;
     };
+    expectBarFacesUp(loadAt(f, 0.0)); // the mesh node turns no normal
     // The far end follows joint 1 a quarter turn about +z: up becomes -x.
     EXPECT_TRUE(hasNormal(loadAt(f, 1.0), {-1, 0, 0}));
     EXPECT_TRUE(hasNormal(loadAt(f, 0.5), {-std::sqrt(0.5f), std::sqrt(0.5f), 0}));
@@ -151,11 +249,7 @@ TEST(GltfSkinned, NormalsTurnWithTheirJointsAndAMirroringMeshNodeFlipsNothing) {
     // Without NORMAL the faces' own (+y, as wound) hold though the ignored mesh node mirrors.
     b.j["meshes"][r.mesh]["primitives"][0]["attributes"].erase("NORMAL");
     b.j["nodes"][r.barNode]["scale"] = {-1, 1, 1};
-    const Scene mirrored = loadAt(write(b, "mirrored"), std::nullopt);
-    size_t up0 = 0;
-    for (const Vertex& v : mirrored.vertices)
-        up0 += v.position.y > 0.5f && glm::length(v.normal - glm::vec3(0, 1, 0)) < kFloat;
-    EXPECT_EQ(up0, 6u) << "the bar's six vertices face up";
+    expectBarFacesUp(loadAt(write(b, "mirrored"), std::nullopt));
 }
 
 TEST(GltfSkinned, WeightsOfNormalizedBytesAreScaledToSumToOne) {
@@ -170,6 +264,15 @@ TEST(GltfSkinned, WeightsOfNormalizedBytesAreScaledToSumToOne) {
     const Scene s = loadAt(write(b, "byte-weights"), 1.0);
     for (const glm::vec3& p : barAt(static_cast<float>(std::numbers::pi / 2)))
         expectVertexAt(s, p, "byte weights at 1 s");
+    // The GPU sums them as they are: each vertex's influences sum to 1, and none is 0.
+    for (const SkinnedVertex& sv : s.skinning.vertices) {
+        float sum = 0.0f;
+        for (uint32_t k = sv.firstInfluence; k < sv.firstInfluence + sv.influenceCount; ++k) {
+            EXPECT_GT(s.skinning.influences[k].weight, 0.0f);
+            sum += s.skinning.influences[k].weight;
+        }
+        EXPECT_NEAR(sum, 1.0f, 1e-6f);
+    }
 }
 
 // Weights near the float's limit sum in double: 3e38 and 3e38 are a half each, not an

@@ -142,3 +142,30 @@ TEST_F(FrameTest, ReposeRefusesAnotherSceneAndOneWithNoTriangleLeft) {
     EXPECT_TRUE(
         sameBits(still.visibility[0], fresh.render(options(Technique::Hard)).visibility[0]));
 }
+
+// trim frees what no later frame reads (the memory its frame made, but for a few small persistent
+// buffers), and the next frame draws as if it had not: a plain technique's picture bit for bit,
+// for every light type; a virtual map's page pool and cache kept
+// (a continuing frame renders no page again).
+TEST_F(FrameTest, TrimFreesPerFrameTargetsAndKeepsWhatTheNextFrameReads) {
+    for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
+        const Scene scene = restingObjects(light);
+        SceneRenderer plain(sharedRenderer(), scene);
+        const uint64_t uploaded = sharedRenderer().deviceMemoryInUse().bytes;
+        const RenderResult first = plain.render(options(Technique::Pcf));
+        const uint64_t held = sharedRenderer().deviceMemoryInUse().bytes;
+        plain.trim();
+        const uint64_t trimmed = sharedRenderer().deviceMemoryInUse().bytes;
+        // What the frame made is gone but for a tenth (a few small persistent buffers).
+        EXPECT_LT(trimmed - uploaded, (held - uploaded) / 10) << light.name;
+        const RenderResult next = plain.render(options(Technique::Pcf), {.continues = true});
+        EXPECT_TRUE(sameBits(next.visibility[0], first.visibility[0])) << light.name;
+        SceneRenderer paged(sharedRenderer(), scene);
+        const RenderResult rest = paged.render(options(Technique::Hard, true));
+        paged.trim();
+        const RenderResult kept = paged.render(options(Technique::Hard, true), {.continues = true});
+        ASSERT_TRUE(kept.virtualMaps);
+        EXPECT_EQ(kept.virtualMaps->rendered, 0u) << light.name << ": the pool and cache kept";
+        EXPECT_TRUE(sameBits(kept.visibility[0], rest.visibility[0])) << light.name;
+    }
+}

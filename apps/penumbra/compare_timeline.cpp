@@ -1,5 +1,7 @@
 #include "compare_timeline.h"
 
+#include "penumbra/pass_times.h"
+
 #include "penumbra/error.h"
 #include "report/light_mask.h"
 #include "report/shimmer.h"
@@ -73,6 +75,9 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
     // In motion: a renderer per row that draws every frame in turn (rows differ in their maps,
     // which one renderer would remake between rows, losing what the technique kept).
     std::vector<std::unique_ptr<SceneRenderer>> moving(rows.size());
+    // Latched once the rows' renderers together pass the device's local memory (each holds its
+    // maps): from then on each keeps between frames only what its next frame reads.
+    bool trimming = false;
     for (size_t k = 0; k < timeline.frames; ++k) {
         options.time = timeline.at(k);
         std::fprintf(stderr, "penumbra: timeline frame %zu/%zu at %g s\n", k + 1, timeline.frames,
@@ -101,6 +106,20 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
                 moving[r]->repose(scene);
                 inMotion.push_back(moving[r]->render(one, {.continues = true}));
             }
+            if (!trimming &&
+                renderer.deviceMemoryInUse().bytes > renderer.device().deviceLocalBytes) {
+                trimming = true;
+                std::fprintf(stderr,
+                             "penumbra: the rows in motion hold more than the device's %.1f GiB "
+                             "of local memory: each keeps between frames only what its next "
+                             "frame reads (its GPU time in motion includes making the rest "
+                             "again)\n",
+                             static_cast<double>(renderer.device().deviceLocalBytes) / (1 << 30));
+                for (size_t q = 0; q < r; ++q)
+                    moving[q]->trim();
+            }
+            if (trimming)
+                moving[r]->trim();
         }
         Scene lit = scene;
         const RenderOptions& base = in.rowOptions.front();
@@ -122,6 +141,7 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
                                                              truth.occluderDistance)
                                              .rmse);
             rows[r].movingGpuMs.push_back(totalMs(inMotion[r]));
+            appendFrameTimes(rows[r].movingPasses, inMotion[r].passes, k);
             if (k == 0)
                 continue;
             std::vector<ShimmerPair> pairs;
@@ -166,6 +186,9 @@ nlohmann::json timelineJson(const Timeline& timeline, const std::vector<Timeline
             return nlohmann::json{{"mean", v.empty() ? 0.0 : sum / double(v.size())},
                                   {"max", most}};
         };
+        nlohmann::json byPass = nlohmann::json::object();
+        for (const PassTime& p : row.movingPasses)
+            byPass[p.pass] = p.frameMs;
         out["rows"][row.name] = {{"rmse", row.rmse},
                                  {"mae", row.mae},
                                  {"acne", row.acne},
@@ -177,6 +200,7 @@ nlohmann::json timelineJson(const Timeline& timeline, const std::vector<Timeline
                                  {"flicker_pixels", row.flickerPixels},
                                  {"rmse_moving", row.movingRmse},
                                  {"gpu_ms_moving", row.movingGpuMs},
+                                 {"gpu_ms_moving_by_pass", byPass},
                                  {"rmse_moving_over_time", stats(row.movingRmse)},
                                  {"gpu_ms_moving_over_time", stats(row.movingGpuMs)},
                                  {"pop_in", row.lag.popIn},

@@ -29,7 +29,8 @@ struct TimelineRow {
     std::string name;
     std::vector<double> rmse, mae, acne, leak, gpuMs; // at rest
     std::vector<double> movingRmse, movingGpuMs;      // in motion
-    double flicker = 0.0; // mean |change of the error| where the truth held still
+    std::vector<PassTime> movingPasses; // each pass's time in motion, a frame each (0: not run)
+    double flicker = 0.0;               // mean |change of the error| where the truth held still
     uint64_t flickerPixels = 0;
     Lag lag; // the motion's error against the rest's (report/lag.h)
 };

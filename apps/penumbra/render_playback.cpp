@@ -2,6 +2,7 @@
 
 #include "compare_timeline.h"
 #include "penumbra/error.h"
+#include "penumbra/pass_times.h"
 
 #include <fmt/format.h>
 
@@ -11,19 +12,6 @@
 #include <cstdlib>
 
 namespace penumbra::cli {
-namespace {
-
-// The middle of `values` (the mean of the two middle ones for an even count).
-double medianOf(std::vector<double> values) {
-    const size_t half = values.size() / 2;
-    std::nth_element(values.begin(), values.begin() + half, values.end());
-    const double upper = values[half];
-    if (values.size() % 2)
-        return upper;
-    return 0.5 * (*std::max_element(values.begin(), values.begin() + half) + upper);
-}
-
-} // namespace
 
 void checkPlayback(const PlaybackInputs& in, const Scene& first, uint32_t frames) {
     if (!(in.fps > 0.0 && in.fps <= 10000.0))
@@ -71,16 +59,9 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
             pagesPerFrame.insert(pagesPerFrame.end(),
                                  played.result.virtualMaps->renderedPerFrame.begin(),
                                  played.result.virtualMaps->renderedPerFrame.end());
-        for (const PassTime& p : played.result.passes) {
-            auto it = std::find_if(passes.begin(), passes.end(),
-                                   [&](const PassTime& q) { return q.pass == p.pass; });
-            if (it == passes.end())
-                it = passes.insert(passes.end(), {.pass = p.pass, .cost = p.cost});
-            it->frameMs.push_back(p.medianMs);
-        }
+        appendFrameTimes(passes, played.result.passes, k); // each pose one frame
     }
-    for (PassTime& p : passes)
-        p.medianMs = medianOf(p.frameMs);
+    setMedians(passes);
     played.result.passes = std::move(passes);
     if (played.result.virtualMaps)
         played.result.virtualMaps->renderedPerFrame = std::move(pagesPerFrame);

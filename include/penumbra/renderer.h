@@ -303,12 +303,28 @@ public:
     RenderResult render(const RenderOptions& options, const FrameState& state,
                         const ProgressFn& progress = {});
     // The same scene at another time (issue 59): its vertices, lights and cameras moved, its
-    // materials and textures the same. The geometry is uploaded again (textures are kept); the
+    // materials and textures the same. Where only skinned vertices moved, only this pose's joint
+    // matrices go up and the next frame's `skin` pass places them; else the geometry is
+    // uploaded again (textures are kept); the
     // targets, history and the last frame's page requests are kept, as an engine keeps them
     // while things move; every cached virtual page is dropped, since nothing yet says which
     // pages a moved caster touched. Throws InputError when no valid triangle is left, or when
     // `posed` has other materials, textures or lights than the scene uploaded.
     void repose(const Scene& posed);
+    // Frees the device memory of what no later frame reads: the per-frame targets and maps,
+    // which the next frame makes again (on a device where first use costs, lavapipe, that frame's
+    // GPU time shows it). What the technique keeps across frames stays: history, a virtual map's
+    // page pool and cache. For a caller holding many renderers between frames (compare
+    // --timeline's rows in motion, when together they pass the device's local memory).
+    void trim();
+    // The vertex and positions buffers as the device holds them now, in Scene::vertices' order:
+    // skinned vertices where the last frame's `skin` pass placed them (in bind space before the
+    // first frame). For tests and debugging; waits for the device.
+    struct DeviceGeometry {
+        std::vector<Vertex> vertices;
+        std::vector<glm::vec3> positions; // what the opaque casters' shadow pass draws
+    };
+    DeviceGeometry deviceGeometry() const;
     // The pages of the last frame that read virtual maps (empty levels before one).
     VirtualPages virtualPages() const;
     // The distance field the last sdf render traced, x fastest, then y, then z (empty before

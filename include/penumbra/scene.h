@@ -22,6 +22,32 @@ struct Vertex {
     glm::vec4 color{1.0f}; // linear RGBA vertex colour (glTF COLOR_0), multiplies baseColor
 };
 
+// Vertices a skin places (glTF skins, builtin:walker's figure): linear blend skinning, each
+// vertex by the weighted sum of its joints' matrices. The renderer places them on the GPU (the
+// frame's `skin` pass, in the first frame after each pose); Scene::vertices holds the same
+// placement made on the host (placeSkinnedVertices), which the ground truth, the bounds and
+// culling read and the GPU's is checked against. Edit a skinned vertex through this, not
+// through Scene::vertices: the GPU places it from here.
+struct SkinnedVertex {
+    uint32_t vertex;         // its index in Scene::vertices
+    uint32_t firstInfluence; // its influences: [firstInfluence, firstInfluence + influenceCount)
+    uint32_t influenceCount; // at least 1
+    glm::vec3 position;      // in bind space (morph targets blended at the scene's time)
+    glm::vec3 normal;        // in bind space, of any length (the placed normal is made unit)
+};
+struct SkinInfluence {
+    uint32_t joint; // into Skinning::joints
+    float weight;   // more than 0; a vertex's weights sum to 1 (to a float's rounding)
+};
+struct Skinning {
+    std::vector<SkinnedVertex> vertices;
+    std::vector<SkinInfluence> influences;
+    // This pose's joint matrices: each joint's posed world transform times its inverse bind
+    // matrix (every skin's joints in one list).
+    std::vector<glm::mat4> joints;
+    bool empty() const { return vertices.empty(); }
+};
+
 // Decoded image pixels: RGBA8, sRGB-encoded colour, linear alpha (glTF's convention), rows top
 // to bottom.
 struct TextureImage {
@@ -157,6 +183,7 @@ struct Scene {
     std::string animation;
     float animationDuration = 0.0f;
     std::optional<double> time;
+    Skinning skinning; // the vertices a skin places (empty: none)
 
     size_t triangleCount() const { return indices.size() / 3; }
     // The coverage (alpha) of `material` at a texture coordinate and vertex alpha, as the
@@ -196,6 +223,16 @@ Scene loadScene(std::string_view spec, const SceneLoadOptions& options = {});
 // Returns how many triangles were dropped.
 inline constexpr float kMaxCoordinate = 1e15f;
 size_t dropInvalidTriangles(Scene& scene);
+
+// Places every skinned vertex of `scene` (Scene::skinning) on the host: its position by the
+// weighted sum of its joints' matrices (summed in double, over the weights' own sum), its
+// normal by that matrix's inverse transpose, made unit ((0, 1, 0) where it has no direction).
+// The reference the GPU's skinning is checked against. Checks the skinning first.
+void placeSkinnedVertices(Scene& scene);
+// InputError(scene.name, "skinned vertex N: ...") for a skinned vertex past Scene::vertices or
+// listed twice, influences out of range or none, a joint out of range, weights that do not sum
+// to more than 0: what the renderer checks before the GPU reads it.
+void checkSkinning(const Scene& scene);
 
 // Whether `light` gets a shadow map, and so a visibility image and a ground truth: the one rule
 // the renderer, the reference and the CLI share (every light type: suns and spots get one view,

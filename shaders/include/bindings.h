@@ -115,6 +115,11 @@
 #define FIELD_IDS_OUT 4          // and written; the field (R32F, 3D) written; each brick's
 #define FIELD_OUT 5              // candidates for its far voxels
 #define FIELD_FAR_CANDIDATES 6
+#define SKIN_BIND_VERTICES 0     // skin.comp: SkinVertex[] (skinning.h), SkinInfluence[], the
+#define SKIN_INFLUENCES 1        // joint matrices (mat4[]), read; the vertex buffer (as floats)
+#define SKIN_JOINTS 2            // and the positions buffer, written
+#define SKIN_VERTICES 3
+#define SKIN_POSITIONS 4
 
 // A shadow-map post pass samples its inputs at bindings POST_INPUT_BINDING + i and writes its
 // outputs at POST_OUTPUT_BINDING + i (src/shadows/technique.h, PostPassDecl); its technique's

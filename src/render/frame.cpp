@@ -121,7 +121,11 @@ std::vector<shadows::ScreenPassDecl> screenPassesOf(const FrameSettings& s) {
 
 FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const GpuScene& scene,
                           const FrameSettings& s, const FrameInputs& in) {
-    const FrameResources r = declareFrame(graph, s, in);
+    FrameResources r = declareFrame(graph, s, in);
+    r.vertices = graph.importBuffer(std::string(target::kVertices), scene.vertices.get());
+    r.positions = graph.importBuffer(std::string(target::kPositions), scene.positions.get());
+    if (scene.skin && scene.skin->pending) // the pose changed since the last skinning
+        addSkinPass(graph, pipelines, scene, r);
     // A technique that reads no map (a distance field's tracer) gets none drawn: its 1x1 depth
     // map is only bound (the graph gives it a layout on first use).
     if (s.virtualMaps)

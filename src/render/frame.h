@@ -117,6 +117,7 @@ struct FrameResources {
     ResourceId frame = 0, lights = 0, views = 0, params = 0, layerParams = 0;
     ResourceId pageTable = 0, pageRequests = 0;
     ResourceId traceList = 0; // checkerboard tracing's (a head alone when it does not run)
+    ResourceId vertices = 0, positions = 0; // the scene's, which every draw reads (VertexRead)
     // The map a module calls `name` (shadows::kDepthMap or one of its own).
     // `<name> (previous)`: last frame's version of a map declared with history.
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;
@@ -140,6 +141,9 @@ FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const Gp
                           const FrameSettings& settings, const FrameInputs& inputs);
 
 // The phases' passes (each file's own).
+// The `skin` pass (GpuScene::Skin): the skinned vertices placed for this pose.
+void addSkinPass(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
+                 const FrameResources& r);
 void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                      const FrameSettings& s, const FrameInputs& in, const FrameResources& r);
 void addPostPasses(FrameGraph& graph, FramePipelines& p, const shadows::TechniqueModule& module,

@@ -10,6 +10,8 @@
 namespace penumbra::render {
 std::string_view phaseName(Phase phase) {
     switch (phase) {
+    case Phase::Geometry:
+        return "geometry";
     case Phase::LightSpace:
         return "light space";
     case Phase::GBuffer:

@@ -13,6 +13,7 @@
 // first write (it reads what this frame writes). Passes of one phase that read what each other
 // write are a cycle (fatal); a read of what only a later phase writes is fatal too (plan()).
 // Phases run in this order:
+//   Geometry     what places the scene's vertices before anything draws them (skinning)
 //   LightSpace   shadow maps and what is filtered from them (before the G-buffer)
 //   GBuffer      the camera's G-buffer
 //   ScreenSpace  passes after the G-buffer that per-light evaluation reads (and, for a cache
@@ -44,7 +45,7 @@
 
 namespace penumbra::render {
 
-enum class Phase { LightSpace, GBuffer, ScreenSpace, PerLight, Composite, Readback };
+enum class Phase { Geometry, LightSpace, GBuffer, ScreenSpace, PerLight, Composite, Readback };
 std::string_view phaseName(Phase phase);
 
 struct Use {

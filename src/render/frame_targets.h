@@ -44,6 +44,9 @@ inline constexpr std::string_view kLayerParams = "slot.layerParams";
 inline constexpr std::string_view kVirtualPool = "virtual.pool";
 inline constexpr std::string_view kPageTable = "slot.pageTable";
 inline constexpr std::string_view kPageRequests = "slot.pageRequests";
+// The scene's vertex and positions buffers (GpuScene): the `skin` pass writes the skinned ones.
+inline constexpr std::string_view kVertices = "scene.vertices";
+inline constexpr std::string_view kPositions = "scene.positions";
 // A technique's map `name` of every shadow view: "shadow.depth", "shadow.moments", ...
 std::string shadowMap(std::string_view name);
 } // namespace target

@@ -4,6 +4,7 @@
 #include "pass_types.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
+#include "skinning.h"
 #include "vk/spirv_bindings.h"
 
 #include <cstddef>
@@ -265,6 +266,17 @@ const FieldPipelines& FramePipelines::field() {
         mField = std::move(f);
     }
     return *mField;
+}
+
+const SkinPipeline& FramePipelines::skin() {
+    if (!mSkin) {
+        auto s = std::make_unique<SkinPipeline>();
+        s->layout = vk::createLayoutOf(ctx, {"skin.comp"}, VK_SHADER_STAGE_COMPUTE_BIT,
+                                       sizeof(gpu::SkinPush));
+        s->pipeline = vk::createComputePipeline(ctx, s->layout, "skin.comp");
+        mSkin = std::move(s);
+    }
+    return *mSkin;
 }
 
 } // namespace penumbra::render

@@ -18,6 +18,12 @@
 
 namespace penumbra::render {
 
+// The `skin` pass (shaders/skin.comp).
+struct SkinPipeline {
+    vk::PipelineLayout layout;
+    vk::PipelineHandle pipeline;
+};
+
 // The distance field's build passes (src/render/distance_field.h), one layout for the three.
 struct FieldPipelines {
     vk::PipelineLayout layout;
@@ -68,6 +74,8 @@ public:
     const vk::PipelineLayout& postPassLayout(uint32_t inputs, uint32_t outputs);
     // Made on first use: only the sdf technique builds a field.
     const FieldPipelines& field();
+    // Made on first use: only a skinned scene has a `skin` pass.
+    const SkinPipeline& skin();
 
 private:
     using Constants = std::vector<shadows::SpecConstant>;
@@ -85,6 +93,7 @@ private:
     };
     std::map<std::string, PostPipeline, std::less<>> mPost;
     std::unique_ptr<FieldPipelines> mField;
+    std::unique_ptr<SkinPipeline> mSkin;
     std::array<vk::PipelineHandle, 8> mGbuffer;
 };
 

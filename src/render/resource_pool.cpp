@@ -101,6 +101,22 @@ void ResourcePool::waitIdle() {
     VK_CHECK(vkDeviceWaitIdle(mCtx.device())); // a frame in flight may still use it
 }
 
+void ResourcePool::releasePerFrame() {
+    waitIdle();
+    for (auto& e : mEntries) {
+        if (!e)
+            continue;
+        const auto* image = std::get_if<ImageDecl>(&e->decl);
+        const auto* buffer = std::get_if<BufferDecl>(&e->decl);
+        if ((image && image->lifetime == Lifetime::PerFrame) ||
+            (buffer && buffer->lifetime == Lifetime::PerFrame))
+            e.reset();
+    }
+    mPlacedFor.clear(); // placed anew with the next frame's transients
+    mShared.clear();    // after the images placed in it
+    mTransient = {};
+}
+
 void ResourcePool::beginFrame() {
     // Imports are the caller's, for one frame; ids are a frame's: the list closes up.
     std::erase_if(mEntries, [](const std::unique_ptr<Entry>& e) {

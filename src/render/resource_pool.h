@@ -97,6 +97,7 @@ enum class Access {
     IndirectRead,     // indirect dispatch or draw arguments (and the rest of their buffer, read
                       // by the compute shaders they dispatch)
     HostRead,         // read by the host after the submission (a readback buffer)
+    VertexRead,       // vertex attributes a draw reads (the vertex and positions buffers)
 };
 bool writes(Access access);
 bool reads(Access access); // what it finds (attachments are cleared on load: they do not)
@@ -127,6 +128,10 @@ public:
         bool shareable = false; // used by a kept pass, and by no pass that hands it out
     };
     void realize(std::span<const UseSpan> spans = {});
+    // Frees every per-frame resource and the memory transients share (after the device is
+    // idle): the next frame makes them again. Persistent and history resources, which a later
+    // frame reads, stay. Between frames only.
+    void releasePerFrame();
     // The resources placed over some of the bytes of `id` this frame (transient images only):
     // their last uses come before its first in every frame.
     std::vector<ResourceId> sharesMemoryWith(ResourceId id) const;

@@ -13,6 +13,7 @@
 //   renderer lives and sdf.resolution and sdf.thickness stay the same.
 #include "core/virtual_maps.h"
 #include "penumbra/error.h"
+#include "penumbra/pass_times.h"
 #include "penumbra/renderer.h"
 #include "render/distance_field.h"
 #include "render/frame.h"
@@ -37,12 +38,6 @@ static_assert(penumbra::kMaxCascades == MAX_CASCADES,
 
 namespace penumbra {
 namespace {
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 // How near the nearest surface is to a spot or point light that casts a map (its near plane
 // follows it); infinite for the rest.
@@ -179,6 +174,7 @@ SceneRenderer::SceneRenderer(Renderer& renderer, const Scene& sceneIn)
     dropInvalidTriangles(m.scene); // the same rule the ground truth applies
     if (m.scene.triangleCount() == 0)
         throw InputError(m.scene.name, "the scene has no valid triangles");
+    checkSkinning(m.scene); // what the `skin` pass reads
     m.bounds = m.scene.bounds();
     m.automaticExposure = automaticExposure(m.scene);
     m.gpu = render::uploadScene(m.ctx(), m.scene);
@@ -264,8 +260,11 @@ void SceneRenderer::repose(const Scene& posedIn) {
                                                  posed.materials.size(), posed.textures.size(),
                                                  posed.lights.size(), m.scene.materials.size(),
                                                  m.scene.textures.size(), m.scene.lights.size()));
+    checkSkinning(posed);
     VK_CHECK(vkDeviceWaitIdle(m.ctx().device())); // a frame in flight may read the old geometry
-    render::uploadGeometry(m.ctx(), m.gpu, posed);
+    // Only skinned vertices moved: this pose's joints, and the `skin` pass places them.
+    if (!render::reposeSkinned(m.ctx(), m.gpu, m.scene, posed))
+        render::uploadGeometry(m.ctx(), m.gpu, posed);
     m.scene = std::move(posed);
     // Everything the constructor measured on the geometry, measured again.
     m.bounds = m.scene.bounds();
@@ -468,6 +467,8 @@ render::FrameResources SceneRenderer::Impl::record(VkCommandBuffer cmd, const Pr
         updatePages(p, graph.holdsContents(r.depthMap));
     timer.reset(cmd);
     graph.record(cmd, &timer);
+    if (gpu.skin) // placed for this pose: later frames draw what it wrote
+        gpu.skin->pending = false;
     outputs = {.color = &graph.image(r.color).get(),
                .visibility = &graph.image(r.visibility).get(),
                .depthMap = &graph.image(r.depthMap).get(),
@@ -507,24 +508,16 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         ctx.submitAndWait([&](VkCommandBuffer cmd) { m.record(cmd, prepared, timer); });
         if (warmUp)
             continue; // the warm-up frames pay for first-use costs
-        for (const PassTime& frameTime : timer.read()) {
-            auto it = std::find_if(result.passes.begin(), result.passes.end(),
-                                   [&](const PassTime& p) { return p.pass == frameTime.pass; });
-            if (it == result.passes.end())
-                it = result.passes.insert(result.passes.end(),
-                                          {.pass = frameTime.pass, .cost = frameTime.cost});
-            it->frameMs.push_back(frameTime.medianMs);
-        }
+        std::vector<PassTime> frameTimes = timer.read();
+        // A continuing frame that built the distance field again (a pose drops it) pays for the
+        // build in that frame: it counts as a pass of its own, `sdf_build`.
+        if (frame == warmUps && state.continues && result.field && result.field->built)
+            frameTimes.push_back({.pass = "sdf_build",
+                                  .cost = CostGroup::ShadowMaps,
+                                  .medianMs = result.field->buildGpuMs});
+        appendFrameTimes(result.passes, frameTimes, frame - warmUps);
     }
-    for (PassTime& p : result.passes)
-        p.medianMs = median(p.frameMs);
-    // A continuing frame that built the distance field again (a pose drops it) pays for the
-    // build in that frame: it counts as a pass of its own, `sdf_build`.
-    if (state.continues && result.field && result.field->built)
-        result.passes.push_back({.pass = "sdf_build",
-                                 .cost = CostGroup::ShadowMaps,
-                                 .medianMs = result.field->buildGpuMs,
-                                 .frameMs = {result.field->buildGpuMs}});
+    setMedians(result.passes);
     const render::ResourcePool::TransientBytes transient = m.pool->transientBytes();
     result.transientMemory = {.separateBytes = transient.separate, .sharedBytes = transient.shared};
     if (prepared.settings.virtualMaps) {
@@ -585,6 +578,18 @@ SceneRenderer::RecordedFrame SceneRenderer::record(VkCommandBuffer_T* cmd,
     if (prepared.settings.virtualMaps)
         prepared.result.virtualMaps = m.pageInfo;
     return {std::move(prepared.result), &m.outputs};
+}
+
+void SceneRenderer::trim() {
+    mImpl->pool->releasePerFrame();
+}
+
+SceneRenderer::DeviceGeometry SceneRenderer::deviceGeometry() const {
+    const Impl& m = *mImpl;
+    VK_CHECK(vkDeviceWaitIdle(m.ctx().device())); // the last frame's skinning, done
+    DeviceGeometry out;
+    render::readGeometry(m.ctx(), m.gpu, m.scene.vertices.size(), out.vertices, out.positions);
+    return out;
 }
 
 VirtualPages SceneRenderer::virtualPages() const {

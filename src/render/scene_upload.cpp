@@ -1,9 +1,101 @@
 #include "render/scene_upload.h"
 
+#include "skinning.h"
+
 #include <algorithm>
+#include <cstddef>
+#include <cstring>
 #include <span>
 
 namespace penumbra::render {
+
+// The skin pass writes a Vertex as VERTEX_FLOATS floats, its position and normal where these say.
+static_assert(sizeof(Vertex) == 4 * VERTEX_FLOATS &&
+              offsetof(Vertex, position) == 4 * VERTEX_POSITION_FLOAT &&
+              offsetof(Vertex, normal) == 4 * VERTEX_NORMAL_FLOAT);
+// Scene::skinning's influences go up as they are: gpu::SkinInfluence's layout.
+static_assert(sizeof(SkinInfluence) == sizeof(gpu::SkinInfluence) &&
+              offsetof(SkinInfluence, joint) == offsetof(gpu::SkinInfluence, joint) &&
+              offsetof(SkinInfluence, weight) == offsetof(gpu::SkinInfluence, weight));
+
+namespace {
+
+// The index buffer's order: grouped by material, the alpha-tested ones last.
+struct IndexLayout {
+    std::vector<DrawBatch> batches;
+    std::vector<uint32_t> indices;
+    uint32_t opaqueIndexCount = 0;
+};
+
+IndexLayout layoutIndices(const Scene& scene) {
+    IndexLayout out;
+    const size_t materialCount = std::max<size_t>(scene.materials.size(), 1);
+    std::vector<std::vector<uint32_t>> byMaterial(materialCount);
+    for (size_t t = 0; t < scene.triangleCount(); ++t) {
+        const uint32_t m = scene.vertices[scene.indices[3 * t]].material;
+        auto& list = byMaterial[m < materialCount ? m : 0];
+        list.insert(list.end(), scene.indices.begin() + static_cast<long>(3 * t),
+                    scene.indices.begin() + static_cast<long>(3 * t + 3));
+    }
+    auto alphaTested = [&](size_t m) {
+        return m < scene.materials.size() && scene.materials[m].alphaTested();
+    };
+    out.indices.reserve(scene.indices.size());
+    for (const bool tested : {false, true})
+        for (size_t m = 0; m < materialCount; ++m) {
+            if (alphaTested(m) != tested || byMaterial[m].empty())
+                continue;
+            const bool coloured =
+                std::any_of(byMaterial[m].begin(), byMaterial[m].end(),
+                            [&](uint32_t i) { return scene.vertices[i].color != glm::vec4(1.0f); });
+            out.batches.push_back({.material = static_cast<uint32_t>(m),
+                                   .firstIndex = static_cast<uint32_t>(out.indices.size()),
+                                   .indexCount = static_cast<uint32_t>(byMaterial[m].size()),
+                                   .vertexColors = coloured});
+            out.indices.insert(out.indices.end(), byMaterial[m].begin(), byMaterial[m].end());
+            if (!tested)
+                out.opaqueIndexCount = static_cast<uint32_t>(out.indices.size());
+        }
+    return out;
+}
+
+std::vector<glm::vec3> positionsOf(std::span<const Vertex> vertices) {
+    std::vector<glm::vec3> positions;
+    positions.reserve(vertices.size());
+    for (const Vertex& v : vertices)
+        positions.push_back(v.position);
+    return positions;
+}
+
+std::vector<uint32_t> batchStarts(const std::vector<DrawBatch>& batches) {
+    std::vector<uint32_t> starts;
+    for (const DrawBatch& batch : batches)
+        starts.push_back(batch.firstIndex);
+    return starts;
+}
+
+std::vector<gpu::SkinVertex> skinVertices(const Skinning& skinning) {
+    std::vector<gpu::SkinVertex> out;
+    out.reserve(skinning.vertices.size());
+    for (const SkinnedVertex& s : skinning.vertices)
+        out.push_back({.position = s.position,
+                       .vertex = s.vertex,
+                       .normal = s.normal,
+                       .firstInfluence = s.firstInfluence,
+                       .influenceCount = s.influenceCount});
+    return out;
+}
+
+void writeJoints(GpuScene::Skin& skin, const Skinning& skinning) {
+    std::memcpy(skin.joints.mapped, skinning.joints.data(),
+                skinning.joints.size() * sizeof(glm::mat4));
+}
+
+bool sameBindData(const SkinnedVertex& a, const SkinnedVertex& b) {
+    return a.position == b.position && a.normal == b.normal;
+}
+
+} // namespace
 
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
     GpuScene out;
@@ -24,51 +116,105 @@ GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
 }
 
 void uploadGeometry(const vk::Context& ctx, GpuScene& out, const Scene& scene) {
-    out.batches.clear();
-    out.opaqueIndexCount = 0;
-    const size_t materialCount = std::max<size_t>(scene.materials.size(), 1);
-    std::vector<std::vector<uint32_t>> byMaterial(materialCount);
-    for (size_t t = 0; t < scene.triangleCount(); ++t) {
-        const uint32_t m = scene.vertices[scene.indices[3 * t]].material;
-        auto& list = byMaterial[m < materialCount ? m : 0];
-        list.insert(list.end(), scene.indices.begin() + static_cast<long>(3 * t),
-                    scene.indices.begin() + static_cast<long>(3 * t + 3));
+    IndexLayout layout = layoutIndices(scene);
+    out.batches = std::move(layout.batches);
+    out.opaqueIndexCount = layout.opaqueIndexCount;
+    out.clusters =
+        makeClusters(positionsOf(scene.vertices), layout.indices, batchStarts(out.batches));
+    const Skinning& skinning = scene.skinning;
+    // Skinned vertices go up in bind space: the `skin` pass places them, in the first frame.
+    std::vector<Vertex> vertices = scene.vertices;
+    for (const SkinnedVertex& s : skinning.vertices) {
+        vertices[s.vertex].position = s.position;
+        vertices[s.vertex].normal = s.normal;
     }
-    auto alphaTested = [&](size_t m) {
-        return m < scene.materials.size() && scene.materials[m].alphaTested();
-    };
-    std::vector<uint32_t> indices;
-    indices.reserve(scene.indices.size());
-    for (const bool tested : {false, true})
-        for (size_t m = 0; m < materialCount; ++m) {
-            if (alphaTested(m) != tested || byMaterial[m].empty())
-                continue;
-            const bool coloured =
-                std::any_of(byMaterial[m].begin(), byMaterial[m].end(),
-                            [&](uint32_t i) { return scene.vertices[i].color != glm::vec4(1.0f); });
-            out.batches.push_back({.material = static_cast<uint32_t>(m),
-                                   .firstIndex = static_cast<uint32_t>(indices.size()),
-                                   .indexCount = static_cast<uint32_t>(byMaterial[m].size()),
-                                   .vertexColors = coloured});
-            indices.insert(indices.end(), byMaterial[m].begin(), byMaterial[m].end());
-            if (!tested)
-                out.opaqueIndexCount = static_cast<uint32_t>(indices.size());
-        }
-    out.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(scene.vertices)),
-                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "vertex buffer");
-    std::vector<glm::vec3> positions;
-    positions.reserve(scene.vertices.size());
-    for (const Vertex& v : scene.vertices)
-        positions.push_back(v.position);
-    out.positions = vk::uploadBuffer(ctx, std::as_bytes(std::span(positions)),
-                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "position buffer");
-    std::vector<uint32_t> batchStarts;
-    for (const DrawBatch& batch : out.batches)
-        batchStarts.push_back(batch.firstIndex);
-    out.clusters = makeClusters(positions, indices, batchStarts);
-    out.indices = vk::uploadBuffer(ctx, std::as_bytes(std::span(indices)),
+    VkBufferUsageFlags written = VK_BUFFER_USAGE_TRANSFER_SRC_BIT; // read back by the tests
+    if (!skinning.empty())
+        written |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT; // the skin pass writes them
+    out.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(vertices)),
+                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | written, "vertex buffer");
+    const std::vector<glm::vec3> positions = positionsOf(vertices);
+    out.positions =
+        vk::uploadBuffer(ctx, std::as_bytes(std::span(positions)),
+                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | written, "position buffer");
+    out.indices = vk::uploadBuffer(ctx, std::as_bytes(std::span(layout.indices)),
                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index buffer");
-    out.indexCount = static_cast<uint32_t>(indices.size());
+    out.indexCount = static_cast<uint32_t>(layout.indices.size());
+    out.skin.reset();
+    if (skinning.empty())
+        return;
+    GpuScene::Skin& skin = out.skin.emplace();
+    const std::vector<gpu::SkinVertex> records = skinVertices(skinning);
+    skin.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(records)),
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "skinned vertices");
+    skin.influences = vk::uploadBuffer(ctx, std::as_bytes(std::span(skinning.influences)),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "skin influences");
+    skin.joints = vk::createBuffer(ctx, skinning.joints.size() * sizeof(glm::mat4),
+                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vk::MemoryUse::Upload,
+                                   "joint matrices");
+    writeJoints(skin, skinning);
+    skin.count = static_cast<uint32_t>(records.size());
+    skin.pending = true;
+}
+
+bool reposeSkinned(const vk::Context& ctx, GpuScene& out, const Scene& uploaded,
+                   const Scene& posed) {
+    const Skinning &was = uploaded.skinning, &now = posed.skinning;
+    if (!out.skin || now.empty() || posed.indices != uploaded.indices ||
+        posed.vertices.size() != uploaded.vertices.size() ||
+        now.vertices.size() != was.vertices.size() || now.joints.size() != was.joints.size() ||
+        now.influences.size() != was.influences.size())
+        return false;
+    std::vector<bool> skinned(posed.vertices.size(), false);
+    for (size_t s = 0; s < now.vertices.size(); ++s) {
+        const SkinnedVertex &a = now.vertices[s], &b = was.vertices[s];
+        if (a.vertex != b.vertex || a.firstInfluence != b.firstInfluence ||
+            a.influenceCount != b.influenceCount || a.vertex >= skinned.size())
+            return false;
+        skinned[a.vertex] = true;
+    }
+    for (size_t k = 0; k < now.influences.size(); ++k)
+        if (now.influences[k].joint != was.influences[k].joint ||
+            now.influences[k].weight != was.influences[k].weight)
+            return false;
+    for (size_t v = 0; v < posed.vertices.size(); ++v)
+        if (!skinned[v] && std::memcmp(&posed.vertices[v], &uploaded.vertices[v], sizeof(Vertex)))
+            return false;
+    for (size_t s = 0; s < now.vertices.size(); ++s)
+        if (!sameBindData(now.vertices[s], was.vertices[s])) { // a morph target moved them
+            const std::vector<gpu::SkinVertex> records = skinVertices(now);
+            out.skin->vertices =
+                vk::uploadBuffer(ctx, std::as_bytes(std::span(records)),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, "skinned vertices");
+            break;
+        }
+    writeJoints(*out.skin, now);
+    // Culling reads the clusters' bounds: this pose's, from the host's placement.
+    const IndexLayout layout = layoutIndices(posed);
+    out.clusters =
+        makeClusters(positionsOf(posed.vertices), layout.indices, batchStarts(layout.batches));
+    out.skin->pending = true;
+    return true;
+}
+
+void readGeometry(const vk::Context& ctx, const GpuScene& scene, size_t vertexCount,
+                  std::vector<Vertex>& vertices, std::vector<glm::vec3>& positions) {
+    vertices.resize(vertexCount);
+    positions.resize(vertexCount);
+    const VkDeviceSize vertexBytes = vertexCount * sizeof(Vertex),
+                       positionBytes = vertexCount * sizeof(glm::vec3);
+    vk::Buffer readback =
+        vk::createBuffer(ctx, vertexBytes + positionBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                         vk::MemoryUse::Readback, "geometry readback");
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+        const VkBufferCopy vertexRegion{.size = vertexBytes},
+            positionRegion{.dstOffset = vertexBytes, .size = positionBytes};
+        vkCmdCopyBuffer(cmd, scene.vertices.get(), readback.get(), 1, &vertexRegion);
+        vkCmdCopyBuffer(cmd, scene.positions.get(), readback.get(), 1, &positionRegion);
+    });
+    const auto* bytes = static_cast<const std::byte*>(readback.mapped);
+    std::memcpy(vertices.data(), bytes, vertexBytes);
+    std::memcpy(positions.data(), bytes + vertexBytes, positionBytes);
 }
 
 } // namespace penumbra::render

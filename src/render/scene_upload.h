@@ -9,6 +9,7 @@
 #include "render/textures.h"
 #include "vk/resources.h"
 
+#include <optional>
 #include <vector>
 
 namespace penumbra::render {
@@ -36,11 +37,34 @@ struct GpuScene {
         bool doubleSided;
     };
     std::vector<Material> materials; // per Scene::materials
+    // Skinned vertices (Scene::skinning): what the frame's `skin` pass reads to place them in
+    // `vertices` and `positions` (uploaded holding them in bind space), and whether the next
+    // frame runs it (the pose changed since it last ran).
+    struct Skin {
+        vk::Buffer vertices;   // gpu::SkinVertex[]
+        vk::Buffer influences; // gpu::SkinInfluence[]
+        vk::Buffer joints;     // this pose's joint matrices (mat4[]), host-visible
+        uint32_t count = 0;    // skinned vertices
+        bool pending = false;
+    };
+    std::optional<Skin> skin; // none: nothing is skinned
 };
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
 // The geometry alone uploaded again (vertices, positions, indices, batches, clusters), the
 // textures and materials kept: the scene posed at another time (SceneRenderer::repose). No frame
 // may be in flight that reads the old buffers.
 void uploadGeometry(const vk::Context& ctx, GpuScene& scene, const Scene& posed);
+// The pose `posed` of the scene `uploaded` whose geometry is on the device, when only its skinned
+// vertices moved (same triangles, the same unskinned vertices, the same skinned vertices and
+// influences): this pose's joint matrices written (and the skinned vertices' bind data where a
+// morph target moved them), the clusters' bounds measured again, and the `skin` pass made
+// pending. False, and nothing done, for any other change (uploadGeometry then). No frame may be
+// in flight.
+bool reposeSkinned(const vk::Context& ctx, GpuScene& scene, const Scene& uploaded,
+                   const Scene& posed);
+// The vertex and positions buffers as the device holds them (the tests' view of the `skin`
+// pass's work), `vertexCount` of each.
+void readGeometry(const vk::Context& ctx, const GpuScene& scene, size_t vertexCount,
+                  std::vector<Vertex>& vertices, std::vector<glm::vec3>& positions);
 
 } // namespace penumbra::render

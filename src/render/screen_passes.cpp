@@ -18,7 +18,8 @@ void addGBufferPass(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
          .uses = {{r.gbufferDepth, Access::DepthAttachment},
                   {r.gbufferNormal, Access::ColorAttachment},
                   {r.gbufferAlbedo, Access::ColorAttachment},
-                  {r.frame, Access::UniformRead}},
+                  {r.frame, Access::UniformRead},
+                  {r.vertices, Access::VertexRead}},
          .record = [&p, &scene, &s, &in, r](PassContext& c) {
              const vk::Image& depthImage = c.image(r.gbufferDepth).get();
              const VkRenderingAttachmentInfo colors[] = {

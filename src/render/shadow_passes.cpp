@@ -193,7 +193,9 @@ void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene
     graph.addPass({.name = "shadow",
                    .cost = CostGroup::ShadowMaps,
                    .phase = Phase::LightSpace,
-                   .uses = {{r.depthMap, Access::DepthAttachment}},
+                   .uses = {{r.depthMap, Access::DepthAttachment},
+                            {r.vertices, Access::VertexRead},
+                            {r.positions, Access::VertexRead}},
                    .record = [&p, &scene, &s, &in, map = r.depthMap](PassContext& c) {
                        for (uint32_t v = 0; v < s.views.size(); ++v)
                            renderLightDepth(
@@ -206,7 +208,9 @@ void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene
         graph.addPass({.name = "shadow",
                        .cost = CostGroup::ShadowMaps,
                        .phase = Phase::LightSpace,
-                       .uses = {{read, Access::FragmentSampled}, {target, Access::DepthAttachment}},
+                       .uses = {{read, Access::FragmentSampled},
+                                {target, Access::DepthAttachment},
+                                {r.vertices, Access::VertexRead}},
                        .record = [&p, &scene, &s, &in, pass, read, target](PassContext& c) {
                            for (uint32_t v = 0; v < s.views.size(); ++v) {
                                const bool perspective = s.views[v].projection.perspective;

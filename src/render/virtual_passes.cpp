@@ -15,7 +15,9 @@ void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
     graph.addPass({.name = "shadow",
                    .cost = CostGroup::ShadowMaps,
                    .phase = Phase::LightSpace,
-                   .uses = {{r.depthMap, Access::DepthAttachment}},
+                   .uses = {{r.depthMap, Access::DepthAttachment},
+                            {r.vertices, Access::VertexRead},
+                            {r.positions, Access::VertexRead}},
                    .record = [&p, &scene, &s, &in, pool = r.depthMap](PassContext& c) {
                        if (s.pages)
                            for (const PageDraw& page : *s.pages)

@@ -155,15 +155,26 @@ Scene walker(double time) {
     limb(ShoulderR, ElbowR, kHandHeight, 0.048f, body);
     mb.sphere({kSkeleton[ShoulderR].bind.x, kHandHeight, 0.0f}, 0.055f, body, 10, 6);
     rigid(ElbowR);
-    // Linear blend skinning: each vertex by the weighted sum of its joints' matrices.
+    // Linear blend skinning: each vertex by the weighted sum of its joints' matrices, on the
+    // host here and on the GPU in each frame after a pose (Scene::skinning).
     const std::array<glm::mat4, kJoints> skin = skinMatrices(time);
+    scene.skinning.joints.assign(skin.begin(), skin.end());
     for (size_t v = figureStart; v < scene.vertices.size(); ++v) {
         const Weights& w = weights[v - figureStart];
-        const glm::mat4 m = (1.0f - w.lowerWeight) * skin[w.upper] + w.lowerWeight * skin[w.lower];
-        Vertex& vertex = scene.vertices[v];
-        vertex.position = glm::vec3(m * glm::vec4(vertex.position, 1.0f));
-        vertex.normal = glm::normalize(glm::mat3(m) * vertex.normal);
+        const Vertex& bind = scene.vertices[v];
+        const uint32_t first = static_cast<uint32_t>(scene.skinning.influences.size());
+        for (const auto& [joint, weight] :
+             {std::pair{w.upper, 1.0f - w.lowerWeight}, std::pair{w.lower, w.lowerWeight}})
+            if (weight > 0.0f)
+                scene.skinning.influences.push_back({.joint = joint, .weight = weight});
+        scene.skinning.vertices.push_back(
+            {.vertex = static_cast<uint32_t>(v),
+             .firstInfluence = first,
+             .influenceCount = static_cast<uint32_t>(scene.skinning.influences.size()) - first,
+             .position = bind.position,
+             .normal = bind.normal});
     }
+    placeSkinnedVertices(scene);
     scene.lights.push_back({.name = "sun",
                             .type = LightType::Directional,
                             .direction = glm::normalize(kWalkerSunDirection),

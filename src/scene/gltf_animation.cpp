@@ -119,6 +119,12 @@ std::vector<Animation> readAnimations(const std::filesystem::path& file, const t
     for (size_t a = 0; a < m.animations.size(); ++a) {
         const tinygltf::Animation& source = m.animations[a];
         Animation animation{.name = source.name};
+        // The schema asks for at least one of each: an animation without moves nothing.
+        for (const auto& [list, count] : {std::pair{"channels", source.channels.size()},
+                                          std::pair{"samplers", source.samplers.size()}})
+            if (count == 0)
+                reader.fail(fmt::format("animations[{}].{}", a, list),
+                            "empty; an animation has at least one");
         std::set<std::pair<size_t, AnimatedPath>> targets;
         for (size_t c = 0; c < source.channels.size(); ++c) {
             const tinygltf::AnimationChannel& channel = source.channels[c];

@@ -14,6 +14,7 @@
 #include "scene/gltf_validate.h"
 #include "scene/interior.h"
 #include "scene/sanitize.h"
+#include "scene/skinning.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -171,16 +172,18 @@ struct Flattener {
     std::vector<gltf::NodePose> poses;       // per node: at rest, or at --time
     std::vector<glm::mat4> worlds;           // per node: its world transform in that pose
     std::vector<gltf::Skin> skins;
+    std::vector<uint32_t> jointBase; // per skin: its first joint in scene.skinning.joints
 
     void warn(const std::string& w) const {
         if (options.warnings)
             options.warnings->push_back(file.string() + ": " + w);
     }
 
-    // A primitive placed by `world`, or per vertex by `skinned` (its skin's matrices), its
-    // morph targets blended by `weights`.
+    // A primitive placed by `world`, or per vertex by its influences `skinned` (of skins[skin]),
+    // its morph targets blended by `weights`.
     void primitive(const tinygltf::Primitive& p, const glm::mat4& world, size_t meshIndex,
-                   std::span<const float> weights, const std::vector<glm::mat4>* skinned) {
+                   std::span<const float> weights, const gltf::PrimitiveInfluences* skinned,
+                   size_t skin) {
         if (!gltf::hasPositions(p))
             return; // validateModel said so
         if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
@@ -229,11 +232,6 @@ struct Flattener {
                 idx[i] = i;
         }
         std::vector<uint32_t> tri = triangles(p.mode, idx);
-        // A mirroring transform flips the winding (a skin: as its first vertex's matrix does).
-        const glm::mat4& placement = skinned ? skinned->front() : world;
-        if (glm::determinant(glm::mat3(placement)) < 0.0f)
-            for (size_t t = 0; t + 2 < tri.size(); t += 3)
-                std::swap(tri[t + 1], tri[t + 2]);
         std::vector<float> normals;
         if (const auto n = p.attributes.find("NORMAL"); n != p.attributes.end()) {
             normals = readFloats(m, n->second);
@@ -241,6 +239,18 @@ struct Flattener {
                 normals.clear();
         }
         blendMorphTargets(p, weights, pos, normals);
+        if (skinned && normals.empty()) // area-weighted smooth normals in bind space, as wound
+            normals = smoothNormals(pos, tri);
+        // A mirroring transform flips the winding: a node's, the whole primitive; a skin's, each
+        // triangle its first vertex's blend mirrors (so what faces out stays front-facing).
+        if (skinned) {
+            for (size_t t = 0; t + 2 < tri.size(); t += 3)
+                if (glm::determinant(blendOf(*skinned, skin, tri[t])) < 0.0f)
+                    std::swap(tri[t + 1], tri[t + 2]);
+        } else if (glm::determinant(glm::mat3(world)) < 0.0f) {
+            for (size_t t = 0; t + 2 < tri.size(); t += 3)
+                std::swap(tri[t + 1], tri[t + 2]);
+        }
         const uint32_t material =
             p.material >= 0 ? static_cast<uint32_t>(p.material) : defaultMaterial;
         const UvTransform& transform = uvTransform[material];
@@ -260,15 +270,30 @@ struct Flattener {
         const std::vector<float> color = attribute(p, "COLOR_0", count, colorSize);
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(world)));
         const uint32_t base = static_cast<uint32_t>(scene.vertices.size());
+        const size_t firstSkinned = scene.skinning.vertices.size();
         for (size_t v = 0; v < count; ++v) {
             const glm::vec3 local(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
-            const glm::mat4& place = skinned ? (*skinned)[v] : world;
             glm::vec3 n = normals.empty()
                               ? glm::vec3(0.0f)
                               : glm::vec3(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
-            if (!normals.empty())
-                n = (skinned ? glm::transpose(glm::inverse(glm::mat3(place))) : normalMatrix) * n;
-            Vertex out{glm::vec3(place * glm::vec4(local, 1.0f)), n, material};
+            Vertex out{local, n, material}; // a skinned vertex: placed below
+            if (skinned) {
+                const uint32_t first = skinned->starts[v];
+                scene.skinning.vertices.push_back(
+                    {.vertex = base + static_cast<uint32_t>(v),
+                     .firstInfluence = static_cast<uint32_t>(scene.skinning.influences.size()),
+                     .influenceCount = skinned->starts[v + 1] - first,
+                     .position = local,
+                     .normal = n});
+                for (uint32_t k = first; k < skinned->starts[v + 1]; ++k) {
+                    SkinInfluence influence = skinned->influences[k];
+                    influence.joint += jointBase[skin];
+                    scene.skinning.influences.push_back(influence);
+                }
+            } else {
+                out.position = glm::vec3(world * glm::vec4(local, 1.0f));
+                out.normal = normalMatrix * n;
+            }
             if (!uv.empty()) // affine, so transforming the corners transforms every point
                 out.uv = transform.apply(glm::vec2(uv[2 * v], uv[2 * v + 1]));
             if (!color.empty())
@@ -277,6 +302,7 @@ struct Flattener {
                                       colorSize == 4 ? color[colorSize * v + 3] : 1.0f);
             scene.vertices.push_back(out);
         }
+        placeSkinnedVertices(scene, firstSkinned, scene.skinning.vertices.size());
         if (normals.empty()) { // missing normals: area-weighted smooth normals of the primitive
             for (size_t t = 0; t + 2 < tri.size(); t += 3) {
                 const glm::vec3 a = scene.vertices[base + tri[t]].position,
@@ -299,6 +325,34 @@ struct Flattener {
                 ++unusableByMesh[meshIndex];
         for (uint32_t i : tri)
             scene.indices.push_back(base + i);
+    }
+
+    // The 3x3 part of vertex `v`'s blend of its joints' matrices in this pose (skins[skin]'s).
+    glm::mat3 blendOf(const gltf::PrimitiveInfluences& skinned, size_t skin, uint32_t v) const {
+        glm::mat3 blend(0.0f);
+        for (uint32_t k = skinned.starts[v]; k < skinned.starts[v + 1]; ++k) {
+            const SkinInfluence& influence = skinned.influences[k];
+            blend += influence.weight *
+                     glm::mat3(scene.skinning.joints[jointBase[skin] + influence.joint]);
+        }
+        return blend;
+    }
+
+    // Area-weighted smooth normals of the triangles `tri` over positions `pos` (3 floats each).
+    static std::vector<float> smoothNormals(const std::vector<float>& pos,
+                                            const std::vector<uint32_t>& tri) {
+        std::vector<float> normals(pos.size(), 0.0f);
+        const auto at = [&](uint32_t i) {
+            return glm::vec3(pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]);
+        };
+        for (size_t t = 0; t + 2 < tri.size(); t += 3) {
+            const glm::vec3 face =
+                glm::cross(at(tri[t + 1]) - at(tri[t]), at(tri[t + 2]) - at(tri[t]));
+            for (int k = 0; k < 3; ++k)
+                for (int c = 0; c < 3; ++c)
+                    normals[3 * tri[t + k] + c] += face[c];
+        }
+        return normals;
     }
 
     // Morph targets (the specification's 3.7.2.2): each target's POSITION and NORMAL
@@ -366,13 +420,14 @@ struct Flattener {
         if (n.mesh >= 0)
             for (size_t k = 0; k < m.meshes[n.mesh].primitives.size(); ++k) {
                 const tinygltf::Primitive& p = m.meshes[n.mesh].primitives[k];
-                std::vector<glm::mat4> skinned;
+                gltf::PrimitiveInfluences skinned;
+                const auto skin = static_cast<size_t>(std::max(n.skin, 0));
                 if (n.skin >= 0 && gltf::hasPositions(p))
-                    skinned = gltf::skinMatrices(
+                    skinned = gltf::skinInfluences(
                         file, m, p, fmt::format("meshes[{}].primitives[{}]", n.mesh, k), index,
-                        skins[static_cast<size_t>(n.skin)], worlds);
+                        skins[skin]);
                 primitive(p, world, static_cast<size_t>(n.mesh), poses[index].weights,
-                          n.skin >= 0 ? &skinned : nullptr);
+                          n.skin >= 0 ? &skinned : nullptr, skin);
             }
         if (n.camera >= 0)
             camera(index, m.cameras[n.camera], world);
@@ -591,6 +646,11 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
     poseScene(file, model, options, scene, flat.poses);
     flat.worlds = gltf::nodeWorlds(model, flat.poses);
     flat.skins = gltf::readSkins(file, model);
+    for (const gltf::Skin& skin : flat.skins) { // every skin's joints in this pose, in one list
+        flat.jointBase.push_back(static_cast<uint32_t>(scene.skinning.joints.size()));
+        for (const glm::mat4& joint : gltf::jointMatrices(skin, flat.worlds))
+            scene.skinning.joints.push_back(joint);
+    }
     if (!model.scenes.empty())
         flat.walk(model.scenes[model.defaultScene >= 0 ? model.defaultScene : 0].nodes);
     flat.warnUnusable();

@@ -93,23 +93,26 @@ std::vector<glm::mat4> nodeWorlds(const tinygltf::Model& m, const std::vector<No
     return worlds;
 }
 
-std::vector<glm::mat4> skinMatrices(const std::filesystem::path& file, const tinygltf::Model& m,
-                                    const tinygltf::Primitive& prim, const std::string& path,
-                                    size_t node, const Skin& skin,
-                                    const std::vector<glm::mat4>& worlds) {
+std::vector<glm::mat4> jointMatrices(const Skin& skin, const std::vector<glm::mat4>& worlds) {
+    std::vector<glm::mat4> joints(skin.joints.size());
+    for (size_t j = 0; j < joints.size(); ++j)
+        joints[j] = worlds[skin.joints[j]] * skin.inverseBind[j];
+    return joints;
+}
+
+PrimitiveInfluences skinInfluences(const std::filesystem::path& file, const tinygltf::Model& m,
+                                   const tinygltf::Primitive& prim, const std::string& path,
+                                   size_t node, const Skin& skin) {
     const auto fail = [&](const std::string& at, const std::string& what) {
         throw InputError(file.string(), at + ": " + what);
     };
     if (!prim.attributes.contains("JOINTS_0") || !prim.attributes.contains("WEIGHTS_0"))
         fail(fmt::format("nodes[{}]", node),
              fmt::format("skins[{}] needs JOINTS_0 and WEIGHTS_0 in {}", m.nodes[node].skin, path));
-    std::vector<glm::mat4> joints(skin.joints.size());
-    for (size_t j = 0; j < joints.size(); ++j)
-        joints[j] = worlds[skin.joints[j]] * skin.inverseBind[j];
     const size_t count = m.accessors[static_cast<size_t>(prim.attributes.at("POSITION"))].count;
-    // Summed in double: weights near the float's limit (3e38 twice) would overflow a float sum.
-    std::vector<glm::dmat4> sumsOfMatrices(count, glm::dmat4(0.0));
-    std::vector<double> sums(count, 0.0);
+    // Every set's joints and weights, read and checked first.
+    std::vector<std::vector<float>> indexSets, weightSets;
+    std::vector<std::string> weightPaths;
     for (int set = 0;; ++set) {
         const auto jointsAt = prim.attributes.find(fmt::format("JOINTS_{}", set));
         const auto weightsAt = prim.attributes.find(fmt::format("WEIGHTS_{}", set));
@@ -135,31 +138,44 @@ std::vector<glm::mat4> skinMatrices(const std::filesystem::path& file, const tin
             fail(weightsPath, fmt::format("accessors[{}] is not VEC4 floats or normalized "
                                           "unsigned bytes or shorts",
                                           weightsAt->second));
-        const std::vector<float> index = readFloats(m, jointsAt->second);
-        const std::vector<float> weight = readFloats(m, weightsAt->second);
+        std::vector<float> index = readFloats(m, jointsAt->second);
+        std::vector<float> weight = readFloats(m, weightsAt->second);
         for (size_t v = 0; v < count; ++v)
             for (size_t k = 0; k < 4; ++k) {
                 const auto j = static_cast<size_t>(index[4 * v + k]);
-                if (j >= joints.size())
+                if (j >= skin.joints.size())
                     fail(jointsPath, fmt::format("vertex {}'s joint {} is past skins[{}]'s {} "
                                                  "joints",
-                                                 v, j, m.nodes[node].skin, joints.size()));
+                                                 v, j, m.nodes[node].skin, skin.joints.size()));
                 if (!(weight[4 * v + k] >= 0.0f))
                     fail(weightsPath, fmt::format("vertex {}'s weight {} is {}; weights are 0 or "
                                                   "more",
                                                   v, k, weight[4 * v + k]));
-                sumsOfMatrices[v] += double(weight[4 * v + k]) * glm::dmat4(joints[j]);
-                sums[v] += double(weight[4 * v + k]);
             }
+        indexSets.push_back(std::move(index));
+        weightSets.push_back(std::move(weight));
+        weightPaths.push_back(weightsPath);
     }
-    // Weights should sum to 1; quantized ones miss by a little, and are scaled to.
-    std::vector<glm::mat4> out(count);
+    PrimitiveInfluences out;
+    out.starts.reserve(count + 1);
     for (size_t v = 0; v < count; ++v) {
-        if (!(sums[v] > 0.0))
-            fail(fmt::format("{}.attributes.WEIGHTS_0", path),
-                 fmt::format("vertex {}'s weights sum to {}", v, sums[v]));
-        out[v] = glm::mat4(sumsOfMatrices[v] / sums[v]);
+        // Summed in double: weights near the float's limit (3e38 twice) would overflow a float.
+        double sum = 0.0;
+        for (const std::vector<float>& weight : weightSets)
+            for (size_t k = 0; k < 4; ++k)
+                sum += double(weight[4 * v + k]);
+        if (!(sum > 0.0))
+            fail(weightPaths.front(), fmt::format("vertex {}'s weights sum to {}", v, sum));
+        out.starts.push_back(static_cast<uint32_t>(out.influences.size()));
+        // Weights should sum to 1; quantized ones miss by a little, and are scaled to.
+        for (size_t set = 0; set < weightSets.size(); ++set)
+            for (size_t k = 0; k < 4; ++k)
+                if (const float w = weightSets[set][4 * v + k]; w > 0.0f)
+                    out.influences.push_back(
+                        {.joint = static_cast<uint32_t>(indexSets[set][4 * v + k]),
+                         .weight = static_cast<float>(double(w) / sum)});
     }
+    out.starts.push_back(static_cast<uint32_t>(out.influences.size()));
     return out;
 }
 
