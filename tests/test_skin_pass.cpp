@@ -1,9 +1,9 @@
 // The `skin` pass (issue 59): skinned vertices placed on the GPU in the first frame after each
 // pose, where the host placed them (placeSkinnedVertices) to within what float arithmetic allows,
 // before anything of that frame draws them, for every light type; and only then.
+#include "analytic_scenes.h"
 #include "gpu_fixture.h"
 #include "penumbra/error.h"
-#include "scene/mesh_builder.h"
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -141,25 +141,6 @@ Scene randomSkin(uint32_t seed, const Light& light) {
     return scene;
 }
 
-Light sun() {
-    return {.name = "sun", .type = LightType::Directional, .direction = {0.3f, -1.0f, 0.2f}};
-}
-Light spot() {
-    return {.name = "spot",
-            .type = LightType::Spot,
-            .position = {0.5f, 5.0f, 1.0f},
-            .direction = glm::normalize(glm::vec3(-0.1f, -1.0f, -0.2f)),
-            .intensity = 30.0f,
-            .innerConeAngle = 0.9f,
-            .outerConeAngle = 1.1f};
-}
-Light point() {
-    return {.name = "bulb",
-            .type = LightType::Point,
-            .position = {1.5f, 3.0f, -1.0f},
-            .intensity = 30.0f};
-}
-
 bool hasPass(const RenderResult& r, std::string_view name) {
     return std::any_of(r.passes.begin(), r.passes.end(),
                        [&](const PassTime& p) { return p.pass == name; });
@@ -179,7 +160,7 @@ double differing(const RenderResult& a, const RenderResult& b, size_t l) {
 // in bind space; after it, where the host put them. A second seed's joints reposed onto the same
 // renderer are placed too.
 TEST_F(FrameTest, TheSkinPassPlacesEveryVertexWhereTheHostDoesToFloatRounding) {
-    const std::array<Light, 3> lights{sun(), spot(), point()};
+    const std::array<Light, 3> lights{sharpSun(), sharpSpot(), sharpPoint()};
     for (uint32_t seed = 1; seed <= 3; ++seed) {
         const Scene scene = randomSkin(seed, lights[seed - 1]);
         SceneRenderer renderer(sharedRenderer(), scene);
@@ -206,7 +187,7 @@ TEST_F(FrameTest, TheSkinPassPlacesEveryVertexWhereTheHostDoesToFloatRounding) {
 // weights, and one where an unskinned vertex moved (a rigid node): each is drawn where the host
 // put it.
 TEST_F(FrameTest, AReposeWithMovedBindDataOrUnskinnedVerticesPlacesThemToo) {
-    const Scene scene = randomSkin(7, sun());
+    const Scene scene = randomSkin(7, sharpSun());
     SceneRenderer renderer(sharedRenderer(), scene);
     renderer.render(small());
     Scene morphed = scene;
@@ -260,7 +241,7 @@ TEST_F(FrameTest, TheSkinPassRunsFirstInTheFrameAfterEachPoseAndInNoOther) {
     const RenderResult again = renderer.render(small());
     EXPECT_FALSE(hasPass(again, "skin"));
     // A scene with nothing skinned has no skin pass.
-    Scene unskinned = randomSkin(1, sun());
+    Scene unskinned = randomSkin(1, sharpSun());
     unskinned.skinning = {};
     SceneRenderer none(sharedRenderer(), unskinned);
     none.repose(unskinned);
@@ -270,7 +251,7 @@ TEST_F(FrameTest, TheSkinPassRunsFirstInTheFrameAfterEachPoseAndInNoOther) {
 // The walker in motion under each light type: the frame right after a pose (no warm-up) shadows
 // as a renderer given the host's placement draws it, so the skinning ran before every draw.
 TEST_F(FrameTest, AFrameAfterAPoseDrawsTheNewPoseInEveryPassForEveryLightType) {
-    for (const Light& light : {sun(), spot(), point()}) {
+    for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
         Scene before = builtin::walker(0.3), after = builtin::walker(0.8);
         before.lights = after.lights = {light};
         SceneRenderer moving(sharedRenderer(), before);
@@ -288,9 +269,9 @@ TEST_F(FrameTest, AFrameAfterAPoseDrawsTheNewPoseInEveryPassForEveryLightType) {
 
 // A skin the GPU could not read is refused before anything is uploaded.
 TEST_F(FrameTest, ASkinOutOfRangeIsRefused) {
-    Scene scene = randomSkin(2, sun());
+    Scene scene = randomSkin(2, sharpSun());
     scene.skinning.influences.back().joint = 5;
     EXPECT_THROW(SceneRenderer(sharedRenderer(), scene), InputError);
-    SceneRenderer renderer(sharedRenderer(), randomSkin(2, sun()));
+    SceneRenderer renderer(sharedRenderer(), randomSkin(2, sharpSun()));
     EXPECT_THROW(renderer.repose(scene), InputError);
 }
