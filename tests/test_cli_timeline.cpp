@@ -531,7 +531,8 @@ TEST(CliTimeline, VirtualPagesLagBehindAnOrbitingLightAndPlainMapsDoNot) {
 }
 
 // render --fps draws each later pose as the next frame, with no warm-up: a virtual map's frame
-// renders the pages the frame before asked for (its cost while the light moves), once.
+// renders the pages the frame before asked for (its cost while the light moves), once; the
+// bulb's pages each pose, the still sun's once.
 TEST(CliTimeline, RenderFpsDrawsEachPoseAsOneFrameAfterTheLast) {
     const fs::path out = outputScratch("fps-virtual");
     const ProcessResult r =
@@ -545,7 +546,27 @@ TEST(CliTimeline, RenderFpsDrawsEachPoseAsOneFrameAfterTheLast) {
     ASSERT_EQ(pages["pages_rendered_per_frame"].size(), 5u) << pages.dump();
     EXPECT_GT(pages["pages_rendered_per_frame"][3].get<int>(), 0) << pages.dump();
     EXPECT_GT(pages["pages_rendered_per_frame"][4].get<int>(), 0) << pages.dump();
-    EXPECT_EQ(pages["pages_cached"].get<int>(), 0) << "every page is drawn again for the pose";
+    // The scene's sun: nothing moved under it, its pages stay.
+    EXPECT_GT(pages["pages_cached"].get<int>(), 0) << pages.dump();
+    EXPECT_LT(pages["pages_cached"].get<int>(), pages["pages_resident"].get<int>());
+}
+
+// Under still lights a walking figure's frames render again only the pages under where it was
+// and where it is: the rest of the floor's pages stay cached from pose to pose.
+TEST(CliTimeline, AWalkingFigureRendersOnlyThePagesItCrosses) {
+    const fs::path out = outputScratch("fps-walker-virtual");
+    const ProcessResult r =
+        runCli({"render", "builtin:walker", "-o", out.string(), "--width", "96", "--height", "72",
+                "--format", "pfm", "--fps", "30", "--frames", "3", "--set", "virtual.enabled=1"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const J pages = J::parse(slurp(out / "stats.json"))["virtual_maps"];
+    ASSERT_EQ(pages["pages_rendered_per_frame"].size(), 5u) << pages.dump();
+    for (size_t frame : {3, 4}) {
+        const int rendered = pages["pages_rendered_per_frame"][frame].get<int>();
+        EXPECT_GT(rendered, 0) << pages.dump();
+        EXPECT_LT(rendered * 2, pages["pages_resident"].get<int>()) << pages.dump();
+    }
+    EXPECT_GT(pages["pages_cached"].get<int>(), 0) << pages.dump();
 }
 
 // Only a camera Penumbra framed is held at the first frame's: the file's own camera moves with

@@ -286,6 +286,20 @@ TEST(GltfSkinned, WeightsNearTheFloatsLimitAreScaledLikeSmallOnes) {
         expectVertexAt(s, p, "huge weights at 1 s");
 }
 
+// Every one of a set's four slots counts: the middle pair's second joint in the fourth slot,
+// the far end's only joint in the third.
+TEST(GltfSkinned, EachOfASetsFourInfluencesCounts) {
+    Bar r = bar();
+    GltfBuilder& b = r.b;
+    b.j["accessors"][r.joints]["bufferView"] = b.view(std::vector<uint8_t>{
+        0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 0, 1, 0});
+    b.j["accessors"][r.weights]["bufferView"] = b.view(std::vector<float>{
+        1, 0, 0, 0, 1, 0, 0, 0, 0.5f, 0, 0, 0.5f, 0.5f, 0, 0, 0.5f, 0, 0, 1, 0, 0, 0, 1, 0});
+    const Scene s = loadAt(write(b, "four-slots"), 1.0);
+    for (const glm::vec3& p : barAt(static_cast<float>(std::numbers::pi / 2)))
+        expectVertexAt(s, p, "slots 3 and 4 at 1 s");
+}
+
 TEST(GltfSkinned, ASecondSetOfJointsAndWeightsAddsToTheFirst) {
     Bar r = bar();
     GltfBuilder& b = r.b;

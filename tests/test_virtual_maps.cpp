@@ -502,3 +502,53 @@ TEST(PageCache, TheDebugViewsSayWhatEachPageIsAndWhoHoldsThePool) {
     for (int32_t owner : v.poolOwner)
         EXPECT_EQ(owner, -1);
 }
+
+// The levels are fitted to bounds snapped outward to a grid and to a nearest surface rounded
+// down a quarter of an octave: a caster that moves a little inside them keeps every light's key,
+// one that crosses the grid changes it.
+TEST(VirtualMaps, LevelsFitSteadyBoundsAndNearestSurfaces) {
+    const Bounds steady = steadyBounds(kField); // largest side 800: a grid of 16
+    EXPECT_EQ(steady.min, glm::vec3(-400, 0, -400));
+    EXPECT_EQ(steady.max, glm::vec3(400, 32, 400));
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> any(-50.0f, 50.0f), side(0.01f, 40.0f);
+    for (int i = 0; i < 50; ++i) {
+        const glm::vec3 lo{any(rng), any(rng), any(rng)};
+        const Bounds b{.min = lo, .max = lo + glm::vec3(side(rng), side(rng), side(rng))};
+        const Bounds s = steadyBounds(b);
+        const float largest = std::max({b.extent().x, b.extent().y, b.extent().z});
+        const float grid = std::exp2(std::ceil(std::log2(largest / 64.0f)));
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_LE(s.min[a], b.min[a]);
+            EXPECT_LT(b.min[a] - s.min[a], grid);
+            EXPECT_GE(s.max[a], b.max[a]);
+            EXPECT_LT(s.max[a] - b.max[a], grid);
+            EXPECT_EQ(std::fmod(s.min[a], grid), 0.0f);
+        }
+    }
+    for (float d : {0.3f, 5.0f, 5.1f, 4.7f, 1000.0f}) {
+        const float n = steadyNearestSurface(d);
+        EXPECT_LE(n, d);
+        EXPECT_GT(n, d * std::exp2(-0.25f));
+        EXPECT_EQ(std::fmod(4.0f * std::log2(n), 1.0f), 0.0f) << d;
+    }
+    EXPECT_EQ(steadyNearestSurface(5.0f), steadyNearestSurface(5.1f));
+    EXPECT_TRUE(std::isinf(steadyNearestSurface(INFINITY)));
+    const VirtualSettings s = small();
+    auto keyOf = [&](const Light& light, const Bounds& bounds, float nearest) {
+        uint32_t offset = 0;
+        return pageContentsKey(
+            light,
+            virtualLevels(light, 0, bounds, {0, 2, 0}, s, {.nearestSurface = nearest}, offset), s,
+            {0.0005f, 2.0f});
+    };
+    Bounds taller = kField, deeper = kField;
+    taller.max.y = 31.5f; // inside the grid's 32
+    deeper.min.y = -0.5f; // past the grid's 0: every light's far plane or the sun's depths
+    for (const Light& light : {kSun, kSpot, kPoint}) {
+        const uint64_t k = keyOf(light, kField, 5.0f);
+        EXPECT_EQ(keyOf(light, taller, 5.1f), k) << int(light.type);
+        EXPECT_NE(keyOf(light, deeper, 5.0f), k) << int(light.type);
+    }
+    EXPECT_NE(keyOf(kPoint, kField, 4.7f), keyOf(kPoint, kField, 5.0f));
+}

@@ -2,7 +2,8 @@
 // page_marking.comp, map_reads.glsl): against the ray-traced truth for every light type and every
 // technique that reads them, the page cache across frames (a static view renders its pages once,
 // a camera move renders only what it uncovers, a light that moves re-renders its own pages and
-// only those), a pool too small for the view, and the frame without them as it was.
+// only those, a caster that moves the pages under it), a pool too small for the view, and the frame
+// without them as it was.
 #include "analytic_scenes.h"
 #include "truth_fixture.h"
 
@@ -213,6 +214,37 @@ TEST_F(VirtualTest, AMovedLightRendersItsOwnPagesAgain) {
     EXPECT_EQ(sunPages, residentOf(0));
     EXPECT_EQ(spotPages + sunPages, bothMoved.virtualMaps->resident);
     EXPECT_EQ(sum(scene.render(o, {.lights = lights}).virtualMaps->renderedPerFrame), 0u);
+}
+
+// A small caster that moves (a ball beside builtin:resting's objects, slid a little) re-renders
+// only the pages it was and is over: few of those resident, for every light type; what is drawn
+// equals a fresh renderer's image of the new pose, and differs from the old one's.
+TEST_F(VirtualTest, AMovedCasterRendersOnlyThePagesItCovers) {
+    for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
+        Scene before = restingObjects(light);
+        const size_t firstBallVertex = before.vertices.size();
+        MeshBuilder(before).sphere({-1.2f, 0.9f, -1.0f}, 0.25f, 1);
+        Scene after = before;
+        for (size_t v = firstBallVertex; v < after.vertices.size(); ++v)
+            after.vertices[v].position += glm::vec3(0.25f, 0.0f, 0.1f);
+        ASSERT_EQ(after.bounds().min, before.bounds().min);
+        ASSERT_EQ(after.bounds().max, before.bounds().max);
+        SceneRenderer scene(sharedRenderer(), before);
+        const RenderOptions o = options(Technique::Hard, kVirtual);
+        const RenderResult old = scene.render(o);
+        scene.repose(after);
+        const RenderResult moved = scene.render(o);
+        const uint32_t rendered = sum(moved.virtualMaps->renderedPerFrame);
+        std::printf("%s: %u pages resident, %u rendered after the ball moved\n", light.name.c_str(),
+                    moved.virtualMaps->resident, rendered);
+        EXPECT_GT(rendered, 0u) << light.name;
+        EXPECT_LE(rendered * 4, moved.virtualMaps->resident) << light.name;
+        EXPECT_EQ(moved.virtualMaps->renderedPerFrame.back(), 0u) << "drawn once, they stay";
+        SceneRenderer fresh(sharedRenderer(), after);
+        const RenderResult want = fresh.render(o);
+        EXPECT_FALSE(sameBits(old.visibility[0], want.visibility[0])) << light.name;
+        EXPECT_TRUE(sameBits(moved.visibility[0], want.visibility[0])) << light.name;
+    }
 }
 
 // A pool that cannot hold the view: fewer pages, the coarsest kept, every pixel still shadowed

@@ -82,6 +82,19 @@ std::vector<VirtualLevel> clipmapLevels(const Light& light, uint32_t lightIndex,
 
 } // namespace
 
+Bounds steadyBounds(const Bounds& scene) {
+    const glm::vec3 e = scene.extent();
+    const float largest = std::max({e.x, e.y, e.z, 1e-6f});
+    const float grid = std::exp2(std::ceil(std::log2(largest / 64.0f)));
+    return {.min = glm::floor(scene.min / grid) * grid, .max = glm::ceil(scene.max / grid) * grid};
+}
+
+float steadyNearestSurface(float distance) {
+    if (!std::isfinite(distance) || distance <= 0.0f)
+        return distance;
+    return std::exp2(std::floor(4.0f * std::log2(distance)) / 4.0f);
+}
+
 VirtualSettings VirtualSettings::of(const ParameterValues& p) {
     return {.enabled = p.number("virtual.enabled") != 0.0,
             .size = static_cast<uint32_t>(p.number("virtual.size")),
@@ -134,11 +147,13 @@ std::vector<VirtualLevel> virtualLevels(const Light& light, uint32_t lightIndex,
     PENUMBRA_CHECK(std::has_single_bit(s.size) && std::has_single_bit(s.pageSize) &&
                        s.pageSize <= s.size && s.levels >= 1 && s.levels <= VIRTUAL_MAX_LEVELS,
                    "virtual map sizes not checked");
+    const Bounds steady = steadyBounds(scene);
     if (light.type == LightType::Directional)
-        return clipmapLevels(light, lightIndex, scene, camera, s, tableOffset);
+        return clipmapLevels(light, lightIndex, steady, camera, s, tableOffset);
     ViewFitting local = fitting;
     local.camera = nullptr; // no cascades: one frustum, or six faces
-    const std::vector<LightProjection> faces = fitLightViews(light, scene, s.size, local);
+    local.nearestSurface = steadyNearestSurface(fitting.nearestSurface);
+    const std::vector<LightProjection> faces = fitLightViews(light, steady, s.size, local);
     std::vector<VirtualLevel> levels;
     for (uint32_t f = 0; f < faces.size(); ++f)
         for (uint32_t l = 0; l < s.localLevels(); ++l) {
@@ -214,9 +229,13 @@ uint32_t PageCache::keyLight(uint32_t light, uint64_t contentsKey) {
     if (it->second == contentsKey)
         return 0;
     it->second = contentsKey;
+    return dropIf([light](const PageKey& k) { return k.light == light; });
+}
+
+uint32_t PageCache::dropIf(const std::function<bool(const PageKey&)>& drop) {
     uint32_t dropped = 0;
     for (Physical& p : mPages)
-        if (p.key && p.key->light == light) {
+        if (p.key && drop(*p.key)) {
             mWhere.erase(*p.key);
             p.key.reset();
             ++dropped;

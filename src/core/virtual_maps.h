@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <unordered_map>
 #include <vector>
@@ -68,9 +69,17 @@ struct VirtualLevel {
     uint32_t tableEntries() const { return pagesPerSide * pagesPerSide; }
 };
 
+// What the levels are fitted to, made steady: the scene's bounds snapped outward to a grid
+// (anchored at the world's origin) of the power of two at or above 1/64 of their largest side,
+// and a light's nearest surface rounded down to a quarter of an octave. A caster that moves a
+// little changes neither, so the lights keep their pages (docs/techniques.md, "Invalidation by
+// what moved"); the same pose always gives the same levels, whatever the poses before it.
+Bounds steadyBounds(const Bounds& scene);
+float steadyNearestSurface(float distance);
+
 // A light's levels, finest first (a point light's faces one after the other), their table
-// entries from `tableOffset` on (advanced past them). `camera`: the position a sun's clipmap
-// centres on.
+// entries from `tableOffset` on (advanced past them), fitted to steadyBounds(scene) and
+// steadyNearestSurface. `camera`: the position a sun's clipmap centres on.
 std::vector<VirtualLevel> virtualLevels(const Light& light, uint32_t lightIndex,
                                         const Bounds& scene, const glm::vec3& camera,
                                         const VirtualSettings& settings, const ViewFitting& fitting,
@@ -106,6 +115,8 @@ public:
     // A light's contents key: when it differs from the last one given, its pages are dropped.
     // Returns how many were.
     uint32_t keyLight(uint32_t light, uint64_t contentsKey);
+    // Drops every resident page for which `drop` holds; returns how many.
+    uint32_t dropIf(const std::function<bool(const PageKey&)>& drop);
 
     struct Update {
         std::vector<std::pair<uint32_t, PageKey>> render; // physical page, what it must hold

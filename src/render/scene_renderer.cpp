@@ -11,6 +11,7 @@
 //   A technique that traces the distance field (sdf) draws no shadow map: its field is built
 //   before the first frame that needs it (render/distance_field.h) and kept while the scene
 //   renderer lives and sdf.resolution and sdf.thickness stay the same.
+#include "core/moved_casters.h"
 #include "core/virtual_maps.h"
 #include "penumbra/error.h"
 #include "penumbra/pass_times.h"
@@ -106,6 +107,9 @@ struct SceneRenderer::Impl {
     std::unique_ptr<PageCache> pageCache;
     uint32_t pageCacheSize = 0;
     uint64_t pageFrame = 0;
+    // Where casters moved since the last update (before and after each repose): the pages the
+    // next update drops (dropMovedPages) and so draws again.
+    std::vector<Bounds> movedSinceUpdate;
     std::vector<render::PageDraw> pageDraws;
     VirtualMapInfo pageInfo;
     // The last update's levels, requests and rendered physical pages: the debug views' source.
@@ -261,6 +265,7 @@ void SceneRenderer::repose(const Scene& posedIn) {
                                                  posed.lights.size(), m.scene.materials.size(),
                                                  m.scene.textures.size(), m.scene.lights.size()));
     checkSkinning(posed);
+    const MovedCasters moved = movedCasters(m.scene, posed);
     VK_CHECK(vkDeviceWaitIdle(m.ctx().device())); // a frame in flight may read the old geometry
     // Only skinned vertices moved: this pose's joints, and the `skin` pass places them.
     if (!render::reposeSkinned(m.ctx(), m.gpu, m.scene, posed))
@@ -276,7 +281,13 @@ void SceneRenderer::repose(const Scene& posedIn) {
     }
     m.visibleDepths.reset();
     m.field.reset(); // traced from the old geometry: built again when a frame needs it
-    m.pageCache.reset();
+    // Pages keep what did not move; other triangles keep nothing.
+    if (moved.everything)
+        m.pageCache.reset();
+    if (m.pageCache)
+        m.movedSinceUpdate.insert(m.movedSinceUpdate.end(), moved.boxes.begin(), moved.boxes.end());
+    else
+        m.movedSinceUpdate.clear();
 }
 
 const Scene& SceneRenderer::scene() const {
@@ -407,6 +418,8 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
     }
     for (const auto& [light, key] : p.contentsKeys)
         pageCache->keyLight(light, key);
+    dropMovedPages(*pageCache, p.levels, movedSinceUpdate, v.pageSize);
+    movedSinceUpdate.clear();
     // The level a page belongs to in this frame, and its place in the level's window.
     auto levelOf = [&](const PageKey& k) -> const VirtualLevel* {
         for (const VirtualLevel& level : p.levels)

@@ -1,0 +1,129 @@
+#include "core/moved_casters.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace penumbra {
+namespace {
+
+// What the depth pass and its alpha test read of a vertex.
+bool castsAlike(const Vertex& a, const Vertex& b) {
+    return a.position == b.position && a.uv == b.uv && a.color.w == b.color.w &&
+           a.material == b.material;
+}
+
+// The pages of `level` (absolute, in its page grid) that `box` may draw into, inclusive.
+struct PageRect {
+    bool wholeLevel = false;
+    glm::ivec2 lo{0}, hi{-1};
+    bool holds(glm::ivec2 p) const {
+        return wholeLevel || (p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y);
+    }
+};
+
+// How far the GPU's clip coordinates may be from these, in units of the sum of the products'
+// magnitudes: a float dot product of four terms is within 5 u of it (u = 2^-24, Higham's bound
+// (n + 1) u), the page's crop matrix times the level's within 2 u more, and 1 u for the float
+// matrix's own entries.
+constexpr double kRoundoff = 8.0 * 0x1p-24;
+// Far past the window (a box beside a perspective eye), a page number no grid reaches.
+constexpr double kFar = 1 << 30;
+
+std::optional<PageRect> pagesUnder(const VirtualLevel& level, const Bounds& box,
+                                   uint32_t pageSize) {
+    const glm::dmat4 m(level.projection.viewProj);
+    glm::dmat4 magnitude;
+    for (int column = 0; column < 4; ++column)
+        magnitude[column] = glm::abs(m[column]);
+    const double pages = level.pagesPerSide;
+    // Page i of the window holds NDC [2i/n - 1, 2(i+1)/n - 1] (pageViewProj): NDC x is page
+    // (x + 1) n / 2. A texel is 1 / pageSize of a page: rasterization reaches a texel whose
+    // centre the triangle covers, so a texel either side holds it.
+    const double texel = 1.0 / static_cast<double>(pageSize);
+    glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+    int behind = 0;
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec4 p((c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
+                           (c & 4) ? box.max.z : box.min.z, 1.0);
+        const glm::dvec4 clip = m * p;
+        if (level.projection.perspective && clip.w <= 0.0) {
+            ++behind;
+            continue;
+        }
+        const glm::dvec4 error = kRoundoff * (magnitude * glm::abs(p));
+        const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+        const glm::dvec2 slack =
+            (glm::dvec2(error) + glm::abs(ndc) * error.w) / clip.w * (0.5 * pages) + texel;
+        const glm::dvec2 page = (ndc + 1.0) * (0.5 * pages);
+        lo = glm::min(lo, page - slack);
+        hi = glm::max(hi, page + slack);
+    }
+    if (behind == 8) // wholly behind the eye: it draws nothing into this view
+        return std::nullopt;
+    const bool finite =
+        std::isfinite(lo.x) && std::isfinite(lo.y) && std::isfinite(hi.x) && std::isfinite(hi.y);
+    if (behind > 0 || !finite) // its projection is unbounded
+        return PageRect{.wholeLevel = true};
+    auto page = [](double v) { return static_cast<int>(std::floor(std::clamp(v, -kFar, kFar))); };
+    return PageRect{.lo = level.firstPage + glm::ivec2(page(lo.x), page(lo.y)),
+                    .hi = level.firstPage + glm::ivec2(page(hi.x), page(hi.y))};
+}
+
+} // namespace
+
+MovedCasters movedCasters(const Scene& before, const Scene& after) {
+    MovedCasters moved;
+    if (before.vertices.size() != after.vertices.size() || before.indices != after.indices) {
+        moved.everything = true;
+        return moved;
+    }
+    std::vector<bool> changed(before.vertices.size());
+    for (size_t v = 0; v < changed.size(); ++v)
+        changed[v] = !castsAlike(before.vertices[v], after.vertices[v]);
+    Bounds run;
+    uint32_t inRun = 0;
+    size_t last = 0;
+    for (size_t t = 0; t < before.triangleCount(); ++t) {
+        const uint32_t* corner = &before.indices[3 * t];
+        if (!changed[corner[0]] && !changed[corner[1]] && !changed[corner[2]])
+            continue;
+        // A run is consecutive triangles (a mesh's neighbours), kMovedRunTriangles at most.
+        if (inRun == kMovedRunTriangles || (inRun > 0 && t != last + 1)) {
+            moved.boxes.push_back(run);
+            run = Bounds{};
+            inRun = 0;
+        }
+        for (int k = 0; k < 3; ++k) {
+            run.grow(before.vertices[corner[k]].position);
+            run.grow(after.vertices[corner[k]].position);
+        }
+        ++inRun;
+        last = t;
+    }
+    if (inRun > 0)
+        moved.boxes.push_back(run);
+    return moved;
+}
+
+uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& levels,
+                        std::span<const Bounds> moved, uint32_t pageSize) {
+    if (moved.empty())
+        return 0;
+    std::vector<std::vector<PageRect>> under(levels.size());
+    for (size_t i = 0; i < levels.size(); ++i)
+        for (const Bounds& box : moved)
+            if (const std::optional<PageRect> r = pagesUnder(levels[i], box, pageSize))
+                under[i].push_back(*r);
+    return cache.dropIf([&](const PageKey& k) {
+        for (size_t i = 0; i < levels.size(); ++i) {
+            const VirtualLevel& l = levels[i];
+            if (l.light == k.light && l.face == k.face && l.level == k.level)
+                return std::any_of(under[i].begin(), under[i].end(),
+                                   [&](const PageRect& r) { return r.holds(k.page); });
+        }
+        return true; // a level this frame does not have: nothing says what it holds
+    });
+}
+
+} // namespace penumbra

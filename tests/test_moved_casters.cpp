@@ -1,0 +1,230 @@
+// Invalidation by caster (src/core/moved_casters.h): what moved between two poses, as boxes that
+// hold each moved run where it was and where it is; and the resident pages of every light type's
+// levels those boxes may draw into, checked against each page's own projection (pageViewProj).
+#include "core/moved_casters.h"
+#include "scene/mesh_builder.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace penumbra;
+
+namespace {
+
+// A floor and a sphere (its triangles after the floor's two).
+Scene floorAndSphere() {
+    Scene scene;
+    MeshBuilder mb(scene);
+    const uint32_t grey = mb.material("floor", {0.7f, 0.7f, 0.7f});
+    mb.quad({-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}, grey);
+    mb.sphere({0.5f, 1.0f, -0.5f}, 0.4f, mb.material("ball", {0.7f, 0.2f, 0.2f}));
+    return scene;
+}
+constexpr size_t kFloorVertices = 4;
+
+Bounds boundsOf(const Scene& s, size_t firstVertex) {
+    Bounds b;
+    for (size_t v = firstVertex; v < s.vertices.size(); ++v)
+        b.grow(s.vertices[v].position);
+    return b;
+}
+
+bool holds(const Bounds& b, glm::vec3 p) {
+    return glm::all(glm::lessThanEqual(b.min, p)) && glm::all(glm::lessThanEqual(p, b.max));
+}
+
+const Bounds kField{.min = {-400, 0, -400}, .max = {400, 30, 400}};
+const VirtualSettings kSmall{
+    .enabled = true, .size = 4096, .pageSize = 128, .levels = 10, .poolSize = 2048};
+
+std::vector<VirtualLevel> levelsOf(const Light& light, glm::vec3 camera) {
+    uint32_t offset = 0;
+    return virtualLevels(light, 0, kField, camera, kSmall, {.nearestSurface = 5.0f}, offset);
+}
+
+// Whether `box` may draw into `page` of `level`, from the page's own projection: its corners'
+// rectangle in the page's NDC overlaps the page widened by `texels`. Corners behind a
+// perspective eye: all of them, never; some, always.
+bool drawsInto(const VirtualLevel& level, const PageKey& page, const Bounds& box, double texels) {
+    const glm::dmat4 m(pageViewProj(level, page.page - level.firstPage));
+    glm::dvec2 lo(1e300), hi(-1e300);
+    int behind = 0;
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec4 clip =
+            m * glm::dvec4((c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y,
+                           (c & 4) ? box.max.z : box.min.z, 1.0);
+        if (level.projection.perspective && clip.w <= 0.0) {
+            ++behind;
+            continue;
+        }
+        lo = glm::min(lo, glm::dvec2(clip) / clip.w);
+        hi = glm::max(hi, glm::dvec2(clip) / clip.w);
+    }
+    if (behind > 0)
+        return behind < 8;
+    const double edge = 1.0 + 2.0 * texels / kSmall.pageSize;
+    return lo.x <= edge && lo.y <= edge && hi.x >= -edge && hi.y >= -edge;
+}
+
+// A cache that holds every page of `levels` and of `elsewhere` (a sun's windows for another
+// camera: pages kept past the window's edge).
+PageCache everyPage(const std::vector<VirtualLevel>& levels,
+                    const std::vector<VirtualLevel>& elsewhere) {
+    std::vector<PageKey> all;
+    for (const auto* set : {&levels, &elsewhere})
+        for (const VirtualLevel& l : *set)
+            for (uint32_t e = 0; e < l.tableEntries(); ++e)
+                all.push_back(pageKeyOf(l, l.tableOffset + e));
+    PageCache cache(static_cast<uint32_t>(all.size()));
+    cache.update(all, 1);
+    return cache;
+}
+
+} // namespace
+
+TEST(MovedCasters, NothingMovedDropsNothing) {
+    const Scene s = floorAndSphere();
+    Scene turned = s;
+    turned.vertices[7].normal = -turned.vertices[7].normal; // the depth pass reads no normal
+    turned.vertices[7].color.x = 0.1f;                      // nor a colour but its alpha
+    for (const Scene* after : std::initializer_list<const Scene*>{&s, &turned}) {
+        const MovedCasters m = movedCasters(s, *after);
+        EXPECT_FALSE(m.everything);
+        EXPECT_TRUE(m.boxes.empty());
+    }
+}
+
+// A moved sphere: runs of 32 triangles whose boxes hold every moved triangle before and after,
+// and together exactly the sphere where it was and where it is; the floor in none.
+TEST(MovedCasters, RunsOfMovedTrianglesAreBoundedWhereTheyWereAndWhereTheyAre) {
+    const Scene before = floorAndSphere();
+    Scene after = before;
+    const glm::vec3 step{0.3f, -0.2f, 0.1f};
+    for (size_t v = kFloorVertices; v < after.vertices.size(); ++v)
+        after.vertices[v].position += step;
+    const MovedCasters m = movedCasters(before, after);
+    ASSERT_FALSE(m.everything);
+    const size_t sphereTriangles = before.triangleCount() - 2;
+    EXPECT_EQ(m.boxes.size(), (sphereTriangles + kMovedRunTriangles - 1) / kMovedRunTriangles);
+    Bounds all;
+    for (const Bounds& b : m.boxes)
+        all.grow(b.min), all.grow(b.max);
+    Bounds want = boundsOf(before, kFloorVertices);
+    want.grow(boundsOf(after, kFloorVertices).min);
+    want.grow(boundsOf(after, kFloorVertices).max);
+    EXPECT_EQ(all.min, want.min);
+    EXPECT_EQ(all.max, want.max);
+    // Triangle t of the sphere is in run t / 32.
+    for (size_t t = 2; t < before.triangleCount(); ++t)
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t v = before.indices[3 * t + size_t(k)];
+            const Bounds& run = m.boxes[(t - 2) / kMovedRunTriangles];
+            EXPECT_TRUE(holds(run, before.vertices[v].position)) << t;
+            EXPECT_TRUE(holds(run, after.vertices[v].position)) << t;
+        }
+    EXPECT_FALSE(holds(all, before.vertices[0].position)) << "the floor's corner did not move";
+}
+
+// What the alpha test reads moves a triangle too; triangles apart are runs apart; other
+// triangles are everything.
+TEST(MovedCasters, WhatTheDepthPassReadsMovesATriangle) {
+    const Scene before = floorAndSphere();
+    auto editedFloor = [&](auto edit) {
+        Scene after = before;
+        edit(after.vertices[2]); // the floor quad's corner in both of its triangles
+        const MovedCasters m = movedCasters(before, after);
+        EXPECT_FALSE(m.everything);
+        EXPECT_EQ(m.boxes.size(), 1u) << "the floor's two triangles, one run";
+        return m.boxes.empty() ? Bounds{} : m.boxes[0];
+    };
+    Bounds floor;
+    for (size_t v = 0; v < kFloorVertices; ++v)
+        floor.grow(before.vertices[v].position);
+    for (const Bounds& b : {editedFloor([](Vertex& v) { v.uv.x += 0.5f; }),
+                            editedFloor([](Vertex& v) { v.color.w = 0.5f; }),
+                            editedFloor([](Vertex& v) { v.material = 1; })})
+        EXPECT_TRUE(holds(b, floor.min) && holds(b, floor.max));
+    // The first and the last triangle of the sphere: two runs, not one box over the sphere.
+    Scene apart = before;
+    const size_t last = before.triangleCount() - 1;
+    apart.vertices[before.indices[3 * 2]].position.y += 0.01f;
+    apart.vertices[before.indices[3 * last + 2]].position.y += 0.01f;
+    const MovedCasters two = movedCasters(before, apart);
+    EXPECT_GE(two.boxes.size(), 2u);
+    Scene fewer = before;
+    fewer.indices.resize(fewer.indices.size() - 3);
+    EXPECT_TRUE(movedCasters(before, fewer).everything);
+    Scene rewired = before;
+    std::swap(rewired.indices[0], rewired.indices[1]);
+    EXPECT_TRUE(movedCasters(before, rewired).everything);
+    Scene more = before;
+    more.vertices.push_back(more.vertices.back());
+    EXPECT_TRUE(movedCasters(before, more).everything);
+}
+
+// For a sun's clipmap (pages past its window's edge included), a spot's map and a point light's
+// faces: exactly the pages a box may draw into are dropped, within the roundoff's slack.
+TEST(MovedCasters, ThePagesDroppedAreThoseTheBoxDrawsInto) {
+    const Light sun{.type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(0.55f, -0.45f, -0.35f))};
+    const Light spot{.type = LightType::Spot,
+                     .position = {3, 40, 2},
+                     .direction = glm::normalize(glm::vec3(-0.1f, -1.0f, 0.05f)),
+                     .outerConeAngle = 0.6f};
+    const Light point{.type = LightType::Point, .position = {1, 12, -3}};
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> across(-20.0f, 20.0f), size(0.05f, 3.0f);
+    for (const Light& light : {sun, spot, point}) {
+        const std::vector<VirtualLevel> levels = levelsOf(light, {4, 2, 1});
+        const std::vector<VirtualLevel> elsewhere = levelsOf(light, {-9, 2, 14});
+        size_t dropped = 0, kept = 0;
+        for (int i = 0; i < 6; ++i) {
+            const glm::vec3 at{across(rng), 0.5f * std::abs(across(rng)), across(rng)};
+            const Bounds box{.min = at, .max = at + glm::vec3(size(rng), size(rng), size(rng))};
+            PageCache cache = everyPage(levels, elsewhere);
+            const uint32_t resident = cache.resident();
+            const uint32_t n = dropMovedPages(cache, levels, {&box, 1}, kSmall.pageSize);
+            EXPECT_EQ(cache.resident(), resident - n);
+            for (const auto* set : {&levels, &elsewhere})
+                for (const VirtualLevel& l : *set)
+                    for (uint32_t e = 0; e < l.tableEntries(); ++e) {
+                        const PageKey k = pageKeyOf(l, l.tableOffset + e);
+                        const bool gone = !cache.physicalOf(k);
+                        // Exactly: within a texel it must go; past one and a half it must stay.
+                        if (drawsInto(l, k, box, 1.0)) {
+                            EXPECT_TRUE(gone) << int(light.type) << " level " << l.level;
+                        } else if (!drawsInto(l, k, box, 1.5)) {
+                            EXPECT_FALSE(gone) << int(light.type) << " level " << l.level;
+                        }
+                        (gone ? dropped : kept) += 1;
+                    }
+        }
+        EXPECT_GT(dropped, 20u) << int(light.type);
+        EXPECT_GT(kept, 10 * dropped) << int(light.type) << ": a small box drops few pages";
+    }
+}
+
+// A box round a point light is partly behind every face's eye: every page goes. One wholly behind
+// a spot draws nothing: every page stays. A page of a level the frame does not have goes.
+TEST(MovedCasters, BoxesBehindTheEyeAndLevelsNotThere) {
+    const Light point{.type = LightType::Point, .position = {1, 12, -3}};
+    const std::vector<VirtualLevel> faces = levelsOf(point, {0, 2, 0});
+    PageCache round = everyPage(faces, {});
+    const Bounds atTheBulb{.min = point.position - 0.1f, .max = point.position + 0.1f};
+    EXPECT_EQ(dropMovedPages(round, faces, {&atTheBulb, 1}, kSmall.pageSize), round.capacity());
+    const Light spot{.type = LightType::Spot,
+                     .position = {3, 40, 2},
+                     .direction = {0, -1, 0},
+                     .outerConeAngle = 0.6f};
+    const std::vector<VirtualLevel> levels = levelsOf(spot, {0, 2, 0});
+    PageCache cache = everyPage(levels, {});
+    const Bounds above{.min = {-50, 41, -50}, .max = {50, 45, 50}};
+    EXPECT_EQ(dropMovedPages(cache, levels, {&above, 1}, kSmall.pageSize), 0u);
+    const Bounds far{.min = {900, 0, 900}, .max = {901, 1, 901}}; // outside the cone
+    EXPECT_EQ(dropMovedPages(cache, levels, {&far, 1}, kSmall.pageSize), 0u);
+    EXPECT_EQ(dropMovedPages(cache, levels, {}, kSmall.pageSize), 0u);
+    const std::vector<VirtualLevel> allButFinest(levels.begin() + 1, levels.end());
+    EXPECT_EQ(dropMovedPages(cache, allButFinest, {&far, 1}, kSmall.pageSize),
+              levels[0].tableEntries());
+}
