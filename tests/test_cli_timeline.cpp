@@ -487,7 +487,21 @@ TEST(CliTimeline, VirtualPagesLagBehindAnOrbitingLightAndPlainMapsDoNot) {
     EXPECT_EQ(plain["rmse_moving"], plain["rmse"]);
     EXPECT_EQ(plain["lag_frames"], 0);
     EXPECT_EQ(plain["pop_in"], 0.0);
+    EXPECT_FALSE(plain.contains("pages_moving")) << "no virtual map, no pages";
     const J paged = timeline("paged", {"--set", "virtual.enabled=1"});
+    // Pages per frame in motion: the first frame starts at rest, its pages all cached; each
+    // later one renders again the moved bulb's pages the frame before asked for, and no more.
+    const J pages = paged["pages_moving"];
+    for (const char* field : {"requested", "rendered", "resident"})
+        ASSERT_EQ(pages[field].size(), 5u) << pages.dump();
+    EXPECT_EQ(pages["rendered"][0].get<int>(), 0) << pages.dump();
+    EXPECT_EQ(pages["requested"][0], pages["resident"][0]) << "a fresh pool holds what was asked";
+    for (size_t k = 0; k < 5; ++k) {
+        const int rendered = pages["rendered"][k].get<int>();
+        EXPECT_TRUE(k == 0 || rendered > 0) << pages.dump();
+        EXPECT_LE(rendered, pages["requested"][k].get<int>()) << pages.dump();
+        EXPECT_LT(rendered, pages["resident"][k].get<int>()) << "the sun's pages stay";
+    }
     const std::vector<double> rest = paged["rmse"], moving = paged["rmse_moving"];
     ASSERT_EQ(moving.size(), 5u);
     EXPECT_EQ(moving[0], rest[0]) << "the motion starts at rest";

@@ -3,12 +3,14 @@
 // levels those boxes may draw into, checked against each page's own projection (pageViewProj).
 #include "core/moved_casters.h"
 #include "scene/mesh_builder.h"
+#include "virtual_field.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
 using namespace penumbra;
+using namespace penumbra::virtual_field;
 
 namespace {
 
@@ -34,15 +36,6 @@ bool holds(const Bounds& b, glm::vec3 p) {
     return glm::all(glm::lessThanEqual(b.min, p)) && glm::all(glm::lessThanEqual(p, b.max));
 }
 
-const Bounds kField{.min = {-400, 0, -400}, .max = {400, 30, 400}};
-const VirtualSettings kSmall{
-    .enabled = true, .size = 4096, .pageSize = 128, .levels = 10, .poolSize = 2048};
-
-std::vector<VirtualLevel> levelsOf(const Light& light, glm::vec3 camera) {
-    uint32_t offset = 0;
-    return virtualLevels(light, 0, kField, camera, kSmall, {.nearestSurface = 5.0f}, offset);
-}
-
 // Whether `box` may draw into `page` of `level`, from the page's own projection: its corners'
 // rectangle in the page's NDC overlaps the page widened by `texels`. Corners behind a
 // perspective eye: all of them, never; some, always.
@@ -63,7 +56,7 @@ bool drawsInto(const VirtualLevel& level, const PageKey& page, const Bounds& box
     }
     if (behind > 0)
         return behind < 8;
-    const double edge = 1.0 + 2.0 * texels / kSmall.pageSize;
+    const double edge = 1.0 + 2.0 * texels / small().pageSize;
     return lo.x <= edge && lo.y <= edge && hi.x >= -edge && hi.y >= -edge;
 }
 
@@ -166,16 +159,9 @@ TEST(MovedCasters, WhatTheDepthPassReadsMovesATriangle) {
 // For a sun's clipmap (pages past its window's edge included), a spot's map and a point light's
 // faces: exactly the pages a box may draw into are dropped, within the roundoff's slack.
 TEST(MovedCasters, ThePagesDroppedAreThoseTheBoxDrawsInto) {
-    const Light sun{.type = LightType::Directional,
-                    .direction = glm::normalize(glm::vec3(0.55f, -0.45f, -0.35f))};
-    const Light spot{.type = LightType::Spot,
-                     .position = {3, 40, 2},
-                     .direction = glm::normalize(glm::vec3(-0.1f, -1.0f, 0.05f)),
-                     .outerConeAngle = 0.6f};
-    const Light point{.type = LightType::Point, .position = {1, 12, -3}};
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> across(-20.0f, 20.0f), size(0.05f, 3.0f);
-    for (const Light& light : {sun, spot, point}) {
+    for (const Light& light : {kSun, kSpot, kPoint}) {
         const std::vector<VirtualLevel> levels = levelsOf(light, {4, 2, 1});
         const std::vector<VirtualLevel> elsewhere = levelsOf(light, {-9, 2, 14});
         size_t dropped = 0, kept = 0;
@@ -184,7 +170,7 @@ TEST(MovedCasters, ThePagesDroppedAreThoseTheBoxDrawsInto) {
             const Bounds box{.min = at, .max = at + glm::vec3(size(rng), size(rng), size(rng))};
             PageCache cache = everyPage(levels, elsewhere);
             const uint32_t resident = cache.resident();
-            const uint32_t n = dropMovedPages(cache, levels, {&box, 1}, kSmall.pageSize);
+            const uint32_t n = dropMovedPages(cache, levels, {&box, 1}, small().pageSize);
             EXPECT_EQ(cache.resident(), resident - n);
             for (const auto* set : {&levels, &elsewhere})
                 for (const VirtualLevel& l : *set)
@@ -208,11 +194,10 @@ TEST(MovedCasters, ThePagesDroppedAreThoseTheBoxDrawsInto) {
 // A box round a point light is partly behind every face's eye: every page goes. One wholly behind
 // a spot draws nothing: every page stays. A page of a level the frame does not have goes.
 TEST(MovedCasters, BoxesBehindTheEyeAndLevelsNotThere) {
-    const Light point{.type = LightType::Point, .position = {1, 12, -3}};
-    const std::vector<VirtualLevel> faces = levelsOf(point, {0, 2, 0});
+    const std::vector<VirtualLevel> faces = levelsOf(kPoint, {0, 2, 0});
     PageCache round = everyPage(faces, {});
-    const Bounds atTheBulb{.min = point.position - 0.1f, .max = point.position + 0.1f};
-    EXPECT_EQ(dropMovedPages(round, faces, {&atTheBulb, 1}, kSmall.pageSize), round.capacity());
+    const Bounds atTheBulb{.min = kPoint.position - 0.1f, .max = kPoint.position + 0.1f};
+    EXPECT_EQ(dropMovedPages(round, faces, {&atTheBulb, 1}, small().pageSize), round.capacity());
     const Light spot{.type = LightType::Spot,
                      .position = {3, 40, 2},
                      .direction = {0, -1, 0},
@@ -220,11 +205,11 @@ TEST(MovedCasters, BoxesBehindTheEyeAndLevelsNotThere) {
     const std::vector<VirtualLevel> levels = levelsOf(spot, {0, 2, 0});
     PageCache cache = everyPage(levels, {});
     const Bounds above{.min = {-50, 41, -50}, .max = {50, 45, 50}};
-    EXPECT_EQ(dropMovedPages(cache, levels, {&above, 1}, kSmall.pageSize), 0u);
+    EXPECT_EQ(dropMovedPages(cache, levels, {&above, 1}, small().pageSize), 0u);
     const Bounds far{.min = {900, 0, 900}, .max = {901, 1, 901}}; // outside the cone
-    EXPECT_EQ(dropMovedPages(cache, levels, {&far, 1}, kSmall.pageSize), 0u);
-    EXPECT_EQ(dropMovedPages(cache, levels, {}, kSmall.pageSize), 0u);
+    EXPECT_EQ(dropMovedPages(cache, levels, {&far, 1}, small().pageSize), 0u);
+    EXPECT_EQ(dropMovedPages(cache, levels, {}, small().pageSize), 0u);
     const std::vector<VirtualLevel> allButFinest(levels.begin() + 1, levels.end());
-    EXPECT_EQ(dropMovedPages(cache, allButFinest, {&far, 1}, kSmall.pageSize),
+    EXPECT_EQ(dropMovedPages(cache, allButFinest, {&far, 1}, small().pageSize),
               levels[0].tableEntries());
 }

@@ -6,6 +6,7 @@
 // changes).
 #include "core/projection.h"
 #include "core/virtual_maps.h"
+#include "virtual_field.h"
 #include "virtual_pages.h"
 
 #include <gtest/gtest.h>
@@ -15,27 +16,9 @@
 #include <set>
 
 using namespace penumbra;
+using namespace penumbra::virtual_field;
 
 namespace {
-
-const Bounds kField{.min = {-400, 0, -400}, .max = {400, 30, 400}};
-const Light kSun{.type = LightType::Directional,
-                 .direction = glm::normalize(glm::vec3(0.55f, -0.45f, -0.35f))};
-const Light kSpot{.type = LightType::Spot,
-                  .position = {3, 40, 2},
-                  .direction = glm::normalize(glm::vec3(-0.1f, -1.0f, 0.05f)),
-                  .outerConeAngle = 0.6f};
-const Light kPoint{.type = LightType::Point, .position = {1, 12, -3}};
-
-VirtualSettings small() {
-    return {.enabled = true, .size = 4096, .pageSize = 128, .levels = 10, .poolSize = 2048};
-}
-
-std::vector<VirtualLevel> levelsOf(const Light& light, glm::vec3 camera,
-                                   const VirtualSettings& s = small()) {
-    uint32_t offset = 0;
-    return virtualLevels(light, 0, kField, camera, s, {.nearestSurface = 5.0f}, offset);
-}
 
 // A world point's place in a level: its uv and depth.
 glm::vec3 uvOf(const VirtualLevel& level, glm::vec3 world) {

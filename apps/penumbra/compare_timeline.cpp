@@ -141,6 +141,10 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
                                                              truth.occluderDistance)
                                              .rmse);
             rows[r].movingGpuMs.push_back(totalMs(inMotion[r]));
+            if (const auto& pages = inMotion[r].virtualMaps)
+                rows[r].movingPages.push_back({.requested = pages->requested,
+                                               .rendered = pages->rendered,
+                                               .resident = pages->resident});
             appendFrameTimes(rows[r].movingPasses, inMotion[r].passes, k);
             if (k == 0)
                 continue;
@@ -207,6 +211,17 @@ nlohmann::json timelineJson(const Timeline& timeline, const std::vector<Timeline
                                  {"pop_in_ratio", row.lag.popInRatio},
                                  {"lag_frames", row.lag.lagFrames},
                                  {"lagging_frames", row.lag.laggingFrames}};
+        if (!row.movingPages.empty()) {
+            nlohmann::json pages = {{"requested", nlohmann::json::array()},
+                                    {"rendered", nlohmann::json::array()},
+                                    {"resident", nlohmann::json::array()}};
+            for (const TimelineRow::Pages& p : row.movingPages) {
+                pages["requested"].push_back(p.requested);
+                pages["rendered"].push_back(p.rendered);
+                pages["resident"].push_back(p.resident);
+            }
+            out["rows"][row.name]["pages_moving"] = pages;
+        }
     }
     return out;
 }

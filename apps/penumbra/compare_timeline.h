@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -26,10 +27,16 @@ namespace penumbra::cli {
 // motion (the pose drawn as the next frame of one renderer that drew every frame before it,
 // with no warm-up: what the technique kept from the last frame shows).
 struct TimelineRow {
+    // A virtual map's pages in one frame in motion: what its update asked for (the frame
+    // before's requests and their coarser chains), rendered and held after it.
+    struct Pages {
+        uint32_t requested = 0, rendered = 0, resident = 0;
+    };
     std::string name;
     std::vector<double> rmse, mae, acne, leak, gpuMs; // at rest
     std::vector<double> movingRmse, movingGpuMs;      // in motion
     std::vector<PassTime> movingPasses; // each pass's time in motion, a frame each (0: not run)
+    std::vector<Pages> movingPages;     // virtual maps only: one per frame in motion
     double flicker = 0.0;               // mean |change of the error| where the truth held still
     uint64_t flickerPixels = 0;
     Lag lag; // the motion's error against the rest's (report/lag.h)
