@@ -491,6 +491,7 @@ TEST(FirstPicture, TheLoaderFramesALevelFromItsBulbsAndGroundsALoneModel) {
     const Scene level = loadGltf(asGltf(warehouse(), "warehouse"));
     ASSERT_EQ(level.cameras.size(), 1u);
     EXPECT_EQ(level.cameras.front().name, "auto (from the lights)");
+    EXPECT_TRUE(level.cameras.front().automatic) << "framed by Penumbra: a timeline holds it";
     EXPECT_FALSE(level.defaultLight);
 
     Scene lone = loadGltf(asGltf(loneObject(), "lone"));

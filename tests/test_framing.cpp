@@ -181,9 +181,11 @@ TEST(Framing, ViewOverridesTheMeasurement) {
     const Scene building = buildingWithRooms();
     const Camera in = automaticCamera(building, ViewChoice::Interior);
     EXPECT_EQ(in.name, "auto (interior)");
+    EXPECT_TRUE(in.automatic) << "framed by Penumbra";
     EXPECT_TRUE(inside(building.bounds(), in.position));
     const Camera out = automaticCamera(room(true), ViewChoice::Exterior);
     EXPECT_EQ(out.name, "auto (exterior)");
+    EXPECT_TRUE(out.automatic) << "framed by Penumbra";
     EXPECT_FALSE(inside(room(true).bounds(), out.position));
 
     Scene s = room(true);
