@@ -319,3 +319,15 @@ TEST(Framing, AnInsideOutBoxOnAWideGroundIsAMisWoundModelNotARoom) {
     EXPECT_LT(w.room->coverage, 0.5f);
     EXPECT_FALSE(w.interior());
 }
+
+// The camera a viewer follows as the scene plays: the file's own, never one Penumbra framed
+// (which holds the first frame's view), nor an index past the cameras or the automatic view's -1.
+TEST(Framing, OnlyAFilesOwnCameraIsFollowed) {
+    Scene s;
+    s.cameras = {{.name = "auto", .automatic = true}, {.name = "eye"}, {.name = "other"}};
+    EXPECT_FALSE(ownCamera(s, 0).has_value());
+    EXPECT_EQ(ownCamera(s, 1), std::optional<size_t>(1));
+    EXPECT_EQ(ownCamera(s, 2), std::optional<size_t>(2));
+    EXPECT_FALSE(ownCamera(s, 3).has_value());
+    EXPECT_FALSE(ownCamera(s, -1).has_value());
+}

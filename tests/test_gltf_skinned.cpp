@@ -155,6 +155,41 @@ TEST(GltfSkinned, AMirroringSkinWithoutNormalsKeepsTheFacesSide) {
     expectBarFacesUp(loadAt(write(r.b, "mirroring-skin"), std::nullopt));
 }
 
+// A ridge of two slopes skinned to one joint at rest, without NORMAL: each vertex's normal is the
+// area-weighted sum of the faces of every triangle it is a corner of (the cross product of its
+// edges, whose length is twice its area), as the test sums them.
+TEST(GltfSkinned, NormalsMadeForASkinSumEveryTrianglesFace) {
+    GltfBuilder b;
+    const int pos =
+        b.positions({0, 1, 0, 0, 1, 1, -1, 0.5f, 0, -1, 0.5f, 1, 1, 0.2f, 0, 1, 0.2f, 1});
+    const int idx = b.accessor(b.view(std::vector<uint16_t>{2, 3, 0, 0, 3, 1, 0, 1, 4, 4, 1, 5}),
+                               5123, 12, "SCALAR");
+    const int mesh = b.mesh(pos, idx);
+    J& attributes = b.j["meshes"][mesh]["primitives"][0]["attributes"];
+    attributes["JOINTS_0"] = b.accessor(b.view(std::vector<uint8_t>(24, 0)), 5121, 6, "VEC4");
+    std::vector<float> weights;
+    for (int v = 0; v < 6; ++v)
+        weights.insert(weights.end(), {1, 0, 0, 0});
+    attributes["WEIGHTS_0"] = floats(b, weights, "VEC4", 4);
+    const int joint = b.node({{"translation", {0, 0, 0}}});
+    b.node({{"mesh", mesh}, {"skin", 0}});
+    b.j["skins"] = {{{"joints", {joint}}}};
+    const Scene s = loadAt(write(b, "ridge"), std::nullopt);
+    ASSERT_EQ(s.triangleCount(), 4u);
+    std::vector<glm::vec3> want(s.vertices.size(), glm::vec3(0.0f));
+    for (size_t t = 0; t < s.triangleCount(); ++t) {
+        const uint32_t* c = &s.indices[3 * t];
+        const glm::vec3 face = glm::cross(s.vertices[c[1]].position - s.vertices[c[0]].position,
+                                          s.vertices[c[2]].position - s.vertices[c[0]].position);
+        for (int k = 0; k < 3; ++k)
+            want[c[k]] += face;
+    }
+    for (size_t v = 0; v < s.vertices.size(); ++v)
+        EXPECT_GT(glm::dot(glm::normalize(s.vertices[v].normal), glm::normalize(want[v])),
+                  1.0f - 1e-5f)
+            << "vertex " << v;
+}
+
 // One primitive of two quads, the first on a plain joint and the second on a mirroring one
 // (joints as unsigned shorts, no inverse bind matrices: identities): each triangle is wound by
 // its own joints, so both quads face up where they land, the mirrored one at x in [-3, -2].

@@ -81,11 +81,8 @@ TEST(MovedCasters, NothingMovedDropsNothing) {
     Scene turned = s;
     turned.vertices[7].normal = -turned.vertices[7].normal; // the depth pass reads no normal
     turned.vertices[7].color.x = 0.1f;                      // nor a colour but its alpha
-    for (const Scene* after : std::initializer_list<const Scene*>{&s, &turned}) {
-        const MovedCasters m = movedCasters(s, *after);
-        EXPECT_FALSE(m.everything);
-        EXPECT_TRUE(m.boxes.empty());
-    }
+    for (const Scene* after : std::initializer_list<const Scene*>{&s, &turned})
+        EXPECT_TRUE(movedCasters(s, *after).boxes.empty());
 }
 
 // A moved sphere: runs of 32 triangles whose boxes hold every moved triangle before and after,
@@ -97,7 +94,6 @@ TEST(MovedCasters, RunsOfMovedTrianglesAreBoundedWhereTheyWereAndWhereTheyAre) {
     for (size_t v = kFloorVertices; v < after.vertices.size(); ++v)
         after.vertices[v].position += step;
     const MovedCasters m = movedCasters(before, after);
-    ASSERT_FALSE(m.everything);
     const size_t sphereTriangles = before.triangleCount() - 2;
     EXPECT_EQ(m.boxes.size(), (sphereTriangles + kMovedRunTriangles - 1) / kMovedRunTriangles);
     Bounds all;
@@ -119,15 +115,15 @@ TEST(MovedCasters, RunsOfMovedTrianglesAreBoundedWhereTheyWereAndWhereTheyAre) {
     EXPECT_FALSE(holds(all, before.vertices[0].position)) << "the floor's corner did not move";
 }
 
-// What the alpha test reads moves a triangle too; triangles apart are runs apart; other
-// triangles are everything.
+// What the alpha test reads moves a triangle too; triangles apart are runs apart; triangles
+// added or removed are bounded where they are; the same corners under other indices did not move,
+// turned about they did.
 TEST(MovedCasters, WhatTheDepthPassReadsMovesATriangle) {
     const Scene before = floorAndSphere();
     auto editedFloor = [&](auto edit) {
         Scene after = before;
         edit(after.vertices[2]); // the floor quad's corner in both of its triangles
         const MovedCasters m = movedCasters(before, after);
-        EXPECT_FALSE(m.everything);
         EXPECT_EQ(m.boxes.size(), 1u) << "the floor's two triangles, one run";
         return m.boxes.empty() ? Bounds{} : m.boxes[0];
     };
@@ -145,15 +141,40 @@ TEST(MovedCasters, WhatTheDepthPassReadsMovesATriangle) {
     apart.vertices[before.indices[3 * last + 2]].position.y += 0.01f;
     const MovedCasters two = movedCasters(before, apart);
     EXPECT_GE(two.boxes.size(), 2u);
+    // The sphere's last triangle removed, then added back: one box, that triangle's.
+    const size_t lastTriangle = before.triangleCount() - 1;
+    Bounds lastOne;
+    for (int k = 0; k < 3; ++k)
+        lastOne.grow(before.vertices[before.indices[3 * lastTriangle + size_t(k)]].position);
     Scene fewer = before;
     fewer.indices.resize(fewer.indices.size() - 3);
-    EXPECT_TRUE(movedCasters(before, fewer).everything);
-    Scene rewired = before;
-    std::swap(rewired.indices[0], rewired.indices[1]);
-    EXPECT_TRUE(movedCasters(before, rewired).everything);
-    Scene more = before;
-    more.vertices.push_back(more.vertices.back());
-    EXPECT_TRUE(movedCasters(before, more).everything);
+    for (const MovedCasters& m : {movedCasters(before, fewer), movedCasters(fewer, before)}) {
+        ASSERT_EQ(m.boxes.size(), 1u);
+        EXPECT_EQ(m.boxes[0].min, lastOne.min);
+        EXPECT_EQ(m.boxes[0].max, lastOne.max);
+    }
+    // The same corners through vertices of their own (an unused vertex, a copy of the first
+    // triangle's first corner): nothing moved. Its corners turned about: it did.
+    Scene copied = before;
+    copied.vertices.push_back(copied.vertices[copied.indices[0]]);
+    copied.indices[0] = static_cast<uint32_t>(copied.vertices.size() - 1);
+    EXPECT_TRUE(movedCasters(before, copied).boxes.empty());
+    // One corner of the first triangle alone through a moved copy of its vertex: that triangle.
+    for (size_t k = 0; k < 3; ++k) {
+        Scene corner = before;
+        Vertex copy = corner.vertices[corner.indices[k]];
+        copy.position.y += 0.5f;
+        corner.vertices.push_back(copy);
+        corner.indices[k] = static_cast<uint32_t>(corner.vertices.size() - 1);
+        const MovedCasters m = movedCasters(before, corner);
+        ASSERT_EQ(m.boxes.size(), 1u) << "corner " << k;
+        EXPECT_TRUE(holds(m.boxes[0], copy.position)) << "corner " << k;
+    }
+    Scene turned = before;
+    std::swap(turned.indices[0], turned.indices[1]);
+    const MovedCasters flipped = movedCasters(before, turned);
+    ASSERT_EQ(flipped.boxes.size(), 1u) << "the floor's first triangle, wound the other way";
+    EXPECT_TRUE(holds(flipped.boxes[0], before.vertices[before.indices[0]].position));
 }
 
 // For a sun's clipmap (pages past its window's edge included), a spot's map and a point light's

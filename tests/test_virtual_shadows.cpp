@@ -216,9 +216,10 @@ TEST_F(VirtualTest, AMovedLightRendersItsOwnPagesAgain) {
     EXPECT_EQ(sum(scene.render(o, {.lights = lights}).virtualMaps->renderedPerFrame), 0u);
 }
 
-// A small caster that moves (a ball beside builtin:resting's objects, slid a little) re-renders
-// only the pages it was and is over: few of those resident, for every light type; what is drawn
-// equals a fresh renderer's image of the new pose, and differs from the old one's.
+// A small caster that moves (a ball beside builtin:resting's objects, slid a little), or one
+// added, re-renders only the pages it was and is over: few of those resident, for every light
+// type; what is drawn equals a fresh renderer's image of the new pose, and differs from the old
+// one's.
 TEST_F(VirtualTest, AMovedCasterRendersOnlyThePagesItCovers) {
     for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
         Scene before = restingObjects(light);
@@ -244,6 +245,19 @@ TEST_F(VirtualTest, AMovedCasterRendersOnlyThePagesItCovers) {
         const RenderResult want = fresh.render(o);
         EXPECT_FALSE(sameBits(old.visibility[0], want.visibility[0])) << light.name;
         EXPECT_TRUE(sameBits(moved.visibility[0], want.visibility[0])) << light.name;
+        // A ball added: its pages alone.
+        Scene added = after;
+        MeshBuilder(added).sphere({1.1f, 0.9f, 1.3f}, 0.2f, 1);
+        scene.repose(added);
+        const RenderResult grown = scene.render(o);
+        const uint32_t addedPages = sum(grown.virtualMaps->renderedPerFrame);
+        std::printf("%s: %u pages resident, %u rendered after a ball was added\n",
+                    light.name.c_str(), grown.virtualMaps->resident, addedPages);
+        EXPECT_GT(addedPages, 0u) << light.name;
+        EXPECT_LE(addedPages * 4, grown.virtualMaps->resident) << light.name;
+        SceneRenderer freshAdded(sharedRenderer(), added);
+        EXPECT_TRUE(sameBits(grown.visibility[0], freshAdded.render(o).visibility[0]))
+            << light.name;
     }
 }
 

@@ -4,6 +4,7 @@
 
 #include "penumbra/error.h"
 #include "render/renderer_impl.h"
+#include "scene/framing.h"
 #include "shadows/technique.h"
 #include "vk/check.h"
 
@@ -46,10 +47,10 @@ ViewerSession::ViewerSession(Renderer& renderer, const Scene& scene, const Viewe
       mCamera(scene.camera(options.render.camera),
               glm::length(scene.bounds().max - scene.bounds().min)) {
     for (size_t i = 0; i < scene.cameras.size(); ++i)
-        if (!scene.cameras[i].automatic &&
-            (options.render.camera.empty() || scene.cameras[i].name == options.render.camera)) {
-            mFollowedCamera = i;
-            break;
+        if (options.render.camera.empty() || scene.cameras[i].name == options.render.camera) {
+            mFollowedCamera = ownCamera(scene, static_cast<int>(i));
+            if (mFollowedCamera)
+                break;
         }
     mState.options = options.render;
     mState.options.width = extent.width;
@@ -145,9 +146,7 @@ void ViewerSession::update(const CameraInput& input, float seconds, DisplayPass&
     if (mState.takeSceneCamera) {
         const int index = *mState.takeSceneCamera;
         mCamera.reset(index < 0 ? mScene.camera("") : mScene.cameras[index]);
-        mFollowedCamera.reset();
-        if (index >= 0 && !mScene.cameras[size_t(index)].automatic)
-            mFollowedCamera = size_t(index);
+        mFollowedCamera = ownCamera(mScene, index);
         mState.sceneCamera = index;
         mState.takeSceneCamera.reset();
         mCut = true; // a jump, not a move: temporal history would blend two views

@@ -73,20 +73,21 @@ std::optional<PageRect> pagesUnder(const VirtualLevel& level, const Bounds& box,
 } // namespace
 
 MovedCasters movedCasters(const Scene& before, const Scene& after) {
+    // Triangle t of one pose against triangle t of the other, corner by corner (the winding
+    // kept): the same vertices under other indices are the same caster; a triangle past the
+    // other pose's count was removed or added, and is bounded where it is.
+    const size_t was = before.triangleCount(), is = after.triangleCount();
+    const auto corner = [](const Scene& s, size_t t, int k) -> const Vertex& {
+        return s.vertices[s.indices[3 * t + size_t(k)]];
+    };
     MovedCasters moved;
-    if (before.vertices.size() != after.vertices.size() || before.indices != after.indices) {
-        moved.everything = true;
-        return moved;
-    }
-    std::vector<bool> changed(before.vertices.size());
-    for (size_t v = 0; v < changed.size(); ++v)
-        changed[v] = !castsAlike(before.vertices[v], after.vertices[v]);
     Bounds run;
     uint32_t inRun = 0;
     size_t last = 0;
-    for (size_t t = 0; t < before.triangleCount(); ++t) {
-        const uint32_t* corner = &before.indices[3 * t];
-        if (!changed[corner[0]] && !changed[corner[1]] && !changed[corner[2]])
+    for (size_t t = 0; t < std::max(was, is); ++t) {
+        if (t < was && t < is && castsAlike(corner(before, t, 0), corner(after, t, 0)) &&
+            castsAlike(corner(before, t, 1), corner(after, t, 1)) &&
+            castsAlike(corner(before, t, 2), corner(after, t, 2)))
             continue;
         // A run is consecutive triangles (a mesh's neighbours), kMovedRunTriangles at most.
         if (inRun == kMovedRunTriangles || (inRun > 0 && t != last + 1)) {
@@ -95,8 +96,10 @@ MovedCasters movedCasters(const Scene& before, const Scene& after) {
             inRun = 0;
         }
         for (int k = 0; k < 3; ++k) {
-            run.grow(before.vertices[corner[k]].position);
-            run.grow(after.vertices[corner[k]].position);
+            if (t < was)
+                run.grow(corner(before, t, k).position);
+            if (t < is)
+                run.grow(corner(after, t, k).position);
         }
         ++inRun;
         last = t;

@@ -12,11 +12,11 @@
 namespace penumbra {
 
 struct MovedCasters {
-    // The triangles themselves changed (another count, other indices): no page can be kept.
-    bool everything = false;
     // Each a run of at most kMovedRunTriangles consecutive moved triangles: the bounds of their
-    // vertices before and after (a triangle moved when a vertex's position, texture coordinate,
-    // alpha or material changed: what the depth pass and the alpha test read).
+    // vertices before and after. Triangle t moved when a corner of it differs between the poses
+    // in what the depth pass and its alpha test read (position, texture coordinate, alpha,
+    // material; corners in order, so the winding too), or when only one pose has a triangle t
+    // (a caster added or removed: bounded where it is).
     std::vector<Bounds> boxes;
 };
 

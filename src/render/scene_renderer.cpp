@@ -281,9 +281,7 @@ void SceneRenderer::repose(const Scene& posedIn) {
     }
     m.visibleDepths.reset();
     m.field.reset(); // traced from the old geometry: built again when a frame needs it
-    // Pages keep what did not move; other triangles keep nothing.
-    if (moved.everything)
-        m.pageCache.reset();
+    // Pages keep what no moved, added or removed triangle may draw into.
     if (m.pageCache)
         m.movedSinceUpdate.insert(m.movedSinceUpdate.end(), moved.boxes.begin(), moved.boxes.end());
     else

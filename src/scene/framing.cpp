@@ -140,4 +140,11 @@ Camera exteriorCamera(const Scene& scene, const Bounds& subject) {
     return c;
 }
 
+std::optional<size_t> ownCamera(const Scene& scene, int index) {
+    if (index < 0 || static_cast<size_t>(index) >= scene.cameras.size() ||
+        scene.cameras[static_cast<size_t>(index)].automatic)
+        return std::nullopt;
+    return static_cast<size_t>(index);
+}
+
 } // namespace penumbra

@@ -11,6 +11,9 @@
 #include "penumbra/scene.h"
 #include "scene/ray_cast.h"
 
+#include <cstddef>
+#include <optional>
+
 namespace penumbra {
 
 Bounds subjectBounds(const Scene& scene);
@@ -25,5 +28,10 @@ Camera exteriorCamera(const Scene& scene, const Bounds& subject);
 // the farthest corner of its box, the near one 1e-4 of that): a camera placed by a rule or by
 // --camera-pos.
 glm::vec2 depthRangeFrom(const Scene& scene, const glm::vec3& position);
+
+// Camera `index` when it is the file's own (an animation may move it): none for an index past
+// the cameras or below 0, or a camera Penumbra framed (`automatic`, held at the first frame's
+// view).
+std::optional<size_t> ownCamera(const Scene& scene, int index);
 
 } // namespace penumbra
