@@ -80,14 +80,34 @@ MovedCasters movedCasters(const Scene& before, const Scene& after) {
     const auto corner = [](const Scene& s, size_t t, int k) -> const Vertex& {
         return s.vertices[s.indices[3 * t + size_t(k)]];
     };
+    // The common case, a pose of the same meshes: every vertex is compared once (a vertex is
+    // shared by about six triangles), and a triangle moved if any of its corners did.
+    const bool sameIndices =
+        before.indices == after.indices && before.vertices.size() == after.vertices.size();
+    std::vector<uint8_t> vertexMoved;
+    if (sameIndices) {
+        vertexMoved.resize(after.vertices.size());
+        for (size_t v = 0; v < vertexMoved.size(); ++v)
+            vertexMoved[v] = !castsAlike(before.vertices[v], after.vertices[v]);
+    }
+    const auto alike = [&](size_t t) {
+        if (t >= was || t >= is)
+            return false;
+        for (int k = 0; k < 3; ++k) {
+            const bool cornerAlike = sameIndices
+                                         ? !vertexMoved[after.indices[3 * t + size_t(k)]]
+                                         : castsAlike(corner(before, t, k), corner(after, t, k));
+            if (!cornerAlike)
+                return false;
+        }
+        return true;
+    };
     MovedCasters moved;
     Bounds run;
     uint32_t inRun = 0;
     size_t last = 0;
     for (size_t t = 0; t < std::max(was, is); ++t) {
-        if (t < was && t < is && castsAlike(corner(before, t, 0), corner(after, t, 0)) &&
-            castsAlike(corner(before, t, 1), corner(after, t, 1)) &&
-            castsAlike(corner(before, t, 2), corner(after, t, 2)))
+        if (alike(t))
             continue;
         // A run is consecutive triangles (a mesh's neighbours), kMovedRunTriangles at most.
         if (inRun == kMovedRunTriangles || (inRun > 0 && t != last + 1)) {
