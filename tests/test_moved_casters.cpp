@@ -85,34 +85,37 @@ TEST(MovedCasters, NothingMovedDropsNothing) {
         EXPECT_TRUE(movedCasters(s, *after).boxes.empty());
 }
 
-// A moved sphere: runs of 32 triangles whose boxes hold every moved triangle before and after,
-// and together exactly the sphere where it was and where it is; the floor in none.
-TEST(MovedCasters, RunsOfMovedTrianglesAreBoundedWhereTheyWereAndWhereTheyAre) {
+Bounds triangleBounds(const Scene& s, size_t t) {
+    Bounds b;
+    for (int k = 0; k < 3; ++k)
+        b.grow(s.vertices[s.indices[3 * t + size_t(k)]].position);
+    return b;
+}
+
+bool sameBox(const Bounds& a, const Bounds& b) {
+    return a.min == b.min && a.max == b.max;
+}
+
+// A moved sphere: each of its triangles bounded where it was, then where it is, in order; the
+// floor in none, and nothing between the two places (the sweep).
+TEST(MovedCasters, EachMovedTriangleIsBoundedWhereItWasAndWhereItIs) {
     const Scene before = floorAndSphere();
     Scene after = before;
-    const glm::vec3 step{0.3f, -0.2f, 0.1f};
+    const glm::vec3 step{0.9f, -0.2f, 0.1f}; // more than the ball's width: the places apart
     for (size_t v = kFloorVertices; v < after.vertices.size(); ++v)
         after.vertices[v].position += step;
     const MovedCasters m = movedCasters(before, after);
     const size_t sphereTriangles = before.triangleCount() - 2;
-    EXPECT_EQ(m.boxes.size(), (sphereTriangles + kMovedRunTriangles - 1) / kMovedRunTriangles);
-    Bounds all;
-    for (const Bounds& b : m.boxes)
-        all.grow(b.min), all.grow(b.max);
-    Bounds want = boundsOf(before, kFloorVertices);
-    want.grow(boundsOf(after, kFloorVertices).min);
-    want.grow(boundsOf(after, kFloorVertices).max);
-    EXPECT_EQ(all.min, want.min);
-    EXPECT_EQ(all.max, want.max);
-    // Triangle t of the sphere is in run t / 32.
-    for (size_t t = 2; t < before.triangleCount(); ++t)
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t v = before.indices[3 * t + size_t(k)];
-            const Bounds& run = m.boxes[(t - 2) / kMovedRunTriangles];
-            EXPECT_TRUE(holds(run, before.vertices[v].position)) << t;
-            EXPECT_TRUE(holds(run, after.vertices[v].position)) << t;
-        }
-    EXPECT_FALSE(holds(all, before.vertices[0].position)) << "the floor's corner did not move";
+    ASSERT_EQ(m.boxes.size(), 2 * sphereTriangles);
+    for (size_t t = 2; t < before.triangleCount(); ++t) {
+        EXPECT_TRUE(sameBox(m.boxes[2 * (t - 2)], triangleBounds(before, t))) << t;
+        EXPECT_TRUE(sameBox(m.boxes[2 * (t - 2) + 1], triangleBounds(after, t))) << t;
+    }
+    const glm::vec3 between = boundsOf(before, kFloorVertices).center() + 0.5f * step;
+    for (const Bounds& b : m.boxes) {
+        EXPECT_FALSE(holds(b, before.vertices[0].position)) << "the floor's corner did not move";
+        EXPECT_FALSE(holds(b, between)) << "the sweep between the poses holds no triangle";
+    }
 }
 
 // What the alpha test reads moves a triangle too; triangles apart are runs apart; triangles
@@ -124,23 +127,25 @@ TEST(MovedCasters, WhatTheDepthPassReadsMovesATriangle) {
         Scene after = before;
         edit(after.vertices[2]); // the floor quad's corner in both of its triangles
         const MovedCasters m = movedCasters(before, after);
-        EXPECT_EQ(m.boxes.size(), 1u) << "the floor's two triangles, one run";
-        return m.boxes.empty() ? Bounds{} : m.boxes[0];
+        // The floor's two triangles, each one box: their corners stayed.
+        EXPECT_EQ(m.boxes.size(), 2u);
+        for (size_t t = 0; t < std::min<size_t>(2, m.boxes.size()); ++t)
+            EXPECT_TRUE(sameBox(m.boxes[t], triangleBounds(before, t))) << t;
     };
-    Bounds floor;
-    for (size_t v = 0; v < kFloorVertices; ++v)
-        floor.grow(before.vertices[v].position);
-    for (const Bounds& b : {editedFloor([](Vertex& v) { v.uv.x += 0.5f; }),
-                            editedFloor([](Vertex& v) { v.color.w = 0.5f; }),
-                            editedFloor([](Vertex& v) { v.material = 1; })})
-        EXPECT_TRUE(holds(b, floor.min) && holds(b, floor.max));
-    // The first and the last triangle of the sphere: two runs, not one box over the sphere.
+    editedFloor([](Vertex& v) { v.uv.x += 0.5f; });
+    editedFloor([](Vertex& v) { v.color.w = 0.5f; });
+    editedFloor([](Vertex& v) { v.material = 1; });
+    // The first and the last triangle of the sphere: their own boxes, not one over the sphere.
     Scene apart = before;
     const size_t last = before.triangleCount() - 1;
     apart.vertices[before.indices[3 * 2]].position.y += 0.01f;
     apart.vertices[before.indices[3 * last + 2]].position.y += 0.01f;
     const MovedCasters two = movedCasters(before, apart);
-    EXPECT_GE(two.boxes.size(), 2u);
+    ASSERT_GE(two.boxes.size(), 4u);
+    EXPECT_TRUE(sameBox(two.boxes.front(), triangleBounds(before, 2)));
+    EXPECT_TRUE(sameBox(two.boxes.back(), triangleBounds(apart, last)));
+    for (const Bounds& b : two.boxes)
+        EXPECT_LT(glm::length(b.extent()), 0.5f) << "a triangle's box, not the sphere's";
     // The sphere's last triangle removed, then added back: one box, that triangle's.
     const size_t lastTriangle = before.triangleCount() - 1;
     Bounds lastOne;
@@ -167,8 +172,10 @@ TEST(MovedCasters, WhatTheDepthPassReadsMovesATriangle) {
         corner.vertices.push_back(copy);
         corner.indices[k] = static_cast<uint32_t>(corner.vertices.size() - 1);
         const MovedCasters m = movedCasters(before, corner);
-        ASSERT_EQ(m.boxes.size(), 1u) << "corner " << k;
-        EXPECT_TRUE(holds(m.boxes[0], copy.position)) << "corner " << k;
+        ASSERT_EQ(m.boxes.size(), 2u) << "corner " << k << ": where it was and where it is";
+        EXPECT_TRUE(sameBox(m.boxes[0], triangleBounds(before, 0))) << "corner " << k;
+        EXPECT_TRUE(sameBox(m.boxes[1], triangleBounds(corner, 0))) << "corner " << k;
+        EXPECT_TRUE(holds(m.boxes[1], copy.position)) << "corner " << k;
     }
     Scene turned = before;
     std::swap(turned.indices[0], turned.indices[1]);

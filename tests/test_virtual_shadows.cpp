@@ -239,7 +239,9 @@ TEST_F(VirtualTest, AMovedCasterRendersOnlyThePagesItCovers) {
         std::printf("%s: %u pages resident, %u rendered after the ball moved\n", light.name.c_str(),
                     moved.virtualMaps->resident, rendered);
         EXPECT_GT(rendered, 0u) << light.name;
-        EXPECT_LE(rendered * 4, moved.virtualMaps->resident) << light.name;
+        // Under 5% of the resident pages (lavapipe: 4.0/2.6/2.2% for the sun/spot/bulb; the
+        // union of the ball's places, 4.8/4.9/3.2%).
+        EXPECT_LE(rendered * 20, moved.virtualMaps->resident) << light.name;
         EXPECT_EQ(moved.virtualMaps->renderedPerFrame.back(), 0u) << "drawn once, they stay";
         SceneRenderer fresh(sharedRenderer(), after);
         const RenderResult want = fresh.render(o);
@@ -254,7 +256,7 @@ TEST_F(VirtualTest, AMovedCasterRendersOnlyThePagesItCovers) {
         std::printf("%s: %u pages resident, %u rendered after a ball was added\n",
                     light.name.c_str(), grown.virtualMaps->resident, addedPages);
         EXPECT_GT(addedPages, 0u) << light.name;
-        EXPECT_LE(addedPages * 4, grown.virtualMaps->resident) << light.name;
+        EXPECT_LE(addedPages * 16, grown.virtualMaps->resident) << light.name; // 2.5-4.9%
         SceneRenderer freshAdded(sharedRenderer(), added);
         EXPECT_TRUE(sameBits(grown.visibility[0], freshAdded.render(o).visibility[0]))
             << light.name;

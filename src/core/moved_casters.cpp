@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_set>
 
 namespace penumbra {
 namespace {
@@ -102,30 +103,27 @@ MovedCasters movedCasters(const Scene& before, const Scene& after) {
         }
         return true;
     };
+    // Each moved triangle where it was and where it is, apart: a page only the old pose drew into
+    // loses it, one only the new pose draws into gains it, a page between them (the sweep) holds
+    // neither. One box when the corners stayed (a texture coordinate, alpha or material moved).
     MovedCasters moved;
-    Bounds run;
-    uint32_t inRun = 0;
-    size_t last = 0;
+    const auto boundsOf = [&](const Scene& s, size_t t) {
+        Bounds b;
+        for (int k = 0; k < 3; ++k)
+            b.grow(corner(s, t, k).position);
+        return b;
+    };
     for (size_t t = 0; t < std::max(was, is); ++t) {
         if (alike(t))
             continue;
-        // A run is consecutive triangles (a mesh's neighbours), kMovedRunTriangles at most.
-        if (inRun == kMovedRunTriangles || (inRun > 0 && t != last + 1)) {
-            moved.boxes.push_back(run);
-            run = Bounds{};
-            inRun = 0;
+        if (t < was)
+            moved.boxes.push_back(boundsOf(before, t));
+        if (t < is) {
+            const Bounds now = boundsOf(after, t);
+            if (t >= was || now.min != moved.boxes.back().min || now.max != moved.boxes.back().max)
+                moved.boxes.push_back(now);
         }
-        for (int k = 0; k < 3; ++k) {
-            if (t < was)
-                run.grow(corner(before, t, k).position);
-            if (t < is)
-                run.grow(corner(after, t, k).position);
-        }
-        ++inRun;
-        last = t;
     }
-    if (inRun > 0)
-        moved.boxes.push_back(run);
     return moved;
 }
 
@@ -133,16 +131,37 @@ uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& level
                         std::span<const Bounds> moved, uint32_t pageSize) {
     if (moved.empty())
         return 0;
-    std::vector<std::vector<PageRect>> under(levels.size());
+    // Per level, the pages under the boxes: small rectangles' pages in a set (a skinned figure
+    // moves thousands of triangles, each under a page or two), larger ones kept as rectangles.
+    constexpr int64_t kListedPages = 64;
+    struct Under {
+        std::unordered_set<uint64_t> pages;
+        std::vector<PageRect> rects;
+    };
+    const auto packed = [](glm::ivec2 p) {
+        return (uint64_t(uint32_t(p.x)) << 32) | uint64_t(uint32_t(p.y));
+    };
+    std::vector<Under> under(levels.size());
     for (size_t i = 0; i < levels.size(); ++i)
-        for (const Bounds& box : moved)
-            if (const std::optional<PageRect> r = pagesUnder(levels[i], box, pageSize))
-                under[i].push_back(*r);
+        for (const Bounds& box : moved) {
+            const std::optional<PageRect> r = pagesUnder(levels[i], box, pageSize);
+            if (!r)
+                continue;
+            const int64_t area = int64_t(r->hi.x - r->lo.x + 1) * int64_t(r->hi.y - r->lo.y + 1);
+            if (r->wholeLevel || area > kListedPages) {
+                under[i].rects.push_back(*r);
+                continue;
+            }
+            for (int y = r->lo.y; y <= r->hi.y; ++y)
+                for (int x = r->lo.x; x <= r->hi.x; ++x)
+                    under[i].pages.insert(packed({x, y}));
+        }
     return cache.dropIf([&](const PageKey& k) {
         for (size_t i = 0; i < levels.size(); ++i) {
             const VirtualLevel& l = levels[i];
             if (l.light == k.light && l.face == k.face && l.level == k.level)
-                return std::any_of(under[i].begin(), under[i].end(),
+                return under[i].pages.contains(packed(k.page)) ||
+                       std::any_of(under[i].rects.begin(), under[i].rects.end(),
                                    [&](const PageRect& r) { return r.holds(k.page); });
         }
         return true; // a level this frame does not have: nothing says what it holds

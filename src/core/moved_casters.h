@@ -1,8 +1,8 @@
 #pragma once
 // Invalidation by caster (docs/techniques.md, "Virtual shadow maps", "Invalidation by what
-// moved"): between two poses of a scene, what moved, as world boxes that hold each moved run of
-// triangles where it was and where it is; and the resident pages those boxes may draw into, in
-// each level's projection. A virtual map keeps every other page across a new pose.
+// moved"): between two poses of a scene, what moved, as world boxes that hold each moved
+// triangle where it was and where it is (apart); and the resident pages those boxes may draw
+// into, in each level's projection. A virtual map keeps every other page across a new pose.
 #include "core/virtual_maps.h"
 #include "penumbra/scene.h"
 
@@ -12,15 +12,13 @@
 namespace penumbra {
 
 struct MovedCasters {
-    // Each a run of at most kMovedRunTriangles consecutive moved triangles: the bounds of their
-    // vertices before and after. Triangle t moved when a corner of it differs between the poses
+    // Each moved triangle's bounds where it was, then where it is (one box when its corners
+    // stayed), in triangle order. Triangle t moved when a corner of it differs between the poses
     // in what the depth pass and its alpha test read (position, texture coordinate, alpha,
     // material; corners in order, so the winding too), or when only one pose has a triangle t
     // (a caster added or removed: bounded where it is).
     std::vector<Bounds> boxes;
 };
-
-inline constexpr uint32_t kMovedRunTriangles = 32;
 
 MovedCasters movedCasters(const Scene& before, const Scene& after);
 
