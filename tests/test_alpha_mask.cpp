@@ -101,6 +101,30 @@ TEST_F(MaterialTest, AlphaTestedCanopyLetsTheSunThroughItsHoles) {
     EXPECT_LT(litUnderCanopy(opaque, r, truth.visibility[0], &n), 0.005);
 }
 
+// Every material alpha-tested (the ground and posts too, opaque through their alpha), the leaves
+// first: nothing is drawn as opaque, so the roof's first triangles keep their holes too.
+TEST_F(MaterialTest, AnAllMaskedSceneTestsEveryTrianglesAlpha) {
+    Scene scene = parallelFoliage(true);
+    const uint32_t leaves = leavesMaterial(scene);
+    ASSERT_NE(leaves, 0u);
+    std::swap(scene.materials[0], scene.materials[leaves]);
+    for (Vertex& v : scene.vertices)
+        v.material = v.material == leaves ? 0u : v.material == 0u ? leaves : v.material;
+    for (Material& m : scene.materials)
+        if (!m.alphaTested()) {
+            m.alphaMode = AlphaMode::Mask;
+            ASSERT_LT(m.alphaCutoff, m.baseColor.w) << m.name << " stays opaque";
+        }
+    const double holes = canopyHoleFraction(scene, 0);
+    const RenderResult r = render(scene, {.width = 320, .height = 180});
+    size_t n = 0;
+    const double lit = litUnderCanopy(scene, r, r.visibility[0], &n);
+    std::printf("all masked: %zu ground pixels under the roof, lit %.3f, holes %.3f\n", n, lit,
+                holes);
+    ASSERT_GT(n, 1000u);
+    EXPECT_NEAR(lit, holes, 0.02);
+}
+
 TEST_F(MaterialTest, CameraSeesTheGroundThroughTheHoles) {
     const Scene scene = parallelFoliage(true);
     const double holes = canopyHoleFraction(scene, leavesMaterial(scene));

@@ -167,7 +167,8 @@ TEST_F(FrameTest, TheSkinPassPlacesEveryVertexWhereTheHostDoesToFloatRounding) {
         const SceneRenderer::DeviceGeometry unplaced = renderer.deviceGeometry();
         size_t inBindSpace = 0;
         for (const SkinnedVertex& sv : scene.skinning.vertices)
-            inBindSpace += unplaced.vertices[sv.vertex].position == sv.position;
+            inBindSpace += unplaced.vertices[sv.vertex].position == sv.position &&
+                           unplaced.vertices[sv.vertex].normal == sv.normal;
         EXPECT_EQ(inBindSpace, scene.skinning.vertices.size()) << "seed " << seed;
         renderer.render(small());
         expectPlacedAsTheHost(renderer.scene(), renderer.deviceGeometry(),

@@ -14,15 +14,6 @@ bool castsAlike(const Vertex& a, const Vertex& b) {
            a.material == b.material;
 }
 
-// The pages of `level` (absolute, in its page grid) that `box` may draw into, inclusive.
-struct PageRect {
-    bool wholeLevel = false;
-    glm::ivec2 lo{0}, hi{-1};
-    bool holds(glm::ivec2 p) const {
-        return wholeLevel || (p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y);
-    }
-};
-
 // How far the GPU's clip coordinates may be from these, in units of the sum of the products'
 // magnitudes: a float dot product of four terms is within 5 u of it (u = 2^-24, Higham's bound
 // (n + 1) u), the page's crop matrix times the level's within 2 u more, and 1 u for the float
@@ -127,6 +118,17 @@ MovedCasters movedCasters(const Scene& before, const Scene& after) {
     return moved;
 }
 
+std::vector<std::vector<PageRect>> movedPageRects(const std::vector<VirtualLevel>& levels,
+                                                  std::span<const Bounds> moved,
+                                                  uint32_t pageSize) {
+    std::vector<std::vector<PageRect>> rects(levels.size());
+    for (size_t i = 0; i < levels.size(); ++i)
+        for (const Bounds& box : moved)
+            if (const std::optional<PageRect> r = pagesUnder(levels[i], box, pageSize))
+                rects[i].push_back(*r);
+    return rects;
+}
+
 uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& levels,
                         std::span<const Bounds> moved, uint32_t pageSize) {
     if (moved.empty())
@@ -142,18 +144,16 @@ uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& level
         return (uint64_t(uint32_t(p.x)) << 32) | uint64_t(uint32_t(p.y));
     };
     std::vector<Under> under(levels.size());
+    const std::vector<std::vector<PageRect>> rects = movedPageRects(levels, moved, pageSize);
     for (size_t i = 0; i < levels.size(); ++i)
-        for (const Bounds& box : moved) {
-            const std::optional<PageRect> r = pagesUnder(levels[i], box, pageSize);
-            if (!r)
-                continue;
-            const int64_t area = int64_t(r->hi.x - r->lo.x + 1) * int64_t(r->hi.y - r->lo.y + 1);
-            if (r->wholeLevel || area > kListedPages) {
-                under[i].rects.push_back(*r);
+        for (const PageRect& r : rects[i]) {
+            const int64_t area = int64_t(r.hi.x - r.lo.x + 1) * int64_t(r.hi.y - r.lo.y + 1);
+            if (r.wholeLevel || area > kListedPages) {
+                under[i].rects.push_back(r);
                 continue;
             }
-            for (int y = r->lo.y; y <= r->hi.y; ++y)
-                for (int x = r->lo.x; x <= r->hi.x; ++x)
+            for (int y = r.lo.y; y <= r.hi.y; ++y)
+                for (int x = r.lo.x; x <= r.hi.x; ++x)
                     under[i].pages.insert(packed({x, y}));
         }
     return cache.dropIf([&](const PageKey& k) {

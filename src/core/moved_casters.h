@@ -22,6 +22,21 @@ struct MovedCasters {
 
 MovedCasters movedCasters(const Scene& before, const Scene& after);
 
+// Pages of a level (absolute, in its page grid), inclusive; or the whole level.
+struct PageRect {
+    bool wholeLevel = false;
+    glm::ivec2 lo{0}, hi{-1};
+    bool holds(glm::ivec2 p) const {
+        return wholeLevel || (p.x >= lo.x && p.y >= lo.y && p.x <= hi.x && p.y <= hi.y);
+    }
+};
+
+// For each of `levels`, the pages each of `moved` may draw into: the box's projection into the
+// level, widened by a texel and the GPU's roundoff; the whole level for a box partly behind a
+// perspective view's eye; none for one wholly behind it.
+std::vector<std::vector<PageRect>> movedPageRects(const std::vector<VirtualLevel>& levels,
+                                                  std::span<const Bounds> moved, uint32_t pageSize);
+
 // Drops from `cache` every resident page that one of `moved` may draw into: the box's projection
 // into the page's level, widened by a texel, overlaps the page. A box partly behind a
 // perspective view's eye drops the level's pages; a page of a level not in `levels` is dropped.
