@@ -186,6 +186,7 @@ demo: deps
 bench: build
 	$(BUILDDIR)/bench/penumbra_bench_gltf
 	$(BUILDDIR)/bench/penumbra_bench_frame
+	$(BUILDDIR)/bench/penumbra_bench_pages
 
 format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i

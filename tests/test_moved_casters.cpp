@@ -241,3 +241,60 @@ TEST(MovedCasters, BoxesBehindTheEyeAndLevelsNotThere) {
     EXPECT_EQ(dropMovedPages(cache, allButFinest, {&far, 1}, small().pageSize),
               levels[0].tableEntries());
 }
+
+// Many boxes at once (a moved figure's triangles, some close together, some apart, projected in
+// runs and only where pages are held) drop exactly the pages the boxes drop one at a time.
+TEST(MovedCasters, ManyBoxesDropWhatEachBoxDropsAlone) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> across(-12.0f, 12.0f), near(-1.5f, 1.5f),
+        size(0.02f, 0.4f), unit(0.0f, 1.0f);
+    for (const Light& light : {kSun, kSpot, kPoint}) {
+        const std::vector<VirtualLevel> levels = levelsOf(light, {4, 2, 1});
+        const std::vector<VirtualLevel> elsewhere = levelsOf(light, {-9, 2, 14});
+        std::vector<Bounds> boxes;
+        // The cluster by the camera: the finest levels' windows hold it.
+        const glm::vec3 centre = glm::vec3{4, 1, 1} + 0.3f * glm::vec3{near(rng), 0, near(rng)};
+        for (int i = 0; i < 70; ++i) {
+            const glm::vec3 at = i % 3 == 2 ? glm::vec3{across(rng), unit(rng) * 4.0f, across(rng)}
+                                            : centre + glm::vec3{near(rng), near(rng), near(rng)};
+            boxes.push_back({.min = at, .max = at + glm::vec3(size(rng), size(rng), size(rng))});
+        }
+        // The pool holds, level by level in turn: none of its pages (the first), only the page
+        // under a point beside the cluster (a run's bounds reach it and others, few boxes do),
+        // or a scattered part of them (from this frame's windows and a sun's other windows).
+        const Bounds dot{.min = centre + glm::vec3(2, 0, -2), .max = centre + glm::vec3(2, 0, -2)};
+        const std::vector<std::vector<PageRect>> beside =
+            movedPageRects(levels, {&dot, 1}, small().pageSize);
+        PageCache held = everyPage(levels, elsewhere);
+        held.dropIf([&](const PageKey& k) {
+            const VirtualLevel* l = levelOf(levels, k);
+            const auto i = static_cast<size_t>(l - levels.data());
+            if (i == 0)
+                return true;
+            if (i % 2 == 1 && !beside[i].empty())
+                return beside[i][0].wholeLevel || k.page != beside[i][0].lo;
+            return unit(rng) < 0.6f;
+        });
+        PageCache together = held;
+        dropMovedPages(together, levels, boxes, small().pageSize);
+        std::vector<PageCache> alone;
+        for (const Bounds& box : boxes) {
+            alone.push_back(held);
+            dropMovedPages(alone.back(), levels, {&box, 1}, small().pageSize);
+        }
+        size_t gone = 0, stayed = 0;
+        for (uint32_t physical = 0; physical < held.capacity(); ++physical) {
+            const std::optional<PageKey> k = held.keyOf(physical);
+            if (!k)
+                continue;
+            const bool anyAlone = std::any_of(
+                alone.begin(), alone.end(), [&](const PageCache& c) { return !c.keyOf(physical); });
+            EXPECT_EQ(!together.keyOf(physical), anyAlone)
+                << int(light.type) << " level " << k->level << " page " << k->page.x << ","
+                << k->page.y;
+            (anyAlone ? gone : stayed) += 1;
+        }
+        EXPECT_GT(gone, 5u) << int(light.type);
+        EXPECT_GT(stayed, gone) << int(light.type);
+    }
+}

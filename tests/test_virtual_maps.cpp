@@ -535,3 +535,29 @@ TEST(VirtualMaps, LevelsFitSteadyBoundsAndNearestSurfaces) {
     }
     EXPECT_NE(keyOf(kPoint, kField, 4.7f), keyOf(kPoint, kField, 5.0f));
 }
+
+TEST(VirtualMaps, EntryOfIsPageKeyOfsInverseInsideTheWindowOnly) {
+    // A level whose window starts off the origin and whose table starts past others'.
+    const VirtualLevel level{.light = 2,
+                             .face = 3,
+                             .level = 1,
+                             .firstPage = {-5, 7},
+                             .pagesPerSide = 4,
+                             .tableOffset = 100};
+    for (uint32_t e = 0; e < level.tableEntries(); ++e) {
+        const PageKey key = pageKeyOf(level, level.tableOffset + e);
+        EXPECT_EQ(entryOf(level, key.page), level.tableOffset + e) << e;
+    }
+    // Each side's first page outside: none (one past the last column is not the next row's
+    // first, one before the first row not the previous level's).
+    for (const glm::ivec2 outside : {glm::ivec2(-1, 0), glm::ivec2(4, 0), glm::ivec2(0, -1),
+                                     glm::ivec2(0, 4), glm::ivec2(4, 3), glm::ivec2(3, 4)})
+        EXPECT_FALSE(entryOf(level, level.firstPage + outside)) << outside.x << "," << outside.y;
+
+    const VirtualLevel other{.light = 2, .face = 2, .level = 1};
+    const std::vector<VirtualLevel> levels{other, level};
+    EXPECT_EQ(levelOf(levels, {.light = 2, .face = 3, .level = 1}), &levels[1]);
+    EXPECT_EQ(levelOf(levels, {.light = 2, .face = 2, .level = 1}), &levels[0]);
+    EXPECT_EQ(levelOf(levels, {.light = 2, .face = 3, .level = 0}), nullptr);
+    EXPECT_EQ(levelOf(levels, {.light = 1, .face = 3, .level = 1}), nullptr);
+}

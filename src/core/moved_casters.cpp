@@ -62,6 +62,16 @@ std::optional<PageRect> pagesUnder(const VirtualLevel& level, const Bounds& box,
                     .hi = level.firstPage + glm::ivec2(page(hi.x), page(hi.y))};
 }
 
+// The pages of `r` inside `region`, if any; a whole level stays whole.
+std::optional<PageRect> clipped(const PageRect& r, const PageRect& region) {
+    if (r.wholeLevel || region.wholeLevel)
+        return r;
+    const PageRect c{.lo = glm::max(r.lo, region.lo), .hi = glm::min(r.hi, region.hi)};
+    if (c.lo.x > c.hi.x || c.lo.y > c.hi.y)
+        return std::nullopt;
+    return c;
+}
+
 } // namespace
 
 MovedCasters movedCasters(const Scene& before, const Scene& after) {
@@ -119,13 +129,49 @@ MovedCasters movedCasters(const Scene& before, const Scene& after) {
 }
 
 std::vector<std::vector<PageRect>> movedPageRects(const std::vector<VirtualLevel>& levels,
-                                                  std::span<const Bounds> moved,
-                                                  uint32_t pageSize) {
+                                                  std::span<const Bounds> moved, uint32_t pageSize,
+                                                  std::span<const PageRect> held) {
+    // Boxes in runs of kRun (a mesh's consecutive triangles lie close): a run's bounds that miss
+    // the pages a level may hold spare projecting its boxes, and when they reach one page
+    // alone, so does each box of the run (a box inside the run's bounds has its corners inside
+    // them, and pages are monotone in them); wholly behind the eye, each box is. A walking figure's
+    // thousands of triangles cost a few hundred projections a level.
+    constexpr size_t kRun = 32;
     std::vector<std::vector<PageRect>> rects(levels.size());
-    for (size_t i = 0; i < levels.size(); ++i)
-        for (const Bounds& box : moved)
-            if (const std::optional<PageRect> r = pagesUnder(levels[i], box, pageSize))
-                rects[i].push_back(*r);
+    for (size_t i = 0; i < levels.size(); ++i) {
+        const VirtualLevel& level = levels[i];
+        PageRect region{.wholeLevel = true};
+        if (!level.followsCamera)
+            region = {.lo = level.firstPage,
+                      .hi = level.firstPage + glm::ivec2(int(level.pagesPerSide) - 1)};
+        if (!held.empty()) {
+            const std::optional<PageRect> c = clipped(held[i], region);
+            if (!c)
+                continue;
+            region = *c;
+        }
+        for (size_t first = 0; first < moved.size(); first += kRun) {
+            const std::span<const Bounds> run =
+                moved.subspan(first, std::min(kRun, moved.size() - first));
+            Bounds all;
+            for (const Bounds& box : run) {
+                all.grow(box.min);
+                all.grow(box.max);
+            }
+            const std::optional<PageRect> under = pagesUnder(level, all, pageSize);
+            const std::optional<PageRect> seen = under ? clipped(*under, region) : std::nullopt;
+            if (!seen)
+                continue;
+            if (!under->wholeLevel && under->lo == under->hi) { // not seen's: a box may miss it
+                rects[i].push_back(*seen);
+                continue;
+            }
+            for (const Bounds& box : run)
+                if (const std::optional<PageRect> r = pagesUnder(level, box, pageSize))
+                    if (const std::optional<PageRect> c = clipped(*r, region))
+                        rects[i].push_back(*c);
+        }
+    }
     return rects;
 }
 
@@ -143,8 +189,20 @@ uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& level
     const auto packed = [](glm::ivec2 p) {
         return (uint64_t(uint32_t(p.x)) << 32) | uint64_t(uint32_t(p.y));
     };
+    // Per level, the bounds of its resident pages: boxes elsewhere need not be projected.
+    std::vector<PageRect> held(levels.size());
+    for (uint32_t physical = 0; physical < cache.capacity(); ++physical) {
+        const std::optional<PageKey> key = cache.keyOf(physical);
+        const VirtualLevel* level = key ? levelOf(levels, *key) : nullptr;
+        if (!level)
+            continue;
+        PageRect& h = held[size_t(level - levels.data())];
+        const bool first = h.lo.x > h.hi.x;
+        h.lo = first ? key->page : glm::min(h.lo, key->page);
+        h.hi = first ? key->page : glm::max(h.hi, key->page);
+    }
     std::vector<Under> under(levels.size());
-    const std::vector<std::vector<PageRect>> rects = movedPageRects(levels, moved, pageSize);
+    const std::vector<std::vector<PageRect>> rects = movedPageRects(levels, moved, pageSize, held);
     for (size_t i = 0; i < levels.size(); ++i)
         for (const PageRect& r : rects[i]) {
             const int64_t area = int64_t(r.hi.x - r.lo.x + 1) * int64_t(r.hi.y - r.lo.y + 1);
@@ -157,14 +215,13 @@ uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& level
                     under[i].pages.insert(packed({x, y}));
         }
     return cache.dropIf([&](const PageKey& k) {
-        for (size_t i = 0; i < levels.size(); ++i) {
-            const VirtualLevel& l = levels[i];
-            if (l.light == k.light && l.face == k.face && l.level == k.level)
-                return under[i].pages.contains(packed(k.page)) ||
-                       std::any_of(under[i].rects.begin(), under[i].rects.end(),
-                                   [&](const PageRect& r) { return r.holds(k.page); });
-        }
-        return true; // a level this frame does not have: nothing says what it holds
+        const VirtualLevel* level = levelOf(levels, k);
+        if (!level)
+            return true; // a level this frame does not have: nothing says what it holds
+        const Under& u = under[size_t(level - levels.data())];
+        return u.pages.contains(packed(k.page)) ||
+               std::any_of(u.rects.begin(), u.rects.end(),
+                           [&](const PageRect& r) { return r.holds(k.page); });
     });
 }
 

@@ -33,9 +33,12 @@ struct PageRect {
 
 // For each of `levels`, the pages each of `moved` may draw into: the box's projection into the
 // level, widened by a texel and the GPU's roundoff; the whole level for a box partly behind a
-// perspective view's eye; none for one wholly behind it.
+// perspective view's eye; none for one wholly behind it. Only pages that may hold anything are
+// listed: those of a window that does not move (a fixed window's level holds no other), and,
+// when `held` is given (one rectangle per level, empty: nothing held), those inside it.
 std::vector<std::vector<PageRect>> movedPageRects(const std::vector<VirtualLevel>& levels,
-                                                  std::span<const Bounds> moved, uint32_t pageSize);
+                                                  std::span<const Bounds> moved, uint32_t pageSize,
+                                                  std::span<const PageRect> held = {});
 
 // Drops from `cache` every resident page that one of `moved` may draw into: the box's projection
 // into the page's level, widened by a texel, overlaps the page. A box partly behind a

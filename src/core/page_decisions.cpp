@@ -17,15 +17,6 @@ std::optional<size_t> levelNamed(const std::vector<VirtualLevel>& levels, uint32
     return std::nullopt;
 }
 
-// The table entry of absolute page `page` in `level`'s window, if the window holds it.
-std::optional<uint32_t> entryOf(const VirtualLevel& level, glm::ivec2 page) {
-    const glm::ivec2 local = page - level.firstPage;
-    const auto n = static_cast<int>(level.pagesPerSide);
-    if (local.x < 0 || local.y < 0 || local.x >= n || local.y >= n)
-        return std::nullopt;
-    return level.tableOffset + uint32_t(local.y) * level.pagesPerSide + uint32_t(local.x);
-}
-
 // The level above `child` (its light's and face's next coarser), if the frame has it.
 const VirtualLevel* parentOf(const std::vector<VirtualLevel>& levels, const VirtualLevel& child) {
     const std::optional<size_t> i =
@@ -34,6 +25,18 @@ const VirtualLevel* parentOf(const std::vector<VirtualLevel>& levels, const Virt
 }
 
 } // namespace
+
+std::vector<size_t> missingPageOrder(const std::vector<VirtualLevel>& levels) {
+    std::vector<size_t> order(levels.size());
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        const VirtualLevel &x = levels[a], &y = levels[b];
+        if (x.level != y.level)
+            return x.level > y.level;
+        return std::tie(x.light, x.face) < std::tie(y.light, y.face);
+    });
+    return order;
+}
 
 PageDecisions decidePages(std::vector<PageOwner>& owners, const PageDecisionInputs& in) {
     const std::vector<VirtualLevel>& levels = *in.levels;
@@ -102,14 +105,7 @@ PageDecisions decidePages(std::vector<PageOwner>& owners, const PageDecisionInpu
     // Pass 4, per entry: each missing page's rank, a prefix sum over the entries in priority
     // order: the coarsest levels first (a full pool keeps what every reader falls back on), then
     // by light, face, row and column.
-    std::vector<size_t> order(levels.size());
-    std::iota(order.begin(), order.end(), size_t{0});
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        const VirtualLevel &x = levels[a], &y = levels[b];
-        if (x.level != y.level)
-            return x.level > y.level;
-        return std::tie(x.light, x.face) < std::tie(y.light, y.face);
-    });
+    const std::vector<size_t> order = missingPageOrder(levels);
     std::vector<std::pair<size_t, uint32_t>> missing; // level record, entry; in rank order
     for (const size_t i : order)
         for (uint32_t e = levels[i].tableOffset;

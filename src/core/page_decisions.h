@@ -45,6 +45,11 @@ struct PageDecisions {
     uint32_t requested = 0, cached = 0, evicted = 0, dropped = 0; // as PageCache::Update
 };
 
+// The levels (indices) in the order their missing pages are allocated: the coarsest first (a
+// full pool keeps what every reader falls back on), then by light and face; within a level, by
+// row and column.
+std::vector<size_t> missingPageOrder(const std::vector<VirtualLevel>& levels);
+
 // One frame's decisions; `owners` (one per physical page) carried from the frame before.
 PageDecisions decidePages(std::vector<PageOwner>& owners, const PageDecisionInputs& in);
 

@@ -209,6 +209,21 @@ PageKey pageKeyOf(const VirtualLevel& level, uint32_t entry) {
             .page = level.firstPage + page};
 }
 
+const VirtualLevel* levelOf(const std::vector<VirtualLevel>& levels, const PageKey& key) {
+    for (const VirtualLevel& level : levels) // a frame has tens of levels: a short search
+        if (level.light == key.light && level.face == key.face && level.level == key.level)
+            return &level;
+    return nullptr;
+}
+
+std::optional<uint32_t> entryOf(const VirtualLevel& level, glm::ivec2 page) {
+    const glm::ivec2 local = page - level.firstPage;
+    const auto n = static_cast<int>(level.pagesPerSide);
+    if (local.x < 0 || local.y < 0 || local.x >= n || local.y >= n)
+        return std::nullopt;
+    return gpu::virtualEntryIndex(level.tableOffset, level.pagesPerSide, local);
+}
+
 size_t PageKeyHash::operator()(const PageKey& k) const {
     uint64_t h = kFnv1aOffset;
     h = mix(h, (uint64_t{k.light} << 32) | (k.face << 8) | k.level);
@@ -314,29 +329,15 @@ std::vector<uint32_t> pageTable(const std::vector<VirtualLevel>& levels, const P
     std::vector<uint32_t> table(entries, VIRTUAL_NOT_RESIDENT);
     for (uint32_t physical = 0; physical < cache.capacity(); ++physical) {
         const std::optional<PageKey> key = cache.keyOf(physical);
-        if (!key)
-            continue;
-        for (const VirtualLevel& level : levels)
-            if (level.light == key->light && level.face == key->face && level.level == key->level) {
-                const glm::ivec2 local = key->page - level.firstPage;
-                const auto n = static_cast<int>(level.pagesPerSide);
-                if (local.x >= 0 && local.y >= 0 && local.x < n && local.y < n)
-                    table.at(gpu::virtualEntryIndex(level.tableOffset, level.pagesPerSide, local)) =
-                        physical + 1u;
-                break;
-            }
+        const VirtualLevel* level = key ? levelOf(levels, *key) : nullptr;
+        if (const std::optional<uint32_t> e = level ? entryOf(*level, key->page) : std::nullopt)
+            table.at(*e) = physical + 1u;
     }
     return table;
 }
 
 std::vector<PageKey> withCoarserPages(const std::vector<PageKey>& requests,
                                       const std::vector<VirtualLevel>& levels) {
-    auto find = [&](uint32_t light, uint32_t face, uint32_t level) -> const VirtualLevel* {
-        for (const VirtualLevel& v : levels)
-            if (v.light == light && v.face == face && v.level == level)
-                return &v;
-        return nullptr;
-    };
     auto floorHalf = [](glm::ivec2 p) { return glm::ivec2(p.x >> 1, p.y >> 1); }; // floor(p / 2)
     std::vector<PageKey> out = requests;
     std::unordered_map<PageKey, bool, PageKeyHash> seen;
@@ -344,9 +345,10 @@ std::vector<PageKey> withCoarserPages(const std::vector<PageKey>& requests,
         seen[k] = true;
     for (const PageKey& request : requests) {
         PageKey k = request;
-        const VirtualLevel* child = find(k.light, k.face, k.level);
+        const VirtualLevel* child = levelOf(levels, k);
         while (child) {
-            const VirtualLevel* parent = find(k.light, k.face, k.level + 1);
+            const VirtualLevel* parent =
+                levelOf(levels, {.light = k.light, .face = k.face, .level = k.level + 1});
             if (!parent)
                 break;
             // A clipmap's grids share their origin: page p's parent is p / 2; a fixed window's
@@ -354,9 +356,7 @@ std::vector<PageKey> withCoarserPages(const std::vector<PageKey>& requests,
             k.page =
                 parent->followsCamera ? floorHalf(k.page) : floorHalf(k.page - child->firstPage);
             k.level = parent->level;
-            const glm::ivec2 local = k.page - parent->firstPage;
-            const auto n = static_cast<int>(parent->pagesPerSide);
-            if (local.x < 0 || local.y < 0 || local.x >= n || local.y >= n)
+            if (!entryOf(*parent, k.page))
                 break;
             if (seen.emplace(k, true).second)
                 out.push_back(k);
@@ -380,17 +380,11 @@ VirtualPages virtualPages(const std::vector<VirtualLevel>& levels, const PageCac
                               .pages = std::vector<PageState>(level.tableEntries())});
     // The level a key belongs to and its entry there, if this frame's window shows it.
     auto place = [&](const PageKey& key) -> std::optional<std::pair<size_t, uint32_t>> {
-        for (size_t i = 0; i < levels.size(); ++i) {
-            const VirtualLevel& level = levels[i];
-            if (level.light != key.light || level.face != key.face || level.level != key.level)
-                continue;
-            const glm::ivec2 local = key.page - level.firstPage;
-            const auto n = static_cast<int>(level.pagesPerSide);
-            if (local.x < 0 || local.y < 0 || local.x >= n || local.y >= n)
-                return std::nullopt;
-            return std::pair{i, gpu::virtualEntryIndex(0, level.pagesPerSide, local)};
-        }
-        return std::nullopt;
+        const VirtualLevel* level = levelOf(levels, key);
+        const std::optional<uint32_t> e = level ? entryOf(*level, key.page) : std::nullopt;
+        if (!e)
+            return std::nullopt;
+        return std::pair{size_t(level - levels.data()), *e - level->tableOffset};
     };
     std::unordered_set<PageKey, PageKeyHash> asked(requested.begin(), requested.end());
     for (const PageKey& key : asked) // resident ones are overwritten below

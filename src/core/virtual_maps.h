@@ -107,6 +107,12 @@ struct PageKeyHash {
 // The key of entry `entry` of a level's table.
 PageKey pageKeyOf(const VirtualLevel& level, uint32_t entry);
 
+// The level of `levels` that holds `key`'s light, face and level, if this frame has it.
+const VirtualLevel* levelOf(const std::vector<VirtualLevel>& levels, const PageKey& key);
+// The table entry (from the level's tableOffset) of absolute page `page`, if the level's window
+// holds it: the inverse of pageKeyOf.
+std::optional<uint32_t> entryOf(const VirtualLevel& level, glm::ivec2 page);
+
 // The physical pool: which page holds which virtual page, least recently used first out.
 class PageCache {
 public:

@@ -418,23 +418,17 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
         pageCache->keyLight(light, key);
     dropMovedPages(*pageCache, p.levels, movedSinceUpdate, v.pageSize);
     movedSinceUpdate.clear();
-    // The level a page belongs to in this frame, and its place in the level's window.
-    auto levelOf = [&](const PageKey& k) -> const VirtualLevel* {
-        for (const VirtualLevel& level : p.levels)
-            if (level.light == k.light && level.face == k.face && level.level == k.level) {
-                const glm::ivec2 local = k.page - level.firstPage;
-                const auto n = static_cast<int>(level.pagesPerSide);
-                return local.x >= 0 && local.y >= 0 && local.x < n && local.y < n ? &level
-                                                                                  : nullptr;
-            }
-        return nullptr;
+    // The level a page belongs to in this frame, if its window holds the page.
+    auto levelHolding = [&](const PageKey& k) -> const VirtualLevel* {
+        const VirtualLevel* level = levelOf(p.levels, k);
+        return level && entryOf(*level, k.page) ? level : nullptr;
     };
     Slot& slot = slots[p.slot];
     std::vector<PageKey> requests;
     if (!slot.markedWith.empty())
         for (const PageKey& k : requestedPages(
                  slot.markedWith, static_cast<const uint32_t*>(slot.pageRequests.mapped)))
-            if (levelOf(k)) // a sun's window may have moved on
+            if (levelHolding(k)) // a sun's window may have moved on
                 requests.push_back(k);
     pageRequests = withCoarserPages(requests, p.levels);
     const PageCache::Update u = pageCache->update(pageRequests, ++pageFrame);
@@ -444,7 +438,7 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
     const uint32_t side = poolPagesPerSide = v.poolPagesPerSide();
     for (const auto& [physical, key] : u.render) {
         pagesRendered.push_back(physical);
-        const VirtualLevel& level = *levelOf(key);
+        const VirtualLevel& level = *levelHolding(key);
         pageDraws.push_back({.viewProj = pageViewProj(level, key.page - level.firstPage),
                              .perspective = level.projection.perspective,
                              .origin = glm::uvec2(physical % side, physical / side) * v.pageSize});
@@ -574,16 +568,9 @@ SceneRenderer::RecordedFrame SceneRenderer::record(VkCommandBuffer_T* cmd,
     prepared.settings.present = true;
     // Frames in flight share the targets: this frame's first writes wait for every command
     // submitted before it (the graph's barriers start from where the last frame left them).
-    const VkMemoryBarrier2 previousFrames{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
-                                          .srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                                          .srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT,
-                                          .dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                                          .dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT |
-                                                           VK_ACCESS_2_MEMORY_WRITE_BIT};
-    const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
-                                      .memoryBarrierCount = 1,
-                                      .pMemoryBarriers = &previousFrames};
-    vkCmdPipelineBarrier2(cmd, &dependency);
+    vk::memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
     m.pageInfo.renderedPerFrame.clear(); // this frame's alone: a viewer's frames never end
     m.record(cmd, prepared, timer);
     if (prepared.settings.virtualMaps)

@@ -95,6 +95,19 @@ void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 s
     vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess) {
+    const VkMemoryBarrier2 barrier{.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER_2,
+                                   .srcStageMask = srcStage,
+                                   .srcAccessMask = srcAccess,
+                                   .dstStageMask = dstStage,
+                                   .dstAccessMask = dstAccess};
+    const VkDependencyInfo dependency{.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO,
+                                      .memoryBarrierCount = 1,
+                                      .pMemoryBarriers = &barrier};
+    vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
 void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, VkBuffer buffer) {
     const VkBufferImageCopy region{.bufferOffset = 0,
                                    .imageSubresource = {.aspectMask = image.aspect,

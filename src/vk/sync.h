@@ -84,6 +84,9 @@ void colorImageBarrier(VkCommandBuffer cmd, VkImage image, const ImageState& fro
 void bufferBarrier(VkCommandBuffer cmd, VkBuffer buffer, VkPipelineStageFlags2 srcStage,
                    VkAccessFlags2 srcAccess, VkPipelineStageFlags2 dstStage,
                    VkAccessFlags2 dstAccess);
+// A global memory barrier: every resource's writes at `srcStage` before `dstStage`'s accesses.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
 
 // Copies every layer of `image` (in kTransferRead) into `buffer`, tightly packed, layer-major.
 void copyImageToBuffer(VkCommandBuffer cmd, const Image& image, VkBuffer buffer);

@@ -1,0 +1,111 @@
+// Virtual pages decided on the device (page_decisions.comp; src/render/page_decision_passes.h):
+// the records the host uploads each frame, the owners the device keeps from frame to frame, the
+// counts it returns, the passes' bindings and specialization constant, compiled as GLSL and as
+// C++ with static_asserts on their layout. The passes are those of the CPU reference,
+// decidePages (src/core/page_decisions.h), which the device's results are checked against.
+// clang-format off
+#ifndef PENUMBRA_PAGE_PASSES_H
+#define PENUMBRA_PAGE_PASSES_H
+#include "shared_prelude.h"
+
+#define PAGES_BLOCK 256u          // invocations per workgroup; a scan block's slots
+#define PAGES_FREE 0xffffffffu    // PageOwnerData::level of a page that holds nothing
+#define PAGES_NONE 0xffffffffu    // no level, entry or rank
+
+// page_decisions.comp's bindings (set 0, push descriptors).
+#define PAGES_LEVELS 0            // PageLevelData[], this frame's levels
+#define PAGES_REQUESTS 1          // uint per table entry, non-zero: asked for (the marking's)
+#define PAGES_OWNERS 2            // PageOwnerData per physical page, kept across frames
+#define PAGES_MOVED 3             // PageRectData[]: each level's moved pages (movedFirst, count)
+#define PAGES_REKEYED 4           // bits by light: its contents changed, every page goes
+#define PAGES_WANTED 5            // per entry: bit 0 asked for (or a chain's), bit 1 resident
+#define PAGES_MISSING 6           // per priority slot: 1 + the entry missing there, or 0
+#define PAGES_SUMS 7              // the scan's per-block sums, then their exclusive prefix
+#define PAGES_RANKED 8            // per rank: the missing entry
+#define PAGES_CANDIDATES 9        // per rank: the physical page that takes it
+#define PAGES_RENDER 10           // per rank: PageRenderData, what to render where
+#define PAGES_TABLE 11            // the page table: 1 + physical page, or 0
+#define PAGES_COUNTS 12           // PageCounts
+
+// The specialization constant that picks the pass (PAGES_PASS_*), in the order they run.
+#define SPEC_PAGE_PASS 27
+#define PAGES_PASS_FREE 0u        // per physical page: re-keyed lights, moved casters, absent levels
+#define PAGES_PASS_WANT 1u        // per entry: the requests and their coarser chains
+#define PAGES_PASS_HOLD 2u        // per physical page: resident and asked for: kept, dated
+#define PAGES_PASS_MISSING 3u     // per entry: the missing ones, in priority order
+#define PAGES_PASS_SCAN_BLOCKS 4u // per block of slots: its count of missing entries
+#define PAGES_PASS_SCAN_SUMS 5u   // one workgroup: the blocks' exclusive prefix
+#define PAGES_PASS_RANK 6u        // per slot: a missing entry's rank
+#define PAGES_PASS_CANDIDATES 7u  // per physical page: a candidate's rank
+#define PAGES_PASS_ASSIGN 8u      // per rank: the candidate takes the missing page
+#define PAGES_PASS_TABLE 9u       // per physical page: its entry in the table
+
+PENUMBRA_GPU_BEGIN
+
+struct PageLevelData {
+    ivec2 firstPage;      // the window's first page in the level's absolute grid
+    uint name;            // packLevel(light, face, level)
+    uint pagesPerSide;
+    uint tableOffset;     // its first entry
+    uint parent;          // the next coarser level of its light and face, or PAGES_NONE
+    uint priorityStart;   // its first slot in the missing pages' priority order
+    uint movedFirst;      // its moved pages' rectangles in PAGES_MOVED
+    uint movedCount;
+    uint followsCamera;   // 1: a sun's clipmap level (its grid is anchored at the origin)
+    uint pad0, pad1;
+};
+
+struct PageOwnerData {
+    ivec2 page;           // absolute in its level's grid
+    uint level;           // packLevel(light, face, level), or PAGES_FREE
+    uint lastUsed;        // the last frame that asked for it
+};
+
+struct PageRectData {     // pages lo..hi of a level, inclusive (a whole level: the ints' range)
+    ivec2 lo;
+    ivec2 hi;
+};
+
+struct PageRenderData {
+    uint physical;        // the pool's page
+    uint entry;           // the table entry it now holds
+};
+
+struct PageCounts {
+    uint requested;       // entries asked for, chains included
+    uint cached;          // of them, resident already
+    uint missing;         // the others
+    uint candidates;      // pages free or not asked for this frame
+    uint rendered;        // min(missing, candidates)
+    uint evicted;         // of those, pages that held another
+    uint dropped;         // missing pages the pool had no room for
+    uint pad0;
+};
+
+struct PagePush {
+    uint frame;           // increases by one a frame
+    uint entries;         // the table's
+    uint pages;           // the pool's
+    uint levelCount;
+    uint anyMoved;        // 1: a caster moved (absent levels' pages go)
+    uint rekeyedWords;    // PAGES_REKEYED's length
+    uint scanBlocks;      // ceil(entries / PAGES_BLOCK)
+    uint pad0;
+};
+
+PENUMBRA_GPU_END
+
+#ifdef __cplusplus
+namespace penumbra::gpu {
+static_assert(sizeof(PageLevelData) == 48 && offsetof(PageLevelData, name) == 8 &&
+              offsetof(PageLevelData, parent) == 20 && offsetof(PageLevelData, followsCamera) == 36);
+static_assert(sizeof(PageOwnerData) == 16 && offsetof(PageOwnerData, level) == 8);
+static_assert(sizeof(PageRectData) == 16 && offsetof(PageRectData, hi) == 8);
+static_assert(sizeof(PageRenderData) == 8);
+static_assert(sizeof(PageCounts) == 32 && offsetof(PageCounts, dropped) == 24);
+static_assert(sizeof(PagePush) == 32 && offsetof(PagePush, scanBlocks) == 24);
+} // namespace penumbra::gpu
+#endif
+
+#endif
+// clang-format on
