@@ -120,46 +120,55 @@ void markMissing(uint e) {
     missing[levels[i].priorityStart + e - levels[i].tableOffset] = w == 1u ? e + 1u : 0u;
 }
 
-// The workgroup's inclusive prefix of `value` (Hillis and Steele), every invocation taking part.
+// Shared memory is written by the invocations that come later in a workgroup and read by the
+// earlier ones wherever that can be arranged: a device that runs a workgroup's invocations in
+// order up to each barrier (llvmpipe runs them eight at a time) then reads stale values wherever
+// a barrier is missing, and the tests see it.
+
+// The workgroup's inclusive prefix of `value`, every invocation taking part: suffix sums (Hillis
+// and Steele), each step reading a later invocation's sum, then the total less the suffix.
 uint inclusivePrefix(uint value) {
     uint id = gl_LocalInvocationID.x;
     scanned[id] = value;
     barrier();
     for (uint step = 1u; step < PAGES_BLOCK; step <<= 1u) {
-        uint add = id >= step ? scanned[id - step] : 0u;
+        uint add = id + step < PAGES_BLOCK ? scanned[id + step] : 0u;
         barrier();
         scanned[id] += add;
         barrier();
     }
-    return scanned[id];
+    return scanned[0] - scanned[id] + value;
 }
 
 uint missingFlag(uint slot) {
     return slot < push.entries && missing[slot] != 0u ? 1u : 0u;
 }
 
-// The block's missing slots as 256 bits: a slot's rank in its block is the count of bits before
-// its own (two barriers, where a scan of the block's flags takes sixteen).
+// The block's missing slots as PAGES_BLOCK bits: a slot's rank in its block is the count of bits
+// before its own (two barriers, where a scan of the block's flags takes fourteen). The last
+// invocations clear the words; every count reads the words of later ones.
 shared uint blockBits[PAGES_BLOCK / 32u];
 
 void gatherBlockBits(uint flag) {
     uint id = gl_LocalInvocationID.x;
-    if (id < PAGES_BLOCK / 32u) blockBits[id] = 0u;
+    uint firstClearing = PAGES_BLOCK - PAGES_BLOCK / 32u;
+    if (id >= firstClearing) blockBits[id - firstClearing] = 0u;
     barrier();
     if (flag != 0u) atomicOr(blockBits[id / 32u], 1u << (id % 32u));
     barrier();
 }
 
-// Set bits before slot `id` of the block.
-uint bitsBefore(uint id) {
-    uint count = bitCount(blockBits[id / 32u] & ((1u << (id % 32u)) - 1u));
-    for (uint w = 0u; w < id / 32u; ++w) count += bitCount(blockBits[w]);
+// Set bits at slot `id` of the block and after it.
+uint bitsFrom(uint id) {
+    uint count = bitCount(blockBits[id / 32u] & ~((1u << (id % 32u)) - 1u));
+    for (uint w = id / 32u + 1u; w < PAGES_BLOCK / 32u; ++w) count += bitCount(blockBits[w]);
     return count;
 }
 
 void scanSums() {
-    // One workgroup walks the block sums a block at a time, carrying the total.
-    if (gl_LocalInvocationID.x == 0u) carry = 0u;
+    // One workgroup walks the block sums a block at a time, carrying the total (kept by the last
+    // invocation at first, then by the first: see above).
+    if (gl_LocalInvocationID.x == PAGES_BLOCK - 1u) carry = 0u;
     barrier();
     for (uint first = 0u; first < push.scanBlocks; first += PAGES_BLOCK) {
         uint b = first + gl_LocalInvocationID.x;
@@ -168,7 +177,7 @@ void scanSums() {
         uint before = carry;
         if (b < push.scanBlocks) sums[b] = before + inclusive - value;
         barrier();
-        if (gl_LocalInvocationID.x == PAGES_BLOCK - 1u) carry = before + inclusive;
+        if (gl_LocalInvocationID.x == 0u) carry = before + scanned[0]; // the turn's total
         barrier();
     }
     if (gl_LocalInvocationID.x == 0u) counts.missing = carry;
@@ -178,7 +187,8 @@ void rank(uint slot) {
     uint flag = missingFlag(slot);
     gatherBlockBits(flag);
     if (flag != 0u)
-        ranked[sums[gl_WorkGroupID.x] + bitsBefore(gl_LocalInvocationID.x)] = missing[slot] - 1u;
+        ranked[sums[gl_WorkGroupID.x] + bitsFrom(0u) - bitsFrom(gl_LocalInvocationID.x)] =
+            missing[slot] - 1u;
 }
 
 // A candidate's order: free pages first, then the least recently used, then by index.
@@ -206,7 +216,7 @@ void rankCandidate(uint p) {
     // Whether an invocation of the workgroup still counts, by the tile's parity: each is reset a
     // tile before it is set, between two barriers that no read of it crosses. When none counts,
     // the workgroup reads no more tiles.
-    if (gl_LocalInvocationID.x == 0u) stillCounting[0] = 0u;
+    if (gl_LocalInvocationID.x == PAGES_BLOCK - 1u) stillCounting[0] = 0u;
     barrier();
     uint turn = 0u;
     for (uint first = 0u; first < push.pages; first += PAGES_BLOCK, turn ^= 1u) {
@@ -218,7 +228,7 @@ void rankCandidate(uint p) {
         }
         tile[gl_LocalInvocationID.x] = key;
         barrier();
-        if (gl_LocalInvocationID.x == 0u) stillCounting[turn ^ 1u] = 0u;
+        if (gl_LocalInvocationID.x == PAGES_BLOCK - 1u) stillCounting[turn ^ 1u] = 0u;
         if (candidate && rankOf < wanted) {
             for (uint k = 0u; k < PAGES_BLOCK; ++k)
                 if (tile[k].x < 2u && before(tile[k], first + k, mine, p)) ++rankOf;
@@ -256,8 +266,7 @@ void main() {
     uint id = gl_GlobalInvocationID.x;
     if (PASS == PAGES_PASS_SCAN_BLOCKS) {
         gatherBlockBits(missingFlag(id));
-        if (gl_LocalInvocationID.x == 0u) sums[gl_WorkGroupID.x] = bitsBefore(PAGES_BLOCK - 1u) +
-            (blockBits[PAGES_BLOCK / 32u - 1u] >> 31u);
+        if (gl_LocalInvocationID.x == 0u) sums[gl_WorkGroupID.x] = bitsFrom(0u);
     } else if (PASS == PAGES_PASS_SCAN_SUMS) {
         scanSums();
     } else if (PASS == PAGES_PASS_RANK) {

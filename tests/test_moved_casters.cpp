@@ -118,6 +118,21 @@ TEST(MovedCasters, EachMovedTriangleIsBoundedWhereItWasAndWhereItIs) {
     }
 }
 
+// A scene from nothing (the first pose of a streamed level) or to nothing: every triangle is
+// bounded where it is, or was, and nothing is read of the empty pose.
+TEST(MovedCasters, ASceneFromOrToNothingIsBoundedTriangleByTriangle) {
+    const Scene scene = floorAndSphere();
+    const Scene nothing;
+    for (const bool appears : {true, false}) {
+        const MovedCasters m =
+            appears ? movedCasters(nothing, scene) : movedCasters(scene, nothing);
+        ASSERT_EQ(m.boxes.size(), scene.triangleCount()) << appears;
+        for (size_t t = 0; t < scene.triangleCount(); ++t)
+            EXPECT_TRUE(sameBox(m.boxes[t], triangleBounds(scene, t))) << appears << " " << t;
+    }
+    EXPECT_TRUE(movedCasters(nothing, nothing).boxes.empty());
+}
+
 // What the alpha test reads moves a triangle too; triangles apart are runs apart; triangles
 // added or removed are bounded where they are; the same corners under other indices did not move,
 // turned about they did.

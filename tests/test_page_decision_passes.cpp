@@ -1,7 +1,7 @@
 // Pages decided on the device (src/render/page_decision_passes.h, shaders/page_decisions.comp)
 // against the CPU reference they restate (decidePages, itself checked against the host cache in
-// tests/test_page_decisions.cpp): on random frames, in a pool of one workgroup's tile and in one
-// of a tile and a part, the same pages rendered where in the same order, the same table,
+// tests/test_page_decisions.cpp): on random frames, in pools of whole tiles of a workgroup's
+// 128 pages and parts of one, the same pages rendered where in the same order, the same table,
 // the same counts, and the same owners carried to the next frame (freed ones included).
 #include "gpu_fixture.h"
 #include "page_frames.h"
@@ -22,7 +22,7 @@ struct PoolRun {
 
 TEST_F(VirtualTest, PagesDecidedOnTheDeviceEqualTheReferenceFrameByFrame) {
     const vk::Context& ctx = sharedRenderer().context();
-    // A pool of one workgroup's tile, one of a tile and a part; and the default map's levels
+    // Pools of two workgroups' tiles of 128 and of two and parts; and the default map's levels
     // (128 pages a side: tables of hundreds of thousands of entries, a scan of more blocks than
     // a workgroup holds).
     for (const PoolRun& run : {PoolRun{small().poolPages(), small(), 40}, PoolRun{300, small(), 40},

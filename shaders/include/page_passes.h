@@ -8,7 +8,7 @@
 #define PENUMBRA_PAGE_PASSES_H
 #include "shared_prelude.h"
 
-#define PAGES_BLOCK 256u          // invocations per workgroup; a scan block's slots
+#define PAGES_BLOCK 128u          // invocations per workgroup (Vulkan's least maximum); a scan block's slots
 #define PAGES_FREE 0xffffffffu    // PageOwnerData::level of a page that holds nothing
 #define PAGES_NONE 0xffffffffu    // no level, entry or rank
 
