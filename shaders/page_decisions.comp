@@ -227,6 +227,7 @@ void rankCandidate(uint p) {
             if (key.x == 1u && key.y >= push.frame) key.x = 2u;
         }
         tile[gl_LocalInvocationID.x] = key;
+        if (gl_LocalInvocationID.x == 0u) atomicAdd(counts.tilesRead, 1u);
         barrier();
         if (gl_LocalInvocationID.x == PAGES_BLOCK - 1u) stillCounting[turn ^ 1u] = 0u;
         if (candidate && rankOf < wanted) {

@@ -81,3 +81,78 @@ TEST_F(VirtualTest, PagesDecidedOnTheDeviceEqualTheReferenceFrameByFrame) {
         EXPECT_GT(dropped, 0u);
     }
 }
+
+namespace {
+
+// The tiles the candidates pass reads by its rule, given the owners as it sees them: each
+// workgroup reads tiles until none of its candidates has fewer than `missing` candidates before
+// it in the order (free first, then least recently used, then by index).
+uint32_t tilesByRule(const std::vector<PageOwner>& owners, uint32_t frame, uint32_t missing) {
+    if (missing == 0)
+        return 0;
+    const auto n = static_cast<uint32_t>(owners.size());
+    const uint32_t tiles = (n + PAGES_BLOCK - 1) / PAGES_BLOCK;
+    auto key = [&](uint32_t p) {
+        return std::tuple(owners[p].level == PageOwner::kFree ? 0u : 1u, owners[p].lastUsed, p);
+    };
+    auto candidate = [&](uint32_t p) {
+        return owners[p].level == PageOwner::kFree || owners[p].lastUsed < frame;
+    };
+    uint32_t read = 0;
+    for (uint32_t group = 0; group < tiles; ++group)
+        for (uint32_t t = 0; t < tiles; ++t) {
+            ++read;
+            bool still = false;
+            for (uint32_t p = group * PAGES_BLOCK; p < std::min(n, (group + 1) * PAGES_BLOCK);
+                 ++p) {
+                uint32_t before = 0;
+                for (uint32_t q = 0; q < std::min(n, (t + 1) * PAGES_BLOCK); ++q)
+                    before += candidate(q) && key(q) < key(p);
+                still = still || (candidate(p) && before < missing);
+            }
+            if (!still)
+                break;
+        }
+    return read;
+}
+
+} // namespace
+
+// The candidates pass stops reading the pool once no candidate of a workgroup can rank below the
+// missing pages' count. A first frame asks for 200 pages of a spot's finest level, a second for
+// 60 others (their chains partly resident): the tiles read are those the rule gives, fewer than
+// the whole pool for every workgroup. With nothing missing, no tile is read.
+TEST_F(VirtualTest, TheCandidatesPassStopsOnceItsRanksAreBeyondTheMissingPages) {
+    const vk::Context& ctx = sharedRenderer().context();
+    const uint32_t poolPages = 700, tiles = (poolPages + PAGES_BLOCK - 1) / PAGES_BLOCK;
+    render::PageDecisionPasses passes(ctx, poolPages);
+    uint32_t offset = 0;
+    const std::vector<VirtualLevel> levels =
+        virtualLevels(kSpot, 0, kField, {0, 2, 0}, small(), {.nearestSurface = 5.0f}, offset);
+    auto decide = [&](uint32_t first, uint32_t count, uint32_t frame) {
+        std::vector<uint32_t> requests(offset, 0u);
+        std::fill_n(requests.begin() + levels[0].tableOffset + first, count, 1u);
+        passes.prepare({.levels = &levels, .requests = requests, .frame = frame});
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { passes.record(cmd); });
+        return passes.result();
+    };
+    decide(0, 200, 1);
+    std::vector<PageOwner> seen = passes.owners(); // as the second frame's candidates see them
+    const PageDecisions second = decide(400, 60, 2);
+    const std::vector<PageOwner> after = passes.owners();
+    std::vector<bool> rendered(poolPages, false);
+    for (const auto& [physical, key] : second.render)
+        rendered[physical] = true;
+    for (uint32_t p = 0; p < poolPages; ++p)
+        if (!rendered[p] && after[p].lastUsed == 2)
+            seen[p].lastUsed = 2; // kept: asked for again
+    const auto missing = static_cast<uint32_t>(second.render.size()) + second.dropped;
+    ASSERT_GT(missing, 56u); // more than the first frame's last tile holds free
+    const uint32_t expected = tilesByRule(seen, 2, missing);
+    EXPECT_EQ(passes.candidateTilesRead(), expected);
+    EXPECT_LT(expected, tiles * tiles);
+    std::printf("%u missing: %u tiles read of %u\n", missing, expected, tiles * tiles);
+    // The same pages again: all resident, nothing missing.
+    EXPECT_TRUE(decide(400, 60, 3).render.empty());
+    EXPECT_EQ(passes.candidateTilesRead(), 0u);
+}

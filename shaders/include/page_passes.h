@@ -79,7 +79,7 @@ struct PageCounts {
     uint rendered;        // min(missing, candidates)
     uint evicted;         // of those, pages that held another
     uint dropped;         // missing pages the pool had no room for
-    uint pad0;
+    uint tilesRead;       // the candidates pass's work: tiles of the pool its workgroups read
 };
 
 struct PagePush {

@@ -204,6 +204,10 @@ PageDecisions PageDecisionPasses::result() const {
     return d;
 }
 
+uint32_t PageDecisionPasses::candidateTilesRead() const {
+    return static_cast<const gpu::PageCounts*>(mCounts.mapped)->tilesRead;
+}
+
 std::vector<PageOwner> PageDecisionPasses::owners() const {
     const auto* owners = static_cast<const gpu::PageOwnerData*>(mOwners.mapped);
     std::vector<PageOwner> out(mPoolPages);

@@ -36,6 +36,9 @@ public:
     // the frame reads them on the device).
     PageDecisions result() const;
     std::vector<PageOwner> owners() const;
+    // The candidates pass's work in the last decisions: tiles of the pool its workgroups read
+    // (each stops once none of its candidates can rank below the missing pages' count).
+    uint32_t candidateTilesRead() const;
 
     VkBuffer table() const { return mTable.get(); }
     VkBuffer renderList() const { return mRender.get(); }
