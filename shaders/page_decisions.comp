@@ -281,6 +281,7 @@ void main() {
         if (PASS == PAGES_PASS_HOLD) hold(id);
         if (PASS == PAGES_PASS_ASSIGN) assign(id);
         if (PASS == PAGES_PASS_TABLE) {
+            if (owners[id].level != PAGES_FREE) atomicAdd(counts.resident, 1u);
             uint e = ownerEntry(id);
             if (e != PAGES_NONE) table[e] = id + 1u;
         }

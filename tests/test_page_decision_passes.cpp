@@ -6,6 +6,9 @@
 #include "gpu_fixture.h"
 #include "page_frames.h"
 #include "render/page_decision_passes.h"
+#include "render/page_draw_passes.h"
+
+#include <algorithm>
 
 using namespace penumbra;
 using namespace penumbra::test;
@@ -61,6 +64,10 @@ TEST_F(VirtualTest, PagesDecidedOnTheDeviceEqualTheReferenceFrameByFrame) {
             EXPECT_EQ(got.evicted, want.evicted) << at;
             EXPECT_EQ(got.dropped, want.dropped) << at;
             const std::vector<PageOwner> device = passes.owners();
+            EXPECT_EQ(passes.counts().resident,
+                      std::count_if(owners.begin(), owners.end(),
+                                    [](const PageOwner& o) { return o.level != PageOwner::kFree; }))
+                << at;
             for (uint32_t p = 0; p < poolPages; ++p) {
                 ASSERT_EQ(device[p].level, owners[p].level) << at << " page " << p;
                 ASSERT_EQ(device[p].page, owners[p].page) << at << " page " << p;
@@ -155,4 +162,134 @@ TEST_F(VirtualTest, TheCandidatesPassStopsOnceItsRanksAreBeyondTheMissingPages) 
     // The same pages again: all resident, nothing missing.
     EXPECT_TRUE(decide(400, 60, 3).render.empty());
     EXPECT_EQ(passes.candidateTilesRead(), 0u);
+}
+
+namespace {
+
+// The lists PageDrawPasses left (shaders/page_draws.comp, recordLists): every page the decisions
+// `d` render, once, in the list of its level's kind (orthographic or perspective), with the
+// matrix that takes the world to its square of a pool of side x side pages (pageViewProj's crop,
+// then NDC [-1, 1] to the square, restated here) and the square's bounds in the pool's NDC.
+// Counts the pages of each kind into `listed`.
+void expectListed(const render::PageDrawPasses& draws, const PageDecisions& d,
+                  const std::vector<VirtualLevel>& levels, uint32_t side, const std::string& at,
+                  size_t listed[2]) {
+    const std::vector<gpu::PageDrawData> lists[2] = {draws.listed(PAGE_DRAW_ORTHO),
+                                                     draws.listed(PAGE_DRAW_PERSPECTIVE)};
+    ASSERT_EQ(lists[0].size() + lists[1].size(), d.render.size()) << at;
+    for (const auto& [physical, key] : d.render) {
+        const VirtualLevel* level = levelOf(levels, key);
+        ASSERT_NE(level, nullptr) << at;
+        const uint32_t kind =
+            level->projection.perspective ? PAGE_DRAW_PERSPECTIVE : PAGE_DRAW_ORTHO;
+        const float s = static_cast<float>(side);
+        const glm::vec2 lo = -1.0f + 2.0f * glm::vec2(physical % side, physical / side) / s;
+        glm::mat4 place(1.0f);
+        place[0][0] = place[1][1] = 1.0f / s;
+        place[3].x = lo.x + 1.0f / s;
+        place[3].y = lo.y + 1.0f / s;
+        const glm::mat4 want = place * pageViewProj(*level, key.page - level->firstPage);
+        const auto found = std::find_if(lists[kind].begin(), lists[kind].end(), [&](const auto& p) {
+            return std::abs(p.square.x - lo.x) < 1e-6f && std::abs(p.square.y - lo.y) < 1e-6f;
+        });
+        ASSERT_NE(found, lists[kind].end()) << at << ": physical page " << physical;
+        EXPECT_NEAR(found->square.z, lo.x + 2.0f / s, 1e-6f) << at;
+        EXPECT_NEAR(found->square.w, lo.y + 2.0f / s, 1e-6f) << at;
+        float scale = 1.0f;
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                scale = std::max(scale, std::abs(want[c][r]));
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r)
+                ASSERT_NEAR(found->poolFromWorld[c][r], want[c][r], 1e-5f * scale)
+                    << at << ": physical page " << physical << ", column " << c << " row " << r;
+        ++listed[kind];
+    }
+}
+
+std::vector<std::vector<PageRect>> movedRects(const Frame& f) {
+    return f.moved.empty() ? std::vector<std::vector<PageRect>>{}
+                           : movedPageRects(f.levels, f.moved, small().pageSize);
+}
+
+} // namespace
+
+// The page draws' lists over random frames of suns, spots and bulbs in a pool of 20x20 pages
+// (parts of workgroups): as expectListed says.
+TEST_F(VirtualTest, ThePageDrawListsPlaceEachRenderedPageInItsSquare) {
+    const vk::Context& ctx = sharedRenderer().context();
+    const uint32_t side = 20, poolPages = side * side;
+    std::mt19937 rng(11);
+    render::PageDecisionPasses passes(ctx, poolPages);
+    render::PageDrawPasses draws(ctx, 1, true);
+    glm::vec3 camera{0.0f, 2.0f, 0.0f};
+    size_t listed[2] = {0, 0};
+    for (uint32_t frame = 1; frame <= 12; ++frame) {
+        const Frame f = randomFrame(rng, camera);
+        const std::vector<std::vector<PageRect>> rects = movedRects(f);
+        passes.prepare({.levels = &f.levels,
+                        .requests = f.requests,
+                        .lightsRekeyed = f.rekeyed,
+                        .moved = rects,
+                        .frame = frame});
+        draws.prepare(f.levels, 0);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            passes.record(cmd);
+            draws.recordLists(cmd, passes, side, 0);
+        });
+        expectListed(draws, passes.result(), f.levels, side, "frame " + std::to_string(frame),
+                     listed);
+    }
+    std::printf("%zu orthographic and %zu perspective pages listed\n", listed[0], listed[1]);
+    EXPECT_GT(listed[PAGE_DRAW_ORTHO], 0u);
+    EXPECT_GT(listed[PAGE_DRAW_PERSPECTIVE], 0u);
+}
+
+// Frames in flight: two frames' inputs written into two slots before either is decided, then
+// decided one after the other in one command buffer, as a viewer records them. Each slot's
+// decisions are its own frame's (its counts, and for the later one the table, the pages and the
+// lists); the owners carry from the first to the second as the reference's do.
+TEST_F(VirtualTest, EachSlotDecidesWithItsOwnFramesInputs) {
+    const vk::Context& ctx = sharedRenderer().context();
+    const uint32_t side = 20, poolPages = side * side;
+    std::mt19937 rng(5);
+    render::PageDecisionPasses passes(ctx, poolPages, {.readable = true, .slots = 2});
+    render::PageDrawPasses draws(ctx, 2, true);
+    std::vector<PageOwner> owners(poolPages);
+    glm::vec3 camera{0.0f, 2.0f, 0.0f};
+    size_t listed[2] = {0, 0};
+    for (uint32_t round = 0; round < 4; ++round) {
+        const Frame a = randomFrame(rng, camera), b = randomFrame(rng, camera);
+        const std::vector<std::vector<PageRect>> rectsA = movedRects(a), rectsB = movedRects(b);
+        const PageDecisionInputs inA{.levels = &a.levels,
+                                     .requests = a.requests,
+                                     .lightsRekeyed = a.rekeyed,
+                                     .moved = rectsA,
+                                     .frame = 2 * round + 1};
+        const PageDecisionInputs inB{.levels = &b.levels,
+                                     .requests = b.requests,
+                                     .lightsRekeyed = b.rekeyed,
+                                     .moved = rectsB,
+                                     .frame = 2 * round + 2};
+        const PageDecisions wantA = decidePages(owners, inA);
+        const PageDecisions wantB = decidePages(owners, inB);
+        passes.prepare(inA, 0);
+        draws.prepare(a.levels, 0);
+        passes.prepare(inB, 1);
+        draws.prepare(b.levels, 1);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            passes.record(cmd, VK_NULL_HANDLE, nullptr, 0);
+            passes.record(cmd, VK_NULL_HANDLE, nullptr, 1);
+            draws.recordLists(cmd, passes, side, 1);
+        });
+        const std::string at = "round " + std::to_string(round);
+        EXPECT_EQ(passes.counts(0).rendered, wantA.render.size()) << at;
+        EXPECT_EQ(passes.counts(0).requested, wantA.requested) << at;
+        const PageDecisions gotB = passes.result(1);
+        ASSERT_EQ(gotB.render, wantB.render) << at;
+        ASSERT_EQ(gotB.table, wantB.table) << at;
+        EXPECT_EQ(gotB.requested, wantB.requested) << at;
+        expectListed(draws, gotB, b.levels, side, at, listed);
+    }
+    EXPECT_GT(listed[PAGE_DRAW_ORTHO] + listed[PAGE_DRAW_PERSPECTIVE], 0u);
 }

@@ -561,3 +561,12 @@ TEST(VirtualMaps, EntryOfIsPageKeyOfsInverseInsideTheWindowOnly) {
     EXPECT_EQ(levelOf(levels, {.light = 2, .face = 3, .level = 0}), nullptr);
     EXPECT_EQ(levelOf(levels, {.light = 1, .face = 3, .level = 1}), nullptr);
 }
+
+// Warm-up frames before a render's timed ones: two when the host decides (one frame asks, the
+// next renders what it asked for), one when the device decides in the frame or without pages.
+TEST(VirtualMaps, WarmUpFramesFollowWhoDecides) {
+    EXPECT_EQ((VirtualSettings{.enabled = true}.warmUpFrames()), 2u);
+    EXPECT_EQ((VirtualSettings{.enabled = true, .deviceDecides = true}.warmUpFrames()), 1u);
+    EXPECT_EQ((VirtualSettings{.enabled = false}.warmUpFrames()), 1u);
+    EXPECT_EQ((VirtualSettings{.enabled = false, .deviceDecides = true}.warmUpFrames()), 1u);
+}

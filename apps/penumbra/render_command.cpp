@@ -1,6 +1,7 @@
 #include "commands.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
+#include "core/virtual_maps.h"
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
 #include "reference/field_refusal.h"
@@ -117,13 +118,16 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     for (const std::string& f : out.staged())
         files += (files.empty() ? "" : ", ") + f;
     std::printf("wrote %s/{%s}\n", out.path().c_str(), files.c_str());
+    const char* warmUps =
+        result.virtualMaps && VirtualSettings::of(options.parameters).warmUpFrames() == 2
+            ? "2 warm-ups"
+            : "1 warm-up";
     if (args.fps)
         std::printf("GPU ms per pass (median of %u frames at %g a second, the first pose after "
                     "%s, each later one the next frame):",
-                    options.frames, *args.fps, result.virtualMaps ? "2 warm-ups" : "1 warm-up");
+                    options.frames, *args.fps, warmUps);
     else
-        std::printf("GPU ms per pass (median of %u frames after %s):", options.frames,
-                    result.virtualMaps ? "2 warm-ups" : "1 warm-up");
+        std::printf("GPU ms per pass (median of %u frames after %s):", options.frames, warmUps);
     double total = 0;
     for (const PassTime& p : result.passes) {
         std::printf("  %s %.3f", p.pass.c_str(), p.medianMs);

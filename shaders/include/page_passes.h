@@ -11,6 +11,8 @@
 #define PAGES_BLOCK 128u          // invocations per workgroup (Vulkan's least maximum); a scan block's slots
 #define PAGES_FREE 0xffffffffu    // PageOwnerData::level of a page that holds nothing
 #define PAGES_NONE 0xffffffffu    // no level, entry or rank
+#define PAGES_MOST_ENTRIES (65535u * PAGES_BLOCK) // a frame's table entries: one dispatch's reach (every device
+                                                  // dispatches at least 65535 workgroups along x)
 
 // page_decisions.comp's bindings (set 0, push descriptors).
 #define PAGES_LEVELS 0            // PageLevelData[], this frame's levels
@@ -39,6 +41,17 @@
 #define PAGES_PASS_CANDIDATES 7u  // per physical page: a candidate's rank
 #define PAGES_PASS_ASSIGN 8u      // per rank: the candidate takes the missing page
 #define PAGES_PASS_TABLE 9u       // per physical page: its entry in the table
+
+// The page draws (page_draws.comp, page_*.vert; src/render/page_draw_passes.h): each page the
+// decisions render, cleared and drawn into its square of the pool, one instance a page.
+#define PAGE_DRAW_LEVELS 0        // PageLevelData[], the decisions' (where each table starts)
+#define PAGE_DRAW_VIEWS 1         // PageViewData[], by level: its view-projection and kind
+#define PAGE_DRAW_RENDER 2        // PageRenderData[], the decisions' pages to render, by rank
+#define PAGE_DRAW_COUNTS 3        // PageCounts, the decisions'
+#define PAGE_DRAW_LIST 4          // PageDrawData[2 * pool pages]: orthographic pages, then perspective ones
+#define PAGE_DRAW_LIST_COUNTS 5   // uint[2]: how many of each
+#define PAGE_DRAW_ORTHO 0u        // PageDrawPush::list: a sun's pages (drawn with depth clamp)
+#define PAGE_DRAW_PERSPECTIVE 1u  // a spot's or a cube face's
 
 PENUMBRA_GPU_BEGIN
 
@@ -80,6 +93,8 @@ struct PageCounts {
     uint evicted;         // of those, pages that held another
     uint dropped;         // missing pages the pool had no room for
     uint tilesRead;       // the candidates pass's work: tiles of the pool its workgroups read
+    uint resident;        // pages holding a level's page after the frame's decisions
+    uint pad0, pad1, pad2;
 };
 
 struct PagePush {
@@ -93,6 +108,29 @@ struct PagePush {
     uint pad0;
 };
 
+struct PageViewData {
+    mat4 viewProj;        // the level's world -> clip
+    uvec4 kind;           // x: PAGE_DRAW_ORTHO or PAGE_DRAW_PERSPECTIVE
+};
+
+struct PageDrawData {
+    mat4 poolFromWorld;   // world -> the pool's clip space (the page's crop, placed in its square)
+    vec4 square;          // the square in the pool's NDC: lo.xy, hi.xy (clip distances keep to it)
+};
+
+struct PageSetupPush {    // page_draws.comp
+    uint pages;           // the pool's
+    uint poolPagesPerSide;
+    uint levelCount;
+    uint pad0;
+};
+
+struct PageDrawPush {     // page_*.vert; the size of ShadowPush, so shadow_mask.frag's material follows
+    vec4 bias;            // x: the constant depth offset, as ShadowPush::bias
+    uvec4 list;           // x: PAGE_DRAW_ORTHO or PAGE_DRAW_PERSPECTIVE, y: the pool's pages, z: its pages a side
+    vec4 pad[3];
+};
+
 PENUMBRA_GPU_END
 
 #ifdef __cplusplus
@@ -102,8 +140,13 @@ static_assert(sizeof(PageLevelData) == 48 && offsetof(PageLevelData, name) == 8 
 static_assert(sizeof(PageOwnerData) == 16 && offsetof(PageOwnerData, level) == 8);
 static_assert(sizeof(PageRectData) == 16 && offsetof(PageRectData, hi) == 8);
 static_assert(sizeof(PageRenderData) == 8);
-static_assert(sizeof(PageCounts) == 32 && offsetof(PageCounts, dropped) == 24);
+static_assert(sizeof(PageCounts) == 48 && offsetof(PageCounts, dropped) == 24 &&
+              offsetof(PageCounts, resident) == 32);
 static_assert(sizeof(PagePush) == 32 && offsetof(PagePush, scanBlocks) == 24);
+static_assert(sizeof(PageViewData) == 80 && offsetof(PageViewData, kind) == 64);
+static_assert(sizeof(PageDrawData) == 80 && offsetof(PageDrawData, square) == 64);
+static_assert(sizeof(PageSetupPush) == 16);
+static_assert(sizeof(PageDrawPush) == 80 && offsetof(PageDrawPush, list) == 16);
 } // namespace penumbra::gpu
 #endif
 

@@ -102,7 +102,8 @@ VirtualSettings VirtualSettings::of(const ParameterValues& p) {
             .levels = static_cast<uint32_t>(p.number("virtual.levels")),
             .poolSize = static_cast<uint32_t>(p.number("virtual.poolSize")),
             .lodBias = static_cast<float>(p.number("virtual.lodBias")),
-            .lodFromImage = p.number("virtual.lodFromImage") != 0.0};
+            .lodFromImage = p.number("virtual.lodFromImage") != 0.0,
+            .deviceDecides = p.number("virtual.deviceDecides") != 0.0};
 }
 
 float VirtualSettings::levelBias(uint32_t width, uint32_t height) const {

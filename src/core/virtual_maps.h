@@ -27,12 +27,13 @@ namespace penumbra {
 // The `virtual` parameter family.
 struct VirtualSettings {
     bool enabled = false;
-    uint32_t size = 16384;    // virtual.size: a level's side in texels
-    uint32_t pageSize = 128;  // virtual.pageSize: a page's side in texels
-    uint32_t levels = 12;     // virtual.levels: a sun's clipmap levels up to the scene's extent
-    uint32_t poolSize = 8192; // virtual.poolSize: the physical pool's side in texels
-    float lodBias = -0.5f;    // virtual.lodBias: levels coarser (+) or finer (-) than a pixel
-    bool lodFromImage = true; // virtual.lodFromImage: lodBias relative to a 1920x1080 image
+    uint32_t size = 16384;      // virtual.size: a level's side in texels
+    uint32_t pageSize = 128;    // virtual.pageSize: a page's side in texels
+    uint32_t levels = 12;       // virtual.levels: a sun's clipmap levels up to the scene's extent
+    uint32_t poolSize = 8192;   // virtual.poolSize: the physical pool's side in texels
+    float lodBias = -0.5f;      // virtual.lodBias: levels coarser (+) or finer (-) than a pixel
+    bool lodFromImage = true;   // virtual.lodFromImage: lodBias relative to a 1920x1080 image
+    bool deviceDecides = false; // virtual.deviceDecides: pages decided in the frame, on the device
 
     static VirtualSettings of(const ParameterValues& p);
     // The level bias a width x height image reads with: lodBias, and with lodFromImage half a
@@ -47,6 +48,9 @@ struct VirtualSettings {
     // A sun's: `levels` up to the one over the whole scene, then that one's mips down to one
     // page (an image whose pixels are larger than the scene level's texels reads those).
     uint32_t sunLevels() const { return levels + localLevels() - 1; }
+    // Warm-up frames a render runs before its timed ones: decided on the host, pages render a
+    // frame after they are asked for (one frame asks, the next renders); else one.
+    uint32_t warmUpFrames() const { return enabled && !deviceDecides ? 2 : 1; }
 };
 
 // A light's levels (0 without a shadow map) and their page-table entries.

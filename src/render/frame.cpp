@@ -107,6 +107,8 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.pageTable = graph.importBuffer(std::string(target::kPageTable), in.pageTable);
     if (s.virtualMaps)
         r.pageRequests = graph.importBuffer(std::string(target::kPageRequests), in.pageRequests);
+    if (s.devicePages)
+        r.pageRenderList = graph.importBuffer("pages.renderList", in.pageRenderList);
     r.traceList = graph.declare(traceListDecl(s.sizes.width, s.sizes.height,
                                               shadows::checkerboardFill(screenPasses) != nullptr));
     return r;

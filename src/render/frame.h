@@ -31,6 +31,17 @@ struct LightDispatch {
     bool sized;     // the light has a size (Light::hasSize)
 };
 
+class PageDecisionPasses;
+class PageDrawPasses;
+// Virtual maps' pages decided on the device: the passes, the frame's slot of their host-written
+// inputs, and the pool's pages a side.
+struct DevicePages {
+    PageDecisionPasses* decisions;
+    PageDrawPasses* draws;
+    uint32_t slot;
+    uint32_t poolPagesPerSide;
+};
+
 // Virtual maps: a page to render this frame, its projection (pageViewProj) and its texels'
 // first corner in the pool.
 struct PageDraw {
@@ -60,13 +71,17 @@ struct FrameSettings {
     bool virtualMaps = false;
     uint32_t pageSize = 0;
     const std::vector<PageDraw>* pages = nullptr;
+    // Pages decided on the device (virtual.deviceDecides): the decisions and the page draws run
+    // in the ScreenSpace phase after the marking, in this frame's commands; `pages` is unused.
+    const DevicePages* devicePages = nullptr;
 };
 
 // What the frame reads but does not declare: this frame's ring slot (written by the host), the
 // distance field (or its stand-in) and the renderer's samplers.
 struct FrameInputs {
     VkBuffer frame, lights, views, params, layerParams;
-    VkBuffer pageTable, pageRequests; // virtual maps' (a small stand-in table otherwise)
+    VkBuffer pageTable, pageRequests;         // virtual maps' (a small stand-in table otherwise)
+    VkBuffer pageRenderList = VK_NULL_HANDLE; // pages decided on the device: what to render
     const vk::Image* field;
     VkSampler nearest, compare, fieldSampler;
 };
@@ -115,7 +130,7 @@ struct FrameResources {
     ResourceId integerPlaceholder = 0, depthPlaceholder = 0, field = 0;
     FilteredBindings filtered{};
     ResourceId frame = 0, lights = 0, views = 0, params = 0, layerParams = 0;
-    ResourceId pageTable = 0, pageRequests = 0;
+    ResourceId pageTable = 0, pageRequests = 0, pageRenderList = 0;
     ResourceId traceList = 0; // checkerboard tracing's (a head alone when it does not run)
     ResourceId vertices = 0, positions = 0; // the scene's, which every draw reads (VertexRead)
     // The map a module calls `name` (shadows::kDepthMap or one of its own).

@@ -3,6 +3,7 @@
 #include "core/fault_injection.h"
 #include "core/projection.h"
 #include "core/virtual_maps.h"
+#include "page_passes.h"
 #include "penumbra/error.h"
 #include "render/distance_field.h"
 #include "render/frame.h"
@@ -60,6 +61,14 @@ void checkVirtualMaps(const vk::Context& ctx, const Scene& scene, const RenderOp
         if (!std::has_single_bit(value))
             throw InputError(key, fmt::format("{} is not a power of two", value));
     };
+    if (v.deviceDecides) {
+        VkPhysicalDeviceFeatures features{};
+        vkGetPhysicalDeviceFeatures(ctx.physicalDevice(), &features);
+        if (!features.shaderClipDistance)
+            throw InputError("virtual.deviceDecides",
+                             "this device lacks shaderClipDistance, which the pages drawn on the "
+                             "device need (set virtual.deviceDecides=0)");
+    }
     powerOfTwo("virtual.size", v.size);
     powerOfTwo("virtual.pageSize", v.pageSize);
     if (v.pageSize > v.size)
@@ -83,6 +92,13 @@ void checkVirtualMaps(const vk::Context& ctx, const Scene& scene, const RenderOp
                                      "device's storage buffers hold {} (maxStorageBufferRange); "
                                      "raise virtual.pageSize or lower virtual.size",
                                      entries, range / sizeof(uint32_t)));
+    if (v.deviceDecides && entries > PAGES_MOST_ENTRIES)
+        throw InputError("virtual.deviceDecides",
+                         fmt::format("its virtual maps need a page table of {} entries; the "
+                                     "device decides at most {} (one dispatch's reach); raise "
+                                     "virtual.pageSize, lower virtual.size or set "
+                                     "virtual.deviceDecides=0",
+                                     entries, PAGES_MOST_ENTRIES));
 }
 
 void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const ShadowCount& shadows) {

@@ -20,6 +20,7 @@
 #include "render/frame.h"
 #include "render/frame_data.h"
 #include "render/frame_prepare.h"
+#include "render/page_draw_passes.h"
 #include "render/renderer_impl.h"
 #include "scene/framing.h"
 #include "virtual_pages.h"
@@ -32,6 +33,7 @@
 #include <array>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <optional>
 
 static_assert(penumbra::kMaxCascades == MAX_CASCADES,
@@ -117,6 +119,14 @@ struct SceneRenderer::Impl {
     std::vector<PageKey> pageRequests;
     std::vector<uint32_t> pagesRendered;
     uint32_t poolPagesPerSide = 0;
+    // Pages decided on the device (virtual.deviceDecides): the passes (made for a pool's pages
+    // and page size), the lights' contents keys they last saw, each slot's settings for the
+    // frame's passes.
+    std::unique_ptr<render::PageDecisionPasses> deviceDecisions;
+    std::unique_ptr<render::PageDrawPasses> deviceDraws;
+    uint32_t devicePageSize = 0;
+    std::map<uint32_t, uint64_t> deviceKeys;
+    std::array<render::DevicePages, kFramesInFlight> devicePages{};
 
     const vk::Context& ctx() const { return renderer.mImpl->ctx; }
     render::FramePipelines& pipelines() { return renderer.mImpl->pipelines; }
@@ -140,6 +150,12 @@ struct SceneRenderer::Impl {
     // made resident, the pages that were not listed for rendering, the slot's page table
     // written. `poolHolds`: the pool kept its contents (else every page is gone).
     void updatePages(const Prepared& p, bool poolHolds);
+    // Pages decided on the device, in prepare: the passes for this pool, room for the frame's
+    // table. In record: the frame's inputs written into its slot (`poolHolds` as updatePages').
+    // After the frame's fence: what it decided, into pageInfo.
+    void reserveDevicePages(const VirtualSettings& v, uint32_t entries);
+    void prepareDevicePages(const Prepared& p, bool poolHolds);
+    void readDevicePages(const Prepared& p);
     // The slot's page table and request buffers, at least `entries` words each.
     void reservePageBuffers(Slot& slot, uint32_t entries);
 };
@@ -282,7 +298,7 @@ void SceneRenderer::repose(const Scene& posedIn) {
     m.visibleDepths.reset();
     m.field.reset(); // traced from the old geometry: built again when a frame needs it
     // Pages keep what no moved, added or removed triangle may draw into.
-    if (m.pageCache)
+    if (m.pageCache || m.deviceDecisions)
         m.movedSinceUpdate.insert(m.movedSinceUpdate.end(), moved.boxes.begin(), moved.boxes.end());
     else
         m.movedSinceUpdate.clear();
@@ -373,6 +389,19 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
         reservePageBuffers(slot, views.tableEntries);
     render::FrameSettings settings = render::frameSettings(o, lights, views, blocks, intermediates);
     settings.pages = &pageDraws;
+    VkBuffer pageTable = slot.pageTable.get(), pageRenderList = VK_NULL_HANDLE;
+    if (const VirtualSettings v = VirtualSettings::of(o.parameters);
+        !views.levels.empty() && v.deviceDecides) {
+        reserveDevicePages(v, views.tableEntries);
+        render::DevicePages& device = devicePages[slotIndex % slots.size()];
+        device = {.decisions = deviceDecisions.get(),
+                  .draws = deviceDraws.get(),
+                  .slot = static_cast<uint32_t>(slotIndex % slots.size()),
+                  .poolPagesPerSide = v.poolPagesPerSide()};
+        settings.devicePages = &device;
+        pageTable = deviceDecisions->table();
+        pageRenderList = deviceDecisions->renderList();
+    }
     return {.result = std::move(result),
             .settings = std::move(settings),
             .inputs = {.frame = slot.frame.get(),
@@ -380,8 +409,9 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
                        .views = slot.views.get(),
                        .params = slot.params.get(),
                        .layerParams = slot.layerParams.get(),
-                       .pageTable = slot.pageTable.get(),
+                       .pageTable = pageTable,
                        .pageRequests = slot.pageRequests.get(),
+                       .pageRenderList = pageRenderList,
                        .field = fieldImage,
                        .nearest = nearest.get(),
                        .compare = compare.get(),
@@ -407,8 +437,78 @@ void SceneRenderer::Impl::reservePageBuffers(Slot& slot, uint32_t entries) {
     slot.markedWith.clear();
 }
 
+void SceneRenderer::Impl::reserveDevicePages(const VirtualSettings& v, uint32_t entries) {
+    const bool fits = deviceDecisions && devicePageSize == v.pageSize &&
+                      deviceDecisions->poolPages() == v.poolPages();
+    // Frames in flight read the passes' buffers: none may be when they go or grow.
+    if (!fits || deviceDecisions->entryCapacity() < entries)
+        VK_CHECK(vkDeviceWaitIdle(ctx().device()));
+    if (!fits) {
+        deviceDecisions = std::make_unique<render::PageDecisionPasses>(
+            ctx(), v.poolPages(),
+            render::PageDecisionOptions{.readable = false,
+                                        .slots = static_cast<uint32_t>(slots.size())});
+        devicePageSize = v.pageSize;
+        deviceKeys.clear();
+        pageCache.reset(); // one of the two decides
+    }
+    if (!deviceDraws)
+        deviceDraws =
+            std::make_unique<render::PageDrawPasses>(ctx(), static_cast<uint32_t>(slots.size()));
+    deviceDecisions->reserve(entries);
+}
+
+void SceneRenderer::Impl::prepareDevicePages(const Prepared& p, bool poolHolds) {
+    const VirtualSettings v = VirtualSettings::of(*p.settings.params);
+    if (!poolHolds) {
+        deviceDecisions->freeAll();
+        deviceKeys.clear();
+    }
+    std::vector<uint32_t> rekeyed;
+    for (const auto& [light, key] : p.contentsKeys) {
+        const auto [at, added] = deviceKeys.emplace(light, key);
+        if (!added && at->second != key)
+            rekeyed.push_back(light);
+        at->second = key;
+    }
+    const std::vector<std::vector<PageRect>> moved =
+        movedSinceUpdate.empty() ? std::vector<std::vector<PageRect>>{}
+                                 : movedPageRects(p.levels, movedSinceUpdate, v.pageSize);
+    movedSinceUpdate.clear();
+    const auto slot = static_cast<uint32_t>(p.slot);
+    deviceDecisions->prepare({.levels = &p.levels,
+                              .lightsRekeyed = rekeyed,
+                              .moved = moved,
+                              .frame = static_cast<uint32_t>(++pageFrame)},
+                             slot);
+    deviceDraws->prepare(p.levels, slot);
+    pageLevels = p.levels;
+    pageInfo.poolPages = v.poolPages();
+    pageInfo.poolBytes = uint64_t{v.poolSize} * v.poolSize * sizeof(float);
+    pageInfo.tableBytes = uint64_t{p.tableEntries} * sizeof(uint32_t);
+    pageInfo.pageSize = v.pageSize;
+    pageInfo.virtualSize = v.size;
+    pageInfo.levelBias = v.levelBias(p.settings.sizes.width, p.settings.sizes.height);
+}
+
+void SceneRenderer::Impl::readDevicePages(const Prepared& p) {
+    const gpu::PageCounts& c = deviceDecisions->counts(static_cast<uint32_t>(p.slot));
+    pageInfo.requested = c.requested;
+    pageInfo.resident = c.resident;
+    pageInfo.rendered = c.rendered;
+    pageInfo.cached = c.cached;
+    pageInfo.dropped = c.dropped;
+    pageInfo.evicted = c.evicted;
+    pageInfo.renderedPerFrame.push_back(c.rendered);
+    pageInfo.droppedFrames += c.dropped > 0;
+}
+
 void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
     const VirtualSettings v = VirtualSettings::of(*p.settings.params);
+    if (deviceDecisions) { // one of the two decides (frames in flight may read its buffers)
+        VK_CHECK(vkDeviceWaitIdle(ctx().device()));
+        deviceDecisions.reset();
+    }
     if (!pageCache || !poolHolds || pageCacheSize != v.pageSize ||
         pageCache->capacity() != v.poolPages()) {
         pageCache = std::make_unique<PageCache>(v.poolPages());
@@ -468,7 +568,9 @@ render::FrameResources SceneRenderer::Impl::record(VkCommandBuffer cmd, const Pr
     const render::FrameResources r =
         render::buildFrame(graph, pipelines(), gpu, p.settings, p.inputs);
     graph.plan(); // the pool's resources exist from here
-    if (p.settings.virtualMaps)
+    if (p.settings.devicePages)
+        prepareDevicePages(p, graph.holdsContents(r.depthMap));
+    else if (p.settings.virtualMaps)
         updatePages(p, graph.holdsContents(r.depthMap));
     timer.reset(cmd);
     graph.record(cmd, &timer);
@@ -500,7 +602,9 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     // Virtual maps: a frame renders the pages the frame before it asked for, so the first
     // warm-up frame asks (its own pixels read whatever the pool held) and the second renders.
     // A frame that continues the last one has none: what it kept must show.
-    const uint32_t warmUps = state.continues ? 0 : prepared.settings.virtualMaps ? 2 : 1;
+    // Pages decided on the device are rendered in the frame that asks for them: one warm-up.
+    const bool lagging = prepared.settings.virtualMaps && !prepared.settings.devicePages;
+    const uint32_t warmUps = state.continues ? 0 : lagging ? 2 : 1;
     for (uint32_t frame = 0; frame < o.frames + warmUps; ++frame) {
         const bool warmUp = frame < warmUps;
         if (progress)
@@ -511,6 +615,8 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         // first touches showed in its GPU times (on lavapipe a 30 ms shadow pass took 560).
         prepared.settings.readback = true;
         ctx.submitAndWait([&](VkCommandBuffer cmd) { m.record(cmd, prepared, timer); });
+        if (prepared.settings.devicePages)
+            m.readDevicePages(prepared);
         if (warmUp)
             continue; // the warm-up frames pay for first-use costs
         std::vector<PassTime> frameTimes = timer.read();
@@ -572,6 +678,8 @@ SceneRenderer::RecordedFrame SceneRenderer::record(VkCommandBuffer_T* cmd,
                       VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                       VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
     m.pageInfo.renderedPerFrame.clear(); // this frame's alone: a viewer's frames never end
+    if (prepared.settings.devicePages)   // its slot's last frame, done: the viewer waited for it
+        m.readDevicePages(prepared);
     m.record(cmd, prepared, timer);
     if (prepared.settings.virtualMaps)
         prepared.result.virtualMaps = m.pageInfo;

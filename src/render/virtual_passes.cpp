@@ -1,10 +1,14 @@
 // Virtual shadow maps' passes (virtual.enabled; render/frame.h, docs/techniques.md "Virtual shadow
-// maps"): the pages the host decided to render this frame (SceneRenderer, from the requests the
-// previous frame's marking left and the page cache, src/core/virtual_maps.h), each cleared and
-// drawn into its place in the pool, before the G-buffer; after it, every visible pixel's page
-// requests, which the host reads back once the frame is done. Both are timed as "shadow": all the
-// shadow-map work of a frame whose pages are all cached is the marking.
+// maps"). Decided on the host: the pages the host decided to render this frame (SceneRenderer,
+// from the requests the previous frame's marking left and the page cache,
+// src/core/virtual_maps.h), each cleared and drawn into its place in the pool, before the
+// G-buffer; after it, every visible pixel's page requests, which the host reads back once the
+// frame is done. Decided on the device (virtual.deviceDecides): after the marking, this frame's
+// requests decided (PageDecisionPasses) and the pages drawn (PageDrawPasses), before the
+// PerLight passes read the pool. All are timed as "shadow": all the shadow-map work of a frame
+// whose pages are all cached is the marking (and, on the device, the decisions).
 #include "render/frame.h"
+#include "render/page_draw_passes.h"
 #include "render/pass_utils.h"
 #include "vk/pipelines.h"
 
@@ -12,18 +16,19 @@ namespace penumbra::render {
 
 void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                           const FrameSettings& s, const FrameInputs& in, const FrameResources& r) {
-    graph.addPass({.name = "shadow",
-                   .cost = CostGroup::ShadowMaps,
-                   .phase = Phase::LightSpace,
-                   .uses = {{r.depthMap, Access::DepthAttachment},
-                            {r.vertices, Access::VertexRead},
-                            {r.positions, Access::VertexRead}},
-                   .record = [&p, &scene, &s, &in, pool = r.depthMap](PassContext& c) {
-                       if (s.pages)
-                           for (const PageDraw& page : *s.pages)
-                               renderPageDepth(c.cmd, p, scene, c.image(pool), page, s.pageSize, s,
-                                               in.nearest);
-                   }});
+    if (!s.devicePages)
+        graph.addPass({.name = "shadow",
+                       .cost = CostGroup::ShadowMaps,
+                       .phase = Phase::LightSpace,
+                       .uses = {{r.depthMap, Access::DepthAttachment},
+                                {r.vertices, Access::VertexRead},
+                                {r.positions, Access::VertexRead}},
+                       .record = [&p, &scene, &s, &in, pool = r.depthMap](PassContext& c) {
+                           if (s.pages)
+                               for (const PageDraw& page : *s.pages)
+                                   renderPageDepth(c.cmd, p, scene, c.image(pool), page, s.pageSize,
+                                                   s, in.nearest);
+                       }});
     // The requests start empty every frame.
     graph.addPass({.name = "",
                    .phase = Phase::ScreenSpace,
@@ -52,6 +57,31 @@ void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
                                groups((s.sizes.height + MARK_BLOCK - 1) / MARK_BLOCK), 1);
              }
          }});
+    if (const DevicePages* device = s.devicePages) {
+        graph.addPass({.name = "shadow",
+                       .cost = CostGroup::ShadowMaps,
+                       .phase = Phase::ScreenSpace,
+                       .uses = {{r.pageRequests, Access::ComputeRead},
+                                {r.pageTable, Access::ComputeWrite},
+                                {r.pageRenderList, Access::ComputeWrite}},
+                       .record = [device = *device, requests = r.pageRequests](PassContext& c) {
+                           device.decisions->record(c.cmd, c.buffer(requests), nullptr,
+                                                    device.slot);
+                       }});
+        graph.addPass({.name = "shadow",
+                       .cost = CostGroup::ShadowMaps,
+                       .phase = Phase::ScreenSpace,
+                       .uses = {{r.pageRenderList, Access::ComputeRead},
+                                {r.depthMap, Access::DepthAttachment},
+                                {r.vertices, Access::VertexRead},
+                                {r.positions, Access::VertexRead}},
+                       .record = [device = *device, &scene, &s, pool = r.depthMap](PassContext& c) {
+                           device.draws->record(c.cmd, *device.decisions, scene, c.image(pool),
+                                                device.poolPagesPerSide, s.constantBias,
+                                                s.slopeBias, device.slot);
+                       }});
+        return;
+    }
     // The host reads them after the frame's fence.
     graph.addPass({.name = "",
                    .phase = Phase::Readback,

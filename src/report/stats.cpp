@@ -1,5 +1,7 @@
 #include "report/stats.h"
 
+#include "core/virtual_maps.h"
+
 #include "report/html_report.h"
 #include "scene/first_picture.h"
 
@@ -188,8 +190,9 @@ nlohmann::json renderStats(const RenderRun& run) {
         lights.push_back(light);
     }
     j["lights"] = lights;
-    // Virtual maps warm up twice: one frame asks for pages, the next renders them.
-    j["frames"] = {{"timed", o.frames}, {"warm_up", run.result.virtualMaps ? 2 : 1}};
+    j["frames"] = {
+        {"timed", o.frames},
+        {"warm_up", run.result.virtualMaps ? VirtualSettings::of(o.parameters).warmUpFrames() : 1}};
     if (run.fps > 0.0) // each timed frame a pose of its own; the first warmed up, the rest not
         j["frames"]["fps"] = run.fps;
     nlohmann::json gpu = nlohmann::json::object(), perFrame = nlohmann::json::object();

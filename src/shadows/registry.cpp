@@ -220,7 +220,14 @@ const std::vector<ParameterInfo>& parameterTable() {
          .description = "virtual.lodBias counts from a 1920x1080 image: a smaller one reads "
                         "half a level finer per halving of its pixels (at most 2 levels, a "
                         "480x270 image), a larger one coarser (at most 1): about the pages a "
-                        "1080p image asks for, at any size"}};
+                        "1080p image asks for, at any size"},
+        {.key = "virtual.deviceDecides",
+         .type = ParameterType::Bool,
+         .defaultValue = 0, // docs/techniques.md: the host's decisions are faster on llvmpipe
+         .unit = "",
+         .description = "decide the pages on the device within the frame (marking, allocation, "
+                        "eviction, page table, indirect page draws: no read-back, no frame of "
+                        "lag); 0: on the host from the requests the frame before read back"}};
     static const std::vector<ParameterInfo> composite{
         {.key = "composite.shadowIntensity",
          .type = ParameterType::Float,

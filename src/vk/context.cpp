@@ -316,6 +316,10 @@ Context::Context(const DeviceOptions& options)
                                              VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
                                          .pNext = &f13,
                                          .hostQueryReset = VK_TRUE};
+    // Optional: clip distances (virtual maps' pages drawn on the device, whose render passes
+    // refuse a device without them).
+    VkPhysicalDeviceFeatures supported{};
+    vkGetPhysicalDeviceFeatures(mPhysical, &supported);
     const VkPhysicalDeviceFeatures2 features{
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
         .pNext = &f12,
@@ -326,7 +330,8 @@ Context::Context(const DeviceOptions& options)
                      // rg32f / rg32ui post-pass outputs; a map whose format follows a parameter
                      // (msm.precision) is written without a format qualifier
                      .shaderStorageImageExtendedFormats = VK_TRUE,
-                     .shaderStorageImageWriteWithoutFormat = VK_TRUE}};
+                     .shaderStorageImageWriteWithoutFormat = VK_TRUE,
+                     .shaderClipDistance = supported.shaderClipDistance}};
     std::vector<const char*> extensions{VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     if (options.canPresent)
         extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
