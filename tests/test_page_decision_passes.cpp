@@ -293,3 +293,39 @@ TEST_F(VirtualTest, EachSlotDecidesWithItsOwnFramesInputs) {
     }
     EXPECT_GT(listed[PAGE_DRAW_ORTHO] + listed[PAGE_DRAW_PERSPECTIVE], 0u);
 }
+
+// Lights past the first word of the re-keyed bits (index 32 on): a re-keyed light 40 loses every
+// page and draws them again; light 1 keeps its own, as the reference says.
+TEST_F(VirtualTest, ReKeyedLightsPastTheFirstWordLoseTheirPages) {
+    const vk::Context& ctx = sharedRenderer().context();
+    const uint32_t poolPages = 300;
+    render::PageDecisionPasses passes(ctx, poolPages);
+    std::vector<PageOwner> owners(poolPages);
+    uint32_t offset = 0;
+    std::vector<VirtualLevel> levels =
+        virtualLevels(kSpot, 1, kField, {0, 2, 0}, small(), {.nearestSurface = 5.0f}, offset);
+    const size_t farFirst = levels.size();
+    const std::vector<VirtualLevel> far =
+        virtualLevels(kSpot, 40, kField, {0, 2, 0}, small(), {.nearestSurface = 5.0f}, offset);
+    levels.insert(levels.end(), far.begin(), far.end());
+    std::vector<uint32_t> requests(offset, 0u);
+    std::fill_n(requests.begin() + levels[0].tableOffset, 50, 1u);
+    std::fill_n(requests.begin() + levels[farFirst].tableOffset, 50, 1u);
+    for (uint32_t frame = 1; frame <= 2; ++frame) {
+        const std::vector<uint32_t> rekeyed =
+            frame == 2 ? std::vector<uint32_t>{40} : std::vector<uint32_t>{};
+        const PageDecisionInputs in{
+            .levels = &levels, .requests = requests, .lightsRekeyed = rekeyed, .frame = frame};
+        const PageDecisions want = decidePages(owners, in);
+        passes.prepare(in);
+        ctx.submitAndWait([&](VkCommandBuffer cmd) { passes.record(cmd); });
+        const PageDecisions got = passes.result();
+        ASSERT_EQ(got.render, want.render) << "frame " << frame;
+        ASSERT_EQ(got.table, want.table) << "frame " << frame;
+        if (frame == 2) {
+            ASSERT_FALSE(got.render.empty());
+            for (const auto& [physical, key] : got.render)
+                EXPECT_EQ(key.light, 40u) << "light 1 keeps its pages";
+        }
+    }
+}

@@ -39,15 +39,19 @@ TEST(ViewerTest, HiddenInterfaceScreenshotIsRendersImage) {
 }
 
 // Virtual shadow maps in the viewer: its frames (two in flight) ask for pages, render them and
-// then reuse them; after a few frames it draws render's picture, for a sun and a point light.
+// then reuse them; after a few frames it draws render's picture, for a sun and a point light,
+// with the pages decided on the host and on the device (each frame in flight with its own slot
+// of the device's inputs).
 TEST(ViewerTest, VirtualMapsDrawRendersImage) {
-    const std::vector<std::vector<std::string>> cases{
-        {"builtin:showcase", "--technique", "pcf", "--width", "320", "--height", "200", "--set",
-         "virtual.enabled=1"},
-        {"builtin:room", "--technique", "hard", "--width", "320", "--height", "240", "--set",
-         "virtual.enabled=1"}};
+    std::vector<std::vector<std::string>> cases;
+    for (const char* decides : {"virtual.deviceDecides=0", "virtual.deviceDecides=1"}) {
+        cases.push_back({"builtin:showcase", "--technique", "pcf", "--width", "320", "--height",
+                         "200", "--set", "virtual.enabled=1", "--set", decides});
+        cases.push_back({"builtin:room", "--technique", "hard", "--width", "320", "--height", "240",
+                         "--set", "virtual.enabled=1", "--set", decides});
+    }
     for (const auto& options : cases) {
-        SCOPED_TRACE(options[0]);
+        SCOPED_TRACE(options[0] + " " + options.back());
         const Rgb rendered = renderImage(options, "render-virtual");
         std::vector<std::string> viewOptions = options;
         viewOptions.push_back("--hide-ui");

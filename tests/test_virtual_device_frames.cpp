@@ -217,8 +217,9 @@ TEST_F(VirtualTest, OnTheDeviceAMovedCasterRendersOnlyThePagesItCovers) {
     }
 }
 
-// A pool too small for the view (64 pages): a camera that moves evicts the pages it no longer
-// asks for, least recently used first, rather than dropping every new one.
+// A pool too small for the view (64 pages): a still view keeps the pages it holds (the clear
+// draws as many squares as pages rendered, not as pages missing); a camera that moves evicts the
+// pages it no longer asks for, least recently used first, rather than dropping every new one.
 TEST_F(VirtualTest, OnTheDeviceAFullPoolEvictsWhatTheViewLeft) {
     const Scene s = restingObjects(sharpSpot());
     const RenderOptions o = options({{"virtual.enabled", "1"},
@@ -228,6 +229,19 @@ TEST_F(VirtualTest, OnTheDeviceAFullPoolEvictsWhatTheViewLeft) {
     SceneRenderer scene(sharedRenderer(), s);
     const RenderResult before = scene.render(o);
     ASSERT_EQ(before.virtualMaps->resident, 64u);
+    // Still: the pool holds what this view asked for first; the rest is dropped, nothing drawn
+    // or cleared again.
+    const RenderResult still = scene.render(o, {.continues = true});
+    EXPECT_GT(still.virtualMaps->dropped, 0u);
+    EXPECT_EQ(still.virtualMaps->rendered, 0u);
+    EXPECT_TRUE(sameBits(still.visibility[0], before.visibility[0]));
+    // The host's decisions hold the same pages in the same places (the same rules).
+    RenderOptions onHost = o;
+    onHost.parameters.set("virtual.deviceDecides", "0");
+    SceneRenderer host(sharedRenderer(), s);
+    const RenderResult hosted = host.render(onHost);
+    EXPECT_EQ(hosted.virtualMaps->dropped, still.virtualMaps->dropped);
+    EXPECT_LE(differing(still, hosted) * 1000, covered(hosted));
     Camera moved = s.camera("");
     moved.position += glm::vec3(1.5f, 0.0f, 0.0f);
     moved.target += glm::vec3(1.5f, 0.0f, 0.0f);
