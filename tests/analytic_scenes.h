@@ -91,6 +91,21 @@ inline Scene restingObjects(const Light& light) {
     return scene;
 }
 
+// restingObjects with a small ball beside them, before and after it slid a little (the scene's
+// bounds unchanged): what a virtual map's moved-caster tests move.
+struct SlidBall {
+    Scene before, after;
+};
+inline SlidBall slidBall(const Light& light) {
+    SlidBall s{.before = restingObjects(light)};
+    const size_t firstBallVertex = s.before.vertices.size();
+    MeshBuilder(s.before).sphere({-1.2f, 0.9f, -1.0f}, 0.25f, 1);
+    s.after = s.before;
+    for (size_t v = firstBallVertex; v < s.after.vertices.size(); ++v)
+        s.after.vertices[v].position += glm::vec3(0.25f, 0.0f, 0.1f);
+    return s;
+}
+
 // The soft techniques' acceptance lights over sphereOverPlane: a spot of `radius` from above and
 // aside, a sun of `degrees`, a bulb of `radius` low beside the sphere.
 inline Light acceptanceSpot(float radius) {

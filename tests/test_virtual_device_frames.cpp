@@ -186,12 +186,7 @@ TEST_F(VirtualTest, OnTheDeviceAMoveShowsInItsFirstFrame) {
 // and shows what the first did.
 TEST_F(VirtualTest, OnTheDeviceAMovedCasterRendersOnlyThePagesItCovers) {
     for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
-        Scene before = restingObjects(light);
-        const size_t firstBallVertex = before.vertices.size();
-        MeshBuilder(before).sphere({-1.2f, 0.9f, -1.0f}, 0.25f, 1);
-        Scene after = before;
-        for (size_t v = firstBallVertex; v < after.vertices.size(); ++v)
-            after.vertices[v].position += glm::vec3(0.25f, 0.0f, 0.1f);
+        const auto [before, after] = slidBall(light);
         SceneRenderer scene(sharedRenderer(), before);
         const RenderOptions o = options(kDevice);
         const RenderResult old = scene.render(o);

@@ -222,12 +222,7 @@ TEST_F(VirtualTest, AMovedLightRendersItsOwnPagesAgain) {
 // one's.
 TEST_F(VirtualTest, AMovedCasterRendersOnlyThePagesItCovers) {
     for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
-        Scene before = restingObjects(light);
-        const size_t firstBallVertex = before.vertices.size();
-        MeshBuilder(before).sphere({-1.2f, 0.9f, -1.0f}, 0.25f, 1);
-        Scene after = before;
-        for (size_t v = firstBallVertex; v < after.vertices.size(); ++v)
-            after.vertices[v].position += glm::vec3(0.25f, 0.0f, 0.1f);
+        const auto [before, after] = slidBall(light);
         ASSERT_EQ(after.bounds().min, before.bounds().min);
         ASSERT_EQ(after.bounds().max, before.bounds().max);
         SceneRenderer scene(sharedRenderer(), before);
