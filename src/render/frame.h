@@ -144,6 +144,14 @@ struct FrameResources {
                         std::span<const ImageDecl> decls);
 };
 
+// What a pass that draws the casters into the light's depth map declares: the map as its depth
+// attachment, the vertices and positions it reads (the light's depth pass, the pages' draws).
+inline std::vector<Use> casterDrawUses(const FrameResources& r) {
+    return {{r.depthMap, Access::DepthAttachment},
+            {r.vertices, Access::VertexRead},
+            {r.positions, Access::VertexRead}};
+}
+
 // The screen passes the technique adds under these settings (shadows::ScreenPassDecl): a
 // checkerboard's fill left out with the viewer's intermediates, which want every pixel traced.
 std::vector<shadows::ScreenPassDecl> screenPassesOf(const FrameSettings& s);

@@ -602,9 +602,12 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     // Virtual maps: a frame renders the pages the frame before it asked for, so the first
     // warm-up frame asks (its own pixels read whatever the pool held) and the second renders.
     // A frame that continues the last one has none: what it kept must show.
-    // Pages decided on the device are rendered in the frame that asks for them: one warm-up.
-    const bool lagging = prepared.settings.virtualMaps && !prepared.settings.devicePages;
-    const uint32_t warmUps = state.continues ? 0 : lagging ? 2 : 1;
+    // Pages decided on the device are rendered in the frame that asks for them: one warm-up
+    // (VirtualSettings::warmUpFrames, which stats.json reports).
+    const uint32_t warmUps = state.continues ? 0
+                             : prepared.settings.virtualMaps
+                                 ? VirtualSettings::of(o.parameters).warmUpFrames()
+                                 : 1;
     for (uint32_t frame = 0; frame < o.frames + warmUps; ++frame) {
         const bool warmUp = frame < warmUps;
         if (progress)

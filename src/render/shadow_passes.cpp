@@ -193,9 +193,7 @@ void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene
     graph.addPass({.name = "shadow",
                    .cost = CostGroup::ShadowMaps,
                    .phase = Phase::LightSpace,
-                   .uses = {{r.depthMap, Access::DepthAttachment},
-                            {r.vertices, Access::VertexRead},
-                            {r.positions, Access::VertexRead}},
+                   .uses = casterDrawUses(r),
                    .record = [&p, &scene, &s, &in, map = r.depthMap](PassContext& c) {
                        for (uint32_t v = 0; v < s.views.size(); ++v)
                            renderLightDepth(

@@ -20,9 +20,7 @@ void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
         graph.addPass({.name = "shadow",
                        .cost = CostGroup::ShadowMaps,
                        .phase = Phase::LightSpace,
-                       .uses = {{r.depthMap, Access::DepthAttachment},
-                                {r.vertices, Access::VertexRead},
-                                {r.positions, Access::VertexRead}},
+                       .uses = casterDrawUses(r),
                        .record = [&p, &scene, &s, &in, pool = r.depthMap](PassContext& c) {
                            if (s.pages)
                                for (const PageDraw& page : *s.pages)
@@ -58,6 +56,8 @@ void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
              }
          }});
     if (const DevicePages* device = s.devicePages) {
+        std::vector<Use> drawUses = casterDrawUses(r);
+        drawUses.push_back({r.pageRenderList, Access::ComputeRead});
         graph.addPass({.name = "shadow",
                        .cost = CostGroup::ShadowMaps,
                        .phase = Phase::ScreenSpace,
@@ -71,10 +71,7 @@ void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
         graph.addPass({.name = "shadow",
                        .cost = CostGroup::ShadowMaps,
                        .phase = Phase::ScreenSpace,
-                       .uses = {{r.pageRenderList, Access::ComputeRead},
-                                {r.depthMap, Access::DepthAttachment},
-                                {r.vertices, Access::VertexRead},
-                                {r.positions, Access::VertexRead}},
+                       .uses = std::move(drawUses),
                        .record = [device = *device, &scene, &s, pool = r.depthMap](PassContext& c) {
                            device.draws->record(c.cmd, *device.decisions, scene, c.image(pool),
                                                 device.poolPagesPerSide, s.constantBias,
