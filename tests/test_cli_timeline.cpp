@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -563,6 +564,8 @@ TEST(CliTimeline, RenderFpsDrawsEachPoseAsOneFrameAfterTheLast) {
     // The scene's sun: nothing moved under it, its pages stay.
     EXPECT_GT(pages["pages_cached"].get<int>(), 0) << pages.dump();
     EXPECT_LT(pages["pages_cached"].get<int>(), pages["pages_resident"].get<int>());
+    EXPECT_EQ(pages["frames_short_of_pool"].get<int>(), 0) << pages.dump();
+    EXPECT_EQ(r.err.find("warning: the virtual pool"), std::string::npos) << r.err;
 }
 
 // Under still lights a walking figure's frames render again only the pages under where it was
@@ -581,6 +584,44 @@ TEST(CliTimeline, AWalkingFigureRendersOnlyThePagesItCrosses) {
         EXPECT_LT(rendered * 2, pages["pages_resident"].get<int>()) << pages.dump();
     }
     EXPECT_GT(pages["pages_cached"].get<int>(), 0) << pages.dump();
+}
+
+// A pool too small for the poses: one warning after the last pose (not one a pose, not none),
+// and stats.json counts every frame short of pages: the first pose's second warm-up (the first
+// only asks) and each pose's frame.
+TEST(CliTimeline, APoolTooSmallWhilePlayingIsSaidOnce) {
+    const fs::path out = outputScratch("fps-walker-small-pool");
+    const ProcessResult r = runCli({"render",   "builtin:walker",
+                                    "-o",       out.string(),
+                                    "--width",  "96",
+                                    "--height", "72",
+                                    "--format", "pfm",
+                                    "--fps",    "30",
+                                    "--frames", "3",
+                                    "--set",    "virtual.enabled=1",
+                                    "--set",    "virtual.pageSize=32",
+                                    "--set",    "virtual.poolSize=256"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string said = "warning: the virtual pool holds 64 pages; ";
+    const size_t at = r.err.find(said);
+    ASSERT_NE(at, std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find(said, at + 1), std::string::npos) << "said once: " << r.err;
+    EXPECT_NE(r.err.find("raise virtual.poolSize", at), std::string::npos) << r.err;
+    const J pages = J::parse(slurp(out / "stats.json"))["virtual_maps"];
+    EXPECT_EQ(pages["frames_short_of_pool"].get<int>(), 4) << pages.dump();
+    EXPECT_GT(pages["pages_dropped"].get<int>(), 0) << pages.dump();
+    const std::string counts = "; 4 frames asked for more (at most ";
+    const size_t most = r.err.find(counts, at);
+    ASSERT_EQ(most, at + said.size() - 2) << r.err;
+    // The most any frame asked for and dropped: the last frame's at least.
+    unsigned asked = 0, dropped = 0;
+    ASSERT_EQ(
+        std::sscanf(r.err.c_str() + most + counts.size(), "%u pages, %u of them", &asked, &dropped),
+        2)
+        << r.err;
+    EXPECT_GE(asked, pages["pages_requested"].get<unsigned>()) << r.err;
+    EXPECT_GE(dropped, pages["pages_dropped"].get<unsigned>()) << r.err;
+    EXPECT_LT(dropped, asked) << r.err;
 }
 
 // Only a camera Penumbra framed is held at the first frame's: the file's own camera moves with

@@ -5,6 +5,7 @@
 // only those, a caster that moves the pages under it), a pool too small for the view, and the frame
 // without them as it was.
 #include "analytic_scenes.h"
+#include "penumbra/error.h"
 #include "truth_fixture.h"
 
 #include <fmt/format.h>
@@ -307,4 +308,25 @@ TEST_F(VirtualTest, OffTheFrameIsAsItWas) {
     EXPECT_EQ(sum(again.virtualMaps->renderedPerFrame), again.virtualMaps->resident)
         << "a new pool holds nothing";
     EXPECT_TRUE(sameBits(again.visibility[0], pages.visibility[0]));
+}
+
+// A pool past the device's memory (PENUMBRA_DEVICE_MEMORY: what the checks assume) is refused
+// naming virtual.poolSize and the pool's texels: with virtual maps the shadow memory is the
+// pool's, whatever --shadow-map-size says. The same render without them fits.
+TEST_F(VirtualTest, APoolPastTheDevicesMemoryIsRefusedNamingThePool) {
+    const Scene s = restingObjects(sharpSpot());
+    const RenderOptions pooled =
+        options(Technique::Hard, {{"virtual.enabled", "1"}, {"virtual.poolSize", "16384"}});
+    setenv("PENUMBRA_DEVICE_MEMORY", std::to_string(512u << 20).c_str(), 1);
+    std::string message;
+    try {
+        sharedRenderer().check(s, pooled);
+    } catch (const InputError& e) {
+        message = e.what();
+    }
+    EXPECT_NO_THROW(sharedRenderer().check(s, options(Technique::Hard, {})));
+    unsetenv("PENUMBRA_DEVICE_MEMORY");
+    EXPECT_EQ(message.rfind("virtual.poolSize: hard needs ", 0), 0u) << message;
+    EXPECT_NE(message.find("(1.00 GiB for a virtual pool of 16384^2 texels)"), std::string::npos)
+        << message;
 }

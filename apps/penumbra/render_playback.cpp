@@ -39,6 +39,8 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
     PlayedFrames played;
     std::vector<PassTime> passes;
     std::vector<uint32_t> pagesPerFrame;
+    // A pool too small for a pose: said once, after the last (the poses render quietly).
+    uint32_t framesShort = 0, mostRequested = 0, mostDropped = 0;
     for (uint32_t k = 0; k < options.frames; ++k) {
         const double exact = start + static_cast<double>(k) / in.fps;
         posed.time = std::strtod(fmt::format("{:.12g}", exact).c_str(), nullptr);
@@ -55,16 +57,27 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
             played.uploaded->repose(played.scene);
             played.result = played.uploaded->render(one, {.continues = true});
         }
-        if (played.result.virtualMaps) // every pose's frames, from the first warm-up on
-            pagesPerFrame.insert(pagesPerFrame.end(),
-                                 played.result.virtualMaps->renderedPerFrame.begin(),
-                                 played.result.virtualMaps->renderedPerFrame.end());
+        if (const auto& pages = played.result.virtualMaps) { // every pose's frames, from the
+            pagesPerFrame.insert(pagesPerFrame.end(),        // first warm-up on
+                                 pages->renderedPerFrame.begin(), pages->renderedPerFrame.end());
+            framesShort += pages->droppedFrames;
+            mostRequested = std::max(mostRequested, pages->requested);
+            mostDropped = std::max(mostDropped, pages->dropped);
+        }
         appendFrameTimes(passes, played.result.passes, k); // each pose one frame
     }
     setMedians(passes);
     played.result.passes = std::move(passes);
-    if (played.result.virtualMaps)
-        played.result.virtualMaps->renderedPerFrame = std::move(pagesPerFrame);
+    if (auto& pages = played.result.virtualMaps) {
+        pages->renderedPerFrame = std::move(pagesPerFrame);
+        pages->droppedFrames = framesShort;
+        if (framesShort > 0)
+            std::fprintf(stderr,
+                         "penumbra: warning: the virtual pool holds %u pages; %u frames asked for "
+                         "more (at most %u pages, %u of them read coarser pages; raise "
+                         "virtual.poolSize)\n",
+                         pages->poolPages, framesShort, mostRequested, mostDropped);
+    }
     return played;
 }
 

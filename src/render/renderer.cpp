@@ -157,14 +157,21 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
     const auto shadowBytes = static_cast<double>(bytes.shadowMaps);
     const double need = static_cast<double>(bytes.screen) + shadowBytes;
     const double have = static_cast<double>(deviceMemoryForChecks(ctx.deviceLocalHeapBytes()));
-    if (need > 0.8 * have)
-        throw InputError(shadowBytes > pixels * 100 ? "--shadow-map-size" : "--width",
-                         fmt::format("{} needs {:.2f} GiB of device memory ({:.2f} GiB for {} "
-                                     "shadow views of {} texels); a render may use {:.2f} GiB, "
-                                     "80% of the device's {:.2f} GiB",
+    if (need > 0.8 * have) {
+        // With virtual maps the shadow bytes are the pool's, whatever --shadow-map-size says.
+        const VirtualSettings v = VirtualSettings::of(o.parameters);
+        const bool pooled = v.enabled && module.readsVirtualMaps;
+        const std::string shadowWhat =
+            pooled ? fmt::format("a virtual pool of {}^2 texels", v.poolSize)
+                   : fmt::format("{} shadow views of {} texels", shadows.views, o.shadowMapSize);
+        const char* shadowOption = pooled ? "virtual.poolSize" : "--shadow-map-size";
+        throw InputError(shadowBytes > pixels * 100 ? shadowOption : "--width",
+                         fmt::format("{} needs {:.2f} GiB of device memory ({:.2f} GiB for {}); "
+                                     "a render may use {:.2f} GiB, 80% of the device's {:.2f} GiB",
                                      techniqueName(o.technique), need / (1 << 30),
-                                     shadowBytes / (1 << 30), shadows.views, o.shadowMapSize,
-                                     0.8 * have / (1 << 30), have / (1 << 30)));
+                                     shadowBytes / (1 << 30), shadowWhat, 0.8 * have / (1 << 30),
+                                     have / (1 << 30)));
+    }
 }
 
 } // namespace
