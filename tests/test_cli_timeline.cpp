@@ -610,7 +610,7 @@ TEST(CliTimeline, APoolTooSmallWhilePlayingIsSaidOnce) {
     const J pages = J::parse(slurp(out / "stats.json"))["virtual_maps"];
     EXPECT_EQ(pages["frames_short_of_pool"].get<int>(), 4) << pages.dump();
     EXPECT_GT(pages["pages_dropped"].get<int>(), 0) << pages.dump();
-    const std::string counts = "; 4 frames asked for more (at most ";
+    const std::string counts = "; 4 of 5 frames (warm-ups included) asked for more (at most ";
     const size_t most = r.err.find(counts, at);
     ASSERT_EQ(most, at + said.size() - 2) << r.err;
     // The most any frame asked for and dropped: the last frame's at least.
@@ -622,6 +622,63 @@ TEST(CliTimeline, APoolTooSmallWhilePlayingIsSaidOnce) {
     EXPECT_GE(asked, pages["pages_requested"].get<unsigned>()) << r.err;
     EXPECT_GE(dropped, pages["pages_dropped"].get<unsigned>()) << r.err;
     EXPECT_LT(dropped, asked) << r.err;
+}
+
+// Every command that renders many frames quietly says a pool too small for them once, after
+// them (per row where it has rows): compare --timeline and --camera-path, and bench per run.
+TEST(CliTimeline, APoolTooSmallIsSaidOnceByEveryCommandOfManyFrames) {
+    const fs::path dir = outputScratch("small-pool-commands");
+    const std::vector<std::string> small = {"--set",    "virtual.enabled=1",
+                                            "--set",    "virtual.pageSize=32",
+                                            "--set",    "virtual.poolSize=256",
+                                            "--width",  "64",
+                                            "--height", "48"};
+    const auto run = [&](std::vector<std::string> args) {
+        args.insert(args.end(), small.begin(), small.end());
+        const ProcessResult r = runCli(args);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return r.err;
+    };
+    const auto times = [](const std::string& text, const std::string& what) {
+        size_t n = 0;
+        for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+            ++n;
+        return n;
+    };
+    const std::string pool = "the virtual pool holds 64 pages; ";
+    const std::string timeline =
+        run({"compare", "builtin:walker", "-o", (dir / "timeline").string(), "--samples", "1",
+             "--format", "pfm", "--techniques", "hard,pcf[box3]", "--timeline", "0:0.1:0.05"});
+    EXPECT_EQ(times(timeline, "warning: hard: " + pool), 1u) << timeline;
+    EXPECT_EQ(times(timeline, "warning: pcf[box3]: " + pool), 1u) << timeline;
+    // Every frame a row rendered counts: each of the three still ones (a fresh render: its
+    // second warm-up and its frame at least) and the three in motion.
+    const size_t said = timeline.find("warning: hard: " + pool);
+    unsigned frames = 0, rendered = 0;
+    ASSERT_NE(said, std::string::npos);
+    ASSERT_EQ(std::sscanf(timeline.c_str() + said + ("warning: hard: " + pool).size(),
+                          "%u of %u frames (warm-ups included) asked for more", &frames, &rendered),
+              2)
+        << timeline;
+    EXPECT_GE(frames, 2u * 3u + 3u) << timeline;
+    EXPECT_LE(frames, rendered) << timeline;
+    // Said for the row once: not also for the view the timeline starts from.
+    EXPECT_EQ(times(timeline, pool), 2u) << timeline;
+    const std::string path = run({"compare", "builtin:field", "-o", (dir / "path").string(),
+                                  "--samples", "1", "--format", "pfm", "--techniques", "hard",
+                                  "--camera-path", "dolly", "--path-frames", "3"});
+    EXPECT_EQ(times(path, "warning: hard: " + pool), 1u) << path;
+    EXPECT_EQ(times(path, pool), 1u) << path;
+    const std::string bench = run({"bench", "builtin:field", "-o", (dir / "bench.json").string(),
+                                   "--techniques", "hard,pcf", "--frames", "2"});
+    EXPECT_EQ(times(bench, "warning: " + pool), 2u) << bench;
+    // A roomy pool says nothing.
+    const ProcessResult roomy =
+        runCli({"compare", "builtin:walker", "-o", (dir / "roomy").string(), "--samples", "1",
+                "--format", "pfm", "--techniques", "hard", "--timeline", "0:0.1:0.05", "--width",
+                "64", "--height", "48", "--set", "virtual.enabled=1"});
+    EXPECT_EQ(roomy.exitCode, 0) << roomy.err;
+    EXPECT_EQ(roomy.err.find("virtual pool"), std::string::npos) << roomy.err;
 }
 
 // Only a camera Penumbra framed is held at the first frame's: the file's own camera moves with

@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cstdio>
 #include <random>
 
 using namespace penumbra;
@@ -60,6 +63,51 @@ bool drawsInto(const VirtualLevel& level, const PageKey& page, const Bounds& box
     return lo.x <= edge && lo.y <= edge && hi.x >= -edge && hi.y >= -edge;
 }
 
+// Whether `triangle` may draw into `page` of `level`, from the page's own projection: the
+// triangle of its projected corners meets the page widened by `texels` (separating axes: the
+// square's two, the triangle's three edge normals). A corner behind a perspective eye: as its
+// box.
+bool drawsInto(const VirtualLevel& level, const PageKey& page, const MovedTriangle& triangle,
+               double texels) {
+    const glm::dmat4 m(pageViewProj(level, page.page - level.firstPage));
+    std::array<glm::dvec2, 3> p;
+    Bounds box;
+    for (size_t k = 0; k < 3; ++k) {
+        const glm::dvec4 clip = m * glm::dvec4(glm::dvec3(triangle.corners[k]), 1.0);
+        box.grow(triangle.corners[k]);
+        if (level.projection.perspective && clip.w <= 0.0)
+            return drawsInto(level, page, box, texels);
+        p[k] = glm::dvec2(clip) / clip.w;
+    }
+    const double edge = 1.0 + 2.0 * texels / small().pageSize;
+    for (int axis = 0; axis < 2; ++axis) {
+        const double lo = std::min({p[0][axis], p[1][axis], p[2][axis]});
+        const double hi = std::max({p[0][axis], p[1][axis], p[2][axis]});
+        if (lo > edge || hi < -edge)
+            return false;
+    }
+    for (size_t k = 0; k < 3; ++k) {
+        const glm::dvec2 d = p[(k + 1) % 3] - p[k];
+        const glm::dvec2 normal(-d.y, d.x);
+        double lo = 1e300, hi = -1e300;
+        for (const glm::dvec2& q : p) {
+            lo = std::min(lo, glm::dot(normal, q));
+            hi = std::max(hi, glm::dot(normal, q));
+        }
+        const double reach = edge * (std::abs(normal.x) + std::abs(normal.y)); // the square's
+        if (lo > reach || hi < -reach)
+            return false;
+    }
+    return true;
+}
+
+Bounds boundsOf(const MovedTriangle& t) {
+    Bounds b;
+    for (const glm::vec3& c : t.corners)
+        b.grow(c);
+    return b;
+}
+
 // A cache that holds every page of `levels` and of `elsewhere` (a sun's windows for another
 // camera: pages kept past the window's edge).
 PageCache everyPage(const std::vector<VirtualLevel>& levels,
@@ -96,6 +144,14 @@ bool sameBox(const Bounds& a, const Bounds& b) {
     return a.min == b.min && a.max == b.max;
 }
 
+// Triangle t of `s`, its corners in order.
+bool sameTriangle(const MovedTriangle& m, const Scene& s, size_t t) {
+    for (size_t k = 0; k < 3; ++k)
+        if (m.corners[k] != s.vertices[s.indices[3 * t + k]].position)
+            return false;
+    return true;
+}
+
 // A moved sphere: each of its triangles bounded where it was, then where it is, in order; the
 // floor in none, and nothing between the two places (the sweep).
 TEST(MovedCasters, EachMovedTriangleIsBoundedWhereItWasAndWhereItIs) {
@@ -107,9 +163,12 @@ TEST(MovedCasters, EachMovedTriangleIsBoundedWhereItWasAndWhereItIs) {
     const MovedCasters m = movedCasters(before, after);
     const size_t sphereTriangles = before.triangleCount() - 2;
     ASSERT_EQ(m.boxes.size(), 2 * sphereTriangles);
+    ASSERT_EQ(m.triangles.size(), m.boxes.size());
     for (size_t t = 2; t < before.triangleCount(); ++t) {
         EXPECT_TRUE(sameBox(m.boxes[2 * (t - 2)], triangleBounds(before, t))) << t;
         EXPECT_TRUE(sameBox(m.boxes[2 * (t - 2) + 1], triangleBounds(after, t))) << t;
+        EXPECT_TRUE(sameTriangle(m.triangles[2 * (t - 2)], before, t)) << t;
+        EXPECT_TRUE(sameTriangle(m.triangles[2 * (t - 2) + 1], after, t)) << t;
     }
     const glm::vec3 between = boundsOf(before, kFloorVertices).center() + 0.5f * step;
     for (const Bounds& b : m.boxes) {
@@ -127,8 +186,11 @@ TEST(MovedCasters, ASceneFromOrToNothingIsBoundedTriangleByTriangle) {
         const MovedCasters m =
             appears ? movedCasters(nothing, scene) : movedCasters(scene, nothing);
         ASSERT_EQ(m.boxes.size(), scene.triangleCount()) << appears;
-        for (size_t t = 0; t < scene.triangleCount(); ++t)
+        ASSERT_EQ(m.triangles.size(), scene.triangleCount()) << appears;
+        for (size_t t = 0; t < scene.triangleCount(); ++t) {
             EXPECT_TRUE(sameBox(m.boxes[t], triangleBounds(scene, t))) << appears << " " << t;
+            EXPECT_TRUE(sameTriangle(m.triangles[t], scene, t)) << appears << " " << t;
+        }
     }
     EXPECT_TRUE(movedCasters(nothing, nothing).boxes.empty());
 }
@@ -234,6 +296,56 @@ TEST(MovedCasters, ThePagesDroppedAreThoseTheBoxDrawsInto) {
     }
 }
 
+// With its triangle, a box drops exactly the pages the triangle itself may draw into: long thin
+// triangles across many pages (a rod, a limb) drop far fewer than their boxes.
+TEST(MovedCasters, ThePagesDroppedAreThoseTheTriangleDrawsInto) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> across(-12.0f, 12.0f), reach(-2.0f, 2.0f),
+        thin(-0.05f, 0.05f);
+    size_t allTriangles = 0, allBoxes = 0;
+    for (const Light& light : {kSun, kSpot, kPoint}) {
+        const std::vector<VirtualLevel> levels = levelsOf(light, {4, 2, 1});
+        const std::vector<VirtualLevel> elsewhere = levelsOf(light, {-9, 2, 14});
+        size_t dropped = 0, kept = 0, triangleDropped = 0, boxDropped = 0;
+        for (int i = 0; i < 8; ++i) {
+            const glm::vec3 a{across(rng), 0.3f * std::abs(across(rng)), across(rng)};
+            const glm::vec3 b = a + glm::vec3{reach(rng), reach(rng), reach(rng)};
+            const MovedTriangle triangle{
+                .corners = {a, b, a + glm::vec3{thin(rng), thin(rng), thin(rng)}}};
+            const Bounds box = boundsOf(triangle);
+            PageCache cache = everyPage(levels, elsewhere);
+            PageCache byBox = cache;
+            const uint32_t resident = cache.resident();
+            const uint32_t n =
+                dropMovedPages(cache, levels, {&box, 1}, small().pageSize, {&triangle, 1});
+            EXPECT_EQ(cache.resident(), resident - n);
+            triangleDropped += n;
+            boxDropped += dropMovedPages(byBox, levels, {&box, 1}, small().pageSize);
+            for (const auto* set : {&levels, &elsewhere})
+                for (const VirtualLevel& l : *set)
+                    for (uint32_t e = 0; e < l.tableEntries(); ++e) {
+                        const PageKey k = pageKeyOf(l, l.tableOffset + e);
+                        const bool gone = !cache.physicalOf(k);
+                        if (drawsInto(l, k, triangle, 1.0)) {
+                            EXPECT_TRUE(gone) << int(light.type) << " level " << l.level;
+                        } else if (!drawsInto(l, k, triangle, 1.5)) {
+                            EXPECT_FALSE(gone) << int(light.type) << " level " << l.level;
+                        }
+                        EXPECT_TRUE(!gone || byBox.physicalOf(k) == std::nullopt)
+                            << "a triangle's pages are some of its box's";
+                        (gone ? dropped : kept) += 1;
+                    }
+        }
+        std::printf("light %d: the triangles drop %zu pages, their boxes %zu\n", int(light.type),
+                    triangleDropped, boxDropped);
+        EXPECT_GT(dropped, 20u) << int(light.type);
+        EXPECT_GT(kept, 10 * dropped) << int(light.type);
+        EXPECT_LE(triangleDropped, boxDropped) << int(light.type);
+        allTriangles += triangleDropped, allBoxes += boxDropped;
+    }
+    EXPECT_LT(allTriangles * 2, allBoxes) << "long thin triangles: half their boxes' pages at most";
+}
+
 // A box round a point light is partly behind every face's eye: every page goes. One wholly behind
 // a spot draws nothing: every page stays. A page of a level the frame does not have goes.
 TEST(MovedCasters, BoxesBehindTheEyeAndLevelsNotThere) {
@@ -290,26 +402,37 @@ TEST(MovedCasters, ManyBoxesDropWhatEachBoxDropsAlone) {
                 return beside[i][0].wholeLevel || k.page != beside[i][0].lo;
             return unit(rng) < 0.6f;
         });
-        PageCache together = held;
-        dropMovedPages(together, levels, boxes, small().pageSize);
-        std::vector<PageCache> alone;
-        for (const Bounds& box : boxes) {
-            alone.push_back(held);
-            dropMovedPages(alone.back(), levels, {&box, 1}, small().pageSize);
+        // And the same boxes with a triangle each (one across the box's diagonal).
+        std::vector<MovedTriangle> triangles;
+        for (const Bounds& b : boxes)
+            triangles.push_back({.corners = {b.min, b.max, glm::vec3(b.min.x, b.max.y, b.min.z)}});
+        for (const bool byTriangle : {false, true}) {
+            const std::span<const MovedTriangle> with =
+                byTriangle ? std::span<const MovedTriangle>(triangles)
+                           : std::span<const MovedTriangle>();
+            PageCache together = held;
+            dropMovedPages(together, levels, boxes, small().pageSize, with);
+            std::vector<PageCache> alone;
+            for (size_t b = 0; b < boxes.size(); ++b) {
+                alone.push_back(held);
+                dropMovedPages(alone.back(), levels, {&boxes[b], 1}, small().pageSize,
+                               byTriangle ? with.subspan(b, 1) : with);
+            }
+            size_t gone = 0, stayed = 0;
+            for (uint32_t physical = 0; physical < held.capacity(); ++physical) {
+                const std::optional<PageKey> k = held.keyOf(physical);
+                if (!k)
+                    continue;
+                const bool anyAlone =
+                    std::any_of(alone.begin(), alone.end(),
+                                [&](const PageCache& c) { return !c.keyOf(physical); });
+                EXPECT_EQ(!together.keyOf(physical), anyAlone)
+                    << int(light.type) << " level " << k->level << " page " << k->page.x << ","
+                    << k->page.y << (byTriangle ? " by triangle" : "");
+                (anyAlone ? gone : stayed) += 1;
+            }
+            EXPECT_GT(gone, 5u) << int(light.type);
+            EXPECT_GT(stayed, gone) << int(light.type);
         }
-        size_t gone = 0, stayed = 0;
-        for (uint32_t physical = 0; physical < held.capacity(); ++physical) {
-            const std::optional<PageKey> k = held.keyOf(physical);
-            if (!k)
-                continue;
-            const bool anyAlone = std::any_of(
-                alone.begin(), alone.end(), [&](const PageCache& c) { return !c.keyOf(physical); });
-            EXPECT_EQ(!together.keyOf(physical), anyAlone)
-                << int(light.type) << " level " << k->level << " page " << k->page.x << ","
-                << k->page.y;
-            (anyAlone ? gone : stayed) += 1;
-        }
-        EXPECT_GT(gone, 5u) << int(light.type);
-        EXPECT_GT(stayed, gone) << int(light.type);
     }
 }

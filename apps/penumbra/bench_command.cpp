@@ -145,7 +145,11 @@ int runBench(const BenchArgs& args, const GlobalOptions& global) {
         }
         std::fprintf(stderr, "penumbra: %s\n", label.c_str());
         const RenderOptions o = optionsOf(r);
-        const RenderResult result = uploaded.render(o);
+        // Quiet but for its warnings (a virtual pool too small for the view).
+        const RenderResult result = uploaded.render(o, [&](const std::string& said) {
+            if (said.starts_with("warning: "))
+                std::fprintf(stderr, "penumbra: %s: %s\n", label.c_str(), said.c_str());
+        });
         measureRun(r, result);
         estimateMemory(r, o, result);
         std::printf("%-40s total %8.3f ms [%.3f, %.3f]", label.c_str(), r.total.median, r.total.p10,

@@ -122,8 +122,12 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         std::fprintf(stderr, "penumbra: rendering %s (%zu/%zu) on %s\n", rows[r].name.c_str(),
                      shown, rendering, device.name.c_str());
         // The distance field's build (sdf: once, minutes on a large scene) and warnings; not
-        // each frame's stages.
-        results.push_back(uploaded.render(rowOptions[r], [](const std::string& stage) {
+        // each frame's stages. A pool too small is said for the row once after a timeline or a
+        // camera path, whose frames include this view's.
+        const bool poolSaidLater = timeline || !args.cameraPath.empty();
+        results.push_back(uploaded.render(rowOptions[r], [&](const std::string& stage) {
+            if (poolSaidLater && stage.find("the virtual pool holds") != std::string::npos)
+                return;
             if (stage.find("distance field") != std::string::npos ||
                 stage.rfind("warning:", 0) == 0)
                 std::fprintf(stderr, "penumbra: %s\n", stage.c_str());

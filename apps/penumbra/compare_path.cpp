@@ -4,6 +4,7 @@
 // the same visible points). Moving sun: the camera stands still, and each frame's change is
 // compared with the truth's, traced per frame.
 #include "compare_path.h"
+#include "pool_shortage.h"
 
 #include "report/light_mask.h"
 #include "report/shimmer.h"
@@ -64,10 +65,12 @@ std::vector<PathRow> measurePathShimmer(SceneRenderer& renderer, const Scene& sc
         o.frames = 1;
         // Per frame: the visibility to compare, and what it is compared with.
         std::vector<RenderResult> now, before;
+        PoolShortage shortage; // said once a row, after its path
         for (size_t t = 0; t < frames.size(); ++t) {
             const SceneRenderer::FrameState state{.camera = frames[t].camera,
                                                   .lights = frames[t].lights};
             now.push_back(renderer.render(o, state));
+            shortage.add(now.back());
             if (const auto& pages = now.back().virtualMaps) {
                 uint32_t rendered = 0;
                 for (uint32_t n : pages->renderedPerFrame)
@@ -81,6 +84,8 @@ std::vector<PathRow> measurePathShimmer(SceneRenderer& renderer, const Scene& sc
                 before.push_back(renderer.render(o, previousViews));
             }
         }
+        if (const std::string said = shortage.warning(rowNames[r]); !said.empty())
+            std::fprintf(stderr, "penumbra: %s\n", said.c_str());
         std::vector<std::vector<std::vector<uint8_t>>> masks; // [frame][layer]
         for (size_t t = 0; t < frames.size(); ++t)
             masks.push_back(lightMasks(lit[t], now[t]));

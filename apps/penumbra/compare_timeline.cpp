@@ -3,6 +3,7 @@
 #include "penumbra/pass_times.h"
 
 #include "penumbra/error.h"
+#include "pool_shortage.h"
 #include "report/light_mask.h"
 #include "report/shimmer.h"
 
@@ -70,6 +71,7 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
     ReferenceResult previousTruth;
     std::vector<std::vector<uint8_t>> previousMasks;
     std::vector<double> flickerSum(rows.size(), 0.0);
+    std::vector<PoolShortage> shortage(rows.size()); // each row's, still and in motion
     Scene first;
     SceneOptions options = in.sceneOptions;
     // In motion: a renderer per row that draws every frame in turn (rows differ in their maps,
@@ -141,6 +143,8 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
                                                              truth.occluderDistance)
                                              .rmse);
             rows[r].movingGpuMs.push_back(totalMs(inMotion[r]));
+            shortage[r].add(results[r]);
+            shortage[r].add(inMotion[r]);
             if (const auto& pages = inMotion[r].virtualMaps)
                 rows[r].movingPages.push_back({.requested = pages->requested,
                                                .rendered = pages->rendered,
@@ -164,6 +168,9 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
         previousTruth = std::move(truth);
         previousMasks = masks;
     }
+    for (size_t r = 0; r < rows.size(); ++r)
+        if (const std::string said = shortage[r].warning(rows[r].name); !said.empty())
+            std::fprintf(stderr, "penumbra: %s\n", said.c_str());
     for (size_t r = 0; r < rows.size(); ++r)
         rows[r].lag = measureLag(rows[r].rmse, rows[r].movingRmse);
     for (size_t r = 0; r < rows.size(); ++r)

@@ -3,6 +3,7 @@
 #include "compare_timeline.h"
 #include "penumbra/error.h"
 #include "penumbra/pass_times.h"
+#include "pool_shortage.h"
 
 #include <fmt/format.h>
 
@@ -39,8 +40,7 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
     PlayedFrames played;
     std::vector<PassTime> passes;
     std::vector<uint32_t> pagesPerFrame;
-    // A pool too small for a pose: said once, after the last (the poses render quietly).
-    uint32_t framesShort = 0, mostRequested = 0, mostDropped = 0;
+    PoolShortage shortage; // said once, after the last pose (the poses render quietly)
     for (uint32_t k = 0; k < options.frames; ++k) {
         const double exact = start + static_cast<double>(k) / in.fps;
         posed.time = std::strtod(fmt::format("{:.12g}", exact).c_str(), nullptr);
@@ -57,27 +57,20 @@ PlayedFrames playFrames(Renderer& renderer, const PlaybackInputs& in, const Scen
             played.uploaded->repose(played.scene);
             played.result = played.uploaded->render(one, {.continues = true});
         }
-        if (const auto& pages = played.result.virtualMaps) { // every pose's frames, from the
-            pagesPerFrame.insert(pagesPerFrame.end(),        // first warm-up on
+        if (const auto& pages = played.result.virtualMaps) // every pose's frames, from the
+            pagesPerFrame.insert(pagesPerFrame.end(),      // first warm-up on
                                  pages->renderedPerFrame.begin(), pages->renderedPerFrame.end());
-            framesShort += pages->droppedFrames;
-            mostRequested = std::max(mostRequested, pages->requested);
-            mostDropped = std::max(mostDropped, pages->dropped);
-        }
+        shortage.add(played.result);
         appendFrameTimes(passes, played.result.passes, k); // each pose one frame
     }
     setMedians(passes);
     played.result.passes = std::move(passes);
     if (auto& pages = played.result.virtualMaps) {
         pages->renderedPerFrame = std::move(pagesPerFrame);
-        pages->droppedFrames = framesShort;
-        if (framesShort > 0)
-            std::fprintf(stderr,
-                         "penumbra: warning: the virtual pool holds %u pages; %u frames asked for "
-                         "more (at most %u pages, %u of them read coarser pages; raise "
-                         "virtual.poolSize)\n",
-                         pages->poolPages, framesShort, mostRequested, mostDropped);
+        pages->droppedFrames = shortage.frames;
     }
+    if (const std::string said = shortage.warning(); !said.empty())
+        std::fprintf(stderr, "penumbra: %s\n", said.c_str());
     return played;
 }
 

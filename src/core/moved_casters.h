@@ -6,10 +6,16 @@
 #include "core/virtual_maps.h"
 #include "penumbra/scene.h"
 
+#include <array>
 #include <span>
 #include <vector>
 
 namespace penumbra {
+
+// A moved triangle's corners, where it was or where it is.
+struct MovedTriangle {
+    std::array<glm::vec3, 3> corners;
+};
 
 struct MovedCasters {
     // Each moved triangle's bounds where it was, then where it is (one box when its corners
@@ -18,6 +24,12 @@ struct MovedCasters {
     // material; corners in order, so the winding too), or when only one pose has a triangle t
     // (a caster added or removed: bounded where it is).
     std::vector<Bounds> boxes;
+    // boxes[i]'s triangle: the pages it may draw into are those of the triangle itself, fewer
+    // than its box's where it lies long and thin across a level (a swinging rod, a limb).
+    std::vector<MovedTriangle> triangles;
+
+    void append(const MovedCasters& more);
+    void clear() { boxes.clear(), triangles.clear(); }
 };
 
 MovedCasters movedCasters(const Scene& before, const Scene& after);
@@ -33,18 +45,22 @@ struct PageRect {
 
 // For each of `levels`, the pages each of `moved` may draw into: the box's projection into the
 // level, widened by a texel and the GPU's roundoff; the whole level for a box partly behind a
-// perspective view's eye; none for one wholly behind it. Only pages that may hold anything are
-// listed: those of a window that does not move (a fixed window's level holds no other), and,
-// when `held` is given (one rectangle per level, empty: nothing held), those inside it.
+// perspective view's eye; none for one wholly behind it. With `triangles` (moved[i]'s triangle
+// each), a box's pages are its triangle's: the triangle of its projected corners, widened so,
+// page row by page row. Only pages that may hold anything are listed: those of a window that
+// does not move (a fixed window's level holds no other), and, when `held` is given (one
+// rectangle per level, empty: nothing held), those inside it.
 std::vector<std::vector<PageRect>> movedPageRects(const std::vector<VirtualLevel>& levels,
                                                   std::span<const Bounds> moved, uint32_t pageSize,
-                                                  std::span<const PageRect> held = {});
+                                                  std::span<const PageRect> held = {},
+                                                  std::span<const MovedTriangle> triangles = {});
 
 // Drops from `cache` every resident page that one of `moved` may draw into: the box's projection
-// into the page's level, widened by a texel, overlaps the page. A box partly behind a
-// perspective view's eye drops the level's pages; a page of a level not in `levels` is dropped.
-// Returns how many pages were dropped.
+// into the page's level (its triangle's, with `triangles`), widened by a texel, overlaps the page.
+// A box partly behind a perspective view's eye drops the level's pages; a page of a level not in
+// `levels` is dropped. Returns how many pages were dropped.
 uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& levels,
-                        std::span<const Bounds> moved, uint32_t pageSize);
+                        std::span<const Bounds> moved, uint32_t pageSize,
+                        std::span<const MovedTriangle> triangles = {});
 
 } // namespace penumbra

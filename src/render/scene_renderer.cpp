@@ -111,7 +111,7 @@ struct SceneRenderer::Impl {
     uint64_t pageFrame = 0;
     // Where casters moved since the last update (before and after each repose): the pages the
     // next update drops (dropMovedPages) and so draws again.
-    std::vector<Bounds> movedSinceUpdate;
+    MovedCasters movedSinceUpdate;
     std::vector<render::PageDraw> pageDraws;
     VirtualMapInfo pageInfo;
     // The last update's levels, requests and rendered physical pages: the debug views' source.
@@ -299,7 +299,7 @@ void SceneRenderer::repose(const Scene& posedIn) {
     m.field.reset(); // traced from the old geometry: built again when a frame needs it
     // Pages keep what no moved, added or removed triangle may draw into.
     if (m.pageCache || m.deviceDecisions)
-        m.movedSinceUpdate.insert(m.movedSinceUpdate.end(), moved.boxes.begin(), moved.boxes.end());
+        m.movedSinceUpdate.append(moved);
     else
         m.movedSinceUpdate.clear();
 }
@@ -472,8 +472,9 @@ void SceneRenderer::Impl::prepareDevicePages(const Prepared& p, bool poolHolds) 
         at->second = key;
     }
     const std::vector<std::vector<PageRect>> moved =
-        movedSinceUpdate.empty() ? std::vector<std::vector<PageRect>>{}
-                                 : movedPageRects(p.levels, movedSinceUpdate, v.pageSize);
+        movedSinceUpdate.boxes.empty() ? std::vector<std::vector<PageRect>>{}
+                                       : movedPageRects(p.levels, movedSinceUpdate.boxes,
+                                                        v.pageSize, {}, movedSinceUpdate.triangles);
     movedSinceUpdate.clear();
     const auto slot = static_cast<uint32_t>(p.slot);
     deviceDecisions->prepare({.levels = &p.levels,
@@ -516,7 +517,8 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
     }
     for (const auto& [light, key] : p.contentsKeys)
         pageCache->keyLight(light, key);
-    dropMovedPages(*pageCache, p.levels, movedSinceUpdate, v.pageSize);
+    dropMovedPages(*pageCache, p.levels, movedSinceUpdate.boxes, v.pageSize,
+                   movedSinceUpdate.triangles);
     movedSinceUpdate.clear();
     // The level a page belongs to in this frame, if its window holds the page.
     auto levelHolding = [&](const PageKey& k) -> const VirtualLevel* {
