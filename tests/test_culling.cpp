@@ -94,4 +94,58 @@ TEST(Culling, DepthClampedViewsKeepCastersBeforeTheirNearPlane) {
     EXPECT_EQ(visibleRanges(beyond, 0, all, view, true).size(), 1u);
 }
 
+// A virtual map's static layer draws the clusters no pose moved, the moving casters' pass the
+// others: a cluster is dynamic when any of its triangles moved, found through the index
+// buffer's order; the two sets never merge across each other and together are all.
+TEST(Culling, DynamicClustersAreThoseWithAMovedTriangleAndTheSetsSplitTheDraws) {
+    const Row row(4 * kClusterTriangles);
+    std::vector<Cluster> clusters = makeClusters(row.positions, row.indices, {});
+    ASSERT_EQ(clusters.size(), 4u);
+    // The index buffer's triangle t is the scene's triangle (t + 7) % count: reordered.
+    const uint32_t count = 4 * kClusterTriangles;
+    std::vector<uint32_t> triangleOf(count);
+    for (uint32_t t = 0; t < count; ++t)
+        triangleOf[t] = (t + 7) % count;
+    std::vector<uint8_t> moved(count, 0);
+    moved[(kClusterTriangles - 1 + 7) % count] = 1; // the first cluster's last triangle
+    moved[(2 * kClusterTriangles + 7) % count] = 1; // the third's first
+    markDynamicClusters(clusters, triangleOf, moved);
+    EXPECT_TRUE(clusters[0].dynamic);
+    EXPECT_FALSE(clusters[1].dynamic);
+    EXPECT_TRUE(clusters[2].dynamic);
+    EXPECT_FALSE(clusters[3].dynamic);
+    const glm::mat4 all = window(-1.0f, float(count) + 1.0f);
+    const uint32_t indices = 3 * count, cluster = 3 * kClusterTriangles;
+    const std::vector<IndexRange> everything = visibleRanges(clusters, 0, indices, all, true);
+    ASSERT_EQ(everything.size(), 1u);
+    EXPECT_EQ(everything[0].count, indices);
+    const std::vector<IndexRange> still =
+        visibleRanges(clusters, 0, indices, all, true, CasterSet::Static);
+    ASSERT_EQ(still.size(), 2u);
+    EXPECT_EQ(still[0].first, cluster);
+    EXPECT_EQ(still[0].count, cluster);
+    EXPECT_EQ(still[1].first, 3 * cluster);
+    const std::vector<IndexRange> moving =
+        visibleRanges(clusters, 0, indices, all, true, CasterSet::Dynamic);
+    ASSERT_EQ(moving.size(), 2u);
+    EXPECT_EQ(moving[0].first, 0u);
+    EXPECT_EQ(moving[0].count, cluster);
+    EXPECT_EQ(moving[1].first, 2 * cluster);
+    // Culling still applies within a set: a window over the first cluster alone.
+    const std::vector<IndexRange> near =
+        visibleRanges(clusters, 0, indices, window(-0.5f, float(kClusterTriangles) - 1.5f), true,
+                      CasterSet::Static);
+    EXPECT_TRUE(near.empty());
+    // The scene's last triangle alone (index-buffer triangle count - 8): the last cluster.
+    std::vector<uint8_t> last(count, 0);
+    last[count - 1] = 1;
+    markDynamicClusters(clusters, triangleOf, last);
+    for (size_t c = 0; c < clusters.size(); ++c)
+        EXPECT_EQ(clusters[c].dynamic, c == 3) << c;
+    // A flag past the scene's triangles, or none moved: nothing dynamic.
+    markDynamicClusters(clusters, triangleOf, std::vector<uint8_t>(3, 0));
+    for (const Cluster& c : clusters)
+        EXPECT_FALSE(c.dynamic);
+}
+
 } // namespace penumbra::render

@@ -4,6 +4,7 @@
 #include "core/moved_casters.h"
 #include "scene/mesh_builder.h"
 #include "virtual_field.h"
+#include "virtual_pages.h"
 
 #include <gtest/gtest.h>
 
@@ -164,7 +165,9 @@ TEST(MovedCasters, EachMovedTriangleIsBoundedWhereItWasAndWhereItIs) {
     const size_t sphereTriangles = before.triangleCount() - 2;
     ASSERT_EQ(m.boxes.size(), 2 * sphereTriangles);
     ASSERT_EQ(m.triangles.size(), m.boxes.size());
+    ASSERT_EQ(m.indices.size(), sphereTriangles) << "each moved triangle once";
     for (size_t t = 2; t < before.triangleCount(); ++t) {
+        EXPECT_EQ(m.indices[t - 2], t);
         EXPECT_TRUE(sameBox(m.boxes[2 * (t - 2)], triangleBounds(before, t))) << t;
         EXPECT_TRUE(sameBox(m.boxes[2 * (t - 2) + 1], triangleBounds(after, t))) << t;
         EXPECT_TRUE(sameTriangle(m.triangles[2 * (t - 2)], before, t)) << t;
@@ -187,7 +190,9 @@ TEST(MovedCasters, ASceneFromOrToNothingIsBoundedTriangleByTriangle) {
             appears ? movedCasters(nothing, scene) : movedCasters(scene, nothing);
         ASSERT_EQ(m.boxes.size(), scene.triangleCount()) << appears;
         ASSERT_EQ(m.triangles.size(), scene.triangleCount()) << appears;
+        ASSERT_EQ(m.indices.size(), scene.triangleCount()) << appears;
         for (size_t t = 0; t < scene.triangleCount(); ++t) {
+            EXPECT_EQ(m.indices[t], t) << appears;
             EXPECT_TRUE(sameBox(m.boxes[t], triangleBounds(scene, t))) << appears << " " << t;
             EXPECT_TRUE(sameTriangle(m.triangles[t], scene, t)) << appears << " " << t;
         }
@@ -367,6 +372,74 @@ TEST(MovedCasters, BoxesBehindTheEyeAndLevelsNotThere) {
     const std::vector<VirtualLevel> allButFinest(levels.begin() + 1, levels.end());
     EXPECT_EQ(dropMovedPages(cache, allButFinest, {&far, 1}, small().pageSize),
               levels[0].tableEntries());
+}
+
+// Keeping the static layers (virtual.staticLayer), the pages a box would drop are marked stale
+// instead, in their places, and leave the table; pages of a level the frame lacks still go.
+TEST(MovedCasters, KeepingStaticLayersMarksStaleWhatADropWouldDrop) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> across(-20.0f, 20.0f), size(0.05f, 3.0f);
+    for (const Light& light : {kSun, kSpot, kPoint}) {
+        const std::vector<VirtualLevel> levels = levelsOf(light, {4, 2, 1});
+        const std::vector<VirtualLevel> elsewhere = levelsOf(light, {-9, 2, 14});
+        for (int i = 0; i < 3; ++i) {
+            const glm::vec3 at{across(rng), 0.5f * std::abs(across(rng)), across(rng)};
+            const Bounds box{.min = at, .max = at + glm::vec3(size(rng), size(rng), size(rng))};
+            const PageCache before = everyPage(levels, elsewhere);
+            PageCache dropped = before, kept = before;
+            const uint32_t resident = kept.resident();
+            const uint32_t n = dropMovedPages(dropped, levels, {&box, 1}, small().pageSize);
+            EXPECT_EQ(
+                dropMovedPages(kept, levels, {&box, 1}, small().pageSize, {}, MovedPage::Stale), n);
+            uint32_t stale = 0, gone = 0;
+            for (uint32_t physical = 0; physical < kept.capacity(); ++physical) {
+                const std::optional<PageKey> k = dropped.keyOf(physical);
+                if (!before.keyOf(physical))
+                    continue;
+                const bool inLevels = levelOf(levels, *before.keyOf(physical)) != nullptr;
+                if (!kept.keyOf(physical)) {
+                    ++gone;
+                    EXPECT_FALSE(inLevels);
+                    continue;
+                }
+                EXPECT_EQ(kept.stale(physical), !k.has_value()) << int(light.type);
+                stale += kept.stale(physical);
+            }
+            EXPECT_GT(stale, 0u) << int(light.type);
+            EXPECT_EQ(stale + gone, n);
+            // Drawn again, a stale page keeps its layer; one whose layer was lost does not.
+            PageCache lost = before;
+            dropMovedPages(lost, levels, {&box, 1}, small().pageSize, {},
+                           MovedPage::StaleLayerLost);
+            for (uint32_t physical = 0; physical < kept.capacity(); ++physical)
+                if (kept.stale(physical)) {
+                    EXPECT_TRUE(lost.stale(physical));
+                    const PageKey k = *kept.keyOf(physical);
+                    EXPECT_EQ(kept.update({k}, 2).staticHeld, std::vector<uint8_t>{1});
+                    EXPECT_EQ(lost.update({k}, 2).staticHeld, std::vector<uint8_t>{0});
+                    break;
+                }
+            EXPECT_EQ(kept.resident(), resident - gone);
+            const uint32_t entries = elsewhere.back().tableOffset + elsewhere.back().tableEntries();
+            const std::vector<uint32_t> table = pageTable(levels, kept, entries);
+            for (const VirtualLevel& l : levels)
+                for (uint32_t e = 0; e < l.tableEntries(); ++e) {
+                    const uint32_t physical =
+                        kept.physicalOf(pageKeyOf(l, l.tableOffset + e)).value();
+                    EXPECT_EQ(table[l.tableOffset + e] == VIRTUAL_NOT_RESIDENT,
+                              kept.stale(physical));
+                }
+        }
+        // A level the frame lacks: its pages go, whatever keeps the layers.
+        PageCache cache = everyPage(levels, {});
+        const uint32_t resident = cache.resident();
+        const std::vector<VirtualLevel> allButFinest(levels.begin() + 1, levels.end());
+        const Bounds far{.min = glm::vec3(1e6f), .max = glm::vec3(1e6f + 1.0f)};
+        EXPECT_GE(
+            dropMovedPages(cache, allButFinest, {&far, 1}, small().pageSize, {}, MovedPage::Stale),
+            levels[0].tableEntries());
+        EXPECT_EQ(cache.resident(), resident - levels[0].tableEntries());
+    }
 }
 
 // Many boxes at once (a moved figure's triangles, some close together, some apart, projected in

@@ -418,6 +418,86 @@ TEST(PageCache, RequestsBecomeTheTablesResidentEntries) {
     EXPECT_EQ(physical.size(), asked.size());
 }
 
+// virtual.staticLayer's pages: a stale page keeps its place and its static layer, leaves the
+// table until an update renders it again (only when asked for), and says its layer is held; a
+// page dropped, evicted or newly placed holds none.
+TEST(PageCache, AStalePageKeepsItsPlaceAndStaticLayerButLeavesTheTable) {
+    const VirtualSettings s = small();
+    const std::vector<VirtualLevel> levels = levelsOf(kPoint, {});
+    const uint32_t entries = levels.back().tableOffset + levels.back().tableEntries();
+    const auto keyAt = [&](uint32_t entry) { return pageKeyOf(levels[0], entry); };
+    PageCache cache(4);
+    const PageCache::Update first = cache.update({keyAt(0), keyAt(1), keyAt(2)}, 1);
+    ASSERT_EQ(first.staticHeld.size(), first.render.size());
+    EXPECT_EQ(std::count(first.staticHeld.begin(), first.staticHeld.end(), 1), 0);
+    const uint32_t where1 = cache.physicalOf(keyAt(1)).value();
+    EXPECT_EQ(cache.staleIf([&](const PageKey& k) { return k == keyAt(1) || k == keyAt(2); }, true),
+              2u);
+    EXPECT_TRUE(cache.stale(where1));
+    EXPECT_EQ(cache.resident(), 3u);
+    std::vector<uint32_t> table = pageTable(levels, cache, entries);
+    EXPECT_NE(table[levels[0].tableOffset + 0], VIRTUAL_NOT_RESIDENT);
+    EXPECT_EQ(table[levels[0].tableOffset + 1], VIRTUAL_NOT_RESIDENT) << "stale: not read";
+    EXPECT_EQ(table[levels[0].tableOffset + 2], VIRTUAL_NOT_RESIDENT);
+    // Asked for again: rendered in its place with its layer; the other stays stale.
+    const PageCache::Update second = cache.update({keyAt(0), keyAt(1), keyAt(3)}, 2);
+    ASSERT_EQ(second.render.size(), 2u);
+    ASSERT_EQ(second.staticHeld.size(), 2u);
+    EXPECT_EQ(second.cached, 1u);
+    for (size_t i = 0; i < second.render.size(); ++i) {
+        const bool stale = second.render[i].second == keyAt(1);
+        EXPECT_EQ(second.staticHeld[i], stale ? 1 : 0) << i;
+        if (stale) {
+            EXPECT_EQ(second.render[i].first, where1);
+        }
+    }
+    EXPECT_FALSE(cache.stale(where1));
+    const uint32_t where2 = cache.physicalOf(keyAt(2)).value();
+    EXPECT_TRUE(cache.stale(where2));
+    table = pageTable(levels, cache, entries);
+    EXPECT_EQ(table[levels[0].tableOffset + 1], where1 + 1u);
+    EXPECT_EQ(table[levels[0].tableOffset + 2], VIRTUAL_NOT_RESIDENT);
+    // Rendered once, a page holds its layer: stale again, it is drawn over it; stale with its
+    // layer lost (a first move), it is drawn whole, and holds its layer after.
+    cache.staleIf([&](const PageKey& k) { return k == keyAt(3); }, true);
+    const PageCache::Update third = cache.update({keyAt(3)}, 3);
+    ASSERT_EQ(third.render.size(), 1u);
+    EXPECT_EQ(third.staticHeld.at(0), 1);
+    for (const bool keepLayer : {false, true}) {
+        cache.staleIf([&](const PageKey& k) { return k == keyAt(3); }, keepLayer);
+        const PageCache::Update again = cache.update({keyAt(3)}, 3);
+        ASSERT_EQ(again.render.size(), 1u);
+        EXPECT_EQ(again.render[0].first, third.render[0].first) << "in its place";
+        EXPECT_EQ(again.staticHeld.at(0), keepLayer ? 1 : 0);
+    }
+    // Dropped, a stale page is gone, and placed again it holds no layer.
+    EXPECT_EQ(cache.dropIf([&](const PageKey& k) { return k == keyAt(2); }), 1u);
+    EXPECT_FALSE(cache.stale(where2));
+    const PageCache::Update fourth = cache.update({keyAt(2)}, 4);
+    ASSERT_EQ(fourth.render.size(), 1u);
+    EXPECT_EQ(fourth.staticHeld.at(0), 0);
+    // A stale page not asked for is taken as a free one is, before the least recently used valid
+    // page (key 1, last asked for in frame 2; key 0 in frame 5), and is not counted evicted; its
+    // new owner holds no layer and is not stale.
+    EXPECT_TRUE(cache.update({keyAt(0), keyAt(2), keyAt(3)}, 5).render.empty()); // key 0: newer
+    cache.staleIf([&](const PageKey& k) { return k == keyAt(0); }, true);
+    const uint32_t where0 = cache.physicalOf(keyAt(0)).value();
+    const PageCache::Update taken = cache.update({keyAt(2), keyAt(3), keyAt(8)}, 6);
+    ASSERT_EQ(taken.render.size(), 1u);
+    EXPECT_EQ(taken.render[0].first, where0);
+    EXPECT_EQ(taken.evicted, 0u);
+    EXPECT_TRUE(cache.physicalOf(keyAt(1)));
+    cache.staleIf([&](const PageKey& k) { return k == keyAt(8); }, true);
+    const PageCache::Update fifth = cache.update({keyAt(4), keyAt(5), keyAt(6), keyAt(7)}, 7);
+    ASSERT_EQ(fifth.render.size(), 4u);
+    EXPECT_EQ(fifth.evicted, 3u) << "keys 1, 2, 3; key 8 was stale";
+    EXPECT_EQ(std::count(fifth.staticHeld.begin(), fifth.staticHeld.end(), 1), 0);
+    EXPECT_FALSE(cache.stale(where0));
+    EXPECT_EQ(cache.keyOf(where0).has_value(), true);
+    EXPECT_NE(*cache.keyOf(where0), keyAt(0));
+    (void)s;
+}
+
 // The debug views' picture (virtualPages): each page's state in its level's table, and the
 // pool's owners, across frames that keep, cache, render, drop and (after the camera moved a
 // sun's window on) hold pages no level shows.

@@ -318,15 +318,27 @@ TEST_F(VirtualTest, APoolPastTheDevicesMemoryIsRefusedNamingThePool) {
     const RenderOptions pooled =
         options(Technique::Hard, {{"virtual.enabled", "1"}, {"virtual.poolSize", "16384"}});
     setenv("PENUMBRA_DEVICE_MEMORY", std::to_string(512u << 20).c_str(), 1);
-    std::string message;
+    RenderOptions single = pooled;
+    single.parameters.set("virtual.staticLayer", "0");
+    std::string message, singleMessage;
     try {
         sharedRenderer().check(s, pooled);
     } catch (const InputError& e) {
         message = e.what();
     }
+    try {
+        sharedRenderer().check(s, single);
+    } catch (const InputError& e) {
+        singleMessage = e.what();
+    }
     EXPECT_NO_THROW(sharedRenderer().check(s, options(Technique::Hard, {})));
     unsetenv("PENUMBRA_DEVICE_MEMORY");
     EXPECT_EQ(message.rfind("virtual.poolSize: hard needs ", 0), 0u) << message;
-    EXPECT_NE(message.find("(1.00 GiB for a virtual pool of 16384^2 texels)"), std::string::npos)
+    EXPECT_NE(message.find("(2.00 GiB for two virtual pools of 16384^2 texels, the pages' and "
+                           "their static layers' (virtual.staticLayer=0 keeps one))"),
+              std::string::npos)
         << message;
+    EXPECT_NE(singleMessage.find("(1.00 GiB for a virtual pool of 16384^2 texels)"),
+              std::string::npos)
+        << singleMessage;
 }

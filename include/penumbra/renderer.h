@@ -131,6 +131,9 @@ struct VirtualMapInfo {
     uint32_t resident = 0;  // in the pool after the frame's allocation
     uint32_t rendered = 0;  // rendered in the last frame
     uint32_t cached = 0;    // of the requested, resident already
+    // Of the rendered, those whose static layer the static pool held (virtual.staticLayer): only
+    // the dynamic casters were drawn into them.
+    uint32_t staticHeld = 0;
     uint32_t dropped = 0;   // asked for but the pool was full (pixels read coarser pages)
     uint32_t evicted = 0;   // resident pages given to others, least recently used first
     uint32_t poolPages = 0; // the pool's capacity

@@ -310,6 +310,7 @@ MovedCasters movedCasters(const Scene& before, const Scene& after) {
     for (size_t t = 0; t < std::max(was, is); ++t) {
         if (alike(t))
             continue;
+        moved.indices.push_back(static_cast<uint32_t>(t));
         if (t < was) {
             moved.boxes.push_back(boundsOf(before, t));
             moved.triangles.push_back(cornersOf(before, t));
@@ -329,6 +330,7 @@ MovedCasters movedCasters(const Scene& before, const Scene& after) {
 void MovedCasters::append(const MovedCasters& more) {
     boxes.insert(boxes.end(), more.boxes.begin(), more.boxes.end());
     triangles.insert(triangles.end(), more.triangles.begin(), more.triangles.end());
+    indices.insert(indices.end(), more.indices.begin(), more.indices.end());
 }
 
 std::vector<std::vector<PageRect>> movedPageRects(const std::vector<VirtualLevel>& levels,
@@ -392,7 +394,7 @@ std::vector<std::vector<PageRect>> movedPageRects(const std::vector<VirtualLevel
 
 uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& levels,
                         std::span<const Bounds> moved, uint32_t pageSize,
-                        std::span<const MovedTriangle> triangles) {
+                        std::span<const MovedTriangle> triangles, MovedPage fate) {
     if (moved.empty())
         return 0;
     // Per level, the pages under the boxes: small rectangles' pages in a set (a skinned figure
@@ -431,15 +433,18 @@ uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& level
                 for (int x = r.lo.x; x <= r.hi.x; ++x)
                     under[i].pages.insert(packed({x, y}));
         }
-    return cache.dropIf([&](const PageKey& k) {
-        const VirtualLevel* level = levelOf(levels, k);
-        if (!level)
-            return true; // a level this frame does not have: nothing says what it holds
-        const Under& u = under[size_t(level - levels.data())];
+    // A level this frame does not have: nothing says what its pages hold.
+    uint32_t touched =
+        cache.dropIf([&](const PageKey& k) { return levelOf(levels, k) == nullptr; });
+    const auto isUnder = [&](const PageKey& k) {
+        const Under& u = under[size_t(levelOf(levels, k) - levels.data())];
         return u.pages.contains(packed(k.page)) ||
                std::any_of(u.rects.begin(), u.rects.end(),
                            [&](const PageRect& r) { return r.holds(k.page); });
-    });
+    };
+    return touched + (fate == MovedPage::Dropped
+                          ? cache.dropIf(isUnder)
+                          : cache.staleIf(isUnder, fate == MovedPage::Stale));
 }
 
 } // namespace penumbra

@@ -27,9 +27,11 @@ struct MovedCasters {
     // boxes[i]'s triangle: the pages it may draw into are those of the triangle itself, fewer
     // than its box's where it lies long and thin across a level (a swinging rod, a limb).
     std::vector<MovedTriangle> triangles;
+    // Each moved triangle's index (in the pose that has it), once, in order.
+    std::vector<uint32_t> indices;
 
     void append(const MovedCasters& more);
-    void clear() { boxes.clear(), triangles.clear(); }
+    void clear() { boxes.clear(), triangles.clear(), indices.clear(); }
 };
 
 MovedCasters movedCasters(const Scene& before, const Scene& after);
@@ -55,12 +57,21 @@ std::vector<std::vector<PageRect>> movedPageRects(const std::vector<VirtualLevel
                                                   std::span<const PageRect> held = {},
                                                   std::span<const MovedTriangle> triangles = {});
 
+// What becomes of a resident page that something moved over.
+enum class MovedPage {
+    Dropped,        // freed: another may take its place (the device's decisions' rule)
+    Stale,          // kept in its place with its static layer, to be drawn again before it is read
+    StaleLayerLost, // kept in its place, its static layer forgotten: drawn whole again
+};
+
 // Drops from `cache` every resident page that one of `moved` may draw into: the box's projection
 // into the page's level (its triangle's, with `triangles`), widened by a texel, overlaps the page.
-// A box partly behind a perspective view's eye drops the level's pages; a page of a level not in
-// `levels` is dropped. Returns how many pages were dropped.
+// A box partly behind a perspective view's eye drops the level's pages. `fate`: what becomes of
+// those pages (PageCache::staleIf); a page of a level not in `levels` is dropped whatever it
+// says. Returns how many pages were dropped or marked.
 uint32_t dropMovedPages(PageCache& cache, const std::vector<VirtualLevel>& levels,
                         std::span<const Bounds> moved, uint32_t pageSize,
-                        std::span<const MovedTriangle> triangles = {});
+                        std::span<const MovedTriangle> triangles = {},
+                        MovedPage fate = MovedPage::Dropped);
 
 } // namespace penumbra

@@ -103,7 +103,10 @@ VirtualSettings VirtualSettings::of(const ParameterValues& p) {
             .poolSize = static_cast<uint32_t>(p.number("virtual.poolSize")),
             .lodBias = static_cast<float>(p.number("virtual.lodBias")),
             .lodFromImage = p.number("virtual.lodFromImage") != 0.0,
-            .deviceDecides = p.number("virtual.deviceDecides") != 0.0};
+            .deviceDecides = p.number("virtual.deviceDecides") != 0.0,
+            // The device's decisions draw every caster into the pages they render.
+            .staticLayer =
+                p.number("virtual.staticLayer") != 0.0 && p.number("virtual.deviceDecides") == 0.0};
 }
 
 float VirtualSettings::levelBias(uint32_t width, uint32_t height) const {
@@ -253,10 +256,21 @@ uint32_t PageCache::dropIf(const std::function<bool(const PageKey&)>& drop) {
     for (Physical& p : mPages)
         if (p.key && drop(*p.key)) {
             mWhere.erase(*p.key);
-            p.key.reset();
+            p = {.lastUsed = p.lastUsed}; // free pages are taken least recently used first
             ++dropped;
         }
     return dropped;
+}
+
+uint32_t PageCache::staleIf(const std::function<bool(const PageKey&)>& stale, bool keepLayer) {
+    uint32_t marked = 0;
+    for (Physical& p : mPages)
+        if (p.key && stale(*p.key)) {
+            p.stale = true;
+            p.staticHeld = p.staticHeld && keepLayer;
+            ++marked;
+        }
+    return marked;
 }
 
 PageCache::Update PageCache::update(std::vector<PageKey> requests, uint64_t frame) {
@@ -277,16 +291,27 @@ PageCache::Update PageCache::update(std::vector<PageKey> requests, uint64_t fram
             missing.push_back(key);
             continue;
         }
-        mPages[it->second].lastUsed = frame;
-        ++u.cached;
+        Physical& p = mPages[it->second];
+        p.lastUsed = frame;
+        if (!p.stale) {
+            ++u.cached;
+            continue;
+        }
+        // Rendered again in its place: the moving casters over its static layer, if it holds one.
+        u.render.emplace_back(it->second, key);
+        u.staticHeld.push_back(p.staticHeld);
+        p.stale = false;
+        p.staticHeld = true; // its render draws the layer if it lacked one
     }
-    // Free pages first, then the least recently used of those not requested this frame.
+    // Free pages first (a stale page not asked for is as good as free: no reader sees it), then
+    // the least recently used of those not requested this frame.
     std::vector<uint32_t> candidates;
     for (uint32_t i = 0; i < mPages.size(); ++i)
         if (!mPages[i].key || mPages[i].lastUsed < frame)
             candidates.push_back(i);
+    const auto isFree = [&](uint32_t i) { return !mPages[i].key || mPages[i].stale; };
     std::stable_sort(candidates.begin(), candidates.end(), [&](uint32_t a, uint32_t b) {
-        const bool freeA = !mPages[a].key, freeB = !mPages[b].key;
+        const bool freeA = isFree(a), freeB = isFree(b);
         if (freeA != freeB)
             return freeA;
         return mPages[a].lastUsed < mPages[b].lastUsed;
@@ -300,12 +325,12 @@ PageCache::Update PageCache::update(std::vector<PageKey> requests, uint64_t fram
         Physical& p = mPages[candidates[next]];
         if (p.key) {
             mWhere.erase(*p.key);
-            ++u.evicted;
+            u.evicted += !p.stale;
         }
-        p.key = key;
-        p.lastUsed = frame;
+        p = {.key = key, .lastUsed = frame, .staticHeld = true}; // its render draws the layer
         mWhere[key] = candidates[next];
         u.render.emplace_back(candidates[next], key);
+        u.staticHeld.push_back(0);
         ++next;
     }
     return u;
@@ -330,7 +355,7 @@ std::vector<uint32_t> pageTable(const std::vector<VirtualLevel>& levels, const P
     std::vector<uint32_t> table(entries, VIRTUAL_NOT_RESIDENT);
     for (uint32_t physical = 0; physical < cache.capacity(); ++physical) {
         const std::optional<PageKey> key = cache.keyOf(physical);
-        const VirtualLevel* level = key ? levelOf(levels, *key) : nullptr;
+        const VirtualLevel* level = key && !cache.stale(physical) ? levelOf(levels, *key) : nullptr;
         if (const std::optional<uint32_t> e = level ? entryOf(*level, key->page) : std::nullopt)
             table.at(*e) = physical + 1u;
     }

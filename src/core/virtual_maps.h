@@ -34,6 +34,7 @@ struct VirtualSettings {
     float lodBias = -0.5f;      // virtual.lodBias: levels coarser (+) or finer (-) than a pixel
     bool lodFromImage = true;   // virtual.lodFromImage: lodBias relative to a 1920x1080 image
     bool deviceDecides = false; // virtual.deviceDecides: pages decided in the frame, on the device
+    bool staticLayer = false;   // virtual.staticLayer, on the host's decisions: a second pool
 
     static VirtualSettings of(const ParameterValues& p);
     // The level bias a width x height image reads with: lodBias, and with lodFromImage half a
@@ -127,6 +128,11 @@ public:
     uint32_t keyLight(uint32_t light, uint64_t contentsKey);
     // Drops every resident page for which `drop` holds; returns how many.
     uint32_t dropIf(const std::function<bool(const PageKey&)>& drop);
+    // Marks stale every resident page for which `stale` holds: it keeps its place, and its static
+    // layer (virtual.staticLayer: what the casters that never moved drew into it) when
+    // `keepLayer`, but readers do not see it (pageTable) until an update renders it again.
+    // Returns how many.
+    uint32_t staleIf(const std::function<bool(const PageKey&)>& stale, bool keepLayer);
 
     struct Update {
         std::vector<std::pair<uint32_t, PageKey>> render; // physical page, what it must hold
@@ -134,10 +140,13 @@ public:
         uint32_t cached = 0;                              // of them, resident already
         uint32_t evicted = 0; // resident pages given to others (least recently used first)
         uint32_t dropped = 0; // asked for but the pool was full: readers fall back coarser
+        // render[i]'s static layer is held: a stale page only the moving casters redraw.
+        std::vector<uint8_t> staticHeld;
     };
-    // This frame's requests: the resident ones are kept, the others allocated (the coarsest
-    // levels first, so that a full pool keeps the coarse pages every reader can fall back on),
-    // from free pages, then from pages not requested this frame, least recently used first.
+    // This frame's requests: the resident ones are kept (the stale ones rendered again in their
+    // places), the others allocated (the coarsest levels first, so that a full pool keeps the
+    // coarse pages every reader can fall back on), from free pages, then stale ones not asked for
+    // (no reader sees them), then pages not requested this frame, least recently used first.
     Update update(std::vector<PageKey> requests, uint64_t frame);
 
     std::optional<uint32_t> physicalOf(const PageKey& key) const;
@@ -145,19 +154,22 @@ public:
     uint32_t resident() const;
     // What physical page `physical` holds (nothing when free).
     std::optional<PageKey> keyOf(uint32_t physical) const;
+    bool stale(uint32_t physical) const { return mPages.at(physical).stale; }
 
 private:
     struct Physical {
         std::optional<PageKey> key;
         uint64_t lastUsed = 0;
+        bool stale = false;      // to be rendered again before it is read
+        bool staticHeld = false; // the static pool's page holds this key's static layer
     };
     std::vector<Physical> mPages;
     std::vector<std::pair<uint32_t, uint64_t>> mLightKeys;
     std::unordered_map<PageKey, uint32_t, PageKeyHash> mWhere;
 };
 
-// The page table of `levels`' entries: 1 + the physical page of each resident page, else
-// VIRTUAL_NOT_RESIDENT. `entries`: the table's size (the last level's end at least).
+// The page table of `levels`' entries: 1 + the physical page of each resident page that is not
+// stale, else VIRTUAL_NOT_RESIDENT. `entries`: the table's size (the last level's end at least).
 std::vector<uint32_t> pageTable(const std::vector<VirtualLevel>& levels, const PageCache& cache,
                                 uint32_t entries);
 

@@ -43,8 +43,8 @@ bool outside(const glm::vec4& plane, const glm::vec3& lo, const glm::vec3& hi) {
 } // namespace
 
 std::vector<IndexRange> visibleRanges(std::span<const Cluster> clusters, uint32_t first,
-                                      uint32_t count, const glm::mat4& viewProj,
-                                      bool depthClamped) {
+                                      uint32_t count, const glm::mat4& viewProj, bool depthClamped,
+                                      CasterSet set) {
     // The frustum's planes from the rows of the matrix [Gribb and Hartmann 2001]: w + x >= 0,
     // w - x >= 0, likewise y, then z >= 0 and w - z >= 0.
     const glm::mat4 m = glm::transpose(viewProj);
@@ -56,6 +56,8 @@ std::vector<IndexRange> visibleRanges(std::span<const Cluster> clusters, uint32_
         std::lower_bound(clusters.begin(), clusters.end(), first,
                          [](const Cluster& c, uint32_t index) { return c.firstIndex < index; });
     for (auto c = begin; c != clusters.end() && c->firstIndex < first + count; ++c) {
+        if (set != CasterSet::All && c->dynamic != (set == CasterSet::Dynamic))
+            continue;
         const bool culled = std::any_of(planes.begin(), planes.end(), [&](const glm::vec4& p) {
             return outside(p, c->lo, c->hi);
         });
@@ -67,6 +69,18 @@ std::vector<IndexRange> visibleRanges(std::span<const Cluster> clusters, uint32_
             ranges.push_back({c->firstIndex, c->indexCount});
     }
     return ranges;
+}
+
+void markDynamicClusters(std::span<Cluster> clusters, std::span<const uint32_t> triangleOf,
+                         std::span<const uint8_t> moved) {
+    for (Cluster& c : clusters) {
+        c.dynamic = false;
+        for (uint32_t t = c.firstIndex / 3; t < (c.firstIndex + c.indexCount) / 3; ++t)
+            if (triangleOf[t] < moved.size() && moved[triangleOf[t]]) {
+                c.dynamic = true;
+                break;
+            }
+    }
 }
 
 } // namespace penumbra::render

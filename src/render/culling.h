@@ -15,8 +15,13 @@ namespace penumbra::render {
 
 struct Cluster {
     uint32_t firstIndex, indexCount;
-    glm::vec3 lo, hi; // world bounds of its triangles
+    glm::vec3 lo, hi;     // world bounds of its triangles
+    bool dynamic = false; // a triangle of it has moved (markDynamicClusters)
 };
+
+// Which clusters a pass draws: all; those no pose has moved (a virtual map's static layer,
+// virtual.staticLayer); or those one has (drawn over it).
+enum class CasterSet { All, Static, Dynamic };
 
 // Triangles per cluster: small enough that a cascade's slice drops most of a large scene, large
 // enough that the per-cluster test and the merged draws cost nothing next to the triangles.
@@ -36,6 +41,12 @@ struct IndexRange {
 // space: |x|, |y| <= w, 0 <= z <= w) may show, merged; `depthClamped`: the near and far planes
 // do not cull (a sun's casters before its near plane still cast, clamped).
 std::vector<IndexRange> visibleRanges(std::span<const Cluster> clusters, uint32_t first,
-                                      uint32_t count, const glm::mat4& viewProj, bool depthClamped);
+                                      uint32_t count, const glm::mat4& viewProj, bool depthClamped,
+                                      CasterSet set = CasterSet::All);
+
+// Marks dynamic each cluster that holds a triangle of `moved` (a flag per scene triangle;
+// `triangleOf`: the scene triangle of each of the index buffer's).
+void markDynamicClusters(std::span<Cluster> clusters, std::span<const uint32_t> triangleOf,
+                         std::span<const uint8_t> moved);
 
 } // namespace penumbra::render

@@ -58,6 +58,8 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     if (drawsNoMap)
         graph.markBoundOnly(r.depthMap);
     r.declareOwnMaps(graph, *s.technique, std::span(maps).subspan(1));
+    if (const std::optional<ImageDecl> decl = staticPoolDecl(*s.technique, *s.params))
+        r.staticPool = graph.declare(*decl);
     const shadows::TechniqueModule& module = *s.technique;
     // On virtual maps a technique has the page pool alone: it reads it as its depth map.
     const bool ownMaps = r.maps.size() == module.maps.size();

@@ -43,11 +43,13 @@ struct DevicePages {
 };
 
 // Virtual maps: a page to render this frame, its projection (pageViewProj) and its texels'
-// first corner in the pool.
+// first corner in the pool (and in the static pool); with virtual.staticLayer, whether the
+// static pool holds its static layer already (else it is drawn first).
 struct PageDraw {
     glm::mat4 viewProj;
     bool perspective;
     glm::uvec2 origin;
+    bool staticHeld = false;
 };
 // Everything the frame's passes need to know but the host-filled buffers hold.
 struct FrameSettings {
@@ -120,6 +122,7 @@ struct FrameOutputs {
 // The frame's resources, by role, as declared in one graph.
 struct FrameResources {
     ResourceId depthMap = 0;
+    ResourceId staticPool = 0;    // virtual.staticLayer's (0: none)
     std::vector<ResourceId> maps; // the technique's own, in its module's order
     // Last frame's version of each of its own maps declared with history (MapDecl::history).
     std::vector<std::optional<ResourceId>> previousMaps;
@@ -174,10 +177,11 @@ void addPostPasses(FrameGraph& graph, FramePipelines& p, const shadows::Techniqu
                    const FrameResources& r);
 void addGBufferPass(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                     const FrameSettings& s, const FrameInputs& in, const FrameResources& r);
-// One page of a virtual map rendered into its place in the pool (shadow_passes.cpp).
+// One page of a virtual map rendered into its place in the pool (shadow_passes.cpp): `set`'s
+// casters; CasterSet::Dynamic's over what the page holds.
 void renderPageDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                      const PooledImage& pool, const PageDraw& page, uint32_t pageSize,
-                     const FrameSettings& s, VkSampler nearest);
+                     const FrameSettings& s, VkSampler nearest, CasterSet set = CasterSet::All);
 // Virtual maps: each page the host decided on rendered into the pool (LightSpace), and each
 // light's page marking after the G-buffer (ScreenSpace), both timed as "shadow".
 void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,

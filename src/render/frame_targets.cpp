@@ -2,6 +2,7 @@
 
 #include "checkerboard.h"
 #include "core/fnv1a.h"
+#include "core/virtual_maps.h"
 #include "render/pipelines.h"
 
 namespace penumbra::render {
@@ -65,24 +66,40 @@ ImageDecl screen(std::string_view name, VkFormat format, VkImageUsageFlags usage
             .arrayView = perLight};
 }
 
+// A pool of virtual.poolSize^2 depth texels, its contents kept across frames.
+ImageDecl virtualPoolDecl(std::string_view name, const ParameterValues& params,
+                          VkImageUsageFlags usage) {
+    const auto pool = static_cast<uint32_t>(params.number("virtual.poolSize"));
+    const auto page = static_cast<uint32_t>(params.number("virtual.pageSize"));
+    return {.name = std::string(name),
+            .size = SizeClass::Fixed,
+            .format = kDepthFormat,
+            .usage = usage,
+            .width = pool,
+            .height = pool,
+            .layerViews = true,
+            .lifetime = Lifetime::Persistent,
+            .key = (uint64_t{pool} << 32) | page};
+}
+
 } // namespace
+
+std::optional<ImageDecl> staticPoolDecl(const shadows::TechniqueModule& module,
+                                        const ParameterValues& params) {
+    const VirtualSettings v = VirtualSettings::of(params);
+    if (!module.readsVirtualMaps || !v.enabled || !v.staticLayer)
+        return std::nullopt;
+    return virtualPoolDecl(target::kStaticPool, params,
+                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT |
+                               VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+}
 
 std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
                                       const ParameterValues& params,
                                       std::span<const ShadowView> views) {
-    if (module.readsVirtualMaps && params.number("virtual.enabled") != 0.0) {
-        const auto pool = static_cast<uint32_t>(params.number("virtual.poolSize"));
-        const auto page = static_cast<uint32_t>(params.number("virtual.pageSize"));
-        return {{.name = std::string(target::kVirtualPool),
-                 .size = SizeClass::Fixed,
-                 .format = kDepthFormat,
-                 .usage = kDepthTarget,
-                 .width = pool,
-                 .height = pool,
-                 .layerViews = true,
-                 .lifetime = Lifetime::Persistent,
-                 .key = (uint64_t{pool} << 32) | page}};
-    }
+    if (module.readsVirtualMaps && params.number("virtual.enabled") != 0.0)
+        return {virtualPoolDecl(target::kVirtualPool, params,
+                                kDepthTarget | VK_IMAGE_USAGE_TRANSFER_DST_BIT)};
     std::vector<ImageDecl> decls{viewMap(shadows::kDepthMap, shadows::MapFormat::Depth32, false)};
     for (const shadows::MapDecl& map : module.maps) {
         decls.push_back(viewMap(map.name, shadows::formatOf(map, params),
@@ -185,6 +202,8 @@ TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterV
     TargetBytes bytes{0, 0};
     for (const ImageDecl& decl : shadowMapDecls(module, params, {})) // bytes: keys aside
         bytes.shadowMaps += ResourcePool::bytesOf(decl, sizes);
+    if (const std::optional<ImageDecl> decl = staticPoolDecl(module, params))
+        bytes.shadowMaps += ResourcePool::bytesOf(*decl, sizes);
     for (const ImageDecl& decl : screenDecls(false))
         bytes.screen += ResourcePool::bytesOf(decl, sizes);
     bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights).bytes;

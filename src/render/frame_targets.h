@@ -8,6 +8,7 @@
 #include "shadows/technique.h"
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -42,6 +43,8 @@ inline constexpr std::string_view kParams = "slot.params";
 inline constexpr std::string_view kLayerParams = "slot.layerParams";
 // Virtual maps: the physical pool (D32, persistent) and the slot's page table and requests.
 inline constexpr std::string_view kVirtualPool = "virtual.pool";
+// ... and with virtual.staticLayer, each page's static layer in the same place of a second pool.
+inline constexpr std::string_view kStaticPool = "virtual.staticPool";
 inline constexpr std::string_view kPageTable = "slot.pageTable";
 inline constexpr std::string_view kPageRequests = "slot.pageRequests";
 // The scene's vertex and positions buffers (GpuScene): the `skin` pass writes the skinned ones.
@@ -70,6 +73,9 @@ std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
                                       const ParameterValues& params,
                                       std::span<const ShadowView> views);
 std::vector<ImageDecl> screenDecls(bool intermediates);
+// The static layers' pool (virtual.staticLayer on virtual maps), copied into the pool.
+std::optional<ImageDecl> staticPoolDecl(const shadows::TechniqueModule& module,
+                                        const ParameterValues& params);
 // Bound where the technique's filtered map holds floats (TECH_TABLE): never written, never read.
 ImageDecl integerPlaceholderDecl();
 // Bound at TECH_COMPARE for a technique that reads no depth map: never written, never read.

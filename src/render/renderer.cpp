@@ -69,6 +69,11 @@ void checkVirtualMaps(const vk::Context& ctx, const Scene& scene, const RenderOp
                              "this device lacks shaderClipDistance, which the pages drawn on the "
                              "device need (set virtual.deviceDecides=0)");
     }
+    if (v.deviceDecides && o.parameters.isSet("virtual.staticLayer") &&
+        o.parameters.number("virtual.staticLayer") != 0.0)
+        throw InputError("virtual.staticLayer",
+                         "the device's decisions draw every caster into every page they render; "
+                         "set virtual.staticLayer=0 or virtual.deviceDecides=0");
     powerOfTwo("virtual.size", v.size);
     powerOfTwo("virtual.pageSize", v.pageSize);
     if (v.pageSize > v.size)
@@ -162,7 +167,11 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
         const VirtualSettings v = VirtualSettings::of(o.parameters);
         const bool pooled = v.enabled && module.readsVirtualMaps;
         const std::string shadowWhat =
-            pooled ? fmt::format("a virtual pool of {}^2 texels", v.poolSize)
+            pooled ? fmt::format("{} of {}^2 texels{}",
+                                 v.staticLayer ? "two virtual pools" : "a virtual pool", v.poolSize,
+                                 v.staticLayer ? ", the pages' and their static layers' "
+                                                 "(virtual.staticLayer=0 keeps one)"
+                                               : "")
                    : fmt::format("{} shadow views of {} texels", shadows.views, o.shadowMapSize);
         const char* shadowOption = pooled ? "virtual.poolSize" : "--shadow-map-size";
         throw InputError(shadowBytes > pixels * 100 ? shadowOption : "--width",

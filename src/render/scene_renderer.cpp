@@ -112,6 +112,10 @@ struct SceneRenderer::Impl {
     // Where casters moved since the last update (before and after each repose): the pages the
     // next update drops (dropMovedPages) and so draws again.
     MovedCasters movedSinceUpdate;
+    // Each triangle that a pose has moved (its index in the scene), and whether one moved for the
+    // first time since the last update: the static layers under it hold it where it was.
+    std::vector<uint8_t> everMoved;
+    bool firstMoveSinceUpdate = false;
     std::vector<render::PageDraw> pageDraws;
     VirtualMapInfo pageInfo;
     // The last update's levels, requests and rendered physical pages: the debug views' source.
@@ -286,6 +290,14 @@ void SceneRenderer::repose(const Scene& posedIn) {
     // Only skinned vertices moved: this pose's joints, and the `skin` pass places them.
     if (!render::reposeSkinned(m.ctx(), m.gpu, m.scene, posed))
         render::uploadGeometry(m.ctx(), m.gpu, posed);
+    // A triangle that moves once is dynamic from then on (virtual.staticLayer).
+    for (const uint32_t t : moved.indices) {
+        if (t >= m.everMoved.size())
+            m.everMoved.resize(t + 1, 0);
+        m.firstMoveSinceUpdate = m.firstMoveSinceUpdate || !m.everMoved[t];
+        m.everMoved[t] = 1;
+    }
+    render::markDynamicClusters(m.gpu.clusters, m.gpu.triangleOf, m.everMoved);
     m.scene = std::move(posed);
     // Everything the constructor measured on the geometry, measured again.
     m.bounds = m.scene.bounds();
@@ -517,9 +529,15 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
     }
     for (const auto& [light, key] : p.contentsKeys)
         pageCache->keyLight(light, key);
-    dropMovedPages(*pageCache, p.levels, movedSinceUpdate.boxes, v.pageSize,
-                   movedSinceUpdate.triangles);
+    // The pages under what moved keep their places (so a page is drawn at the same place in the
+    // pool with or without the layer: the rasterizer's rounding may depend on the place) and
+    // their static layers, unless a caster moved for the first time: those layers hold it where
+    // it was.
+    dropMovedPages(
+        *pageCache, p.levels, movedSinceUpdate.boxes, v.pageSize, movedSinceUpdate.triangles,
+        v.staticLayer && !firstMoveSinceUpdate ? MovedPage::Stale : MovedPage::StaleLayerLost);
     movedSinceUpdate.clear();
+    firstMoveSinceUpdate = false;
     // The level a page belongs to in this frame, if its window holds the page.
     auto levelHolding = [&](const PageKey& k) -> const VirtualLevel* {
         const VirtualLevel* level = levelOf(p.levels, k);
@@ -538,13 +556,17 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
     pagesRendered.clear();
     pageLevels = p.levels;
     const uint32_t side = poolPagesPerSide = v.poolPagesPerSide();
-    for (const auto& [physical, key] : u.render) {
+    for (size_t i = 0; i < u.render.size(); ++i) {
+        const auto& [physical, key] = u.render[i];
         pagesRendered.push_back(physical);
         const VirtualLevel& level = *levelHolding(key);
         pageDraws.push_back({.viewProj = pageViewProj(level, key.page - level.firstPage),
                              .perspective = level.projection.perspective,
-                             .origin = glm::uvec2(physical % side, physical / side) * v.pageSize});
+                             .origin = glm::uvec2(physical % side, physical / side) * v.pageSize,
+                             .staticHeld = u.staticHeld[i] != 0});
     }
+    pageInfo.staticHeld =
+        static_cast<uint32_t>(std::count(u.staticHeld.begin(), u.staticHeld.end(), 1));
     const std::vector<uint32_t> table = pageTable(p.levels, *pageCache, p.tableEntries);
     std::memcpy(slot.pageTable.mapped, table.data(), table.size() * sizeof(uint32_t));
     slot.markedWith = p.levels;
@@ -555,7 +577,8 @@ void SceneRenderer::Impl::updatePages(const Prepared& p, bool poolHolds) {
     pageInfo.dropped = u.dropped;
     pageInfo.evicted = u.evicted;
     pageInfo.poolPages = pageCache->capacity();
-    pageInfo.poolBytes = uint64_t{v.poolSize} * v.poolSize * sizeof(float);
+    pageInfo.poolBytes =
+        uint64_t{v.poolSize} * v.poolSize * sizeof(float) * (v.staticLayer ? 2 : 1);
     pageInfo.tableBytes = uint64_t{p.tableEntries} * sizeof(uint32_t);
     pageInfo.pageSize = v.pageSize;
     pageInfo.virtualSize = v.size;
@@ -573,7 +596,8 @@ render::FrameResources SceneRenderer::Impl::record(VkCommandBuffer cmd, const Pr
     if (p.settings.devicePages)
         prepareDevicePages(p, graph.holdsContents(r.depthMap));
     else if (p.settings.virtualMaps)
-        updatePages(p, graph.holdsContents(r.depthMap));
+        updatePages(p, graph.holdsContents(r.depthMap) &&
+                           (!r.staticPool || graph.holdsContents(r.staticPool)));
     timer.reset(cmd);
     graph.record(cmd, &timer);
     if (gpu.skin) // placed for this pose: later frames draw what it wrote

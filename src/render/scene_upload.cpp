@@ -24,18 +24,20 @@ namespace {
 struct IndexLayout {
     std::vector<DrawBatch> batches;
     std::vector<uint32_t> indices;
+    std::vector<uint32_t> triangles; // the scene triangle of each of `indices`' triangles
     uint32_t opaqueIndexCount = 0;
 };
 
 IndexLayout layoutIndices(const Scene& scene) {
     IndexLayout out;
     const size_t materialCount = std::max<size_t>(scene.materials.size(), 1);
-    std::vector<std::vector<uint32_t>> byMaterial(materialCount);
+    std::vector<std::vector<uint32_t>> byMaterial(materialCount), trianglesOf(materialCount);
     for (size_t t = 0; t < scene.triangleCount(); ++t) {
         const uint32_t m = scene.vertices[scene.indices[3 * t]].material;
         auto& list = byMaterial[m < materialCount ? m : 0];
         list.insert(list.end(), scene.indices.begin() + static_cast<long>(3 * t),
                     scene.indices.begin() + static_cast<long>(3 * t + 3));
+        trianglesOf[m < materialCount ? m : 0].push_back(static_cast<uint32_t>(t));
     }
     auto alphaTested = [&](size_t m) {
         return m < scene.materials.size() && scene.materials[m].alphaTested();
@@ -53,6 +55,7 @@ IndexLayout layoutIndices(const Scene& scene) {
                                    .indexCount = static_cast<uint32_t>(byMaterial[m].size()),
                                    .vertexColors = coloured});
             out.indices.insert(out.indices.end(), byMaterial[m].begin(), byMaterial[m].end());
+            out.triangles.insert(out.triangles.end(), trianglesOf[m].begin(), trianglesOf[m].end());
             if (!tested)
                 out.opaqueIndexCount = static_cast<uint32_t>(out.indices.size());
         }
@@ -121,6 +124,7 @@ void uploadGeometry(const vk::Context& ctx, GpuScene& out, const Scene& scene) {
     out.opaqueIndexCount = layout.opaqueIndexCount;
     out.clusters =
         makeClusters(positionsOf(scene.vertices), layout.indices, batchStarts(out.batches));
+    out.triangleOf = std::move(layout.triangles);
     const Skinning& skinning = scene.skinning;
     // Skinned vertices go up in bind space: the `skin` pass places them, in the first frame.
     std::vector<Vertex> vertices = scene.vertices;
@@ -190,9 +194,10 @@ bool reposeSkinned(const vk::Context& ctx, GpuScene& out, const Scene& uploaded,
         }
     writeJoints(*out.skin, now);
     // Culling reads the clusters' bounds: this pose's, from the host's placement.
-    const IndexLayout layout = layoutIndices(posed);
+    IndexLayout layout = layoutIndices(posed);
     out.clusters =
         makeClusters(positionsOf(posed.vertices), layout.indices, batchStarts(layout.batches));
+    out.triangleOf = std::move(layout.triangles);
     out.skin->pending = true;
     return true;
 }

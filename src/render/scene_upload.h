@@ -27,6 +27,7 @@ struct GpuScene {
     vk::Buffer vertices, indices;
     vk::Buffer positions;          // the vertices' positions alone: the opaque casters' shadow pass
     std::vector<Cluster> clusters; // of the index buffer, for culling (render/culling.h)
+    std::vector<uint32_t> triangleOf; // the scene triangle of each of the index buffer's
     uint32_t indexCount = 0;
     uint32_t opaqueIndexCount = 0; // indices [0, opaqueIndexCount) have no alpha test
     std::vector<DrawBatch> batches;

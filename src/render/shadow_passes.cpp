@@ -31,13 +31,17 @@ struct ReadMap {
 // hardware slope bias and the constant bias of the vertex shader. Opaque casters go in one draw;
 // alpha-tested ones per material with their texture. `reads` set: a technique's extra depth pass
 // (a depth peel), which draws every caster with its pipeline, the read map's layer at binding 0.
+// `set`: the clusters drawn; CasterSet::Dynamic draws over what the area holds, uncleared.
 void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                       const PooledImage& target, uint32_t layer, const glm::mat4& viewProj,
                       bool perspective, const FrameSettings& s, const ReadMap* reads,
-                      VkSampler nearest, const VkRect2D* area = nullptr) {
+                      VkSampler nearest, const VkRect2D* area = nullptr,
+                      CasterSet set = CasterSet::All) {
     const vk::Image& image = target.get();
-    const VkRenderingAttachmentInfo depth =
+    VkRenderingAttachmentInfo depth =
         attachment(image, {.depthStencil = {1.0f, 0}}, target.layer(layer));
+    if (set == CasterSet::Dynamic)
+        depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
     const VkRect2D rect = area ? *area : VkRect2D{{0, 0}, {image.width, image.height}};
     const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
                                .renderArea = rect,
@@ -60,7 +64,7 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
     };
     auto draw = [&](uint32_t first, uint32_t count) { // what the view may show of it
         for (const IndexRange& r :
-             visibleRanges(scene.clusters, first, count, viewProj, !perspective))
+             visibleRanges(scene.clusters, first, count, viewProj, !perspective, set))
             vkCmdDrawIndexed(cmd, r.count, 1, r.first, 0, 0);
     };
     constexpr VkShaderStageFlags kStages =
@@ -179,11 +183,11 @@ void recordPostPass(VkCommandBuffer cmd, FramePipelines& p, const shadows::PostP
 
 void renderPageDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                      const PooledImage& pool, const PageDraw& page, uint32_t pageSize,
-                     const FrameSettings& s, VkSampler nearest) {
+                     const FrameSettings& s, VkSampler nearest, CasterSet set) {
     const VkRect2D area{{static_cast<int32_t>(page.origin.x), static_cast<int32_t>(page.origin.y)},
                         {pageSize, pageSize}};
     renderLightDepth(cmd, p, scene, pool, 0, page.viewProj, page.perspective, s, nullptr, nearest,
-                     &area);
+                     &area, set);
 }
 
 void addShadowPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,

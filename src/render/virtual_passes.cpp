@@ -13,10 +13,69 @@
 #include "vk/pipelines.h"
 
 namespace penumbra::render {
+namespace {
+
+// virtual.staticLayer: the static layers of the pages that lack one drawn into the static pool
+// (the casters no pose has moved), every page's copied into its place in the pool, and the
+// dynamic casters drawn over it. A page only dynamic casters moved over skips the first.
+void addStaticLayerPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
+                          const FrameSettings& s, const FrameInputs& in, const FrameResources& r) {
+    graph.addPass({.name = "shadow",
+                   .cost = CostGroup::ShadowMaps,
+                   .phase = Phase::LightSpace,
+                   .uses = {{r.staticPool, Access::DepthAttachment},
+                            {r.vertices, Access::VertexRead},
+                            {r.positions, Access::VertexRead}},
+                   .record = [&p, &scene, &s, &in, pool = r.staticPool](PassContext& c) {
+                       if (s.pages)
+                           for (const PageDraw& page : *s.pages)
+                               if (!page.staticHeld)
+                                   renderPageDepth(c.cmd, p, scene, c.image(pool), page, s.pageSize,
+                                                   s, in.nearest, CasterSet::Static);
+                   }});
+    graph.addPass(
+        {.name = "shadow",
+         .cost = CostGroup::ShadowMaps,
+         .phase = Phase::LightSpace,
+         .uses = {{r.staticPool, Access::TransferRead}, {r.depthMap, Access::TransferWrite}},
+         .record = [&s, from = r.staticPool, to = r.depthMap](PassContext& c) {
+             std::vector<VkImageCopy> regions;
+             for (const PageDraw& page : s.pages ? *s.pages : std::vector<PageDraw>{}) {
+                 const VkImageSubresourceLayers depth{.aspectMask = VK_IMAGE_ASPECT_DEPTH_BIT,
+                                                      .layerCount = 1};
+                 const VkOffset3D corner{static_cast<int32_t>(page.origin.x),
+                                         static_cast<int32_t>(page.origin.y), 0};
+                 regions.push_back({.srcSubresource = depth,
+                                    .srcOffset = corner,
+                                    .dstSubresource = depth,
+                                    .dstOffset = corner,
+                                    .extent = {s.pageSize, s.pageSize, 1}});
+             }
+             if (!regions.empty())
+                 vkCmdCopyImage(c.cmd, c.image(from).get().get(),
+                                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, c.image(to).get().get(),
+                                VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                static_cast<uint32_t>(regions.size()), regions.data());
+         }});
+    graph.addPass({.name = "shadow",
+                   .cost = CostGroup::ShadowMaps,
+                   .phase = Phase::LightSpace,
+                   .uses = casterDrawUses(r),
+                   .record = [&p, &scene, &s, &in, pool = r.depthMap](PassContext& c) {
+                       if (s.pages)
+                           for (const PageDraw& page : *s.pages)
+                               renderPageDepth(c.cmd, p, scene, c.image(pool), page, s.pageSize, s,
+                                               in.nearest, CasterSet::Dynamic);
+                   }});
+}
+
+} // namespace
 
 void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                           const FrameSettings& s, const FrameInputs& in, const FrameResources& r) {
-    if (!s.devicePages)
+    if (!s.devicePages && r.staticPool)
+        addStaticLayerPasses(graph, p, scene, s, in, r);
+    else if (!s.devicePages)
         graph.addPass({.name = "shadow",
                        .cost = CostGroup::ShadowMaps,
                        .phase = Phase::LightSpace,

@@ -125,6 +125,7 @@ nlohmann::json renderStats(const RenderRun& run) {
             {"pages_resident", v->resident},
             {"pages_rendered", v->rendered},
             {"pages_cached", v->cached},
+            {"pages_static_held", v->staticHeld},
             {"pages_dropped", v->dropped},
             {"pages_evicted", v->evicted},
             {"pool_pages", v->poolPages},

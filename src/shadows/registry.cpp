@@ -227,7 +227,15 @@ const std::vector<ParameterInfo>& parameterTable() {
          .unit = "",
          .description = "decide the pages on the device within the frame (marking, allocation, "
                         "eviction, page table, indirect page draws: no read-back, no frame of "
-                        "lag); 0: on the host from the requests the frame before read back"}};
+                        "lag); 0: on the host from the requests the frame before read back"},
+        {.key = "virtual.staticLayer",
+         .type = ParameterType::Bool,
+         .defaultValue = 1, // docs/techniques.md: 2-4x less `shadow` in motion, the same bits
+         .unit = "",
+         .description = "keep each page's static layer (the casters no pose has moved) in a "
+                        "second pool of virtual.poolSize^2: a page that only moving casters "
+                        "touched is that layer copied and the moving casters drawn over it; the "
+                        "host's decisions only (virtual.deviceDecides draws every caster)"}};
     static const std::vector<ParameterInfo> composite{
         {.key = "composite.shadowIntensity",
          .type = ParameterType::Float,
