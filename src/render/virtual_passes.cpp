@@ -15,24 +15,33 @@
 namespace penumbra::render {
 namespace {
 
+// The host's pages for this frame drawn into their places in `target` (the pool, or the static
+// pool): `set`'s clusters; CasterSet::Static's only into the pages whose static layer is not
+// held, CasterSet::Dynamic's over what the pages hold.
+void addPageDraws(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
+                  const FrameSettings& s, const FrameInputs& in, const FrameResources& r,
+                  ResourceId target, CasterSet set) {
+    graph.addPass({.name = "shadow",
+                   .cost = CostGroup::ShadowMaps,
+                   .phase = Phase::LightSpace,
+                   .uses = {{target, Access::DepthAttachment},
+                            {r.vertices, Access::VertexRead},
+                            {r.positions, Access::VertexRead}},
+                   .record = [&p, &scene, &s, &in, target, set](PassContext& c) {
+                       if (s.pages)
+                           for (const PageDraw& page : *s.pages)
+                               if (set != CasterSet::Static || !page.staticHeld)
+                                   renderPageDepth(c.cmd, p, scene, c.image(target), page,
+                                                   s.pageSize, s, in.nearest, set);
+                   }});
+}
+
 // virtual.staticLayer: the static layers of the pages that lack one drawn into the static pool
 // (the casters no pose has moved), every page's copied into its place in the pool, and the
 // dynamic casters drawn over it. A page only dynamic casters moved over skips the first.
 void addStaticLayerPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                           const FrameSettings& s, const FrameInputs& in, const FrameResources& r) {
-    graph.addPass({.name = "shadow",
-                   .cost = CostGroup::ShadowMaps,
-                   .phase = Phase::LightSpace,
-                   .uses = {{r.staticPool, Access::DepthAttachment},
-                            {r.vertices, Access::VertexRead},
-                            {r.positions, Access::VertexRead}},
-                   .record = [&p, &scene, &s, &in, pool = r.staticPool](PassContext& c) {
-                       if (s.pages)
-                           for (const PageDraw& page : *s.pages)
-                               if (!page.staticHeld)
-                                   renderPageDepth(c.cmd, p, scene, c.image(pool), page, s.pageSize,
-                                                   s, in.nearest, CasterSet::Static);
-                   }});
+    addPageDraws(graph, p, scene, s, in, r, r.staticPool, CasterSet::Static);
     graph.addPass(
         {.name = "shadow",
          .cost = CostGroup::ShadowMaps,
@@ -57,16 +66,7 @@ void addStaticLayerPasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
                                 VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                 static_cast<uint32_t>(regions.size()), regions.data());
          }});
-    graph.addPass({.name = "shadow",
-                   .cost = CostGroup::ShadowMaps,
-                   .phase = Phase::LightSpace,
-                   .uses = casterDrawUses(r),
-                   .record = [&p, &scene, &s, &in, pool = r.depthMap](PassContext& c) {
-                       if (s.pages)
-                           for (const PageDraw& page : *s.pages)
-                               renderPageDepth(c.cmd, p, scene, c.image(pool), page, s.pageSize, s,
-                                               in.nearest, CasterSet::Dynamic);
-                   }});
+    addPageDraws(graph, p, scene, s, in, r, r.depthMap, CasterSet::Dynamic);
 }
 
 } // namespace
@@ -76,16 +76,7 @@ void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
     if (!s.devicePages && r.staticPool)
         addStaticLayerPasses(graph, p, scene, s, in, r);
     else if (!s.devicePages)
-        graph.addPass({.name = "shadow",
-                       .cost = CostGroup::ShadowMaps,
-                       .phase = Phase::LightSpace,
-                       .uses = casterDrawUses(r),
-                       .record = [&p, &scene, &s, &in, pool = r.depthMap](PassContext& c) {
-                           if (s.pages)
-                               for (const PageDraw& page : *s.pages)
-                                   renderPageDepth(c.cmd, p, scene, c.image(pool), page, s.pageSize,
-                                                   s, in.nearest);
-                       }});
+        addPageDraws(graph, p, scene, s, in, r, r.depthMap, CasterSet::All);
     // The requests start empty every frame.
     graph.addPass({.name = "",
                    .phase = Phase::ScreenSpace,
