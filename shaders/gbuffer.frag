@@ -9,6 +9,7 @@ layout(location = 0) in vec3 inNormal;
 layout(location = 1) in vec3 inWorld;
 layout(location = 2) in vec2 inUv;
 layout(location = 3) in vec4 inColor;
+layout(location = 4) in vec3 inPreviousWorld;
 
 layout(set = 0, binding = BIND_FRAME, std140) uniform FrameBlock { FrameData frame; };
 layout(set = 0, binding = GBUFFER_TEXTURE) uniform sampler2D baseColorTexture;
@@ -19,9 +20,20 @@ layout(constant_id = SPEC_MATERIAL_TEXTURE) const bool HAS_TEXTURE = true;
 layout(constant_id = SPEC_MATERIAL_ALPHA_TEST) const bool ALPHA_TEST = true;
 // Whether the batch's vertices carry colours: without, one interpolated input fewer.
 layout(constant_id = SPEC_MATERIAL_VERTEX_COLOR) const bool VERTEX_COLOR = true;
+// Motion vectors (a third target, declared when something reads them).
+layout(constant_id = SPEC_GBUFFER_MOTION) const bool MOTION = false;
 
 layout(location = 0) out vec4 outNormal;
 layout(location = 1) out vec4 outAlbedo;
+layout(location = 2) out vec4 outMotion;
+
+// Where a world position lands on the image under `viewProj`, in pixels (x right, y down) and
+// its depth (NDC z, reverse-Z).
+vec3 pixelOf(mat4 viewProj, vec3 world) {
+    vec4 clip = viewProj * vec4(world, 1.0);
+    vec3 ndc = clip.xyz / clip.w;
+    return vec3((ndc.xy * 0.5 + 0.5) * vec2(frame.imageSize.xy), ndc.z);
+}
 
 void main() {
     vec4 vertexColor = VERTEX_COLOR ? inColor : vec4(1.0);
@@ -43,4 +55,10 @@ void main() {
     vec4 albedo = material.baseColor * vertexColor;
     if (HAS_TEXTURE) albedo *= texture(baseColorTexture, inUv);
     outAlbedo = vec4(albedo.rgb, 1.0);
+    // The point's motion since the last frame: where it is minus where it was, in pixels, and
+    // its depth then; both ends projected alike, so a point that did not move has none.
+    if (MOTION) {
+        vec3 before = pixelOf(frame.previousViewProj, inPreviousWorld);
+        outMotion = vec4(pixelOf(frame.viewProj, inWorld).xy - before.xy, before.z, 1.0);
+    }
 }

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 using namespace penumbra::test;
@@ -750,4 +751,62 @@ TEST(CliTimeline, RowsThatPassTheDevicesMemoryKeepOnlyWhatTheirNextFrameReads) {
             EXPECT_NEAR(sum, rows[name]["gpu_ms_moving"][k].get<double>(), 1e-9) << name;
         }
     }
+}
+
+// render --motion writes the G-buffer's motion vectors: the sliding box's pixels moved in the
+// last played frame and the still ground's did not; background is NaN; a frame not played has
+// none; without the flag there is no file.
+TEST(CliTimeline, RenderMotionWritesTheLastFramesMotionVectors) {
+    const fs::path box = boxAsset(scratchDir("motion") / "box", /*animated=*/true);
+    const auto render = [&](const std::string& name, std::vector<std::string> extra) {
+        const fs::path out = outputScratch(name);
+        std::vector<std::string> args{"render",   box.string(), "-o",       out.string(),
+                                      "--width",  "64",         "--height", "48",
+                                      "--format", "pfm",        "--frames", "2"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const ProcessResult r = runCli(args);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return out;
+    };
+    const fs::path played = render("motion-played", {"--fps", "10", "--motion"});
+    const penumbra::FloatImage motion = penumbra::readPfm(played / "motion.pfm");
+    const penumbra::FloatImage position = penumbra::readPfm(played / "position.pfm");
+    const penumbra::FloatImage normal = penumbra::readPfm(played / "normal.pfm");
+    ASSERT_EQ(motion.channels, 3u);
+    ASSERT_EQ(motion.pixels.size(), position.pixels.size());
+    float ground = std::numeric_limits<float>::infinity(); // the lowest surface seen
+    for (size_t i = 0; i < position.pixels.size() / 3; ++i)
+        if (std::isfinite(position.pixels[3 * i + 1]))
+            ground = std::min(ground, position.pixels[3 * i + 1]);
+    // The box (x from -1 to 1 about its place, 0.5 then 0.7 in the last two frames; z from -1
+    // to 1) stands on the ground: its lowest pixels lie on the ground's plane too.
+    const auto outsideTheBox = [&](size_t i) {
+        const float x = position.pixels[3 * i], z = position.pixels[3 * i + 2];
+        return x < -0.55f || x > 1.75f || std::abs(z) > 1.05f;
+    };
+    size_t moving = 0, still = 0, background = 0, wrong = 0;
+    for (size_t i = 0; i < motion.pixels.size() / 3; ++i) {
+        const float m = std::hypot(motion.pixels[3 * i], motion.pixels[3 * i + 1]);
+        if (!std::isfinite(position.pixels[3 * i])) {
+            background += 1;
+            wrong += !std::isnan(motion.pixels[3 * i]);
+        } else if (std::abs(position.pixels[3 * i + 1] - ground) < 1e-4f &&
+                   normal.pixels[3 * i + 1] > 0.999f && outsideTheBox(i)) { // the ground
+            still += m == 0.0f;
+            wrong += m != 0.0f;
+        } else {
+            moving += m > 0.1f;
+        }
+    }
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_GT(moving, 20u);
+    EXPECT_GT(still, 100u);
+    const penumbra::FloatImage rest =
+        penumbra::readPfm(render("motion-rest", {"--motion"}) / "motion.pfm");
+    size_t restMoving = 0;
+    for (size_t i = 0; i < rest.pixels.size() / 3; ++i)
+        restMoving += std::isfinite(rest.pixels[3 * i]) &&
+                      (rest.pixels[3 * i] != 0.0f || rest.pixels[3 * i + 1] != 0.0f);
+    EXPECT_EQ(restMoving, 0u) << "a frame not played";
+    EXPECT_FALSE(fs::exists(render("motion-none", {"--fps", "10"}) / "motion.pfm"));
 }

@@ -104,11 +104,15 @@ TEST_F(FrameTest, APassBindingsUsesFollowFromItsShaders) {
     const vk::PipelineLayout gbuffer =
         vk::createLayoutOf(ctx, {"gbuffer.vert", "gbuffer.frag"},
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0);
-    const std::vector<Use> drawn = usesOf(
-        {.layout = &gbuffer, .bound = {{BIND_FRAME, 1}, {GBUFFER_TEXTURE, 2, fakeSampler()}}},
-        "gbuffer");
-    ASSERT_EQ(drawn.size(), 2u);
+    const std::vector<Use> drawn = usesOf({.layout = &gbuffer,
+                                           .bound = {{BIND_FRAME, 1},
+                                                     {GBUFFER_TEXTURE, 2, fakeSampler()},
+                                                     {GBUFFER_PREVIOUS_POSITIONS, 3}}},
+                                          "gbuffer");
+    ASSERT_EQ(drawn.size(), 3u);
     EXPECT_EQ(drawn[1].access, Access::FragmentSampled);
+    // A storage buffer only its vertex shader reads (the previous positions).
+    EXPECT_EQ(drawn[2].access, Access::VertexStorageRead);
     // Storage read and written, and read only.
     const vk::PipelineLayout fill =
         vk::createLayoutOf(ctx, {"visibility_fill.comp"}, VK_SHADER_STAGE_COMPUTE_BIT, 0);

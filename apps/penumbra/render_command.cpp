@@ -34,6 +34,8 @@ void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& 
                   FloatFormat format) {
     out.write("image.png", encodePng(r.width, r.height, 4, r.image));
     writeViewFiles(out, r, r.visibility, format);
+    if (!r.motion.empty())
+        writeFloatImage(out, "motion", format, r.width, r.height, 3, r.motion);
     const std::string stats = renderStats(run).dump(2) + "\n";
     out.write("stats.json",
               std::span(reinterpret_cast<const uint8_t*>(stats.data()), stats.size()));
@@ -173,6 +175,11 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
                     "renderer (no warm-up between poses); the GPU times are each pass's per frame "
                     "while things move and their median, the outputs the last frame's")
         ->type_name("F");
+    cmd->add_flag("--motion", args->options.motion,
+                  "also write `motion` (.pfm, .exr): each pixel's motion since the frame before, "
+                  "from the G-buffer (x, y: where the surface is minus where it was, in pixels, x "
+                  "right and y down; z: its depth then, NDC reverse-Z; NaN for background); "
+                  "zero unless `--fps` moves the scene");
     // The techniques that trace a distance field, from the registry.
     const std::string tracing = shadows::techniquesWhere(
         [](const shadows::TechniqueModule& m) { return m.tracedField.has_value(); });

@@ -183,6 +183,11 @@ struct RenderResult {
     std::vector<float> position;                // xyz per pixel, world space; NaN = background
     std::vector<float> normal;                  // xyz per pixel, unit; NaN = background
     std::vector<float> faceNormal; // xyz per pixel: the triangle's own unit normal; NaN as above
+    // With RenderOptions::motion: xyz per pixel, x and y where the surface is minus where it was
+    // in the last frame this renderer drew (pixels, x right, y down), z its depth then (NDC,
+    // reverse-Z); NaN as above. Zero motion on a first frame, after a cut, and for a frame of
+    // the same pose and camera as the one before.
+    std::vector<float> motion;
     std::vector<PassTime> passes;
     std::vector<LightShadow> lights;
     std::optional<DistanceFieldInfo> field;    // sdf only
@@ -326,6 +331,9 @@ public:
     struct DeviceGeometry {
         std::vector<Vertex> vertices;
         std::vector<glm::vec3> positions; // what the opaque casters' shadow pass draws
+        // Where the vertices were in the frame before the last pose moved them (the motion
+        // vectors' source); empty until a pose moves something.
+        std::vector<glm::vec3> previousPositions;
     };
     DeviceGeometry deviceGeometry() const;
     // The pages of the last frame that read virtual maps (empty levels before one).

@@ -110,6 +110,7 @@ struct RenderOptions {
     ParameterValues parameters;
     float lightRadiusOverride = -1.0f; // world units; < 0 = from the scene
     float lightAngleOverride = -1.0f;  // degrees;     < 0 = from the scene
+    bool motion = false;               // the G-buffer's motion vectors too (RenderResult::motion)
 };
 
 // Checks ranges that need no device (sizes > 0, frames >= 1, ...); throws InputError.

@@ -45,6 +45,7 @@
                                  // channels of shadowTables[0] (as float bits), not the technique
 #define SPEC_FILL_RANGE 25      // visibility_fill.comp: the range of the neighbours it fills from
                                 // (a float's bits)
+#define SPEC_GBUFFER_MOTION 28  // gbuffer.vert, gbuffer.frag: 1 writes the motion vectors
 
 // Descriptor bindings, pass by pass.
 #define BIND_FRAME 0             // FrameData, in every pass that reads it
@@ -105,6 +106,8 @@
 #define PROBE_RESULTS 2
 #define PROBE_VIEW 3
 #define GBUFFER_TEXTURE 1        // gbuffer.frag: the material's base colour
+#define GBUFFER_PREVIOUS_POSITIONS 2 // gbuffer.vert: each vertex's position in the last frame
+                                 // (floats, three a vertex; FrameData::motion.x)
 #define MASK_TEXTURE 0           // shadow_mask.frag: the alpha-tested caster's texture
 #define READ_MAP 0               // a technique's extra depth pass (shadow_peel.frag): the map
 #define READ_TEXTURE 1           // it reads, and the caster's texture

@@ -34,18 +34,24 @@ struct FrameData {       // std140 uniform block: the camera, the image and the 
                          // (the pages its filter reads are requested)
     vec4 poisson[POISSON_MAX_SAMPLES / 2u]; // Poisson disk in the unit disk, two points a vec4
                                             // (the PCF family's kernels)
+    mat4 previousViewProj; // the last frame's viewProj (this frame's on a first frame or a cut):
+                           // the G-buffer's motion vectors (gbuffer.vert)
+    uvec4 motion;          // x 1: the vertices moved since the last frame and the previous
+                           // positions buffer holds where they were (GBUFFER_PREVIOUS_POSITIONS)
 };
 PENUMBRA_GPU_END
 
 #ifdef __cplusplus
 namespace penumbra::gpu {
-static_assert(sizeof(FrameData) == 832 && offsetof(FrameData, position) == 128 &&
+static_assert(sizeof(FrameData) == 912 && offsetof(FrameData, position) == 128 &&
               offsetof(FrameData, imageSize) == 144 && offsetof(FrameData, background) == 176 &&
               offsetof(FrameData, cameraForward) == 192 && offsetof(FrameData, biasMode) == 208 &&
               offsetof(FrameData, biasParams) == 224 && offsetof(FrameData, filterLimits) == 240 &&
               offsetof(FrameData, fieldOrigin) == 256 && offsetof(FrameData, fieldSize) == 272 &&
               offsetof(FrameData, virtualPages) == 288 &&
-              offsetof(FrameData, virtualLod) == 304 && offsetof(FrameData, poisson) == 320);
+              offsetof(FrameData, virtualLod) == 304 && offsetof(FrameData, poisson) == 320 &&
+              offsetof(FrameData, previousViewProj) == 832 &&
+              offsetof(FrameData, motion) == 896);
 } // namespace penumbra::gpu
 #endif
 

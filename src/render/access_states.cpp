@@ -80,6 +80,8 @@ vk::BufferState bufferState(Access access) {
     case Access::VertexRead:
         return {VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
                 VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT};
+    case Access::VertexStorageRead:
+        return {VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT, VK_ACCESS_2_SHADER_STORAGE_READ_BIT};
     default:
         break;
     }

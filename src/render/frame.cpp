@@ -72,6 +72,8 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.gbufferDepth = screen(target::kGBufferDepth);
     r.gbufferNormal = screen(target::kGBufferNormal);
     r.gbufferAlbedo = screen(target::kGBufferAlbedo);
+    if (s.motion)
+        r.gbufferMotion = screen(target::kGBufferMotion);
     r.visibility = screen(target::kVisibility);
     r.intermediates = screen(target::kIntermediates);
     r.layerResults = screen(target::kLayerResults);
@@ -97,8 +99,8 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
         module, *s.params, r.depthMap, {r.integerPlaceholder, r.depthPlaceholder},
         ownMaps ? std::function([&](std::string_view name) { return r.named(module, name); })
                 : nullptr);
-    r.readback =
-        graph.declare(ReadbackLayout(s.sizes.width, s.sizes.height, s.sizes.shadowLights).decl());
+    r.readback = graph.declare(
+        ReadbackLayout(s.sizes.width, s.sizes.height, s.sizes.shadowLights, s.motion).decl());
     // Built (or made) sampled, and only ever sampled.
     r.field = graph.importImage(std::string(target::kField), *in.field, Access::ComputeSampled);
     r.frame = graph.importBuffer(std::string(target::kFrameBlock), in.frame);
@@ -128,6 +130,9 @@ FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const Gp
     FrameResources r = declareFrame(graph, s, in);
     r.vertices = graph.importBuffer(std::string(target::kVertices), scene.vertices.get());
     r.positions = graph.importBuffer(std::string(target::kPositions), scene.positions.get());
+    if (scene.previousPositions.get() != VK_NULL_HANDLE)
+        r.previousPositions = graph.importBuffer(std::string(target::kPreviousPositions),
+                                                 scene.previousPositions.get());
     if (scene.skin && scene.skin->pending) // the pose changed since the last skinning
         addSkinPass(graph, pipelines, scene, r);
     // A technique that reads no map (a distance field's tracer) gets none drawn: its 1x1 depth

@@ -63,6 +63,7 @@ struct FrameSettings {
     bool intermediates;       // the viewer's: the technique's and layers' intermediate results
     bool readback;            // the frame ends with the readback passes
     bool present = false;     // ... or hands its outputs to the caller's passes (FrameOutputs)
+    bool motion = false;      // the G-buffer writes motion vectors (read back with `readback`)
     glm::mat4 cameraViewProj; // the G-buffer's, for culling
     float slopeBias, constantBias;
     FrameSizes sizes;
@@ -127,6 +128,7 @@ struct FrameResources {
     // Last frame's version of each of its own maps declared with history (MapDecl::history).
     std::vector<std::optional<ResourceId>> previousMaps;
     ResourceId gbufferDepth = 0, gbufferNormal = 0, gbufferAlbedo = 0;
+    ResourceId gbufferMotion = 0; // FrameSettings::motion's (0: none)
     ResourceId visibility = 0, intermediates = 0, layerResults = 0, color = 0;
     ResourceId screenScratch = 0; // shadows::kScreenScratch (0: no screen pass binds it)
     ResourceId position = 0, normal = 0, faceNormal = 0, readback = 0;
@@ -136,6 +138,7 @@ struct FrameResources {
     ResourceId pageTable = 0, pageRequests = 0, pageRenderList = 0;
     ResourceId traceList = 0; // checkerboard tracing's (a head alone when it does not run)
     ResourceId vertices = 0, positions = 0; // the scene's, which every draw reads (VertexRead)
+    ResourceId previousPositions = 0;       // what the G-buffer's motion vectors read
     // The map a module calls `name` (shadows::kDepthMap or one of its own).
     // `<name> (previous)`: last frame's version of a map declared with history.
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;

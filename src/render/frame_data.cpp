@@ -29,6 +29,8 @@ gpu::FrameData frameData(const Camera& camera, const RenderOptions& o, uint32_t 
                       std::exp2(static_cast<float>(params.number("composite.exposure"))), 0},
         .background = {0.55f, 0.65f, 0.8f, 1.0f}};
     f.cameraForward = glm::vec4(glm::normalize(camera.target - camera.position), 0.0f);
+    f.previousViewProj = viewProj; // no motion unless the renderer knows the last frame's
+    f.motion = glm::uvec4(0u);
     const shadows::TechniqueModule& module = shadows::moduleOf(o.technique);
     shadows::setSharedSettings(f, module, params, ctx.info().depthLinearFilter,
                                ctx.limits().subTexelPrecisionBits);

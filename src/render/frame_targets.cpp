@@ -127,6 +127,8 @@ std::vector<ImageDecl> screenDecls(bool intermediates) {
                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled),
         screen(target::kGBufferAlbedo, kAlbedoFormat,
                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled),
+        screen(target::kGBufferMotion, kMotionFormat,
+               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled | VK_IMAGE_USAGE_TRANSFER_SRC_BIT),
         screen(target::kVisibility, VK_FORMAT_R32_SFLOAT, kStorageOut | kSampled, true),
         // The screen passes' scratch (shadows::kScreenScratch; declared when one binds it).
         screen(target::kScreenScratch, VK_FORMAT_R32_SFLOAT, kStorageOut, true),
@@ -170,7 +172,8 @@ ImageDecl integerPlaceholderDecl() {
             .lifetime = Lifetime::Persistent};
 }
 
-ReadbackLayout::ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers) {
+ReadbackLayout::ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers,
+                               bool withMotion) {
     const VkDeviceSize pixels = VkDeviceSize{width} * height;
     VkDeviceSize offset = 0;
     // A copy's buffer offset must be a multiple of its format's texel block (Vulkan: up to 16
@@ -186,6 +189,8 @@ ReadbackLayout::ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibil
     position = part(target::kPosition, pixels * 16);
     normal = part(target::kNormal, pixels * 16);
     faceNormal = part(target::kFaceNormal, pixels * 16);
+    if (withMotion)
+        motion = part(target::kGBufferMotion, pixels * 16);
     bytes = offset;
 }
 

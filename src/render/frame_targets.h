@@ -21,6 +21,8 @@ namespace target {
 inline constexpr std::string_view kGBufferDepth = "gbuffer.depth"; // reverse-Z, D32
 inline constexpr std::string_view kGBufferNormal = "gbuffer.normal";
 inline constexpr std::string_view kGBufferAlbedo = "gbuffer.albedo";
+// Motion vectors (kMotionFormat), declared when something reads them (FrameSettings::motion).
+inline constexpr std::string_view kGBufferMotion = "gbuffer.motion";
 inline constexpr std::string_view kVisibility = "visibility";       // R32F, a layer per light
 inline constexpr std::string_view kIntermediates = "intermediates"; // RGBA32F (1x1 unless asked)
 inline constexpr std::string_view kScreenScratch = shadows::kScreenScratch; // R32F, as visibility
@@ -50,6 +52,9 @@ inline constexpr std::string_view kPageRequests = "slot.pageRequests";
 // The scene's vertex and positions buffers (GpuScene): the `skin` pass writes the skinned ones.
 inline constexpr std::string_view kVertices = "scene.vertices";
 inline constexpr std::string_view kPositions = "scene.positions";
+// Where the vertices were in the last frame (GpuScene::previousPositions; the positions buffer in
+// its place where they did not move).
+inline constexpr std::string_view kPreviousPositions = "scene.previousPositions";
 // A technique's map `name` of every shadow view: "shadow.depth", "shadow.moments", ...
 std::string shadowMap(std::string_view name);
 } // namespace target
@@ -85,15 +90,16 @@ ImageDecl depthPlaceholderDecl();
 // as it did (a moved light or a re-fitted cascade drops it: its texels would lie elsewhere).
 uint64_t historyKeyOf(std::span<const ShadowView> views);
 
-// The readback buffer: colour, every visibility layer, position, normal and face normal, tightly
-// packed in that order.
+// The readback buffer: colour, every visibility layer, position, normal, face normal and, with
+// `motion`, the motion vectors, tightly packed in that order.
 struct ReadbackLayout {
     struct Part {
         std::string_view target;
         VkDeviceSize offset, bytes;
     };
-    ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers);
+    ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers, bool motion = false);
     Part color, visibility, position, normal, faceNormal;
+    std::optional<Part> motion;
     VkDeviceSize bytes;
     BufferDecl decl() const;
 };

@@ -38,6 +38,10 @@ Access accessOf(const vk::Binding& binding, VkShaderStageFlags stages, std::stri
         return Access::UniformRead;
     case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
     case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+        // A buffer only a vertex shader reads (the G-buffer's previous positions).
+        if (binding.type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER && !binding.written &&
+            binding.usedBy == VK_SHADER_STAGE_VERTEX_BIT)
+            return Access::VertexStorageRead;
         if (!compute)
             refuse(pass,
                    fmt::format("binding {}: storage outside a compute shader", binding.binding));

@@ -153,8 +153,8 @@ VkPipeline FramePipelines::visibility(const Constants& constants) {
 }
 
 VkPipeline FramePipelines::gbuffer(GBufferVariant v) {
-    vk::PipelineHandle& pipeline =
-        mGbuffer[(v.texture ? 4 : 0) + (v.alphaTest ? 2 : 0) + (v.vertexColors ? 1 : 0)];
+    vk::PipelineHandle& pipeline = mGbuffer[(v.motion ? 8 : 0) + (v.texture ? 4 : 0) +
+                                            (v.alphaTest ? 2 : 0) + (v.vertexColors ? 1 : 0)];
     if (!pipeline)
         pipeline = vk::createGraphicsPipeline(
             ctx, gbufferLayout,
@@ -165,13 +165,15 @@ VkPipeline FramePipelines::gbuffer(GBufferVariant v) {
                             attribute(1, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)),
                             attribute(2, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)),
                             attribute(3, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color))},
-             .colorFormats = {kNormalFormat, kAlbedoFormat},
+             .colorFormats = v.motion ? std::vector{kNormalFormat, kAlbedoFormat, kMotionFormat}
+                                      : std::vector{kNormalFormat, kAlbedoFormat},
              .depthFormat = kDepthFormat,
              .depthCompare = VK_COMPARE_OP_GREATER_OR_EQUAL, // reverse-Z
              .dynamicCullMode = true,
              .constants = {{SPEC_MATERIAL_TEXTURE, v.texture ? 1u : 0u},
                            {SPEC_MATERIAL_ALPHA_TEST, v.alphaTest ? 1u : 0u},
-                           {SPEC_MATERIAL_VERTEX_COLOR, v.vertexColors ? 1u : 0u}}});
+                           {SPEC_MATERIAL_VERTEX_COLOR, v.vertexColors ? 1u : 0u},
+                           {SPEC_GBUFFER_MOTION, v.motion ? 1u : 0u}}});
     return pipeline.get();
 }
 

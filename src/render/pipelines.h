@@ -47,9 +47,10 @@ public:
     vk::PipelineHandle exportGBuffer;
 
     // The G-buffer pass for a batch: its material's flags (MaterialPush::hasTexture, alphaTest)
-    // and whether its vertices are coloured (DrawBatch::vertexColors).
+    // and whether its vertices are coloured (DrawBatch::vertexColors); `motion`: the frame
+    // writes motion vectors too (a third target, kMotionFormat).
     struct GBufferVariant {
-        bool texture, alphaTest, vertexColors;
+        bool texture, alphaTest, vertexColors, motion = false;
     };
     VkPipeline gbuffer(GBufferVariant variant);
 
@@ -94,11 +95,14 @@ private:
     std::map<std::string, PostPipeline, std::less<>> mPost;
     std::unique_ptr<FieldPipelines> mField;
     std::unique_ptr<SkinPipeline> mSkin;
-    std::array<vk::PipelineHandle, 8> mGbuffer;
+    std::array<vk::PipelineHandle, 16> mGbuffer;
 };
 
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;
+// Motion vectors: x, y in pixels and the last frame's depth; float32, so that a test's tolerance
+// is the projection's rounding alone and a reprojected depth keeps a far surface apart.
+inline constexpr VkFormat kMotionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 } // namespace penumbra::render

@@ -84,20 +84,21 @@ using ResourceId = uint32_t;
 
 // How a pass uses a resource: the pipeline stage, access and (for images) layout it needs.
 enum class Access {
-    DepthAttachment,  // depth test and write
-    ColorAttachment,  // colour write
-    FragmentSampled,  // sampled in a fragment shader
-    ComputeSampled,   // sampled in a compute shader
-    ComputeWrite,     // a storage image or buffer written by a compute shader
-    ComputeReadWrite, // ... read and written
-    TransferRead,     // copied from
-    TransferWrite,    // copied to
-    UniformRead,      // a uniform buffer read by any shader stage
-    ComputeRead,      // a storage buffer or image read by a compute shader
-    IndirectRead,     // indirect dispatch or draw arguments (and the rest of their buffer, read
-                      // by the compute shaders they dispatch)
-    HostRead,         // read by the host after the submission (a readback buffer)
-    VertexRead,       // vertex attributes a draw reads (the vertex and positions buffers)
+    DepthAttachment,   // depth test and write
+    ColorAttachment,   // colour write
+    FragmentSampled,   // sampled in a fragment shader
+    ComputeSampled,    // sampled in a compute shader
+    ComputeWrite,      // a storage image or buffer written by a compute shader
+    ComputeReadWrite,  // ... read and written
+    TransferRead,      // copied from
+    TransferWrite,     // copied to
+    UniformRead,       // a uniform buffer read by any shader stage
+    ComputeRead,       // a storage buffer or image read by a compute shader
+    IndirectRead,      // indirect dispatch or draw arguments (and the rest of their buffer, read
+                       // by the compute shaders they dispatch)
+    HostRead,          // read by the host after the submission (a readback buffer)
+    VertexRead,        // vertex attributes a draw reads (the vertex and positions buffers)
+    VertexStorageRead, // a storage buffer read by a vertex shader (the previous positions)
 };
 bool writes(Access access);
 bool reads(Access access); // what it finds (attachments are cleared on load: they do not)

@@ -93,6 +93,11 @@ struct SceneRenderer::Impl {
         std::vector<VirtualLevel> markedWith;
     };
     std::array<Slot, kFramesInFlight> slots;
+    // The camera of the last frame prepared: the next frame's motion vectors start from it.
+    std::optional<glm::mat4> lastViewProj;
+    // Motion since the last frame, written into a prepared frame's block (FrameData
+    // previousViewProj and motion): from the last camera and pose unless the view jumped.
+    void setMotion(gpu::FrameData& frame, bool cut);
     size_t nextSlot = 0;
     size_t lastSlot = 0; // render()'s last: a frame that continues it uses it again
     vk::SamplerHandle nearest, compare, linear;
@@ -362,6 +367,7 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
     const RenderOptions shaded = exposed(o);
     render::FrameBlocks blocks =
         render::frameBlocks(camera, shaded, static_cast<uint32_t>(lights.size()), ctx());
+    setMotion(blocks.frame, state.cut);
     result.exposure = static_cast<float>(shaded.parameters.number("composite.exposure"));
     const vk::Image* fieldImage = &fieldPlaceholder;
     if (const auto& declared = shadows::moduleOf(o.technique).tracedField) {
@@ -432,6 +438,12 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
             .levels = std::move(views.levels),
             .tableEntries = views.tableEntries,
             .contentsKeys = std::move(views.contentsKeys)};
+}
+
+void SceneRenderer::Impl::setMotion(gpu::FrameData& frame, bool cut) {
+    frame.previousViewProj = cut || !lastViewProj ? frame.viewProj : *lastViewProj;
+    frame.motion.x = !cut && gpu.moved ? 1u : 0u;
+    lastViewProj = frame.viewProj;
 }
 
 void SceneRenderer::Impl::reservePageBuffers(Slot& slot, uint32_t entries) {
@@ -602,6 +614,8 @@ render::FrameResources SceneRenderer::Impl::record(VkCommandBuffer cmd, const Pr
     graph.record(cmd, &timer);
     if (gpu.skin) // placed for this pose: later frames draw what it wrote
         gpu.skin->pending = false;
+    gpu.moved = false; // later frames of this pose see no motion
+    gpu.drawn = true;
     outputs = {.color = &graph.image(r.color).get(),
                .visibility = &graph.image(r.visibility).get(),
                .depthMap = &graph.image(r.depthMap).get(),
@@ -644,6 +658,10 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         // first touches showed in its GPU times (on lavapipe a 30 ms shadow pass took 560).
         prepared.settings.readback = true;
         ctx.submitAndWait([&](VkCommandBuffer cmd) { m.record(cmd, prepared, timer); });
+        if (frame == 0) { // the frames after it draw the same pose and camera again: no motion
+            auto& block = *static_cast<gpu::FrameData*>(m.slots[slot].frame.mapped);
+            m.setMotion(block, false);
+        }
         if (prepared.settings.devicePages)
             m.readDevicePages(prepared);
         if (warmUp)
@@ -670,7 +688,8 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
 
     if (progress)
         progress("reading back");
-    const render::ReadbackLayout layout(o.width, o.height, prepared.settings.sizes.shadowLights);
+    const render::ReadbackLayout layout(o.width, o.height, prepared.settings.sizes.shadowLights,
+                                        prepared.settings.motion);
     const VkBuffer readback = m.pool->findBuffer(render::target::kReadback);
     PENUMBRA_CHECK(readback != VK_NULL_HANDLE, "SceneRenderer: no readback buffer");
     const auto* src = static_cast<const std::byte*>(m.pool->mapped(render::target::kReadback));
@@ -689,6 +708,15 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         for (size_t i = 0; i < pixels; ++i)
             for (int c = 0; c < 3; ++c)
                 (*out)[3 * i + c] = rgba[4 * i + c];
+    }
+    if (layout.motion) { // w: 1 where a surface wrote it
+        result.motion.resize(pixels * 3);
+        const auto* rgba = reinterpret_cast<const float*>(src + layout.motion->offset);
+        for (size_t i = 0; i < pixels; ++i)
+            for (int c = 0; c < 3; ++c)
+                result.motion[3 * i + c] = rgba[4 * i + 3] != 0.0f
+                                               ? rgba[4 * i + c]
+                                               : std::numeric_limits<float>::quiet_NaN();
     }
     return result;
 }
@@ -723,7 +751,8 @@ SceneRenderer::DeviceGeometry SceneRenderer::deviceGeometry() const {
     const Impl& m = *mImpl;
     VK_CHECK(vkDeviceWaitIdle(m.ctx().device())); // the last frame's skinning, done
     DeviceGeometry out;
-    render::readGeometry(m.ctx(), m.gpu, m.scene.vertices.size(), out.vertices, out.positions);
+    render::readGeometry(m.ctx(), m.gpu, m.scene.vertices.size(), out.vertices, out.positions,
+                         out.previousPositions);
     return out;
 }
 

@@ -20,6 +20,12 @@ static_assert(sizeof(SkinInfluence) == sizeof(gpu::SkinInfluence) &&
 
 namespace {
 
+// A positions buffer as the motion vectors' previous positions: read by the G-buffer's vertex
+// shader, written by a copy (GpuScene::previousPositions).
+constexpr VkBufferUsageFlags kPreviousUsage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+    VK_BUFFER_USAGE_TRANSFER_SRC_BIT; // read back by the tests
+
 // The index buffer's order: grouped by material, the alpha-tested ones last.
 struct IndexLayout {
     std::vector<DrawBatch> batches;
@@ -138,9 +144,21 @@ void uploadGeometry(const vk::Context& ctx, GpuScene& out, const Scene& scene) {
     out.vertices = vk::uploadBuffer(ctx, std::as_bytes(std::span(vertices)),
                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | written, "vertex buffer");
     const std::vector<glm::vec3> positions = positionsOf(vertices);
-    out.positions =
-        vk::uploadBuffer(ctx, std::as_bytes(std::span(positions)),
-                         VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | written, "position buffer");
+    // The positions drawn last stay for the motion vectors (where no frame drew these, the
+    // previous positions already hold the last frame drawn, or nothing).
+    if (out.drawn) {
+        out.previousPositions = std::move(out.positions);
+        out.moved = true;
+    }
+    out.drawn = false;
+    if (out.previousPositions.size != positions.size() * sizeof(glm::vec3)) {
+        out.previousPositions = {}; // another vertex count: nothing says where they were
+        out.moved = false;
+    }
+    // A positions buffer becomes the previous one (read by the G-buffer, copied into).
+    out.positions = vk::uploadBuffer(ctx, std::as_bytes(std::span(positions)),
+                                     VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | kPreviousUsage | written,
+                                     "position buffer");
     out.indices = vk::uploadBuffer(ctx, std::as_bytes(std::span(layout.indices)),
                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "index buffer");
     out.indexCount = static_cast<uint32_t>(layout.indices.size());
@@ -199,27 +217,50 @@ bool reposeSkinned(const vk::Context& ctx, GpuScene& out, const Scene& uploaded,
         makeClusters(positionsOf(posed.vertices), layout.indices, batchStarts(layout.batches));
     out.triangleOf = std::move(layout.triangles);
     out.skin->pending = true;
+    // The motion vectors' previous positions: where the last frame drew the vertices, copied
+    // before the next `skin` pass moves them (where no frame drew the buffer as it is, the
+    // previous positions already hold the last frame drawn, or nothing).
+    if (out.drawn) {
+        if (out.previousPositions.size != out.positions.size)
+            out.previousPositions =
+                vk::createBuffer(ctx, out.positions.size, kPreviousUsage,
+                                 vk::MemoryUse::DeviceLocal, "previous positions");
+        ctx.submitAndWait([&](VkCommandBuffer cmd) {
+            const VkBufferCopy all{.size = out.positions.size};
+            vkCmdCopyBuffer(cmd, out.positions.get(), out.previousPositions.get(), 1, &all);
+        });
+        out.moved = true;
+    }
+    out.drawn = false;
     return true;
 }
 
 void readGeometry(const vk::Context& ctx, const GpuScene& scene, size_t vertexCount,
-                  std::vector<Vertex>& vertices, std::vector<glm::vec3>& positions) {
+                  std::vector<Vertex>& vertices, std::vector<glm::vec3>& positions,
+                  std::vector<glm::vec3>& previous) {
     vertices.resize(vertexCount);
     positions.resize(vertexCount);
+    const bool moved = scene.previousPositions.get() != VK_NULL_HANDLE;
+    previous.resize(moved ? vertexCount : 0);
     const VkDeviceSize vertexBytes = vertexCount * sizeof(Vertex),
                        positionBytes = vertexCount * sizeof(glm::vec3);
     vk::Buffer readback =
-        vk::createBuffer(ctx, vertexBytes + positionBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        vk::createBuffer(ctx, vertexBytes + 2 * positionBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                          vk::MemoryUse::Readback, "geometry readback");
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         const VkBufferCopy vertexRegion{.size = vertexBytes},
-            positionRegion{.dstOffset = vertexBytes, .size = positionBytes};
+            positionRegion{.dstOffset = vertexBytes, .size = positionBytes},
+            previousRegion{.dstOffset = vertexBytes + positionBytes, .size = positionBytes};
         vkCmdCopyBuffer(cmd, scene.vertices.get(), readback.get(), 1, &vertexRegion);
         vkCmdCopyBuffer(cmd, scene.positions.get(), readback.get(), 1, &positionRegion);
+        if (moved)
+            vkCmdCopyBuffer(cmd, scene.previousPositions.get(), readback.get(), 1, &previousRegion);
     });
     const auto* bytes = static_cast<const std::byte*>(readback.mapped);
     std::memcpy(vertices.data(), bytes, vertexBytes);
     std::memcpy(positions.data(), bytes + vertexBytes, positionBytes);
+    if (moved)
+        std::memcpy(previous.data(), bytes + vertexBytes + positionBytes, positionBytes);
 }
 
 } // namespace penumbra::render

@@ -49,6 +49,13 @@ struct GpuScene {
         bool pending = false;
     };
     std::optional<Skin> skin; // none: nothing is skinned
+    // Where the vertices were in the last frame drawn, for the G-buffer's motion vectors
+    // (FrameData::motion): the positions buffer that a new pose's upload replaced, or a copy of
+    // it made when only skinned vertices moved. `moved`: it holds the last frame drawn and the
+    // next frame's vertices may differ from it (none before a pose follows a frame, or when a
+    // pose changed the vertex count). `drawn`: a frame drew the positions buffer as it is.
+    vk::Buffer previousPositions;
+    bool moved = false, drawn = false;
 };
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
 // The geometry alone uploaded again (vertices, positions, indices, batches, clusters), the
@@ -64,8 +71,10 @@ void uploadGeometry(const vk::Context& ctx, GpuScene& scene, const Scene& posed)
 bool reposeSkinned(const vk::Context& ctx, GpuScene& scene, const Scene& uploaded,
                    const Scene& posed);
 // The vertex and positions buffers as the device holds them (the tests' view of the `skin`
-// pass's work), `vertexCount` of each.
+// pass's work), `vertexCount` of each, and the previous positions buffer (empty when there is
+// none: nothing moved yet).
 void readGeometry(const vk::Context& ctx, const GpuScene& scene, size_t vertexCount,
-                  std::vector<Vertex>& vertices, std::vector<glm::vec3>& positions);
+                  std::vector<Vertex>& vertices, std::vector<glm::vec3>& positions,
+                  std::vector<glm::vec3>& previous);
 
 } // namespace penumbra::render

@@ -11,26 +11,36 @@ namespace penumbra::render {
 
 void addGBufferPass(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                     const FrameSettings& s, const FrameInputs& in, const FrameResources& r) {
+    std::vector<Use> uses{{r.gbufferDepth, Access::DepthAttachment},
+                          {r.gbufferNormal, Access::ColorAttachment},
+                          {r.gbufferAlbedo, Access::ColorAttachment},
+                          {r.frame, Access::UniformRead},
+                          {r.vertices, Access::VertexRead}};
+    // Where the vertices were: read by the motion vectors (bound either way, every binding a
+    // shader declares must be written; the positions stand in where nothing moved).
+    const ResourceId previous = r.previousPositions ? r.previousPositions : r.positions;
+    uses.push_back({previous, Access::VertexStorageRead});
+    if (s.motion)
+        uses.push_back({r.gbufferMotion, Access::ColorAttachment});
     graph.addPass(
         {.name = "gbuffer",
          .cost = CostGroup::Frame,
          .phase = Phase::GBuffer,
-         .uses = {{r.gbufferDepth, Access::DepthAttachment},
-                  {r.gbufferNormal, Access::ColorAttachment},
-                  {r.gbufferAlbedo, Access::ColorAttachment},
-                  {r.frame, Access::UniformRead},
-                  {r.vertices, Access::VertexRead}},
-         .record = [&p, &scene, &s, &in, r](PassContext& c) {
+         .uses = uses,
+         .record = [&p, &scene, &s, &in, r, previous](PassContext& c) {
              const vk::Image& depthImage = c.image(r.gbufferDepth).get();
+             // Background pixels keep no motion (w = 0 marks them).
              const VkRenderingAttachmentInfo colors[] = {
                  attachment(c.image(r.gbufferNormal).get(), {.color = {{0, 0, 0, 0}}}),
-                 attachment(c.image(r.gbufferAlbedo).get(), {.color = {{0, 0, 0, 0}}})};
+                 attachment(c.image(r.gbufferAlbedo).get(), {.color = {{0, 0, 0, 0}}}),
+                 s.motion ? attachment(c.image(r.gbufferMotion).get(), {.color = {{0, 0, 0, 0}}})
+                          : VkRenderingAttachmentInfo{}};
              const VkRenderingAttachmentInfo depth =
                  attachment(depthImage, {.depthStencil = {0.0f, 0}});
              const VkRenderingInfo info{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO,
                                         .renderArea = {{0, 0}, {s.sizes.width, s.sizes.height}},
                                         .layerCount = 1,
-                                        .colorAttachmentCount = 2,
+                                        .colorAttachmentCount = s.motion ? 3u : 2u,
                                         .pColorAttachments = colors,
                                         .pDepthAttachment = &depth};
              VkCommandBuffer cmd = c.cmd;
@@ -46,12 +56,14 @@ void addGBufferPass(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
                  const VkPipeline pipeline =
                      p.gbuffer({.texture = material.constants.hasTexture != 0u,
                                 .alphaTest = material.constants.alphaTest != 0u,
-                                .vertexColors = batch.vertexColors});
+                                .vertexColors = batch.vertexColors,
+                                .motion = s.motion});
                  if (pipeline != bound)
                      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, bound = pipeline);
                  vk::PushDescriptors()
                      .uniformBuffer(BIND_FRAME, in.frame)
                      .sampled(GBUFFER_TEXTURE, material.texture.view, material.texture.sampler)
+                     .storageBuffer(GBUFFER_PREVIOUS_POSITIONS, c.buffer(previous))
                      .push(p.ctx, cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.gbufferLayout);
                  vkCmdPushConstants(cmd, p.gbufferLayout.get(),
                                     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
@@ -83,23 +95,20 @@ void addReadbackPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings
                                          p.exportGBuffer.get());
                        vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
                    }});
-    const ReadbackLayout layout(s.sizes.width, s.sizes.height, s.sizes.shadowLights);
+    const ReadbackLayout layout(s.sizes.width, s.sizes.height, s.sizes.shadowLights, s.motion);
+    std::vector<std::pair<ResourceId, ReadbackLayout::Part>> parts{
+        {r.color, layout.color},
+        {r.visibility, layout.visibility},
+        {r.position, layout.position},
+        {r.normal, layout.normal},
+        {r.faceNormal, layout.faceNormal}};
+    if (layout.motion)
+        parts.emplace_back(r.gbufferMotion, *layout.motion);
+    std::vector<Use> uses{{r.readback, Access::TransferWrite}};
+    for (const auto& part : parts)
+        uses.push_back({part.first, Access::TransferRead});
     graph.addPass(
-        {.name = "",
-         .phase = Phase::Readback,
-         .uses = {{r.color, Access::TransferRead},
-                  {r.visibility, Access::TransferRead},
-                  {r.position, Access::TransferRead},
-                  {r.normal, Access::TransferRead},
-                  {r.faceNormal, Access::TransferRead},
-                  {r.readback, Access::TransferWrite}},
-         .record = [layout, r](PassContext& c) {
-             const std::pair<ResourceId, ReadbackLayout::Part> parts[] = {
-                 {r.color, layout.color},
-                 {r.visibility, layout.visibility},
-                 {r.position, layout.position},
-                 {r.normal, layout.normal},
-                 {r.faceNormal, layout.faceNormal}};
+        {.name = "", .phase = Phase::Readback, .uses = uses, .record = [parts, r](PassContext& c) {
              for (const auto& [id, part] : parts) {
                  const vk::Image& image = c.image(id).get();
                  const VkBufferImageCopy region{.bufferOffset = part.offset,

@@ -155,7 +155,12 @@ PipelineLayout createLayoutOf(const Context& ctx, std::initializer_list<std::str
     for (std::string_view shader : shaders) {
         const auto words = shaders::spirv(shader);
         PENUMBRA_CHECK(!words.empty(), "no embedded shader named " + std::string(shader));
-        for (const Binding& used : reflectBindings(words)) {
+        const VkShaderStageFlags stage = shader.ends_with(".vert")   ? VK_SHADER_STAGE_VERTEX_BIT
+                                         : shader.ends_with(".frag") ? VK_SHADER_STAGE_FRAGMENT_BIT
+                                         : shader.ends_with(".comp") ? VK_SHADER_STAGE_COMPUTE_BIT
+                                                                     : 0;
+        for (Binding used : reflectBindings(words)) {
+            used.usedBy = stage;
             const auto held = std::find_if(bindings.begin(), bindings.end(), [&](const Binding& b) {
                 return b.binding == used.binding;
             });
@@ -163,6 +168,7 @@ PipelineLayout createLayoutOf(const Context& ctx, std::initializer_list<std::str
                 bindings.push_back(used);
                 continue;
             }
+            held->usedBy |= stage;
             PENUMBRA_CHECK(held->type == used.type && held->count == used.count &&
                                held->format == used.format,
                            "shader " + std::string(shader) + ": binding " +

@@ -24,6 +24,9 @@ struct Binding {
     // A storage image's format as its shaders declare it (`layout(rg32f)`), which the view bound
     // there must have; VK_FORMAT_UNDEFINED for none declared and for other kinds.
     VkFormat format = VK_FORMAT_UNDEFINED;
+    // The stages of the shaders that declare it (createLayoutOf, from each shader's name: .vert,
+    // .frag, .comp); 0 where unknown (reflection alone, a layout listed by hand).
+    VkShaderStageFlags usedBy = 0;
 };
 
 // Why `bindings`, seen by one shader stage through one push descriptor set, exceed the device's
