@@ -33,7 +33,7 @@ float contactVisibility(ivec2 p, vec3 world, vec3 face, LightData light) {
     float reach = contact.marchLength;
     if (LIGHT_TYPE != LIGHT_DIRECTIONAL)
         reach = min(reach, length(light.positionType.xyz - world));
-    float jitter = rotationTurns(ROTATION_IGN, uvec2(p));
+    float jitter = turnedByFrame(rotationTurns(ROTATION_IGN, uvec2(p)), frame.motion.y);
     vec2 size = vec2(frame.imageSize.xy);
     for (uint i = 0u; i < contact.steps; ++i) {
         float t = contactSampleDistance(i, contact.steps, reach, jitter);

@@ -46,6 +46,8 @@
 #define SPEC_FILL_RANGE 25      // visibility_fill.comp: the range of the neighbours it fills from
                                 // (a float's bits)
 #define SPEC_GBUFFER_MOTION 28  // gbuffer.vert, gbuffer.frag: 1 writes the motion vectors
+#define SPEC_HISTORY_RESOLVE 29 // a layer that keeps a history (temporal.comp): 0 writes this
+                                // frame's history, 1 then copies it into the visibility
 
 // Descriptor bindings, pass by pass.
 #define BIND_FRAME 0             // FrameData, in every pass that reads it
@@ -97,6 +99,10 @@
 #define LAYER_RESULTS 6          // R32F array: the layer's own factor, with SPEC_INTERMEDIATES (a
                                  // 1x1 placeholder otherwise; the viewer's debug view)
 #define LAYER_TRACE_LIST 7       // checkerboard.h's trace list: visibility_fill.comp appends to it
+// A layer that keeps a history (LayerModule::history; temporal.comp), on a layout of its own:
+#define LAYER_MOTION 8           // the G-buffer's motion vectors (gbuffer.motion)
+#define LAYER_HISTORY_PREVIOUS 9 // its history as last frame wrote it (zeros where none), and
+#define LAYER_HISTORY 10         // this frame's, written: a layer per shadow-casting light
 #define EXPORT_GBUFFER_DEPTH 1   // export.comp
 #define EXPORT_GBUFFER_NORMAL 2
 #define EXPORT_POSITION 3

@@ -37,7 +37,9 @@ struct FrameData {       // std140 uniform block: the camera, the image and the 
     mat4 previousViewProj; // the last frame's viewProj (this frame's on a first frame or a cut):
                            // the G-buffer's motion vectors (gbuffer.vert)
     uvec4 motion;          // x 1: the vertices moved since the last frame and the previous
-                           // positions buffer holds where they were (GBUFFER_PREVIOUS_POSITIONS)
+                           // positions buffer holds where they were (GBUFFER_PREVIOUS_POSITIONS);
+                           // y the frame's index while a layer keeps a history (0 otherwise): the
+                           // techniques turn their per-pixel rotations by it (turnedByFrame)
 };
 PENUMBRA_GPU_END
 

@@ -68,6 +68,18 @@ SHARED float rotationTurns(uint rotation, uvec2 pixel) {
     return 0.0f;
 }
 
+// A frame's turn of every per-pixel rotation (pcf, pcss, smrt, contact; the `temporal` layer's
+// frames, FrameData::motion.y), in turns: frame i
+// turns by i times the golden ratio's fraction, in 32-bit fixed point (exact, whatever i), so
+// that a pixel's rotations over frames spread as evenly as a sequence can (the R1 sequence).
+// Frame 0 turns by nothing: a technique without the layer draws what it always drew.
+SHARED float frameTurn(uint frameIndex) {
+    return float((frameIndex * 0x9E3779B9u) >> 8u) * (1.0f / 16777216.0f);
+}
+SHARED float turnedByFrame(float turns, uint frameIndex) {
+    return frameIndex == 0u ? turns : fract(turns + frameTurn(frameIndex));
+}
+
 // (cos, sin) of `turns` of a full turn from adds and multiplies alone: Vulkan allows sin and cos an
 // absolute error of 2^-11, which moves a tap 3 texels out by 0.003 texel, while these operations
 // are correctly rounded on every device. The quadrant is exact; within it, Taylor series of

@@ -11,7 +11,8 @@ layout(constant_id = SPEC_FILTER) const uint FILTER = FILTER_BOX;
 
 float pcfPoisson(sampler2DArray map, Receiver r, uint mapSize, uvec2 pixel, vec2 dzRange) {
     return poissonTaps(map, r, mapSize, pcf.samples, pcf.radius * r.kernelScale,
-                       rotationTurns(pcf.rotation, pixel), dzRange);
+                       turnedByFrame(rotationTurns(pcf.rotation, pixel), frame.motion.y),
+                       dzRange);
 }
 
 // [Isidoro 2006] edge-only PCF: four taps at the kernel's corners; when they agree fully

@@ -59,14 +59,14 @@ vec4 pcssFilter(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData vie
 // pcss.maxRadius is in texels of the view sampled; the visibility pass spreads a sun's PCSS over
 // its cascades so that the cap does not clip what a coarser cascade can hold.
 vec4 shadowPcssDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view, uvec2 pixel) {
-    float turns = rotationTurns(pcss.rotation, pixel);
+    float turns = turnedByFrame(rotationTurns(pcss.rotation, pixel), frame.motion.y);
     vec2 blockers = pcssSearch(map, r, mapSize, view, turns);
     if (blockers.x == 0.0) return vec4(1.0, blockers.y, 0.0, 0.0); // nothing in the way: lit
     return pcssFilter(map, r, mapSize, view, viewDistance(view, blockers.y), blockers, turns);
 }
 
 vec4 evaluatePcss(TechniqueInput at) {
-    float turns = rotationTurns(pcss.rotation, at.pixel);
+    float turns = turnedByFrame(rotationTurns(pcss.rotation, at.pixel), frame.motion.y);
     if (at.stage == STAGE_SEARCH)
         return vec4(pcssSearch(shadowMap, at.r, at.mapSize, at.view, turns), 0.0, 0.0);
     if (at.stage == STAGE_FILTER)

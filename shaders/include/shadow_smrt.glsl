@@ -194,7 +194,7 @@ bool smrtSettled(ShadowViewData view, SmrtScale scale, vec3 p, vec3 d, inout Smr
 // march length in texels of the map (over the rays traced).
 vec4 shadowSmrtDetail(sampler2DArray map, Receiver r, uint mapSize, ShadowViewData view,
                       uvec2 pixel) {
-    float turns = rotationTurns(smrt.rotation, pixel);
+    float turns = turnedByFrame(rotationTurns(smrt.rotation, pixel), frame.motion.y);
     uvec2 budget = smrtBudget(view, smrt);
     uint rays = budget.x, samples = budget.y, adaptive = smrtAdaptive(view, smrt);
     uint gapSamples = smrtGapSamples(view, smrt);

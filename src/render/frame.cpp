@@ -77,6 +77,15 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
     r.visibility = screen(target::kVisibility);
     r.intermediates = screen(target::kIntermediates);
     r.layerResults = screen(target::kLayerResults);
+    for (const shadows::LayerModule* layer : s.layers) {
+        ResourceId history = 0, previous = 0;
+        if (layer->history) {
+            history = graph.declare(layerHistoryDecl(*layer, *s.technique, *s.params));
+            previous = graph.previous(history);
+        }
+        r.layerHistory.push_back(history);
+        r.layerHistoryPrevious.push_back(previous);
+    }
     const std::vector<shadows::ScreenPassDecl> screenPasses = screenPassesOf(s);
     if (std::any_of(screenPasses.begin(), screenPasses.end(), [](const shadows::ScreenPassDecl& p) {
             return p.results == shadows::kScreenScratch;

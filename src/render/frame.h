@@ -129,6 +129,8 @@ struct FrameResources {
     std::vector<std::optional<ResourceId>> previousMaps;
     ResourceId gbufferDepth = 0, gbufferNormal = 0, gbufferAlbedo = 0;
     ResourceId gbufferMotion = 0; // FrameSettings::motion's (0: none)
+    // Per entry of FrameSettings::layers: its history, this frame's and last frame's (0: none).
+    std::vector<ResourceId> layerHistory, layerHistoryPrevious;
     ResourceId visibility = 0, intermediates = 0, layerResults = 0, color = 0;
     ResourceId screenScratch = 0; // shadows::kScreenScratch (0: no screen pass binds it)
     ResourceId position = 0, normal = 0, faceNormal = 0, readback = 0;

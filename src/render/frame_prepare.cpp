@@ -247,7 +247,7 @@ FrameSettings frameSettings(const RenderOptions& o, const std::vector<Light>& li
             .fuseComposite = o.parameters.number("composite.fused") != 0.0,
             .intermediates = intermediates,
             .readback = false,
-            .motion = o.motion,
+            .motion = o.motion || shadows::keepsHistory(o.parameters),
             .cameraViewProj = blocks.frame.viewProj,
             .slopeBias = bias.y,
             .constantBias = bias.x,

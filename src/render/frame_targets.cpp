@@ -155,6 +155,21 @@ std::vector<ImageDecl> screenDecls(bool intermediates) {
     return decls;
 }
 
+ImageDecl layerHistoryDecl(const shadows::LayerModule& layer,
+                           const shadows::TechniqueModule& technique,
+                           const ParameterValues& params) {
+    uint64_t key = fnv1a(technique.info.name.data(), technique.info.name.size());
+    for (const auto& [name, value] : params.all()) {
+        key = fnv1a(name.data(), name.size(), key);
+        key = fnv1a(&value, sizeof value, key);
+    }
+    ImageDecl decl = screen("layer." + std::string(layer.name) + ".history",
+                            formatOf(*layer.history), VK_IMAGE_USAGE_STORAGE_BIT | kSampled, true);
+    decl.lifetime = Lifetime::History;
+    decl.key = key;
+    return decl;
+}
+
 // 1x1, one layer, viewed as an array: what a comparison sampler of the depth map reads.
 ImageDecl depthPlaceholderDecl() {
     return {.name = std::string(target::kDepthPlaceholder),
@@ -211,6 +226,10 @@ TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterV
         bytes.shadowMaps += ResourcePool::bytesOf(*decl, sizes);
     for (const ImageDecl& decl : screenDecls(false))
         bytes.screen += ResourcePool::bytesOf(decl, sizes);
+    for (const shadows::LayerModule* layer : shadows::enabledLayers(params))
+        if (layer->history) // two versions: last frame's and this frame's
+            bytes.screen +=
+                2 * ResourcePool::bytesOf(layerHistoryDecl(*layer, module, params), sizes);
     bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights).bytes;
     const bool checkerboard =
         shadows::checkerboardFill(shadows::screenPassesOf(module, params)) != nullptr;

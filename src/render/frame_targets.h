@@ -5,6 +5,7 @@
 // device memory (Renderer::check).
 #include "core/light_space.h"
 #include "render/resource_pool.h"
+#include "shadows/layer.h"
 #include "shadows/technique.h"
 
 #include <cstdint>
@@ -81,6 +82,12 @@ std::vector<ImageDecl> screenDecls(bool intermediates);
 // The static layers' pool (virtual.staticLayer on virtual maps), copied into the pool.
 std::optional<ImageDecl> staticPoolDecl(const shadows::TechniqueModule& module,
                                         const ParameterValues& params);
+// A layer's history (LayerModule::history; "layer.<name>.history"): a layer per shadow-casting
+// light, kept while the technique and every parameter stay as they are (its key), whatever the
+// camera does (the layer reprojects it).
+ImageDecl layerHistoryDecl(const shadows::LayerModule& layer,
+                           const shadows::TechniqueModule& technique,
+                           const ParameterValues& params);
 // Bound where the technique's filtered map holds floats (TECH_TABLE): never written, never read.
 ImageDecl integerPlaceholderDecl();
 // Bound at TECH_COMPARE for a technique that reads no depth map: never written, never read.

@@ -204,6 +204,55 @@ void addFillAndList(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                    }});
 }
 
+// A layer that keeps a history (the temporal layer): one dispatch per light on its own layout,
+// which reads the G-buffer's motion vectors and last frame's history and writes this frame's.
+void addHistoryLayer(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
+                     const FrameInputs& in, const FrameResources& r,
+                     const shadows::LayerModule& layer, size_t index) {
+    const ResourceId history = r.layerHistory[index], previous = r.layerHistoryPrevious[index];
+    graph.addPass(
+        {.name = std::string(layer.name),
+         .cost = CostGroup::PerPixel,
+         .phase = Phase::PerLight,
+         .uses = {{r.frame, Access::UniformRead},
+                  {r.layerParams, Access::UniformRead},
+                  {r.gbufferDepth, Access::ComputeSampled},
+                  {r.gbufferNormal, Access::ComputeSampled},
+                  {r.gbufferMotion, Access::ComputeSampled},
+                  {r.visibility, Access::ComputeReadWrite},
+                  {previous, Access::ComputeSampled},
+                  {history, Access::ComputeWrite}}, // read after its own writes only
+         .record = [&p, &s, &in, r, &layer, history, previous](PassContext& c) {
+             const FramePipelines::HistoryLayerPipeline& pipeline = p.historyLayer(layer.shader);
+             vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.blend.get());
+             vk::PushDescriptors()
+                 .uniformBuffer(BIND_FRAME, in.frame)
+                 .sampled(LAYER_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
+                 .sampled(LAYER_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
+                 .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
+                 .uniformBuffer(LAYER_PARAMS, in.layerParams,
+                                TECHNIQUE_BLOCK_BYTES * layerIndex(layer), TECHNIQUE_BLOCK_BYTES)
+                 .sampled(LAYER_MOTION, c.image(r.gbufferMotion).view(), in.nearest)
+                 .sampled(LAYER_HISTORY_PREVIOUS, c.image(previous).view(), in.nearest)
+                 .storageImage(LAYER_HISTORY, c.image(history).view())
+                 .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.layout);
+             const auto everyLight = [&] {
+                 for (const LightDispatch& light : s.shadowLights) {
+                     vkCmdPushConstants(c.cmd, pipeline.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT,
+                                        0, sizeof light.push, &light.push);
+                     vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+                 }
+             };
+             everyLight(); // the blends into the history, every visibility read as it was
+             vk::memoryBarrier(
+                 c.cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT,
+                 VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT);
+             vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.resolve.get());
+             everyLight(); // ... then copied into it
+         }});
+}
+
 } // namespace
 
 void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
@@ -250,7 +299,12 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                                    dispatchScreenPass(c, p, s, in, r, pass, light);
                        }});
     }
-    for (const shadows::LayerModule* layer : s.layers)
+    for (size_t l = 0; l < s.layers.size(); ++l) {
+        const shadows::LayerModule* layer = s.layers[l];
+        if (layer->history) {
+            addHistoryLayer(graph, p, s, in, r, *layer, l);
+            continue;
+        }
         graph.addPass({.name = std::string(layer->name),
                        .cost = CostGroup::PerPixel,
                        .phase = Phase::PerLight,
@@ -260,6 +314,7 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                            for (const LightDispatch& light : s.shadowLights)
                                dispatchLayer(c, p, s, in, r, *layer, light);
                        }});
+    }
     if (fused) {
         // The last light reads the earlier lights' layers as it writes its own.
         graph.addPass({.name = "composite",

@@ -181,6 +181,21 @@ VkPipeline FramePipelines::composite(const Constants& constants) {
     return specialized(mComposite, compositeLayout, "composite.comp", constants);
 }
 
+const FramePipelines::HistoryLayerPipeline& FramePipelines::historyLayer(std::string_view shader) {
+    auto it = mHistoryLayers.find(shader);
+    if (it == mHistoryLayers.end()) {
+        HistoryLayerPipeline made{.layout =
+                                      vk::createLayoutOf(ctx, {shader}, VK_SHADER_STAGE_COMPUTE_BIT,
+                                                         sizeof(gpu::VisibilityPush))};
+        const vk::SpecConstant blend{.id = SPEC_HISTORY_RESOLVE, .value = 0u},
+            resolve{.id = SPEC_HISTORY_RESOLVE, .value = 1u};
+        made.blend = vk::createComputePipeline(ctx, made.layout, shader, std::span(&blend, 1));
+        made.resolve = vk::createComputePipeline(ctx, made.layout, shader, std::span(&resolve, 1));
+        it = mHistoryLayers.emplace(std::string(shader), std::move(made)).first;
+    }
+    return it->second;
+}
+
 VkPipeline FramePipelines::layer(std::string_view shader, const Constants& constants) {
     const auto key = std::make_pair(std::string(shader), constants);
     auto it = mLayers.find(key);

@@ -64,6 +64,13 @@ public:
     VkPipeline composite(const std::vector<shadows::SpecConstant>& constants);
     // A layer's pass (src/shadows/layer.h) for one list of specialization constants.
     VkPipeline layer(std::string_view shader, const std::vector<shadows::SpecConstant>& constants);
+    // A layer that keeps a history (shadows::LayerModule::history): its own layout, read from
+    // its shader (bindings.h, LAYER_*), and its pipeline.
+    struct HistoryLayerPipeline {
+        vk::PipelineLayout layout;
+        vk::PipelineHandle blend, resolve; // SPEC_HISTORY_RESOLVE 0 and 1
+    };
+    const HistoryLayerPipeline& historyLayer(std::string_view shader);
     // A technique's extra depth pass: the shadow pass's vertex stage and state with
     // `fragmentShader`, which reads a map at binding 0 (readingDepthLayout).
     VkPipeline readingDepthPass(std::string_view fragmentShader, bool perspective);
@@ -95,6 +102,7 @@ private:
     std::map<std::string, PostPipeline, std::less<>> mPost;
     std::unique_ptr<FieldPipelines> mField;
     std::unique_ptr<SkinPipeline> mSkin;
+    std::map<std::string, HistoryLayerPipeline, std::less<>> mHistoryLayers;
     std::array<vk::PipelineHandle, 16> mGbuffer;
 };
 

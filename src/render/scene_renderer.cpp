@@ -97,7 +97,9 @@ struct SceneRenderer::Impl {
     std::optional<glm::mat4> lastViewProj;
     // Motion since the last frame, written into a prepared frame's block (FrameData
     // previousViewProj and motion): from the last camera and pose unless the view jumped.
-    void setMotion(gpu::FrameData& frame, bool cut);
+    // y: the frame's index while a layer keeps a history (`turns`), else 0.
+    void setMotion(gpu::FrameData& frame, bool cut, bool turns);
+    uint32_t frameIndex = 0; // frames drawn while a layer kept a history
     size_t nextSlot = 0;
     size_t lastSlot = 0; // render()'s last: a frame that continues it uses it again
     vk::SamplerHandle nearest, compare, linear;
@@ -367,7 +369,7 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
     const RenderOptions shaded = exposed(o);
     render::FrameBlocks blocks =
         render::frameBlocks(camera, shaded, static_cast<uint32_t>(lights.size()), ctx());
-    setMotion(blocks.frame, state.cut);
+    setMotion(blocks.frame, state.cut, shadows::keepsHistory(o.parameters));
     result.exposure = static_cast<float>(shaded.parameters.number("composite.exposure"));
     const vk::Image* fieldImage = &fieldPlaceholder;
     if (const auto& declared = shadows::moduleOf(o.technique).tracedField) {
@@ -440,9 +442,10 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
             .contentsKeys = std::move(views.contentsKeys)};
 }
 
-void SceneRenderer::Impl::setMotion(gpu::FrameData& frame, bool cut) {
+void SceneRenderer::Impl::setMotion(gpu::FrameData& frame, bool cut, bool turns) {
     frame.previousViewProj = cut || !lastViewProj ? frame.viewProj : *lastViewProj;
     frame.motion.x = !cut && gpu.moved ? 1u : 0u;
+    frame.motion.y = turns ? ++frameIndex : 0u;
     lastViewProj = frame.viewProj;
 }
 
@@ -644,10 +647,14 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     // A frame that continues the last one has none: what it kept must show.
     // Pages decided on the device are rendered in the frame that asks for them: one warm-up
     // (VirtualSettings::warmUpFrames, which stats.json reports).
-    const uint32_t warmUps = state.continues ? 0
-                             : prepared.settings.virtualMaps
-                                 ? VirtualSettings::of(o.parameters).warmUpFrames()
-                                 : 1;
+    // A layer that keeps a history draws what it needs to hold the pose's steady state.
+    uint32_t warmUps = state.continues ? 0
+                       : prepared.settings.virtualMaps
+                           ? VirtualSettings::of(o.parameters).warmUpFrames()
+                           : 1;
+    for (const shadows::LayerModule* layer : prepared.settings.layers)
+        if (!state.continues && layer->warmUpFrames)
+            warmUps = std::max(warmUps, layer->warmUpFrames(o.parameters));
     for (uint32_t frame = 0; frame < o.frames + warmUps; ++frame) {
         const bool warmUp = frame < warmUps;
         if (progress)
@@ -658,9 +665,9 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
         // first touches showed in its GPU times (on lavapipe a 30 ms shadow pass took 560).
         prepared.settings.readback = true;
         ctx.submitAndWait([&](VkCommandBuffer cmd) { m.record(cmd, prepared, timer); });
-        if (frame == 0) { // the frames after it draw the same pose and camera again: no motion
+        { // the frames after it draw the same pose and camera again: no motion, the next index
             auto& block = *static_cast<gpu::FrameData*>(m.slots[slot].frame.mapped);
-            m.setMotion(block, false);
+            m.setMotion(block, false, block.motion.y != 0u);
         }
         if (prepared.settings.devicePages)
             m.readDevicePages(prepared);

@@ -7,7 +7,7 @@
 namespace penumbra::shadows {
 
 std::span<const LayerModule* const> allLayers() {
-    static const LayerModule* const layers[] = {&contactLayer()};
+    static const LayerModule* const layers[] = {&contactLayer(), &temporalLayer()};
     return layers;
 }
 
@@ -24,6 +24,12 @@ std::vector<const LayerModule*> enabledLayers(const ParameterValues& params) {
         if (layer->enabled && layer->enabled(params))
             on.push_back(layer);
     return on;
+}
+
+bool keepsHistory(const ParameterValues& params) {
+    const std::vector<const LayerModule*> on = enabledLayers(params);
+    return std::any_of(on.begin(), on.end(),
+                       [](const LayerModule* layer) { return layer->history.has_value(); });
 }
 
 } // namespace penumbra::shadows

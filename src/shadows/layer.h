@@ -7,6 +7,8 @@
 // folder, its shader in shaders/ and a line in allLayers() (docs/architecture.md).
 #include "shadows/technique.h"
 
+#include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -31,6 +33,15 @@ struct LayerModule {
     std::vector<std::pair<std::string, std::string>> (*rowSettings)(double sceneRadius) = nullptr;
     // The rows `compare` shows with this layer by default ("pcf[box3]": "pcf[box3]+contact").
     std::vector<std::string_view> rows;
+    // A layer that keeps a history per light (the temporal layer's), in this format: the frame
+    // declares it (Lifetime::History) and the G-buffer's motion vectors, and runs the layer on a
+    // layout of its own that binds them (LAYER_MOTION, LAYER_HISTORY_PREVIOUS, LAYER_HISTORY),
+    // with the frame, the G-buffer's depth and normals, the visibility and its block; the
+    // techniques then turn their per-pixel rotations every frame (FrameData::motion.y).
+    std::optional<MapFormat> history;
+    // The frames a render draws before its timed ones while this layer is on (what its history
+    // needs to hold a pose's steady state); null: the one warm-up frame every render draws.
+    uint32_t (*warmUpFrames)(const ParameterValues&) = nullptr;
 };
 
 // The registered layers, in the order a light's evaluation runs them.
@@ -41,5 +52,8 @@ const LayerModule* findLayer(std::string_view name);
 std::vector<const LayerModule*> enabledLayers(const ParameterValues& params);
 
 const LayerModule& contactLayer();
+const LayerModule& temporalLayer();
+// Whether a layer these parameters switch on keeps a history (LayerModule::history).
+bool keepsHistory(const ParameterValues& params);
 
 } // namespace penumbra::shadows
