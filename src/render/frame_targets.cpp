@@ -218,19 +218,20 @@ BufferDecl ReadbackLayout::decl() const {
 }
 
 TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterValues& params,
-                        const FrameSizes& sizes) {
+                        const FrameSizes& sizes, bool motion) {
     TargetBytes bytes{0, 0};
     for (const ImageDecl& decl : shadowMapDecls(module, params, {})) // bytes: keys aside
         bytes.shadowMaps += ResourcePool::bytesOf(decl, sizes);
     if (const std::optional<ImageDecl> decl = staticPoolDecl(module, params))
         bytes.shadowMaps += ResourcePool::bytesOf(*decl, sizes);
     for (const ImageDecl& decl : screenDecls(false))
-        bytes.screen += ResourcePool::bytesOf(decl, sizes);
+        if (motion || decl.name != target::kGBufferMotion)
+            bytes.screen += ResourcePool::bytesOf(decl, sizes);
     for (const shadows::LayerModule* layer : shadows::enabledLayers(params))
         if (layer->history) // two versions: last frame's and this frame's
             bytes.screen +=
                 2 * ResourcePool::bytesOf(layerHistoryDecl(*layer, module, params), sizes);
-    bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights).bytes;
+    bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights, motion).bytes;
     const bool checkerboard =
         shadows::checkerboardFill(shadows::screenPassesOf(module, params)) != nullptr;
     bytes.screen += traceListDecl(sizes.width, sizes.height, checkerboard).bytes;

@@ -121,7 +121,8 @@ BufferDecl traceListDecl(uint32_t width, uint32_t height, bool checkerboard);
 struct TargetBytes {
     uint64_t shadowMaps, screen;
 };
+// `motion`: the frame makes motion vectors (FrameSettings::motion).
 TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterValues& params,
-                        const FrameSizes& sizes);
+                        const FrameSizes& sizes, bool motion = false);
 
 } // namespace penumbra::render

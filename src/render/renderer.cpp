@@ -10,6 +10,7 @@
 #include "render/frame_data.h"
 #include "render/frame_targets.h"
 #include "render/renderer_impl.h"
+#include "shadows/layer.h"
 #include "shadows/technique.h"
 #include "vk/context.h"
 #include "vk/resources.h"
@@ -157,7 +158,8 @@ void checkDeviceLimits(const vk::Context& ctx, const RenderOptions& o, const Sha
                              .height = o.height,
                              .shadowMapSize = shadows::drawnMapSize(module, o.shadowMapSize),
                              .shadowViews = static_cast<uint32_t>(shadows.views),
-                             .shadowLights = static_cast<uint32_t>(shadowLights)});
+                             .shadowLights = static_cast<uint32_t>(shadowLights)},
+                            o.motion || shadows::keepsHistory(o.parameters));
     const double pixels = double(o.width) * double(o.height);
     const auto shadowBytes = static_cast<double>(bytes.shadowMaps);
     const double need = static_cast<double>(bytes.screen) + shadowBytes;
