@@ -3,10 +3,11 @@
 // this frame's visibility (its base technique's and the layers' before this one) blended with the
 // pixel's history. The history is where the pixel's surface was last frame (its motion vector),
 // read bilinearly from the texels that showed the same surface (depth and normal); none, and the
-// pixel starts again from this frame. The history's visibility is first clamped into the range
-// this frame's 3x3 neighbourhood allows (temporal.clamp), so that a moving shadow does not
-// trail. Written: this frame's history (RGBA32UI: the average's bits, its length in frames, the
-// depth's bits, the face normal packed), then (SPEC_HISTORY_RESOLVE) the light's visibility.
+// pixel starts again from this frame. Where this frame leaves the history's mean by more than
+// temporal.reset of its deviations over time, it starts again too (a shadow moved); else the
+// history's visibility is clamped into the range this frame's 3x3 neighbourhood allows
+// (temporal.clamp), so that a moving shadow does not trail (temporalStep). Written: this frame's
+// history (RGBA32UI, temporal.h), then (SPEC_HISTORY_RESOLVE) the light's visibility.
 #include "frame_block.h"
 #include "bindings.h"
 #include "pass_types.h"
@@ -56,50 +57,86 @@ void main() {
     vec3 normal = faceNormal(normalTexel);
     vec4 moved = texelFetch(motion, p, 0); // xy: here minus there (pixels), z: its depth then
 
+    // This frame's 3x3 neighbourhood: what the history may say (the clamp), and its variance.
+    float lo = now, hi = now, sum = 0.0, squares = 0.0, n = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            float v = current(p + ivec2(dx, dy), layer);
+            if (v < 0.0) continue;
+            lo = min(lo, v);
+            hi = max(hi, v);
+            sum += v;
+            squares += v * v;
+            n += 1.0;
+        }
+    vec4 around = vec4(lo, hi, sum / n, squares / n);
+    float spatial = max(around.w - around.z * around.z, 0.0);
+
+    // Where the surface was: the texel grid's coordinates there.
+    vec2 there = vec2(p) + 0.5 - moved.xy - 0.5;
+
+    // This frame against the history over the 3x3 neighbourhood: the places whose history texel
+    // (around the one nearest where the surface was) shows the pixel's surface, their means
+    // and the spread of the residuals (the reset rule's second test).
+    ivec2 nearest = ivec2(floor(there + 0.5));
+    float historySum = 0.0, currentSum = 0.0, residuals = 0.0, residualSquares = 0.0;
+    float pairs = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 t = nearest + ivec2(dx, dy);
+            float v = current(p + ivec2(dx, dy), layer);
+            if (v < 0.0 || any(lessThan(t, ivec2(0))) || any(greaterThanEqual(uvec2(t), size)))
+                continue;
+            uvec4 h = texelFetch(previous, ivec3(t, layer), 0);
+            if (historyLengthOf(h.w) == 0u ||
+                !sameSurface(uintBitsToFloat(h.z), octahedralDecode(historyOctahedral(h.w)),
+                             moved.z, normal, temporal.depthTolerance, temporal.normalTolerance))
+                continue;
+            float r = v - uintBitsToFloat(h.x);
+            historySum += uintBitsToFloat(h.x);
+            currentSum += v;
+            residuals += r;
+            residualSquares += r * r;
+            pairs += 1.0;
+        }
+    float noise = residualNoise(residuals, residualSquares, pairs);
+
     // The history: bilinear over the four texels around where the surface was, each weighed by
-    // whether it showed the same surface.
-    vec2 there = vec2(p) + 0.5 - moved.xy - 0.5; // the texel grid's coordinates
+    // whether it showed the same surface and whether this frame agrees with it (the reset rule).
     ivec2 base = ivec2(floor(there));
     vec2 f = there - vec2(base);
-    float weight = 0.0, average = 0.0, kept = 0.0;
+    float weight = 0.0;
+    vec3 kept = vec3(0.0); // mean, spread, length
     for (int k = 0; k < 4; ++k) {
         ivec2 t = base + ivec2(k & 1, k >> 1);
         if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(uvec2(t), size))) continue;
         uvec4 h = texelFetch(previous, ivec3(t, layer), 0);
-        if (h.y == 0u) continue; // no history there
-        vec3 hNormal = octahedralDecode(unpackSnorm2x16(h.w));
+        uint hLength = historyLengthOf(h.w);
+        if (hLength == 0u) continue; // no history there
+        vec3 hNormal = octahedralDecode(historyOctahedral(h.w));
         if (!sameSurface(uintBitsToFloat(h.z), hNormal, moved.z, normal,
                          temporal.depthTolerance, temporal.normalTolerance))
             continue;
+        vec3 texel = vec3(uintBitsToFloat(h.x), uintBitsToFloat(h.y), float(hLength));
+        if (!historyAgrees(temporal, texel, now, spatial, length(vec2(t) - there))) continue;
         float w = ((k & 1) == 1 ? f.x : 1.0 - f.x) * ((k >> 1) == 1 ? f.y : 1.0 - f.y);
+        // The texels' spreads over time averaged (not the spread between them: a shadow's edge
+        // on a moving surface is no noise).
         weight += w;
-        average += w * uintBitsToFloat(h.x);
-        kept += w * float(h.y);
+        kept += w * vec3(texel.x, texel.y - texel.x * texel.x, texel.z);
     }
-    float result = now;
-    float frames = 1.0;
+    vec3 reprojected = vec3(0.0); // mean, mean square, length
     if (weight > 1e-3) {
-        average /= weight;
-        kept = floor(kept / weight + 0.5);
-        // The neighbourhood of this frame's visibility bounds what the history may say.
-        float lo = now, hi = now, sum = 0.0, squares = 0.0, n = 0.0;
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                float v = current(p + ivec2(dx, dy), layer);
-                if (v < 0.0) continue;
-                lo = min(lo, v);
-                hi = max(hi, v);
-                sum += v;
-                squares += v * v;
-                n += 1.0;
-            }
-        vec2 range = temporalClampRange(temporal.clampMode, temporal.gamma, lo, hi, sum / n,
-                                        squares / n);
-        average = clamp(average, range.x, range.y);
-        float alpha = temporalWeight(kept, temporal.frames);
-        result = mix(average, now, alpha);
-        frames = min(kept + 1.0, float(temporal.frames));
+        kept /= weight;
+        reprojected = vec3(kept.x, kept.y + kept.x * kept.x, floor(kept.z + 0.5));
+        if (!neighbourhoodsAgree(temporal, reprojected, historySum / max(pairs, 1.0),
+                                 currentSum / max(pairs, 1.0), pairs, noise, spatial,
+                                 length(vec2(nearest) - there)))
+            reprojected = vec3(0.0);
     }
-    imageStore(history, at, uvec4(floatBitsToUint(result), uint(frames), floatBitsToUint(depth),
-                                  packSnorm2x16(octahedralEncode(normal))));
+
+    vec3 result = temporalStep(temporal, reprojected, now, around);
+    imageStore(history, at, uvec4(floatBitsToUint(result.x), floatBitsToUint(result.y),
+                                  floatBitsToUint(depth),
+                                  packHistoryNormal(octahedralEncode(normal), uint(result.z))));
 }

@@ -5,8 +5,11 @@
 #include "analytic_scenes.h"
 #include "gpu_fixture.h"
 #include "scene/mesh_builder.h"
+#include "temporal.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -17,7 +20,9 @@ namespace {
 
 constexpr uint32_t kWidth = 96, kHeight = 72;
 
-RenderOptions temporal(Technique technique, int frames, std::string clamp = "none") {
+// The layer's options; the reset rule off unless asked (the tests of the clamp and the blend).
+RenderOptions temporal(Technique technique, int frames, std::string clamp = "none",
+                       std::string reset = "0") {
     RenderOptions o{.width = kWidth,
                     .height = kHeight,
                     .shadowMapSize = 512,
@@ -25,6 +30,7 @@ RenderOptions temporal(Technique technique, int frames, std::string clamp = "non
                     .technique = technique};
     o.parameters.set("temporal.frames", std::to_string(frames));
     o.parameters.set("temporal.clamp", clamp);
+    o.parameters.set("temporal.reset", reset);
     return o;
 }
 
@@ -33,6 +39,40 @@ RenderResult next(SceneRenderer& renderer, const RenderOptions& o,
                   SceneRenderer::FrameState state = {}) {
     state.continues = true;
     return renderer.render(o, state);
+}
+
+// Two renderers of one scene drawn frame by frame together: `raw` keeps nothing
+// (temporal.frames=1: its frames, their samples turned as the other's, are what the layer
+// blends), `kept` the history.
+struct TwoRenderers {
+    TwoRenderers(const Scene& scene, const RenderOptions& options)
+        : raw(sharedRenderer(), scene), kept(sharedRenderer(), scene), single(options),
+          averaged(options) {
+        single.parameters.set("temporal.frames", "1");
+    }
+    struct Frames {
+        RenderResult frame, mean;
+    };
+    Frames next(SceneRenderer::FrameState state = {}) {
+        Frames f{.frame = ::next(raw, single, state)};
+        f.mean = ::next(kept, averaged, state);
+        return f;
+    }
+    void repose(const Scene& scene) {
+        raw.repose(scene);
+        kept.repose(scene);
+    }
+    SceneRenderer raw, kept;
+    RenderOptions single, averaged;
+};
+
+// `scene` with every vertex above `above` moved by `by`.
+Scene movedAbove(const Scene& scene, float above, glm::vec3 by) {
+    Scene moved = scene;
+    for (Vertex& v : moved.vertices)
+        if (v.position.y > above)
+            v.position += by;
+    return moved;
 }
 
 double largestDifference(const std::vector<float>& a, const std::vector<float>& b) {
@@ -68,19 +108,17 @@ TEST_F(LayerTest, AtRestTheTemporalLayerAveragesTheFramesItKept) {
         else
             sized.radius = 0.15f;
         const Scene scene = sphereOverPlane(sized);
-        SceneRenderer raw(sharedRenderer(), scene), kept(sharedRenderer(), scene);
-        const RenderOptions single = temporal(Technique::Pcss, 1);
         // Any depth passes (nothing moves): after the cut only the cleared history's length (0)
         // keeps its zeros out.
         RenderOptions averaged = temporal(Technique::Pcss, 64);
         averaged.parameters.set("temporal.depthTolerance", "1");
+        TwoRenderers both(scene, averaged);
         std::vector<double> sum;
         size_t changed = 0;
         std::vector<float> last;
         for (int k = 1; k <= 6; ++k) {
             const bool cut = k == 5;
-            const RenderResult frame = next(raw, single, {.cut = cut});
-            const RenderResult mean = next(kept, averaged, {.cut = cut});
+            const auto [frame, mean] = both.next({.cut = cut});
             const std::vector<float>& v = frame.visibility[0];
             if (cut)
                 sum.assign(v.size(), 0.0);
@@ -101,28 +139,33 @@ TEST_F(LayerTest, AtRestTheTemporalLayerAveragesTheFramesItKept) {
     }
 }
 
-// Hard shadows (the same every frame) under a spot while the camera pans along the plane: the
+// Hard shadows (the same every frame) under a spot while the camera pans over the plane: the
 // history follows each pixel's surface, so the layer shows what the frame shows but where a
 // pixel's reprojected footprint straddles a shadow's edge or a silhouette. Without reprojection
 // the plane's depth at a pixel stays the same, so its history passes for the pixel's and the
 // shadow's edge trails by the pan (some 5 pixels a frame).
 TEST_F(LayerTest, TheTemporalLayerFollowsTheCamera) {
     const Scene scene = sphereOverPlane(sharpSpot());
-    SceneRenderer raw(sharedRenderer(), scene), kept(sharedRenderer(), scene);
-    const RenderOptions single = temporal(Technique::Hard, 1),
-                        averaged = temporal(Technique::Hard, 64);
-    Camera camera = scene.cameras.front();
-    size_t worst = 0, surface = 0;
-    for (int k = 0; k < 6; ++k) {
-        const RenderResult frame = next(raw, single, {.camera = camera});
-        const RenderResult mean = next(kept, averaged, {.camera = camera});
-        worst = std::max(worst, differing(mean.visibility[0], frame.visibility[0], 0.25));
-        surface = std::count_if(frame.visibility[0].begin(), frame.visibility[0].end(),
-                                [](float v) { return std::isfinite(v); });
-        camera.position.x += 0.4f; // some 5 pixels a frame
-        camera.target.x += 0.4f;
+    // Across the image plane (its depths kept), right and then up: the history is read where
+    // each pixel's surface was, in x and in y.
+    const Camera start = scene.cameras.front();
+    const glm::vec3 forward = glm::normalize(start.target - start.position);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 1.0f, 0.0f)));
+    const glm::vec3 up = glm::cross(right, forward);
+    for (const glm::vec3 step : {0.4f * right, 0.4f * up}) {
+        TwoRenderers both(scene, temporal(Technique::Hard, 64));
+        Camera camera = start;
+        size_t worst = 0, surface = 0;
+        for (int k = 0; k < 6; ++k) {
+            const auto [frame, mean] = both.next({.camera = camera});
+            worst = std::max(worst, differing(mean.visibility[0], frame.visibility[0], 0.25));
+            surface = std::count_if(frame.visibility[0].begin(), frame.visibility[0].end(),
+                                    [](float v) { return std::isfinite(v); });
+            camera.position += step; // some 5 pixels a frame
+            camera.target += step;
+        }
+        EXPECT_LT(worst, surface / 50) << "of " << surface << " surface pixels";
     }
-    EXPECT_LT(worst, surface / 50) << "of " << surface << " surface pixels";
 }
 
 // A plate floating 1 above the plane under a sun moves along x by the shadow's offset, the camera
@@ -147,21 +190,12 @@ TEST_F(LayerTest, ASurfaceUncoveredStartsAfresh) {
                              .yfov = 0.9f,
                              .znear = 0.1f,
                              .zfar = 100.0f});
-    SceneRenderer raw(sharedRenderer(), scene), kept(sharedRenderer(), scene);
-    const RenderOptions single = temporal(Technique::Hard, 1),
-                        averaged = temporal(Technique::Hard, 64);
+    TwoRenderers both(scene, temporal(Technique::Hard, 64));
     RenderResult before;
-    for (int k = 0; k < 3; ++k) {
-        before = next(raw, single);
-        next(kept, averaged);
-    }
-    Scene moved = scene;
-    for (Vertex& v : moved.vertices)
-        if (v.position.y > 0.5f)
-            v.position.x += 0.6f;
-    raw.repose(moved);
-    kept.repose(moved);
-    const RenderResult frame = next(raw, single), mean = next(kept, averaged);
+    for (int k = 0; k < 3; ++k)
+        before = both.next().frame;
+    both.repose(movedAbove(scene, 0.5f, {0.6f, 0.0f, 0.0f}));
+    const auto [frame, mean] = both.next();
     size_t uncovered = 0, shadowed = 0, wrong = 0;
     for (size_t i = 0; i < size_t{kWidth} * kHeight; ++i) {
         const bool wasPlate = before.position[3 * i + 1] > 0.5f;
@@ -185,20 +219,11 @@ TEST_F(LayerTest, TheClampKeepsAMovingShadowFromTrailing) {
     scene.cameras.front().position = {0.0f, 2.0f, 5.0f}; // low: the plane's far edge and the sky
     scene.cameras.front().target = {0.0f, 0.5f, -3.0f};
     const auto trail = [&](const std::string& clamp) {
-        SceneRenderer raw(sharedRenderer(), scene), kept(sharedRenderer(), scene);
-        const RenderOptions single = temporal(Technique::Hard, 1),
-                            averaged = temporal(Technique::Hard, 64, clamp);
-        for (int k = 0; k < 4; ++k) {
-            next(raw, single);
-            next(kept, averaged);
-        }
-        Scene moved = scene;
-        for (Vertex& v : moved.vertices)
-            if (v.position.y > 0.1f)
-                v.position.z += 0.5f;
-        raw.repose(moved);
-        kept.repose(moved);
-        const RenderResult frame = next(raw, single), mean = next(kept, averaged);
+        TwoRenderers both(scene, temporal(Technique::Hard, 64, clamp));
+        for (int k = 0; k < 4; ++k)
+            both.next();
+        both.repose(movedAbove(scene, 0.1f, {0.0f, 0.0f, 0.5f}));
+        const auto [frame, mean] = both.next();
         size_t background = 0, undefined = 0;
         for (size_t i = 0; i < frame.visibility[0].size(); ++i) {
             background += std::isnan(frame.visibility[0][i]);
@@ -218,18 +243,13 @@ TEST_F(LayerTest, TheClampKeepsAMovingShadowFromTrailing) {
 // even one that changes nothing the frame draws, and the next frame starts again from itself.
 TEST_F(LayerTest, AnotherParameterStartsTheHistoryAgain) {
     const Scene scene = sphereOverPlane(sharpSun());
-    SceneRenderer raw(sharedRenderer(), scene), kept(sharedRenderer(), scene);
-    const RenderOptions single = temporal(Technique::Pcf, 1);
     RenderOptions averaged = temporal(Technique::Pcf, 64);
     averaged.parameters.set("pcf.filter", "poisson");
-    RenderOptions singlePoisson = single;
-    singlePoisson.parameters.set("pcf.filter", "poisson");
-    for (int k = 0; k < 3; ++k) {
-        next(raw, singlePoisson);
-        next(kept, averaged);
-    }
-    averaged.parameters.set("temporal.gamma", "2"); // no clamp: nothing else changes
-    const RenderResult frame = next(raw, singlePoisson), restarted = next(kept, averaged);
+    TwoRenderers both(scene, averaged);
+    for (int k = 0; k < 3; ++k)
+        both.next();
+    both.averaged.parameters.set("temporal.gamma", "2"); // no clamp: nothing else changes
+    const auto [frame, restarted] = both.next();
     EXPECT_EQ(largestDifference(restarted.visibility[0], frame.visibility[0]), 0.0);
 }
 
@@ -240,23 +260,15 @@ TEST_F(LayerTest, TheSkyHoldsNoHistory) {
     Scene scene = sphereOverPlane(sharpPoint());
     scene.cameras.front().position = {0.0f, 2.0f, 5.0f}; // low: the sphere's top against the sky
     scene.cameras.front().target = {0.0f, 0.5f, -3.0f};
-    SceneRenderer raw(sharedRenderer(), scene), kept(sharedRenderer(), scene);
-    const RenderOptions single = temporal(Technique::Hard, 1);
     RenderOptions averaged = temporal(Technique::Hard, 64);
     averaged.parameters.set("temporal.depthTolerance", "1");
     averaged.parameters.set("temporal.normalTolerance", "-1");
+    TwoRenderers both(scene, averaged);
     RenderResult before;
-    for (int k = 0; k < 3; ++k) {
-        before = next(raw, single);
-        next(kept, averaged);
-    }
-    Scene moved = scene;
-    for (Vertex& v : moved.vertices)
-        if (v.position.y > 0.1f)
-            v.position.y += 0.1f;
-    raw.repose(moved);
-    kept.repose(moved);
-    const RenderResult frame = next(raw, single), mean = next(kept, averaged);
+    for (int k = 0; k < 3; ++k)
+        before = both.next().frame;
+    both.repose(movedAbove(scene, 0.1f, {0.0f, 0.1f, 0.0f}));
+    const auto [frame, mean] = both.next();
     size_t edge = 0, wrong = 0;
     for (size_t i = 0; i < size_t{kWidth} * kHeight; ++i) {
         const size_t x = i % kWidth, y = i / kWidth;
@@ -273,4 +285,242 @@ TEST_F(LayerTest, TheSkyHoldsNoHistory) {
     }
     EXPECT_GT(edge, size_t{10});
     EXPECT_LE(wrong, edge / 4) << "of " << edge << " lit pixels by the old silhouette";
+}
+
+// Hard shadows (noise-free: at rest each frame the same) from a sphere moving every frame, the
+// camera still, nothing clamped: the history of a plane pixel has no spread over time, so
+// wherever this frame's visibility changed the reset rule starts it again and the layer shows
+// this frame exactly. But where the history may be a single frame (the pixel just uncovered, or
+// its neighbourhood's visibility just changed): that one also weighs its neighbourhood's spread
+// and may lag a frame. Without the rule (temporal.reset=0) the old shadow trails. Every light.
+TEST_F(LayerTest, TheResetRuleLetsANoiseFreeShadowMoveWithoutTrailing) {
+    for (const Light& light : {sharpSun(), sharpSpot(), sharpPoint()}) {
+        const Scene scene = sphereOverPlane(light);
+        for (const std::string reset : {"2", "0"}) {
+            TwoRenderers both(scene, temporal(Technique::Hard, 64, "none", reset));
+            double worst = 0.0;
+            size_t trailing = 0, changed = 0, compared = 0;
+            RenderResult last;
+            std::vector<char> afresh; // the last frame started the pixel's history
+            for (int k = 0; k < 7; ++k) {
+                both.repose(movedAbove(scene, 0.3f, {0.12f * float(std::max(k - 1, 0)), 0, 0}));
+                const auto [frame, mean] = both.next();
+                const std::vector<float>& v = frame.visibility[0];
+                std::vector<char> startsNow(v.size(), 1);
+                for (size_t i = 0; i < v.size(); ++i) {
+                    const bool plane = std::abs(frame.position[3 * i + 1]) < 1e-4f;
+                    if (!plane || last.visibility.empty())
+                        continue; // the plane's pixels (their motion is none) after a frame
+                    const bool wasPlane = std::abs(last.position[3 * i + 1]) < 1e-4f;
+                    const bool change = std::abs(last.visibility[0][i] - v[i]) > 0.5f;
+                    bool nearChange = false; // the neighbourhood's mean may have moved
+                    const size_t x = i % kWidth, y = i / kWidth;
+                    for (size_t yy = y - (y > 0); yy <= std::min<size_t>(y + 1, kHeight - 1); ++yy)
+                        for (size_t xx = x - (x > 0); xx <= std::min<size_t>(x + 1, kWidth - 1);
+                             ++xx)
+                            nearChange =
+                                nearChange || std::abs(last.visibility[0][yy * kWidth + xx] -
+                                                       v[yy * kWidth + xx]) > 1e-3f;
+                    startsNow[i] = !wasPlane || nearChange;
+                    changed += wasPlane && change;
+                    const double error = std::abs(mean.visibility[0][i] - v[i]);
+                    trailing += error > 0.25;
+                    if (!afresh.empty() && !afresh[i])
+                        worst = std::max(worst, error), ++compared;
+                }
+                last = frame;
+                afresh = startsNow;
+            }
+            EXPECT_GT(changed, size_t{60}) << light.name << ": the shadow hardly moved";
+            EXPECT_GT(compared, size_t{2} * kWidth * kHeight) << light.name;
+            if (reset == "2")
+                EXPECT_LE(worst, 1e-6) << light.name;
+            else
+                EXPECT_GT(trailing, size_t{60}) << light.name;
+        }
+    }
+}
+
+// The layer against its CPU reference (its own mirror of the reset rule's thresholds, and
+// temporalStep), frame by frame: soft shadows (pcss, its samples turned each frame) from a sphere
+// moving, then still, the camera still and looking almost straight down (so that every plane texel
+// passes the depth test for its neighbours, the sphere's none), the minmax clamp and the reset rule
+// on. The plane's pixels keep their place (their motion is none), so the reference steps each one's
+// history from the frames a renderer that keeps nothing draws. Floats: a blend's roundings,
+// 1e-5; a reset decision within 1e-4 of its threshold may go either way on another device, and
+// its pixel (and the pixels whose neighbourhood holds it) are not followed from then on.
+TEST_F(LayerTest, TheLayerStepsAsItsCpuReferenceDoes) {
+    for (const float reset : {3.0f, 0.0f}) {
+        size_t tapResets = 0, neighbourhoodResets = 0, clamped = 0;
+        for (Light light : {sharpSun(), sharpSpot(), sharpPoint()}) {
+            if (light.type == LightType::Directional)
+                light.angularDiameter = 3.0f;
+            else
+                light.radius = 0.2f;
+            Scene scene = sphereOverPlane(light);
+            scene.cameras.front().position = {0.0f, 9.0f, 1.0f};
+            scene.cameras.front().target = {0.0f, 0.0f, 0.0f};
+            TwoRenderers both(scene,
+                              temporal(Technique::Pcss, 8, "minmax", reset > 0.0f ? "3" : "0"));
+            const gpu::TemporalParams params{.frames = 8,
+                                             .clampMode = TEMPORAL_CLAMP_MINMAX,
+                                             .gamma = 1.0f,
+                                             .depthTolerance = 0.02f,
+                                             .normalTolerance = 0.9f,
+                                             .reset = reset};
+            const size_t pixels = size_t{kWidth} * kHeight;
+            std::vector<glm::vec3> history(pixels, glm::vec3(0.0f));
+            std::vector<char> wasPlane(pixels, 0), followed(pixels, 1);
+            size_t compared = 0, wrong = 0;
+            // Whether a decision `over` its threshold by this much may go either way.
+            const auto undecided = [](float over) { return std::abs(over) < 1e-4f; };
+            for (int k = 0; k < 12; ++k) {
+                both.repose(movedAbove(scene, 0.3f, {0.1f * float(std::min(k, 6)), 0.0f, 0.0f}));
+                const auto [frame, mean] = both.next();
+                const std::vector<float>& v = frame.visibility[0];
+                std::vector<glm::vec3> stepped(pixels, glm::vec3(0.0f));
+                std::vector<char> isPlane(pixels, 0), nowFollowed(pixels, 1);
+                for (size_t i = 0; i < pixels; ++i)
+                    isPlane[i] = std::abs(frame.position[3 * i + 1]) < 1e-4f;
+                for (size_t i = 0; i < pixels; ++i) {
+                    if (!isPlane[i])
+                        continue; // not followed: the sphere's history is not the plane's
+                    const int x = int(i % kWidth), y = int(i / kWidth);
+                    std::vector<size_t> around3x3;
+                    for (int dy = -1; dy <= 1; ++dy)
+                        for (int dx = -1; dx <= 1; ++dx)
+                            if (x + dx >= 0 && y + dy >= 0 && x + dx < int(kWidth) &&
+                                y + dy < int(kHeight))
+                                around3x3.push_back(size_t(y + dy) * kWidth + size_t(x + dx));
+                    float lo = v[i], hi = v[i], sum = 0.0f, squares = 0.0f, n = 0.0f;
+                    for (const size_t j : around3x3) {
+                        lo = std::min(lo, v[j]), hi = std::max(hi, v[j]);
+                        sum += v[j], squares += v[j] * v[j], n += 1.0f;
+                    }
+                    const glm::vec4 around(lo, hi, sum / n, squares / n);
+                    // The plane's texels around (the places paired): the residuals' noise and the
+                    // neighbourhoods' means.
+                    float historySum = 0.0f, currentSum = 0.0f, residuals = 0.0f, squares2 = 0.0f,
+                          pairs = 0.0f;
+                    bool follow = !wasPlane[i] || followed[i];
+                    for (const size_t j : around3x3)
+                        if (wasPlane[j]) {
+                            const float r = v[j] - history[j].x;
+                            historySum += history[j].x, currentSum += v[j], pairs += 1.0f;
+                            residuals += r, squares2 += r * r;
+                            follow = follow && followed[j];
+                        }
+                    const float mr = pairs > 0.0f ? residuals / pairs : 0.0f;
+                    const float noise =
+                        pairs < 2.0f ? 0.0f : std::max(squares2 / pairs - mr * mr, 0.0f);
+                    EXPECT_EQ(noise, gpu::residualNoise(residuals, squares2, pairs));
+                    const auto allowed = [&](glm::vec3 h, float prior) {
+                        const float spread = std::max(h.y - h.x * h.x, 0.0f);
+                        return params.reset *
+                               std::sqrt((h.z * spread + TEMPORAL_PRIOR_FRAMES * prior) /
+                                         (h.z + TEMPORAL_PRIOR_FRAMES));
+                    };
+                    // (the deviations allowed: the history's spread pooled with a prior, for a
+                    // texel the neighbourhood's variance, for the neighbourhoods' means the
+                    // residuals')
+                    const float spatial = std::max(around.w - around.z * around.z, 0.0f);
+                    // The history: the plane's texel here, if this frame agrees with it ...
+                    glm::vec3 h = wasPlane[i] ? history[i] : glm::vec3(0.0f);
+                    if (h.z >= 0.5f && params.reset > 0.0f) {
+                        const float over =
+                            std::abs(v[i] - h.x) - (allowed(h, spatial) + TEMPORAL_RESET_FLOOR);
+                        follow = follow && !undecided(over);
+                        if (over > 0.0f)
+                            h = glm::vec3(0.0f), tapResets += follow;
+                    }
+                    // ... and if the neighbourhood's mean agrees with the history's.
+                    if (h.z >= 0.5f && params.reset > 0.0f) {
+                        const float over =
+                            std::abs(currentSum / pairs - historySum / pairs) -
+                            (allowed(h, noise) / std::sqrt(pairs) + TEMPORAL_RESET_FLOOR);
+                        follow = follow && !undecided(over);
+                        if (over > 0.0f)
+                            h = glm::vec3(0.0f), neighbourhoodResets += follow;
+                    }
+                    clamped += follow && h.z >= 0.5f && (h.x < lo || h.x > hi);
+                    stepped[i] = gpu::temporalStep(params, h, v[i], around);
+                    nowFollowed[i] = follow;
+                    if (!follow)
+                        continue;
+                    ++compared;
+                    wrong += std::abs(mean.visibility[0][i] - stepped[i].x) > 1e-5f;
+                }
+                history = stepped;
+                wasPlane = isPlane;
+                followed = nowFollowed;
+            }
+            EXPECT_EQ(wrong, 0u) << light.name << ", of " << compared << " pixel-frames";
+            EXPECT_GT(compared, size_t{12} * pixels / 2) << light.name;
+        }
+        if (reset > 0.0f) {
+            EXPECT_GT(tapResets, size_t{50}) << "no texel disagreed";
+            EXPECT_GT(neighbourhoodResets, size_t{500}) << "no neighbourhood did";
+        } else {
+            EXPECT_EQ(tapResets + neighbourhoodResets, 0u);
+            EXPECT_GT(clamped, size_t{100}) << "the clamp never held a history";
+        }
+    }
+}
+
+// The camera dollies toward the plane (each pixel's surface nearer, its depth then not its depth
+// now) and pans sideways and up (motion in x and in y), pcss's samples turning each frame, the
+// reset rule on: the plane's history follows, so the layer shows an average of frames and not
+// the frame itself. Were the history tested against this frame's depth, or read from a mirrored
+// place, it would start again (or be dropped by the rule) and show each frame as it is.
+TEST_F(LayerTest, TheHistoryFollowsADollyAndAPan) {
+    Light light = sharpSpot();
+    light.radius = 0.2f;
+    const Scene scene = sphereOverPlane(light);
+    TwoRenderers both(scene, temporal(Technique::Pcss, 16, "minmax", "2"));
+    Camera camera = scene.cameras.front();
+    size_t averaged = 0, plane = 0;
+    for (int k = 0; k < 6; ++k) {
+        const auto [frame, mean] = both.next({.camera = camera});
+        if (k >= 3)
+            for (size_t i = 0; i < frame.visibility[0].size(); ++i) {
+                if (!(std::abs(frame.position[3 * i + 1]) < 1e-4f) ||
+                    !(frame.visibility[0][i] > 0.05f && frame.visibility[0][i] < 0.95f))
+                    continue; // the plane's penumbrae, where pcss's frames differ
+                ++plane;
+                averaged += std::abs(mean.visibility[0][i] - frame.visibility[0][i]) > 1e-4f;
+            }
+        // 3% nearer a frame (more than temporal.depthTolerance), some 0.6 pixels aside.
+        const glm::vec3 toward = 0.25f * glm::normalize(camera.target - camera.position);
+        camera.position += toward + glm::vec3(0.05f, 0.03f, 0.0f);
+        camera.target += glm::vec3(0.05f, 0.03f, 0.0f);
+    }
+    EXPECT_GT(plane, size_t{100});
+    EXPECT_GT(averaged, plane / 2) << "of " << plane << " penumbra pixels on the plane";
+}
+
+// A render that does not continue the last draws temporal.frames warm-up frames first, so its
+// timed frame is near the steady state: against the mean of 48 frames a renderer drew in turn,
+// a fresh render with temporal.frames=16 (the mean of 17 frames, their samples turned) is well
+// closer than one frame alone (about 1/4 of its difference; 1/sqrt(2) were it to warm up once).
+TEST_F(LayerTest, AFreshRenderWarmsUpToItsSteadyState) {
+    Light light = sharpSpot();
+    light.radius = 0.2f;
+    const Scene scene = sphereOverPlane(light);
+    SceneRenderer played(sharedRenderer(), scene);
+    RenderResult converged;
+    for (int k = 0; k < 48; ++k)
+        converged = next(played, temporal(Technique::Pcss, 64, "none", "0"));
+    const auto rmseFromConverged = [&](int frames) {
+        SceneRenderer fresh(sharedRenderer(), scene);
+        const RenderResult r = fresh.render(temporal(Technique::Pcss, frames, "none", "0"));
+        double sum = 0.0;
+        size_t n = 0;
+        for (size_t i = 0; i < r.visibility[0].size(); ++i)
+            if (std::isfinite(r.visibility[0][i]))
+                sum += std::pow(double(r.visibility[0][i]) - converged.visibility[0][i], 2.0), ++n;
+        return std::sqrt(sum / double(n));
+    };
+    const double oneFrame = rmseFromConverged(1), warmed = rmseFromConverged(16);
+    EXPECT_GT(oneFrame, 1e-3) << "pcss's frames differ";
+    EXPECT_LT(warmed, 0.5 * oneFrame) << warmed << " against " << oneFrame;
 }

@@ -108,3 +108,23 @@ TEST(ReportPlot, TheOverTimeSectionShowsOnlyWithATimeline) {
         << section;
     EXPECT_NE(renderHtmlReport(data).find(section), std::string::npos);
 }
+
+// A temporal row is drawn beside its one-frame version: in that row's colour, dashed; a temporal
+// row without its one-frame version, and every other row, in its own colour, solid.
+TEST(ReportPlot, ATemporalRowIsDashedInItsOneFrameRowsColour) {
+    const std::vector<SeriesStyle> styles =
+        seriesStyles({"pcss", "smrt+temporal", "smrt", "pcss+temporal", "hard+temporal", "smrt+"});
+    ASSERT_EQ(styles.size(), 6u);
+    const std::vector<std::pair<size_t, bool>> want = {{0, false}, {2, true},  {2, false},
+                                                       {0, true},  {4, false}, {5, false}};
+    for (size_t i = 0; i < want.size(); ++i) {
+        EXPECT_EQ(styles[i].colour, want[i].first) << i;
+        EXPECT_EQ(styles[i].dashed, want[i].second) << i;
+    }
+    const std::string svg = overTimeSvg(
+        {0.0, 1.0}, {{"smrt", {0.1, 0.2}}, {"smrt+temporal", {0.05, 0.3}}}, "rmse", "RMSE");
+    const std::string colour(plotColour(0));
+    EXPECT_NE(svg.find("stroke=\"" + colour + "\" stroke-dasharray=\"6 4\"/>"), std::string::npos);
+    EXPECT_NE(svg.find("stroke=\"" + colour + "\"/>"), std::string::npos);
+    EXPECT_EQ(svg.find(plotColour(1)), std::string::npos);
+}

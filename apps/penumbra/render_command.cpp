@@ -1,13 +1,13 @@
 #include "commands.h"
 #include "core/image_io.h"
 #include "core/output_dir.h"
-#include "core/virtual_maps.h"
 #include "penumbra/error.h"
 #include "penumbra/renderer.h"
 #include "reference/field_refusal.h"
 #include "render_playback.h"
 #include "report/field_slice.h"
 #include "report/stats.h"
+#include "shadows/layer.h"
 #include "shadows/sdf_field.h"
 #include "shadows/technique.h"
 
@@ -34,7 +34,7 @@ void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& 
                   FloatFormat format) {
     out.write("image.png", encodePng(r.width, r.height, 4, r.image));
     writeViewFiles(out, r, r.visibility, format);
-    if (!r.motion.empty())
+    if (run.options.motion && !r.motion.empty()) // a history layer makes them too, unasked
         writeFloatImage(out, "motion", format, r.width, r.height, 3, r.motion);
     const std::string stats = renderStats(run).dump(2) + "\n";
     out.write("stats.json",
@@ -120,16 +120,17 @@ int runRender(const RenderArgs& args, const GlobalOptions& global) {
     for (const std::string& f : out.staged())
         files += (files.empty() ? "" : ", ") + f;
     std::printf("wrote %s/{%s}\n", out.path().c_str(), files.c_str());
-    const char* warmUps =
-        result.virtualMaps && VirtualSettings::of(options.parameters).warmUpFrames() == 2
-            ? "2 warm-ups"
-            : "1 warm-up";
+    const uint32_t warmUpCount =
+        shadows::warmUpFrames(options.parameters, result.virtualMaps.has_value());
+    const std::string warmUps =
+        fmt::format("{} warm-up{}", warmUpCount, warmUpCount == 1 ? "" : "s");
     if (args.fps)
         std::printf("GPU ms per pass (median of %u frames at %g a second, the first pose after "
                     "%s, each later one the next frame):",
-                    options.frames, *args.fps, warmUps);
+                    options.frames, *args.fps, warmUps.c_str());
     else
-        std::printf("GPU ms per pass (median of %u frames after %s):", options.frames, warmUps);
+        std::printf("GPU ms per pass (median of %u frames after %s):", options.frames,
+                    warmUps.c_str());
     double total = 0;
     for (const PassTime& p : result.passes) {
         std::printf("  %s %.3f", p.pass.c_str(), p.medianMs);

@@ -646,15 +646,10 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     // warm-up frame asks (its own pixels read whatever the pool held) and the second renders.
     // A frame that continues the last one has none: what it kept must show.
     // Pages decided on the device are rendered in the frame that asks for them: one warm-up
-    // (VirtualSettings::warmUpFrames, which stats.json reports).
+    // (shadows::warmUpFrames counts them all, as stats.json reports).
     // A layer that keeps a history draws what it needs to hold the pose's steady state.
-    uint32_t warmUps = state.continues ? 0
-                       : prepared.settings.virtualMaps
-                           ? VirtualSettings::of(o.parameters).warmUpFrames()
-                           : 1;
-    for (const shadows::LayerModule* layer : prepared.settings.layers)
-        if (!state.continues && layer->warmUpFrames)
-            warmUps = std::max(warmUps, layer->warmUpFrames(o.parameters));
+    const uint32_t warmUps =
+        state.continues ? 0 : shadows::warmUpFrames(o.parameters, prepared.settings.virtualMaps);
     for (uint32_t frame = 0; frame < o.frames + warmUps; ++frame) {
         const bool warmUp = frame < warmUps;
         if (progress)

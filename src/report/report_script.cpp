@@ -175,6 +175,7 @@ ul.legend { list-style: none; margin: 0; padding: 0; font-size: 13px; flex: 0 1 
 ul.legend li { margin: 2px 0; } ul.legend li.on-front { font-weight: 600; }
 ul.legend .dot { display: inline-block; width: 10px; height: 10px; border-radius: 5px;
   margin-right: 6px; }
+ul.legend .dot.dashed { border-radius: 0; height: 3px; width: 14px; margin-bottom: 3px; }
 svg path.front { fill: none; stroke: #2f855a; stroke-width: 2; stroke-dasharray: 6 4; }
 svg .on-front circle { stroke: #22543d; stroke-width: 2.5; }
 svg .plot-label { fill: var(--ink); font-size: 12px; }

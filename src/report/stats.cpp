@@ -4,6 +4,7 @@
 
 #include "report/html_report.h"
 #include "scene/first_picture.h"
+#include "shadows/layer.h"
 
 #include <fmt/format.h>
 
@@ -193,7 +194,7 @@ nlohmann::json renderStats(const RenderRun& run) {
     j["lights"] = lights;
     j["frames"] = {
         {"timed", o.frames},
-        {"warm_up", run.result.virtualMaps ? VirtualSettings::of(o.parameters).warmUpFrames() : 1}};
+        {"warm_up", shadows::warmUpFrames(o.parameters, run.result.virtualMaps.has_value())}};
     if (run.fps > 0.0) // each timed frame a pose of its own; the first warmed up, the rest not
         j["frames"]["fps"] = run.fps;
     nlohmann::json gpu = nlohmann::json::object(), perFrame = nlohmann::json::object();

@@ -11,6 +11,23 @@
 
 namespace penumbra {
 
+std::vector<SeriesStyle> seriesStyles(const std::vector<std::string>& names) {
+    // The layer that keeps a history across frames (docs/techniques.md, "Layers: temporal").
+    constexpr std::string_view kTemporal = "+temporal";
+    std::vector<SeriesStyle> styles(names.size());
+    for (size_t i = 0; i < names.size(); ++i) {
+        styles[i].colour = i;
+        const std::string_view name = names[i];
+        if (!name.ends_with(kTemporal))
+            continue;
+        const std::string_view base = name.substr(0, name.size() - kTemporal.size());
+        for (size_t j = 0; j < names.size(); ++j)
+            if (names[j] == base)
+                styles[i] = {.colour = j, .dashed = true};
+    }
+    return styles;
+}
+
 std::string overTimeSvg(const std::vector<double>& times, const std::vector<TimeSeries>& series,
                         std::string_view kind, std::string_view quantity) {
     if (times.empty())
@@ -54,9 +71,13 @@ std::string overTimeSvg(const std::vector<double>& times, const std::vector<Time
                    "rotate(-90)\" text-anchor=\"middle\">{7}</text>\n",
                    left, top + plotH, left + plotW, top, left + plotW / 2, h - 14, top + plotH / 2,
                    escapeHtml(quantity));
+    std::vector<std::string> names;
+    for (const TimeSeries& one : series)
+        names.push_back(one.name);
+    const std::vector<SeriesStyle> styles = seriesStyles(names);
     for (size_t r = 0; r < series.size(); ++r) {
         const std::string name = escapeHtml(series[r].name);
-        const std::string_view colour = plotColour(r);
+        const std::string_view colour = plotColour(styles[r].colour);
         // The line, broken where a value is missing; then a point a frame for its tooltip.
         std::string path;
         bool drawing = false;
@@ -73,7 +94,8 @@ std::string overTimeSvg(const std::vector<double>& times, const std::vector<Time
         }
         fmt::format_to(out, "<g class=\"series\" data-technique=\"{}\">\n", name);
         if (!path.empty())
-            fmt::format_to(out, "<path class=\"line\" d=\"{}\" stroke=\"{}\"/>\n", path, colour);
+            fmt::format_to(out, "<path class=\"line\" d=\"{}\" stroke=\"{}\"{}/>\n", path, colour,
+                           styles[r].dashed ? " stroke-dasharray=\"6 4\"" : "");
         for (size_t k = 0; k < frames; ++k)
             if (std::isfinite(series[r].values[k]))
                 fmt::format_to(out,
@@ -111,24 +133,31 @@ std::string overTimeSection(const ReportData& data) {
     s += overTimeSvg(data.timelineTimes, movingRmse, "rmse-moving", "RMSE in motion");
     s += overTimeSvg(data.timelineTimes, gpuMs, "gpu-ms", "total GPU time in motion (ms)");
     s += "<ul class=\"legend\">\n";
+    std::vector<std::string> names;
+    for (const ReportRow& row : data.rows)
+        names.push_back(row.name);
+    const std::vector<SeriesStyle> styles = seriesStyles(names);
     for (size_t r = 0; r < data.rows.size(); ++r) {
         const ReportRow& row = data.rows[r];
         const auto [meanRmse, mostRmse] = meanAndMost(row.rmseOverTime);
         const double meanMs = meanAndMost(row.gpuMsOverTime).first;
         const double movingMs = meanAndMost(row.movingGpuMsOverTime).first;
         fmt::format_to(std::back_inserter(s),
-                       "<li><span class=\"dot\" style=\"background:{}\"></span>{} <small>RMSE "
+                       "<li><span class=\"dot{}\" style=\"background:{}\"></span>{} <small>RMSE "
                        "{:.4f} mean, {:.4f} max; flicker {:.6f}; pop-in {:.4f}, lag {} frames; "
                        "{:.3f} ms a frame at rest, {:.3f} in motion</small></li>\n",
-                       plotColour(r), escapeHtml(row.name), meanRmse, mostRmse, row.flicker,
-                       row.popIn, row.lagFrames, meanMs, movingMs);
+                       styles[r].dashed ? " dashed" : "", plotColour(styles[r].colour),
+                       escapeHtml(row.name), meanRmse, mostRmse, row.flicker, row.popIn,
+                       row.lagFrames, meanMs, movingMs);
     }
     s += "</ul>\n<p class=\"note\">At rest: each pose rendered from scratch after warm-up (the "
          "technique's steady state). In motion: each pose drawn as the next frame of one renderer, "
          "with what it kept from the frame before. Flicker is the mean change of the error from "
          "frame to frame where the truth held still; pop-in the worst excess of the error in "
          "motion over the one at rest; lag the longest run of frames more than 10% worse in "
-         "motion (docs/cli.md).</p>\n</section>\n";
+         "motion (docs/cli.md). A dashed line is a row with the temporal layer, in the colour of "
+         "the "
+         "same row without it.</p>\n</section>\n";
     return s;
 }
 

@@ -2,6 +2,8 @@
 // runs them.
 #include "shadows/layer.h"
 
+#include "core/virtual_maps.h"
+
 #include <algorithm>
 
 namespace penumbra::shadows {
@@ -30,6 +32,14 @@ bool keepsHistory(const ParameterValues& params) {
     const std::vector<const LayerModule*> on = enabledLayers(params);
     return std::any_of(on.begin(), on.end(),
                        [](const LayerModule* layer) { return layer->history.has_value(); });
+}
+
+uint32_t warmUpFrames(const ParameterValues& params, bool virtualMaps) {
+    uint32_t frames = virtualMaps ? VirtualSettings::of(params).warmUpFrames() : 1;
+    for (const LayerModule* layer : enabledLayers(params))
+        if (layer->warmUpFrames)
+            frames = std::max(frames, layer->warmUpFrames(params));
+    return frames;
 }
 
 } // namespace penumbra::shadows

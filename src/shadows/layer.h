@@ -56,4 +56,10 @@ const LayerModule& temporalLayer();
 // Whether a layer these parameters switch on keeps a history (LayerModule::history).
 bool keepsHistory(const ParameterValues& params);
 
+// The warm-up frames of a render that does not continue the last: one (first-use costs), two for
+// virtual maps whose pages the host decides, or what a layer that keeps a history needs to show
+// its steady state (temporal.frames), the most of these. The renderer draws them; stats.json and
+// the CLI say how many.
+uint32_t warmUpFrames(const ParameterValues& params, bool virtualMaps);
+
 } // namespace penumbra::shadows

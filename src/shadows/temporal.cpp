@@ -5,9 +5,11 @@
 // normal)]. Each frame the techniques turn their per-pixel rotations (frameTurn: pcf's and pcss's
 // Poisson disks, smrt's rays, contact's jitter), so that their few samples a frame differ from
 // the last frame's; the layer reprojects the pixel's history through the G-buffer's motion
-// vectors, keeps the texels that show the same surface, clamps what they say into the range this
-// frame's neighbourhood allows and blends this frame in with weight 1/n (n frames so far, at most
-// temporal.frames). Shader: shaders/temporal.comp; maths: shaders/include/temporal.h.
+// vectors, keeps the texels that show the same surface and that this frame does not contradict
+// (the reset rule: each texel's spread over time and the neighbourhoods' means), clamps what
+// they say into the range this frame's neighbourhood allows and blends this frame in with weight
+// 1/n (n frames so far, at most temporal.frames). Shader: shaders/temporal.comp; maths:
+// shaders/include/temporal.h.
 #include "temporal.h"
 #include "shadows/layer.h"
 
@@ -21,7 +23,8 @@ gpu::TemporalParams temporalParams(const ParameterValues& p) {
             .clampMode = static_cast<uint32_t>(p.number("temporal.clamp")),
             .gamma = static_cast<float>(p.number("temporal.gamma")),
             .depthTolerance = static_cast<float>(p.number("temporal.depthTolerance")),
-            .normalTolerance = static_cast<float>(p.number("temporal.normalTolerance"))};
+            .normalTolerance = static_cast<float>(p.number("temporal.normalTolerance")),
+            .reset = static_cast<float>(p.number("temporal.reset"))};
 }
 
 } // namespace
@@ -33,8 +36,9 @@ const LayerModule& temporalLayer() {
     static const LayerModule layer{
         .name = "temporal",
         .summary = "the light's visibility averaged over frames: history reprojected through "
-                   "motion vectors, dropped where the surface changed, clamped to this frame's "
-                   "neighbourhood; the techniques turn their samples every frame",
+                   "motion vectors, dropped where the surface changed or this frame contradicts "
+                   "it, clamped to this frame's neighbourhood; the techniques turn their samples "
+                   "every frame",
         .reference = "Karis 2014, 'High-quality temporal supersampling'; Salvi 2016, 'An "
                      "excursion in temporal supersampling'; Schied et al. 2017, "
                      "'Spatiotemporal variance-guided filtering'",
@@ -76,7 +80,20 @@ const LayerModule& temporalLayer() {
               .min = -1.0,
               .max = 1.0,
               .description = "... and the cosine between their triangles' normals is at least "
-                             "this"}},
+                             "this"},
+             {.key = "temporal.reset",
+              .type = ParameterType::Float,
+              .defaultValue = 2.0,
+              .min = 0.0,
+              .max = 16.0,
+              .unit = "deviations",
+              .description = "the reset rule's k: a history texel is dropped where this frame's "
+                             "visibility leaves its mean by more than k of its deviations over "
+                             "time (pooled with the 3x3 neighbourhood's variance), a pixel's "
+                             "history where the neighbourhood's mean leaves the history's there "
+                             "by more than k deviations over the root of their places (pooled "
+                             "with the residuals' variance); changes under 1/512 never: a moving "
+                             "shadow does not trail (0: off)"}},
         .enabled = [](const ParameterValues& p) { return p.number("temporal.frames") > 0.0; },
         .off = {"temporal.frames", "0"},
         .shader = "temporal.comp",

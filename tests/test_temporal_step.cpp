@@ -1,0 +1,164 @@
+// The `temporal` layer's maths on the CPU (shaders/include/temporal.h, compiled as C++): the
+// reset rule (a texel's spread over time pooled with the neighbourhood's), one pixel's step
+// (afresh, the clamp, the blend and its cap) by hand-worked cases, and the history texel's
+// packing.
+#include "gbuffer_encoding.h"
+#include "temporal.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace penumbra::gpu;
+
+namespace {
+
+TemporalParams params(uint32_t frames, uint32_t clampMode, float reset) {
+    return {.frames = frames,
+            .clampMode = clampMode,
+            .gamma = 1.0f,
+            .depthTolerance = 0.02f,
+            .normalTolerance = 0.9f,
+            .reset = reset};
+}
+
+// A neighbourhood of this frame whose range and spread allow anything and say nothing.
+const vec4 kAnything(0.0f, 1.0f, 0.5f, 0.25f);
+
+void expectNear(vec3 got, vec3 want) {
+    EXPECT_NEAR(got.x, want.x, 1e-6f);
+    EXPECT_NEAR(got.y, want.y, 1e-6f);
+    EXPECT_EQ(got.z, want.z);
+}
+
+} // namespace
+
+TEST(TemporalStep, NoHistoryIsThisFrameAlone) {
+    expectNear(temporalStep(params(16, TEMPORAL_CLAMP_MINMAX, 3.0f), vec3(0.0f), 0.3f,
+                            vec4(0.5f, 0.6f, 0.55f, 0.3f)),
+               vec3(0.3f, 0.09f, 1.0f));
+}
+
+// A history of spread 0.1 (mean 0.5, mean square 0.26) over 8 frames, no noise around: a
+// change of 0.25 is within 3 deviations (0.1 x sqrt(8 / 9) = 0.094: 0.28 and the floor), the
+// history agrees and blends (1/9 of this frame); within 2 it does not. 0 keeps every history.
+TEST(TemporalStep, TheResetRuleWeighsAChangeAgainstTheHistorysSpread) {
+    const vec3 history(0.5f, 0.26f, 8.0f);
+    EXPECT_TRUE(historyAgrees(params(16, TEMPORAL_CLAMP_NONE, 3.0f), history, 0.75f, 0.0f, 0.0f));
+    EXPECT_TRUE(historyAgrees(params(16, TEMPORAL_CLAMP_NONE, 3.0f), history, 0.25f, 0.0f, 0.0f));
+    EXPECT_FALSE(historyAgrees(params(16, TEMPORAL_CLAMP_NONE, 3.0f), history, 0.79f, 0.0f, 0.0f));
+    EXPECT_FALSE(historyAgrees(params(16, TEMPORAL_CLAMP_NONE, 2.0f), history, 0.75f, 0.0f, 0.0f));
+    EXPECT_FALSE(historyAgrees(params(16, TEMPORAL_CLAMP_NONE, 2.0f), history, 0.25f, 0.0f, 0.0f));
+    EXPECT_TRUE(historyAgrees(params(16, TEMPORAL_CLAMP_NONE, 0.0f), vec3(1.0f, 1.0f, 8.0f), 0.0f,
+                              0.0f, 0.0f));
+    expectNear(temporalStep(params(16, TEMPORAL_CLAMP_NONE, 3.0f), history, 0.75f, kAnything),
+               vec3(0.5f + 0.25f / 9.0f, 0.26f + (0.5625f - 0.26f) / 9.0f, 9.0f));
+}
+
+// A noise-free history (no spread, no noise) disagrees with any change beyond the floor (1/512).
+TEST(TemporalStep, ANoiseFreeHistoryDisagreesWithAnyChangeBeyondTheFloor) {
+    const TemporalParams p = params(16, TEMPORAL_CLAMP_NONE, 3.0f);
+    const vec3 history(0.5f, 0.25f, 8.0f);
+    EXPECT_TRUE(historyAgrees(p, history, 0.5f + 1.0f / 1024.0f, 0.0f, 0.0f));
+    EXPECT_TRUE(historyAgrees(p, history, 0.5f - 1.0f / 1024.0f, 0.0f, 0.0f));
+    EXPECT_FALSE(historyAgrees(p, history, 0.5f + 1.0f / 256.0f, 0.0f, 0.0f));
+    EXPECT_FALSE(historyAgrees(p, history, 0.5f - 1.0f / 256.0f, 0.0f, 0.0f));
+}
+
+// The prior (the neighbourhood's variance for a texel, 0.09 here: 0.3) counts as one frame's:
+// pooled with no spread over time it is 0.3 / sqrt(2) at one frame and 0.3 / 2 at three. A
+// change of 0.5 is within 3 of the first (0.64), not of the second (0.45).
+TEST(TemporalStep, AShortHistoryAlsoWeighsThePrior) {
+    const TemporalParams p = params(16, TEMPORAL_CLAMP_NONE, 3.0f);
+    EXPECT_TRUE(historyAgrees(p, vec3(0.5f, 0.25f, 1.0f), 1.0f, 0.09f, 0.0f));
+    EXPECT_FALSE(historyAgrees(p, vec3(0.5f, 0.25f, 3.0f), 1.0f, 0.09f, 0.0f));
+    // 0.2 over time and 0.3 around at one frame: sqrt((0.04 + 0.09) / 2) = 0.255, 3 of it 0.76.
+    const vec3 spread(0.5f, 0.29f, 1.0f);
+    EXPECT_TRUE(historyAgrees(p, spread, 0.5f + 0.75f, 0.09f, 0.0f));
+    EXPECT_FALSE(historyAgrees(p, spread, 0.5f - 0.77f, 0.09f, 0.0f));
+    // A noise-free history of two frames disagrees with a full change whatever the neighbourhood
+    // (visibility's variance is at most 1/4).
+    EXPECT_FALSE(historyAgrees(p, vec3(1.0f, 1.0f, 2.0f), 0.0f, 0.25f, 0.0f));
+}
+
+// The residuals' variance: none from fewer than two places.
+TEST(TemporalStep, TheResidualsNoiseIsTheirVariance) {
+    EXPECT_NEAR(residualNoise(0.1f + 0.3f, 0.01f + 0.09f, 2.0f), 0.01f, 1e-7f);
+    EXPECT_NEAR(residualNoise(3 * 0.2f, 3 * 0.04f, 3.0f), 0.0f, 1e-7f);
+    EXPECT_EQ(residualNoise(0.5f, 0.25f, 1.0f), 0.0f);
+}
+
+// The neighbourhoods' means: the history's deviation (0.1 x sqrt(8 / 9) = 0.094 here) over
+// sqrt(pairs). With 9 places and k = 2, a difference of 0.06 agrees, 0.07 does not; with one
+// place 0.18 agrees.
+TEST(TemporalStep, TheNeighbourhoodsMeansAllowTheirOwnDeviation) {
+    const TemporalParams p = params(16, TEMPORAL_CLAMP_NONE, 2.0f);
+    const vec3 history(0.5f, 0.26f, 8.0f);
+    EXPECT_TRUE(neighbourhoodsAgree(p, history, 0.4f, 0.46f, 9.0f, 0.0f, 0.0f, 0.0f));
+    EXPECT_FALSE(neighbourhoodsAgree(p, history, 0.4f, 0.47f, 9.0f, 0.0f, 0.0f, 0.0f));
+    EXPECT_FALSE(neighbourhoodsAgree(p, history, 0.47f, 0.4f, 9.0f, 0.0f, 0.0f, 0.0f));
+    EXPECT_TRUE(neighbourhoodsAgree(p, history, 0.4f, 0.58f, 1.0f, 0.0f, 0.0f, 0.0f));
+    EXPECT_TRUE(neighbourhoodsAgree(params(16, TEMPORAL_CLAMP_NONE, 0.0f), history, 0.0f, 1.0f,
+                                    9.0f, 0.0f, 0.0f, 0.0f));
+}
+
+// minmax clamps the history's mean into this frame's neighbourhood (0.2 .. 0.4) and keeps its
+// spread about the clamped mean; variance into mean +- gamma deviations.
+TEST(TemporalStep, TheClampBoundsTheHistoryAndKeepsItsSpread) {
+    const vec4 around(0.2f, 0.4f, 0.3f, 0.09f + 0.0025f); // deviation 0.05
+    const vec3 history(1.0f, 1.01f, 8.0f);                // spread 0.1
+    const float kept = 0.4f, keptSquare = 0.16f + 0.01f;
+    expectNear(temporalStep(params(16, TEMPORAL_CLAMP_MINMAX, 0.0f), history, 0.3f, around),
+               vec3(kept + (0.3f - kept) / 9.0f, keptSquare + (0.09f - keptSquare) / 9.0f, 9.0f));
+    const float top = 0.35f, topSquare = top * top + 0.01f;
+    expectNear(temporalStep(params(16, TEMPORAL_CLAMP_VARIANCE, 0.0f), history, 0.3f, around),
+               vec3(top + (0.3f - top) / 9.0f, topSquare + (0.09f - topSquare) / 9.0f, 9.0f));
+    const float bottom = 0.2f, bottomSquare = bottom * bottom + 0.01f;
+    expectNear(
+        temporalStep(params(16, TEMPORAL_CLAMP_MINMAX, 0.0f), vec3(0.0f, 0.01f, 8.0f), 0.3f,
+                     around),
+        vec3(bottom + (0.3f - bottom) / 9.0f, bottomSquare + (0.09f - bottomSquare) / 9.0f, 9.0f));
+}
+
+// At temporal.frames the history stops growing: this frame weighs 1/frames from then on.
+TEST(TemporalStep, TheHistoryStopsGrowingAtTemporalFrames) {
+    const TemporalParams p = params(16, TEMPORAL_CLAMP_NONE, 0.0f);
+    expectNear(temporalStep(p, vec3(1.0f, 1.0f, 16.0f), 0.0f, kAnything),
+               vec3(15.0f / 16.0f, 15.0f / 16.0f, 16.0f));
+    expectNear(temporalStep(p, vec3(1.0f, 1.0f, 15.0f), 0.0f, kAnything),
+               vec3(15.0f / 16.0f, 15.0f / 16.0f, 16.0f));
+    expectNear(
+        temporalStep(params(1, TEMPORAL_CLAMP_NONE, 0.0f), vec3(1.0f, 1.0f, 1.0f), 0.0f, kAnything),
+        vec3(0.0f, 0.0f, 1.0f));
+}
+
+// The texel's w: a face normal to 11 bits an octahedral coordinate (within 0.2 degree) and the
+// length, every length temporal.frames allows.
+TEST(TemporalStep, TheHistoryTexelPacksTheNormalAndTheLength) {
+    for (const vec3 n : {vec3(0, 1, 0), vec3(0, 0, -1), vec3(1, 0, 0), vec3(-0.3f, 0.5f, -0.8f),
+                         vec3(0.6f, -0.7f, 0.2f), vec3(-0.2f, -0.1f, 0.97f)})
+        for (const uint32_t length : {0u, 1u, 2u, 255u, 256u}) {
+            const vec3 unit = n / std::sqrt(dot(n, n));
+            const uint32_t packed = packHistoryNormal(octahedralEncode(unit), length);
+            EXPECT_EQ(historyLengthOf(packed), length);
+            EXPECT_GT(dot(octahedralDecode(historyOctahedral(packed)), unit),
+                      std::cos(0.2 * M_PI / 180.0))
+                << n.x << " " << n.y << " " << n.z;
+        }
+}
+
+// A history read off where the surface was (a camera's sub-pixel motion) may differ by the
+// gradient over that distance: a neighbourhood spreading 0.2 (a gradient of 0.245 a pixel)
+// allows 0.122 at half a pixel and nothing where the history is read in place.
+TEST(TemporalStep, AHistoryReadOffItsPlaceMayDifferByTheGradient) {
+    EXPECT_NEAR(reprojectionAllowance(0.04f, 0.5f), 0.5f * std::sqrt(0.06f), 1e-6f);
+    EXPECT_EQ(reprojectionAllowance(0.04f, 0.0f), 0.0f);
+    const TemporalParams p = params(16, TEMPORAL_CLAMP_NONE, 2.0f);
+    const vec3 exact(0.5f, 0.25f, 16.0f); // no spread over time
+    const float pooled = std::sqrt(0.04f / 17.0f) * 2.0f;
+    EXPECT_TRUE(historyAgrees(p, exact, 0.5f + pooled + 0.12f, 0.04f, 0.5f));
+    EXPECT_FALSE(historyAgrees(p, exact, 0.5f + pooled + 0.13f, 0.04f, 0.5f));
+    EXPECT_FALSE(historyAgrees(p, exact, 0.5f + pooled + 0.01f, 0.04f, 0.0f));
+    EXPECT_TRUE(neighbourhoodsAgree(p, exact, 0.5f, 0.62f, 9.0f, 0.0f, 0.04f, 0.5f));
+    EXPECT_FALSE(neighbourhoodsAgree(p, exact, 0.5f, 0.62f, 9.0f, 0.0f, 0.04f, 0.0f));
+}
