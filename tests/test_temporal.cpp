@@ -468,8 +468,8 @@ TEST_F(LayerTest, TheLayerStepsAsItsCpuReferenceDoes) {
 }
 
 // The camera dollies toward the plane (each pixel's surface nearer, its depth then not its depth
-// now) and pans sideways and up (motion in x and in y), pcss's samples turning each frame, the
-// reset rule on: the plane's history follows, so the layer shows an average of frames and not
+// now) and pans right and up the image (motion in x and in y), pcss's samples turning each frame,
+// the reset rule on: the plane's history follows, so the layer shows an average of frames and not
 // the frame itself. Were the history tested against this frame's depth, or read from a mirrored
 // place, it would start again (or be dropped by the rule) and show each frame as it is.
 TEST_F(LayerTest, TheHistoryFollowsADollyAndAPan) {
@@ -489,10 +489,13 @@ TEST_F(LayerTest, TheHistoryFollowsADollyAndAPan) {
                 ++plane;
                 averaged += std::abs(mean.visibility[0][i] - frame.visibility[0][i]) > 1e-4f;
             }
-        // 3% nearer a frame (more than temporal.depthTolerance), some 0.6 pixels aside.
-        const glm::vec3 toward = 0.25f * glm::normalize(camera.target - camera.position);
-        camera.position += toward + glm::vec3(0.05f, 0.03f, 0.0f);
-        camera.target += glm::vec3(0.05f, 0.03f, 0.0f);
+        // 3% nearer a frame (more than temporal.depthTolerance), and some 0.6 pixels right and
+        // 3 up the image: a history read mirrored in y lands on other depths, and is dropped.
+        const glm::vec3 forward = glm::normalize(camera.target - camera.position);
+        const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 1.0f, 0.0f)));
+        const glm::vec3 aside = 0.05f * right + 0.25f * glm::cross(right, forward);
+        camera.position += 0.25f * forward + aside;
+        camera.target += aside;
     }
     EXPECT_GT(plane, size_t{100});
     EXPECT_GT(averaged, plane / 2) << "of " << plane << " penumbra pixels on the plane";
