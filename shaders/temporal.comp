@@ -75,56 +75,51 @@ void main() {
     // Where the surface was: the texel grid's coordinates there.
     vec2 there = vec2(p) + 0.5 - moved.xy - 0.5;
 
-    // This frame against the history over the 3x3 neighbourhood: the places whose history texel
-    // (around the one nearest where the surface was) shows the pixel's surface, their means
-    // and the spread of the residuals (the reset rule's second test).
+    // One pass over the 3x3 history texels around the one nearest where the surface was (they
+    // hold the four bilinear taps around it), each used where it shows the pixel's surface:
+    // - paired with this frame's visibility at the same offset from the pixel, the two
+    //   neighbourhoods' means and the spread of the residuals (the reset rule's second test);
+    // - a bilinear tap, weighed by whether this frame agrees with it (the first test).
     ivec2 nearest = ivec2(floor(there + 0.5));
+    ivec2 base = ivec2(floor(there));
+    vec2 f = there - vec2(base);
     float historySum = 0.0, currentSum = 0.0, residuals = 0.0, residualSquares = 0.0;
-    float pairs = 0.0;
+    float pairs = 0.0, weight = 0.0;
+    vec3 kept = vec3(0.0); // mean, spread, length
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
             ivec2 t = nearest + ivec2(dx, dy);
+            if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(uvec2(t), size))) continue;
+            ivec2 tap = t - base;
+            bool bilinear = all(greaterThanEqual(tap, ivec2(0))) && all(lessThan(tap, ivec2(2)));
             float v = current(p + ivec2(dx, dy), layer);
-            if (v < 0.0 || any(lessThan(t, ivec2(0))) || any(greaterThanEqual(uvec2(t), size)))
-                continue;
+            if (v < 0.0 && !bilinear) continue;
             uvec4 h = texelFetch(previous, ivec3(t, layer), 0);
-            if (historyLengthOf(h.w) == 0u ||
+            uint hLength = historyLengthOf(h.w);
+            if (hLength == 0u || // no history there
                 !sameSurface(uintBitsToFloat(h.z), octahedralDecode(historyOctahedral(h.w)),
                              moved.z, normal, temporal.depthTolerance, temporal.normalTolerance))
                 continue;
-            float r = v - uintBitsToFloat(h.x);
-            historySum += uintBitsToFloat(h.x);
-            currentSum += v;
-            residuals += r;
-            residualSquares += r * r;
-            pairs += 1.0;
+            vec3 texel = vec3(uintBitsToFloat(h.x), uintBitsToFloat(h.y), float(hLength));
+            if (v >= 0.0) {
+                float r = v - texel.x;
+                historySum += texel.x;
+                currentSum += v;
+                residuals += r;
+                residualSquares += r * r;
+                pairs += 1.0;
+            }
+            if (!bilinear ||
+                !historyAgrees(temporal, texel, now, spatial, length(vec2(t) - there)))
+                continue;
+            float w = (tap.x == 1 ? f.x : 1.0 - f.x) * (tap.y == 1 ? f.y : 1.0 - f.y);
+            // The texels' spreads over time averaged (not the spread between them: a shadow's
+            // edge on a moving surface is no noise).
+            weight += w;
+            kept += w * vec3(texel.x, texel.y - texel.x * texel.x, texel.z);
         }
     float noise = residualNoise(residuals, residualSquares, pairs);
 
-    // The history: bilinear over the four texels around where the surface was, each weighed by
-    // whether it showed the same surface and whether this frame agrees with it (the reset rule).
-    ivec2 base = ivec2(floor(there));
-    vec2 f = there - vec2(base);
-    float weight = 0.0;
-    vec3 kept = vec3(0.0); // mean, spread, length
-    for (int k = 0; k < 4; ++k) {
-        ivec2 t = base + ivec2(k & 1, k >> 1);
-        if (any(lessThan(t, ivec2(0))) || any(greaterThanEqual(uvec2(t), size))) continue;
-        uvec4 h = texelFetch(previous, ivec3(t, layer), 0);
-        uint hLength = historyLengthOf(h.w);
-        if (hLength == 0u) continue; // no history there
-        vec3 hNormal = octahedralDecode(historyOctahedral(h.w));
-        if (!sameSurface(uintBitsToFloat(h.z), hNormal, moved.z, normal,
-                         temporal.depthTolerance, temporal.normalTolerance))
-            continue;
-        vec3 texel = vec3(uintBitsToFloat(h.x), uintBitsToFloat(h.y), float(hLength));
-        if (!historyAgrees(temporal, texel, now, spatial, length(vec2(t) - there))) continue;
-        float w = ((k & 1) == 1 ? f.x : 1.0 - f.x) * ((k >> 1) == 1 ? f.y : 1.0 - f.y);
-        // The texels' spreads over time averaged (not the spread between them: a shadow's edge
-        // on a moving surface is no noise).
-        weight += w;
-        kept += w * vec3(texel.x, texel.y - texel.x * texel.x, texel.z);
-    }
     vec3 reprojected = vec3(0.0); // mean, mean square, length
     if (weight > 1e-3) {
         kept /= weight;

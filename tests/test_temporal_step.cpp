@@ -162,3 +162,20 @@ TEST(TemporalStep, AHistoryReadOffItsPlaceMayDifferByTheGradient) {
     EXPECT_TRUE(neighbourhoodsAgree(p, exact, 0.5f, 0.62f, 9.0f, 0.0f, 0.04f, 0.5f));
     EXPECT_FALSE(neighbourhoodsAgree(p, exact, 0.5f, 0.62f, 9.0f, 0.0f, 0.04f, 0.0f));
 }
+
+// The disocclusion test: a relative depth difference up to temporal.depthTolerance (0.02), in
+// either order, and a normal within temporal.normalTolerance's cosine (0.9).
+TEST(TemporalStep, ASurfaceIsTheSameByItsDepthAndItsNormal) {
+    const vec3 up(0.0f, 1.0f, 0.0f);
+    EXPECT_TRUE(sameSurface(0.5f, up, 0.5f, up, 0.02f, 0.9f));
+    EXPECT_TRUE(sameSurface(0.5f, up, 0.509f, up, 0.02f, 0.9f));
+    EXPECT_TRUE(sameSurface(0.509f, up, 0.5f, up, 0.02f, 0.9f));
+    EXPECT_FALSE(sameSurface(0.5f, up, 0.512f, up, 0.02f, 0.9f));
+    EXPECT_FALSE(sameSurface(0.512f, up, 0.5f, up, 0.02f, 0.9f));
+    const auto tilted = [](float cosine) {
+        return vec3(std::sqrt(1.0f - cosine * cosine), cosine, 0.0f);
+    };
+    EXPECT_TRUE(sameSurface(0.5f, tilted(0.91f), 0.5f, up, 0.02f, 0.9f));
+    EXPECT_FALSE(sameSurface(0.5f, tilted(0.89f), 0.5f, up, 0.02f, 0.9f));
+    EXPECT_FALSE(sameSurface(0.5f, -up, 0.5f, up, 0.02f, 0.9f)); // a face seen from behind
+}
