@@ -135,6 +135,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"compare_unknown_technique",
                  {"compare", "builtin:showcase", "-o", "{out}", "--techniques", "hard,fuzzy"},
                  "--techniques: unknown technique or variant 'fuzzy'"},
+        BadInput{"compare_unknown_layer",
+                 {"compare", "builtin:showcase", "-o", "{out}", "--techniques", "pcss+Temporal"},
+                 "error: --techniques: unknown layer 'Temporal' in 'pcss+Temporal' (layers: "
+                 "contact, temporal)"},
+        BadInput{"render_layer_twice",
+                 {"render", "builtin:showcase", "-o", "{out}", "--technique",
+                  "pcss+temporal+contact+temporal"},
+                 "error: --technique: 'pcss+temporal+contact+temporal' names the layer "
+                 "'temporal' twice"},
         BadInput{"sun_dir_two_numbers",
                  {"render", "builtin:showcase", "-o", "{out}", "--sun-dir", "1,2"},
                  "--sun-dir: '1,2' is not three numbers X,Y,Z"},

@@ -72,8 +72,11 @@ TEST(CliTimeline, EachFrameMeasuresAsCompareAtThatTimeAndFlickerAddsUpOverFrameP
             << row;
         EXPECT_EQ(r["rmse_over_time"]["max"].get<double>(), std::max({rmse[0], rmse[1], rmse[2]}))
             << row;
-        // Neither keeps anything between frames: in motion each frame is the one at rest.
+        // Neither keeps anything between frames: in motion each frame is the one at rest, and
+        // so is the flicker as played.
         EXPECT_EQ(r["rmse_moving"], r["rmse"]) << row;
+        EXPECT_EQ(r["flicker_moving"], r["flicker"]) << row;
+        EXPECT_EQ(r["flicker_moving_pixels"], r["flicker_pixels"]) << row;
         EXPECT_EQ(r["pop_in"].get<double>(), 0.0) << row;
         EXPECT_EQ(r["pop_in_ratio"].get<double>(), 1.0) << row;
         EXPECT_EQ(r["lag_frames"].get<size_t>(), 0u) << row;
@@ -88,8 +91,10 @@ TEST(CliTimeline, EachFrameMeasuresAsCompareAtThatTimeAndFlickerAddsUpOverFrameP
             report.find(fmt::format("{} at 1 s: {:.6g}</title>", row, r["rmse"][1].get<double>())),
             std::string::npos)
             << row;
-        EXPECT_NE(report.find(fmt::format("flicker {:.6f};", r["flicker"].get<double>())),
-                  std::string::npos)
+        EXPECT_NE(
+            report.find(fmt::format("flicker {:.6f}; as played {:.6f};", r["flicker"].get<double>(),
+                                    r["flicker_moving"].get<double>())),
+            std::string::npos)
             << row;
     }
     // The usual outputs are the first frame's (the box off its rest place): compare --time 0's.
@@ -305,6 +310,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"animation_of_a_still_scene",
                  {"reference", "builtin:showcase", "-o", "{out}", "--animation", "walk"},
                  "error: --animation: 'builtin:showcase' has no animations"},
+        BadInput{"timeline_empty",
+                 {"compare", "builtin:pendulum", "-o", "{out}", "--timeline", ""},
+                 "error: --timeline: '' is not a timeline START:END:STEP"},
+        BadInput{"fps_empty",
+                 {"render", "builtin:pendulum", "-o", "{out}", "--fps", ""},
+                 "error: --fps: '' is not a rate in frames a second"},
         BadInput{"timeline_of_two_numbers",
                  {"compare", "builtin:showcase", "-o", "{out}", "--timeline", "0:1"},
                  "error: --timeline: '0:1' is not START:END:STEP in seconds"},
@@ -355,6 +366,7 @@ TEST(CliTimeline, VirtualPagesLagBehindAnOrbitingLightAndPlainMapsDoNot) {
     };
     const J plain = timeline("plain", {});
     EXPECT_EQ(plain["rmse_moving"], plain["rmse"]);
+    EXPECT_EQ(plain["flicker_moving"], plain["flicker"]);
     EXPECT_EQ(plain["lag_frames"], 0);
     EXPECT_EQ(plain["pop_in"], 0.0);
     EXPECT_FALSE(plain.contains("pages_moving")) << "no virtual map, no pages";
@@ -375,6 +387,14 @@ TEST(CliTimeline, VirtualPagesLagBehindAnOrbitingLightAndPlainMapsDoNot) {
     const std::vector<double> rest = paged["rmse"], moving = paged["rmse_moving"];
     ASSERT_EQ(moving.size(), 5u);
     EXPECT_EQ(moving[0], rest[0]) << "the motion starts at rest";
+    // Played, each frame reads the pages the frame before placed: its changes are not the
+    // poses' at rest (over the same pixels: the truth and the masks are the same).
+    EXPECT_NE(paged["flicker_moving"].get<double>(), paged["flicker"].get<double>());
+    EXPECT_EQ(paged["flicker_moving_pixels"], paged["flicker_pixels"]);
+    EXPECT_GT(paged["flicker_moving"].get<double>(), 0.0);
+    EXPECT_NE(slurp(dir / "paged" / "report.html")
+                  .find(fmt::format("as played {:.6f};", paged["flicker_moving"].get<double>())),
+              std::string::npos);
     double most = 0.0;
     for (size_t k = 1; k < 5; ++k)
         most = std::max(most, moving[k] - rest[k]);

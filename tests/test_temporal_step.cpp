@@ -178,4 +178,28 @@ TEST(TemporalStep, ASurfaceIsTheSameByItsDepthAndItsNormal) {
     EXPECT_TRUE(sameSurface(0.5f, tilted(0.91f), 0.5f, up, 0.02f, 0.9f));
     EXPECT_FALSE(sameSurface(0.5f, tilted(0.89f), 0.5f, up, 0.02f, 0.9f));
     EXPECT_FALSE(sameSurface(0.5f, -up, 0.5f, up, 0.02f, 0.9f)); // a face seen from behind
+    // The tolerance is relative to the farther (the larger reverse-Z depth): 0.0101 apart at
+    // 0.51 is within 2% of 0.5101, not of 0.5; a tolerance of 0 keeps the same depth alone.
+    EXPECT_TRUE(sameSurface(0.5101f, up, 0.5f, up, 0.02f, 0.9f));
+    EXPECT_TRUE(sameSurface(0.5f, up, 0.5101f, up, 0.02f, 0.9f));
+    EXPECT_TRUE(sameSurface(0.5f, up, 0.5f, up, 0.0f, 0.9f));
+    EXPECT_FALSE(sameSurface(0.5f, up, 0.5001f, up, 0.0f, 0.9f));
+}
+
+// The clamp's ranges: minmax the neighbourhood's smallest and largest, variance its mean plus or
+// minus temporal.gamma deviations (both sides), none everything.
+TEST(TemporalStep, TheClampRangesFollowTheModeAndGamma) {
+    const float mean = 0.3f, meanSquare = 0.09f + 0.0025f; // deviation 0.05
+    const vec2 minmax =
+        temporalClampRange(TEMPORAL_CLAMP_MINMAX, 2.0f, 0.1f, 0.7f, mean, meanSquare);
+    EXPECT_EQ(minmax, vec2(0.1f, 0.7f));
+    for (const float gamma : {1.0f, 2.0f, 0.5f}) {
+        const vec2 range =
+            temporalClampRange(TEMPORAL_CLAMP_VARIANCE, gamma, 0.1f, 0.7f, mean, meanSquare);
+        EXPECT_NEAR(range.x, mean - gamma * 0.05f, 1e-6f) << gamma;
+        EXPECT_NEAR(range.y, mean + gamma * 0.05f, 1e-6f) << gamma;
+    }
+    const vec2 none = temporalClampRange(TEMPORAL_CLAMP_NONE, 1.0f, 0.1f, 0.7f, mean, meanSquare);
+    EXPECT_LT(none.x, -1e29f);
+    EXPECT_GT(none.y, 1e29f);
 }

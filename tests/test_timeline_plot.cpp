@@ -83,6 +83,7 @@ TEST(ReportPlot, TheOverTimeSectionShowsOnlyWithATimeline) {
     row.movingRmseOverTime = {0.1, 0.4, 0.05};
     row.movingGpuMsOverTime = {1.0, 5.0, 3.0};
     row.flicker = 0.001;
+    row.movingFlicker = 0.003;
     row.popIn = 0.2;
     row.lagFrames = 1;
     data.rows = {row};
@@ -102,8 +103,9 @@ TEST(ReportPlot, TheOverTimeSectionShowsOnlyWithATimeline) {
               section.find("hard at 0.5 s: 0.4</title>"));
     EXPECT_NE(section.find("hard at 0.5 s: 5</title>"), std::string::npos);
     EXPECT_EQ(section.find("hard at 0.5 s: 2</title>"), std::string::npos);
-    EXPECT_NE(section.find("RMSE 0.1167 mean, 0.2000 max; flicker 0.001000; pop-in 0.2000, lag 1 "
-                           "frames; 2.000 ms a frame at rest, 3.000 in motion"),
+    EXPECT_NE(section.find("RMSE 0.1167 mean, 0.2000 max; flicker 0.001000; as played 0.003000; "
+                           "pop-in 0.2000, lag 1 frames; 2.000 ms a frame at rest, 3.000 in "
+                           "motion"),
               std::string::npos)
         << section;
     EXPECT_NE(renderHtmlReport(data).find(section), std::string::npos);

@@ -53,6 +53,14 @@ CLI::Validator decimalSeconds() {
 
 } // namespace
 
+CLI::Validator nonEmptyValue(const std::string& words) {
+    return CLI::Validator(
+        [words](std::string& text) -> std::string {
+            return text.empty() ? fmt::format("'' is not {}", words) : std::string{};
+        },
+        "");
+}
+
 std::vector<std::string> splitList(std::string_view text, std::string_view option) {
     std::vector<std::string> items;
     for (size_t start = 0; start <= text.size();) {

@@ -88,6 +88,9 @@ inline constexpr const char* kTruthGroup = "Ground truth";
 
 // Options that fix what is seen: image size, camera, lights and their sizes (every command that
 // takes a scene).
+// Refuses an empty value ("'' is not `words`"): CLI11 takes `--opt ""` as the option not given.
+CLI::Validator nonEmptyValue(const std::string& words);
+
 void addViewOptions(CLI::App& cmd, RenderOptions& options, SceneOptions& scene);
 // --shadow-map-size, --frames and --set (render, compare, bench, tune, view).
 void addTechniqueOptions(CLI::App& cmd, RenderOptions& options, std::vector<std::string>& sets);

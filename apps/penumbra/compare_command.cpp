@@ -220,16 +220,17 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
             report.timelineTimes.push_back(timeline->at(k));
         out.write("timeline.json", bytesOf(timelineJson(*timeline, measured).dump(2) + "\n"));
         out.write("timeline.csv", bytesOf(timelineCsv(*timeline, measured)));
-        std::printf("%-22s %12s %12s %12s %10s %10s %14s   (timeline: %zu frames, %g..%g s)\n",
-                    "technique", "mean RMSE", "max RMSE", "flicker", "pop-in", "lag frames",
-                    "GPU ms moving", timeline->frames, timeline->start,
+        std::printf("%-22s %12s %12s %12s %12s %10s %10s %14s   (timeline: %zu frames, %g..%g s)\n",
+                    "technique", "mean RMSE", "max RMSE", "flicker", "as played", "pop-in",
+                    "lag frames", "GPU ms moving", timeline->frames, timeline->start,
                     timeline->at(timeline->frames - 1));
         for (const TimelineRow& row : measured) {
             const nlohmann::json j = timelineJson(*timeline, {row})["rows"][row.name];
-            std::printf("%-22s %12.5f %12.5f %12.6f %10.5f %10zu %14.3f\n", row.name.c_str(),
+            std::printf("%-22s %12.5f %12.5f %12.6f %12.6f %10.5f %10zu %14.3f\n", row.name.c_str(),
                         j["rmse_over_time"]["mean"].get<double>(),
-                        j["rmse_over_time"]["max"].get<double>(), row.flicker, row.lag.popIn,
-                        row.lag.lagFrames, j["gpu_ms_moving_over_time"]["mean"].get<double>());
+                        j["rmse_over_time"]["max"].get<double>(), row.flicker, row.movingFlicker,
+                        row.lag.popIn, row.lag.lagFrames,
+                        j["gpu_ms_moving_over_time"]["mean"].get<double>());
         }
     }
 
@@ -256,6 +257,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
             row.movingRmseOverTime = measured[r].movingRmse;
             row.movingGpuMsOverTime = measured[r].movingGpuMs;
             row.flicker = measured[r].flicker;
+            row.movingFlicker = measured[r].movingFlicker;
             row.popIn = measured[r].lag.popIn;
             row.lagFrames = measured[r].lag.lagFrames;
         }
@@ -364,6 +366,7 @@ Action addCompareCommand(CLI::App& app, const GlobalOptions& global) {
                     "per-frame metrics and each row's flicker, lag and pop-in in timeline.json "
                     "and timeline.csv (the other outputs are START's)")
         ->type_name("START:END:STEP")
+        ->check(nonEmptyValue("a timeline START:END:STEP"))
         ->excludes("--time")
         ->excludes("--camera-path");
     cmd->add_option("--path-frames", args->pathFrames, "frames along --camera-path, 2..64")

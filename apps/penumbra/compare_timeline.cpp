@@ -67,10 +67,11 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
     std::vector<TimelineRow> rows(in.rowNames.size());
     for (size_t r = 0; r < rows.size(); ++r)
         rows[r].name = in.rowNames[r];
-    std::vector<RenderResult> previous;
+    std::vector<RenderResult> previous, previousInMotion;
     ReferenceResult previousTruth;
     std::vector<std::vector<uint8_t>> previousMasks;
-    std::vector<double> flickerSum(rows.size(), 0.0);
+    // Each row's |change of the error| summed over pixels: at rest and as played.
+    std::vector<double> flickerSum(rows.size(), 0.0), movingFlickerSum(rows.size(), 0.0);
     std::vector<PoolShortage> shortage(rows.size()); // each row's, still and in motion
     Scene first;
     SceneOptions options = in.sceneOptions;
@@ -152,19 +153,28 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
             appendFrameTimes(rows[r].movingPasses, inMotion[r].passes, k);
             if (k == 0)
                 continue;
-            std::vector<ShimmerPair> pairs;
-            for (size_t l = 0; l < truth.visibility.size(); ++l)
-                pairs.push_back({.visibility = results[r].visibility[l],
-                                 .previous = previous[r].visibility[l],
-                                 .truth = truth.visibility[l],
-                                 .previousTruth = previousTruth.visibility[l],
-                                 .mask = masks[l],
-                                 .previousMask = previousMasks[l]});
-            const ShimmerResult f = measureFlicker(pairs);
+            const auto flickerOf = [&](const RenderResult& now, const RenderResult& before) {
+                std::vector<ShimmerPair> pairs;
+                for (size_t l = 0; l < truth.visibility.size(); ++l)
+                    pairs.push_back({.visibility = now.visibility[l],
+                                     .previous = before.visibility[l],
+                                     .truth = truth.visibility[l],
+                                     .previousTruth = previousTruth.visibility[l],
+                                     .mask = masks[l],
+                                     .previousMask = previousMasks[l]});
+                return measureFlicker(pairs);
+            };
+            const ShimmerResult f = flickerOf(results[r], previous[r]);
             flickerSum[r] += f.shimmer * static_cast<double>(f.pixels);
             rows[r].flickerPixels += f.pixels;
+            // As played: what a technique that keeps state (a history, cached pages) shows from
+            // frame to frame, which its poses drawn afresh at rest cannot.
+            const ShimmerResult played = flickerOf(inMotion[r], previousInMotion[r]);
+            movingFlickerSum[r] += played.shimmer * static_cast<double>(played.pixels);
+            rows[r].movingFlickerPixels += played.pixels;
         }
         previous = std::move(results);
+        previousInMotion = std::move(inMotion);
         previousTruth = std::move(truth);
         previousMasks = masks;
     }
@@ -173,10 +183,13 @@ std::vector<TimelineRow> runTimeline(Renderer& renderer, const TimelineInputs& i
             std::fprintf(stderr, "penumbra: %s\n", said.c_str());
     for (size_t r = 0; r < rows.size(); ++r)
         rows[r].lag = measureLag(rows[r].rmse, rows[r].movingRmse);
-    for (size_t r = 0; r < rows.size(); ++r)
-        rows[r].flicker = rows[r].flickerPixels
-                              ? flickerSum[r] / static_cast<double>(rows[r].flickerPixels)
-                              : 0.0;
+    const auto mean = [](double sum, uint64_t pixels) {
+        return pixels ? sum / static_cast<double>(pixels) : 0.0;
+    };
+    for (size_t r = 0; r < rows.size(); ++r) {
+        rows[r].flicker = mean(flickerSum[r], rows[r].flickerPixels);
+        rows[r].movingFlicker = mean(movingFlickerSum[r], rows[r].movingFlickerPixels);
+    }
     return rows;
 }
 
@@ -214,6 +227,8 @@ nlohmann::json timelineJson(const Timeline& timeline, const std::vector<Timeline
                                  {"gpu_ms_moving_by_pass", byPass},
                                  {"rmse_moving_over_time", stats(row.movingRmse)},
                                  {"gpu_ms_moving_over_time", stats(row.movingGpuMs)},
+                                 {"flicker_moving", row.movingFlicker},
+                                 {"flicker_moving_pixels", row.movingFlickerPixels},
                                  {"pop_in", row.lag.popIn},
                                  {"pop_in_ratio", row.lag.popInRatio},
                                  {"lag_frames", row.lag.lagFrames},

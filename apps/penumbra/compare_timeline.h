@@ -39,6 +39,8 @@ struct TimelineRow {
     std::vector<Pages> movingPages;     // virtual maps only: one per frame in motion
     double flicker = 0.0;               // mean |change of the error| where the truth held still
     uint64_t flickerPixels = 0;
+    double movingFlicker = 0.0; // the same over the frames in motion (as played)
+    uint64_t movingFlickerPixels = 0;
     Lag lag; // the motion's error against the rest's (report/lag.h)
 };
 

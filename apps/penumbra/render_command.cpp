@@ -175,7 +175,8 @@ Action addRenderCommand(CLI::App& app, const GlobalOptions& global) {
                     "orbit), each loaded, framed as the first and drawn as the next frame of one "
                     "renderer (no warm-up between poses); the GPU times are each pass's per frame "
                     "while things move and their median, the outputs the last frame's")
-        ->type_name("F");
+        ->type_name("F")
+        ->check(nonEmptyValue("a rate in frames a second"));
     cmd->add_flag("--motion", args->options.motion,
                   "also write `motion` (.pfm, .exr): each pixel's motion since the frame before, "
                   "from the G-buffer (x, y: where the surface is minus where it was, in pixels, x "

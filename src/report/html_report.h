@@ -36,7 +36,7 @@ struct ReportRow {
     // pop-in and longest lag (else empty, NaN, 0).
     std::vector<double> rmseOverTime, gpuMsOverTime;
     std::vector<double> movingRmseOverTime, movingGpuMsOverTime;
-    double flicker = NAN;
+    double flicker = NAN, movingFlicker = NAN; // at rest, and as played (in motion)
     double popIn = NAN;
     size_t lagFrames = 0;
 };

@@ -142,18 +142,22 @@ std::string overTimeSection(const ReportData& data) {
         const auto [meanRmse, mostRmse] = meanAndMost(row.rmseOverTime);
         const double meanMs = meanAndMost(row.gpuMsOverTime).first;
         const double movingMs = meanAndMost(row.movingGpuMsOverTime).first;
-        fmt::format_to(std::back_inserter(s),
-                       "<li><span class=\"dot{}\" style=\"background:{}\"></span>{} <small>RMSE "
-                       "{:.4f} mean, {:.4f} max; flicker {:.6f}; pop-in {:.4f}, lag {} frames; "
-                       "{:.3f} ms a frame at rest, {:.3f} in motion</small></li>\n",
-                       styles[r].dashed ? " dashed" : "", plotColour(styles[r].colour),
-                       escapeHtml(row.name), meanRmse, mostRmse, row.flicker, row.popIn,
-                       row.lagFrames, meanMs, movingMs);
+        fmt::format_to(
+            std::back_inserter(s),
+            "<li><span class=\"dot{}\" style=\"background:{}\"></span>{} <small>RMSE "
+            "{:.4f} mean, {:.4f} max; flicker {:.6f}; as played {:.6f}; pop-in {:.4f}, lag {} "
+            "frames; "
+            "{:.3f} ms a frame at rest, {:.3f} in motion</small></li>\n",
+            styles[r].dashed ? " dashed" : "", plotColour(styles[r].colour), escapeHtml(row.name),
+            meanRmse, mostRmse, row.flicker, row.movingFlicker, row.popIn, row.lagFrames, meanMs,
+            movingMs);
     }
     s += "</ul>\n<p class=\"note\">At rest: each pose rendered from scratch after warm-up (the "
          "technique's steady state). In motion: each pose drawn as the next frame of one renderer, "
          "with what it kept from the frame before. Flicker is the mean change of the error from "
-         "frame to frame where the truth held still; pop-in the worst excess of the error in "
+         "frame to frame where the truth held still, at rest and as played (in motion: what a "
+         "history or cached pages show from frame to frame); pop-in the worst excess of the error "
+         "in "
          "motion over the one at rest; lag the longest run of frames more than 10% worse in "
          "motion (docs/cli.md). A dashed line is a row with the temporal layer, in the colour of "
          "the "

@@ -418,10 +418,17 @@ std::vector<TechniqueRow> comparisonRows(std::string_view list) {
             for (size_t next = 0; next != std::string_view::npos; rest = rest.substr(next + 1)) {
                 next = rest.find('+');
                 const std::string_view name = rest.substr(0, next);
-                if (!shadows::findLayer(name))
+                if (!shadows::findLayer(name)) {
+                    std::vector<std::string_view> names;
+                    for (const shadows::LayerModule* layer : shadows::allLayers())
+                        names.push_back(layer->name);
                     throw InputError("--techniques",
-                                     fmt::format("unknown layer '{}' in '{}' (available: {})", name,
-                                                 item, rowNames(all)));
+                                     fmt::format("unknown layer '{}' in '{}' (layers: {})", name,
+                                                 item, fmt::join(names, ", ")));
+                }
+                if (std::find(layers.begin(), layers.end(), name) != layers.end())
+                    throw InputError("--techniques",
+                                     fmt::format("'{}' names the layer '{}' twice", item, name));
                 layers.emplace_back(name);
                 if (next == std::string_view::npos)
                     break;
