@@ -357,7 +357,7 @@ TEST_F(LayerTest, TheLayerStepsAsItsCpuReferenceDoes) {
         bool cameraMoves;
     };
     for (const Case c : {Case{3.0f, false}, Case{0.0f, false}, Case{3.0f, true}}) {
-        size_t tapResets = 0, neighbourhoodResets = 0, clamped = 0, blended = 0;
+        size_t tapResets = 0, neighbourhoodResets = 0, clamped = 0, blended = 0, shortened = 0;
         for (Light light : {sharpSun(), sharpSpot(), sharpPoint()}) {
             if (light.type == LightType::Directional)
                 light.angularDiameter = 3.0f;
@@ -456,7 +456,7 @@ TEST_F(LayerTest, TheLayerStepsAsItsCpuReferenceDoes) {
                     // The history: bilinear over the plane's texels around `there` that this
                     // frame agrees with ...
                     glm::vec3 kept(0.0f);
-                    float weight = 0.0f;
+                    float weight = 0.0f, weightSquares = 0.0f, meanSquares = 0.0f;
                     for (int tap = 0; tap < 4; ++tap) {
                         const glm::ivec2 t = base + glm::ivec2(tap & 1, tap >> 1);
                         if (!inside(t) || !wasPlane[at(t)])
@@ -477,14 +477,22 @@ TEST_F(LayerTest, TheLayerStepsAsItsCpuReferenceDoes) {
                             }
                         }
                         weight += w;
+                        weightSquares += w * w;
+                        meanSquares += w * h.x * h.x;
                         kept += w * glm::vec3(h.x, h.y - h.x * h.x, h.z);
                     }
                     glm::vec3 h(0.0f);
                     if (weight > 1e-3f) {
                         kept /= weight;
-                        follow = follow && std::abs(kept.z - std::floor(kept.z) - 0.5f) > 1e-4f;
-                        h = glm::vec3(kept.x, kept.y + kept.x * kept.x, std::floor(kept.z + 0.5f));
+                        h = glm::vec3(kept.x, kept.y + kept.x * kept.x, kept.z);
+                        // ... its length shortened by how much the taps differ ...
+                        const float length = gpu::resampledLength(
+                            h, std::max(meanSquares / weight - kept.x * kept.x, 0.0f),
+                            weightSquares / (weight * weight), spatial);
+                        follow = follow && std::abs(length - std::floor(length) - 0.5f) > 1e-4f;
+                        h.z = std::floor(length + 0.5f);
                         blended += follow && kept.z != std::floor(kept.z);
+                        shortened += follow && h.z < std::floor(kept.z + 0.5f);
                     }
                     // ... if the neighbourhood's mean agrees with the history's.
                     if (h.z >= 0.5f && params.reset > 0.0f && pairs >= 1.0f) {
@@ -519,6 +527,8 @@ TEST_F(LayerTest, TheLayerStepsAsItsCpuReferenceDoes) {
         }
         if (c.cameraMoves) {
             EXPECT_GT(blended, size_t{1000}) << "no history blended texels of other lengths";
+            EXPECT_GT(shortened, size_t{1000}) << "no read between texels shortened a history";
+            EXPECT_LT(shortened, blended) << "every read between texels shortened its history";
         }
     }
 }

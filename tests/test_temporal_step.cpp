@@ -1,7 +1,7 @@
 // The `temporal` layer's maths on the CPU (shaders/include/temporal.h, compiled as C++): the
 // reset rule (a texel's spread over time pooled with the neighbourhood's), one pixel's step
-// (afresh, the clamp, the blend and its cap) by hand-worked cases, and the history texel's
-// packing.
+// (afresh, the clamp, the blend and its cap) by hand-worked cases, a history read between texels,
+// and the history texel's packing.
 #include "gbuffer_encoding.h"
 #include "temporal.h"
 
@@ -202,4 +202,27 @@ TEST(TemporalStep, TheClampRangesFollowTheModeAndGamma) {
     const vec2 none = temporalClampRange(TEMPORAL_CLAMP_NONE, 1.0f, 0.1f, 0.7f, mean, meanSquare);
     EXPECT_LT(none.x, -1e29f);
     EXPECT_GT(none.y, 1e29f);
+}
+
+// A history read between texels (a camera's sub-pixel motion) is worth fewer frames the more its
+// taps differ beyond their own noise (resampledLength): texels whose means spread 0.01 a frame
+// over 16 frames, blended with weights whose squares sum to 0.625, differ by 0.375 x 0.01 / 16
+// from noise alone; more than that by u leaves 16 / (1 + 16 u / 0.01) frames; an edge between
+// lit and shadowed texels leaves none; a noise-free history none on any difference.
+TEST(TemporalStep, AHistoryReadBetweenDifferingTexelsKeepsFewerFrames) {
+    const vec3 history(0.5f, 0.25f + 0.01f, 16.0f);
+    const float explained = 0.375f * 0.01f / 16.0f;
+    EXPECT_EQ(resampledLength(history, 0.0f, 0.625f, 0.01f), 16.0f);
+    EXPECT_EQ(resampledLength(history, explained, 0.625f, 0.01f), 16.0f);
+    EXPECT_EQ(resampledLength(history, explained + 3e-6f, 0.625f, 0.01f), 16.0f); // rounding
+    EXPECT_NEAR(resampledLength(history, explained + 5e-6f, 0.625f, 0.01f), 16.0f / 1.008f, 1e-4f);
+    EXPECT_NEAR(resampledLength(history, explained + 1e-4f, 0.625f, 0.01f), 16.0f / 1.16f, 1e-4f);
+    EXPECT_NEAR(resampledLength(history, 0.001f, 0.625f, 0.01f), 16.0f / 2.225f, 1e-4f);
+    EXPECT_LT(resampledLength(history, 0.25f, 0.5f, 0.01f), 0.05f);
+    // A spread over time of none pooled with a prior of 0.02 as one frame: 0.005 a frame.
+    const vec3 young(0.5f, 0.25f, 3.0f);
+    EXPECT_NEAR(resampledLength(young, 0.002f, 0.625f, 0.02f), 3.0f / 1.825f, 1e-4f);
+    const vec3 exact(1.0f, 1.0f, 8.0f);
+    EXPECT_EQ(resampledLength(exact, 0.0f, 0.625f, 0.0f), 8.0f);
+    EXPECT_LT(resampledLength(exact, 0.01f, 0.625f, 0.0f), 1e-6f);
 }

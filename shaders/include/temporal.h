@@ -140,6 +140,23 @@ SHARED float residualNoise(float sum, float squares, float pairs) {
     return max(squares / pairs - mean * mean, 0.0f);
 }
 
+// The length a history read between texels keeps (`history`: the blend's mean, mean square and
+// length): a Kalman filter's prediction [Kalman 1960], the blend's mean uncertain by as much as
+// the texels it blends differ (`taps`, their weighted variance about it), less what their own
+// noise explains (a texel's mean varies spread / length, and texels of weights w differ by
+// 1 - sum w^2 (`weightSquares`, the weights summing to 1) times that). A frame's visibility varies
+// by `spread`, the history's spread pooled with `prior` like the reset rule's; a history of n
+// frames uncertain by u more is worth n / (1 + n u / spread) frames. Without it a camera's
+// sub-pixel motion blurs a shadow's edge a little each frame, and the history keeps the blur.
+SHARED float resampledLength(vec3 history, float taps, float weightSquares, float prior) {
+    float n = history.z;
+    float perFrame = pooledDeviation(history, prior);
+    perFrame *= perFrame;
+    float unexplained = taps - (1.0f - weightSquares) * perFrame / n;
+    if (unexplained <= TEMPORAL_RESET_FLOOR * TEMPORAL_RESET_FLOOR) return n;
+    return n / (1.0f + n * unexplained / max(perFrame, 1e-12f));
+}
+
 // One pixel's step (the CPU reference): `history` is what the texels that show the pixel's
 // surface and agree with this frame kept, reprojected (mean, mean square, length; length 0:
 // none), `now` this frame's visibility and `around` its neighbourhood. The new (mean, mean
