@@ -84,7 +84,7 @@ void main() {
     ivec2 base = ivec2(floor(there));
     vec2 f = there - vec2(base);
     float historySum = 0.0, currentSum = 0.0, residuals = 0.0, residualSquares = 0.0;
-    float pairs = 0.0, weight = 0.0, weightSquares = 0.0, meanSquares = 0.0;
+    float pairs = 0.0, weight = 0.0, meanSquares = 0.0, shares = 0.0, shareSquares = 0.0;
     vec3 kept = vec3(0.0); // mean, spread, length
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
@@ -116,8 +116,9 @@ void main() {
             // The texels' spreads over time averaged (not the spread between them: a shadow's
             // edge on a moving surface is no noise).
             weight += w;
-            weightSquares += w * w;
-            meanSquares += w * texel.x * texel.x; // how much the taps differ
+            meanSquares += w * texel.x * texel.x; // how much the taps differ ...
+            shares += w / texel.z;                // ... and their noise would
+            shareSquares += w * w / texel.z;
             kept += w * vec3(texel.x, texel.y - texel.x * texel.x, texel.z);
         }
     float noise = residualNoise(residuals, residualSquares, pairs);
@@ -127,8 +128,8 @@ void main() {
         kept /= weight;
         reprojected = vec3(kept.x, kept.y + kept.x * kept.x, kept.z);
         float taps = max(meanSquares / weight - kept.x * kept.x, 0.0);
-        reprojected.z = floor(resampledLength(reprojected, taps, weightSquares / (weight * weight),
-                                              spatial) + 0.5);
+        float noiseShare = shares / weight - shareSquares / (weight * weight);
+        reprojected.z = floor(resampledLength(reprojected, taps, noiseShare, spatial) + 0.5);
         if (!neighbourhoodsAgree(temporal, reprojected, historySum / max(pairs, 1.0),
                                  currentSum / max(pairs, 1.0), pairs, noise, spatial,
                                  length(vec2(nearest) - there)))

@@ -204,25 +204,40 @@ TEST(TemporalStep, TheClampRangesFollowTheModeAndGamma) {
     EXPECT_GT(none.y, 1e29f);
 }
 
-// A history read between texels (a camera's sub-pixel motion) is worth fewer frames the more its
-// taps differ beyond their own noise (resampledLength): texels whose means spread 0.01 a frame
-// over 16 frames, blended with weights whose squares sum to 0.625, differ by 0.375 x 0.01 / 16
-// from noise alone; more than that by u leaves 16 / (1 + 16 u / 0.01) frames; an edge between
-// lit and shadowed texels leaves none; a noise-free history none on any difference.
+// A history read between texels (a camera's or an object's sub-pixel motion) is worth fewer
+// frames the more its taps differ beyond their own noise (resampledLength): texels of 16 frames
+// whose means spread 0.01 a frame, blended 1/4 and 3/4 (a noise share of 2 x 3/16 / 16), differ
+// by 0.375 x 0.01 / 16 from noise alone; u more than that and the floor (1/512^2) leaves
+// 16 / (1 + 16 u / 0.01) frames; an edge between lit and shadowed texels leaves none; a
+// noise-free history none on any difference past the floor.
 TEST(TemporalStep, AHistoryReadBetweenDifferingTexelsKeepsFewerFrames) {
     const vec3 history(0.5f, 0.25f + 0.01f, 16.0f);
-    const float explained = 0.375f * 0.01f / 16.0f;
-    EXPECT_EQ(resampledLength(history, 0.0f, 0.625f, 0.01f), 16.0f);
-    EXPECT_EQ(resampledLength(history, explained, 0.625f, 0.01f), 16.0f);
-    EXPECT_EQ(resampledLength(history, explained + 3e-6f, 0.625f, 0.01f), 16.0f); // rounding
-    EXPECT_NEAR(resampledLength(history, explained + 5e-6f, 0.625f, 0.01f), 16.0f / 1.008f, 1e-4f);
-    EXPECT_NEAR(resampledLength(history, explained + 1e-4f, 0.625f, 0.01f), 16.0f / 1.16f, 1e-4f);
-    EXPECT_NEAR(resampledLength(history, 0.001f, 0.625f, 0.01f), 16.0f / 2.225f, 1e-4f);
-    EXPECT_LT(resampledLength(history, 0.25f, 0.5f, 0.01f), 0.05f);
+    const float share = 0.375f / 16.0f, explained = share * 0.01f;
+    const float floor2 = TEMPORAL_RESET_FLOOR * TEMPORAL_RESET_FLOOR;
+    EXPECT_EQ(resampledLength(history, 0.0f, share, 0.01f), 16.0f);
+    EXPECT_EQ(resampledLength(history, explained, share, 0.01f), 16.0f);
+    EXPECT_EQ(resampledLength(history, explained + 3e-6f, share, 0.01f), 16.0f); // the floor
+    EXPECT_NEAR(resampledLength(history, explained + floor2 + 1e-6f, share, 0.01f), 16.0f / 1.0016f,
+                1e-3f); // from the floor up, no step
+    EXPECT_NEAR(resampledLength(history, explained + floor2 + 1e-4f, share, 0.01f), 16.0f / 1.16f,
+                1e-3f);
+    const float u = 0.001f - explained - floor2;
+    EXPECT_NEAR(resampledLength(history, 0.001f, share, 0.01f), 16.0f / (1.0f + 1600.0f * u),
+                1e-3f);
+    EXPECT_LT(resampledLength(history, 0.25f, 0.25f / 16.0f, 0.01f), 0.05f);
+    EXPECT_EQ(resampledLength(history, std::nanf(""), share, 0.01f), 16.0f);
+    // Texels of 1 and 15 frames, half and half (a blend of 8): the fresh one's noise explains
+    // most of a difference of 0.0026 (0.25 / 1 + 0.25 / 15 of 0.01).
+    const vec3 blend(0.5f, 0.25f + 0.01f, 8.0f);
+    EXPECT_EQ(resampledLength(blend, 0.0026f, 0.25f + 0.25f / 15.0f, 0.01f), 8.0f);
+    EXPECT_LT(resampledLength(blend, 0.0026f, 0.5f / 8.0f, 0.01f), 4.0f);
     // A spread over time of none pooled with a prior of 0.02 as one frame: 0.005 a frame.
     const vec3 young(0.5f, 0.25f, 3.0f);
-    EXPECT_NEAR(resampledLength(young, 0.002f, 0.625f, 0.02f), 3.0f / 1.825f, 1e-4f);
+    const float youngU = 0.002f - 0.125f * 0.005f - floor2;
+    EXPECT_NEAR(resampledLength(young, 0.002f, 0.125f, 0.02f), 3.0f / (1.0f + 600.0f * youngU),
+                1e-4f);
     const vec3 exact(1.0f, 1.0f, 8.0f);
-    EXPECT_EQ(resampledLength(exact, 0.0f, 0.625f, 0.0f), 8.0f);
-    EXPECT_LT(resampledLength(exact, 0.01f, 0.625f, 0.0f), 1e-6f);
+    EXPECT_EQ(resampledLength(exact, 0.0f, share, 0.0f), 8.0f);
+    EXPECT_EQ(resampledLength(exact, 3e-6f, share, 0.0f), 8.0f);
+    EXPECT_LT(resampledLength(exact, 0.01f, share, 0.0f), 1e-6f);
 }

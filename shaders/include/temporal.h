@@ -141,19 +141,20 @@ SHARED float residualNoise(float sum, float squares, float pairs) {
 }
 
 // The length a history read between texels keeps (`history`: the blend's mean, mean square and
-// length): a Kalman filter's prediction [Kalman 1960], the blend's mean uncertain by as much as
-// the texels it blends differ (`taps`, their weighted variance about it), less what their own
-// noise explains (a texel's mean varies spread / length, and texels of weights w differ by
-// 1 - sum w^2 (`weightSquares`, the weights summing to 1) times that). A frame's visibility varies
-// by `spread`, the history's spread pooled with `prior` like the reset rule's; a history of n
-// frames uncertain by u more is worth n / (1 + n u / spread) frames. Without it a camera's
-// sub-pixel motion blurs a shadow's edge a little each frame, and the history keeps the blur.
-SHARED float resampledLength(vec3 history, float taps, float weightSquares, float prior) {
+// length n >= 1): a Kalman filter's prediction [Kalman 1960], the blend's mean uncertain by as
+// much as the texels it blends differ (`taps`, their weighted variance about it), less what
+// their own noise explains: a texel of length n_i varies spread / n_i, and texels of weights w_i
+// (summing to 1) differ by sum w_i (1 - w_i) / n_i (`noiseShare`) times a frame's spread. That
+// spread is the history's pooled with `prior` as the reset rule pools it; a history of n frames
+// uncertain by u more is worth n / (1 + n u / spread) frames, u counted from the floor up (a
+// noise-free history keeps n up to it). Without it a camera's or an object's sub-pixel motion
+// blurs a shadow's edge a little each frame, and the history keeps the blur.
+SHARED float resampledLength(vec3 history, float taps, float noiseShare, float prior) {
     float n = history.z;
     float perFrame = pooledDeviation(history, prior);
     perFrame *= perFrame;
-    float unexplained = taps - (1.0f - weightSquares) * perFrame / n;
-    if (unexplained <= TEMPORAL_RESET_FLOOR * TEMPORAL_RESET_FLOOR) return n;
+    float unexplained = taps - noiseShare * perFrame - TEMPORAL_RESET_FLOOR * TEMPORAL_RESET_FLOOR;
+    if (!(unexplained > 0.0f)) return n; // NaN too
     return n / (1.0f + n * unexplained / max(perFrame, 1e-12f));
 }
 
