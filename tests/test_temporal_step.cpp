@@ -120,7 +120,8 @@ TEST(TemporalStep, TheClampBoundsTheHistoryAndKeepsItsSpread) {
         vec3(bottom + (0.3f - bottom) / 9.0f, bottomSquare + (0.09f - bottomSquare) / 9.0f, 9.0f));
 }
 
-// At temporal.frames the history stops growing: this frame weighs 1/frames from then on.
+// At temporal.frames the history stops growing: this frame weighs 1/frames from then on (at
+// least 1).
 TEST(TemporalStep, TheHistoryStopsGrowingAtTemporalFrames) {
     const TemporalParams p = params(16, TEMPORAL_CLAMP_NONE, 0.0f);
     expectNear(temporalStep(p, vec3(1.0f, 1.0f, 16.0f), 0.0f, kAnything),
@@ -129,6 +130,10 @@ TEST(TemporalStep, TheHistoryStopsGrowingAtTemporalFrames) {
                vec3(15.0f / 16.0f, 15.0f / 16.0f, 16.0f));
     expectNear(
         temporalStep(params(1, TEMPORAL_CLAMP_NONE, 0.0f), vec3(1.0f, 1.0f, 1.0f), 0.0f, kAnything),
+        vec3(0.0f, 0.0f, 1.0f));
+    // temporal.frames=0 (the layer off, its pass not run): the reference keeps this frame alone.
+    expectNear(
+        temporalStep(params(0, TEMPORAL_CLAMP_NONE, 0.0f), vec3(1.0f, 1.0f, 4.0f), 0.0f, kAnything),
         vec3(0.0f, 0.0f, 1.0f));
 }
 
