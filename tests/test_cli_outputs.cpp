@@ -104,6 +104,25 @@ TEST(CliOutputs, PfmOnlyAndTheReferencesExrMatchItsPfm) {
     }
 }
 
+// Translucent casters make the truth's visibility R, G, B (design.md), in both formats; an opaque
+// scene's stays one channel.
+TEST(CliOutputs, TheTruthThroughTranslucentCastersIsRgb) {
+    for (const bool translucent : {true, false}) {
+        const fs::path out = outputScratch(translucent ? "rgb-truth" : "grey-truth");
+        const ProcessResult r =
+            runCli({"reference", translucent ? "builtin:sheets" : "builtin:bleeding", "-o",
+                    out.string(), "--width", "48", "--height", "32", "--samples", "4"});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const FloatImage pfm = readPfm(out / "visibility.pfm");
+        EXPECT_EQ(pfm.channels, translucent ? 3u : 1u);
+        expectSameImage(pfm, readExr(out / "visibility.exr"), "visibility");
+        size_t coloured = 0; // red and blue apart: light through a filter
+        for (size_t i = 0; translucent && i + 2 < pfm.pixels.size(); i += 3)
+            coloured += std::abs(pfm.pixels[i] - pfm.pixels[i + 2]) > 0.2f;
+        EXPECT_EQ(coloured > 20, translucent) << coloured;
+    }
+}
+
 TEST(CliOutputs, WideComparisonsShowReducedImagesAndLinkTheFullSizeFiles) {
     // 1000 pixels across is past the page's 960: every image is shown at half size, and the
     // lit image and heat map link their full-size files, which compare writes beside the page.

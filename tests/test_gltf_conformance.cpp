@@ -355,8 +355,8 @@ INSTANTIATE_TEST_SUITE_P(
              }),
              "integer types need KHR_mesh_quantization"},
         Case{"required_extension_unsupported",
-             gltf([](GltfBuilder& b) { b.j["extensionsRequired"] = {"KHR_materials_volume"}; }),
-             "extensionsRequired: 'KHR_materials_volume' is not supported"},
+             gltf([](GltfBuilder& b) { b.j["extensionsRequired"] = {"KHR_materials_sheen"}; }),
+             "extensionsRequired: 'KHR_materials_sheen' is not supported"},
         Case{"buffer_without_uri_that_a_primitive_reads", gltf([](GltfBuilder& b) {
                  b.j["buffers"] = J::array({J::object(), {{"byteLength", 4096}}});
                  b.j["bufferViews"][0]["buffer"] = 1;
@@ -542,12 +542,11 @@ INSTANTIATE_TEST_SUITE_P(
              }),
              "cameras[0].perspective.aspectRatio: ignored"},
         Case{"material_extension", gltf([](GltfBuilder& b) {
-                 b.j["extensionsUsed"] = {"KHR_materials_transmission"};
-                 b.j["materials"] = {
-                     {{"extensions", {{"KHR_materials_transmission", J::object()}}}}};
+                 b.j["extensionsUsed"] = {"KHR_materials_clearcoat"};
+                 b.j["materials"] = {{{"extensions", {{"KHR_materials_clearcoat", J::object()}}}}};
                  b.j["meshes"][0]["primitives"][0]["material"] = 0;
              }),
-             "materials[0].extensions.KHR_materials_transmission: not used"},
+             "materials[0].extensions.KHR_materials_clearcoat: not used"},
         Case{"unused_camera_without_a_field_of_view", gltf([](GltfBuilder& b) {
                  b.j["cameras"] = {
                      {{"type", "perspective"}, {"perspective", {{"yfov", 0}, {"znear", 0.1}}}}};

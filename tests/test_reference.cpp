@@ -1,6 +1,7 @@
 // The ground truth against closed-form answers (a sphere above a plane), the sampling maths,
 // and its handling of hostile geometry. CPU only: the G-buffer is a synthetic grid.
 #include "penumbra/reference.h"
+#include "plane_grid.h"
 #include "reference/analytic.h"
 #include "reference/sampling.h"
 #include "scene/mesh_builder.h"
@@ -13,6 +14,7 @@
 #include <random>
 
 using namespace penumbra;
+using penumbra::test::planeGrid;
 
 namespace {
 
@@ -28,22 +30,6 @@ Scene sphereOverPlane(const Light& light) {
     mb.sphere(kCenter, kRadius, m, 512, 256); // fine: the inscribed mesh stays within 2e-5 of it
     scene.lights.push_back(light);
     return scene;
-}
-
-// A G-buffer whose pixels are a grid on the plane y = 0 around (cx, cz), `extent` wide.
-RenderResult planeGrid(float cx, float cz, float extent) {
-    RenderResult g{.width = kGrid, .height = kGrid};
-    g.position.resize(3 * kGrid * kGrid);
-    g.normal.resize(3 * kGrid * kGrid);
-    for (uint32_t y = 0; y < kGrid; ++y)
-        for (uint32_t x = 0; x < kGrid; ++x) {
-            const size_t i = size_t{y} * kGrid + x;
-            g.position[3 * i] = cx + extent * ((static_cast<float>(x) + 0.5f) / kGrid - 0.5f);
-            g.position[3 * i + 1] = 0.0f;
-            g.position[3 * i + 2] = cz + extent * ((static_cast<float>(y) + 0.5f) / kGrid - 0.5f);
-            g.normal[3 * i + 1] = 1.0f;
-        }
-    return g;
 }
 
 glm::dvec3 at(const RenderResult& g, size_t i) {

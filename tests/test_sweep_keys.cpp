@@ -116,6 +116,20 @@ std::vector<Edit> truthEdits() {
     content("nearest", [](Scene& s) { s.textures[0].nearest = true; });
     content("image width", [](Scene& s) { s.images[0].width = 1, s.images[0].height = 2; });
     content("image texel", [](Scene& s) { s.images[0].rgba.back() = 9; });
+    content("transmission", [](Scene& s) { s.materials[0].transmission = 0.5f; });
+    content("transmission texture", [](Scene& s) { s.materials[0].transmissionTexture = 0; });
+    content("thickness", [](Scene& s) { s.materials[0].thickness = 0.5f; });
+    content("attenuation distance", [](Scene& s) { s.materials[0].attenuationDistance = 2.0f; });
+    content("attenuation colour", [](Scene& s) { s.materials[0].attenuationColor.y = 0.5f; });
+    content("a translucent material's tint", [](Scene& s) {
+        s.materials[0].transmission = 0.5f;
+        s.materials[0].baseColor.x = 0.1f;
+    });
+    content("a vertex colour under translucent materials", [](Scene& s) {
+        for (Material& m : s.materials)
+            m.transmission = 0.5f;
+        s.vertices.front().color.x = 0.3f;
+    });
     return e;
 }
 

@@ -4,12 +4,14 @@
 // trailing. Every light type.
 #include "analytic_scenes.h"
 #include "gpu_fixture.h"
+#include "penumbra/error.h"
 #include "scene/mesh_builder.h"
 #include "temporal.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -608,4 +610,31 @@ TEST_F(LayerTest, AFreshRenderWarmsUpToItsSteadyState) {
     const double oneFrame = rmseFromConverged(1), warmed = rmseFromConverged(16);
     EXPECT_GT(oneFrame, 1e-3) << "pcss's frames differ";
     EXPECT_LT(warmed, 0.5 * oneFrame) << warmed << " against " << oneFrame;
+}
+
+// The memory check counts the layer's history: two versions (last frame's and this frame's) of
+// an RGBA32UI texel a pixel and light, 32 bytes, whatever else the frame holds (the motion
+// vectors on in both). A device of 1 MiB refuses both renders, naming what each needs.
+TEST_F(LayerTest, TheMemoryCheckCountsTheHistory) {
+    const Scene scene = sphereOverPlane(sharpSpot());
+    setenv("PENUMBRA_DEVICE_MEMORY", "1048576", 1);
+    const auto needs = [&](int frames) {
+        RenderOptions o = temporal(Technique::Hard, frames);
+        o.width = o.height = 4096;
+        o.motion = true;
+        try {
+            sharedRenderer().check(scene, o);
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            const size_t at = what.find("needs ");
+            if (at != std::string::npos)
+                return std::stod(what.substr(at + 6));
+        }
+        return -1.0;
+    };
+    const double without = needs(0), with = needs(16);
+    unsetenv("PENUMBRA_DEVICE_MEMORY");
+    ASSERT_GT(without, 0.0) << "refused, saying what it needs";
+    // 2 x 16 bytes x 4096^2 = 0.5 GiB; the message gives hundredths of a GiB.
+    EXPECT_NEAR(with - without, 0.5, 0.011);
 }

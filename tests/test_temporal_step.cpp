@@ -152,6 +152,21 @@ TEST(TemporalStep, TheHistoryTexelPacksTheNormalAndTheLength) {
         }
 }
 
+// The octahedral coordinates round to the nearest of 2048 steps: back within half a step (1/2047)
+// everywhere, the ends exact, the length beside them intact.
+TEST(TemporalStep, TheHistoryNormalRoundsToTheNearestStep) {
+    const float halfStep = 1.0f / float(TEMPORAL_NORMAL_STEPS);
+    for (int i = 0; i <= 1000; ++i) {
+        const float o = -1.0f + 2.0f * float(i) / 1000.0f;
+        const uint32_t packed = packHistoryNormal(vec2(o, -o), 7u);
+        const vec2 back = historyOctahedral(packed);
+        EXPECT_LE(std::abs(back.x - o), halfStep * 1.0001f) << o;
+        EXPECT_LE(std::abs(back.y + o), halfStep * 1.0001f) << o;
+        EXPECT_EQ(historyLengthOf(packed), 7u) << o;
+    }
+    EXPECT_EQ(historyOctahedral(packHistoryNormal(vec2(-1.0f, 1.0f), 0u)), vec2(-1.0f, 1.0f));
+}
+
 // A history read off where the surface was (a camera's sub-pixel motion) may differ by the
 // gradient over that distance: a neighbourhood spreading 0.2 (a gradient of 0.245 a pixel)
 // allows 0.122 at half a pixel and nothing where the history is read in place.

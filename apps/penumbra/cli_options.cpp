@@ -390,9 +390,14 @@ std::vector<bool> shadowLightsSized(const Scene& lit, const RenderResult& gbuffe
 }
 
 void writeViewFiles(StagedOutputDir& out, const RenderResult& g,
-                    const std::vector<std::vector<float>>& visibility, FloatFormat format) {
+                    const std::vector<std::vector<float>>& visibility, FloatFormat format,
+                    const std::vector<std::vector<float>>& coloured) {
     for (size_t i = 0; i < visibility.size(); ++i)
-        writeFloatImage(out, visibilityFileStem(i), format, g.width, g.height, 1, visibility[i]);
+        if (i < coloured.size() && !coloured[i].empty())
+            writeFloatImage(out, visibilityFileStem(i), format, g.width, g.height, 3, coloured[i]);
+        else
+            writeFloatImage(out, visibilityFileStem(i), format, g.width, g.height, 1,
+                            visibility[i]);
     writeFloatImage(out, "position", format, g.width, g.height, 3, g.position);
     writeFloatImage(out, "normal", format, g.width, g.height, 3, g.normal);
 }

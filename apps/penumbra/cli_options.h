@@ -113,9 +113,11 @@ void writeFloatImage(StagedOutputDir& out, const std::string& stem, FloatFormat 
 // Per shadow-casting light of the view, in visibility order: whether it has a size in `lit` (the
 // scene with the light-size overrides applied): what the truth traced towards it.
 std::vector<bool> shadowLightsSized(const Scene& lit, const RenderResult& gbuffer);
-// visibility / visibility_<i>, position and normal as float images (docs/cli.md).
+// visibility / visibility_<i>, position and normal as float images (docs/cli.md); a light's
+// visibility in R, G, B where `coloured` has it (the truth through translucent casters).
 void writeViewFiles(StagedOutputDir& out, const RenderResult& gbuffer,
-                    const std::vector<std::vector<float>>& visibility, FloatFormat format);
+                    const std::vector<std::vector<float>>& visibility, FloatFormat format,
+                    const std::vector<std::vector<float>>& coloured = {});
 // Every technique with its summary, paper and parameters (defaults, ranges, units): `penumbra
 // techniques --json` and the Python module's techniques().
 nlohmann::json techniquesJson();

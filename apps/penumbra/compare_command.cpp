@@ -185,7 +185,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         report.referenceVisibilityPng =
             encodePng(reduceImage(visibilityImage(w, h, truth.visibility[0]), report.pageScale));
     // The reference's files at the top level, with how far each pixel's occluder is.
-    writeViewFiles(out, gbuffer, truth.visibility, args.format);
+    writeViewFiles(out, gbuffer, truth.visibility, args.format, truth.transmittance);
     for (size_t l = 0; l < truth.occluderDistance.size(); ++l)
         writeFloatImage(out, l == 0 ? "occluder" : fmt::format("occluder_{}", l), args.format, w, h,
                         1, truth.occluderDistance[l]);

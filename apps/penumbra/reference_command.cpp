@@ -39,7 +39,7 @@ int runReference(const ReferenceArgs& args, const GlobalOptions& global) {
                  options.width, options.height,
                  truthRaysText(args.reference.samples, sized).c_str());
     const ReferenceResult truth = computeReference(scene, gbuffer, args.reference);
-    writeViewFiles(out, gbuffer, truth.visibility, args.format);
+    writeViewFiles(out, gbuffer, truth.visibility, args.format, truth.transmittance);
     const double raysPerSecond =
         truth.traceSeconds > 0 ? static_cast<double>(truth.rays) / truth.traceSeconds : 0;
     const nlohmann::json info = {

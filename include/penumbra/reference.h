@@ -29,6 +29,10 @@ struct ReferenceOptions {
 struct ReferenceResult {
     uint32_t width = 0, height = 0;
     std::vector<std::vector<float>> visibility; // per shadow-casting light, as RenderResult
+    // Where the scene has translucent casters, per shadow-casting light: the light that arrives
+    // through them per channel (linear RGB, 3 floats a pixel, the rays' mean transmittance), and
+    // `visibility` is its luminance. Empty without translucent casters.
+    std::vector<std::vector<float>> transmittance;
     // Per shadow-casting light: how far along the ray to the light's centre the nearest occluder
     // lies (world units; infinity: none; NaN: background), what tells a contact shadow, whose
     // caster is near, from a long one.
@@ -38,6 +42,11 @@ struct ReferenceResult {
     double traceSeconds = 0.0; // tracing alone: rays / traceSeconds is the ray rate
     size_t triangles = 0;      // what Embree was given (the rasterizer draws the same)
 };
+
+// Rec. 709's luminance of linear RGB: what one channel of visibility is for a coloured one.
+inline double luminance(double r, double g, double b) {
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+}
 
 // Throws InputError("--samples", ...) outside 1..65536.
 void validate(const ReferenceOptions& options);

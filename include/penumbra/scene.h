@@ -67,7 +67,8 @@ struct Texture {
     bool nearest = false; // magnification filter NEAREST (else linear)
 };
 
-// glTF alpha modes. Blend has no transparency here: it renders and casts shadows as Opaque.
+// glTF alpha modes. Blend is drawn opaque, and its alpha is coverage in the shadows: the
+// ground truth lets 1 - alpha of the light through it (Scene::transmittance).
 enum class AlphaMode { Opaque, Mask, Blend };
 
 struct Material {
@@ -77,7 +78,18 @@ struct Material {
     AlphaMode alphaMode = AlphaMode::Opaque;
     float alphaCutoff = 0.5f; // Mask: coverage below it is a hole (in the image and the shadow)
     bool doubleSided = true;  // false: back faces are culled in the camera's view
+    // Light through the covered surface (docs/translucency.md): KHR_materials_transmission's
+    // factor, times its texture's red channel, tinted by the base colour ...
+    float transmission = 0.0f;
+    int32_t transmissionTexture = -1; // index into Scene::textures, -1 for none
+    // ... and KHR_materials_volume: a closed mesh of this thickness (mesh units; 0: thin-walled)
+    // whose inside keeps attenuationColor of the light every attenuationDistance.
+    float thickness = 0.0f;
+    float attenuationDistance = std::numeric_limits<float>::infinity();
+    glm::vec3 attenuationColor{1.0f};
     bool alphaTested() const { return alphaMode == AlphaMode::Mask; }
+    // Whether light passes it in part: Blend (its alpha is coverage) or transmission.
+    bool translucent() const { return alphaMode == AlphaMode::Blend || transmission > 0.0f; }
 };
 
 enum class LightType { Directional, Spot, Point };
@@ -191,6 +203,12 @@ struct Scene {
     float coverage(uint32_t material, glm::vec2 uv, float vertexAlpha) const;
     // Whether a surface point of `material` exists (Mask: coverage >= cutoff).
     bool covers(uint32_t material, glm::vec2 uv, float vertexAlpha) const;
+    // The fraction of light, per channel (linear RGB), a shadow ray keeps crossing `material`
+    // at a texture coordinate with a vertex colour: 0 for an opaque surface, 1 for a hole
+    // (docs/translucency.md has the rule).
+    glm::vec3 transmittance(uint32_t material, glm::vec2 uv, glm::vec4 vertexColor) const;
+    // Whether any triangle's material is translucent.
+    bool hasTranslucentCasters() const;
     Bounds bounds() const;
     // The camera named `name`; empty name: the first camera, else an automatic framing.
     // Throws InputError when a named camera does not exist.

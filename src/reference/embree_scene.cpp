@@ -4,9 +4,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 namespace penumbra {
@@ -47,13 +50,67 @@ void skipHoles(const RTCFilterFunctionNArguments* args) {
             continue;
         const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
         const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-        const EmbreeScene::TestedTriangle& t = data.triangles[prim];
+        const EmbreeScene::FilteredTriangle& t = data.triangles[prim];
         const float w = 1.0f - u - v;
         const glm::vec2 uv = w * t.uv[0] + u * t.uv[1] + v * t.uv[2];
-        const float alpha = w * t.alpha[0] + u * t.alpha[1] + v * t.alpha[2];
+        const float alpha = w * t.color[0].w + u * t.color[1].w + v * t.color[2].w;
         if (!data.scene->covers(t.material, uv, alpha))
             args->valid[i] = 0;
     }
+}
+
+// The context of a shadow ray's occlusion query: what it has kept so far, and the translucent
+// triangles it crossed. With RTC_BUILD_QUALITY_HIGH Embree may report one triangle more than once
+// (spatial splits put it in several leaves), so each counts once.
+struct TransmittanceContext {
+    RTCIntersectContext base; // first: Embree hands the filters a pointer to it
+    glm::vec3 through{1.0f};
+    std::array<unsigned, 64> crossed; // the first crossedCount are set
+    unsigned crossedCount = 0;
+};
+static_assert(std::is_standard_layout_v<TransmittanceContext>);
+
+glm::vec3 transmittanceAt(const EmbreeScene::FilterData& data, unsigned prim, float u, float v) {
+    const EmbreeScene::FilteredTriangle& t = data.triangles[prim];
+    const float w = 1.0f - u - v;
+    return data.scene->transmittance(t.material, w * t.uv[0] + u * t.uv[1] + v * t.uv[2],
+                                     w * t.color[0] + u * t.color[1] + v * t.color[2]);
+}
+
+// Occlusion queries: a translucent hit multiplies what the ray keeps and is rejected, so the ray
+// goes on, until nothing is left (then it stops there: occluded).
+void throughTranslucent(const RTCFilterFunctionNArguments* args) {
+    const auto& data = *static_cast<const EmbreeScene::FilterData*>(args->geometryUserPtr);
+    auto* context = reinterpret_cast<TransmittanceContext*>(args->context);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1)
+            continue;
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        const auto crossed = context->crossed.begin() + context->crossedCount;
+        if (std::find(context->crossed.begin(), crossed, prim) != crossed) {
+            args->valid[i] = 0;
+            continue;
+        }
+        if (context->crossedCount < context->crossed.size()) // past 64 layers, little is left
+            context->crossed[context->crossedCount++] = prim;
+        context->through *= transmittanceAt(data, prim, RTCHitN_u(args->hit, args->N, i),
+                                            RTCHitN_v(args->hit, args->N, i));
+        if (glm::any(glm::greaterThan(context->through, glm::vec3(0.0f))))
+            args->valid[i] = 0;
+    }
+}
+
+// Nearest-hit queries (the occluder's distance, the receiver's face): a translucent surface is
+// hit where it keeps any light back.
+void skipClear(const RTCFilterFunctionNArguments* args) {
+    const auto& data = *static_cast<const EmbreeScene::FilterData*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i)
+        if (args->valid[i] == -1 &&
+            glm::all(glm::greaterThanEqual(
+                transmittanceAt(data, RTCHitN_primID(args->hit, args->N, i),
+                                RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)),
+                glm::vec3(1.0f))))
+            args->valid[i] = 0;
 }
 
 // Embree asks before each allocation; refusing one makes it fail with RTC_ERROR_OUT_OF_MEMORY,
@@ -65,7 +122,7 @@ bool allowAllocation(void* /*user*/, ssize_t bytes, bool /*post*/) {
 } // namespace
 
 void EmbreeScene::addGeometry(const Scene& scene, const std::vector<uint32_t>& triangles,
-                              bool alphaTested) {
+                              Kind kind) {
     if (triangles.empty())
         return;
     RTCGeometry geometry = rtcNewGeometry(mDevice, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -85,18 +142,25 @@ void EmbreeScene::addGeometry(const Scene& scene, const std::vector<uint32_t>& t
     for (size_t k = 0; k < triangles.size(); ++k)
         std::memcpy(indices + 3 * k, scene.indices.data() + 3 * size_t{triangles[k]},
                     3 * sizeof(uint32_t));
-    if (alphaTested) {
-        mFilter.scene = &scene;
+    if (kind != Kind::Opaque) {
+        FilterData& data = kind == Kind::Translucent ? mTranslucent : mFilter;
+        data.scene = &scene;
         for (uint32_t t : triangles) {
-            TestedTriangle tested{.material = scene.vertices[scene.indices[3 * t]].material};
+            FilteredTriangle filtered{.material = scene.vertices[scene.indices[3 * t]].material};
             for (int c = 0; c < 3; ++c) {
                 const Vertex& v = scene.vertices[scene.indices[3 * size_t{t} + c]];
-                tested.uv[c] = v.uv;
-                tested.alpha[c] = v.color.w;
+                filtered.uv[c] = v.uv;
+                filtered.color[c] = v.color;
             }
-            mFilter.triangles.push_back(tested);
+            data.triangles.push_back(filtered);
         }
-        rtcSetGeometryUserData(geometry, &mFilter);
+        rtcSetGeometryUserData(geometry, &data);
+    }
+    if (kind == Kind::Translucent) {
+        rtcSetGeometryOccludedFilterFunction(geometry, throughTranslucent);
+        rtcSetGeometryIntersectFilterFunction(geometry, skipClear);
+    }
+    if (kind == Kind::AlphaTested) {
         rtcSetGeometryOccludedFilterFunction(geometry, skipHoles);
         rtcSetGeometryIntersectFilterFunction(geometry, skipHoles);
     }
@@ -126,14 +190,18 @@ void EmbreeScene::build(const Scene& scene) {
     throwIfFailed("creating the scene");
     rtcSetSceneBuildQuality(mScene, RTC_BUILD_QUALITY_HIGH);
     mTriangles = scene.triangleCount();
-    std::vector<uint32_t> opaque, tested;
+    std::vector<uint32_t> opaque, tested, translucent;
     for (size_t t = 0; t < mTriangles; ++t) {
         const uint32_t m = scene.vertices[scene.indices[3 * t]].material;
-        (m < scene.materials.size() && scene.materials[m].alphaTested() ? tested : opaque)
+        const Material* material = m < scene.materials.size() ? &scene.materials[m] : nullptr;
+        (material && material->translucent()   ? translucent
+         : material && material->alphaTested() ? tested
+                                               : opaque)
             .push_back(static_cast<uint32_t>(t));
     }
-    addGeometry(scene, opaque, false);
-    addGeometry(scene, tested, true);
+    addGeometry(scene, opaque, Kind::Opaque);
+    addGeometry(scene, tested, Kind::AlphaTested);
+    addGeometry(scene, translucent, Kind::Translucent);
     rtcCommitScene(mScene);
     throwIfFailed("building the scene");
 }
@@ -178,11 +246,20 @@ RTCRay rayOf(const glm::vec3& origin, const glm::vec3& dir, float tnear, float t
 
 bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& dir, float tnear,
                            float tfar) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+    TransmittanceContext context; // the translucent filter's: it stops where nothing is left
+    rtcInitIntersectContext(&context.base);
     RTCRay ray = rayOf(origin, dir, tnear, tfar);
-    rtcOccluded1(mScene, &context, &ray);
+    rtcOccluded1(mScene, &context.base, &ray);
     return ray.tfar < 0.0f; // Embree sets tfar to -inf on a hit
+}
+
+glm::vec3 EmbreeScene::transmittance(const glm::vec3& origin, const glm::vec3& dir, float tnear,
+                                     float tfar) const {
+    TransmittanceContext context;
+    rtcInitIntersectContext(&context.base);
+    RTCRay ray = rayOf(origin, dir, tnear, tfar);
+    rtcOccluded1(mScene, &context.base, &ray);
+    return ray.tfar < 0.0f ? glm::vec3(0.0f) : context.through;
 }
 
 float EmbreeScene::hitDistance(const glm::vec3& origin, const glm::vec3& dir, float tnear,

@@ -2,7 +2,9 @@
 // An Embree device and scene built from exactly the triangles the rasterizer draws. Embree
 // reports errors through a callback; they surface here as std::runtime_error("embree: ..."),
 // never as a crash or a silent wrong answer. Alpha-tested triangles (glTF MASK) sit in a second
-// geometry whose occlusion filter rejects hits in their holes, with the test the GPU makes.
+// geometry whose occlusion filter rejects hits in their holes, with the test the GPU makes;
+// translucent ones (BLEND, transmission) in a third, whose filter multiplies a shadow ray's
+// transmittance by each surface's (Scene::transmittance) and lets it go on until nothing is left.
 // The Scene must outlive the EmbreeScene.
 #include "penumbra/scene.h"
 
@@ -21,8 +23,15 @@ public:
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-    // Whether anything blocks the open segment origin + t dir, tnear < t < tfar.
+    // Whether anything blocks the open segment origin + t dir, tnear < t < tfar (translucent
+    // surfaces block it where together they let nothing through).
     bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) const;
+    // The fraction of light (linear RGB) that crosses the segment: the product of the
+    // transmittances of every translucent surface on it, 0 where an opaque one is.
+    glm::vec3 transmittance(const glm::vec3& origin, const glm::vec3& dir, float tnear,
+                            float tfar) const;
+    // Whether the scene has translucent triangles (else transmittance is 0 or 1: occluded).
+    bool translucent() const { return !mTranslucent.triangles.empty(); }
     // The distance along the ray to its first hit in (tnear, tfar); infinity when there is none.
     float hitDistance(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) const;
     // The geometric normal of the triangle under `p` (the first hit of a ray from p + reach n
@@ -35,25 +44,28 @@ private:
     void build(const Scene& scene);
     void release() noexcept;
     // One Embree geometry of the scene's triangles `triangles` (indices into Scene::indices / 3).
-    void addGeometry(const Scene& scene, const std::vector<uint32_t>& triangles, bool alphaTested);
+    enum class Kind { Opaque, AlphaTested, Translucent };
+    void addGeometry(const Scene& scene, const std::vector<uint32_t>& triangles, Kind kind);
     RTCDevice mDevice = nullptr;
     RTCScene mScene = nullptr;
     size_t mTriangles = 0;
     std::string mError; // first message from Embree's error callback
 public:
-    // A triangle of the alpha-tested geometry: what its occlusion filter needs.
-    struct TestedTriangle {
+    // A triangle of the alpha-tested or the translucent geometry: what their filters read (its
+    // material, and its corners' texture coordinates and vertex colours).
+    struct FilteredTriangle {
         uint32_t material;
         glm::vec2 uv[3];
-        float alpha[3];
+        glm::vec4 color[3];
     };
     struct FilterData {
         const Scene* scene = nullptr;
-        std::vector<TestedTriangle> triangles;
+        std::vector<FilteredTriangle> triangles;
     };
 
 private:
     FilterData mFilter;
+    FilterData mTranslucent;
 };
 
 } // namespace penumbra

@@ -10,6 +10,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -129,6 +130,10 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
     result.visibility.assign(lights.size(),
                              std::vector<float>(pixels, std::numeric_limits<float>::quiet_NaN()));
     result.occluderDistance = result.visibility;
+    const bool coloured = embree.translucent();
+    if (coloured)
+        result.transmittance.assign(
+            lights.size(), std::vector<float>(3 * pixels, std::numeric_limits<float>::quiet_NaN()));
     const uint32_t samples = std::max(options.samples, 1u);
     // selfHitDistance's floor: the scene's size (its bounds' largest extent), at most one unit.
     const Bounds bounds = scene.bounds();
@@ -161,6 +166,8 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                         const LightCone cone = coneTowards(*lights[l], origin);
                         if (cone.inside) {
                             result.visibility[l][i] = 1.0f;
+                            if (coloured)
+                                std::fill_n(result.transmittance[l].begin() + 3 * i, 3, 1.0f);
                             result.occluderDistance[l][i] = std::numeric_limits<float>::infinity();
                             continue;
                         }
@@ -178,6 +185,7 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                         const uint32_t count = cone.single ? 1 : samples;
                         const glm::dvec2 shift = pixelShift(x, y, l);
                         uint32_t visible = 0;
+                        glm::dvec3 through(0.0); // coloured: the transmittances' sum
                         for (uint32_t s = 0; s < count; ++s) {
                             const glm::dvec3 dir =
                                 sampleDirection(cone, hammersley(s, count, shift));
@@ -185,13 +193,25 @@ ReferenceResult computeReference(const Scene& sceneIn, const RenderResult& gbuff
                             if (sine <= 0.0)
                                 continue;
                             const double tfar = distanceToLight(cone, origin, dir);
-                            visible += !embree.occluded(glm::vec3(origin), glm::vec3(dir),
-                                                        rayStart(tnear, sine),
-                                                        static_cast<float>(std::min(tfar, 1e30)));
+                            const float from = rayStart(tnear, sine);
+                            const auto end = static_cast<float>(std::min(tfar, 1e30));
+                            if (coloured)
+                                through += glm::dvec3(embree.transmittance(
+                                    glm::vec3(origin), glm::vec3(dir), from, end));
+                            else
+                                visible +=
+                                    !embree.occluded(glm::vec3(origin), glm::vec3(dir), from, end);
                         }
                         localRays += count;
                         result.visibility[l][i] =
                             static_cast<float>(visible) / static_cast<float>(count);
+                        if (coloured) {
+                            through /= static_cast<double>(count);
+                            for (int c = 0; c < 3; ++c)
+                                result.transmittance[l][3 * i + c] = static_cast<float>(through[c]);
+                            result.visibility[l][i] =
+                                static_cast<float>(luminance(through.x, through.y, through.z));
+                        }
                     }
                 }
                 progress.advance(1);

@@ -228,9 +228,8 @@ TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterV
         if (motion || decl.name != target::kGBufferMotion)
             bytes.screen += ResourcePool::bytesOf(decl, sizes);
     for (const shadows::LayerModule* layer : shadows::enabledLayers(params))
-        if (layer->history) // two versions: last frame's and this frame's
-            bytes.screen +=
-                2 * ResourcePool::bytesOf(layerHistoryDecl(*layer, module, params), sizes);
+        if (layer->history) // bytesOf counts its two versions, last frame's and this frame's
+            bytes.screen += ResourcePool::bytesOf(layerHistoryDecl(*layer, module, params), sizes);
     bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights, motion).bytes;
     const bool checkerboard =
         shadows::checkerboardFill(shadows::screenPassesOf(module, params)) != nullptr;

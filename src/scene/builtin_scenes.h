@@ -101,6 +101,26 @@ inline constexpr uint32_t kDenseSphereSlices = 66, kDenseSphereStacks = 32;
 inline constexpr float kDenseHalfSize = 14.0f;
 inline constexpr glm::vec3 kDenseSpotPosition{-4.0f, 14.0f, -5.0f};
 
+// builtin:sheets: a sheet over the ground, level at `height`, a rectangle about `centre` (x, z)
+// of half-size `halfSize`: a filter (its transmission, tinted by `colour`) or, without
+// transmission, a BLEND cover of `alpha` (grey: it lets 1 - alpha through).
+struct SheetSpec {
+    const char* name;
+    float height;
+    glm::vec2 centre, halfSize;
+    glm::vec3 colour;
+    float transmission;
+    float alpha;
+};
+inline constexpr float kSheetsGroundHalfSize = 6.0f;
+// Low enough that each sheet's shadow falls beside it: 0.85 of its height along x.
+inline constexpr glm::vec3 kSheetsSunDirection{0.85f, -1.0f, 0.25f};
+inline constexpr SheetSpec kSheets[] = {
+    {"red filter", 1.0f, {-0.6f, -0.4f}, {1.2f, 1.2f}, {0.9f, 0.25f, 0.2f}, 1.0f, 1.0f},
+    {"green filter", 1.5f, {0.5f, -0.5f}, {1.2f, 1.2f}, {0.2f, 0.85f, 0.3f}, 1.0f, 1.0f},
+    {"blue filter", 2.0f, {0.0f, 0.5f}, {1.2f, 1.2f}, {0.25f, 0.35f, 0.95f}, 0.8f, 1.0f},
+    {"curtain", 2.6f, {-1.4f, 0.6f}, {1.0f, 1.6f}, {0.8f, 0.8f, 0.8f}, 0.0f, 0.5f}};
+
 // Tileable leaves (builtin:foliage's texture, kLeafTextureSize square): `count` ellipses with
 // anti-aliased edges (alpha = covered fraction, about), greens varying per leaf; repeat-wrapped.
 TextureImage leafImage(uint32_t seed = 12345u, int count = 150);
@@ -126,6 +146,7 @@ Scene foliage();
 Scene room();
 Scene field();
 Scene bleeding();
+Scene sheets();
 Scene dense();
 Scene demo();
 Scene figure();

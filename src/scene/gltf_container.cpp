@@ -25,9 +25,10 @@ constexpr uint32_t kChunkBin = 0x004E4942;  // "BIN\0"
 // coordinates at load time.
 // KHR_texture_basisu and EXT_texture_webp: their images are not decoded, and their textures
 // fall back to the colour factor with a warning (shadows do not depend on them).
-constexpr std::array<std::string_view, 9> kSupportedRequired = {
+constexpr std::array<std::string_view, 11> kSupportedRequired = {
     "KHR_lights_punctual",        "KHR_materials_emissive_strength",
     "KHR_materials_unlit",        "KHR_mesh_quantization",
+    "KHR_materials_transmission", "KHR_materials_volume",
     "KHR_draco_mesh_compression", "EXT_meshopt_compression",
     "KHR_texture_basisu",         "EXT_texture_webp",
     "KHR_texture_transform"};
@@ -165,6 +166,17 @@ void checkReferences(const std::filesystem::path& file, const nlohmann::json& j)
         };
         for (const char* key : {"normalTexture", "occlusionTexture", "emissiveTexture"})
             textureInfo(path, m, key);
+        for (const auto& [name, key] :
+             {std::pair{"KHR_materials_transmission", "transmissionTexture"},
+              std::pair{"KHR_materials_volume", "thicknessTexture"}})
+            if (m.contains("extensions") && m["extensions"].is_object() &&
+                m["extensions"].contains(name)) {
+                const auto& extension = m["extensions"][name];
+                const std::string at = path + ".extensions." + name;
+                if (!extension.is_object())
+                    refuse(file, at + ": an object is expected");
+                textureInfo(at, extension, key);
+            }
         if (m.contains("pbrMetallicRoughness")) {
             const auto& pbr = m["pbrMetallicRoughness"];
             if (!pbr.is_object())

@@ -63,15 +63,19 @@ ImageDecodePolicy baseColorImages(const nlohmann::json& j) {
     if (!j.contains("materials") || !j.contains("textures"))
         return policy;
     const auto& textures = j["textures"];
-    for (const auto& m : j["materials"]) {
-        if (!m.contains("pbrMetallicRoughness"))
-            continue;
-        const auto& pbr = m["pbrMetallicRoughness"];
-        if (!pbr.contains("baseColorTexture"))
-            continue;
-        const auto& t = textures[pbr["baseColorTexture"]["index"].get<size_t>()];
+    const auto want = [&](const nlohmann::json& info) {
+        const auto& t = textures[info["index"].get<size_t>()];
         if (t.contains("source"))
             policy.wanted.insert(t["source"].get<int>());
+    };
+    for (const auto& m : j["materials"]) {
+        if (m.contains("pbrMetallicRoughness") &&
+            m["pbrMetallicRoughness"].contains("baseColorTexture"))
+            want(m["pbrMetallicRoughness"]["baseColorTexture"]);
+        // The transmission's texture too: the truth reads light through it.
+        if (m.contains("extensions") && m["extensions"].contains("KHR_materials_transmission") &&
+            m["extensions"]["KHR_materials_transmission"].contains("transmissionTexture"))
+            want(m["extensions"]["KHR_materials_transmission"]["transmissionTexture"]);
     }
     return policy;
 }

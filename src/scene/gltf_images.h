@@ -26,7 +26,7 @@ struct ImageDecodePolicy {
     std::map<int, std::string> undecodable;
 };
 
-// The images that base-colour textures use, from the checked JSON.
+// The images that base-colour and transmission textures use, from the checked JSON.
 ImageDecodePolicy baseColorImages(const nlohmann::json& gltf);
 
 // tinygltf's image callback (user data: an ImageDecodePolicy): RGBA8 into image->image.

@@ -11,6 +11,7 @@
 #include "scene/gltf_container.h"
 #include "scene/gltf_images.h"
 #include "scene/gltf_skin.h"
+#include "scene/gltf_transmission.h"
 #include "scene/gltf_validate.h"
 #include "scene/interior.h"
 #include "scene/sanitize.h"
@@ -623,7 +624,9 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
                                : mat.alphaMode == "BLEND" ? AlphaMode::Blend
                                                           : AlphaMode::Opaque;
         if (mode == AlphaMode::Blend)
-            flat.warn(fmt::format("materials[{}]: alphaMode BLEND is drawn opaque",
+            flat.warn(fmt::format("materials[{}]: alphaMode BLEND is drawn opaque; the ground "
+                                  "truth lets 1 - alpha of the light through it, the shadow "
+                                  "techniques none",
                                   scene.materials.size()));
         scene.materials.push_back(
             {.name = mat.name,
@@ -637,6 +640,13 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
                           fmt::format("materials[{}].pbrMetallicRoughness.baseColorTexture",
                                       scene.materials.size() - 1),
                           texture));
+        const size_t index = scene.materials.size() - 1;
+        gltf::readTransmission(
+            file, fmt::format("materials[{}]", index), json["materials"][index],
+            {.sceneTextureOf = textureOf,
+             .baseTexCoord = flat.uvTransform.back().texCoord,
+             .baseTransformed = texture.extensions.contains("KHR_texture_transform")},
+            scene.materials.back(), [&](const std::string& w) { flat.warn(w); });
     }
     // glTF's default material: white, opaque, single-sided.
     flat.defaultMaterial = static_cast<uint32_t>(scene.materials.size());

@@ -1,6 +1,7 @@
-// The parts of a glTF asset Penumbra does not use: camera aspect ratios and material extensions,
-// each said once per class. (Animations are read in gltf_animation.cpp, skins in gltf_skin.cpp;
-// KHR_texture_transform on the base colour is used.)
+// The parts of a glTF asset Penumbra does not use: camera aspect ratios and material extensions
+// (all but unlit, emissive strength, transmission and volume), each said once per class.
+// (Animations are read in gltf_animation.cpp, skins in gltf_skin.cpp; KHR_texture_transform on the
+// base colour is used.)
 #include "scene/gltf_validate.h"
 
 #include <fmt/format.h>
@@ -14,7 +15,8 @@ void reportUnusedParts(const tinygltf::Model& m, OnceWarnings& once) {
                      "ignored; the image's own width over height is used");
     for (size_t i = 0; i < m.materials.size(); ++i)
         for (const auto& [name, value] : m.materials[i].extensions)
-            if (name != "KHR_materials_emissive_strength" && name != "KHR_materials_unlit")
+            if (name != "KHR_materials_emissive_strength" && name != "KHR_materials_unlit" &&
+                name != "KHR_materials_transmission" && name != "KHR_materials_volume")
                 once.add("material extension " + name,
                          fmt::format("materials[{}].extensions.{}", i, name),
                          "not used; shadows and the lit image use the base colour only");

@@ -21,7 +21,7 @@ constexpr BuiltinEntry kBuiltins[] = {
     {"showcase", builtin::showcase}, {"grazing", builtin::grazing}, {"spot", builtin::spot},
     {"foliage", builtin::foliage},   {"room", builtin::room},       {"field", builtin::field},
     {"bleeding", builtin::bleeding}, {"dense", builtin::dense},     {"demo", builtin::demo},
-    {"figure", builtin::figure},     {"resting", builtin::resting}};
+    {"figure", builtin::figure},     {"resting", builtin::resting}, {"sheets", builtin::sheets}};
 
 // Built-in scenes that move: made at a time (0 without --time).
 struct AnimatedBuiltinEntry {

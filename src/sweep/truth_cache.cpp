@@ -1,6 +1,7 @@
 // The truth cache (truth_cache.h). File layout, little-endian: "PNTRUTH" + version byte; width,
-// height, layer count (uint32 each); rays (uint64); seconds and trace seconds (double); then per
-// layer the visibility and the occluder distances (width * height float32 each).
+// height, layer count, coloured (0 or 1) (uint32 each); rays (uint64); seconds and trace seconds
+// (double); then per layer the visibility and the occluder distances (width * height float32
+// each), and where coloured its transmittance (3 x width * height float32).
 #include "sweep/truth_cache.h"
 
 #include "penumbra/error.h"
@@ -51,12 +52,19 @@ std::string sceneContentHash(const Scene& scene) {
     h.add(uint64_t(scene.vertices.size()));
     for (const Vertex& v : scene.vertices) {
         h.add(v.position), h.add(v.normal), h.add(v.material), h.add(v.uv), h.add(v.color.w);
+        // A colour tints only what crosses a translucent surface.
+        if (v.material < scene.materials.size() && scene.materials[v.material].translucent())
+            h.add(glm::vec3(v.color));
     }
     h.addRange(scene.indices);
     h.add(uint64_t(scene.materials.size()));
     for (const Material& m : scene.materials) {
         h.add(int(m.alphaMode)), h.add(m.alphaCutoff), h.add(m.baseColor.w);
-        h.add(m.baseColorTexture), h.add(m.doubleSided);
+        h.add(m.baseColorTexture), h.add(m.doubleSided), h.add(m.transmission);
+        h.add(m.transmissionTexture), h.add(m.thickness), h.add(m.attenuationDistance);
+        h.add(m.attenuationColor);
+        if (m.translucent())
+            h.add(glm::vec3(m.baseColor));
     }
     h.add(uint64_t(scene.textures.size()));
     for (const Texture& t : scene.textures)
@@ -102,15 +110,16 @@ std::optional<ReferenceResult> TruthCache::load(const std::string& key) const {
         return std::nullopt;
     char magic[8];
     ReferenceResult r;
-    uint32_t layers = 0;
+    uint32_t layers = 0, coloured = 0;
     in.read(magic, 8);
     in.read(reinterpret_cast<char*>(&r.width), 4);
     in.read(reinterpret_cast<char*>(&r.height), 4);
     in.read(reinterpret_cast<char*>(&layers), 4);
+    in.read(reinterpret_cast<char*>(&coloured), 4);
     in.read(reinterpret_cast<char*>(&r.rays), 8);
     in.read(reinterpret_cast<char*>(&r.seconds), 8);
     in.read(reinterpret_cast<char*>(&r.traceSeconds), 8);
-    if (!in || std::memcmp(magic, kMagic, 8) != 0 || layers > 64 ||
+    if (!in || std::memcmp(magic, kMagic, 8) != 0 || layers > 64 || coloured > 1 ||
         uint64_t(r.width) * r.height > (uint64_t{1} << 28))
         return std::nullopt; // not ours or damaged: computed again and replaced
     const size_t pixels = size_t(r.width) * r.height;
@@ -120,6 +129,11 @@ std::optional<ReferenceResult> TruthCache::load(const std::string& key) const {
         in.read(reinterpret_cast<char*>(r.visibility.back().data()), std::streamsize(pixels * 4));
         in.read(reinterpret_cast<char*>(r.occluderDistance.back().data()),
                 std::streamsize(pixels * 4));
+        if (coloured) {
+            r.transmittance.emplace_back(3 * pixels);
+            in.read(reinterpret_cast<char*>(r.transmittance.back().data()),
+                    std::streamsize(3 * pixels * 4));
+        }
     }
     if (!in || in.peek() != std::char_traits<char>::eof())
         return std::nullopt;
@@ -129,10 +143,12 @@ std::optional<ReferenceResult> TruthCache::load(const std::string& key) const {
 void TruthCache::store(const std::string& key, const ReferenceResult& truth) const {
     writeFileAtomically(fileOf(key), [&](std::ostream& out) {
         const uint32_t layers = uint32_t(truth.visibility.size());
+        const uint32_t coloured = truth.transmittance.size() == layers && layers > 0;
         write(out, kMagic, 8);
         write(out, &truth.width, 4);
         write(out, &truth.height, 4);
         write(out, &layers, 4);
+        write(out, &coloured, 4);
         write(out, &truth.rays, 8);
         write(out, &truth.seconds, 8);
         write(out, &truth.traceSeconds, 8);
@@ -144,6 +160,8 @@ void TruthCache::store(const std::string& key, const ReferenceResult& truth) con
             const std::vector<float> unknown(known ? 0 : visibility.size(), NAN);
             write(out, visibility.data(), visibility.size() * 4);
             write(out, (known ? truth.occluderDistance[l] : unknown).data(), visibility.size() * 4);
+            if (coloured)
+                write(out, truth.transmittance[l].data(), visibility.size() * 3 * 4);
         }
     });
 }

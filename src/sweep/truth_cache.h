@@ -16,10 +16,11 @@
 namespace penumbra::sweep {
 
 // Bumped whenever the truth's algorithm or file layout changes: old entries are then never read.
-inline constexpr uint32_t kTruthVersion = 1;
+inline constexpr uint32_t kTruthVersion = 2;
 
 // A hash of what the truth sees of a scene: triangles, their materials' coverage (alpha mode,
-// cutoff, base alpha, textures and their pixels), double-sidedness. Not lights or cameras.
+// cutoff, base alpha, vertex alpha, textures and their pixels), transmission and volume,
+// double-sidedness, and the colours of translucent ones (their tint). Not lights or cameras.
 std::string sceneContentHash(const Scene& scene);
 
 // The key of a view's truth: the scene content, the lights as the truth uses them (`lit`: sizes
