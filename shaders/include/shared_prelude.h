@@ -37,6 +37,7 @@ using glm::findMSB;
 using glm::floor;
 using glm::fract;
 using glm::length;
+using glm::log;
 using glm::log2;
 using glm::max;
 using glm::min;

@@ -165,7 +165,9 @@ void EmbreeScene::addGeometry(const Scene& scene, const std::vector<uint32_t>& t
         rtcSetGeometryIntersectFilterFunction(geometry, skipHoles);
     }
     rtcCommitGeometry(geometry);
-    rtcAttachGeometry(mScene, geometry);
+    const unsigned id = rtcAttachGeometry(mScene, geometry);
+    if (kind == Kind::Translucent)
+        mTranslucentGeometry = id;
     rtcReleaseGeometry(geometry);
 }
 
@@ -260,6 +262,29 @@ glm::vec3 EmbreeScene::transmittance(const glm::vec3& origin, const glm::vec3& d
     RTCRay ray = rayOf(origin, dir, tnear, tfar);
     rtcOccluded1(mScene, &context.base, &ray);
     return ray.tfar < 0.0f ? glm::vec3(0.0f) : context.through;
+}
+
+EmbreeScene::SurfacesAlong EmbreeScene::surfacesAlong(const glm::vec3& origin, const glm::vec3& dir,
+                                                      float tnear, float tfar) const {
+    SurfacesAlong out{.opaque = tfar};
+    for (float from = tnear;;) { // peel: the nearest surface that keeps light back, then past it
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit hit{.ray = rayOf(origin, dir, from, tfar),
+                      .hit = {.geomID = RTC_INVALID_GEOMETRY_ID}};
+        rtcIntersect1(mScene, &context, &hit);
+        if (hit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            return out;
+        const float t = hit.ray.tfar;
+        if (hit.hit.geomID != mTranslucentGeometry) {
+            out.opaque = t;
+            return out;
+        }
+        out.translucent.push_back(
+            {.distance = t,
+             .transmittance = transmittanceAt(mTranslucent, hit.hit.primID, hit.hit.u, hit.hit.v)});
+        from = t + 1e-5f * std::max(t, 1.0f);
+    }
 }
 
 float EmbreeScene::hitDistance(const glm::vec3& origin, const glm::vec3& dir, float tnear,

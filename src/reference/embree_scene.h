@@ -32,6 +32,20 @@ public:
                             float tfar) const;
     // Whether the scene has translucent triangles (else transmittance is 0 or 1: occluded).
     bool translucent() const { return !mTranslucent.triangles.empty(); }
+    // A ray's translucent surfaces up to the first opaque one: what an ideal (deep) shadow map
+    // keeps along a texel's ray [Lokovic and Veach 2000], which the translucent techniques' maps
+    // compress. Surfaces that let everything through are left out; two closer than 1e-5 times
+    // their distance (at least 1) count once.
+    struct CrossedSurface {
+        float distance;
+        glm::vec3 transmittance;
+    };
+    struct SurfacesAlong {
+        std::vector<CrossedSurface> translucent; // nearest first
+        float opaque;                            // the first opaque hit's distance, or tfar
+    };
+    SurfacesAlong surfacesAlong(const glm::vec3& origin, const glm::vec3& dir, float tnear,
+                                float tfar) const;
     // The distance along the ray to its first hit in (tnear, tfar); infinity when there is none.
     float hitDistance(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar) const;
     // The geometric normal of the triangle under `p` (the first hit of a ray from p + reach n
@@ -66,6 +80,7 @@ public:
 private:
     FilterData mFilter;
     FilterData mTranslucent;
+    unsigned mTranslucentGeometry = RTC_INVALID_GEOMETRY_ID;
 };
 
 } // namespace penumbra
