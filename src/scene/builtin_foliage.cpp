@@ -10,24 +10,12 @@
 #include <cmath>
 
 namespace penumbra::builtin {
-namespace {
-
-// Deterministic pseudo-random numbers in [0, 1): the scene must be identical on every run.
-struct Random {
-    uint32_t state;
-    float next() {
-        state = state * 1664525u + 1013904223u;
-        return static_cast<float>(state >> 8) / 16777216.0f;
-    }
-};
-
-} // namespace
 
 TextureImage leafImage(uint32_t seed, int count) {
     constexpr uint32_t kSize = kLeafTextureSize;
     TextureImage image{.name = "leaves", .width = kSize, .height = kSize};
     image.rgba.assign(size_t{kSize} * kSize * 4, 0);
-    Random random{seed};
+    SceneRandom random{seed};
     for (int leaf = 0; leaf < count; ++leaf) {
         const float cx = random.next() * kSize, cy = random.next() * kSize;
         const float angle = random.next() * glm::pi<float>();

@@ -121,6 +121,59 @@ inline constexpr SheetSpec kSheets[] = {
     {"blue filter", 2.0f, {0.0f, 0.5f}, {1.2f, 1.2f}, {0.25f, 0.35f, 0.95f}, 0.8f, 1.0f},
     {"curtain", 2.6f, {-1.4f, 0.6f}, {1.0f, 1.6f}, {0.8f, 0.8f, 0.8f}, 0.0f, 0.5f}};
 
+// builtin:glass (stained glass over a floor): six panes of kGlassPaneSize at kGlassHeight, each
+// a thin-walled filter of its colour (transmission 1), in lead bars kGlassLead thick on posts
+// kGlassPost thick at the window's corners, and a cube of glass with a volume on the floor.
+struct PaneSpec {
+    const char* name;
+    glm::vec2 corner; // its (x, z) corner of least x and z
+    glm::vec3 colour;
+};
+inline constexpr float kGlassFloorHalfSize = 6.0f;
+inline constexpr float kGlassHeight = 2.2f;
+inline constexpr float kGlassPaneSize = 1.0f;
+inline constexpr float kGlassLead = 0.06f;
+inline constexpr float kGlassPost = 0.1f;
+inline constexpr PaneSpec kGlassPanes[] = {{"ruby", {-1.5f, -1.0f}, {0.85f, 0.1f, 0.12f}},
+                                           {"amber", {-0.5f, -1.0f}, {0.95f, 0.6f, 0.1f}},
+                                           {"emerald", {0.5f, -1.0f}, {0.1f, 0.7f, 0.25f}},
+                                           {"sapphire", {-1.5f, 0.0f}, {0.15f, 0.3f, 0.9f}},
+                                           {"violet", {-0.5f, 0.0f}, {0.55f, 0.2f, 0.8f}},
+                                           {"pale", {0.5f, 0.0f}, {0.9f, 0.88f, 0.8f}}};
+// A cube of side `size` (its thickness) centred at `centre`: transmission 1 through `colour`,
+// attenuated to attenuationColor every attenuationDistance.
+struct GlassBlockSpec {
+    glm::vec3 centre;
+    float size;
+    glm::vec3 colour;
+    float attenuationDistance;
+    glm::vec3 attenuationColor;
+};
+inline constexpr GlassBlockSpec kGlassBlock{
+    {2.6f, 0.5f, 1.6f}, 1.0f, {0.9f, 1.0f, 0.95f}, 1.5f, {0.4f, 0.8f, 0.9f}};
+// Each pane's shadow falls 0.45 of the skylight's height along x, 0.3 along z.
+inline constexpr glm::vec3 kGlassSunDirection{0.45f, -1.0f, 0.3f};
+
+// builtin:tree (a tree of BLEND leaves): kTreeLeaves square cards kTreeLeafSize wide in an
+// ellipsoid crown, each a leaf of alpha kTreeLeafAlpha where it covers.
+inline constexpr float kTreeGroundHalfSize = 6.0f;
+inline constexpr glm::vec3 kTreeCrownCentre{0.0f, 2.6f, 0.0f};
+inline constexpr glm::vec3 kTreeCrownRadii{1.4f, 0.9f, 1.4f};
+inline constexpr int kTreeLeaves = 400;
+inline constexpr float kTreeLeafSize = 0.45f;
+inline constexpr float kTreeLeafAlpha = 0.7f;
+inline constexpr uint32_t kTreeLeafTextureSize = 64;
+inline constexpr glm::vec3 kTreeSunDirection{0.35f, -1.0f, 0.2f};
+
+// Deterministic pseudo-random numbers in [0, 1) (a linear congruential generator): a built-in
+// scene must be identical on every run.
+struct SceneRandom {
+    uint32_t state;
+    float next() {
+        state = state * 1664525u + 1013904223u;
+        return static_cast<float>(state >> 8) / 16777216.0f;
+    }
+};
 // Tileable leaves (builtin:foliage's texture, kLeafTextureSize square): `count` ellipses with
 // anti-aliased edges (alpha = covered fraction, about), greens varying per leaf; repeat-wrapped.
 TextureImage leafImage(uint32_t seed = 12345u, int count = 150);
@@ -147,6 +200,8 @@ Scene room();
 Scene field();
 Scene bleeding();
 Scene sheets();
+Scene glass();
+Scene tree();
 Scene dense();
 Scene demo();
 Scene figure();

@@ -2,7 +2,7 @@
 // (red, green, blue; KHR_materials_transmission, thin-walled) and a grey half-covering curtain
 // (alpha BLEND), overlapping so that the ground shows every product of them, and an opaque post
 // beside them. Under a light of no size the truth is the product of the sheets each ray crosses,
-// in closed form (kSheets); tests/test_translucent_truth.cpp checks it for every light type.
+// in closed form (kSheets); tests/test_translucent.cpp checks it for every light type.
 #include "scene/builtin_scenes.h"
 
 #include "scene/mesh_builder.h"

@@ -21,7 +21,8 @@ constexpr BuiltinEntry kBuiltins[] = {
     {"showcase", builtin::showcase}, {"grazing", builtin::grazing}, {"spot", builtin::spot},
     {"foliage", builtin::foliage},   {"room", builtin::room},       {"field", builtin::field},
     {"bleeding", builtin::bleeding}, {"dense", builtin::dense},     {"demo", builtin::demo},
-    {"figure", builtin::figure},     {"resting", builtin::resting}, {"sheets", builtin::sheets}};
+    {"figure", builtin::figure},     {"resting", builtin::resting}, {"sheets", builtin::sheets},
+    {"glass", builtin::glass},       {"tree", builtin::tree}};
 
 // Built-in scenes that move: made at a time (0 without --time).
 struct AnimatedBuiltinEntry {
