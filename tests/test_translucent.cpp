@@ -14,6 +14,7 @@
 #include "scratch_dir.h"
 #include "sweep/truth_cache.h"
 
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
@@ -401,6 +402,30 @@ TEST(TranslucentTruth, AFilterBlendsItsCornersColours) {
 }
 
 // A scene without translucent casters keeps its one-channel truth.
+// A ray through a fan's centre meets all six of its triangles at one point, and one through a
+// spoke two of them: the surface counts once there, as at any other point of it.
+TEST(TranslucentTruth, ARayThroughTrianglesCommonCornerCrossesTheSurfaceOnce) {
+    Scene s;
+    s.materials.push_back(
+        {.name = "filter", .baseColor = {1.0f, 0.5f, 0.25f, 1.0f}, .transmission = 1.0f});
+    s.vertices.push_back(
+        {.position = {0.0f, 1.0f, 0.0f}, .normal = {0.0f, 1.0f, 0.0f}, .material = 0});
+    for (int k = 0; k < 6; ++k) {
+        const float angle = 2.0f * glm::pi<float>() * static_cast<float>(k) / 6.0f;
+        s.vertices.push_back({.position = {std::cos(angle), 1.0f, std::sin(angle)},
+                              .normal = {0.0f, 1.0f, 0.0f},
+                              .material = 0});
+    }
+    for (uint32_t k = 0; k < 6; ++k)
+        s.indices.insert(s.indices.end(), {0u, 1u + k, 1u + (k + 1) % 6});
+    const EmbreeScene embree(s, "threads=1");
+    const glm::vec3 up(0.0f, 1.0f, 0.0f), want(1.0f, 0.5f, 0.25f);
+    const float far = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(embree.transmittance({0.0f, 0.0f, 0.0f}, up, 0.0f, far), want) << "the centre";
+    EXPECT_EQ(embree.transmittance({0.5f, 0.0f, 0.0f}, up, 0.0f, far), want) << "a spoke";
+    EXPECT_EQ(embree.transmittance({0.4f, 0.0f, 0.2f}, up, 0.0f, far), want) << "a face";
+}
+
 TEST(TranslucentTruth, AnOpaqueSceneHasNoColouredTruth) {
     Scene scene = builtin::sheets();
     for (Material& m : scene.materials)

@@ -198,7 +198,8 @@ TEST(TranslucentScenes, TheTreesLeavesStackGrey) {
 }
 
 // Every edge of every pane has its lead bar: straight up from under an edge's middle, nothing
-// passes; beside it, up through the pane, the pane's colour does.
+// passes; up through the pane the pane's colour does, once, through the diagonal its two
+// triangles share too.
 TEST(TranslucentScenes, EveryPaneIsFramedInLead) {
     using namespace builtin;
     const Scene scene = glass();
@@ -212,10 +213,12 @@ TEST(TranslucentScenes, EveryPaneIsFramedInLead) {
                                      glm::vec3(m.x, below, a.y), glm::vec3(m.x, below, a.y + s)})
             EXPECT_EQ(embree.transmittance(edge, up, 0.0f, far), glm::vec3(0.0f))
                 << pane.name << " at " << edge.x << ", " << edge.z;
-        // (Off the pane's diagonal: a ray along the edge its two triangles share meets both.)
         EXPECT_EQ(embree.transmittance({m.x + 0.13f, below, m.y + 0.21f}, up, 0.0f, far),
                   pane.colour)
             << pane.name;
+        // Through its middle, on the diagonal its two triangles share: the pane once.
+        EXPECT_EQ(embree.transmittance({m.x, below, m.y}, up, 0.0f, far), pane.colour)
+            << pane.name << ", through the diagonal";
     }
 }
 

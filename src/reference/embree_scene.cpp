@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <type_traits>
@@ -60,12 +62,14 @@ void skipHoles(const RTCFilterFunctionNArguments* args) {
 }
 
 // The context of a shadow ray's occlusion query: what it has kept so far, and the translucent
-// triangles it crossed. With RTC_BUILD_QUALITY_HIGH Embree may report one triangle more than once
-// (spatial splits put it in several leaves), so each counts once.
+// triangles it crossed and where. With RTC_BUILD_QUALITY_HIGH Embree may report one triangle more
+// than once (spatial splits put it in several leaves), so each counts once; and a ray through
+// the edge or corner triangles share meets each at one point, where it crosses the surface once.
 struct TransmittanceContext {
     RTCIntersectContext base; // first: Embree hands the filters a pointer to it
     glm::vec3 through{1.0f};
     std::array<unsigned, 64> crossed; // the first crossedCount are set
+    std::array<float, 64> distance;   // where the ray met each
     unsigned crossedCount = 0;
 };
 static_assert(std::is_standard_layout_v<TransmittanceContext>);
@@ -77,6 +81,29 @@ glm::vec3 transmittanceAt(const EmbreeScene::FilterData& data, unsigned prim, fl
                                      w * t.color[0] + u * t.color[1] + v * t.color[2]);
 }
 
+// Whether two triangles have a corner at the same place.
+bool shareCorner(const EmbreeScene::FilteredTriangle& a, const EmbreeScene::FilteredTriangle& b) {
+    int shared = 0;
+    for (const glm::vec3& p : a.corner)
+        shared += std::find(std::begin(b.corner), std::end(b.corner), p) != std::end(b.corner);
+    return shared >= 1;
+}
+
+// Whether the ray has crossed this point of the surface already: a triangle with a corner in
+// common met at the same distance, so at the same point (the same triangle reported twice, or
+// the ray passing through the edge or corner two share; separate layers that merely touch count
+// twice).
+bool crossedAlready(const TransmittanceContext& context, const EmbreeScene::FilterData& data,
+                    unsigned prim, float t) {
+    for (unsigned k = 0; k < context.crossedCount; ++k) {
+        const unsigned other = context.crossed[k];
+        if (std::abs(context.distance[k] - t) <= 1e-5f * std::max(t, 1.0f) &&
+            shareCorner(data.triangles[prim], data.triangles[other]))
+            return true;
+    }
+    return false;
+}
+
 // Occlusion queries: a translucent hit multiplies what the ray keeps and is rejected, so the ray
 // goes on, until nothing is left (then it stops there: occluded).
 void throughTranslucent(const RTCFilterFunctionNArguments* args) {
@@ -86,13 +113,15 @@ void throughTranslucent(const RTCFilterFunctionNArguments* args) {
         if (args->valid[i] != -1)
             continue;
         const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
-        const auto crossed = context->crossed.begin() + context->crossedCount;
-        if (std::find(context->crossed.begin(), crossed, prim) != crossed) {
+        const float t = RTCRayN_tfar(args->ray, args->N, i); // the hit's distance, in a filter
+        if (crossedAlready(*context, data, prim, t)) {
             args->valid[i] = 0;
             continue;
         }
-        if (context->crossedCount < context->crossed.size()) // past 64 layers, little is left
+        if (context->crossedCount < context->crossed.size()) { // past 64 layers, little is left
+            context->distance[context->crossedCount] = t;
             context->crossed[context->crossedCount++] = prim;
+        }
         context->through *= transmittanceAt(data, prim, RTCHitN_u(args->hit, args->N, i),
                                             RTCHitN_v(args->hit, args->N, i));
         if (glm::any(glm::greaterThan(context->through, glm::vec3(0.0f))))
@@ -151,6 +180,7 @@ void EmbreeScene::addGeometry(const Scene& scene, const std::vector<uint32_t>& t
                 const Vertex& v = scene.vertices[scene.indices[3 * size_t{t} + c]];
                 filtered.uv[c] = v.uv;
                 filtered.color[c] = v.color;
+                filtered.corner[c] = v.position;
             }
             data.triangles.push_back(filtered);
         }

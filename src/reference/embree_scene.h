@@ -71,6 +71,7 @@ public:
         uint32_t material;
         glm::vec2 uv[3];
         glm::vec4 color[3];
+        glm::vec3 corner[3]; // positions: whether two triangles have a corner in common
     };
     struct FilterData {
         const Scene* scene = nullptr;
