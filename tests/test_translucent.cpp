@@ -401,31 +401,142 @@ TEST(TranslucentTruth, AFilterBlendsItsCornersColours) {
                {0.3f, 0.2f, 0.5f}, 1e-5f, "the corners' colours blended");
 }
 
-// A scene without translucent casters keeps its one-channel truth.
-// A ray through a fan's centre meets all six of its triangles at one point, and one through a
-// spoke two of them: the surface counts once there, as at any other point of it.
-TEST(TranslucentTruth, ARayThroughTrianglesCommonCornerCrossesTheSurfaceOnce) {
+namespace {
+
+// A hexagonal fan of six triangles around (0, height, 0), `radius` wide, facing up.
+void addFan(Scene& s, float height, float radius, uint32_t material) {
+    const auto first = static_cast<uint32_t>(s.vertices.size());
+    s.vertices.push_back(
+        {.position = {0.0f, height, 0.0f}, .normal = {0, 1, 0}, .material = material});
+    for (int k = 0; k < 6; ++k) {
+        const float angle = 2.0f * glm::pi<float>() * static_cast<float>(k) / 6.0f;
+        s.vertices.push_back(
+            {.position = {radius * std::cos(angle), height, radius * std::sin(angle)},
+             .normal = {0, 1, 0},
+             .material = material});
+    }
+    for (uint32_t k = 0; k < 6; ++k)
+        s.indices.insert(s.indices.end(), {first, first + 1 + k, first + 1 + (k + 1) % 6});
+}
+
+// A quad of `material` through four corners.
+void addQuad(Scene& s, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t material,
+             glm::vec4 colour = glm::vec4(1.0f)) {
+    const auto first = static_cast<uint32_t>(s.vertices.size());
+    for (const glm::vec3& p : {a, b, c, d})
+        s.vertices.push_back(
+            {.position = p, .normal = {0, 1, 0}, .material = material, .color = colour});
+    s.indices.insert(s.indices.end(), {first, first + 1, first + 2, first, first + 2, first + 3});
+}
+
+Scene filters() {
     Scene s;
     s.materials.push_back(
         {.name = "filter", .baseColor = {1.0f, 0.5f, 0.25f, 1.0f}, .transmission = 1.0f});
-    s.vertices.push_back(
-        {.position = {0.0f, 1.0f, 0.0f}, .normal = {0.0f, 1.0f, 0.0f}, .material = 0});
-    for (int k = 0; k < 6; ++k) {
-        const float angle = 2.0f * glm::pi<float>() * static_cast<float>(k) / 6.0f;
-        s.vertices.push_back({.position = {std::cos(angle), 1.0f, std::sin(angle)},
-                              .normal = {0.0f, 1.0f, 0.0f},
-                              .material = 0});
-    }
-    for (uint32_t k = 0; k < 6; ++k)
-        s.indices.insert(s.indices.end(), {0u, 1u + k, 1u + (k + 1) % 6});
-    const EmbreeScene embree(s, "threads=1");
-    const glm::vec3 up(0.0f, 1.0f, 0.0f), want(1.0f, 0.5f, 0.25f);
-    const float far = std::numeric_limits<float>::infinity();
-    EXPECT_EQ(embree.transmittance({0.0f, 0.0f, 0.0f}, up, 0.0f, far), want) << "the centre";
-    EXPECT_EQ(embree.transmittance({0.5f, 0.0f, 0.0f}, up, 0.0f, far), want) << "a spoke";
-    EXPECT_EQ(embree.transmittance({0.4f, 0.0f, 0.2f}, up, 0.0f, far), want) << "a face";
+    s.materials.push_back(
+        {.name = "blue filter", .baseColor = {0.5f, 0.5f, 1.0f, 1.0f}, .transmission = 1.0f});
+    s.materials.push_back({.name = "opaque"});
+    s.materials.push_back(
+        {.name = "clear", .baseColor = {1, 1, 1, 0}, .alphaMode = AlphaMode::Blend});
+    return s;
 }
 
+constexpr float kFar = std::numeric_limits<float>::infinity();
+const glm::vec3 kUp(0.0f, 1.0f, 0.0f);
+
+} // namespace
+
+// A ray through a fan's centre meets all six of its triangles at one point, and one through a
+// spoke two of them: the surface counts once there, as at any other point of it; near and a
+// thousand units away (the distances compared are relative), and behind another filter (the
+// fan's crossings are remembered after the first layer's).
+TEST(TranslucentTruth, ARayThroughTrianglesCommonCornerCrossesTheSurfaceOnce) {
+    for (const float height : {1.0f, 1000.0f}) {
+        Scene s = filters();
+        addFan(s, height, 1.0f, 0);
+        const EmbreeScene embree(s, "threads=1");
+        const glm::vec3 want(1.0f, 0.5f, 0.25f);
+        EXPECT_EQ(embree.transmittance({0.0f, 0.0f, 0.0f}, kUp, 0.0f, kFar), want) << height;
+        EXPECT_EQ(embree.transmittance({0.5f, 0.0f, 0.0f}, kUp, 0.0f, kFar), want) << height;
+        EXPECT_EQ(embree.transmittance({0.4f, 0.0f, 0.2f}, kUp, 0.0f, kFar), want) << height;
+        for (const glm::vec3 p :
+             {glm::vec3(0.0f), glm::vec3(0.5f, 0.0f, 0.0f), glm::vec3(-0.25f, 0.0f, 0.4330127f)}) {
+            const EmbreeScene::SurfacesAlong along = embree.surfacesAlong(p, kUp, 0.0f, kFar);
+            ASSERT_EQ(along.translucent.size(), 1u) << height << ", " << p.x;
+            EXPECT_EQ(along.translucent[0].transmittance, want);
+        }
+    }
+    for (const float height : {1.0f, 1000.0f}) { // a fan tilted: its triangles' planes round apart
+        Scene s = filters();
+        addFan(s, height, 1.0f, 0);
+        for (Vertex& v : s.vertices)
+            v.position.y += 0.37f * v.position.x + 0.21f * v.position.z;
+        const EmbreeScene embree(s, "threads=1");
+        for (const glm::vec3 p : {glm::vec3(0.0f), glm::vec3(0.5f, 0.0f, 0.0f)})
+            EXPECT_EQ(embree.surfacesAlong(p, kUp, 0.0f, kFar).translucent.size(), 1u)
+                << "tilted, " << height << ", " << p.x;
+    }
+    Scene s = filters();
+    addFan(s, 2.0f, 1.0f, 0);
+    addQuad(s, {-2, 1, 2}, {2, 1, 2}, {2, 1, -1.5f}, {-2, 1, -1.5f}, 1); // off its own diagonal
+    const EmbreeScene embree(s, "threads=1");
+    EXPECT_EQ(embree.transmittance({0.0f, 0.0f, 0.0f}, kUp, 0.0f, kFar),
+              glm::vec3(0.5f, 0.25f, 0.25f));
+}
+
+// Separate layers are counted each: two filters crossing in an X, a ray through the line they
+// cross at; clear hits take no place among the 64 remembered (two hundred clear cards around a
+// fan, rays through its centre and a spoke); and the ideal map's list names an opaque surface a
+// hair behind a filter and reads a triangle's colours where the truth does.
+TEST(TranslucentTruth, SeparateLayersCountEachAndClearOnesNone) {
+    {
+        Scene s = filters();
+        addQuad(s, {-1, 0.5f, -1}, {1, 1.5f, -1}, {1, 1.5f, 1}, {-1, 0.5f, 1}, 0);
+        addQuad(s, {-1, 1.5f, -1}, {1, 0.5f, -1}, {1, 0.5f, 1.3f}, {-1, 1.5f, 1.3f}, 1);
+        const EmbreeScene embree(s, "threads=1");
+        EXPECT_EQ(embree.transmittance({0.0f, 0.0f, 0.1f}, kUp, 0.0f, kFar),
+                  glm::vec3(0.5f, 0.25f, 0.25f));
+    }
+    {
+        Scene s = filters();
+        addFan(s, 100.5f, 1.0f, 0); // among them
+        for (int k = 0; k < 200; ++k) {
+            const float y = 1.0f + static_cast<float>(k);
+            addQuad(s, {-2, y, 2}, {2, y, 2}, {2, y, -1.7f}, {-2, y, -1.7f}, 3);
+        }
+        const EmbreeScene embree(s, "threads=1");
+        EXPECT_EQ(embree.transmittance({0.0f, 0.0f, 0.0f}, kUp, 0.0f, kFar),
+                  glm::vec3(1.0f, 0.5f, 0.25f));
+        EXPECT_EQ(embree.transmittance({0.5f, 0.0f, 0.0f}, kUp, 0.0f, kFar),
+                  glm::vec3(1.0f, 0.5f, 0.25f));
+    }
+    {
+        Scene s = filters();
+        addQuad(s, {-1, 1, 1}, {1, 1, 1}, {1, 1, -1.3f}, {-1, 1, -1.3f}, 0);
+        addQuad(s, {-1, 1.000005f, 1}, {1, 1.000005f, 1}, {1, 1.000005f, -1.3f},
+                {-1, 1.000005f, -1.3f}, 2);
+        addQuad(s, {-1, 3, 1}, {1, 3, 1}, {1, 3, -1.3f}, {-1, 3, -1.3f}, 1,
+                {1.0f, 0.2f, 0.6f, 1.0f});
+        const EmbreeScene embree(s, "threads=1");
+        const EmbreeScene::SurfacesAlong along =
+            embree.surfacesAlong({0.1f, 0.0f, 0.2f}, kUp, 0.0f, kFar);
+        EXPECT_EQ(along.translucent.size(), 1u);
+        EXPECT_NEAR(along.opaque, 1.000005f, 1e-6f);
+        Scene coloured = filters();
+        coloured.vertices = s.vertices;
+        coloured.indices.assign(s.indices.begin() + 12, s.indices.end()); // the upper filter
+        for (size_t k = 8; k < 12; ++k) // its corners' colours differ
+            coloured.vertices[k].color =
+                glm::vec4(0.2f * static_cast<float>(k - 7), 1.0f, 0.5f, 1.0f);
+        const EmbreeScene upper(coloured, "threads=1");
+        const glm::vec3 p(0.3f, 0.0f, -0.6f);
+        const EmbreeScene::SurfacesAlong one = upper.surfacesAlong(p, kUp, 0.0f, kFar);
+        ASSERT_EQ(one.translucent.size(), 1u);
+        EXPECT_EQ(one.translucent[0].transmittance, upper.transmittance(p, kUp, 0.0f, kFar));
+    }
+}
+
+// A scene without translucent casters keeps its one-channel truth.
 TEST(TranslucentTruth, AnOpaqueSceneHasNoColouredTruth) {
     Scene scene = builtin::sheets();
     for (Material& m : scene.materials)

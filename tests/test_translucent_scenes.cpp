@@ -175,7 +175,7 @@ TEST(TranslucentScenes, TheTreesLeavesStackGrey) {
     const EmbreeScene embree(scene, "threads=1");
     const glm::vec3 down = glm::normalize(builtin::kTreeSunDirection);
     std::vector<size_t> leaves;
-    size_t partial = 0;
+    size_t partial = 0, trunk = 0;
     for (size_t i = 0; i < size_t{96} * 96; ++i) {
         const float* t = &truth.transmittance[0][3 * i];
         EXPECT_EQ(t[0], t[1]);
@@ -183,6 +183,7 @@ TEST(TranslucentScenes, TheTreesLeavesStackGrey) {
         const glm::vec3 p(g.position[3 * i], 0.0f, g.position[3 * i + 2]);
         const EmbreeScene::SurfacesAlong along =
             embree.surfacesAlong(p, -down, 1e-3f, std::numeric_limits<float>::infinity());
+        trunk += along.opaque < std::numeric_limits<float>::infinity();
         if (along.opaque < std::numeric_limits<float>::infinity() || along.translucent.empty())
             continue; // the trunk's shadow, or open sky
         leaves.push_back(along.translucent.size());
@@ -194,6 +195,16 @@ TEST(TranslucentScenes, TheTreesLeavesStackGrey) {
     std::printf("%zu points under the crown: median %zu leaves on a ray, %zu partly lit\n",
                 leaves.size(), median, partial);
     EXPECT_GE(median, 3u);
+    EXPECT_GT(trunk, 20u);                     // the trunk and branches are opaque
+    for (const float h : {0.5f, 1.0f, 1.5f}) { // the trunk's own shadow, h up it
+        const glm::vec3 p = -h * down / down.y;
+        EXPECT_LT(embree
+                      .surfacesAlong({p.x, 0.0f, p.z}, -down, 1e-3f,
+                                     std::numeric_limits<float>::infinity())
+                      .opaque,
+                  std::numeric_limits<float>::infinity())
+            << h;
+    }
     EXPECT_GT(partial, leaves.size() / 2);
 }
 
@@ -227,5 +238,7 @@ TEST(TranslucentScenes, AreBuiltIn) {
     EXPECT_EQ(loadScene("builtin:glass").triangleCount(), builtin::glass().triangleCount());
     EXPECT_EQ(loadScene("builtin:tree").triangleCount(), builtin::tree().triangleCount());
     EXPECT_TRUE(builtin::glass().hasTranslucentCasters());
+    EXPECT_EQ(builtin::glass().lights.at(0).direction,
+              glm::normalize(builtin::kGlassSunDirection)); // the closed form's sun
     EXPECT_TRUE(builtin::tree().hasTranslucentCasters());
 }

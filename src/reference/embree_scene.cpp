@@ -114,7 +114,11 @@ void throughTranslucent(const RTCFilterFunctionNArguments* args) {
             continue;
         const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
         const float t = RTCRayN_tfar(args->ray, args->N, i); // the hit's distance, in a filter
-        if (crossedAlready(*context, data, prim, t)) {
+        const glm::vec3 through = transmittanceAt(data, prim, RTCHitN_u(args->hit, args->N, i),
+                                                  RTCHitN_v(args->hit, args->N, i));
+        // A clear hit (a card's empty border) changes nothing: it takes no place in the list.
+        if (glm::all(glm::greaterThanEqual(through, glm::vec3(1.0f))) ||
+            crossedAlready(*context, data, prim, t)) {
             args->valid[i] = 0;
             continue;
         }
@@ -122,8 +126,7 @@ void throughTranslucent(const RTCFilterFunctionNArguments* args) {
             context->distance[context->crossedCount] = t;
             context->crossed[context->crossedCount++] = prim;
         }
-        context->through *= transmittanceAt(data, prim, RTCHitN_u(args->hit, args->N, i),
-                                            RTCHitN_v(args->hit, args->N, i));
+        context->through *= through;
         if (glm::any(glm::greaterThan(context->through, glm::vec3(0.0f))))
             args->valid[i] = 0;
     }
@@ -297,6 +300,7 @@ glm::vec3 EmbreeScene::transmittance(const glm::vec3& origin, const glm::vec3& d
 EmbreeScene::SurfacesAlong EmbreeScene::surfacesAlong(const glm::vec3& origin, const glm::vec3& dir,
                                                       float tnear, float tfar) const {
     SurfacesAlong out{.opaque = tfar};
+    unsigned last = 0;           // the last translucent triangle met
     for (float from = tnear;;) { // peel: the nearest surface that keeps light back, then past it
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
@@ -310,10 +314,15 @@ EmbreeScene::SurfacesAlong EmbreeScene::surfacesAlong(const glm::vec3& origin, c
             out.opaque = t;
             return out;
         }
-        out.translucent.push_back(
-            {.distance = t,
-             .transmittance = transmittanceAt(mTranslucent, hit.hit.primID, hit.hit.u, hit.hit.v)});
-        from = t + 1e-5f * std::max(t, 1.0f);
+        // The crossing the occlusion filter would count once (a shared edge or corner) is one.
+        if (out.translucent.empty() ||
+            std::abs(t - out.translucent.back().distance) > 1e-5f * std::max(t, 1.0f) ||
+            !shareCorner(mTranslucent.triangles[hit.hit.primID], mTranslucent.triangles[last]))
+            out.translucent.push_back({.distance = t,
+                                       .transmittance = transmittanceAt(
+                                           mTranslucent, hit.hit.primID, hit.hit.u, hit.hit.v)});
+        last = hit.hit.primID;
+        from = std::nextafter(t, std::numeric_limits<float>::infinity()); // past this hit alone
     }
 }
 

@@ -34,8 +34,8 @@ public:
     bool translucent() const { return !mTranslucent.triangles.empty(); }
     // A ray's translucent surfaces up to the first opaque one: what an ideal (deep) shadow map
     // keeps along a texel's ray [Lokovic and Veach 2000], which the translucent techniques' maps
-    // compress. Surfaces that let everything through are left out; two closer than 1e-5 times
-    // their distance (at least 1) count once.
+    // compress. Surfaces that let everything through are left out; a crossing of triangles with
+    // a corner in common at one distance counts once, as in `transmittance`.
     struct CrossedSurface {
         float distance;
         glm::vec3 transmittance;
