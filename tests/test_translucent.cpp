@@ -12,6 +12,7 @@
 #include "scene/builtin_scenes.h"
 #include "scene/mesh_builder.h"
 #include "scratch_dir.h"
+#include "segment_box.h"
 #include "sweep/truth_cache.h"
 
 #include <glm/gtc/constants.hpp>
@@ -127,21 +128,7 @@ glm::dvec3 sheetFactor(const builtin::SheetSpec& sheet) {
 // The post of builtin:sheets, as an axis-aligned box grown by `grow`.
 bool segmentMeetsPost(glm::dvec3 p, glm::dvec3 d, double length, double grow) {
     const glm::dvec3 centre(2.6, 0.9, 1.8), half = glm::dvec3(0.15, 0.9, 0.15) + grow;
-    if (glm::any(glm::lessThanEqual(half, glm::dvec3(0.0))))
-        return false; // shrunk to nothing
-    double enter = 0.0, leave = length;
-    for (int a = 0; a < 3; ++a) {
-        if (std::abs(d[a]) < 1e-12) {
-            if (std::abs(p[a] - centre[a]) > half[a])
-                return false;
-            continue;
-        }
-        double t0 = (centre[a] - half[a] - p[a]) / d[a], t1 = (centre[a] + half[a] - p[a]) / d[a];
-        if (t0 > t1)
-            std::swap(t0, t1);
-        enter = std::max(enter, t0), leave = std::min(leave, t1);
-    }
-    return enter <= leave;
+    return segmentMeetsBox(p, d, length, centre - half, centre + half);
 }
 
 // The closed form at ground point p for rays along `d` (unit, upwards) within `length`: the

@@ -7,6 +7,7 @@
 #include "reference/embree_scene.h"
 #include "reference/sampling.h"
 #include "scene/builtin_scenes.h"
+#include "segment_box.h"
 
 #include <gtest/gtest.h>
 
@@ -21,25 +22,6 @@ using namespace penumbra;
 using namespace penumbra::test;
 
 namespace {
-
-// Where the segment p + t d, 0 < t < length, meets the box [lo, hi]: whether it does.
-bool segmentMeetsBox(glm::dvec3 p, glm::dvec3 d, double length, glm::dvec3 lo, glm::dvec3 hi) {
-    if (glm::any(glm::greaterThan(lo, hi)))
-        return false; // shrunk to nothing
-    double enter = 0.0, leave = length;
-    for (int a = 0; a < 3; ++a) {
-        if (std::abs(d[a]) < 1e-12) {
-            if (p[a] < lo[a] || p[a] > hi[a])
-                return false;
-            continue;
-        }
-        double t0 = (lo[a] - p[a]) / d[a], t1 = (hi[a] - p[a]) / d[a];
-        if (t0 > t1)
-            std::swap(t0, t1);
-        enter = std::max(enter, t0), leave = std::min(leave, t1);
-    }
-    return enter <= leave;
-}
 
 // Whether the segment surely meets the box (1), surely misses it (0), or passes within `margin`
 // of its faces (nullopt).

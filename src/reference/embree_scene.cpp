@@ -89,6 +89,13 @@ bool shareCorner(const EmbreeScene::FilteredTriangle& a, const EmbreeScene::Filt
     return shared >= 1;
 }
 
+// Whether hits at distances ta and tb on triangles a and b are one crossing of the surface: the
+// same point (one distance, to 1e-5 of it or of 1) on triangles with a corner in common.
+bool sameCrossing(float ta, const EmbreeScene::FilteredTriangle& a, float tb,
+                  const EmbreeScene::FilteredTriangle& b) {
+    return std::abs(ta - tb) <= 1e-5f * std::max(ta, 1.0f) && shareCorner(a, b);
+}
+
 // Whether the ray has crossed this point of the surface already: a triangle with a corner in
 // common met at the same distance, so at the same point (the same triangle reported twice, or
 // the ray passing through the edge or corner two share; separate layers that merely touch count
@@ -97,8 +104,7 @@ bool crossedAlready(const TransmittanceContext& context, const EmbreeScene::Filt
                     unsigned prim, float t) {
     for (unsigned k = 0; k < context.crossedCount; ++k) {
         const unsigned other = context.crossed[k];
-        if (std::abs(context.distance[k] - t) <= 1e-5f * std::max(t, 1.0f) &&
-            shareCorner(data.triangles[prim], data.triangles[other]))
+        if (sameCrossing(t, data.triangles[prim], context.distance[k], data.triangles[other]))
             return true;
     }
     return false;
@@ -316,8 +322,8 @@ EmbreeScene::SurfacesAlong EmbreeScene::surfacesAlong(const glm::vec3& origin, c
         }
         // The crossing the occlusion filter would count once (a shared edge or corner) is one.
         if (out.translucent.empty() ||
-            std::abs(t - out.translucent.back().distance) > 1e-5f * std::max(t, 1.0f) ||
-            !shareCorner(mTranslucent.triangles[hit.hit.primID], mTranslucent.triangles[last]))
+            !sameCrossing(t, mTranslucent.triangles[hit.hit.primID],
+                          out.translucent.back().distance, mTranslucent.triangles[last]))
             out.translucent.push_back({.distance = t,
                                        .transmittance = transmittanceAt(
                                            mTranslucent, hit.hit.primID, hit.hit.u, hit.hit.v)});

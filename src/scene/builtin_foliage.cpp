@@ -34,8 +34,7 @@ TextureImage leafImage(uint32_t seed, int count) {
                 const float x = static_cast<float>(px) + 0.5f - cx;
                 const float y = static_cast<float>(py) + 0.5f - cy;
                 const float u = (c * x + s * y) / a, v = (-s * x + c * y) / b;
-                const float coverage =
-                    std::clamp((1.0f - std::sqrt(u * u + v * v)) * b + 0.5f, 0.0f, 1.0f);
+                const float coverage = leafCoverage(u, v, b);
                 const size_t i = (size_t((py + int(kSize)) % int(kSize)) * kSize +
                                   size_t((px + int(kSize)) % int(kSize))) *
                                  4;

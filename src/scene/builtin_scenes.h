@@ -5,6 +5,9 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 namespace penumbra::builtin {
 
 // Showcase geometry, shared with the analytic tests.
@@ -174,6 +177,12 @@ struct SceneRandom {
         return static_cast<float>(state >> 8) / 16777216.0f;
     }
 };
+// A leaf's coverage at (u, v) in units of its ellipse's half-axes, `halfWidth` texels across
+// its narrow half: 1 inside, 0 outside, anti-aliased over a texel at its edge (about the covered
+// fraction).
+inline float leafCoverage(float u, float v, float halfWidth) {
+    return std::clamp((1.0f - std::sqrt(u * u + v * v)) * halfWidth + 0.5f, 0.0f, 1.0f);
+}
 // Tileable leaves (builtin:foliage's texture, kLeafTextureSize square): `count` ellipses with
 // anti-aliased edges (alpha = covered fraction, about), greens varying per leaf; repeat-wrapped.
 TextureImage leafImage(uint32_t seed = 12345u, int count = 150);

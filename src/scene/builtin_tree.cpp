@@ -29,8 +29,7 @@ TextureImage leafCardImage() {
             const float x = static_cast<float>(px) + 0.5f - 0.5f * n;
             const float y = static_cast<float>(py) + 0.5f - 0.5f * n;
             const float u = (c * x + s * y) / a, v = (-s * x + c * y) / b;
-            const float coverage =
-                std::clamp((1.0f - std::sqrt(u * u + v * v)) * b + 0.5f, 0.0f, 1.0f);
+            const float coverage = leafCoverage(u, v, b);
             uint8_t* p = &image.rgba[(size_t{py} * kSize + px) * 4];
             p[0] = 70, p[1] = 140, p[2] = 45; // sRGB
             p[3] = static_cast<uint8_t>(std::lround(coverage * kTreeLeafAlpha * 255.0f));
