@@ -138,7 +138,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"compare_unknown_layer",
                  {"compare", "builtin:showcase", "-o", "{out}", "--techniques", "pcss+Temporal"},
                  "error: --techniques: unknown layer 'Temporal' in 'pcss+Temporal' (layers: "
-                 "contact, temporal)"},
+                 "contact, temporal, translucent)"},
         BadInput{"render_layer_twice",
                  {"render", "builtin:showcase", "-o", "{out}", "--technique",
                   "pcss+temporal+contact+temporal"},

@@ -78,25 +78,30 @@ TEST(TranslucentTexels, OneSurfaceAddsItsAbsorbanceAndItsMoments) {
     EXPECT_EQ(momentTransmittance(momentTexel({}), 0.5f, kBias, 0.0f), glm::vec3(1.0f));
 }
 
-// The coloured map keeps the nearest depth and the product: exact in front of every surface and
-// behind them all, the product of all between (its documented error).
+// The coloured map keeps the nearest depth and transmittance, the second nearest depth and the
+// product: exact in front of the second surface and behind them all, the product of all between
+// (its documented error).
 TEST(TranslucentTexels, TheColouredMapIsExactOutsideTheStack) {
     std::mt19937 rng(61062u);
     for (int trial = 0; trial < 200; ++trial) {
         const auto layers = generatedStack(rng, 1 + trial % 4, 0.02f);
         const ColouredTexel texel = colouredTexel(layers);
-        float nearest = 1.0f, farthest = 0.0f;
-        for (const TranslucentLayer& l : layers) {
-            nearest = std::min(nearest, l.depth);
-            farthest = std::max(farthest, l.depth);
-        }
+        std::vector<float> depths;
+        for (const TranslucentLayer& l : layers)
+            depths.push_back(l.depth);
+        std::sort(depths.begin(), depths.end());
+        const float nearest = depths.front(), farthest = depths.back();
+        const float second = depths.size() > 1 ? depths[1] : 1.0f;
         EXPECT_EQ(texel.nearest, nearest);
+        EXPECT_EQ(texel.second, second);
         for (float z : receiversBetween(layers, 0.005f)) {
             const glm::vec3 got = colouredTransmittance(texel, z);
-            const glm::vec3 want = z > nearest ? exactTransmittance(layers, 1.0f) : glm::vec3(1.0f);
+            const glm::vec3 want = z > second    ? exactTransmittance(layers, 1.0f)
+                                   : z > nearest ? exactTransmittance(layers, second)
+                                                 : glm::vec3(1.0f);
             for (int c = 0; c < 3; ++c)
                 EXPECT_FLOAT_EQ(got[c], want[c]) << "trial " << trial << ", z " << z;
-            if (z > farthest || z < nearest) {
+            if (z > farthest || z < second) {
                 for (int c = 0; c < 3; ++c)
                     EXPECT_NEAR(got[c], exactTransmittance(layers, z)[c], 1e-6f);
             }

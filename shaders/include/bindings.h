@@ -46,6 +46,7 @@
 #define SPEC_FILL_RANGE 25      // visibility_fill.comp: the range of the neighbours it fills from
                                 // (a float's bits)
 #define SPEC_GBUFFER_MOTION 28  // gbuffer.vert, gbuffer.frag: 1 writes the motion vectors
+#define SPEC_TRANSLUCENT_METHOD 30 // translucent.comp: TRANSLUCENT_COLOURED or _MOMENTS
 #define SPEC_HISTORY_RESOLVE 29 // a layer that keeps a history (temporal.comp): 0 writes this
                                 // frame's history, 1 then copies it into the visibility
 
@@ -103,6 +104,20 @@
 #define LAYER_MOTION 8           // the G-buffer's motion vectors (gbuffer.motion)
 #define LAYER_HISTORY_PREVIOUS 9 // its history as last frame wrote it (zeros where none), and
 #define LAYER_HISTORY 10         // this frame's, written: a layer per shadow-casting light
+// The translucent layer (src/shadows/translucent.cpp): its caster draws (translucent_*.frag) ...
+#define TRANSLUCENT_TEXTURE_BINDING 0 // the caster's base colour texture (sRGB view)
+#define TRANSLUCENT_OPAQUE_DEPTH 1    // the light's depth map, every view a layer (nearest)
+#define TRANSLUCENT_VIEWS 2           // ShadowViewData[], uniform
+#define TRANSLUCENT_NEAREST_DEPTH 3   // the coloured map's nearest depths (its second's peel; the
+                                      // light's depth map, unread, in the other draws)
+// ... and its pass (translucent.comp) on a layout of its own, beside the LAYER_* bindings:
+#define TRANSLUCENT_LAYER_VIEWS 11    // ShadowViewData[], uniform
+#define TRANSLUCENT_LAYER_NEAREST 12  // the coloured map's nearest depths and its second nearest
+#define TRANSLUCENT_LAYER_SECOND 14   // (the first moment map stands in for both with the moments)
+#define TRANSLUCENT_LAYER_MAPS 13     // TRANSLUCENT_MAPS maps: the nearest's transmittance and the
+                                      // product (the product again in the last two slots), or
+                                      // the absorbance and the three channels' moments
+#define TRANSLUCENT_MAPS 4
 #define EXPORT_GBUFFER_DEPTH 1   // export.comp
 #define EXPORT_GBUFFER_NORMAL 2
 #define EXPORT_POSITION 3

@@ -16,17 +16,59 @@ PENUMBRA_GPU_BEGIN
 // moments are not divided by it.
 #define TRANSLUCENT_NO_ABSORBANCE 1e-6f
 
+// The translucent layer's methods (translucent.method) and what a caster draw writes.
+#define TRANSLUCENT_OFF 0u
+#define TRANSLUCENT_COLOURED 1u         // coloured transmittance map
+#define TRANSLUCENT_MOMENTS 2u          // moment-based transmittance
+#define TRANSLUCENT_DRAW_NEAREST 0u     // the nearest surface's depth and transmittance (depth test)
+#define TRANSLUCENT_DRAW_PRODUCT 1u     // the product of the transmittances (multiplied in)
+#define TRANSLUCENT_DRAW_MOMENTS 2u     // the absorbances and their moments (added in)
+#define TRANSLUCENT_DRAW_SECOND 3u      // the second nearest surface's depth (a peel)
+// TranslucentCasterPush::flags.x: what the material does.
+#define TRANSLUCENT_TEXTURE 1u          // it has a base colour texture
+#define TRANSLUCENT_BLEND 2u            // alphaMode BLEND: alpha is the covered fraction
+#define TRANSLUCENT_VOLUME 4u           // KHR_materials_volume: the square root of the tint a face
+#define TRANSLUCENT_MASK 8u             // alphaMode MASK: coverage under the cutoff is a hole
+// How far the translucent layer's maps push each surface from the light (translucent_caster.glsl):
+// its depth's slope over this many texels, and at least this much of the [0, 1] depth range.
+#define TRANSLUCENT_SLOPE_TEXELS 2.0f
+#define TRANSLUCENT_DEPTH_BIAS 1e-5f
+// The moment bias for 32-bit power moments [Muenstermann et al. 2018] (docs/translucency.md).
+#define TRANSLUCENT_MOMENT_BIAS 5e-7f
+// Rec. 709 luminance: the one-channel visibility the metrics read of an RGB transmittance.
+#define TRANSLUCENT_LUMINANCE vec3(0.2126f, 0.7152f, 0.0722f)
+
+// Push constants of a translucent caster's draw (translucent_caster.vert/.frag): the shadow
+// pass's (its bias.y the alpha cutoff, bias.z the transmission factor), then the material.
+struct TranslucentCasterPush {
+    mat4 viewProj;
+    vec4 bias;           // x constant depth offset, y alpha cutoff, z transmission factor
+    vec4 baseColor;      // linear RGBA factor
+    vec4 attenuation;    // xyz: what a volume's face keeps of its path, exp(-sigma thickness / 2)
+    uvec4 flags;         // x TRANSLUCENT_* material flags, y the view's layer, zw unused
+};
+
+// The translucent layer's parameter block (LAYER_PARAMS).
+struct TranslucentParams {
+    uvec4 method;        // x TRANSLUCENT_*
+    vec4 moments;        // x the moment bias, y overestimation
+};
+
 // A surface's absorbance per channel, -ln T: additive where transmittances multiply.
 SHARED vec3 layerAbsorbance(vec3 transmittance) {
     return -log(max(transmittance, vec3(TRANSLUCENT_MIN_TRANSMITTANCE)));
 }
 
-// Coloured transmittance map: the product of the texel's translucent surfaces' transmittances
-// and the depth of the nearest. A receiver behind the nearest (z past it) keeps the product,
-// one in front of it everything. Exact where a receiver lies behind all the texel's surfaces or
-// in front of them all; a receiver between two of them keeps too little (the product of all).
-SHARED vec3 colouredMapTransmittance(vec3 product, float nearest, float z) {
-    return z > nearest ? product : vec3(1.0f);
+// Coloured transmittance map: the nearest translucent surface's depth and transmittance (`front`,
+// what a depth test keeps), the second nearest's depth (a depth peel past the nearest) and the
+// product of every surface's transmittance (multiplicative blending). A receiver at depth z in
+// front of the nearest keeps everything; between the nearest and the second, the nearest's
+// transmittance; behind the second, the product. Exact wherever a receiver has at most one
+// surface of its texel in front of it, and behind them all; a receiver between the second and
+// the last keeps the product of all (too dark, and tinted by its own surface).
+SHARED vec3 colouredMapTransmittance(vec3 front, vec3 product, float nearest, float second,
+                                     float z) {
+    return z > second ? product : z > nearest ? front : vec3(1.0f);
 }
 
 // Moment-based transmittance [Muenstermann et al. 2018, 'Moment-based order-independent
@@ -59,6 +101,12 @@ SHARED float momentTransmittance(float absorbance, vec4 moments, float z, float 
 }
 
 PENUMBRA_GPU_END
+
+#ifdef __cplusplus
+static_assert(sizeof(penumbra::gpu::TranslucentCasterPush) == 128 &&
+              offsetof(penumbra::gpu::TranslucentCasterPush, flags) == 112);
+static_assert(sizeof(penumbra::gpu::TranslucentParams) == 32);
+#endif
 
 #endif
 // clang-format on

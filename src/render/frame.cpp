@@ -122,6 +122,9 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
         r.pageRequests = graph.importBuffer(std::string(target::kPageRequests), in.pageRequests);
     if (s.devicePages)
         r.pageRenderList = graph.importBuffer("pages.renderList", in.pageRenderList);
+    if (s.translucent != 0)
+        for (const ImageDecl& decl : translucentMapDecls(s.translucent))
+            r.translucentMaps.push_back(graph.declare(decl));
     r.traceList = graph.declare(traceListDecl(s.sizes.width, s.sizes.height,
                                               shadows::checkerboardFill(screenPasses) != nullptr));
     return r;
@@ -150,6 +153,8 @@ FrameResources buildFrame(FrameGraph& graph, FramePipelines& pipelines, const Gp
         addVirtualPagePasses(graph, pipelines, scene, s, in, r);
     else if (shadows::drawsLightMaps(*s.technique))
         addShadowPasses(graph, pipelines, scene, s, in, r);
+    if (s.translucent != 0)
+        addTranslucentCasterPass(graph, pipelines, scene, s, in, r);
     addGBufferPass(graph, pipelines, scene, s, in, r);
     addLightPasses(graph, pipelines, s, in, r);
     if (s.readback)

@@ -58,7 +58,10 @@ struct FrameSettings {
     std::vector<shadows::SpecConstant> constants; // of the visibility pass, but the light's
     std::vector<LightDispatch> shadowLights;
     std::vector<const shadows::LayerModule*> layers; // run after the base technique, in order
-    std::vector<shadows::SpecConstant> sceneLights;  // shading.glsl's: the scene's lights
+    // The translucent layer's method (TRANSLUCENT_*) where it runs: its maps are drawn and the
+    // depth map leaves the translucent casters out (0: it does not run; the scene has none).
+    uint32_t translucent = 0;
+    std::vector<shadows::SpecConstant> sceneLights; // shading.glsl's: the scene's lights
     bool fuseComposite;       // composite.fused: the last light's base dispatch shades (no layers)
     bool intermediates;       // the viewer's: the technique's and layers' intermediate results
     bool readback;            // the frame ends with the readback passes
@@ -141,6 +144,9 @@ struct FrameResources {
     ResourceId traceList = 0; // checkerboard tracing's (a head alone when it does not run)
     ResourceId vertices = 0, positions = 0; // the scene's, which every draw reads (VertexRead)
     ResourceId previousPositions = 0;       // what the G-buffer's motion vectors read
+    // The translucent layer's maps (translucentMapDecls; FrameSettings::translucent), empty when
+    // it does not run.
+    std::vector<ResourceId> translucentMaps;
     // The map a module calls `name` (shadows::kDepthMap or one of its own).
     // `<name> (previous)`: last frame's version of a map declared with history.
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;
@@ -193,6 +199,18 @@ void addVirtualPagePasses(FrameGraph& graph, FramePipelines& p, const GpuScene& 
                           const FrameSettings& s, const FrameInputs& in, const FrameResources& r);
 void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
                     const FrameInputs& in, const FrameResources& r);
+// The translucent layer (translucent_passes.cpp): its casters drawn into its maps from every
+// view (LightSpace, timed as "translucent_maps" with the shadow maps), and its pass for every light
+// (PerLight, timed under the layer's name).
+void addTranslucentCasterPass(FrameGraph& graph, FramePipelines& p, const GpuScene& scene,
+                              const FrameSettings& s, const FrameInputs& in,
+                              const FrameResources& r);
+void addTranslucentLayerPass(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
+                             const FrameInputs& in, const FrameResources& r,
+                             const shadows::LayerModule& layer);
+// Whether the light's depth map draws this batch: every one, but the translucent casters' when
+// the translucent layer runs.
+bool drawnInDepthMap(const GpuScene& scene, const FrameSettings& s, const DrawBatch& batch);
 void addReadbackPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
                        const FrameInputs& in, const FrameResources& r);
 // The hand-off of a frame that presents: its outputs in FrameOutputs' states.

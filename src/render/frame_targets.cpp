@@ -4,6 +4,7 @@
 #include "core/fnv1a.h"
 #include "core/virtual_maps.h"
 #include "render/pipelines.h"
+#include "translucent.h"
 
 namespace penumbra::render {
 
@@ -108,6 +109,25 @@ std::vector<ImageDecl> shadowMapDecls(const shadows::TechniqueModule& module,
             decls.back().key = historyKeyOf(views);
     }
     return decls;
+}
+
+std::vector<ImageDecl> translucentMapDecls(uint32_t method) {
+    auto map = [](std::string name, VkFormat format) {
+        return ImageDecl{.name = target::shadowMap("translucent." + name),
+                         .size = SizeClass::ShadowView,
+                         .format = format,
+                         .usage = format == kDepthFormat
+                                      ? kDepthTarget
+                                      : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled,
+                         .layerViews = true};
+    };
+    if (method == TRANSLUCENT_COLOURED)
+        return {map("nearest", kDepthFormat), map("second", kDepthFormat),
+                map("front", kTranslucentProductFormat), map("product", kTranslucentProductFormat)};
+    std::vector<ImageDecl> moments;
+    for (uint32_t i = 0; i < TRANSLUCENT_MAPS; ++i)
+        moments.push_back(map("moments" + std::to_string(i), kTranslucentMomentsFormat));
+    return moments;
 }
 
 uint64_t historyKeyOf(std::span<const ShadowView> views) {
@@ -227,9 +247,13 @@ TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterV
     for (const ImageDecl& decl : screenDecls(false))
         if (motion || decl.name != target::kGBufferMotion)
             bytes.screen += ResourcePool::bytesOf(decl, sizes);
-    for (const shadows::LayerModule* layer : shadows::enabledLayers(params))
+    for (const shadows::LayerModule* layer : shadows::enabledLayers(params)) {
         if (layer->history) // bytesOf counts its two versions, last frame's and this frame's
             bytes.screen += ResourcePool::bytesOf(layerHistoryDecl(*layer, module, params), sizes);
+        if (layer->translucentMethod) // whether or not the scene has translucent casters
+            for (const ImageDecl& decl : translucentMapDecls(layer->translucentMethod(params)))
+                bytes.shadowMaps += ResourcePool::bytesOf(decl, sizes);
+    }
     bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights, motion).bytes;
     const bool checkerboard =
         shadows::checkerboardFill(shadows::screenPassesOf(module, params)) != nullptr;

@@ -88,6 +88,11 @@ std::optional<ImageDecl> staticPoolDecl(const shadows::TechniqueModule& module,
 ImageDecl layerHistoryDecl(const shadows::LayerModule& layer,
                            const shadows::TechniqueModule& technique,
                            const ParameterValues& params);
+// The translucent layer's maps for its method (TRANSLUCENT_*, translucent.h), a layer per shadow
+// view at the depth map's size: the coloured map's nearest and second nearest depths
+// ("shadow.translucent.nearest", "second": D32), the nearest's transmittance and the product
+// ("front", "product"); or the absorbance and the three channels' moments ("moments0" to "3").
+std::vector<ImageDecl> translucentMapDecls(uint32_t method);
 // Bound where the technique's filtered map holds floats (TECH_TABLE): never written, never read.
 ImageDecl integerPlaceholderDecl();
 // Bound at TECH_COMPARE for a technique that reads no depth map: never written, never read.

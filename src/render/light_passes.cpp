@@ -305,6 +305,10 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
             addHistoryLayer(graph, p, s, in, r, *layer, l);
             continue;
         }
+        if (layer->translucentMethod) {
+            addTranslucentLayerPass(graph, p, s, in, r, *layer);
+            continue;
+        }
         graph.addPass({.name = std::string(layer->name),
                        .cost = CostGroup::PerPixel,
                        .phase = Phase::PerLight,

@@ -5,6 +5,7 @@
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
 #include "skinning.h"
+#include "translucent.h"
 #include "vk/spirv_bindings.h"
 
 #include <cstddef>
@@ -270,6 +271,57 @@ VkPipeline FramePipelines::postPass(std::string_view shader, uint32_t inputs,
                                                 i, POST_OUTPUT_BINDING + i, why));
     }
     return it->second.pipeline.get();
+}
+
+const vk::PipelineLayout& FramePipelines::translucentCasterLayout() {
+    if (!mTranslucentCasterLayout
+             .layout) // the moments' and the peel's draws bind all the others do
+        mTranslucentCasterLayout = vk::createLayoutOf(
+            ctx, {"translucent_caster.vert", "translucent_moments.frag", "translucent_second.frag"},
+            kGraphicsStages, sizeof(gpu::TranslucentCasterPush));
+    return mTranslucentCasterLayout;
+}
+
+const vk::PipelineLayout& FramePipelines::translucentLayerLayout() {
+    if (!mTranslucentLayerLayout.layout)
+        mTranslucentLayerLayout = vk::createLayoutOf(
+            ctx, {"translucent.comp"}, VK_SHADER_STAGE_COMPUTE_BIT, sizeof(gpu::VisibilityPush));
+    return mTranslucentLayerLayout;
+}
+
+VkPipeline FramePipelines::translucentCaster(uint32_t draw, bool perspective) {
+    const auto key = std::make_pair(draw, perspective);
+    auto it = mTranslucentCasters.find(key);
+    if (it == mTranslucentCasters.end()) {
+        vk::GraphicsPipelineDesc desc = shadowDesc(!perspective);
+        desc.vertexShader = "translucent_caster.vert";
+        desc.depthBias = false; // the constant bias alone: the moments' depth reads it too
+        // The depth tests keep the first drawn of surfaces at one depth (as colouredTexel does).
+        desc.depthCompare = VK_COMPARE_OP_LESS;
+        if (draw == TRANSLUCENT_DRAW_NEAREST) {
+            desc.fragmentShader = "translucent_nearest.frag";
+            desc.colorFormats = {kTranslucentProductFormat};
+        } else if (draw == TRANSLUCENT_DRAW_SECOND) {
+            desc.fragmentShader = "translucent_second.frag";
+        } else {
+            desc.depthFormat = VK_FORMAT_UNDEFINED; // every surface counts, in any order
+            desc.fragmentShader = draw == TRANSLUCENT_DRAW_PRODUCT ? "translucent_product.frag"
+                                                                   : "translucent_moments.frag";
+            desc.colorFormats =
+                draw == TRANSLUCENT_DRAW_PRODUCT
+                    ? std::vector{kTranslucentProductFormat}
+                    : std::vector<VkFormat>(TRANSLUCENT_MAPS, kTranslucentMomentsFormat);
+            desc.blend = draw == TRANSLUCENT_DRAW_PRODUCT ? vk::Blend::Multiply : vk::Blend::Add;
+        }
+        it = mTranslucentCasters
+                 .emplace(key, vk::createGraphicsPipeline(ctx, translucentCasterLayout(), desc))
+                 .first;
+    }
+    return it->second.get();
+}
+
+VkPipeline FramePipelines::translucentLayer(const Constants& constants) {
+    return specialized(mTranslucentLayer, translucentLayerLayout(), "translucent.comp", constants);
 }
 
 const FieldPipelines& FramePipelines::field() {

@@ -80,6 +80,13 @@ public:
     VkPipeline postPass(std::string_view shader, uint32_t inputs,
                         std::span<const VkFormat> outputs);
     const vk::PipelineLayout& postPassLayout(uint32_t inputs, uint32_t outputs);
+    // The translucent layer's caster draws into its maps (TRANSLUCENT_DRAW_*: the nearest
+    // depth, the product, the moments), made on first use, and its pass for one list of
+    // specialization constants (light type and views, SPEC_TRANSLUCENT_METHOD).
+    VkPipeline translucentCaster(uint32_t draw, bool perspective);
+    VkPipeline translucentLayer(const std::vector<shadows::SpecConstant>& constants);
+    const vk::PipelineLayout& translucentCasterLayout();
+    const vk::PipelineLayout& translucentLayerLayout();
     // Made on first use: only the sdf technique builds a field.
     const FieldPipelines& field();
     // Made on first use: only a skinned scene has a `skin` pass.
@@ -103,6 +110,9 @@ private:
     std::unique_ptr<FieldPipelines> mField;
     std::unique_ptr<SkinPipeline> mSkin;
     std::map<std::string, HistoryLayerPipeline, std::less<>> mHistoryLayers;
+    vk::PipelineLayout mTranslucentCasterLayout, mTranslucentLayerLayout;
+    std::map<std::pair<uint32_t, bool>, vk::PipelineHandle> mTranslucentCasters;
+    std::map<Constants, vk::PipelineHandle> mTranslucentLayer;
     std::array<vk::PipelineHandle, 16> mGbuffer;
 };
 
@@ -112,5 +122,10 @@ inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_UNORM;
 // Motion vectors: x, y in pixels and the last frame's depth; float32, so that a test's tolerance
 // is the projection's rounding alone and a reprojected depth keeps a far surface apart.
 inline constexpr VkFormat kMotionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+// The translucent layer's maps: the coloured map's product (half floats: every device blends
+// them) and the moments (32-bit floats, which Muenstermann et al.'s bias assumes; a device must
+// blend them: Renderer::check).
+inline constexpr VkFormat kTranslucentProductFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kTranslucentMomentsFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 } // namespace penumbra::render

@@ -9,9 +9,11 @@
 #include "render/frame.h"
 #include "render/frame_data.h"
 #include "render/frame_targets.h"
+#include "render/pipelines.h"
 #include "render/renderer_impl.h"
 #include "shadows/layer.h"
 #include "shadows/technique.h"
+#include "translucent.h"
 #include "vk/context.h"
 #include "vk/resources.h"
 
@@ -208,6 +210,37 @@ const vk::Context& Renderer::context() const {
     return mImpl->ctx;
 }
 
+namespace {
+
+// The translucent layer, on a scene with translucent casters (elsewhere it does not run): whole
+// maps drawn from the light (not virtual ones, not a distance field's tracer, whose field takes
+// translucent casters as opaque), and a device that blends 32-bit float moments.
+void checkTranslucentLayer(const vk::Context& ctx, const Scene& scene, const RenderOptions& o) {
+    const uint32_t method = shadows::translucentLayer().translucentMethod(o.parameters);
+    if (method == TRANSLUCENT_OFF ||
+        std::none_of(scene.materials.begin(), scene.materials.end(),
+                     [](const Material& m) { return m.translucent(); }))
+        return;
+    if (o.parameters.number("virtual.enabled") != 0.0)
+        throw InputError("translucent.method", "translucent shadows need whole shadow maps: "
+                                               "virtual.enabled=1 does not draw them yet");
+    if (!shadows::drawsLightMaps(shadows::moduleOf(o.technique)))
+        throw InputError("translucent.method",
+                         fmt::format("{} draws no shadow map from the light; translucent "
+                                     "shadows need one",
+                                     shadows::moduleOf(o.technique).info.name));
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), render::kTranslucentMomentsFormat,
+                                        &properties);
+    if (method == TRANSLUCENT_MOMENTS &&
+        !(properties.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT))
+        throw InputError("translucent.method", "this device does not blend 32-bit float "
+                                               "colour attachments, which the moments add up in "
+                                               "(translucent.method=coloured does not need it)");
+}
+
+} // namespace
+
 void Renderer::check(const Scene& scene, const RenderOptions& o) const {
     validate(o);
     if (scene.triangleCount() == 0)
@@ -215,6 +248,7 @@ void Renderer::check(const Scene& scene, const RenderOptions& o) const {
     (void)scene.camera(o.camera); // throws for an unknown camera name
     checkDeviceLimits(mImpl->ctx, o, shadowCount(scene, o));
     checkVirtualMaps(mImpl->ctx, scene, o);
+    checkTranslucentLayer(mImpl->ctx, scene, o);
     if (const auto& declared = shadows::moduleOf(o.technique).tracedField)
         render::checkDistanceField(mImpl->ctx, scene,
                                    render::FieldSetting::of(*declared, o.parameters));

@@ -409,6 +409,14 @@ SceneRenderer::Impl::prepare(const RenderOptions& o, const FrameState& state, si
         reservePageBuffers(slot, views.tableEntries);
     render::FrameSettings settings = render::frameSettings(o, lights, views, blocks, intermediates);
     settings.pages = &pageDraws;
+    // The translucent layer runs where translucent casters are: elsewhere the frame is the same
+    // as without it.
+    std::erase_if(settings.layers, [&](const shadows::LayerModule* layer) {
+        return layer->translucentMethod && !gpu.hasTranslucent();
+    });
+    for (const shadows::LayerModule* layer : settings.layers)
+        if (layer->translucentMethod)
+            settings.translucent = layer->translucentMethod(o.parameters);
     VkBuffer pageTable = slot.pageTable.get(), pageRenderList = VK_NULL_HANDLE;
     if (const VirtualSettings v = VirtualSettings::of(o.parameters);
         !views.levels.empty() && v.deviceDecides) {

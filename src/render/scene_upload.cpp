@@ -1,8 +1,10 @@
 #include "render/scene_upload.h"
 
 #include "skinning.h"
+#include "translucent.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstring>
 #include <span>
@@ -26,13 +28,16 @@ constexpr VkBufferUsageFlags kPreviousUsage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
     VK_BUFFER_USAGE_TRANSFER_SRC_BIT; // read back by the tests
 
-// The index buffer's order: grouped by material, the alpha-tested ones last.
+// The index buffer's order: grouped by material, the opaque ones first, then the alpha-tested
+// ones, the translucent ones last.
 struct IndexLayout {
     std::vector<DrawBatch> batches;
     std::vector<uint32_t> indices;
     std::vector<uint32_t> triangles; // the scene triangle of each of `indices`' triangles
-    uint32_t opaqueIndexCount = 0;
+    uint32_t opaqueIndexCount = 0, translucentFirstIndex = 0;
 };
+
+enum class Group { Opaque, AlphaTested, Translucent };
 
 IndexLayout layoutIndices(const Scene& scene) {
     IndexLayout out;
@@ -45,13 +50,20 @@ IndexLayout layoutIndices(const Scene& scene) {
                     scene.indices.begin() + static_cast<long>(3 * t + 3));
         trianglesOf[m < materialCount ? m : 0].push_back(static_cast<uint32_t>(t));
     }
-    auto alphaTested = [&](size_t m) {
-        return m < scene.materials.size() && scene.materials[m].alphaTested();
+    auto groupOf = [&](size_t m) {
+        if (m >= scene.materials.size())
+            return Group::Opaque;
+        const Material& material = scene.materials[m];
+        return material.translucent()   ? Group::Translucent
+               : material.alphaTested() ? Group::AlphaTested
+                                        : Group::Opaque;
     };
     out.indices.reserve(scene.indices.size());
-    for (const bool tested : {false, true})
+    for (const Group group : {Group::Opaque, Group::AlphaTested, Group::Translucent}) {
+        if (group == Group::Translucent)
+            out.translucentFirstIndex = static_cast<uint32_t>(out.indices.size());
         for (size_t m = 0; m < materialCount; ++m) {
-            if (alphaTested(m) != tested || byMaterial[m].empty())
+            if (groupOf(m) != group || byMaterial[m].empty())
                 continue;
             const bool coloured =
                 std::any_of(byMaterial[m].begin(), byMaterial[m].end(),
@@ -62,9 +74,10 @@ IndexLayout layoutIndices(const Scene& scene) {
                                    .vertexColors = coloured});
             out.indices.insert(out.indices.end(), byMaterial[m].begin(), byMaterial[m].end());
             out.triangles.insert(out.triangles.end(), trianglesOf[m].begin(), trianglesOf[m].end());
-            if (!tested)
+            if (group == Group::Opaque)
                 out.opaqueIndexCount = static_cast<uint32_t>(out.indices.size());
         }
+    }
     return out;
 }
 
@@ -106,6 +119,26 @@ bool sameBindData(const SkinnedVertex& a, const SkinnedVertex& b) {
 
 } // namespace
 
+gpu::TranslucentCasterPush translucentConstants(const Material& m) {
+    uint32_t flags = m.baseColorTexture >= 0 ? TRANSLUCENT_TEXTURE : 0u;
+    if (m.alphaMode == AlphaMode::Blend)
+        flags |= TRANSLUCENT_BLEND;
+    if (m.alphaMode == AlphaMode::Mask)
+        flags |= TRANSLUCENT_MASK;
+    // Scene::transmittance's volume: each face keeps the square root of the tint and half the
+    // path's Beer-Lambert attenuation over the thickness.
+    glm::vec3 perUnit(0.0f);
+    if (m.thickness > 0.0f) {
+        flags |= TRANSLUCENT_VOLUME;
+        if (std::isfinite(m.attenuationDistance) && m.attenuationDistance > 0.0f)
+            perUnit = -glm::log(glm::clamp(m.attenuationColor, 0.0f, 1.0f)) / m.attenuationDistance;
+    }
+    return {.bias = {0.0f, m.alphaCutoff, m.transmission, 0.0f},
+            .baseColor = m.baseColor,
+            .attenuation = glm::vec4(glm::exp(-perUnit * (0.5f * m.thickness)), 0.0f),
+            .flags = {flags, 0u, 0u, 0u}};
+}
+
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
     GpuScene out;
     out.textures = uploadTextures(ctx, scene);
@@ -118,7 +151,8 @@ GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
                            .alphaTest = material.alphaTested() ? 1u : 0u,
                            .hasTexture = material.baseColorTexture >= 0 ? 1u : 0u},
              .texture = out.textures.of(scene, material),
-             .doubleSided = material.doubleSided});
+             .doubleSided = material.doubleSided,
+             .translucent = translucentConstants(material)});
     }
     uploadGeometry(ctx, out, scene);
     return out;
@@ -128,6 +162,7 @@ void uploadGeometry(const vk::Context& ctx, GpuScene& out, const Scene& scene) {
     IndexLayout layout = layoutIndices(scene);
     out.batches = std::move(layout.batches);
     out.opaqueIndexCount = layout.opaqueIndexCount;
+    out.translucentFirstIndex = layout.translucentFirstIndex;
     out.clusters =
         makeClusters(positionsOf(scene.vertices), layout.indices, batchStarts(out.batches));
     out.triangleOf = std::move(layout.triangles);

@@ -7,6 +7,7 @@
 #include "penumbra/scene.h"
 #include "render/culling.h"
 #include "render/textures.h"
+#include "translucent.h"
 #include "vk/resources.h"
 
 #include <optional>
@@ -21,8 +22,10 @@ struct DrawBatch {
     bool vertexColors; // some vertex's colour is not opaque white (else the G-buffer skips them)
 };
 
-// Indices are grouped by material, the alpha-tested materials last, so that the shadow pass
-// draws every opaque caster in one call and only the alpha-tested ones per material.
+// Indices are grouped by material, the alpha-tested materials after the opaque ones and the
+// translucent ones (Material::translucent) last, so that the shadow pass draws every opaque
+// caster in one call and only the others per material, and the translucent layer leaves the
+// translucent ones out of the depth map.
 struct GpuScene {
     vk::Buffer vertices, indices;
     vk::Buffer positions;          // the vertices' positions alone: the opaque casters' shadow pass
@@ -30,12 +33,17 @@ struct GpuScene {
     std::vector<uint32_t> triangleOf; // the scene triangle of each of the index buffer's
     uint32_t indexCount = 0;
     uint32_t opaqueIndexCount = 0; // indices [0, opaqueIndexCount) have no alpha test
+    // Indices [translucentFirstIndex, indexCount) are translucent casters' (a batch each).
+    uint32_t translucentFirstIndex = 0;
+    bool hasTranslucent() const { return translucentFirstIndex < indexCount; }
     std::vector<DrawBatch> batches;
     GpuTextures textures;
     struct Material {
         gpu::MaterialPush constants;
         GpuTextures::Binding texture; // the 1x1 white texture when it has none
         bool doubleSided;
+        // What its draw into the translucent layer's maps pushes, the view's fields aside.
+        gpu::TranslucentCasterPush translucent;
     };
     std::vector<Material> materials; // per Scene::materials
     // Skinned vertices (Scene::skinning): what the frame's `skin` pass reads to place them in
@@ -58,6 +66,8 @@ struct GpuScene {
     bool moved = false, drawn = false;
 };
 GpuScene uploadScene(const vk::Context& ctx, const Scene& scene);
+// A material's constants for its translucent caster draws (translucent_caster.glsl).
+gpu::TranslucentCasterPush translucentConstants(const Material& material);
 // The geometry alone uploaded again (vertices, positions, indices, batches, clusters), the
 // textures and materials kept: the scene posed at another time (SceneRenderer::repose). No frame
 // may be in flight that reads the old buffers.

@@ -29,9 +29,11 @@ struct ReadMap {
 // One depth pass of the scene from a light (world -> clip `viewProj`) into layer `layer` of
 // `target`, over `area` (the whole layer when null), cleared to the far plane first, with the
 // hardware slope bias and the constant bias of the vertex shader. Opaque casters go in one draw;
-// alpha-tested ones per material with their texture. `reads` set: a technique's extra depth pass
-// (a depth peel), which draws every caster with its pipeline, the read map's layer at binding 0.
-// `set`: the clusters drawn; CasterSet::Dynamic draws over what the area holds, uncleared.
+// alpha-tested ones per material with their texture, and so do translucent ones, unless the
+// translucent layer draws them into maps of their own (drawnInDepthMap). `reads` set: a technique's
+// extra depth pass (a depth peel), which draws every caster with its pipeline, the read map's layer
+// at binding 0. `set`: the clusters drawn; CasterSet::Dynamic draws over what the area holds,
+// uncleared.
 void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                       const PooledImage& target, uint32_t layer, const glm::mat4& viewProj,
                       bool perspective, const FrameSettings& s, const ReadMap* reads,
@@ -83,7 +85,7 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
             draw(0, scene.opaqueIndexCount);
         }
         for (const DrawBatch& batch : scene.batches)
-            if (batch.firstIndex >= scene.opaqueIndexCount) {
+            if (batch.firstIndex >= scene.opaqueIndexCount && drawnInDepthMap(scene, s, batch)) {
                 const GpuScene::Material& material = scene.materials[batch.material];
                 push.material = material.constants;
                 pushFor(material.texture);
@@ -103,7 +105,7 @@ void renderLightDepth(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& sc
         if (scene.indexCount > scene.opaqueIndexCount)
             bind(perspective ? p.shadowMaskPerspective.get() : p.shadowMaskOrtho.get());
         for (const DrawBatch& batch : scene.batches)
-            if (batch.firstIndex >= scene.opaqueIndexCount) {
+            if (batch.firstIndex >= scene.opaqueIndexCount && drawnInDepthMap(scene, s, batch)) {
                 const GpuScene::Material& material = scene.materials[batch.material];
                 vk::PushDescriptors()
                     .sampled(MASK_TEXTURE, material.texture.view, material.texture.sampler)

@@ -9,7 +9,8 @@
 namespace penumbra::shadows {
 
 std::span<const LayerModule* const> allLayers() {
-    static const LayerModule* const layers[] = {&contactLayer(), &temporalLayer()};
+    static const LayerModule* const layers[] = {&contactLayer(), &temporalLayer(),
+                                                &translucentLayer()};
     return layers;
 }
 

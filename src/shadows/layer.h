@@ -42,6 +42,12 @@ struct LayerModule {
     // The frames a render draws before its timed ones while this layer is on (what its history
     // needs to hold a pose's steady state); null: the one warm-up frame every render draws.
     uint32_t (*warmUpFrames)(const ParameterValues&) = nullptr;
+    // A layer that reads the translucent casters' maps (the translucent layer): the method
+    // (TRANSLUCENT_*, translucent.h) whose maps the frame draws from the light, the translucent
+    // casters then left out of the depth map. It runs only on scenes with translucent casters,
+    // on its own layout (TRANSLUCENT_LAYER_*, with the LAYER_* bindings but the trace list and
+    // the results).
+    uint32_t (*translucentMethod)(const ParameterValues&) = nullptr;
 };
 
 // The registered layers, in the order a light's evaluation runs them.
@@ -53,6 +59,7 @@ std::vector<const LayerModule*> enabledLayers(const ParameterValues& params);
 
 const LayerModule& contactLayer();
 const LayerModule& temporalLayer();
+const LayerModule& translucentLayer();
 // Whether a layer these parameters switch on keeps a history (LayerModule::history).
 bool keepsHistory(const ParameterValues& params);
 

@@ -9,14 +9,21 @@ namespace penumbra::shadows {
 ColouredTexel colouredTexel(std::span<const TranslucentLayer> layers) {
     ColouredTexel texel;
     for (const TranslucentLayer& layer : layers) {
-        texel.nearest = std::min(texel.nearest, layer.depth);
+        if (layer.depth < texel.nearest) {
+            texel.nearest = layer.depth;
+            texel.front = layer.transmittance;
+        }
         texel.product *= layer.transmittance;
     }
+    for (const TranslucentLayer& layer : layers)
+        if (layer.depth > texel.nearest)
+            texel.second = std::min(texel.second, layer.depth);
     return texel;
 }
 
 glm::vec3 colouredTransmittance(const ColouredTexel& texel, float depth) {
-    return gpu::colouredMapTransmittance(texel.product, texel.nearest, depth);
+    return gpu::colouredMapTransmittance(texel.front, texel.product, texel.nearest, texel.second,
+                                         depth);
 }
 
 MomentTexel momentTexel(std::span<const TranslucentLayer> layers) {

@@ -19,11 +19,13 @@ struct TranslucentLayer {
     glm::vec3 transmittance;
 };
 
-// Coloured transmittance map: the nearest surface's depth (1 when there is none) and the product
-// of every surface's transmittance (multiplicative blending).
+// Coloured transmittance map: the nearest surface's depth (1 when there is none) and what it lets
+// through (the first listed of those at that depth, as the depth test keeps the first drawn), the
+// second nearest depth (the nearest past it; 1 when there is none) and the product of every
+// surface's transmittance (multiplicative blending).
 struct ColouredTexel {
-    float nearest = 1.0f;
-    glm::vec3 product{1.0f};
+    float nearest = 1.0f, second = 1.0f;
+    glm::vec3 front{1.0f}, product{1.0f};
 };
 ColouredTexel colouredTexel(std::span<const TranslucentLayer> layers);
 glm::vec3 colouredTransmittance(const ColouredTexel& texel, float depth);

@@ -249,12 +249,25 @@ PipelineHandle createGraphicsPipeline(const Context& ctx, const PipelineLayout& 
         .rasterizationSamples = VK_SAMPLE_COUNT_1_BIT};
     const VkPipelineDepthStencilStateCreateInfo depth{
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
-        .depthTestEnable = VK_TRUE,
-        .depthWriteEnable = VK_TRUE,
+        .depthTestEnable = desc.depthFormat != VK_FORMAT_UNDEFINED ? VK_TRUE : VK_FALSE,
+        .depthWriteEnable = desc.depthFormat != VK_FORMAT_UNDEFINED ? VK_TRUE : VK_FALSE,
         .depthCompareOp = desc.depthCompare};
+    // Multiply: source x destination (the factors ZERO and SRC_COLOR); Add: source + destination.
+    const bool blending = desc.blend != Blend::None;
+    const VkBlendFactor source =
+        desc.blend == Blend::Multiply ? VK_BLEND_FACTOR_ZERO : VK_BLEND_FACTOR_ONE;
+    const VkBlendFactor destination =
+        desc.blend == Blend::Multiply ? VK_BLEND_FACTOR_SRC_COLOR : VK_BLEND_FACTOR_ONE;
     std::vector<VkPipelineColorBlendAttachmentState> blends(
         desc.colorFormats.size(),
-        {.blendEnable = VK_FALSE,
+        {.blendEnable = blending ? VK_TRUE : VK_FALSE,
+         .srcColorBlendFactor = source,
+         .dstColorBlendFactor = destination,
+         .colorBlendOp = VK_BLEND_OP_ADD,
+         .srcAlphaBlendFactor = source,
+         .dstAlphaBlendFactor =
+             desc.blend == Blend::Multiply ? VK_BLEND_FACTOR_SRC_ALPHA : VK_BLEND_FACTOR_ONE,
+         .alphaBlendOp = VK_BLEND_OP_ADD,
          .colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                            VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT});
     const VkPipelineColorBlendStateCreateInfo blend{

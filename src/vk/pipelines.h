@@ -66,14 +66,19 @@ PipelineHandle createComputePipeline(const Context& ctx, const PipelineLayout& l
                                      std::string_view shader,
                                      std::span<const SpecConstant> constants = {});
 
+// How a colour attachment combines what a fragment writes with what it holds: replaced, or
+// multiplied or added in (the translucent layer's maps: order-independent).
+enum class Blend { None, Multiply, Add };
+
 struct GraphicsPipelineDesc {
     std::string_view vertexShader;
     std::string_view fragmentShader; // empty: depth-only
     uint32_t vertexStride = 0;
     std::vector<VkVertexInputAttributeDescription> attributes;
     std::vector<VkFormat> colorFormats;
-    VkFormat depthFormat = VK_FORMAT_D32_SFLOAT;
+    VkFormat depthFormat = VK_FORMAT_D32_SFLOAT; // VK_FORMAT_UNDEFINED: no depth test
     VkCompareOp depthCompare = VK_COMPARE_OP_LESS_OR_EQUAL;
+    Blend blend = Blend::None; // every colour attachment's
     bool depthClamp = false;
     bool depthBias = false;              // values set per draw with vkCmdSetDepthBias
     bool dynamicCullMode = false;        // set per draw with vkCmdSetCullMode (default none)
