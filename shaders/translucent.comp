@@ -3,9 +3,10 @@
 // one light. Each pixel reads its light's translucent maps at its shadow view (a point light's
 // cube face, a sun's cascade by view distance), in the 2x2 texels around it: what the coloured
 // map keeps at the pixel's depth (nothing, the nearest surface's transmittance or the product),
-// or the transmittance the moments reconstruct there (translucent.h), weighed bilinearly. The light's visibility
-// is multiplied by the luminance of the result (Rec. 709: the one channel a frame keeps per
-// light so far). Background pixels and pixels outside the views are left as they are.
+// or the transmittance the moments reconstruct there (translucent.h), weighed bilinearly. The
+// light's visibility times the result is the light per channel (TRANSLUCENT_LAYER_COLOUR), and
+// the visibility becomes its luminance (Rec. 709: the one channel the composite and the metrics
+// read). Outside the views nothing is tinted; the background stays NaN.
 #include "frame_block.h"
 #include "light_geometry.h"
 #include "bindings.h"
@@ -31,6 +32,7 @@ layout(set = 0, binding = TRANSLUCENT_LAYER_VIEWS, std140) uniform Views { Shado
 layout(set = 0, binding = TRANSLUCENT_LAYER_NEAREST) uniform sampler2DArray nearestDepth;
 layout(set = 0, binding = TRANSLUCENT_LAYER_SECOND) uniform sampler2DArray secondDepth;
 layout(set = 0, binding = TRANSLUCENT_LAYER_MAPS) uniform sampler2DArray maps[TRANSLUCENT_MAPS];
+layout(set = 0, binding = TRANSLUCENT_LAYER_COLOUR, rgba32f) uniform writeonly image2DArray colour;
 layout(push_constant) uniform Push { VisibilityPush push; };
 
 // View k of the dispatch's light, read at a uniform index (visibility.comp's viewOf).
@@ -79,26 +81,30 @@ void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = frame.imageSize.xy;
     if (any(greaterThanEqual(uvec2(p), size))) return;
-    float depth = texelFetch(gDepth, p, 0).r;
-    if (isBackground(depth)) return; // NaN stays
-    vec3 world = worldPosition(frame.invViewProj, p, size, depth);
-    LightData light = lights[push.light.x];
-    uint k = lightViewOf(light, world);
-    if (LIGHT_TYPE == LIGHT_DIRECTIONAL && LIGHT_VIEWS > 1u) {
-        // A sun's cascade: the first whose slice reaches the pixel's view distance.
-        float distance = dot(world - frame.position.xyz, frame.cameraForward.xyz);
-        bool further = true;
-        for (uint j = 0u; j + 1u < LIGHT_VIEWS; ++j) {
-            further = further && distance > views[push.light.w + j].cascade.x;
-            k += further ? 1u : 0u;
-        }
-    }
-    ShadowViewData view = viewOf(k);
-    // No normal offset: the maps push each surface back by its slope (casterDepth), and a
-    // receiver moved off its surface would read the texels beside its own.
-    ShadowCoord c = projectToShadowMap(view, world);
-    if (!c.inside) return;
-    vec3 t = transmittanceAt(view, c.uv, c.depth);
     ivec3 at = ivec3(p, int(push.light.y));
-    imageStore(visibility, at, vec4(imageLoad(visibility, at).r * dot(t, TRANSLUCENT_LUMINANCE)));
+    float v = imageLoad(visibility, at).r; // NaN on the background, which stays
+    vec3 t = vec3(1.0);
+    float depth = texelFetch(gDepth, p, 0).r;
+    if (!isBackground(depth)) {
+        vec3 world = worldPosition(frame.invViewProj, p, size, depth);
+        LightData light = lights[push.light.x];
+        uint k = lightViewOf(light, world);
+        if (LIGHT_TYPE == LIGHT_DIRECTIONAL && LIGHT_VIEWS > 1u) {
+            // A sun's cascade: the first whose slice reaches the pixel's view distance.
+            float distance = dot(world - frame.position.xyz, frame.cameraForward.xyz);
+            bool further = true;
+            for (uint j = 0u; j + 1u < LIGHT_VIEWS; ++j) {
+                further = further && distance > views[push.light.w + j].cascade.x;
+                k += further ? 1u : 0u;
+            }
+        }
+        ShadowViewData view = viewOf(k);
+        // No normal offset: the maps push each surface back by its slope (casterDepth), and a
+        // receiver moved off its surface would read the texels beside its own.
+        ShadowCoord c = projectToShadowMap(view, world);
+        if (c.inside) t = transmittanceAt(view, c.uv, c.depth);
+    }
+    // The light per channel, and its luminance in the one channel the frame keeps.
+    imageStore(colour, at, vec4(v * t, 0.0));
+    imageStore(visibility, at, vec4(v * dot(t, TRANSLUCENT_LUMINANCE)));
 }

@@ -123,6 +123,36 @@ TEST(CliOutputs, TheTruthThroughTranslucentCastersIsRgb) {
     }
 }
 
+// The translucent layer's render writes its light per channel as the truth does (R, G, B, red
+// and blue apart where a filter tints), its luminance the visibility a grey row writes; without
+// the layer, one channel. So do compare's rows.
+TEST(CliOutputs, TheTranslucentLayerWritesRgb) {
+    for (const char* method : {"moments", "off"}) {
+        const bool on = std::string(method) != "off";
+        const fs::path out = outputScratch(std::string("rgb-render-") + method);
+        const ProcessResult r =
+            runCli({"render", "builtin:sheets", "-o", out.string(), "--width", "48", "--height",
+                    "32", "--shadow-map-size", "256", "--frames", "1", "--set",
+                    std::string("translucent.method=") + method, "--technique", "hard"});
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const FloatImage pfm = readPfm(out / "visibility.pfm");
+        EXPECT_EQ(pfm.channels, on ? 3u : 1u) << method;
+        expectSameImage(pfm, readExr(out / "visibility.exr"), "visibility");
+        size_t coloured = 0;
+        for (size_t i = 0; on && i + 2 < pfm.pixels.size(); i += 3)
+            coloured += std::abs(pfm.pixels[i] - pfm.pixels[i + 2]) > 0.2f;
+        EXPECT_EQ(coloured > 20, on) << coloured;
+    }
+    const fs::path out = outputScratch("rgb-compare");
+    const ProcessResult r =
+        runCli({"compare", "builtin:sheets", "-o", out.string(), "--techniques",
+                "hard,hard+translucent", "--width", "48", "--height", "32", "--shadow-map-size",
+                "256", "--frames", "1", "--samples", "1", "--format", "pfm"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(readPfm(out / "hard.visibility.pfm").channels, 1u);
+    EXPECT_EQ(readPfm(out / "hard-translucent.visibility.pfm").channels, 3u);
+}
+
 TEST(CliOutputs, WideComparisonsShowReducedImagesAndLinkTheFullSizeFiles) {
     // 1000 pixels across is past the page's 960: every image is shown at half size, and the
     // lit image and heat map link their full-size files, which compare writes beside the page.

@@ -282,8 +282,12 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
         }
         for (size_t l = 0; l < result.visibility.size(); ++l) {
             const std::string light = l == 0 ? "" : fmt::format("_{}", l);
-            writeFloatImage(out, prefix + ".visibility" + light, args.format, w, h, 1,
-                            result.visibility[l]);
+            if (l < result.transmittance.size()) // the translucent layer's light per channel
+                writeFloatImage(out, prefix + ".visibility" + light, args.format, w, h, 3,
+                                result.transmittance[l]);
+            else
+                writeFloatImage(out, prefix + ".visibility" + light, args.format, w, h, 1,
+                                result.visibility[l]);
             if (l < truth.visibility.size()) // the heat map's data: this row minus the truth
                 writeFloatImage(out, prefix + ".difference" + light, args.format, w, h, 1,
                                 signedError(result.visibility[l], truth.visibility[l]));

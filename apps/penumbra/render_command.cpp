@@ -33,7 +33,7 @@ struct RenderArgs {
 void writeOutputs(StagedOutputDir& out, const RenderResult& r, const RenderRun& run,
                   FloatFormat format) {
     out.write("image.png", encodePng(r.width, r.height, 4, r.image));
-    writeViewFiles(out, r, r.visibility, format);
+    writeViewFiles(out, r, r.visibility, format, r.transmittance);
     if (run.options.motion && !r.motion.empty()) // a history layer makes them too, unasked
         writeFloatImage(out, "motion", format, r.width, r.height, 3, r.motion);
     const std::string stats = renderStats(run).dump(2) + "\n";

@@ -188,6 +188,10 @@ struct RenderResult {
     // reverse-Z); NaN as above. Zero motion on a first frame, after a cut, and for a frame of
     // the same pose and camera as the one before.
     std::vector<float> motion;
+    // With the translucent layer on a scene with translucent casters, per shadow-casting light:
+    // the light that arrives per channel (linear RGB, 3 floats a pixel; NaN = background), of which
+    // `visibility` is the luminance (Rec. 709), as ReferenceResult::transmittance. Empty otherwise.
+    std::vector<std::vector<float>> transmittance;
     std::vector<PassTime> passes;
     std::vector<LightShadow> lights;
     std::optional<DistanceFieldInfo> field;    // sdf only

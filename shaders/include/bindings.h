@@ -117,6 +117,7 @@
 #define TRANSLUCENT_LAYER_MAPS 13     // TRANSLUCENT_MAPS maps: the nearest's transmittance and the
                                       // product (the product again in the last two slots), or
                                       // the absorbance and the three channels' moments
+#define TRANSLUCENT_LAYER_COLOUR 15   // RGBA32F array, a layer per light: the light per channel
 #define TRANSLUCENT_MAPS 4
 #define EXPORT_GBUFFER_DEPTH 1   // export.comp
 #define EXPORT_GBUFFER_NORMAL 2

@@ -108,8 +108,9 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
         module, *s.params, r.depthMap, {r.integerPlaceholder, r.depthPlaceholder},
         ownMaps ? std::function([&](std::string_view name) { return r.named(module, name); })
                 : nullptr);
-    r.readback = graph.declare(
-        ReadbackLayout(s.sizes.width, s.sizes.height, s.sizes.shadowLights, s.motion).decl());
+    r.readback = graph.declare(ReadbackLayout(s.sizes.width, s.sizes.height, s.sizes.shadowLights,
+                                              s.motion, s.translucent != 0)
+                                   .decl());
     // Built (or made) sampled, and only ever sampled.
     r.field = graph.importImage(std::string(target::kField), *in.field, Access::ComputeSampled);
     r.frame = graph.importBuffer(std::string(target::kFrameBlock), in.frame);
@@ -122,9 +123,11 @@ FrameResources declareFrame(FrameGraph& graph, const FrameSettings& s, const Fra
         r.pageRequests = graph.importBuffer(std::string(target::kPageRequests), in.pageRequests);
     if (s.devicePages)
         r.pageRenderList = graph.importBuffer("pages.renderList", in.pageRenderList);
-    if (s.translucent != 0)
+    if (s.translucent != 0) {
         for (const ImageDecl& decl : translucentMapDecls(s.translucent))
             r.translucentMaps.push_back(graph.declare(decl));
+        r.translucentColour = screen(target::kTranslucentColour);
+    }
     r.traceList = graph.declare(traceListDecl(s.sizes.width, s.sizes.height,
                                               shadows::checkerboardFill(screenPasses) != nullptr));
     return r;

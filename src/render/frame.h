@@ -147,6 +147,7 @@ struct FrameResources {
     // The translucent layer's maps (translucentMapDecls; FrameSettings::translucent), empty when
     // it does not run.
     std::vector<ResourceId> translucentMaps;
+    ResourceId translucentColour = 0; // its light per channel, a layer per light (0: none)
     // The map a module calls `name` (shadows::kDepthMap or one of its own).
     // `<name> (previous)`: last frame's version of a map declared with history.
     ResourceId named(const shadows::TechniqueModule& module, std::string_view name) const;

@@ -6,6 +6,8 @@
 #include "render/pipelines.h"
 #include "translucent.h"
 
+#include <algorithm>
+
 namespace penumbra::render {
 
 std::string target::shadowMap(std::string_view name) {
@@ -150,6 +152,8 @@ std::vector<ImageDecl> screenDecls(bool intermediates) {
         screen(target::kGBufferMotion, kMotionFormat,
                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled | VK_IMAGE_USAGE_TRANSFER_SRC_BIT),
         screen(target::kVisibility, VK_FORMAT_R32_SFLOAT, kStorageOut | kSampled, true),
+        // The translucent layer's light per channel (declared when the layer runs).
+        screen(target::kTranslucentColour, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut, true),
         // The screen passes' scratch (shadows::kScreenScratch; declared when one binds it).
         screen(target::kScreenScratch, VK_FORMAT_R32_SFLOAT, kStorageOut, true),
         screen(target::kColor, VK_FORMAT_R8G8B8A8_UNORM, kStorageOut),
@@ -208,7 +212,7 @@ ImageDecl integerPlaceholderDecl() {
 }
 
 ReadbackLayout::ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers,
-                               bool withMotion) {
+                               bool withMotion, bool withColour) {
     const VkDeviceSize pixels = VkDeviceSize{width} * height;
     VkDeviceSize offset = 0;
     // A copy's buffer offset must be a multiple of its format's texel block (Vulkan: up to 16
@@ -226,6 +230,8 @@ ReadbackLayout::ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibil
     faceNormal = part(target::kFaceNormal, pixels * 16);
     if (withMotion)
         motion = part(target::kGBufferMotion, pixels * 16);
+    if (withColour)
+        colour = part(target::kTranslucentColour, pixels * 16 * std::max(visibilityLayers, 1u));
     bytes = offset;
 }
 
@@ -244,17 +250,23 @@ TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterV
         bytes.shadowMaps += ResourcePool::bytesOf(decl, sizes);
     if (const std::optional<ImageDecl> decl = staticPoolDecl(module, params))
         bytes.shadowMaps += ResourcePool::bytesOf(*decl, sizes);
+    const std::vector<const shadows::LayerModule*> layers = shadows::enabledLayers(params);
+    const bool colour = std::any_of(layers.begin(), layers.end(), [](const auto* layer) {
+        return layer->translucentMethod != nullptr;
+    });
     for (const ImageDecl& decl : screenDecls(false))
-        if (motion || decl.name != target::kGBufferMotion)
+        if ((motion || decl.name != target::kGBufferMotion) &&
+            (colour || decl.name != target::kTranslucentColour))
             bytes.screen += ResourcePool::bytesOf(decl, sizes);
-    for (const shadows::LayerModule* layer : shadows::enabledLayers(params)) {
+    for (const shadows::LayerModule* layer : layers) {
         if (layer->history) // bytesOf counts its two versions, last frame's and this frame's
             bytes.screen += ResourcePool::bytesOf(layerHistoryDecl(*layer, module, params), sizes);
         if (layer->translucentMethod) // whether or not the scene has translucent casters
             for (const ImageDecl& decl : translucentMapDecls(layer->translucentMethod(params)))
                 bytes.shadowMaps += ResourcePool::bytesOf(decl, sizes);
     }
-    bytes.screen += ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights, motion).bytes;
+    bytes.screen +=
+        ReadbackLayout(sizes.width, sizes.height, sizes.shadowLights, motion, colour).bytes;
     const bool checkerboard =
         shadows::checkerboardFill(shadows::screenPassesOf(module, params)) != nullptr;
     bytes.screen += traceListDecl(sizes.width, sizes.height, checkerboard).bytes;

@@ -27,7 +27,10 @@ inline constexpr std::string_view kGBufferMotion = "gbuffer.motion";
 inline constexpr std::string_view kVisibility = "visibility";       // R32F, a layer per light
 inline constexpr std::string_view kIntermediates = "intermediates"; // RGBA32F (1x1 unless asked)
 inline constexpr std::string_view kScreenScratch = shadows::kScreenScratch; // R32F, as visibility
-inline constexpr std::string_view kLayerResults = "layer.results";   // R32F (1x1 unless asked)
+inline constexpr std::string_view kLayerResults = "layer.results"; // R32F (1x1 unless asked)
+// The translucent layer's light per channel (RGBA32F, a layer per light;
+// FrameSettings::translucent).
+inline constexpr std::string_view kTranslucentColour = "translucent.colour";
 inline constexpr std::string_view kColor = "color";                  // RGBA8, sRGB-encoded values
 inline constexpr std::string_view kPosition = "export.position";     // RGBA32F, for the host
 inline constexpr std::string_view kNormal = "export.normal";         // RGBA32F, for the host
@@ -103,15 +106,17 @@ ImageDecl depthPlaceholderDecl();
 uint64_t historyKeyOf(std::span<const ShadowView> views);
 
 // The readback buffer: colour, every visibility layer, position, normal, face normal and, with
-// `motion`, the motion vectors, tightly packed in that order.
+// `motion`, the motion vectors, with `colour` the translucent layer's light per channel, tightly
+// packed in that order.
 struct ReadbackLayout {
     struct Part {
         std::string_view target;
         VkDeviceSize offset, bytes;
     };
-    ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers, bool motion = false);
+    ReadbackLayout(uint32_t width, uint32_t height, uint32_t visibilityLayers, bool motion = false,
+                   bool colour = false);
     Part color, visibility, position, normal, faceNormal;
-    std::optional<Part> motion;
+    std::optional<Part> motion, colour;
     VkDeviceSize bytes;
     BufferDecl decl() const;
 };
@@ -126,7 +131,8 @@ BufferDecl traceListDecl(uint32_t width, uint32_t height, bool checkerboard);
 struct TargetBytes {
     uint64_t shadowMaps, screen;
 };
-// `motion`: the frame makes motion vectors (FrameSettings::motion).
+// `motion`: the frame makes motion vectors (FrameSettings::motion); the translucent layer's light
+// per channel counts where the layer is on.
 TargetBytes targetBytes(const shadows::TechniqueModule& module, const ParameterValues& params,
                         const FrameSizes& sizes, bool motion = false);
 

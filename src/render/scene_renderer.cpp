@@ -699,7 +699,8 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
     if (progress)
         progress("reading back");
     const render::ReadbackLayout layout(o.width, o.height, prepared.settings.sizes.shadowLights,
-                                        prepared.settings.motion);
+                                        prepared.settings.motion,
+                                        prepared.settings.translucent != 0);
     const VkBuffer readback = m.pool->findBuffer(render::target::kReadback);
     PENUMBRA_CHECK(readback != VK_NULL_HANDLE, "SceneRenderer: no readback buffer");
     const auto* src = static_cast<const std::byte*>(m.pool->mapped(render::target::kReadback));
@@ -728,6 +729,15 @@ RenderResult SceneRenderer::render(const RenderOptions& o, const FrameState& sta
                                                ? rgba[4 * i + c]
                                                : std::numeric_limits<float>::quiet_NaN();
     }
+    if (layout.colour) // the translucent layer's light per channel, a layer per light
+        for (size_t l = 0; l < prepared.settings.shadowLights.size(); ++l) {
+            std::vector<float>& rgb = result.transmittance.emplace_back(pixels * 3);
+            const auto* rgba =
+                reinterpret_cast<const float*>(src + layout.colour->offset + l * pixels * 16);
+            for (size_t i = 0; i < pixels; ++i)
+                for (int c = 0; c < 3; ++c)
+                    rgb[3 * i + c] = rgba[4 * i + c];
+        }
     return result;
 }
 

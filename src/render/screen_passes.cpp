@@ -95,7 +95,8 @@ void addReadbackPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings
                                          p.exportGBuffer.get());
                        vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
                    }});
-    const ReadbackLayout layout(s.sizes.width, s.sizes.height, s.sizes.shadowLights, s.motion);
+    const ReadbackLayout layout(s.sizes.width, s.sizes.height, s.sizes.shadowLights, s.motion,
+                                s.translucent != 0);
     std::vector<std::pair<ResourceId, ReadbackLayout::Part>> parts{
         {r.color, layout.color},
         {r.visibility, layout.visibility},
@@ -104,6 +105,8 @@ void addReadbackPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings
         {r.faceNormal, layout.faceNormal}};
     if (layout.motion)
         parts.emplace_back(r.gbufferMotion, *layout.motion);
+    if (layout.colour)
+        parts.emplace_back(r.translucentColour, *layout.colour);
     std::vector<Use> uses{{r.readback, Access::TransferWrite}};
     for (const auto& part : parts)
         uses.push_back({part.first, Access::TransferRead});

@@ -179,44 +179,48 @@ void addTranslucentLayerPass(FrameGraph& graph, FramePipelines& p, const FrameSe
     std::array<ResourceId, TRANSLUCENT_MAPS> maps{};
     for (size_t i = 0; i < maps.size(); ++i)
         maps[i] = coloured ? own.at(std::min<size_t>(2 + i, 3)) : own.at(i);
-    std::vector<Use> uses{
-        {r.frame, Access::UniformRead},           {r.lights, Access::UniformRead},
-        {r.views, Access::UniformRead},           {r.layerParams, Access::UniformRead},
-        {r.gbufferDepth, Access::ComputeSampled}, {r.visibility, Access::ComputeReadWrite}};
+    std::vector<Use> uses{{r.frame, Access::UniformRead},
+                          {r.lights, Access::UniformRead},
+                          {r.views, Access::UniformRead},
+                          {r.layerParams, Access::UniformRead},
+                          {r.gbufferDepth, Access::ComputeSampled},
+                          {r.visibility, Access::ComputeReadWrite},
+                          {r.translucentColour, Access::ComputeWrite}};
     for (ResourceId id : r.translucentMaps)
         uses.push_back({id, Access::ComputeSampled});
-    graph.addPass({.name = std::string(layer.name),
-                   .cost = CostGroup::PerPixel,
-                   .phase = Phase::PerLight,
-                   .uses = std::move(uses),
-                   .record = [&p, &s, &in, r, nearest, second, maps, index](PassContext& c) {
-                       std::array<VkImageView, TRANSLUCENT_MAPS> views{};
-                       for (size_t i = 0; i < maps.size(); ++i)
-                           views[i] = c.image(maps[i]).view();
-                       const vk::PipelineLayout& layout = p.translucentLayerLayout();
-                       vk::PushDescriptors()
-                           .uniformBuffer(BIND_FRAME, in.frame)
-                           .uniformBuffer(LAYER_LIGHTS, in.lights)
-                           .sampled(LAYER_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
-                           .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
-                           .uniformBuffer(LAYER_PARAMS, in.layerParams,
-                                          TECHNIQUE_BLOCK_BYTES * index, TECHNIQUE_BLOCK_BYTES)
-                           .uniformBuffer(TRANSLUCENT_LAYER_VIEWS, in.views)
-                           .sampled(TRANSLUCENT_LAYER_NEAREST, c.image(nearest).view(), in.nearest)
-                           .sampled(TRANSLUCENT_LAYER_SECOND, c.image(second).view(), in.nearest)
-                           .sampled(TRANSLUCENT_LAYER_MAPS, views, in.nearest)
-                           .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
-                       for (const LightDispatch& light : s.shadowLights) {
-                           vkCmdBindPipeline(
-                               c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                               p.translucentLayer({{SPEC_LIGHT_TYPE, light.type},
-                                                   {SPEC_LIGHT_VIEWS, light.views},
-                                                   {SPEC_TRANSLUCENT_METHOD, s.translucent}}));
-                           vkCmdPushConstants(c.cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                                              sizeof light.push, &light.push);
-                           vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
-                       }
-                   }});
+    graph.addPass(
+        {.name = std::string(layer.name),
+         .cost = CostGroup::PerPixel,
+         .phase = Phase::PerLight,
+         .uses = std::move(uses),
+         .record = [&p, &s, &in, r, nearest, second, maps, index](PassContext& c) {
+             std::array<VkImageView, TRANSLUCENT_MAPS> views{};
+             for (size_t i = 0; i < maps.size(); ++i)
+                 views[i] = c.image(maps[i]).view();
+             const vk::PipelineLayout& layout = p.translucentLayerLayout();
+             vk::PushDescriptors()
+                 .uniformBuffer(BIND_FRAME, in.frame)
+                 .uniformBuffer(LAYER_LIGHTS, in.lights)
+                 .sampled(LAYER_GBUFFER_DEPTH, c.image(r.gbufferDepth).view(), in.nearest)
+                 .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
+                 .storageImage(TRANSLUCENT_LAYER_COLOUR, c.image(r.translucentColour).view())
+                 .uniformBuffer(LAYER_PARAMS, in.layerParams, TECHNIQUE_BLOCK_BYTES * index,
+                                TECHNIQUE_BLOCK_BYTES)
+                 .uniformBuffer(TRANSLUCENT_LAYER_VIEWS, in.views)
+                 .sampled(TRANSLUCENT_LAYER_NEAREST, c.image(nearest).view(), in.nearest)
+                 .sampled(TRANSLUCENT_LAYER_SECOND, c.image(second).view(), in.nearest)
+                 .sampled(TRANSLUCENT_LAYER_MAPS, views, in.nearest)
+                 .push(p.ctx, c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout);
+             for (const LightDispatch& light : s.shadowLights) {
+                 vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                                   p.translucentLayer({{SPEC_LIGHT_TYPE, light.type},
+                                                       {SPEC_LIGHT_VIEWS, light.views},
+                                                       {SPEC_TRANSLUCENT_METHOD, s.translucent}}));
+                 vkCmdPushConstants(c.cmd, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                                    sizeof light.push, &light.push);
+                 vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
+             }
+         }});
 }
 
 } // namespace penumbra::render
