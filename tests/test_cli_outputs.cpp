@@ -151,6 +151,14 @@ TEST(CliOutputs, TheTranslucentLayerWritesRgb) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_EQ(readPfm(out / "hard.visibility.pfm").channels, 1u);
     EXPECT_EQ(readPfm(out / "hard-translucent.visibility.pfm").channels, 3u);
+    // Each row's error per channel against the coloured truth: the layer's below the grey row's.
+    const auto metrics = nlohmann::json::parse(slurp(out / "metrics.json"))["techniques"];
+    const auto grey = metrics["hard"]["rmse_per_channel"];
+    const auto tinted = metrics["hard+translucent"]["rmse_per_channel"];
+    ASSERT_EQ(grey.size(), 3u);
+    ASSERT_EQ(tinted.size(), 3u);
+    for (size_t c = 0; c < 3; ++c)
+        EXPECT_LT(tinted[c].get<double>(), 0.5 * grey[c].get<double>()) << "channel " << c;
 }
 
 TEST(CliOutputs, WideComparisonsShowReducedImagesAndLinkTheFullSizeFiles) {

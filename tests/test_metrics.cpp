@@ -58,6 +58,28 @@ TEST(Metrics, ExactMatchIsAllZero) {
     EXPECT_EQ(m.pixelsOutsideEdges, 16u);
 }
 
+// Per channel against a coloured truth: a row's own channels, or its grey value in each; only the
+// pixels the mask counts with every value finite.
+TEST(Metrics, RmsePerChannelCountsWhatTheMetricsCount) {
+    const std::vector<float> truth{0.5f, 1.0f, 0.0f, 1.0f, 1.0f, 1.0f, 0.2f, 0.2f, 0.2f};
+    const std::vector<float> rgb{0.5f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, NAN, 0.2f, 0.2f};
+    const std::vector<uint8_t> mask{1, 1, 1};
+    const std::array<double, 3> own = rmsePerChannel(rgb, {}, truth, mask);
+    EXPECT_DOUBLE_EQ(own[0], 0.0);                  // pixel 2 has a NaN: left out whole
+    EXPECT_DOUBLE_EQ(own[1], std::sqrt(1.0 / 2.0)); // 1 off in one of the two counted
+    EXPECT_DOUBLE_EQ(own[2], 0.0);
+    // A row with both (the translucent layer's) is measured by its colour.
+    EXPECT_EQ(rmsePerChannel(rgb, std::vector<float>{0.0f, 0.0f, 0.0f}, truth, mask), own);
+    const std::vector<float> grey{0.5f, 1.0f, 0.2f};
+    const std::vector<uint8_t> firstTwo{1, 1, 0};
+    const std::array<double, 3> g = rmsePerChannel({}, grey, truth, firstTwo);
+    EXPECT_DOUBLE_EQ(g[0], 0.0);
+    EXPECT_DOUBLE_EQ(g[1], std::sqrt(0.25 / 2.0));
+    EXPECT_DOUBLE_EQ(g[2], std::sqrt(0.25 / 2.0));
+    EXPECT_EQ(rmsePerChannel({}, grey, truth, std::vector<uint8_t>{0, 0, 0}),
+              (std::array<double, 3>{0.0, 0.0, 0.0}));
+}
+
 TEST(Metrics, FlippedPixelsGiveExactFractions) {
     Images im = halfAndHalf();
     im.visibility[im.at(0, 0)] = 1; // shadowed -> lit, outside the band: leak

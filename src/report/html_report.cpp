@@ -419,21 +419,24 @@ nlohmann::json metricsRowJson(const ReportRow& row) {
     }
     gpu["total"] = totalGpuMs(row);
     const ErrorMetrics& m = row.metrics;
-    return {{"rmse", m.rmse},
-            {"mae", m.mae},
-            {"max", m.max},
-            {"misclassified", m.misclassified},
-            {"misclassified_outside_edges", m.misclassifiedOutsideEdges},
-            {"acne", m.acne},
-            {"leak", m.leak},
-            {"acne_beyond_blur", m.acneBeyondBlur},
-            {"leak_beyond_blur", m.leakBeyondBlur},
-            {"leak_near_contact", m.leakNearContact},
-            {"near_contact_pixels", m.nearContact},
-            {"pixels", m.pixels},
-            {"counts", metricCountsJson(m)},
-            {"gpu_ms", gpu},
-            {"gpu_ms_by_cost", gpuMsByCost(row.gpuMs)}};
+    nlohmann::json j = {{"rmse", m.rmse},
+                        {"mae", m.mae},
+                        {"max", m.max},
+                        {"misclassified", m.misclassified},
+                        {"misclassified_outside_edges", m.misclassifiedOutsideEdges},
+                        {"acne", m.acne},
+                        {"leak", m.leak},
+                        {"acne_beyond_blur", m.acneBeyondBlur},
+                        {"leak_beyond_blur", m.leakBeyondBlur},
+                        {"leak_near_contact", m.leakNearContact},
+                        {"near_contact_pixels", m.nearContact},
+                        {"pixels", m.pixels},
+                        {"counts", metricCountsJson(m)},
+                        {"gpu_ms", gpu},
+                        {"gpu_ms_by_cost", gpuMsByCost(row.gpuMs)}};
+    if (!row.rmsePerChannel.empty())
+        j["rmse_per_channel"] = row.rmsePerChannel;
+    return j;
 }
 
 nlohmann::json metricCountsJson(const ErrorMetrics& m) {

@@ -39,6 +39,10 @@ struct ReportRow {
     double flicker = NAN, movingFlicker = NAN; // at rest, and as played (in motion)
     double popIn = NAN;
     size_t lagFrames = 0;
+    // Where the truth is coloured (translucent casters): the first light's RMSE per channel (red,
+    // green, blue), the row's light per channel against the truth's (a grey row's visibility in
+    // every channel), over the pixels its metrics count; empty otherwise.
+    std::vector<double> rmsePerChannel;
 };
 
 // Everything a report shows: the run's context, the reference, and one row per technique.

@@ -163,4 +163,34 @@ ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const Met
     return m;
 }
 
+std::array<double, 3> rmsePerChannel(std::span<const float> rgb, std::span<const float> grey,
+                                     std::span<const float> truthRgb,
+                                     std::span<const uint8_t> mask) {
+    const size_t count = mask.size();
+    PENUMBRA_CHECK(truthRgb.size() == 3 * count, "rmsePerChannel: truth size != 3 * mask size");
+    PENUMBRA_CHECK(rgb.empty() ? grey.size() == count : rgb.size() == 3 * count,
+                   "rmsePerChannel: the row's size disagrees with the mask's");
+    std::array<double, 3> sum{};
+    size_t counted = 0;
+    for (size_t i = 0; i < count; ++i) {
+        if (mask[i] == 0)
+            continue;
+        std::array<double, 3> error{};
+        bool finite = true;
+        for (size_t c = 0; c < 3; ++c) {
+            const float v = rgb.empty() ? grey[i] : rgb[3 * i + c], t = truthRgb[3 * i + c];
+            finite = finite && std::isfinite(v) && std::isfinite(t);
+            error[c] = double{v} - t;
+        }
+        if (!finite)
+            continue;
+        ++counted;
+        for (size_t c = 0; c < 3; ++c)
+            sum[c] += error[c] * error[c];
+    }
+    for (double& c : sum)
+        c = counted == 0 ? 0.0 : std::sqrt(c / static_cast<double>(counted));
+    return sum;
+}
+
 } // namespace penumbra

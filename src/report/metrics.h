@@ -1,6 +1,7 @@
 #pragma once
 // Error of a shadow technique's visibility against the ray-traced ground truth (docs/cli.md,
 // compare): the numbers behind metrics.json and the report's table.
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -65,5 +66,13 @@ struct MetricLayer {
 // a programmer error.
 ErrorMetrics computeMetrics(uint32_t width, uint32_t height, std::span<const MetricLayer> layers,
                             int edgeBand = 2);
+
+// A coloured truth's error per channel (red, green, blue): the RMSE of `rgb` (3 floats a pixel, a
+// technique's light per channel) or, where it is empty, of `grey` in every channel, against
+// `truthRgb` (3 floats a pixel), over the pixels computeMetrics counts (mask non-zero, values
+// finite). All zeros where none counts. Sizes that disagree are a programmer error.
+std::array<double, 3> rmsePerChannel(std::span<const float> rgb, std::span<const float> grey,
+                                     std::span<const float> truthRgb,
+                                     std::span<const uint8_t> mask);
 
 } // namespace penumbra
