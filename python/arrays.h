@@ -31,4 +31,14 @@ py::list viewsOf(std::vector<std::vector<float>>& images, uint32_t width, uint32
     return out;
 }
 
+// One (height, width, 3) array per image of `images` (a light's light per channel, linear RGB).
+template <class Owner>
+py::list rgbViewsOf(std::vector<std::vector<float>>& images, uint32_t width, uint32_t height,
+                    const std::shared_ptr<Owner>& owner) {
+    py::list out;
+    for (std::vector<float>& image : images)
+        out.append(viewOf(image, {py::ssize_t(height), py::ssize_t(width), py::ssize_t(3)}, owner));
+    return out;
+}
+
 } // namespace penumbra::python

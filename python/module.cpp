@@ -402,6 +402,15 @@ PYBIND11_MODULE(penumbra, m) {
             "One (height, width) float32 array per shadow-casting light, in [0, 1] (1 lit), NaN "
             "where there is no geometry.")
         .def_property_readonly(
+            "transmittance",
+            [](const PyResult& r) {
+                return rgbViewsOf(r.result->transmittance, r.result->width, r.result->height,
+                                  r.result);
+            },
+            "With the translucent layer on a scene with translucent casters: one (height, width, "
+            "3) float32 array per shadow-casting light, the light that arrives per channel "
+            "(linear RGB), whose luminance is visibility; else empty.")
+        .def_property_readonly(
             "position",
             [](const PyResult& r) {
                 return viewOf(r.result->position,
@@ -443,6 +452,13 @@ PYBIND11_MODULE(penumbra, m) {
                 return viewsOf(t.truth->visibility, t.truth->width, t.truth->height, t.truth);
             },
             "One (height, width) float32 array per shadow-casting light, as Result.visibility.")
+        .def_property_readonly(
+            "transmittance",
+            [](const PyTruth& t) {
+                return rgbViewsOf(t.truth->transmittance, t.truth->width, t.truth->height, t.truth);
+            },
+            "Where the scene has translucent casters: one (height, width, 3) float32 array per "
+            "light, the light that arrives through them per channel; else empty.")
         .def_property_readonly(
             "occluder_distance",
             [](const PyTruth& t) {

@@ -82,6 +82,10 @@ class Result:
     def visibility(self) -> list[npt.NDArray[np.float32]]:
         """One (height, width) array per shadow-casting light, 1 lit, NaN for background."""
     @property
+    def transmittance(self) -> list[npt.NDArray[np.float32]]:
+        """With the translucent layer on a scene with translucent casters: one (height, width, 3)
+        array per light, the light per channel (linear RGB); its luminance is visibility."""
+    @property
     def position(self) -> npt.NDArray[np.float32]:
         """(height, width, 3): world-space position, NaN for background."""
     @property
@@ -115,6 +119,9 @@ class Truth:
 
     @property
     def visibility(self) -> list[npt.NDArray[np.float32]]: ...
+    @property
+    def transmittance(self) -> list[npt.NDArray[np.float32]]:
+        """Where the scene has translucent casters: one (height, width, 3) array per light."""
     @property
     def occluder_distance(self) -> list[npt.NDArray[np.float32]]:
         """Per light: how far the occluder is along the ray to the light's centre (inf: none)."""

@@ -255,3 +255,23 @@ def test_sdf_refuses_a_view_its_field_cannot_hold_as_the_cli_does():
         r.render("sdf")
     kept = r.render("sdf", sdf_refuse=0)  # the user's decision: rendered without the audit
     assert kept.visibility[0].shape == (144, 256)
+
+
+def test_translucent_layer_gives_the_light_per_channel_as_the_truth_does():
+    scene = penumbra.Scene.builtin("sheets")
+    r = penumbra.Renderer(scene, 48, 32, shadow_map_size=256, validation=True)
+    grey = r.render("hard", frames=1)
+    assert grey.transmittance == []
+    result = r.render("hard", params={"translucent.method": "moments"}, frames=1)
+    truth = r.reference(samples=1)
+    assert len(result.transmittance) == 1 and len(truth.transmittance) == 1
+    rgb, wanted = result.transmittance[0], truth.transmittance[0]
+    assert rgb.shape == (32, 48, 3) and rgb.dtype == np.float32
+    luminance = rgb @ np.array([0.2126, 0.7152, 0.0722], dtype=np.float32)
+    v = result.visibility[0]
+    assert np.array_equal(np.isnan(luminance), np.isnan(v))
+    assert np.nanmax(np.abs(luminance - v)) < 1e-5
+    counted = ~np.isnan(wanted[..., 0]) & ~np.isnan(rgb[..., 0])
+    error = np.sqrt(np.mean((rgb[counted] - wanted[counted]) ** 2, axis=0))
+    opaque = np.sqrt(np.mean((grey.visibility[0][counted][:, None] - wanted[counted]) ** 2, axis=0))
+    assert (error < 0.5 * opaque).all(), (error, opaque)
