@@ -34,14 +34,7 @@ layout(set = 0, binding = TRANSLUCENT_LAYER_SECOND) uniform sampler2DArray secon
 layout(set = 0, binding = TRANSLUCENT_LAYER_MAPS) uniform sampler2DArray maps[TRANSLUCENT_MAPS];
 layout(set = 0, binding = TRANSLUCENT_LAYER_COLOUR, rgba32f) uniform writeonly image2DArray colour;
 layout(push_constant) uniform Push { VisibilityPush push; };
-
-// View k of the dispatch's light, read at a uniform index (visibility.comp's viewOf).
-ShadowViewData viewOf(uint k) {
-    ShadowViewData view = views[push.light.w];
-    for (uint j = 1u; j < LIGHT_VIEWS; ++j)
-        if (k == j) view = views[push.light.w + j];
-    return view;
-}
+#include "light_views.glsl"
 
 // The transmittance of one texel at the receiver's depth (`depth`, and its moment depth `z`).
 vec3 texelTransmittance(ivec3 at, float depth, float z) {
@@ -88,16 +81,10 @@ void main() {
     if (!isBackground(depth)) {
         vec3 world = worldPosition(frame.invViewProj, p, size, depth);
         LightData light = lights[push.light.x];
-        uint k = lightViewOf(light, world);
-        if (LIGHT_TYPE == LIGHT_DIRECTIONAL && LIGHT_VIEWS > 1u) {
-            // A sun's cascade: the first whose slice reaches the pixel's view distance.
-            float distance = dot(world - frame.position.xyz, frame.cameraForward.xyz);
-            bool further = true;
-            for (uint j = 0u; j + 1u < LIGHT_VIEWS; ++j) {
-                further = further && distance > views[push.light.w + j].cascade.x;
-                k += further ? 1u : 0u;
-            }
-        }
+        // A point light's cube face, a sun's cascade (no blend band), else the light's one view.
+        uint k = LIGHT_TYPE == LIGHT_DIRECTIONAL && LIGHT_VIEWS > 1u
+                     ? sunCascadeOf(cameraViewDistance(world))
+                     : lightViewOf(light, world);
         ShadowViewData view = viewOf(k);
         // No normal offset: the maps push each surface back by its slope (casterDepth), and a
         // receiver moved off its surface would read the texels beside its own.

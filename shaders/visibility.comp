@@ -60,14 +60,7 @@ layout(set = 0, binding = VIS_TRACE_LIST, std430) readonly buffer TraceList {
 vec4 detail = vec4(0.0);
 layout(push_constant) uniform Push { VisibilityPush push; };
 #include "virtual_levels.glsl"
-
-// View k of the dispatch's light (k < LIGHT_VIEWS; the first view otherwise).
-ShadowViewData viewOf(uint k) {
-    ShadowViewData view = views[push.light.w];
-    for (uint j = 1u; j < LIGHT_VIEWS; ++j)
-        if (k == j) view = views[push.light.w + j];
-    return view;
-}
+#include "light_views.glsl"
 
 // Light-space (u, v, depth) offset to the neighbour at p + step along one axis, taking the side
 // whose depth is closer (the neighbour most likely on the same surface); zero if none exists.
@@ -438,13 +431,8 @@ void main() {
             v = visibilityThroughVirtual(light, p, world, normal, depth);
         } else if (LIGHT_TYPE == LIGHT_DIRECTIONAL && LIGHT_VIEWS > 1u) {
             // A sun's cascade: the first whose slice reaches the pixel's view distance.
-            float z = dot(world - frame.position.xyz, frame.cameraForward.xyz);
-            uint i = 0u;
-            bool further = true;
-            for (uint j = 0u; j + 1u < LIGHT_VIEWS; ++j) {
-                further = further && z > views[push.light.w + j].cascade.x;
-                i += further ? 1u : 0u;
-            }
+            float z = cameraViewDistance(world);
+            uint i = sunCascadeOf(z);
             CascadeBase b = cascadeBase(light, p, world, normal, depth);
             v = throughCascade(b, i, p);
             vec4 c = viewOf(i).cascade;

@@ -17,11 +17,6 @@
 namespace penumbra::render {
 namespace {
 
-size_t layerIndex(const shadows::LayerModule& layer) {
-    const auto all = shadows::allLayers();
-    return static_cast<size_t>(std::find(all.begin(), all.end(), &layer) - all.begin());
-}
-
 // The visibility dispatch of one light with shadow views, into its layer of the visibility
 // image; `fused`: it also shades every pixel into the colour image (the last light's).
 // `checkerboard`: which of its pixels it traces (CHECKERBOARD_*).
@@ -96,7 +91,8 @@ void dispatchLayer(PassContext& c, FramePipelines& p, const FrameSettings& s, co
     const std::vector<shadows::SpecConstant> constants{
         {SPEC_LIGHT_TYPE, light.type}, {SPEC_INTERMEDIATES, s.intermediates ? 1u : 0u}};
     dispatchOnLayerLayout(c, p, s, in, r, p.layer(layer.shader, constants),
-                          TECHNIQUE_BLOCK_BYTES * layerIndex(layer), r.layerResults, light);
+                          TECHNIQUE_BLOCK_BYTES * shadows::layerIndex(layer), r.layerResults,
+                          light);
 }
 
 Access accessOf(shadows::ScreenAccess access) {
@@ -231,7 +227,8 @@ void addHistoryLayer(FrameGraph& graph, FramePipelines& p, const FrameSettings& 
                  .sampled(LAYER_GBUFFER_NORMAL, c.image(r.gbufferNormal).view(), in.nearest)
                  .storageImage(LAYER_VISIBILITY, c.image(r.visibility).view())
                  .uniformBuffer(LAYER_PARAMS, in.layerParams,
-                                TECHNIQUE_BLOCK_BYTES * layerIndex(layer), TECHNIQUE_BLOCK_BYTES)
+                                TECHNIQUE_BLOCK_BYTES * shadows::layerIndex(layer),
+                                TECHNIQUE_BLOCK_BYTES)
                  .sampled(LAYER_MOTION, c.image(r.gbufferMotion).view(), in.nearest)
                  .sampled(LAYER_HISTORY_PREVIOUS, c.image(previous).view(), in.nearest)
                  .storageImage(LAYER_HISTORY, c.image(history).view())

@@ -168,9 +168,7 @@ void addTranslucentCasterPass(FrameGraph& graph, FramePipelines& p, const GpuSce
 void addTranslucentLayerPass(FrameGraph& graph, FramePipelines& p, const FrameSettings& s,
                              const FrameInputs& in, const FrameResources& r,
                              const shadows::LayerModule& layer) {
-    const size_t index = static_cast<size_t>(
-        std::find(shadows::allLayers().begin(), shadows::allLayers().end(), &layer) -
-        shadows::allLayers().begin());
+    const size_t index = shadows::layerIndex(layer);
     // The coloured map: its two depths, the nearest's transmittance and the product (again in the
     // last two slots); the moments: the absorbance in the depths' places (unread).
     const bool coloured = s.translucent == TRANSLUCENT_COLOURED;

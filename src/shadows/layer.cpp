@@ -14,6 +14,11 @@ std::span<const LayerModule* const> allLayers() {
     return layers;
 }
 
+size_t layerIndex(const LayerModule& layer) {
+    const auto all = allLayers();
+    return static_cast<size_t>(std::find(all.begin(), all.end(), &layer) - all.begin());
+}
+
 const LayerModule* findLayer(std::string_view name) {
     for (const LayerModule* layer : allLayers())
         if (layer->name == name)

@@ -52,6 +52,8 @@ struct LayerModule {
 
 // The registered layers, in the order a light's evaluation runs them.
 std::span<const LayerModule* const> allLayers();
+// Where `layer` stands in allLayers(): its block's place in the slot's layer buffer.
+size_t layerIndex(const LayerModule& layer);
 // The layer called `name`, or null.
 const LayerModule* findLayer(std::string_view name);
 // The layers these parameters switch on, in order.
