@@ -159,8 +159,9 @@ window.addEventListener("load", function () { setTimeout(function () {
 
 } // namespace
 
-// The three reports at 1000, 1400 and 1920 pixels: no sideways scrolling, nothing wider than
-// the window, no table scrolled inside its card (with a 4K frame's pixel counts); report.html's
+// The three reports at 1000, 1400 and 1920 pixels (and report.html with a coloured truth's
+// columns): no sideways scrolling, nothing wider than the window, no table scrolled inside its
+// card (with a 4K frame's pixel counts); report.html's
 // plot labels clear of each other and of the points on both cost axes, its comparer's slider
 // changing the picture, a click on RMSE sorting by it.
 TEST(Cli, ReportsReadAtThreeWidthsWithoutOverlapsInChromium) {
@@ -174,10 +175,18 @@ TEST(Cli, ReportsReadAtThreeWidthsWithoutOverlapsInChromium) {
                       "--width", "96", "--height", "64", "--samples", "4"})
                   .exitCode,
               0);
+    // A coloured truth's report: three columns more, the error of each channel.
+    const fs::path coloured = scratch("widths-coloured");
+    ASSERT_EQ(runCli({"compare", "builtin:sheets", "-o", coloured.string(), "--techniques",
+                      "hard,pcf[box3]+translucent,pcss+contact", "--width", "96", "--height", "64",
+                      "--shadow-map-size", "256", "--frames", "1", "--samples", "1"})
+                  .exitCode,
+              0);
+    ASSERT_NE(slurp(coloured / "report.html").find("RMSE <small>R G B</small>"), std::string::npos);
     for (const int width : {1000, 1400, 1920}) {
         SCOPED_TRACE(width);
-        for (const fs::path& page :
-             {smallComparison() / "report.html", bench / "bench.html", tune / "tune.html"}) {
+        for (const fs::path& page : {smallComparison() / "report.html", bench / "bench.html",
+                                     tune / "tune.html", coloured / "report.html"}) {
             SCOPED_TRACE(page.filename().string());
             const nlohmann::json found = layoutIn(page, width);
             ASSERT_FALSE(found.is_null());
@@ -185,7 +194,7 @@ TEST(Cli, ReportsReadAtThreeWidthsWithoutOverlapsInChromium) {
             EXPECT_TRUE(found["wide"].empty()) << found["wide"].dump(1);
             EXPECT_TRUE(found["clipped"].empty())
                 << "a column scrolled out of its card: " << found["clipped"].dump(1);
-            if (page.filename() != "report.html")
+            if (page.filename() != "report.html" || page.parent_path() == coloured)
                 continue;
             EXPECT_TRUE(found["overlaps"].empty()) << found["overlaps"].dump(1);
             EXPECT_GT(found["labels"].get<int>(), 4) << "labels are drawn, not all left out";

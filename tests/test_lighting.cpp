@@ -1,12 +1,13 @@
 // The lit image (image.png) for every light type, against the composite's contract computed on
 // the CPU from the G-buffer's positions and normals: ambient + sum over lights of
-// 2^EV x colour x intensity x max(N.L, 0) x attenuation x (1 - shadowIntensity x (1 - v)),
+// 2^EV x colour x intensity x max(N.L, 0) x attenuation x (1 - shadowIntensity x (1 - v)), with
+// v per channel where the translucent layer tints the light,
 // the exponential tone curve 1 - exp(-albedo x light), sRGB. Attenuation: glTF
 // KHR_lights_punctual's inverse square with the range window (1 - (d/range)^4)^2 for spot and
 // point lights; the spot cone's smoothstep from cos(outer) to cos(inner) (docs/architecture.md).
 // Written from those formulas, not from shaders/composite.comp.
-#include "gpu_fixture.h"
 #include "bindings.h"
+#include "gpu_fixture.h"
 #include "scene/mesh_builder.h"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -119,11 +120,16 @@ ImageCheck checkImage(const Scene& scene, const RenderResult& r, const Composite
         for (const LightShadow& s : r.lights) {
             const Light& l = scene.lights[s.sceneLight];
             const double v = s.visibilityIndex >= 0 ? r.visibility[s.visibilityIndex][i] : 1.0;
+            // Per channel where the translucent layer ran (its light through, tint and all).
+            const glm::dvec3 through =
+                s.visibilityIndex >= 0 && !r.transmittance.empty()
+                    ? glm::dvec3(pixelVec(r.transmittance[s.visibilityIndex], i))
+                    : glm::dvec3(v);
             const double nDotL = glm::dot(n, towardsLight(l, p));
             c.facingAway += nDotL < -0.1;
             const double lambert = std::max(nDotL, 0.0);
             light += exposure * glm::dvec3(l.color) * double(l.intensity) * lambert *
-                     attenuation(l, p) * (1.0 - k.shadowIntensity * (1.0 - v));
+                     attenuation(l, p) * (1.0 - k.shadowIntensity * (1.0 - through));
         }
         ++c.pixels;
         for (int ch = 0; ch < 3; ++ch) {
@@ -138,10 +144,10 @@ ImageCheck checkImage(const Scene& scene, const RenderResult& r, const Composite
 }
 
 RenderResult renderWith(const Scene& scene, const CompositeKnobs& k,
-                        const std::string& extra = {}) {
+                        const std::vector<std::string>& extra = {}) {
     RenderOptions o{.width = 320, .height = 240, .frames = 1};
-    if (!extra.empty())
-        o.parameters.assign(extra);
+    for (const std::string& setting : extra)
+        o.parameters.assign(setting);
     o.parameters.set("composite.ambient", std::to_string(k.ambient));
     o.parameters.set("composite.shadowIntensity", std::to_string(k.shadowIntensity));
     o.parameters.set("composite.exposure", std::to_string(k.exposureEv));
@@ -288,7 +294,7 @@ TEST_F(LightingTest, SeparateCompositeMatchesTheFusedOne) {
     const Scene scene = everyKindOfLight();
     const CompositeKnobs k = kEveryKindKnobs;
     const RenderResult fused = renderWith(scene, k);
-    const RenderResult separate = renderWith(scene, k, "composite.fused=0");
+    const RenderResult separate = renderWith(scene, k, {"composite.fused=0"});
     expectImageFollowsTheContract(scene, separate, k, "separate composite", 300);
     ASSERT_EQ(fused.image.size(), separate.image.size());
     size_t differ = 0;
@@ -330,4 +336,44 @@ TEST_F(LightingTest, LightsBeyondTheSpecialisedCountAddUp) {
     const RenderResult r = renderWith(scene, k);
     ASSERT_EQ(r.visibility.size(), 2u);
     expectImageFollowsTheContract(scene, r, k, "18 lights", 150);
+}
+
+// A translucent slab (bluish glass: KHR_materials_transmission) under a spot, a point light and a
+// sun: the composite shades each channel with the translucent layer's light per channel (read
+// back as RenderResult::transmittance), whose luminance is the light's visibility after every
+// layer, the contact layer's too (it runs before); and the tint shows, its blue above its red
+// where light passes the slab.
+TEST_F(LightingTest, TranslucentCastersTintEachLightInTheImage) {
+    Scene scene = everyKindOfLight();
+    Material& slab = scene.materials.back();
+    ASSERT_EQ(slab.name, "slab");
+    slab.transmission = 0.9f; // tinted by its base colour (a BLEND surface alone casts grey)
+    scene.lights.resize(3);   // the unshadowed fill adds nothing the others test
+    const CompositeKnobs k = kEveryKindKnobs;
+    for (const char* contact : {"contact.length=0", "contact.length=2"}) {
+        const RenderResult r = renderWith(scene, k, {"translucent.method=coloured", contact});
+        ASSERT_EQ(r.transmittance.size(), 3u);
+        for (size_t l = 0; l < r.transmittance.size(); ++l) {
+            size_t tinted = 0, ground = 0;
+            double gap = 0.0;
+            for (size_t i = 0; i < size_t{r.width} * r.height; ++i) {
+                const glm::dvec3 t(pixelVec(r.transmittance[l], i));
+                if (std::isnan(r.visibility[l][i]))
+                    continue;
+                gap = std::max(
+                    gap, std::abs(0.2126 * t.x + 0.7152 * t.y + 0.0722 * t.z - r.visibility[l][i]));
+                if (onGround(r, i)) {
+                    ++ground;
+                    tinted += t.z > t.x + 0.05;
+                }
+            }
+            std::printf("%s, light %zu: %.1f%% of the ground tinted, worst luminance gap %.2g\n",
+                        contact, l, 100.0 * double(tinted) / double(ground), gap);
+            EXPECT_LT(gap, 1e-5) << contact << ", light " << l;
+            if (contact == std::string("contact.length=0")) { // contact shades the slab's shadow
+                EXPECT_GT(tinted, ground / 100) << "light " << l;
+            }
+        }
+        expectImageFollowsTheContract(scene, r, k, contact, 300);
+    }
 }

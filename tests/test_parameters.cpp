@@ -3,6 +3,7 @@
 #include "penumbra/error.h"
 #include "penumbra/settings.h"
 #include "shadows/technique.h"
+#include "translucent.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -104,6 +105,17 @@ TEST(Techniques, ARowRunsExactlyTheLayersItNames) {
     EXPECT_EQ(v.number("contact.length"), 0.5);
     applyRow(plain, v, 10.0);
     EXPECT_EQ(v.number("contact.length"), 0.0);
+    // The translucent layer's row: the coloured map (docs/translucency.md, "Which method"),
+    // unless the caller names a method.
+    const TechniqueRow translucent = comparisonRows("hard+translucent")[0];
+    ParameterValues t;
+    applyRow(translucent, t, 10.0);
+    EXPECT_EQ(t.number("translucent.method"), TRANSLUCENT_COLOURED);
+    t.assign("translucent.method=moments");
+    applyRow(translucent, t, 10.0);
+    EXPECT_EQ(t.number("translucent.method"), TRANSLUCENT_MOMENTS);
+    applyRow(plain, t, 10.0);
+    EXPECT_EQ(t.number("translucent.method"), TRANSLUCENT_OFF);
 }
 
 // The technique list's two roles (PENUMBRA_DEFAULT_TECHNIQUE, PENUMBRA_COMPARED_TECHNIQUE): the

@@ -47,6 +47,8 @@
                                 // (a float's bits)
 #define SPEC_GBUFFER_MOTION 28  // gbuffer.vert, gbuffer.frag: 1 writes the motion vectors
 #define SPEC_TRANSLUCENT_METHOD 30 // translucent.comp: TRANSLUCENT_COLOURED or _MOMENTS
+#define SPEC_COMPOSITE_COLOURED 31 // composite.comp: 1 reads COMPOSITE_TRANSMITTANCE (a light's
+                                   // tint from the translucent layer)
 #define SPEC_HISTORY_RESOLVE 29 // a layer that keeps a history (temporal.comp): 0 writes this
                                 // frame's history, 1 then copies it into the visibility
 
@@ -90,6 +92,8 @@
 #define COMPOSITE_GBUFFER_ALBEDO 4
 #define COMPOSITE_VISIBILITY 5
 #define COMPOSITE_OUT 6
+#define COMPOSITE_TRANSMITTANCE 7 // RGBA32F array, the translucent layer's light per channel, read
+                                  // with SPEC_COMPOSITE_COLOURED (the visibility otherwise)
 // A layer's pass (src/shadows/layer.h; contact.comp): per shadow-casting light, multiplies what
 // it finds into the light's visibility layer. Push constants: VisibilityPush.
 #define LAYER_LIGHTS 1           // LightData[], uniform

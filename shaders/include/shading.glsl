@@ -3,7 +3,7 @@
 // visibility); then an exponential tone curve and sRGB. composite.comp runs it on its own;
 // visibility.comp runs it in the last light's dispatch (SPEC_FUSED_COMPOSITE). The includer
 // declares `lights` (LightData[], uniform) and defines LIGHT_VISIBILITY(i, light), light i's
-// visibility at the pixel.
+// visibility at the pixel: a float, or a vec3 per channel (the translucent layer's tint).
 #ifndef PENUMBRA_SHADING_GLSL
 #define PENUMBRA_SHADING_GLSL
 #include "light_geometry.h"

@@ -152,8 +152,10 @@ std::vector<ImageDecl> screenDecls(bool intermediates) {
         screen(target::kGBufferMotion, kMotionFormat,
                VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | kSampled | VK_IMAGE_USAGE_TRANSFER_SRC_BIT),
         screen(target::kVisibility, VK_FORMAT_R32_SFLOAT, kStorageOut | kSampled, true),
-        // The translucent layer's light per channel (declared when the layer runs).
-        screen(target::kTranslucentColour, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut, true),
+        // The translucent layer's light per channel (declared when the layer runs; the composite
+        // reads it).
+        screen(target::kTranslucentColour, VK_FORMAT_R32G32B32A32_SFLOAT, kStorageOut | kSampled,
+               true),
         // The screen passes' scratch (shadows::kScreenScratch; declared when one binds it).
         screen(target::kScreenScratch, VK_FORMAT_R32_SFLOAT, kStorageOut, true),
         screen(target::kColor, VK_FORMAT_R8G8B8A8_UNORM, kStorageOut),

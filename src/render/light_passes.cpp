@@ -327,6 +327,9 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                        }});
         return;
     }
+    // The translucent layer's tint, or (unread) the visibility: a binding must hold something.
+    const bool coloured = r.translucentColour != 0;
+    const ResourceId transmittance = coloured ? r.translucentColour : r.visibility;
     graph.addPass({.name = "composite",
                    .cost = CostGroup::PerPixel,
                    .phase = Phase::Composite,
@@ -337,10 +340,13 @@ void addLightPasses(FrameGraph& graph, FramePipelines& p, const FrameSettings& s
                                           {COMPOSITE_GBUFFER_NORMAL, r.gbufferNormal, in.nearest},
                                           {COMPOSITE_GBUFFER_ALBEDO, r.gbufferAlbedo, in.nearest},
                                           {COMPOSITE_VISIBILITY, r.visibility, in.nearest},
-                                          {COMPOSITE_OUT, r.color}}},
-                   .record = [&p, &s](PassContext& c) {
+                                          {COMPOSITE_OUT, r.color},
+                                          {COMPOSITE_TRANSMITTANCE, transmittance, in.nearest}}},
+                   .record = [&p, &s, coloured](PassContext& c) {
+                       std::vector<shadows::SpecConstant> constants = s.sceneLights;
+                       constants.push_back({SPEC_COMPOSITE_COLOURED, coloured ? 1u : 0u});
                        vkCmdBindPipeline(c.cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                                         p.composite(s.sceneLights));
+                                         p.composite(constants));
                        vkCmdDispatch(c.cmd, groups(s.sizes.width), groups(s.sizes.height), 1);
                    }});
 }

@@ -1,5 +1,6 @@
 // The layer list (src/shadows/layer.h): one line per layer, in the order a light's evaluation
-// runs them.
+// runs them. The translucent layer goes last: the light per channel it writes is then the light's
+// final one, which the composite shades with (composite.comp).
 #include "shadows/layer.h"
 
 #include "core/virtual_maps.h"

@@ -64,8 +64,10 @@ const LayerModule& translucentLayer() {
                    ParamBlock& block) { block.set(translucentParams(p)); },
         .rowSettings =
             [](double) {
+                // Measured (docs/translucency.md, "Which method"): as close as the moments on
+                // builtin:sheets, closer on builtin:tree, in 24 bytes a texel against 64.
                 return std::vector<std::pair<std::string, std::string>>{
-                    {"translucent.method", "moments"}};
+                    {"translucent.method", "coloured"}};
             },
         .rows = {},
         .translucentMethod =
