@@ -1,0 +1,128 @@
+// The translucent layer's maps read a material as Scene::transmittance does (docs/translucency.md,
+// "Which surfaces let light through"): vertex colours and vertex alpha on a BLEND surface, and a
+// textured MASK surface with transmission, whose holes let everything through and whose covered
+// part lets its tinted light through. Against the coloured truth, per channel, under a sun and a
+// point light: one surface a texel, which both methods hold exactly but for the half floats and
+// the bilinear mix of the texels at the pixel.
+#include "scene/mesh_builder.h"
+#include "truth_fixture.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+using namespace penumbra;
+using namespace penumbra::test;
+
+namespace {
+
+// Over a 12 x 12 ground: a BLEND sheet of white glass whose four corners carry red, green, blue
+// and yellow vertex colours (the last at alpha 0.5), and beside it a MASK sheet of violet glass
+// whose texture's columns alternate covered and clear (nearest, so its holes have sharp edges).
+Scene vertexColouredAndMaskedSheets() {
+    Scene scene;
+    scene.name = "translucent-materials";
+    MeshBuilder mb(scene);
+    mb.quad({-6, 0, 6}, {6, 0, 6}, {6, 0, -6}, {-6, 0, -6}, mb.material("ground", glm::vec3(0.7f)));
+
+    const uint32_t glass = mb.material("white glass", glm::vec3(1.0f));
+    scene.materials[glass].alphaMode = AlphaMode::Blend;
+    scene.materials[glass].baseColor.w = 0.8f;
+    scene.materials[glass].transmission = 0.9f;
+    const size_t first = scene.vertices.size();
+    mb.quad({-3.5f, 1.5f, 1.5f}, {-0.5f, 1.5f, 1.5f}, {-0.5f, 1.5f, -1.5f}, {-3.5f, 1.5f, -1.5f},
+            glass);
+    const std::array<glm::vec4, 4> corners{
+        glm::vec4(1.0f, 0.2f, 0.2f, 1.0f), glm::vec4(0.2f, 1.0f, 0.2f, 1.0f),
+        glm::vec4(0.2f, 0.2f, 1.0f, 1.0f), glm::vec4(1.0f, 1.0f, 0.2f, 0.5f)};
+    for (size_t v = first; v < scene.vertices.size(); ++v) // the quad's corners, in order
+        scene.vertices[v].color = corners.at(v - first);
+
+    TextureImage stripes{.name = "stripes", .width = 8, .height = 1};
+    for (uint32_t x = 0; x < stripes.width; ++x)
+        stripes.rgba.insert(stripes.rgba.end(),
+                            {200, 255, 160, static_cast<uint8_t>(x % 2 ? 0 : 255)});
+    const uint32_t masked = mb.texturedMaterial(
+        "violet stripes", stripes,
+        {.wrapS = TextureWrap::ClampToEdge, .wrapT = TextureWrap::ClampToEdge, .nearest = true},
+        AlphaMode::Mask);
+    scene.materials[masked].baseColor = {0.7f, 0.3f, 1.0f, 1.0f};
+    scene.materials[masked].transmission = 0.8f;
+    mb.quad({0.5f, 2.0f, 1.5f}, {3.5f, 2.0f, 1.5f}, {3.5f, 2.0f, -1.5f}, {0.5f, 2.0f, -1.5f},
+            masked);
+
+    scene.cameras.push_back({.name = "above",
+                             .position = {0.0f, 9.0f, 6.0f},
+                             .target = {0.0f, 0.0f, -0.5f},
+                             .yfov = 1.0f,
+                             .znear = 0.1f,
+                             .zfar = 60.0f});
+    return scene;
+}
+
+// Pixels the metrics count whose truth is strictly between dark and lit and changes by at most
+// 0.1 (luminance) within two pixels: inside the sheets' shadows, off their edges and the
+// stripes' (the truth is one ray a pixel there).
+std::vector<size_t> insideTheTint(const Truth& t) {
+    const std::vector<float>& truth = t.reference.visibility[0];
+    const auto w = static_cast<int>(t.setup.width), h = static_cast<int>(t.setup.height);
+    std::vector<size_t> inside;
+    for (size_t i = 0; i < truth.size(); ++i) {
+        if (!t.mask[i] || !(truth[i] > 0.02f && truth[i] < 0.98f))
+            continue;
+        const int x = static_cast<int>(i) % w, y = static_cast<int>(i) / w;
+        bool flat = true;
+        for (int v = std::max(0, y - 2); flat && v <= std::min(h - 1, y + 2); ++v)
+            for (int u = std::max(0, x - 2); flat && u <= std::min(w - 1, x + 2); ++u)
+                flat = std::abs(truth[size_t(v * w + u)] - truth[i]) <= 0.1f;
+        if (flat)
+            inside.push_back(i);
+    }
+    return inside;
+}
+
+// The worst channel's RMSE of `rgb` (3 floats a pixel) against the truth's over `pixels`.
+double worstChannelRmse(const std::vector<float>& rgb, const std::vector<float>& truth,
+                        const std::vector<size_t>& pixels) {
+    std::array<double, 3> sum{};
+    for (size_t i : pixels)
+        for (size_t c = 0; c < 3; ++c)
+            sum[c] += std::pow(double{rgb[3 * i + c]} - truth[3 * i + c], 2.0);
+    double worst = 0.0;
+    for (double s : sum)
+        worst =
+            std::max(worst, std::sqrt(s / static_cast<double>(std::max<size_t>(pixels.size(), 1))));
+    return worst;
+}
+
+} // namespace
+
+TEST_F(LayerTest, TranslucentLayerReadsVertexColoursAndMaskedTransmission) {
+    Scene scene = vertexColouredAndMaskedSheets();
+    const Light sun{.name = "sun",
+                    .type = LightType::Directional,
+                    .direction = glm::normalize(glm::vec3(0.15f, -1.0f, 0.1f))};
+    const Light point{.name = "point", .type = LightType::Point, .position = {0.0f, 6.0f, 0.5f}};
+    for (const Light& light : {sun, point}) {
+        scene.lights = {light};
+        const Truth t =
+            groundTruth(scene, {.width = 256, .height = 192, .shadowMapSize = 1024, .samples = 1});
+        const std::vector<size_t> pixels = insideTheTint(t);
+        const std::vector<float>& truth = t.reference.transmittance.at(0);
+        // The sheets cast opaque: their grey visibility (0) in every channel.
+        std::vector<float> grey(3 * t.reference.visibility[0].size());
+        const RenderResult opaque = renderRow(t, Technique::Hard, {});
+        for (size_t i = 0; i < opaque.visibility[0].size(); ++i)
+            std::fill_n(grey.begin() + static_cast<long>(3 * i), 3, opaque.visibility[0][i]);
+        const double opaqueError = worstChannelRmse(grey, truth, pixels);
+        for (const char* method : {"coloured", "moments"}) {
+            const RenderResult r = renderRow(t, Technique::Hard, {{"translucent.method", method}});
+            const double error = worstChannelRmse(r.transmittance.at(0), truth, pixels);
+            std::printf("%s, %s: %zu tinted pixels, worst channel RMSE %.4f (cast opaque %.4f)\n",
+                        light.name.c_str(), method, pixels.size(), error, opaqueError);
+            EXPECT_GT(pixels.size(), 500u) << light.name;
+            EXPECT_LT(error, 0.01) << light.name << ", " << method;
+            EXPECT_GT(opaqueError, 0.3) << light.name;
+        }
+    }
+}
