@@ -321,6 +321,7 @@ py::object metrics(const PyResult& r, const PyTruth& t) {
                   .metrics = metricsAgainstTruth(*r.lit, result, truth.visibility, masks, blur,
                                                  truth.occluderDistance)};
     row.gpuMs = result.passes;
+    row.rmsePerChannel = firstLightRmsePerChannel(result, truth.transmittance, masks);
     return fromJson(metricsRowJson(row));
 }
 

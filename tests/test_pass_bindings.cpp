@@ -89,13 +89,14 @@ TEST_F(FrameTest, APassBindingsUsesFollowFromItsShaders) {
                                           {COMPOSITE_GBUFFER_NORMAL, 13, fakeSampler()},
                                           {COMPOSITE_GBUFFER_ALBEDO, 14, fakeSampler()},
                                           {COMPOSITE_VISIBILITY, 15, fakeSampler()},
-                                          {COMPOSITE_OUT, 16}}};
+                                          {COMPOSITE_OUT, 16},
+                                          {COMPOSITE_TRANSMITTANCE, 17, fakeSampler()}}};
     const std::vector<Use> uses = usesOf(bindings, "composite");
-    ASSERT_EQ(uses.size(), 7u);
+    ASSERT_EQ(uses.size(), 8u);
     const std::vector<Access> expected{Access::UniformRead,    Access::UniformRead,
                                        Access::ComputeSampled, Access::ComputeSampled,
                                        Access::ComputeSampled, Access::ComputeSampled,
-                                       Access::ComputeWrite};
+                                       Access::ComputeWrite,   Access::ComputeSampled};
     for (size_t i = 0; i < uses.size(); ++i) {
         EXPECT_EQ(uses[i].resource, 10 + i) << i;
         EXPECT_EQ(uses[i].access, expected[i]) << i;

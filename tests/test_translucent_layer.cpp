@@ -275,4 +275,11 @@ TEST_F(LayerTest, TranslucentLayerRefusesWhatItCannotDraw) {
     o.parameters.set("virtual.enabled", "0");
     o.technique = Technique::Sdf;
     EXPECT_THROW(sharedRenderer().check(scene, o), InputError);
+    // A translucent material that no triangle uses casts nothing: nothing to refuse.
+    Scene unused = loadScene("builtin:showcase");
+    unused.materials.push_back({.name = "unused glass", .transmission = 1.0f});
+    EXPECT_NO_THROW(sharedRenderer().check(unused, o));
+    o.technique = Technique::Hard;
+    o.parameters.set("virtual.enabled", "1");
+    EXPECT_NO_THROW(sharedRenderer().check(unused, o));
 }

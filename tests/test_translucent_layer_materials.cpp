@@ -1,9 +1,11 @@
 // The translucent layer's maps read a material as Scene::transmittance does (docs/translucency.md,
-// "Which surfaces let light through"): vertex colours and vertex alpha on a BLEND surface, and a
+// "Which surfaces let light through"): vertex colours and vertex alpha on a BLEND surface; a
 // textured MASK surface with transmission, whose holes let everything through and whose covered
-// part lets its tinted light through. Against the coloured truth, per channel, under a sun and a
-// point light: one surface a texel, which both methods hold exactly but for the half floats and
-// the bilinear mix of the texels at the pixel.
+// part lets its tinted light through; a transmission texture, its bytes stored linear; and a
+// leaf of two triangles back to back, which a shadow ray crosses once. Against
+// the coloured truth, per channel, under a sun and a point light: one surface a texel, which both
+// methods hold exactly but for the half floats and the bilinear mix of the texels at the pixel.
+#include "render/scene_upload.h"
 #include "scene/mesh_builder.h"
 #include "truth_fixture.h"
 
@@ -50,6 +52,34 @@ Scene vertexColouredAndMaskedSheets() {
     scene.materials[masked].transmission = 0.8f;
     mb.quad({0.5f, 2.0f, 1.5f}, {3.5f, 2.0f, 1.5f}, {3.5f, 2.0f, -1.5f}, {0.5f, 2.0f, -1.5f},
             masked);
+
+    // Behind them, clear glass whose transmission texture's columns let 100%, 50%, 16% and 78%
+    // of the light through (its red bytes, stored linear: 255, 128, 40, 200).
+    scene.images.push_back({.name = "transmission", .width = 4, .height = 1});
+    for (const uint8_t red : std::array<uint8_t, 4>{255, 128, 40, 200})
+        scene.images.back().rgba.insert(scene.images.back().rgba.end(),
+                                        {red, uint8_t{0}, uint8_t{0}, uint8_t{255}});
+    scene.textures.push_back({.image = static_cast<uint32_t>(scene.images.size() - 1),
+                              .wrapS = TextureWrap::ClampToEdge,
+                              .wrapT = TextureWrap::ClampToEdge,
+                              .nearest = true});
+    const uint32_t clear = mb.material("clear glass", {0.9f, 0.9f, 0.5f});
+    scene.materials[clear].transmission = 1.0f;
+    scene.materials[clear].transmissionTexture = static_cast<int32_t>(scene.textures.size() - 1);
+    mb.quad({-2.0f, 1.0f, -2.0f}, {2.0f, 1.0f, -2.0f}, {2.0f, 1.0f, -4.5f}, {-2.0f, 1.0f, -4.5f},
+            clear);
+
+    // Above the camera's side, a green leaf modelled as two quads back to back, each culled from
+    // behind: a shadow ray crosses it once (the truth's rule), so the layer's maps draw it once.
+    const uint32_t leaf = mb.material("leaf", {0.3f, 0.9f, 0.3f});
+    scene.materials[leaf].alphaMode = AlphaMode::Blend;
+    scene.materials[leaf].baseColor.w = 0.6f;
+    scene.materials[leaf].transmission = 0.7f;
+    scene.materials[leaf].doubleSided = false;
+    const glm::vec3 a{-1.0f, 3.0f, 4.0f}, b{1.0f, 3.0f, 4.0f}, c{1.0f, 3.0f, 2.5f},
+        d{-1.0f, 3.0f, 2.5f};
+    mb.quad(a, b, c, d, leaf); // facing up: triangles abc, acd
+    mb.quad(a, d, c, b, leaf); // facing down: adc, acb, on the same corners
 
     scene.cameras.push_back({.name = "above",
                              .position = {0.0f, 9.0f, 6.0f},
@@ -125,4 +155,80 @@ TEST_F(LayerTest, TranslucentLayerReadsVertexColoursAndMaskedTransmission) {
             EXPECT_GT(opaqueError, 0.3) << light.name;
         }
     }
+}
+
+// A sheet that lets nothing through (BLEND at alpha 1, no transmission) filters as pcf's bilinear
+// 4-tap filters it cast opaque: the layer's pass reads the 2x2 texels around the receiver with
+// the same weights, texel centres at half-integers, for a sun, a spot and a point light. Ground
+// pixels only (the sheet's own surface takes each method's bias), no normal offset, receiver
+// plane nor cascade blend on pcf's side.
+TEST_F(LayerTest, TranslucentLayerMixesTexelsAsBilinearPcfDoes) {
+    Scene scene = vertexColouredAndMaskedSheets();
+    scene.materials.resize(1); // the ground's; every sheet becomes the opaque blend below
+    const uint32_t dark = static_cast<uint32_t>(scene.materials.size());
+    scene.materials.push_back({.name = "dark", .alphaMode = AlphaMode::Blend});
+    for (Vertex& v : scene.vertices)
+        if (v.material != 0)
+            v.material = dark, v.color = glm::vec4(1.0f); // no vertex alpha either
+    const std::vector<Light> lights{
+        {.name = "sun",
+         .type = LightType::Directional,
+         .direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f))},
+        {.name = "spot",
+         .type = LightType::Spot,
+         .position = {0.5f, 6.0f, 1.0f},
+         .direction = glm::normalize(glm::vec3(-0.1f, -1.0f, -0.2f)),
+         .outerConeAngle = 1.0f},
+        {.name = "point", .type = LightType::Point, .position = {0.0f, 6.0f, 0.5f}}};
+    for (const Light& light : lights) {
+        scene.lights = {light};
+        RenderOptions o{.width = 160, .height = 120, .shadowMapSize = 256, .frames = 1};
+        o.parameters.set("bias.normal", "0");
+        o.parameters.set("bias.receiver", "off");
+        o.parameters.set("csm.blend", "0"); // the layer's pass picks one cascade
+        for (const char* method : {"coloured", "moments"}) {
+            o.technique = Technique::Hard;
+            o.parameters.set("translucent.method", method);
+            const RenderResult layer = render(scene, o);
+            o.technique = Technique::Pcf;
+            o.parameters.set("pcf.filter", "bilinear");
+            o.parameters.set("translucent.method", "off");
+            const RenderResult pcf = render(scene, o);
+            size_t ground = 0, partial = 0, off = 0;
+            float worst = 0.0f;
+            for (size_t i = 0; i < pcf.visibility[0].size(); ++i) {
+                if (!onGround(pcf, i))
+                    continue;
+                ++ground;
+                partial += pcf.visibility[0][i] > 0.02f && pcf.visibility[0][i] < 0.98f;
+                const float gap = std::abs(layer.visibility[0][i] - pcf.visibility[0][i]);
+                worst = std::max(worst, gap);
+                off += gap > 1e-3f;
+            }
+            std::printf("%s, %s: %zu ground pixels, %zu on filtered edges, %zu off by more than "
+                        "1e-3, worst gap %.2g\n",
+                        light.name.c_str(), method, ground, partial, off, worst);
+            EXPECT_GT(partial, 140u) << light.name;
+            // A sun's pixel may straddle a cascade's border, where pcf's taps past it read lit
+            // and the layer's pass the border's texels (measured: one pixel, 0.025 off).
+            EXPECT_LE(off, 2u) << light.name << ", " << method;
+            EXPECT_LT(worst, 0.05f) << light.name << ", " << method;
+        }
+    }
+}
+
+// What a volume's face keeps on the GPU (render::translucentConstants, Scene::transmittance's
+// rule): half the path's Beer-Lambert attenuation over the thickness, each channel c^(t / 2d);
+// without an attenuation distance (infinite: glTF's default) nothing, even where the colour is 0.
+TEST_F(LayerTest, TranslucentVolumeAttenuatesOnlyOverAFiniteDistance) {
+    Material glass{.name = "glass", .transmission = 1.0f, .thickness = 1.0f};
+    glass.attenuationColor = {0.0f, 0.5f, 1.0f};
+    const glm::vec4 none = render::translucentConstants(glass).attenuation;
+    EXPECT_EQ(glm::vec3(none), glm::vec3(1.0f)) << none.x << " " << none.y << " " << none.z;
+    glass.attenuationDistance = 2.0f;
+    const glm::vec4 some = render::translucentConstants(glass).attenuation;
+    EXPECT_EQ(some.x, 0.0f);
+    EXPECT_NEAR(some.y, std::pow(0.5f, 0.25f), 1e-6f);
+    EXPECT_NEAR(some.z, 1.0f, 1e-6f);
+    EXPECT_NE(render::translucentConstants(glass).flags.x & TRANSLUCENT_VOLUME, 0u);
 }

@@ -251,13 +251,7 @@ int runCompare(const CompareArgs& args, const GlobalOptions& global) {
                           shimmer.empty() ? std::vector<uint32_t>{} : shimmer[r].pagesResident};
         for (const auto& [key, value] : rows[r].sets)
             row.parameters.emplace_back(key, value);
-        if (!truth.transmittance.empty() && !masks.empty()) { // a coloured truth
-            const std::array<double, 3> perChannel = rmsePerChannel(
-                result.transmittance.empty() ? std::span<const float>{}
-                                             : std::span<const float>(result.transmittance[0]),
-                result.visibility[0], truth.transmittance[0], masks[0]);
-            row.rmsePerChannel.assign(perChannel.begin(), perChannel.end());
-        }
+        row.rmsePerChannel = firstLightRmsePerChannel(result, truth.transmittance, masks);
         if (!measured.empty()) {
             row.rmseOverTime = measured[r].rmse;
             row.gpuMsOverTime = measured[r].gpuMs;

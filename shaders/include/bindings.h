@@ -114,6 +114,8 @@
 #define TRANSLUCENT_VIEWS 2           // ShadowViewData[], uniform
 #define TRANSLUCENT_NEAREST_DEPTH 3   // the coloured map's nearest depths (its second's peel; the
                                       // light's depth map, unread, in the other draws)
+#define TRANSLUCENT_TRANSMISSION_TEXTURE 4 // the caster's transmission texture (UNORM view: its
+                                           // bytes stored linear; white when it has none)
 // ... and its pass (translucent.comp) on a layout of its own, beside the LAYER_* bindings:
 #define TRANSLUCENT_LAYER_VIEWS 11    // ShadowViewData[], uniform
 #define TRANSLUCENT_LAYER_NEAREST 12  // the coloured map's nearest depths and its second nearest

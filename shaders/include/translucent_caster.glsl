@@ -16,13 +16,14 @@ layout(location = 0) in vec2 inUv;
 layout(location = 1) in vec4 inColor;
 
 layout(set = 0, binding = TRANSLUCENT_TEXTURE_BINDING) uniform sampler2D baseColorTexture;
+layout(set = 0, binding = TRANSLUCENT_TRANSMISSION_TEXTURE) uniform sampler2D transmissionTexture;
 layout(set = 0, binding = TRANSLUCENT_OPAQUE_DEPTH) uniform sampler2DArray opaqueDepth;
 layout(set = 0, binding = TRANSLUCENT_VIEWS, std140) uniform Views { ShadowViewData views[MAX_UNIFORM_VIEWS]; };
 layout(push_constant) uniform Push { TranslucentCasterPush push; };
 
 // Scene::transmittance (src/scene/material_coverage.cpp), the base colour texture read at full
-// resolution as the alpha test reads it, through an sRGB view (its colour arrives linear). The
-// transmission texture is not read yet.
+// resolution as the alpha test reads it, through an sRGB view (its colour arrives linear); the
+// transmission texture's red channel likewise, through a UNORM view (stored linear).
 vec3 transmittance() {
     uint flags = push.flags.x;
     vec4 texel = vec4(1.0);
@@ -30,7 +31,8 @@ vec3 transmittance() {
     float alpha = push.baseColor.a * inColor.a * texel.a;
     if ((flags & TRANSLUCENT_MASK) != 0u && alpha < push.bias.y) return vec3(1.0);
     float covered = (flags & TRANSLUCENT_BLEND) != 0u ? clamp(alpha, 0.0, 1.0) : 1.0;
-    vec3 through = clamp(push.bias.z * push.baseColor.rgb * inColor.rgb * texel.rgb, 0.0, 1.0);
+    float fraction = push.bias.z * textureLod(transmissionTexture, inUv, 0.0).r;
+    vec3 through = clamp(fraction * push.baseColor.rgb * inColor.rgb * texel.rgb, 0.0, 1.0);
     if ((flags & TRANSLUCENT_VOLUME) != 0u) through = sqrt(through) * push.attenuation.rgb;
     return (1.0 - covered) + covered * through;
 }

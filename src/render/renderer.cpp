@@ -217,9 +217,9 @@ namespace {
 // translucent casters as opaque), and a device that blends 32-bit float moments.
 void checkTranslucentLayer(const vk::Context& ctx, const Scene& scene, const RenderOptions& o) {
     const uint32_t method = shadows::translucentLayer().translucentMethod(o.parameters);
-    if (method == TRANSLUCENT_OFF ||
-        std::none_of(scene.materials.begin(), scene.materials.end(),
-                     [](const Material& m) { return m.translucent(); }))
+    // Its casters are triangles with a translucent material, as the upload groups them: a
+    // material no triangle uses casts nothing.
+    if (method == TRANSLUCENT_OFF || !scene.hasTranslucentCasters())
         return;
     if (o.parameters.number("virtual.enabled") != 0.0)
         throw InputError("translucent.method", "translucent shadows need whole shadow maps: "

@@ -4,10 +4,13 @@
 #include "translucent.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <set>
 #include <span>
+#include <tuple>
 
 namespace penumbra::render {
 
@@ -58,6 +61,36 @@ IndexLayout layoutIndices(const Scene& scene) {
                : material.alphaTested() ? Group::AlphaTested
                                         : Group::Opaque;
     };
+    // A translucent triangle on the corners of an earlier one (a leaf modelled as two triangles
+    // back to back, a film on glass) goes to the end of its batch, which the layer's maps leave
+    // out: the truth's shadow ray crosses the two once.
+    std::set<std::array<float, 9>> cornersSeen;
+    auto splitRepeats = [&](size_t m) {
+        std::vector<uint32_t> first, repeats, firstTriangles, repeatTriangles;
+        for (size_t k = 0; k < trianglesOf[m].size(); ++k) {
+            std::array<glm::vec3, 3> corners{};
+            for (size_t c = 0; c < 3; ++c)
+                corners[c] = scene.vertices[byMaterial[m][3 * k + c]].position;
+            std::sort(corners.begin(), corners.end(), [](const glm::vec3& a, const glm::vec3& b) {
+                return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z);
+            });
+            std::array<float, 9> key{};
+            for (size_t c = 0; c < 3; ++c)
+                for (int axis = 0; axis < 3; ++axis)
+                    key[3 * c + size_t(axis)] = corners[c][axis];
+            const bool repeat = !cornersSeen.insert(key).second;
+            auto& indices = repeat ? repeats : first;
+            indices.insert(indices.end(), byMaterial[m].begin() + static_cast<long>(3 * k),
+                           byMaterial[m].begin() + static_cast<long>(3 * k + 3));
+            (repeat ? repeatTriangles : firstTriangles).push_back(trianglesOf[m][k]);
+        }
+        const auto casterCount = static_cast<uint32_t>(first.size());
+        first.insert(first.end(), repeats.begin(), repeats.end());
+        firstTriangles.insert(firstTriangles.end(), repeatTriangles.begin(), repeatTriangles.end());
+        byMaterial[m] = std::move(first);
+        trianglesOf[m] = std::move(firstTriangles);
+        return casterCount;
+    };
     out.indices.reserve(scene.indices.size());
     for (const Group group : {Group::Opaque, Group::AlphaTested, Group::Translucent}) {
         if (group == Group::Translucent)
@@ -65,13 +98,16 @@ IndexLayout layoutIndices(const Scene& scene) {
         for (size_t m = 0; m < materialCount; ++m) {
             if (groupOf(m) != group || byMaterial[m].empty())
                 continue;
+            const auto count = static_cast<uint32_t>(byMaterial[m].size());
+            const uint32_t casterCount = group == Group::Translucent ? splitRepeats(m) : count;
             const bool coloured =
                 std::any_of(byMaterial[m].begin(), byMaterial[m].end(),
                             [&](uint32_t i) { return scene.vertices[i].color != glm::vec4(1.0f); });
             out.batches.push_back({.material = static_cast<uint32_t>(m),
                                    .firstIndex = static_cast<uint32_t>(out.indices.size()),
-                                   .indexCount = static_cast<uint32_t>(byMaterial[m].size()),
-                                   .vertexColors = coloured});
+                                   .indexCount = count,
+                                   .vertexColors = coloured,
+                                   .casterIndexCount = casterCount});
             out.indices.insert(out.indices.end(), byMaterial[m].begin(), byMaterial[m].end());
             out.triangles.insert(out.triangles.end(), trianglesOf[m].begin(), trianglesOf[m].end());
             if (group == Group::Opaque)
@@ -89,10 +125,15 @@ std::vector<glm::vec3> positionsOf(std::span<const Vertex> vertices) {
     return positions;
 }
 
+// Where clusters must start: each batch, and the repeated triangles a translucent batch's draws
+// into the layer's maps leave out (no cluster straddles them).
 std::vector<uint32_t> batchStarts(const std::vector<DrawBatch>& batches) {
     std::vector<uint32_t> starts;
-    for (const DrawBatch& batch : batches)
+    for (const DrawBatch& batch : batches) {
         starts.push_back(batch.firstIndex);
+        if (batch.casterIndexCount > 0 && batch.casterIndexCount < batch.indexCount)
+            starts.push_back(batch.firstIndex + batch.casterIndexCount);
+    }
     return starts;
 }
 
@@ -151,6 +192,7 @@ GpuScene uploadScene(const vk::Context& ctx, const Scene& scene) {
                            .alphaTest = material.alphaTested() ? 1u : 0u,
                            .hasTexture = material.baseColorTexture >= 0 ? 1u : 0u},
              .texture = out.textures.of(scene, material),
+             .transmissionTexture = out.textures.transmissionOf(scene, material),
              .doubleSided = material.doubleSided,
              .translucent = translucentConstants(material)});
     }

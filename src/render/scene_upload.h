@@ -20,6 +20,10 @@ struct DrawBatch {
     uint32_t material;
     uint32_t firstIndex, indexCount;
     bool vertexColors; // some vertex's colour is not opaque white (else the G-buffer skips them)
+    // The first indices the translucent layer's maps draw (the rest: triangles on the corners of
+    // an earlier translucent one, which a shadow ray crosses once, as the truth counts it:
+    // docs/translucency.md); indexCount for every other batch.
+    uint32_t casterIndexCount = indexCount;
 };
 
 // Indices are grouped by material, the alpha-tested materials after the opaque ones and the
@@ -40,7 +44,8 @@ struct GpuScene {
     GpuTextures textures;
     struct Material {
         gpu::MaterialPush constants;
-        GpuTextures::Binding texture; // the 1x1 white texture when it has none
+        GpuTextures::Binding texture;             // the 1x1 white texture when it has none
+        GpuTextures::Binding transmissionTexture; // linear (UNORM); white when it has none
         bool doubleSided;
         // What its draw into the translucent layer's maps pushes, the view's fields aside.
         gpu::TranslucentCasterPush translucent;

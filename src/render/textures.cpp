@@ -83,6 +83,18 @@ GpuTextures::Binding GpuTextures::of(const Scene& scene, const Material& materia
     return {images[texture.image].view.get(), samplers[static_cast<size_t>(t)].get()};
 }
 
+GpuTextures::Binding GpuTextures::transmissionOf(const Scene& scene,
+                                                 const Material& material) const {
+    const int32_t t = material.transmissionTexture;
+    if (t < 0 || static_cast<size_t>(t) >= scene.textures.size())
+        return white();
+    // An image that is not there reads white, as the truth reads the factor alone then.
+    const Texture& texture = scene.textures[static_cast<size_t>(t)];
+    if (texture.image >= linearViews.size() || !linearViews[texture.image])
+        return white();
+    return {linearViews[texture.image].get(), samplers[static_cast<size_t>(t)].get()};
+}
+
 GpuTextures uploadTextures(const vk::Context& ctx, const Scene& scene) {
     static const TextureImage kWhite{
         .name = "white", .width = 1, .height = 1, .rgba = {255, 255, 255, 255}};
@@ -96,6 +108,14 @@ GpuTextures uploadTextures(const vk::Context& ctx, const Scene& scene) {
         total += image->rgba.size();
     vk::Buffer staging = vk::createBuffer(ctx, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                           vk::MemoryUse::Upload, "texture staging buffer");
+    // The images a transmission texture reads, stored linear: viewed UNORM as well.
+    std::vector<bool> linear(sources.size(), false);
+    for (const Material& m : scene.materials)
+        if (m.transmissionTexture >= 0 &&
+            static_cast<size_t>(m.transmissionTexture) < scene.textures.size())
+            if (const uint32_t image = scene.textures[size_t(m.transmissionTexture)].image;
+                image < scene.images.size())
+                linear[image] = true;
     GpuTextures out;
     VkDeviceSize offset = 0;
     std::vector<VkDeviceSize> offsets;
@@ -113,13 +133,19 @@ GpuTextures uploadTextures(const vk::Context& ctx, const Scene& scene) {
                   .height = image->height,
                   .usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT |
                            VK_IMAGE_USAGE_SAMPLED_BIT,
-                  .mipLevels = static_cast<uint32_t>(
-                      std::bit_width(std::max(image->width, image->height)))}));
+                  .mipLevels =
+                      static_cast<uint32_t>(std::bit_width(std::max(image->width, image->height))),
+                  .alsoViewedAs =
+                      linear[out.images.size()] ? VK_FORMAT_R8G8B8A8_UNORM : VK_FORMAT_UNDEFINED}));
     }
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
         for (size_t i = 0; i < out.images.size(); ++i)
             recordUpload(cmd, out.images[i], staging.get(), offsets[i]);
     });
+    for (size_t i = 0; i < out.images.size(); ++i)
+        out.linearViews.push_back(
+            linear[i] ? vk::createFormatView(ctx, out.images[i], VK_FORMAT_R8G8B8A8_UNORM)
+                      : vk::ImageViewHandle{});
     for (const Texture& texture : scene.textures)
         out.samplers.push_back(createTextureSampler(ctx, texture));
     out.samplers.push_back(createTextureSampler(ctx, Texture{}));

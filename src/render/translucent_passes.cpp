@@ -43,6 +43,8 @@ void drawCasters(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
         push.flags.y = v;
         vk::PushDescriptors()
             .sampled(TRANSLUCENT_TEXTURE_BINDING, material.texture.view, material.texture.sampler)
+            .sampled(TRANSLUCENT_TRANSMISSION_TEXTURE, material.transmissionTexture.view,
+                     material.transmissionTexture.sampler)
             .sampled(TRANSLUCENT_OPAQUE_DEPTH, opaqueDepth, in.nearest)
             .sampled(TRANSLUCENT_NEAREST_DEPTH, nearestDepth, in.nearest)
             .uniformBuffer(TRANSLUCENT_VIEWS, in.views)
@@ -51,8 +53,8 @@ void drawCasters(VkCommandBuffer cmd, FramePipelines& p, const GpuScene& scene,
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof push, &push);
         for (const IndexRange& r :
-             visibleRanges(scene.clusters, batch.firstIndex, batch.indexCount, projection.viewProj,
-                           !projection.perspective, CasterSet::All))
+             visibleRanges(scene.clusters, batch.firstIndex, batch.casterIndexCount,
+                           projection.viewProj, !projection.perspective, CasterSet::All))
             vkCmdDrawIndexed(cmd, r.count, 1, r.first, 0, 0);
     }
     vkCmdEndRendering(cmd);

@@ -149,6 +149,18 @@ ErrorMetrics metricsAgainstTruth(const Scene& lit, const RenderResult& result,
     return metricsAgainstTruth(lit, std::span(&view, 1), blur);
 }
 
+std::vector<double> firstLightRmsePerChannel(const RenderResult& result,
+                                             std::span<const std::vector<float>> truthTransmittance,
+                                             std::span<const std::vector<uint8_t>> masks) {
+    if (truthTransmittance.empty() || masks.empty() || result.visibility.empty())
+        return {};
+    const std::array<double, 3> perChannel = rmsePerChannel(
+        result.transmittance.empty() ? std::span<const float>{}
+                                     : std::span<const float>(result.transmittance[0]),
+        result.visibility[0], truthTransmittance[0], masks[0]);
+    return {perChannel.begin(), perChannel.end()};
+}
+
 double contactBand(const Scene& scene) {
     return shadows::kContactRowFraction * double(scene.bounds().radius());
 }

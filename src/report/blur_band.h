@@ -60,4 +60,12 @@ ErrorMetrics metricsAgainstTruth(const Scene& lit, const RenderResult& result,
                                  std::span<const std::vector<uint8_t>> masks, BlurReach blur,
                                  std::span<const std::vector<float>> occluderDistance = {});
 
+// metrics.json's rmse_per_channel for a render against a coloured truth (`truthTransmittance`,
+// ReferenceResult::transmittance): the first light's light per channel (the translucent layer's,
+// else its visibility in every channel) over the pixels its mask counts. Empty where the truth is
+// grey (no transmittance) or no light casts a shadow.
+std::vector<double> firstLightRmsePerChannel(const RenderResult& result,
+                                             std::span<const std::vector<float>> truthTransmittance,
+                                             std::span<const std::vector<uint8_t>> masks);
+
 } // namespace penumbra

@@ -624,9 +624,10 @@ Scene loadGltf(const std::filesystem::path& file, const GltfOptions& options) {
                                : mat.alphaMode == "BLEND" ? AlphaMode::Blend
                                                           : AlphaMode::Opaque;
         if (mode == AlphaMode::Blend)
-            flat.warn(fmt::format("materials[{}]: alphaMode BLEND is drawn opaque; the ground "
-                                  "truth lets 1 - alpha of the light through it, the shadow "
-                                  "techniques none",
+            flat.warn(fmt::format("materials[{}]: alphaMode BLEND is drawn opaque in the image; "
+                                  "its shadow lets 1 - alpha of the light through in the ground "
+                                  "truth and with translucent.method=coloured or moments (a "
+                                  "+translucent row), none otherwise",
                                   scene.materials.size()));
         scene.materials.push_back(
             {.name = mat.name,

@@ -65,11 +65,12 @@ VkImageAspectFlags aspectOf(VkFormat format) {
 
 ImageViewHandle createView(const Context& ctx, const Image& image, VkImageViewType type,
                            uint32_t baseLayer, uint32_t layerCount, uint32_t baseMip,
-                           uint32_t mipCount) {
+                           uint32_t mipCount, VkFormat format = VK_FORMAT_UNDEFINED) {
     const VkImageViewCreateInfo info{.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO,
                                      .image = image.get(),
                                      .viewType = type,
-                                     .format = image.format,
+                                     .format =
+                                         format != VK_FORMAT_UNDEFINED ? format : image.format,
                                      .subresourceRange = {.aspectMask = image.aspect,
                                                           .baseMipLevel = baseMip,
                                                           .levelCount = mipCount,
@@ -144,9 +145,13 @@ Buffer createBuffer(const Context& ctx, VkDeviceSize size, VkBufferUsageFlags us
 
 namespace {
 VkImageCreateInfo imageCreateInfo(const ImageDesc& desc) {
+    VkImageCreateFlags flags = 0;
+    if (desc.cube)
+        flags |= VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT;
+    if (desc.alsoViewedAs != VK_FORMAT_UNDEFINED)
+        flags |= VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT;
     return {.sType = VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO,
-            .flags = desc.cube ? VkImageCreateFlags{VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT}
-                               : VkImageCreateFlags{0},
+            .flags = flags,
             .imageType = desc.depth > 1 ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D,
             .format = desc.format,
             .extent = {desc.width, desc.height, desc.depth},
@@ -239,6 +244,11 @@ Image createImage(const Context& ctx, const ImageDesc& desc) {
 MemoryHandle allocateDeviceLocal(const Context& ctx, const VkMemoryRequirements& needs,
                                  const std::string& name) {
     return allocate(ctx, needs, MemoryUse::DeviceLocal, name);
+}
+
+ImageViewHandle createFormatView(const Context& ctx, const Image& image, VkFormat format) {
+    PENUMBRA_CHECK(image.layers == 1 && image.depth == 1, "a format view of a 2D image only");
+    return createView(ctx, image, VK_IMAGE_VIEW_TYPE_2D, 0, 1, 0, image.mipLevels, format);
 }
 
 ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer,

@@ -31,6 +31,9 @@ struct ImageDesc {
     uint32_t depth = 1;     // > 1: a 3D image (one layer) with a 3D view (a distance field)
     bool cube = false;      // layers a multiple of 6: a cube (6) or cube-array view, faces in
                             // Vulkan's order +x, -x, +y, -y, +z, -z
+    // A compatible format a second view may read it in (createFormatView; the image is made
+    // with VK_IMAGE_CREATE_MUTABLE_FORMAT_BIT). UNDEFINED: none.
+    VkFormat alsoViewedAs = VK_FORMAT_UNDEFINED;
 };
 
 struct Image {
@@ -68,6 +71,9 @@ void bindImage(const Context& ctx, Image& image, const ImageDesc& desc, VkDevice
                VkDeviceSize offset);
 MemoryHandle allocateDeviceLocal(const Context& ctx, const VkMemoryRequirements& needs,
                                  const std::string& name);
+// A view of a one-layer 2D image, every mip level, in `format`: ImageDesc::alsoViewedAs (an sRGB
+// texture's bytes read as they are, UNORM).
+ImageViewHandle createFormatView(const Context& ctx, const Image& image, VkFormat format);
 // A view of one mip level of one layer of an array image (for rendering into it, writing it as
 // a storage image or sampling it as 2D).
 ImageViewHandle createLayerView(const Context& ctx, const Image& image, uint32_t layer,

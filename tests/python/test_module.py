@@ -275,3 +275,8 @@ def test_translucent_layer_gives_the_light_per_channel_as_the_truth_does():
     error = np.sqrt(np.mean((rgb[counted] - wanted[counted]) ** 2, axis=0))
     opaque = np.sqrt(np.mean((grey.visibility[0][counted][:, None] - wanted[counted]) ** 2, axis=0))
     assert (error < 0.5 * opaque).all(), (error, opaque)
+    # penumbra.metrics gives compare's rmse_per_channel: the layer's below half the grey row's.
+    ours, greys = penumbra.metrics(result, truth), penumbra.metrics(grey, truth)
+    assert len(ours["rmse_per_channel"]) == 3 and len(greys["rmse_per_channel"]) == 3
+    for tinted, plain in zip(ours["rmse_per_channel"], greys["rmse_per_channel"]):
+        assert tinted < 0.5 * plain, (ours["rmse_per_channel"], greys["rmse_per_channel"])
