@@ -401,33 +401,26 @@ TEST(HtmlReport, TheBestIsMarkedOnlyWhereValuesDiffer) {
     EXPECT_EQ(count(renderHtmlReport(one), "class=\"best"), 0u);
 }
 
-// A coloured truth adds a column after the RMSE, in the Error group (6 columns, not 5): each
-// row's red, green and blue RMSE stacked in that order, sorted by the worst of them, the lowest
-// worst marked; a row without them shows a dash. Without a coloured truth the table keeps its
-// five.
+// A coloured truth's error per channel goes under each row's RMSE, red, green and blue in that
+// order, in a cell of the RMSE column (no column of its own: the Error group keeps its five); a
+// row without them shows none, and a grey report has no such line at all.
 TEST(HtmlReport, AColouredTruthAddsTheErrorOfEachChannel) {
     ReportData d = makeReport(); // RMSE 0.2 and 0.1
     const std::string grey = renderHtmlReport(d);
-    EXPECT_NE(grey.find("<th colspan=\"5\">Error</th>"), std::string::npos);
-    EXPECT_EQ(grey.find("RMSE <small>R G B</small>"), std::string::npos);
-    EXPECT_EQ(countOf(grey, "channels\""), 0u) << "no cells for the channels either";
+    EXPECT_EQ(countOf(grey, "class=\"channels\""), 0u);
     d.rows[0].rmsePerChannel = {0.25, 0.375, 0.5};
-    d.rows[1].rmsePerChannel = {0.75, 0.125, 0.0625};
+    d.rows[1].rmsePerChannel = {0.75, 0.125, 0.07};
     d.rows.push_back(makeRow("grey", 0.3, {}));
     const std::string html = renderHtmlReport(d);
-    EXPECT_NE(html.find("<th colspan=\"6\">Error</th>"), std::string::npos);
-    const size_t channels = html.find("RMSE <small>R G B</small>"), rmse = html.find(">RMSE</th>"),
-                 mae = html.find(">MAE</th>");
-    ASSERT_NE(channels, std::string::npos);
-    EXPECT_TRUE(rmse < channels && channels < mae);
-    // The first row: its RMSE, then its three channels (the worst, 0.5, the lowest worst), then
-    // its MAE.
+    EXPECT_EQ(countOf(html, "<th colspan=\"5\">Error</th>"), 1u);
+    EXPECT_EQ(countOf(html, "class=\"channels\""), 2u) << "the grey row has none";
+    // The first row: its RMSE with its three channels beneath, then its MAE.
     const size_t row = html.find("<tr class=\"technique-row\" data-technique=\"hard\"");
     ASSERT_NE(row, std::string::npos);
     const std::string cells = html.substr(row, html.find("</tr>", row) - row);
     const std::vector<std::string> expected{
-        "<td data-value=\"0.2\">0.2000</td>",
-        "<td data-value=\"0.5\" class=\"best channels\">0.2500<br>0.3750<br>0.5000</td>",
+        "<td data-value=\"0.2\">0.2000<div class=\"channels\" title=\"red, green, blue\">"
+        "0.250<br>0.375<br>0.500</div></td>",
         "<td data-value=\"0.1\">0.1000</td>"};
     size_t at = 0;
     for (const std::string& cell : expected) {
@@ -435,11 +428,9 @@ TEST(HtmlReport, AColouredTruthAddsTheErrorOfEachChannel) {
         ASSERT_NE(next, std::string::npos) << cell;
         at = next + cell.size();
     }
-    EXPECT_NE(html.find("<td data-value=\"0.75\" class=\"channels\">0.7500<br>0.1250<br>"
-                        "0.0625</td>"),
+    EXPECT_NE(html.find("<td data-value=\"0.1\" class=\"best\">0.1000<div class=\"channels\" "
+                        "title=\"red, green, blue\">0.750<br>0.125<br>0.070</div></td>"),
               std::string::npos);
-    EXPECT_EQ(countOf(html, "<td data-value=\"NaN\" class=\"channels\">&ndash;</td>"), 1u)
-        << "the grey row";
 }
 
 TEST(HtmlReport, IsSelfContainedAndEscaped) {

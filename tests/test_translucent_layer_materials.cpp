@@ -232,3 +232,49 @@ TEST_F(LayerTest, TranslucentVolumeAttenuatesOnlyOverAFiniteDistance) {
     EXPECT_NEAR(some.z, 1.0f, 1e-6f);
     EXPECT_NE(render::translucentConstants(glass).flags.x & TRANSLUCENT_VOLUME, 0u);
 }
+
+// A surface that lets everything through (a card that is all hole, as a leaf card's clear border
+// is) is no surface to the coloured map: its fragments are dropped, or the card would take the
+// nearest depth and push the two real sheets below it into the nearest's and the product's
+// places. On the lower sheet's own top, between the two, the truth is the upper sheet's tint.
+TEST_F(LayerTest, TranslucentLayerDropsWhatLetsEverythingThrough) {
+    Scene scene;
+    scene.name = "clear-card";
+    MeshBuilder mb(scene);
+    mb.quad({-6, 0, 6}, {6, 0, 6}, {6, 0, -6}, {-6, 0, -6}, mb.material("ground", glm::vec3(0.7f)));
+    const auto sheet = [&](const char* name, glm::vec3 colour, float y, float half) {
+        const uint32_t m = mb.material(name, colour);
+        scene.materials[m].transmission = 1.0f;
+        mb.quad({-half, y, half}, {half, y, half}, {half, y, -half}, {-half, y, -half}, m);
+        return m;
+    };
+    // All hole (MASK at alpha 0, translucent by its transmission): the camera sees through it too.
+    const uint32_t card = sheet("clear card", glm::vec3(1.0f), 3.0f, 3.0f);
+    scene.materials[card].alphaMode = AlphaMode::Mask;
+    scene.materials[card].baseColor.w = 0.0f;
+    sheet("red", {1.0f, 0.3f, 0.3f}, 2.0f, 1.5f);
+    sheet("green", {0.3f, 1.0f, 0.3f}, 1.0f, 2.5f);
+    scene.cameras.push_back({.name = "above",
+                             .position = {0.0f, 9.0f, 6.0f},
+                             .target = {0.0f, 0.0f, 0.0f},
+                             .yfov = 0.9f,
+                             .znear = 0.1f,
+                             .zfar = 60.0f});
+    scene.lights = {{.name = "sun",
+                     .type = LightType::Directional,
+                     .direction = glm::normalize(glm::vec3(0.0f, -1.0f, 0.8f))}};
+    const Truth t =
+        groundTruth(scene, {.width = 192, .height = 144, .shadowMapSize = 1024, .samples = 1});
+    // The green sheet's top under the red one, off the edges.
+    std::vector<size_t> onGreen;
+    for (size_t i : insideTheTint(t))
+        if (std::abs(pixelVec(t.gbuffer.position, i).y - 1.0f) < 1e-3f)
+            onGreen.push_back(i);
+    const RenderResult r = renderRow(t, Technique::Hard, {{"translucent.method", "coloured"}});
+    const double error =
+        worstChannelRmse(r.transmittance.at(0), t.reference.transmittance.at(0), onGreen);
+    std::printf("%zu pixels on the green sheet under the red one: worst channel RMSE %.4f\n",
+                onGreen.size(), error);
+    EXPECT_GT(onGreen.size(), 500u);
+    EXPECT_LT(error, 0.01);
+}

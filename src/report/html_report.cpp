@@ -86,7 +86,7 @@ td { text-align: right; } th:nth-child(-n+2), td:nth-child(-n+2) { text-align: l
 tbody tr:nth-child(even) { background: #fafbfc; } tbody tr:hover { background: #eef4fb; }
 td.name { font-weight: 600; } td.params { color: var(--muted); white-space: normal; }
 td.best { color: #22543d; font-weight: 600; } th.total, td.total { border-left: 1px solid var(--line); }
-td.channels { font-size: 12px; line-height: 1.3; }
+.channels { color: var(--muted); font-size: 11px; font-weight: 400; line-height: 1.25; }
 .grid-images { display: grid; gap: 20px; }
 figure { margin: 0; } figcaption { margin-bottom: 10px; }
 figcaption .tech { color: var(--muted); font-size: 13px; margin-left: 8px; }
@@ -149,14 +149,9 @@ std::string compactCount(uint64_t n) {
 void writeTable(std::string& s, const ReportData& d) {
     auto out = std::back_inserter(s);
     const bool shimmer = !d.cameraPath.empty();
-    // A coloured truth (translucent casters): the RMSE of each channel beside the luminance's.
-    const bool perChannel = std::any_of(d.rows.begin(), d.rows.end(), [](const ReportRow& row) {
-        return row.rmsePerChannel.size() == 3;
-    });
     s += "<h2>Error against the reference</h2>\n<section class=\"card table-wrap\">"
          "<table class=\"results\">\n<thead><tr class=\"groups\"><th rowspan=\"2\" "
-         "class=\"sortable\" data-type=\"text\">Technique</th>";
-    fmt::format_to(out, "<th colspan=\"{}\">Error</th>", perChannel ? 6 : 5);
+         "class=\"sortable\" data-type=\"text\">Technique</th><th colspan=\"5\">Error</th>";
     fmt::format_to(out, "<th colspan=\"{}\" class=\"group\">Artifacts, % of pixels</th>",
                    shimmer ? 5 : 4);
     s += "<th colspan=\"3\" class=\"group\">GPU cost, ms</th></tr>\n<tr>";
@@ -164,11 +159,8 @@ void writeTable(std::string& s, const ReportData& d) {
         fmt::format_to(out, "<th class=\"sortable{}\" title=\"{}\">{}</th>", first ? " group" : "",
                        title, text);
     };
-    header("RMSE", "root-mean-square error of the visibility against the reference");
-    if (perChannel)
-        header("RMSE <small>R G B</small>",
-               "root-mean-square error of the red, green and blue channels of the first light's "
-               "light against the coloured reference; sorted by the worst");
+    header("RMSE", "root-mean-square error of the visibility against the reference (beneath it, "
+                   "where the truth is coloured, the first light's red, green and blue channels')");
     header("MAE", "mean absolute error");
     header("Max", "largest absolute error");
     header("Wrong", "misclassified: lit where the reference is shadowed or the reverse");
@@ -203,12 +195,6 @@ void writeTable(std::string& s, const ReportData& d) {
     auto bestOf = [&](double ErrorMetrics::*field) {
         return lowestOf([field](const ReportRow& row) { return row.metrics.*field; });
     };
-    // A row's worst channel (NaN: it has none).
-    auto worstChannelOf = [](const ReportRow& row) {
-        return row.rmsePerChannel.size() == 3
-                   ? *std::max_element(row.rmsePerChannel.begin(), row.rmsePerChannel.end())
-                   : NAN;
-    };
     auto number = [&](double v, std::string text, std::string_view cls = "",
                       std::string_view title = "") {
         fmt::format_to(out, "<td data-value=\"{}\"{}{}>{}</td>",
@@ -218,10 +204,12 @@ void writeTable(std::string& s, const ReportData& d) {
     };
     // A percentage with its pixels beneath it (numerator / denominator, both in the tooltip).
     auto cell = [&](const ReportRow& row, double ErrorMetrics::*field, bool asPercent,
-                    std::string_view extra = "", std::string_view countKey = "") {
+                    std::string_view extra = "", std::string_view countKey = "",
+                    std::string_view beneath = "") {
         const double v = row.metrics.*field;
         const bool best = v == bestOf(field);
         std::string text = asPercent ? fmt::format("{:.2f}", 100 * v) : fmt::format("{:.4f}", v);
+        text += beneath;
         std::string title;
         if (!countKey.empty()) {
             const nlohmann::json c = metricCountsJson(row.metrics)[std::string(countKey)];
@@ -244,16 +232,15 @@ void writeTable(std::string& s, const ReportData& d) {
                        "title=\"{}\">{}</div></td>",
                        name, name, name, full.empty() ? "defaults" : escapeHtml(full),
                        full.empty() ? "defaults" : escapeHtml(shortParameters(row.parameters, 34)));
-        cell(row, &ErrorMetrics::rmse, false);
-        if (perChannel) { // the three stacked in one column: the table fits 1000 pixels
-            const double worst = worstChannelOf(row);
-            const std::string text =
-                std::isfinite(worst)
-                    ? fmt::format("{:.4f}<br>{:.4f}<br>{:.4f}", row.rmsePerChannel[0],
-                                  row.rmsePerChannel[1], row.rmsePerChannel[2])
-                    : std::string("&ndash;");
-            number(worst, text, worst == lowestOf(worstChannelOf) ? "best channels" : "channels");
-        }
+        // A coloured truth's error per channel, stacked under the RMSE: no column of its own, so
+        // the table still fits a 1000-pixel window.
+        const std::string channels =
+            row.rmsePerChannel.size() == 3
+                ? fmt::format("<div class=\"channels\" title=\"red, green, blue\">{:.3f}<br>{:.3f}"
+                              "<br>{:.3f}</div>",
+                              row.rmsePerChannel[0], row.rmsePerChannel[1], row.rmsePerChannel[2])
+                : std::string();
+        cell(row, &ErrorMetrics::rmse, false, "", "", channels);
         cell(row, &ErrorMetrics::mae, false);
         cell(row, &ErrorMetrics::max, false);
         cell(row, &ErrorMetrics::misclassified, true, "", "misclassified");
