@@ -180,20 +180,13 @@ void writeTable(std::string& s, const ReportData& d) {
     s += "</tr></thead>\n<tbody>\n";
     // The lowest value of each error column is highlighted when there is something to compare:
     // two rows or more whose values differ (a Max of 1 on every row marks none).
-    // A row without the column's value (NaN) takes no part.
-    auto lowestOf = [&](auto valueOf) {
+    auto bestOf = [&](double ErrorMetrics::*field) {
         double best = INFINITY, worst = -INFINITY;
         for (const ReportRow& row : d.rows) {
-            const double v = valueOf(row);
-            if (std::isnan(v))
-                continue;
-            best = std::min(best, v);
-            worst = std::max(worst, v);
+            best = std::min(best, row.metrics.*field);
+            worst = std::max(worst, row.metrics.*field);
         }
         return best < worst ? best : NAN;
-    };
-    auto bestOf = [&](double ErrorMetrics::*field) {
-        return lowestOf([field](const ReportRow& row) { return row.metrics.*field; });
     };
     auto number = [&](double v, std::string text, std::string_view cls = "",
                       std::string_view title = "") {
