@@ -111,7 +111,7 @@ def generated(seed, folder):
     return path, kind, rng
 
 
-def measure(seed, folder, width, height, map_size):
+def measure(seed, folder, width, height, map_size, validation=False):
     path, kind, rng = generated(seed, folder)
     scene = penumbra.Scene.load(str(path))
     towards = (rng.uniform(-0.6, 0.6), -1.0, rng.uniform(-0.6, 0.6))
@@ -121,25 +121,29 @@ def measure(seed, folder, width, height, map_size):
         place = (rng.uniform(-1.5, 1.5), rng.uniform(5, 7), rng.uniform(-1.5, 1.5))
         scene.edit(light_pos={"L": place}, light_dir={"L": towards} if kind == "spot" else {})
     scene.edit(camera_pos=(0, 9, 7), look_at=(0, 0, 0))
-    renderer = penumbra.Renderer(scene, width, height, shadow_map_size=map_size)
+    renderer = penumbra.Renderer(scene, width, height, shadow_map_size=map_size,
+                                 validation=validation)
     truth = renderer.reference(samples=1)
     return kind, [penumbra.metrics(renderer.render("hard", params={"translucent.method": m},
                                                    frames=1), truth)["rmse"] for m in METHODS]
 
 
-def main():
+def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", default="9100:9130", help="FIRST:END (END excluded)")
     parser.add_argument("--width", type=int, default=256)
     parser.add_argument("--height", type=int, default=192)
     parser.add_argument("--shadow-map-size", type=int, default=1024,
                         help="1024: a sun's moments at 2048 pass lavapipe's budget")
-    args = parser.parse_args()
+    parser.add_argument("--validation", action="store_true",
+                        help="run the Khronos validation layer (its messages are errors)")
+    args = parser.parse_args(argv)
     first, end = (int(s) for s in args.seeds.split(":"))
     rows = []
     with tempfile.TemporaryDirectory() as folder:
         for seed in range(first, end):
-            kind, errors = measure(seed, folder, args.width, args.height, args.shadow_map_size)
+            kind, errors = measure(seed, folder, args.width, args.height, args.shadow_map_size,
+                                   args.validation)
             rows.append(errors)
             print(f"seed {seed} {kind:<11} " +
                   " ".join(f"{m} {e:.4f}" for m, e in zip(METHODS, errors)), flush=True)
