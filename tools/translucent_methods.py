@@ -8,7 +8,7 @@ turn) from a random place. Each is rendered with hard shadows and translucent.me
 coloured and moments, and measured against a one-ray truth (the lights have no size): the
 luminance RMSE that `compare` reports. docs/translucency.md ("Which method") has a run.
 
-    PYTHONPATH=build/release/python python3 tools/translucent_methods.py --seeds 9100:9130
+    PYTHONPATH=build/release/python python3 tools/translucent_methods.py [--seeds 7300:7330]
 """
 import argparse
 import base64
@@ -128,16 +128,21 @@ def measure(seed, folder, width, height, map_size, validation=False):
                                                    frames=1), truth)["rmse"] for m in METHODS]
 
 
-def main(argv=None):
+def arguments(argv=None):
+    """The command line; its defaults are the run docs/translucency.md reports."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--seeds", default="9100:9130", help="FIRST:END (END excluded)")
+    parser.add_argument("--seeds", default="7300:7330", help="FIRST:END (END excluded)")
     parser.add_argument("--width", type=int, default=256)
     parser.add_argument("--height", type=int, default=192)
     parser.add_argument("--shadow-map-size", type=int, default=1024,
                         help="1024: a sun's moments at 2048 pass lavapipe's budget")
     parser.add_argument("--validation", action="store_true",
                         help="run the Khronos validation layer (its messages are errors)")
-    args = parser.parse_args(argv)
+    return parser.parse_args(argv)
+
+
+def main(argv=None):
+    args = arguments(argv)
     first, end = (int(s) for s in args.seeds.split(":"))
     rows = []
     with tempfile.TemporaryDirectory() as folder:

@@ -52,3 +52,13 @@ def test_a_run_prints_each_seed_and_finds_both_methods_far_below_opaque_sheets(c
     assert f"coloured {means[1]:.4f} / {max(e[1] for e in errors):.4f}" in lines[3]
     counts = [int(w) for w in lines[4].replace(",", "").split() if w.isdigit()]
     assert len(counts) == 3 and sum(counts) == 3
+
+
+def test_the_defaults_are_the_run_the_docs_report():
+    args = methods.arguments([])
+    first, end = (int(s) for s in args.seeds.split(":"))
+    docs = (Path(__file__).resolve().parents[2] / "docs" / "translucency.md").read_text()
+    run = " ".join(docs.split("### Which method", 1)[1].split())
+    assert (f"`tools/translucent_methods.py` at its defaults: seeds {first} to {end - 1}, "
+            f"{args.width} x {args.height}, {args.shadow_map_size} maps; {end - first} scenes") in run
+    assert not args.validation
