@@ -25,6 +25,9 @@ def test_stacks_load_as_their_kinds_in_turn_with_two_to_five_translucent_sheets(
         kinds.append(kind)
         doc = json.loads(path.read_text())
         sheets = doc["materials"][1:]
+        ground = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"]]
+        assert (ground["min"], ground["max"]) == ([-8, 0.0, -8], [8, 0.0, 8])
+        assert doc["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] == [0.7] * 3 + [1]
         assert 2 <= len(sheets) <= 5 and len(doc["meshes"]) == len(sheets) + 1
         assert scene.triangles == 2 * len(doc["meshes"])
         for m in sheets:
